@@ -1,0 +1,65 @@
+"""Small helpers shared by the command modules: output, JSON, units, files.
+
+Nothing here imports rich or matplotlib at module import time.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from axiscal.errors import InputError
+
+__all__ = ["console", "print_json", "jsonable", "out_path", "note"]
+
+
+def console():
+    """A rich console on stdout (imported on first use)."""
+    from rich.console import Console
+
+    return Console(highlight=False)
+
+
+def jsonable(obj: Any) -> Any:
+    """Convert numpy scalars/arrays, tuples and NaN to plain JSON data (NaN becomes null)."""
+    import numpy as np
+
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return jsonable(obj.tolist())
+    if isinstance(obj, (np.floating, float)):
+        v = float(obj)
+        return None if math.isnan(v) or math.isinf(v) else v
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+def print_json(obj: Any) -> None:
+    """Write ``obj`` as indented JSON on stdout."""
+    sys.stdout.write(json.dumps(jsonable(obj), indent=2, ensure_ascii=False) + "\n")
+
+
+def out_path(path: Path, what: str) -> Path:
+    """Check that an output file can be written (its folder exists), before any work is done."""
+    path = Path(path)
+    if path.exists() and path.is_dir():
+        raise InputError(f"{what} {path} is a folder; give a file name")
+    if not path.parent.exists():
+        raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
+    return path
+
+
+def note(message: str) -> None:
+    """A one-line note on stderr (so --json stdout stays clean)."""
+    typer.echo(message, err=True)

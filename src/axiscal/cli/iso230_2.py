@@ -1,0 +1,137 @@
+"""``axiscal iso230-2 FILE``: evaluate a positioning test by ISO 230-2:2014.
+
+JSON output (``--json``), stable: top-level keys ``A``, ``A_up``, ``A_down``, ``E``, ``E_up``,
+``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``, ``B_mean`` (numbers in ``unit``, or null where
+a unidirectional test makes them not apply), ``unit``, ``target_unit``, ``axis_kind``,
+``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``targets`` (one object per target:
+``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
+``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+__all__ = ["register", "result_json", "render_result"]
+
+
+def iso230_2(
+    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON or EPICS ecmc file."),
+    target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a CSV: mm or deg (overrides the file)."),
+    deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV: um, mm or arcsec (overrides the file)."),
+    full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),
+    json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+) -> None:
+    """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target)."""
+    from axiscal.io import read_positioning
+    from axiscal.standards.iso230_2 import evaluate
+
+    if plot is not None:
+        out_path(plot, "plot")
+    if report is not None:
+        out_path(report, "report")
+    ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
+    result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
+    if plot is not None:
+        from axiscal.report.plots import save_iso230_2_plot
+
+        save_iso230_2_plot(result, ds, plot)
+    if report is not None:
+        from axiscal.report.html import write_positioning_report
+
+        write_positioning_report(report, ds, result)
+    if json_out:
+        print_json(result_json(result))
+    else:
+        render_result(result, ds, title=str(file))
+    for p, what in ((plot, "plot"), (report, "report")):
+        if p is not None:
+            note(f"wrote {what} {p}")
+
+
+def result_json(result) -> dict:
+    """The stable JSON object of an ISO 230-2 result (see the module docstring)."""
+    d = dict(result.parameters())
+    d.update(
+        unit=result.deviation_unit,
+        target_unit=result.target_unit,
+        axis_kind=result.axis_kind.value,
+        n_runs=result.n_runs,
+        missing=result.missing,
+        closure_up=result.closure_up,
+        closure_down=result.closure_down,
+        targets=result.target_table(),
+        warnings=list(result.warnings),
+    )
+    return d
+
+
+def render_result(result, ds=None, title: str = "", console=None) -> None:
+    """Print the per-target table and the axis parameters as rich tables."""
+    import math
+
+    from rich.table import Table
+
+    from axiscal.cli._common import console as make_console
+
+    con = console or make_console()
+    u, tu = result.deviation_unit, result.target_unit
+    sym = {"um": "µm"}.get(u, u)
+
+    def f(v, digits=2):
+        return "—" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.{digits}f}"
+
+    heading = "ISO 230-2:2014 positioning test"
+    if ds is not None and (ds.metadata.machine or ds.metadata.axis):
+        heading += f" — {ds.metadata.machine} {ds.metadata.axis}".rstrip()
+    elif title:
+        heading += f" — {title}"
+    t = Table(title=heading, title_justify="left")
+    t.add_column(f"target [{tu}]", justify="right")
+    cols = [("n↑", "n_up"), (f"x̄↑ [{sym}]", "mean_up"), (f"s↑ [{sym}]", "s_up"),
+            ("n↓", "n_down"), (f"x̄↓ [{sym}]", "mean_down"), (f"s↓ [{sym}]", "s_down"),
+            (f"x̄ [{sym}]", "mean_bi"), (f"B_i [{sym}]", "reversal"), (f"R_i [{sym}]", "R_i")]
+    bidir = result.bidirectional
+    keep = [c for c in cols if bidir or not math.isnan(float(getattr(result, c[1])[0]))
+            and getattr(result, c[1])[0] is not None]
+    keep = [c for c in keep if not (c[1].startswith("n_") and int(getattr(result, c[1]).max()) == 0)]
+    for name, _ in keep:
+        t.add_column(name, justify="right")
+    for i, target in enumerate(result.targets):
+        cells = [f"{target:g}"]
+        for _, attr in keep:
+            v = getattr(result, attr)[i]
+            cells.append(str(int(v)) if attr.startswith("n_") else f(float(v)))
+        t.add_row(*cells)
+    con.print(t)
+
+    p = Table(title=f"Axis parameters [{sym}]", title_justify="left")
+    p.add_column("parameter")
+    p.add_column("value", justify="right")
+    p.add_column("meaning")
+    meanings = {
+        "A": "bidirectional accuracy of positioning", "A_up": "unidirectional accuracy ↑",
+        "A_down": "unidirectional accuracy ↓", "E": "bidirectional systematic positioning error",
+        "E_up": "unidirectional systematic error ↑", "E_down": "unidirectional systematic error ↓",
+        "M": "range of mean bidirectional positioning error", "R": "bidirectional repeatability",
+        "R_up": "unidirectional repeatability ↑", "R_down": "unidirectional repeatability ↓",
+        "B": "reversal value (max |B_i|)", "B_mean": "mean reversal value (signed, B_i = x̄↑ − x̄↓)",
+    }
+    for name, v in result.parameters().items():
+        p.add_row(name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"),
+                  f(v), meanings[name])
+    con.print(p)
+    for w in result.warnings:
+        con.print(f"[yellow]warning:[/yellow] {w}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``iso230-2`` command to the application."""
+    app.command("iso230-2")(iso230_2)

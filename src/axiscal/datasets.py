@@ -1,0 +1,449 @@
+"""Dataset types: what a measurement produces and an evaluation consumes.
+
+A dataset is frozen: its arrays are read-only and it validates itself on construction, naming the
+problem. It carries the *display* units of its axis (``mm``/``um`` for linear axes, ``deg``/``arcsec``
+for rotary axes); the I/O and presentation layers convert.
+
+The positioning dataset follows ISO 230-2:2014 vocabulary: a target position :math:`P_i`
+(:math:`i = 1..m`), the run :math:`j = 1..n`, the direction of approach (↑ positive, ↓ negative)
+and the positioning deviation :math:`x_{ij} = P_{ij} - P_i` (actual minus target; seed 001 eq. 1).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from enum import Enum
+from typing import Any
+
+import numpy as np
+
+from axiscal import units
+from axiscal.errors import InputError
+
+__all__ = [
+    "AxisKind",
+    "Direction",
+    "Environment",
+    "Metadata",
+    "PositioningDataset",
+]
+
+
+class AxisKind(str, Enum):
+    """Kind of axis: linear (lengths) or rotary (angles)."""
+
+    LINEAR = "linear"
+    ROTARY = "rotary"
+
+    @property
+    def dimension(self) -> str:
+        """``"length"`` for a linear axis, ``"angle"`` for a rotary one."""
+        return "length" if self is AxisKind.LINEAR else "angle"
+
+    @classmethod
+    def parse(cls, value: "str | AxisKind") -> "AxisKind":
+        """Accept ``"linear"``/``"rotary"`` (any case) or an :class:`AxisKind`."""
+        if isinstance(value, AxisKind):
+            return value
+        try:
+            return cls(str(value).strip().lower())
+        except ValueError:
+            raise InputError(f"axis kind {value!r} is not 'linear' or 'rotary'") from None
+
+
+class Direction(str, Enum):
+    """Direction of approach to a target: ``+`` (ISO 230-2 ↑) or ``-`` (↓)."""
+
+    UP = "+"
+    DOWN = "-"
+
+    @classmethod
+    def parse(cls, value: "str | Direction") -> "Direction":
+        """Accept ``+``/``-``, ``up``/``down``, ``fwd``/``bwd``, ``pos``/``neg`` (any case)."""
+        if isinstance(value, Direction):
+            return value
+        key = str(value).strip().lower()
+        if key in _DIRECTION_WORDS:
+            return _DIRECTION_WORDS[key]
+        raise InputError(f"direction {value!r} is not one of +, -, up, down, fwd, bwd")
+
+
+_DIRECTION_WORDS = {
+    "+": Direction.UP, "up": Direction.UP, "fwd": Direction.UP, "forward": Direction.UP,
+    "pos": Direction.UP, "positive": Direction.UP, "↑": Direction.UP,
+    "-": Direction.DOWN, "down": Direction.DOWN, "bwd": Direction.DOWN, "backward": Direction.DOWN,
+    "neg": Direction.DOWN, "negative": Direction.DOWN, "↓": Direction.DOWN, "−": Direction.DOWN,
+}
+
+
+@dataclass(frozen=True)
+class Environment:
+    """Environmental conditions recorded with a measurement.
+
+    Attributes
+    ----------
+    air_temperature : float or None, degrees Celsius
+    material_temperature : tuple of float, degrees Celsius
+        One value per material sensor (empty if none).
+    pressure : float or None, pascals
+    humidity : float or None, percent relative humidity
+    expansion_coefficient : float or None, 1/K
+        Linear thermal expansion coefficient of the axis's scale or work-piece material.
+    """
+
+    air_temperature: float | None = None
+    material_temperature: tuple[float, ...] = ()
+    pressure: float | None = None
+    humidity: float | None = None
+    expansion_coefficient: float | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "material_temperature", tuple(float(t) for t in self.material_temperature))
+        _check_range("air_temperature", self.air_temperature, -50.0, 100.0, "degrees Celsius")
+        for t in self.material_temperature:
+            _check_range("material_temperature", t, -50.0, 200.0, "degrees Celsius")
+        _check_range("pressure", self.pressure, 1e3, 2e5, "Pa")
+        _check_range("humidity", self.humidity, 0.0, 100.0, "%RH")
+        _check_range("expansion_coefficient", self.expansion_coefficient, -1e-4, 1e-4, "1/K")
+
+    @property
+    def mean_material_temperature(self) -> float | None:
+        """Average of the material sensors in degrees Celsius, or None if there are none."""
+        if not self.material_temperature:
+            return None
+        return float(np.mean(self.material_temperature))
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain-data form (for JSON)."""
+        return {
+            "air_temperature": self.air_temperature,
+            "material_temperature": list(self.material_temperature),
+            "pressure": self.pressure,
+            "humidity": self.humidity,
+            "expansion_coefficient": self.expansion_coefficient,
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any] | None) -> "Environment":
+        """Inverse of :meth:`to_dict`; unknown keys are refused."""
+        d = dict(d or {})
+        _refuse_unknown("environment", d, cls.__dataclass_fields__)
+        mt = d.get("material_temperature", ())
+        if isinstance(mt, (int, float)):
+            mt = (mt,)
+        d["material_temperature"] = tuple(mt or ())
+        return cls(**d)
+
+
+@dataclass(frozen=True)
+class Metadata:
+    """Who, what and when of a measurement. All fields are optional text except ``environment``."""
+
+    machine: str = ""
+    axis: str = ""
+    operator: str = ""
+    date: str = ""
+    instrument: str = ""
+    notes: str = ""
+    environment: Environment = field(default_factory=Environment)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain-data form (for JSON)."""
+        return {
+            "machine": self.machine,
+            "axis": self.axis,
+            "operator": self.operator,
+            "date": self.date,
+            "instrument": self.instrument,
+            "notes": self.notes,
+            "environment": self.environment.to_dict(),
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any] | None) -> "Metadata":
+        """Inverse of :meth:`to_dict`; unknown keys are refused."""
+        d = dict(d or {})
+        _refuse_unknown("metadata", d, cls.__dataclass_fields__)
+        env = Environment.from_dict(d.pop("environment", None))
+        for k, v in d.items():
+            if not isinstance(v, str):
+                raise InputError(f"metadata field {k!r} must be text, got {v!r}")
+        return cls(environment=env, **d)
+
+
+@dataclass(frozen=True, eq=False)
+class PositioningDataset:
+    """Deviations measured in a positioning test (ISO 230-2), per target, direction and run.
+
+    Attributes
+    ----------
+    axis_kind : AxisKind
+        Linear or rotary.
+    targets : ndarray, shape (m,), in ``target_unit``
+        Target positions :math:`P_i`, strictly increasing.
+    up : ndarray, shape (m, n_up), in ``deviation_unit``
+        Deviations :math:`x_{ij}↑` approaching in the positive direction; column j is run j+1.
+        NaN marks a missing reading.
+    down : ndarray, shape (m, n_down), in ``deviation_unit``
+        Deviations :math:`x_{ij}↓` approaching in the negative direction; ``n_down`` is 0 for a
+        unidirectional test.
+    target_unit : str
+        ``mm`` (or another length unit) for linear axes, ``deg`` for rotary axes.
+    deviation_unit : str
+        ``um`` or ``mm`` for linear axes, ``arcsec`` (or another angle unit) for rotary axes.
+    metadata : Metadata
+
+    Notes
+    -----
+    Deviation is actual minus target, :math:`x_{ij} = P_{ij} - P_i` (ISO 230-2:2014 §3.1,
+    seed 001 eq. 1). Row ``i`` of ``up`` and ``down`` belongs to target ``targets[i]``.
+
+    Examples
+    --------
+    >>> ds = PositioningDataset.from_arrays("linear", [0, 100, 200], [[1, 2], [0, 1], [2, 2]],
+    ...                                     [[3, 3], [2, 1], [4, 5]], "mm", "um")
+    >>> ds.n_targets, ds.n_runs, ds.bidirectional
+    (3, 2, True)
+    """
+
+    axis_kind: AxisKind
+    targets: np.ndarray
+    up: np.ndarray
+    down: np.ndarray
+    target_unit: str
+    deviation_unit: str
+    metadata: Metadata = field(default_factory=Metadata)
+
+    def __post_init__(self) -> None:
+        kind = AxisKind.parse(self.axis_kind)
+        object.__setattr__(self, "axis_kind", kind)
+        tu = units.canonical(self.target_unit)
+        du = units.canonical(self.deviation_unit)
+        if units.dimension(tu) != kind.dimension:
+            raise InputError(
+                f"target unit {self.target_unit!r} is not a {kind.dimension} unit, "
+                f"as a {kind.value} axis needs"
+            )
+        if units.dimension(du) != kind.dimension:
+            raise InputError(
+                f"deviation unit {self.deviation_unit!r} is not a {kind.dimension} unit, "
+                f"as a {kind.value} axis needs"
+            )
+        object.__setattr__(self, "target_unit", tu)
+        object.__setattr__(self, "deviation_unit", du)
+        targets = _as_float_array("targets", self.targets, ndim=1)
+        if targets.size < 2:
+            raise InputError(f"{targets.size} target position(s); a positioning test needs at least 2")
+        if not np.all(np.isfinite(targets)):
+            raise InputError("target positions must be finite numbers (found NaN or infinity)")
+        if np.any(np.diff(targets) <= 0):
+            i = int(np.argmax(np.diff(targets) <= 0))
+            raise InputError(
+                f"target positions must be strictly increasing: {targets[i]:g} is followed by "
+                f"{targets[i + 1]:g}"
+            )
+        m = targets.size
+        up = _as_float_array("up", self.up, ndim=2, rows=m)
+        down = _as_float_array("down", self.down, ndim=2, rows=m)
+        for name, arr in (("up", up), ("down", down)):
+            if np.any(np.isinf(arr)):
+                raise InputError(f"deviations ({name}) contain infinity")
+        if up.shape[1] == 0 and down.shape[1] == 0:
+            raise InputError("no runs at all: both directions are empty")
+        for name, arr in (("up", up), ("down", down)):
+            if arr.shape[1] and np.all(np.isnan(arr)):
+                raise InputError(f"every reading of direction {name} is missing")
+        for a in (targets, up, down):
+            a.flags.writeable = False
+        object.__setattr__(self, "targets", targets)
+        object.__setattr__(self, "up", up)
+        object.__setattr__(self, "down", down)
+
+    # -- construction -------------------------------------------------------------------
+    @classmethod
+    def from_arrays(
+        cls,
+        axis_kind: "str | AxisKind",
+        targets,
+        up,
+        down=None,
+        target_unit: str | None = None,
+        deviation_unit: str | None = None,
+        metadata: Metadata | None = None,
+    ) -> "PositioningDataset":
+        """Build a dataset from nested sequences; ``down=None`` makes a unidirectional test.
+
+        Units default to ``mm``/``um`` (linear) or ``deg``/``arcsec`` (rotary).
+        """
+        kind = AxisKind.parse(axis_kind)
+        m = len(np.atleast_1d(np.asarray(targets)))
+        if down is None:
+            down = np.empty((m, 0))
+        return cls(
+            axis_kind=kind,
+            targets=targets,
+            up=up,
+            down=down,
+            target_unit=target_unit or ("mm" if kind is AxisKind.LINEAR else "deg"),
+            deviation_unit=deviation_unit or ("um" if kind is AxisKind.LINEAR else "arcsec"),
+            metadata=metadata or Metadata(),
+        )
+
+    @classmethod
+    def from_records(
+        cls,
+        axis_kind: "str | AxisKind",
+        records,
+        target_unit: str | None = None,
+        deviation_unit: str | None = None,
+        metadata: Metadata | None = None,
+        source: str | None = None,
+    ) -> "PositioningDataset":
+        """Build a dataset from ``(target, direction, run, deviation)`` records.
+
+        Runs are numbered from 1 per direction; a run absent at some target is a missing
+        reading (NaN). A repeated ``(target, direction, run)`` is refused.
+        """
+        from axiscal.errors import DataFormatError
+
+        recs = list(records)
+        if not recs:
+            raise DataFormatError("no readings", source)
+        targets = sorted({float(r[0]) for r in recs})
+        index = {t: i for i, t in enumerate(targets)}
+        runs: dict[Direction, set[int]] = {Direction.UP: set(), Direction.DOWN: set()}
+        parsed = []
+        for t, d, run, dev in recs:
+            d = Direction.parse(d)
+            run = int(run)
+            if run < 1:
+                raise DataFormatError(f"run number {run} at target {t:g} must be 1 or more", source)
+            runs[d].add(run)
+            parsed.append((index[float(t)], d, run, float(dev)))
+        n_up = max(runs[Direction.UP], default=0)
+        n_down = max(runs[Direction.DOWN], default=0)
+        up = np.full((len(targets), n_up), np.nan)
+        down = np.full((len(targets), n_down), np.nan)
+        for i, d, run, dev in parsed:
+            arr = up if d is Direction.UP else down
+            if not np.isnan(arr[i, run - 1]):
+                raise DataFormatError(
+                    f"two readings for target {targets[i]:g}, direction {d.value}, run {run}", source
+                )
+            arr[i, run - 1] = dev
+        return cls.from_arrays(axis_kind, targets, up, down, target_unit, deviation_unit, metadata)
+
+    # -- derived views ----------------------------------------------------------------
+    @property
+    def n_targets(self) -> int:
+        """Number of target positions m."""
+        return int(self.targets.size)
+
+    @property
+    def n_runs(self) -> int:
+        """Largest number of runs in either direction."""
+        return int(max(self.up.shape[1], self.down.shape[1]))
+
+    @property
+    def bidirectional(self) -> bool:
+        """True if both directions of approach were measured."""
+        return self.up.shape[1] > 0 and self.down.shape[1] > 0
+
+    @property
+    def missing_count(self) -> int:
+        """Total number of missing readings (NaN) over both directions."""
+        return int(np.isnan(self.up).sum() + np.isnan(self.down).sum())
+
+    @property
+    def travel(self) -> float:
+        """Measured travel, last target minus first, in ``target_unit``."""
+        return float(self.targets[-1] - self.targets[0])
+
+    def records(self) -> list[tuple[float, str, int, float]]:
+        """The readings as ``(target, direction, run, deviation)`` tuples, missing ones left out."""
+        out = []
+        for d, arr in ((Direction.UP, self.up), (Direction.DOWN, self.down)):
+            for i, t in enumerate(self.targets):
+                for j in range(arr.shape[1]):
+                    if not math.isnan(arr[i, j]):
+                        out.append((float(t), d.value, j + 1, float(arr[i, j])))
+        return out
+
+    def with_deviation_unit(self, unit: str) -> "PositioningDataset":
+        """The same dataset with deviations expressed in another unit of the same dimension."""
+        k = units.convert(1.0, self.deviation_unit, unit)
+        return replace(self, up=self.up * k, down=self.down * k, deviation_unit=unit)
+
+    def with_metadata(self, **changes: Any) -> "PositioningDataset":
+        """A copy with some metadata fields replaced."""
+        return replace(self, metadata=replace(self.metadata, **changes))
+
+    def equals(self, other: "PositioningDataset") -> bool:
+        """Exact equality of every field (NaN equal to NaN)."""
+        return (
+            isinstance(other, PositioningDataset)
+            and self.axis_kind == other.axis_kind
+            and self.target_unit == other.target_unit
+            and self.deviation_unit == other.deviation_unit
+            and self.metadata == other.metadata
+            and np.array_equal(self.targets, other.targets)
+            and np.array_equal(self.up, other.up, equal_nan=True)
+            and np.array_equal(self.down, other.down, equal_nan=True)
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain-data form; missing readings become ``None``. See :mod:`axiscal.io.json`."""
+        return {
+            "format": "axiscal.positioning/1",
+            "axis_kind": self.axis_kind.value,
+            "target_unit": self.target_unit,
+            "deviation_unit": self.deviation_unit,
+            "targets": self.targets.tolist(),
+            "up": _nan_to_none(self.up),
+            "down": _nan_to_none(self.down),
+            "metadata": self.metadata.to_dict(),
+        }
+
+    def __str__(self) -> str:
+        kind = "bidirectional" if self.bidirectional else "unidirectional"
+        name = self.metadata.axis or self.axis_kind.value
+        return (
+            f"{name} axis, {kind} positioning test: {self.n_targets} targets from "
+            f"{self.targets[0]:g} to {self.targets[-1]:g} {self.target_unit}, {self.n_runs} runs, "
+            f"deviations in {self.deviation_unit}, {self.missing_count} missing readings"
+        )
+
+
+# -- helpers ------------------------------------------------------------------------------
+def _as_float_array(name: str, value, ndim: int, rows: int | None = None) -> np.ndarray:
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be numbers; could not read {value!r:.80}") from None
+    if ndim == 2 and arr.ndim == 1 and rows is not None and arr.size == 0:
+        arr = arr.reshape(rows, 0)
+    if arr.ndim != ndim:
+        raise InputError(f"{name} must be a {ndim}-D array, got shape {arr.shape}")
+    if rows is not None and arr.shape[0] != rows:
+        raise InputError(f"{name} has {arr.shape[0]} rows but there are {rows} target positions")
+    return arr
+
+
+def _check_range(name: str, value, lo: float, hi: float, unit: str) -> None:
+    if value is None:
+        return
+    if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+        raise InputError(f"{name} must be a finite number in {unit}, got {value!r}")
+    if not lo <= value <= hi:
+        raise InputError(f"{name} = {value:g} {unit} is outside the plausible range {lo:g} to {hi:g}")
+
+
+def _refuse_unknown(what: str, d: dict, fields) -> None:
+    unknown = sorted(set(d) - set(fields))
+    if unknown:
+        raise InputError(f"unknown {what} field(s): {', '.join(unknown)}")
+
+
+def _nan_to_none(arr: np.ndarray) -> list:
+    return [[None if math.isnan(v) else float(v) for v in row] for row in arr]

@@ -1,0 +1,101 @@
+"""The exceptions of axiscal.
+
+Every error axiscal raises on purpose derives from :class:`AxiscalError` and from the builtin that
+matches its meaning (``ValueError``, ``FileNotFoundError`` ...), the pattern of pint's
+``DefinitionError(ValueError, PintError)``. The command line turns an :class:`AxiscalError` into one
+line on stderr and exit code 2; anything else is a bug and keeps its traceback.
+
+Messages name the parameter, the value and the rule, for example::
+
+    InsufficientRunsError: 1 run at target 45 deg; ISO 230-2 needs at least 2 to estimate
+    repeatability (5 recommended)
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "AxiscalError",
+    "InputError",
+    "UnitError",
+    "DataFormatError",
+    "MissingFileError",
+    "ConfigError",
+    "InsufficientRunsError",
+    "MeasurementError",
+    "SignalLossError",
+    "ControllerLimitError",
+    "SignConventionError",
+]
+
+
+class AxiscalError(Exception):
+    """Base class of every error axiscal raises on purpose."""
+
+
+class InputError(AxiscalError, ValueError):
+    """A parameter has a value the function cannot accept (the message says which rule)."""
+
+
+class UnitError(InputError):
+    """A unit name is unknown, or not of the expected dimension (length or angle)."""
+
+
+class ConfigError(InputError):
+    """A configuration (TOML) file or value is missing a key or holds an impossible value."""
+
+
+class InsufficientRunsError(InputError):
+    """Too few runs (or readings) to estimate what a standard asks for."""
+
+
+class ControllerLimitError(InputError):
+    """A compensation table breaks a limit of the target controller's format."""
+
+
+class SignConventionError(InputError):
+    """Two inputs combine only with a sign convention that they contradict."""
+
+
+class DataFormatError(AxiscalError, ValueError):
+    """A file's content is not in the expected format.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    source : str, optional
+        The file name (or ``"<text>"``) the content came from.
+    line : int, optional
+        The 1-based line number of the offending line, where there is one.
+    """
+
+    def __init__(self, message: str, source: str | None = None, line: int | None = None):
+        self.message = message
+        self.source = source
+        self.line = line
+        where = ""
+        if source is not None:
+            where = f"{source}:{line}: " if line is not None else f"{source}: "
+        elif line is not None:
+            where = f"line {line}: "
+        super().__init__(where + message)
+
+
+class MissingFileError(AxiscalError, FileNotFoundError):
+    """A file that should be read does not exist or cannot be opened."""
+
+    def __init__(self, path: object, reason: str = "no such file"):
+        self.path = str(path)
+        self.reason = reason
+        super().__init__(f"{self.path}: {reason}")
+
+    def __str__(self) -> str:  # FileNotFoundError's own __str__ wants errno fields
+        return f"{self.path}: {self.reason}"
+
+
+class MeasurementError(AxiscalError, RuntimeError):
+    """A (real or simulated) measurement could not be taken as asked."""
+
+
+class SignalLossError(MeasurementError):
+    """An instrument lost its signal (beam obstructed, reflector turned too far, ...)."""

@@ -1,0 +1,56 @@
+"""Reading and writing whole files with errors that name the file."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+from axiscal.errors import DataFormatError, MissingFileError
+
+__all__ = ["read_text", "write_text_atomic", "write_bytes_atomic"]
+
+#: Refuse to read text files larger than this (a positioning file is kilobytes).
+MAX_TEXT_BYTES = 256 * 1024 * 1024
+
+
+def read_text(path) -> str:
+    """Read a UTF-8 (or UTF-8 with BOM) text file; errors name the file and the problem."""
+    p = Path(path)
+    if not p.exists():
+        raise MissingFileError(p)
+    if p.is_dir():
+        raise MissingFileError(p, "is a folder, not a file")
+    try:
+        if p.stat().st_size > MAX_TEXT_BYTES:
+            raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
+        data = p.read_bytes()
+    except PermissionError:
+        raise MissingFileError(p, "permission denied") from None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise DataFormatError(f"not UTF-8 text (byte {exc.start}); is this a binary file?",
+                              str(p)) from None
+
+
+def write_bytes_atomic(path, data: bytes) -> Path:
+    """Write ``data`` to ``path`` through a temporary file so no half-written file is left."""
+    p = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, p)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+    return p
+
+
+def write_text_atomic(path, text: str) -> Path:
+    """Write UTF-8 text atomically (see :func:`write_bytes_atomic`)."""
+    return write_bytes_atomic(path, text.encode("utf-8"))

@@ -1,0 +1,197 @@
+"""Tidy CSV for positioning tests.
+
+Format
+------
+One reading per line with the header ``target,direction,run,deviation``; ``actual`` may stand
+instead of ``deviation``, in which case deviation = actual − target (ISO 230-2 §3.1; seed 001
+eq. 1) and ``actual`` is in the target unit. ``direction`` is ``+``/``-`` (also ``up``/``down``,
+``fwd``/``bwd``). Comment lines start with ``#``; a leading comment may declare the units and the
+metadata as ``key=value`` pairs::
+
+    # target_unit=mm deviation_unit=um axis=X machine=VMC-800
+    target,direction,run,deviation
+    0,+,1,0.8
+    0,-,1,-1.2
+
+Units given as options override the file; without either, a linear test in mm/µm is assumed
+only if the header says so: missing units are an error (a rotary file read as millimetres would
+give numbers that look right and are not).
+"""
+
+from __future__ import annotations
+
+import csv as _csv
+import io
+import math
+import shlex
+
+from axiscal import units
+from axiscal.datasets import AxisKind, Metadata, PositioningDataset
+from axiscal.errors import AxiscalError, DataFormatError, InputError
+
+__all__ = ["parse_positioning_csv", "read_positioning_csv", "format_positioning_csv"]
+
+_META_KEYS = {"machine", "axis", "operator", "date", "instrument", "notes"}
+
+
+def read_positioning_csv(path, **kwargs) -> PositioningDataset:
+    """Read a tidy positioning CSV file; see :func:`parse_positioning_csv`."""
+    from axiscal.io._files import read_text
+
+    return parse_positioning_csv(read_text(path), source=str(path), **kwargs)
+
+
+def parse_positioning_csv(
+    text: str,
+    target_unit: str | None = None,
+    deviation_unit: str | None = None,
+    axis_kind: str | None = None,
+    source: str = "<text>",
+) -> PositioningDataset:
+    """Parse a tidy positioning CSV text into a :class:`PositioningDataset`.
+
+    Raises
+    ------
+    DataFormatError
+        Wrong header, a non-numeric value (with its line number), a bad direction, no data.
+    UnitError
+        An unknown unit, or units of the wrong dimension.
+
+    Examples
+    --------
+    >>> ds = parse_positioning_csv('''# target_unit=deg deviation_unit=arcsec
+    ... target,direction,run,deviation
+    ... 0,+,1,1.0
+    ... 0,+,2,1.5
+    ... 90,+,1,-0.5
+    ... 90,+,2,0.0
+    ... ''')
+    >>> ds.axis_kind.value, ds.n_targets, ds.bidirectional
+    ('rotary', 2, False)
+    """
+    header_meta: dict[str, str] = {}
+    data_lines: list[tuple[int, str]] = []
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        s = line.strip()
+        if not s:
+            continue
+        if s.startswith("#"):
+            if not data_lines:
+                header_meta.update(_parse_comment(s[1:], source, lineno))
+            continue
+        data_lines.append((lineno, line))
+    if not data_lines:
+        raise DataFormatError("no header and no readings (empty file?)", source)
+
+    tu = target_unit or header_meta.pop("target_unit", None)
+    du = deviation_unit or header_meta.pop("deviation_unit", None)
+    header_meta.pop("target_unit", None)
+    header_meta.pop("deviation_unit", None)
+    kind_text = axis_kind or header_meta.pop("axis_kind", None)
+    header_meta.pop("axis_kind", None)
+
+    header_lineno, header_line = data_lines[0]
+    columns = [c.strip().lower() for c in next(_csv.reader([header_line]))]
+    value_col = "deviation" if "deviation" in columns else "actual" if "actual" in columns else None
+    needed = ["target", "direction", "run"]
+    if value_col is None or any(c not in columns for c in needed):
+        raise DataFormatError(
+            f"header {header_line.strip()!r} must name the columns target,direction,run,deviation "
+            "(or actual instead of deviation)",
+            source,
+            header_lineno,
+        )
+    if tu is None:
+        raise DataFormatError(
+            "no target unit: give --target-unit (mm or deg) or a leading comment "
+            "'# target_unit=mm deviation_unit=um'",
+            source,
+        )
+    tu = units.canonical(tu)
+    if value_col == "deviation" and du is None:
+        raise DataFormatError(
+            "no deviation unit: give --deviation-unit (um, mm or arcsec) or a leading comment "
+            "'# target_unit=mm deviation_unit=um'",
+            source,
+        )
+    du = units.canonical(du) if du is not None else ("um" if units.dimension(tu) == "length" else "arcsec")
+    kind = AxisKind.parse(kind_text) if kind_text else (
+        AxisKind.LINEAR if units.dimension(tu) == "length" else AxisKind.ROTARY
+    )
+    idx = {c: columns.index(c) for c in needed + [value_col]}
+    to_dev = units.convert(1.0, tu, du) if value_col == "actual" else None
+
+    records = []
+    for lineno, line in data_lines[1:]:
+        row = next(_csv.reader([line]))
+        if len(row) < len(columns):
+            raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}", source, lineno)
+        target = _number(row[idx["target"]], "target", source, lineno)
+        try:
+            direction = _direction(row[idx["direction"]])
+        except InputError as exc:
+            raise DataFormatError(str(exc), source, lineno) from None
+        run_f = _number(row[idx["run"]], "run", source, lineno)
+        if run_f != int(run_f) or run_f < 1:
+            raise DataFormatError(f"run {row[idx['run']].strip()!r} is not a whole number >= 1",
+                                  source, lineno)
+        raw = row[idx[value_col]].strip()
+        if raw == "" or raw.lower() in {"nan", "na", "missing"}:
+            continue  # a missing reading: counted by the dataset as NaN
+        value = _number(raw, value_col, source, lineno)
+        dev = (value - target) * to_dev if to_dev is not None else value
+        records.append((target, direction, int(run_f), dev))
+    if not records:
+        raise DataFormatError("the header is there but no readings follow", source)
+    meta = Metadata(**{k: v for k, v in header_meta.items() if k in _META_KEYS})
+    try:
+        return PositioningDataset.from_records(kind, records, tu, du, meta, source=source)
+    except DataFormatError:
+        raise
+    except AxiscalError as exc:
+        raise DataFormatError(str(exc), source) from None
+
+
+def format_positioning_csv(ds: PositioningDataset) -> str:
+    """Write a dataset as tidy CSV with a units comment (missing readings are left out)."""
+    buf = io.StringIO()
+    meta = {k: getattr(ds.metadata, k) for k in sorted(_META_KEYS) if getattr(ds.metadata, k)}
+    head = f"target_unit={ds.target_unit} deviation_unit={ds.deviation_unit} axis_kind={ds.axis_kind.value}"
+    for k, v in meta.items():
+        head += f" {k}={shlex.quote(v)}"
+    buf.write(f"# {head}\n")
+    buf.write("target,direction,run,deviation\n")
+    for t, d, run, dev in ds.records():
+        buf.write(f"{t:.12g},{d},{run},{dev:.12g}\n")
+    return buf.getvalue()
+
+
+def _parse_comment(text: str, source: str, lineno: int) -> dict[str, str]:
+    out = {}
+    try:
+        tokens = shlex.split(text)
+    except ValueError:
+        return out
+    for tok in tokens:
+        if "=" in tok:
+            k, v = tok.split("=", 1)
+            k = k.strip().lower()
+            if k in _META_KEYS or k in {"target_unit", "deviation_unit", "axis_kind"}:
+                out[k] = v.strip()
+    return out
+
+
+def _number(text: str, column: str, source: str, lineno: int) -> float:
+    try:
+        v = float(text.strip())
+    except ValueError:
+        raise DataFormatError(f"{column} {text.strip()!r} is not a number", source, lineno) from None
+    if not math.isfinite(v):
+        raise DataFormatError(f"{column} {text.strip()!r} is not a finite number", source, lineno)
+    return v
+
+
+def _direction(text: str) -> str:
+    from axiscal.datasets import Direction
+
+    return Direction.parse(text).value

@@ -1,0 +1,1 @@
+"""axiscal.report."""

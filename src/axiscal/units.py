@@ -1,0 +1,177 @@
+"""Units of length and angle, and their conversion.
+
+Inside the core every quantity is SI (metres, radians, seconds, pascals; temperatures in degrees
+Celsius as the domain writes them). Datasets carry the *display* unit of their axis: mm and µm for
+linear axes, degrees and arcseconds for rotary axes. This module converts between the two.
+
+A unit is named by a short string; aliases (``"µm"``, ``"micron"``, ``"arcsec"``, ``'"'``) are
+accepted and normalised by :func:`canonical`.
+
+Examples
+--------
+>>> convert(1.0, "deg", "arcsec")
+3600.0
+>>> convert(12.5, "um", "mm")
+0.0125
+>>> dimension("arcsec")
+'angle'
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+
+from axiscal.errors import UnitError
+
+__all__ = [
+    "LENGTH_UNITS",
+    "ANGLE_UNITS",
+    "canonical",
+    "dimension",
+    "factor",
+    "convert",
+    "to_si",
+    "from_si",
+    "ARCSEC",
+    "DEG",
+    "UM",
+    "MM",
+]
+
+Dimension = Literal["length", "angle"]
+
+#: Size of one unit in metres.
+LENGTH_UNITS: dict[str, float] = {
+    "m": 1.0,
+    "mm": 1e-3,
+    "um": 1e-6,
+    "nm": 1e-9,
+    "in": 25.4e-3,
+    "uin": 25.4e-9,
+}
+
+#: Size of one unit in radians.
+ANGLE_UNITS: dict[str, float] = {
+    "rad": 1.0,
+    "mrad": 1e-3,
+    "urad": 1e-6,
+    "deg": math.pi / 180.0,
+    "arcmin": math.pi / (180.0 * 60.0),
+    "arcsec": math.pi / (180.0 * 3600.0),
+}
+
+#: One arcsecond, one degree, one micrometre and one millimetre in SI.
+ARCSEC = ANGLE_UNITS["arcsec"]
+DEG = ANGLE_UNITS["deg"]
+UM = LENGTH_UNITS["um"]
+MM = LENGTH_UNITS["mm"]
+
+_ALIASES: dict[str, str] = {
+    "metre": "m", "meter": "m", "metres": "m", "meters": "m",
+    "millimetre": "mm", "millimeter": "mm", "millimetres": "mm", "millimeters": "mm",
+    "µm": "um", "μm": "um", "micron": "um", "microns": "um", "micrometre": "um",
+    "micrometer": "um", "micrometres": "um", "micrometers": "um",
+    "nanometre": "nm", "nanometer": "nm",
+    "inch": "in", "inches": "in", '"in': "in",
+    "µin": "uin", "μin": "uin", "microinch": "uin",
+    "radian": "rad", "radians": "rad",
+    "µrad": "urad", "μrad": "urad",
+    "degree": "deg", "degrees": "deg", "°": "deg",
+    "arcminute": "arcmin", "arcminutes": "arcmin", "'": "arcmin",
+    "arcsecond": "arcsec", "arcseconds": "arcsec", "sec": "arcsec", '"': "arcsec", "as": "arcsec",
+}
+
+
+def canonical(unit: str) -> str:
+    """Return the canonical name of a unit of length or angle.
+
+    Parameters
+    ----------
+    unit : str
+        A unit name or alias, case-insensitive (``"µm"``, ``"Microns"``, ``"arcsec"`` ...).
+
+    Raises
+    ------
+    UnitError
+        If the name is not a known unit of length or angle.
+
+    Examples
+    --------
+    >>> canonical("µm"), canonical("Degrees"), canonical('"')
+    ('um', 'deg', 'arcsec')
+    """
+    if not isinstance(unit, str):
+        raise UnitError(f"unit must be a string, got {unit!r}")
+    key = unit.strip()
+    if key in LENGTH_UNITS or key in ANGLE_UNITS:
+        return key
+    low = key.lower()
+    if low in LENGTH_UNITS or low in ANGLE_UNITS:
+        return low
+    if key in _ALIASES:
+        return _ALIASES[key]
+    if low in _ALIASES:
+        return _ALIASES[low]
+    known = ", ".join(list(LENGTH_UNITS) + list(ANGLE_UNITS))
+    raise UnitError(f"unknown unit {unit!r}; known units: {known}")
+
+
+def dimension(unit: str) -> Dimension:
+    """Return ``"length"`` or ``"angle"`` for a unit name."""
+    name = canonical(unit)
+    return "length" if name in LENGTH_UNITS else "angle"
+
+
+def factor(unit: str, expected: Dimension | None = None) -> float:
+    """Size of one ``unit`` in SI (metres or radians).
+
+    Parameters
+    ----------
+    unit : str
+        Unit name or alias.
+    expected : {"length", "angle"}, optional
+        If given, a unit of the other dimension raises :class:`UnitError`.
+    """
+    name = canonical(unit)
+    dim = dimension(name)
+    if expected is not None and dim != expected:
+        raise UnitError(f"unit {unit!r} is an {dim} unit where a {expected} unit is needed")
+    return LENGTH_UNITS[name] if dim == "length" else ANGLE_UNITS[name]
+
+
+def convert(value, from_unit: str, to_unit: str):
+    """Convert ``value`` (scalar or array) from one unit to another of the same dimension.
+
+    Raises
+    ------
+    UnitError
+        If a unit is unknown or the two units are of different dimensions.
+    """
+    if dimension(from_unit) != dimension(to_unit):
+        raise UnitError(
+            f"cannot convert {from_unit!r} ({dimension(from_unit)}) to {to_unit!r} "
+            f"({dimension(to_unit)})"
+        )
+    k = factor(from_unit) / factor(to_unit)
+    if isinstance(value, (int, float)):
+        return float(value) * k
+    return np.asarray(value, dtype=float) * k
+
+
+def to_si(value, unit: str):
+    """Convert ``value`` in ``unit`` to metres or radians."""
+    k = factor(unit)
+    if isinstance(value, (int, float)):
+        return float(value) * k
+    return np.asarray(value, dtype=float) * k
+
+
+def from_si(value, unit: str):
+    """Convert ``value`` in metres or radians to ``unit``."""
+    k = factor(unit)
+    if isinstance(value, (int, float)):
+        return float(value) / k
+    return np.asarray(value, dtype=float) / k
