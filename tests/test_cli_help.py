@@ -1,6 +1,5 @@
 """Every command and command group of the CLI has help text (CONVENTIONS habit 10)."""
 
-import click
 import typer
 from typer.testing import CliRunner
 
@@ -10,9 +9,9 @@ from axiscal.cli import app
 runner = CliRunner()
 
 
-def _walk(cmd: click.Command, path=()):
+def _walk(cmd, path=()):
     yield path, cmd
-    if isinstance(cmd, click.Group):
+    if hasattr(cmd, "commands"):
         for name, sub in cmd.commands.items():
             yield from _walk(sub, path + (name,))
 
