@@ -1,1 +1,1 @@
-"""axiscal.report."""
+"""Plots and reports: matplotlib figures and self-contained HTML pages."""

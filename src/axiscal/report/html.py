@@ -1,0 +1,210 @@
+"""Self-contained HTML reports: one file, inline SVG figures, no network.
+
+:class:`Report` is a small page builder every report of axiscal uses; the specific reports
+(:func:`write_positioning_report`, and those of the rotary, squareness and motion-error modules)
+are short functions that add sections to it. The page is styled for print (A4) as well as screen,
+so the same HTML turns into a PDF with a browser or weasyprint.
+
+Examples
+--------
+>>> r = Report("Demo", subtitle="a test page")
+>>> r.add_table(["a", "b"], [[1, 2.5]], caption="numbers")
+>>> "<table" in r.html()
+True
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import html as _html
+import io
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable, Sequence
+
+from axiscal import __version__
+
+__all__ = ["Report", "figure_svg", "write_positioning_report"]
+
+
+def figure_svg(fig) -> str:
+    """Render a matplotlib figure as an inline ``<svg>`` string and close the figure."""
+    import matplotlib.pyplot as plt
+
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg", bbox_inches="tight")
+    plt.close(fig)
+    svg = buf.getvalue()
+    start = svg.find("<svg")
+    return svg[start:] if start >= 0 else svg
+
+
+@dataclass
+class Report:
+    """An HTML report assembled section by section.
+
+    Parameters
+    ----------
+    title : str
+    subtitle : str, optional
+    metadata : dict, optional
+        Shown as a key/value table under the title (machine, axis, operator, date ...).
+    """
+
+    title: str
+    subtitle: str = ""
+    metadata: dict[str, Any] = field(default_factory=dict)
+    _parts: list[str] = field(default_factory=list)
+
+    def add_heading(self, text: str, level: int = 2) -> None:
+        """A section heading (h2 by default)."""
+        self._parts.append(f"<h{level}>{_esc(text)}</h{level}>")
+
+    def add_text(self, text: str) -> None:
+        """A paragraph of plain text (escaped)."""
+        self._parts.append(f"<p>{_esc(text)}</p>")
+
+    def add_html(self, fragment: str) -> None:
+        """A trusted HTML fragment (built by axiscal, never from user text)."""
+        self._parts.append(fragment)
+
+    def add_figure(self, fig, caption: str = "") -> None:
+        """A matplotlib figure, inline as SVG."""
+        cap = f"<figcaption>{_esc(caption)}</figcaption>" if caption else ""
+        self._parts.append(f"<figure>{figure_svg(fig)}{cap}</figure>")
+
+    def add_table(self, headers: Sequence[str], rows: Iterable[Sequence[Any]], caption: str = "",
+                  digits: int = 3, css_class: str = "") -> None:
+        """A table; floats are shown with ``digits`` significant decimals, None/NaN as a dash."""
+        head = "".join(f"<th>{_esc(h)}</th>" for h in headers)
+        body = "".join("<tr>" + "".join(f"<td>{_cell(v, digits)}</td>" for v in row) + "</tr>"
+                       for row in rows)
+        cap = f"<caption>{_esc(caption)}</caption>" if caption else ""
+        cls = f' class="{css_class}"' if css_class else ""
+        self._parts.append(f"<table{cls}>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")
+
+    def add_key_values(self, items: dict[str, Any], caption: str = "", digits: int = 4) -> None:
+        """A two-column table of names and values."""
+        self.add_table(["", ""], [[k, v] for k, v in items.items()], caption, digits, "kv")
+
+    def add_warnings(self, warnings: Iterable[str]) -> None:
+        """A highlighted list of warnings (nothing if there are none)."""
+        items = "".join(f"<li>{_esc(w)}</li>" for w in warnings)
+        if items:
+            self._parts.append(f'<div class="warnings"><strong>Warnings</strong><ul>{items}</ul></div>')
+
+    def html(self) -> str:
+        """The complete page."""
+        from jinja2 import Environment, PackageLoader, select_autoescape
+
+        env = Environment(loader=PackageLoader("axiscal.report", "templates"),
+                          autoescape=select_autoescape(["html"]))
+        return env.get_template("base.html").render(
+            title=self.title,
+            subtitle=self.subtitle,
+            metadata={k: v for k, v in self.metadata.items() if v not in (None, "", [])},
+            body="\n".join(self._parts),
+            version=__version__,
+            generated=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        )
+
+    def write(self, path) -> Path:
+        """Write the page atomically (no half-written report is left on error)."""
+        from axiscal.io._files import write_text_atomic
+
+        return write_text_atomic(path, self.html())
+
+
+def write_positioning_report(path, dataset, result, title: str | None = None,
+                             extra: "list[tuple[str, str]] | None" = None) -> Path:
+    """Write the ISO 230-2 report of one positioning test: plot, tables, metadata, warnings."""
+    from axiscal.report.plots import iso230_2_figure
+
+    rep = positioning_report(dataset, result, title)
+    return rep.write(path)
+
+
+def positioning_report(dataset, result, title: str | None = None) -> Report:
+    """Build (without writing) the ISO 230-2 report of one positioning test."""
+    from axiscal.report.plots import iso230_2_figure
+
+    md = dataset.metadata
+    env = md.environment
+    axis = md.axis or ("rotary axis" if dataset.axis_kind.value == "rotary" else "linear axis")
+    rep = Report(
+        title or f"Positioning accuracy and repeatability — {md.machine or 'machine'} {axis}".strip(),
+        subtitle="Evaluated by ISO 230-2:2014",
+        metadata={
+            "Machine": md.machine, "Axis": md.axis, "Operator": md.operator, "Date": md.date,
+            "Instrument": md.instrument, "Notes": md.notes,
+            "Air temperature [°C]": env.air_temperature,
+            "Material temperature [°C]": ", ".join(f"{t:g}" for t in env.material_temperature),
+            "Pressure [Pa]": env.pressure, "Humidity [%RH]": env.humidity,
+            "Expansion coefficient [1/K]": env.expansion_coefficient,
+        },
+    )
+    u = _unit_label(result.deviation_unit)
+    rep.add_heading("Result")
+    params = result.parameters()
+    rows = [[_PARAM_LABEL[k], v, _PARAM_MEANING[k]] for k, v in params.items()]
+    rep.add_table(["Parameter", f"Value [{u}]", "Meaning (ISO 230-2:2014)"], rows, digits=2,
+                  css_class="params")
+    rep.add_warnings(result.warnings)
+    rep.add_figure(iso230_2_figure(result, dataset),
+                   f"Mean deviation per direction with ±2s bands and every run's readings "
+                   f"({u} against target in {result.target_unit}).")
+    rep.add_heading("Per target")
+    headers = [f"Target [{result.target_unit}]", "n↑", f"x̄↑", "s↑", "n↓", "x̄↓", "s↓", "x̄",
+               "B_i", "R↑_i", "R↓_i", "R_i"]
+    rows = [[r["target"], r["n_up"], r["mean_up"], r["s_up"], r["n_down"], r["mean_down"],
+             r["s_down"], r["mean_bi"], r["reversal"], r["R_up_i"], r["R_down_i"], r["R_i"]]
+            for r in result.target_table()]
+    rep.add_table(headers, rows, caption=f"Deviations in {u}; n = readings used.", digits=2,
+                  css_class="targets")
+    rep.add_heading("How the figures are formed")
+    rep.add_text(
+        "Deviation = actual − target. x̄↑, x̄↓: mean deviation approaching in the positive and "
+        "negative direction; s: the estimator of the standard uncertainty of positioning at a "
+        "target (n − 1 in the denominator); B_i = x̄↑ − x̄↓ (positive when the positive approach "
+        "stops further in +); R_i = max(2s↑ + 2s↓ + |B_i|, 4s↑, 4s↓); E, M, A, R, B as defined "
+        "in ISO 230-2:2014 clause 3."
+    )
+    return rep
+
+
+_PARAM_LABEL = {"A": "A", "A_up": "A↑", "A_down": "A↓", "E": "E", "E_up": "E↑", "E_down": "E↓",
+                "M": "M", "R": "R", "R_up": "R↑", "R_down": "R↓", "B": "B", "B_mean": "B̄"}
+_PARAM_MEANING = {
+    "A": "Bidirectional accuracy of positioning", "A_up": "Unidirectional accuracy, positive",
+    "A_down": "Unidirectional accuracy, negative",
+    "E": "Bidirectional systematic positioning error", "E_up": "Unidirectional systematic error, positive",
+    "E_down": "Unidirectional systematic error, negative",
+    "M": "Range of mean bidirectional positioning error", "R": "Bidirectional repeatability",
+    "R_up": "Unidirectional repeatability, positive", "R_down": "Unidirectional repeatability, negative",
+    "B": "Reversal value (largest |B_i|)", "B_mean": "Mean reversal value (signed)",
+}
+
+
+def _unit_label(unit: str) -> str:
+    return {"um": "µm", "deg": "°", "arcsec": "″"}.get(unit, unit)
+
+
+def _esc(text: Any) -> str:
+    return _html.escape(str(text))
+
+
+def _cell(v: Any, digits: int) -> str:
+    import math
+
+    if v is None:
+        return "—"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float) or hasattr(v, "dtype"):
+        f = float(v)
+        if math.isnan(f):
+            return "—"
+        return f"{f:.{digits}f}"
+    return _esc(v)
