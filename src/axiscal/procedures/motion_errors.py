@@ -24,7 +24,7 @@ from axiscal.errors import InputError
 from axiscal.instruments.five_dof import FiveDofSystem, FiveErrors, Readings, motion_at_unit, reconstruct
 from axiscal.machines.error_functions import ZERO, HarmonicSeries
 from axiscal.machines.rotary import Pose, RotaryAxis
-from axiscal.standards.iso230_7 import MotionErrorData
+from axiscal.standards.iso230_7 import MotionErrorData, fundamental
 from axiscal.units import ARCSEC, UM
 
 __all__ = ["ReferenceAxis", "BeamDrift", "MotionRun", "indexing_test", "stability_test",
@@ -231,10 +231,14 @@ class Crosstalk:
     spurious : dict of str to float
         Peak-to-valley over a turn that each measured error shows on a perfect axis (radians or
         metres): the mounting errors alone.
+    residual : dict of str to float
+        The same after removing the once-per-turn component (what an ISO 230-7 radial or tilt
+        evaluation keeps of it).
     """
 
     matrix: np.ndarray
     spurious: dict = field(default_factory=dict)
+    residual: dict = field(default_factory=dict)
 
     def table(self) -> list[list[float]]:
         """The matrix in display units: arcsec or µm of output per arcsec or µm of input."""
@@ -248,7 +252,9 @@ class Crosstalk:
                 for out, row in zip(FiveErrors.CHANNELS, self.table())]
         sp = ", ".join(f"{k} {v / (ARCSEC if k[0] == 'e' else UM):.3f}"
                        f"{' arcsec' if k[0] == 'e' else ' µm'}" for k, v in self.spurious.items())
-        return "\n".join([head, *rows, f"spurious motion on a perfect axis (p-v): {sp}"])
+        rs = ", ".join(f"{k} {v / (ARCSEC if k[0] == 'e' else UM):.3f}" for k, v in self.residual.items())
+        return "\n".join([head, *rows, f"spurious motion on a perfect axis (p-v): {sp}",
+                          f"  after removing the once-per-turn component: {rs}"])
 
 
 def crosstalk(system: FiveDofSystem, angle_step: float = 30 * math.pi / 180,
@@ -279,7 +285,9 @@ def crosstalk(system: FiveDofSystem, angle_step: float = 30 * math.pi / 180,
     perfect = Pose(theta=full, ez=z, ex=z, ey=z, dx=z, dy=z, dz=z)
     measured, _ = reconstruct(quiet.read(perfect, full), quiet)
     spurious = {ch: float(np.ptp(getattr(measured, ch))) for ch in FiveErrors.CHANNELS}
-    return Crosstalk(matrix, spurious)
+    residual = {ch: float(np.ptp(getattr(measured, ch)[:-1] - fundamental(theta, getattr(measured, ch)[:-1])))
+                for ch in FiveErrors.CHANNELS}
+    return Crosstalk(matrix, spurious, residual)
 
 
 def _pair(system, base, read, k, channel):
