@@ -217,7 +217,9 @@ class FiveDofSystem:
     Noise levels (documented choice): a data-sheet "resolution" is read as the ±3σ band of one
     recorded reading, so σ = resolution/6 (PSD 0.083 µm, QD 0.013 µm); ADC quantisation is 16 bit
     over the PSD's 7 mm and over the QDs' ±80 µm calibrated range (seed 003 section 3.1). The beam
-    jitter of 0.07 µrad is what air over 250 mm at 20 ± 1 °C gives in the seed's εx stability.
+    jitter (0.07 µrad) is not a data-sheet figure: it is chosen so that the simulated εx stability
+    matches the seed's 0.19 arcsec (the detectors alone give 0.065 arcsec), i.e. air turbulence
+    over 250 mm that the common path cannot remove because it differs between the two beams.
     """
 
     f1: float = 0.200

@@ -56,7 +56,7 @@ def five_errors_figure(runs, truth=None, title: str = "Five motion errors agains
                     color=_COLOURS[j % len(_COLOURS)], label=f"run {j + 1} (measured)")
         for j, t in enumerate(truth or ()):
             ax.plot(np.degrees(t.theta), getattr(t, ch) / unit, "--", lw=1.0, color="0.35",
-                    label="truth (simulation)" if j == 0 else None)
+                    label=f"truth, run {j + 1} (simulation)")
         ax.set_ylabel(label, fontsize=8.5)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel("commanded angle θ [deg]")
