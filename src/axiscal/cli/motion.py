@@ -221,7 +221,8 @@ def repeatability(
 
         motion_report(f"Repeatability — {cfg.machine or config.name}", result=result,
                       runs=[r.measured for r in out], truth=[r.truth for r in out],
-                      repeatability=rep, resolutions=cfg.system.resolutions()).write(report)
+                      repeatability=rep, resolutions=cfg.system.resolutions(),
+                      notes=[_MOUNTING_NOTE]).write(report)
     if json_out:
         print_json({"runs": n, "repeatability": _five_dict(rep),
                     "seed_repeatability": {_KEYS[c]: v for c, v in REPEATABILITY_SEED.items()},

@@ -93,8 +93,8 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
 
 def _iso_section(rep, result):
     rep.add_heading("ISO 230-7 error motion (fixed sensitive direction)")
-    rep.add_table(["Error motion", "Total", "Synchronous", "Asynchronous", "Fundamental",
-                   "Fundamental", "Unit"], iso230_7_rows(result), digits=3)
+    rep.add_table(["Error motion", "Total", "Synchronous", "Asynchronous", "Once-per-turn amplitude",
+                   "Once-per-turn", "Unit"], iso230_7_rows(result), digits=3)
     loc = result.location
     rep.add_key_values({
         "x0 offset [µm]": None if math.isnan(loc.x0) else loc.x0 / UM, "y0 offset [µm]": loc.y0 / UM,
