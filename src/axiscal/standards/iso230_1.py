@@ -292,9 +292,9 @@ def least_squares_line(positions, deviations) -> ReferenceLine:
     0.98
     """
     x, y = _xy(positions, deviations)
-    xm, ym = x.mean(), y.mean()
-    dx = x - xm
-    slope = float(np.dot(dx, y - ym) / np.dot(dx, dx))
+    xm, ym, span = x.mean(), y.mean(), np.ptp(x)
+    u = (x - xm) / span  # scaled so that tiny or huge position ranges neither under- nor overflow
+    slope = float(np.dot(u, y - ym) / np.dot(u, u) / span)
     return ReferenceLine("least_squares", slope, float(ym - slope * xm))
 
 
