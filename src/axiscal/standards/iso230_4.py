@@ -223,7 +223,7 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
         c_half, rms2 = _lstsq(np.column_stack([_harmonics(phi)[:, :3], _backlash_basis(phi)]),
                               half)
         q, m = float(c_mean[4]), float(c_mean[3])
-        bx, by_ = 2 * float(c_half[3]), 2 * float(c_half[4])  # half-difference holds b/2 times the basis
+        bx, by_ = float(c_half[3]), float(c_half[4])  # (ccw - cw)/2 = b_x B_x + b_y B_y + ...
         rms = math.hypot(rms1, rms2)
         h = _hysteresis(phi, ccw, cw)
     else:
@@ -249,7 +249,8 @@ def _harmonics(phi: np.ndarray) -> np.ndarray:
 
 
 def _backlash_basis(phi: np.ndarray) -> np.ndarray:
-    """Δr per unit backlash of X and Y in a CCW run (module docstring), columns B_x, B_y."""
+    """Δr per unit reversal value of X and Y in a CCW run, columns B_x, B_y (the CW run has the
+    opposite sign): δx = (b_x/2) sign(v_x) with v_x = -sin φ gives -(b_x/2) sign(sin φ) cos φ."""
     return np.column_stack([-0.5 * np.sign(np.sin(phi)) * np.cos(phi),
                             0.5 * np.sign(np.cos(phi)) * np.sin(phi)])
 
