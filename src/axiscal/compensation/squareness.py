@@ -91,7 +91,7 @@ class CrossAxisCompensation:
         --------
         >>> c = squareness_compensation(Squareness(40e-6, ("X", "Z")), aligned_axis="Z")
         >>> p, d = c.table(0.0, 0.5, 0.25)
-        >>> (p * 1e3).tolist(), [round(v * 1e6, 6) for v in d]
+        >>> (p * 1e3).tolist(), np.round(d * 1e6, 6).tolist()
         ([0.0, 250.0, 500.0], [0.0, 10.0, 20.0])
         """
         if not step > 0 or not stop > start:
