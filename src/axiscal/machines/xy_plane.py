@@ -362,5 +362,5 @@ def _describe(profile) -> str:
     if isinstance(profile, QuadraticBend):
         return f"quadratic {profile.straightness * 1e6:g} µm"
     if isinstance(profile, TabulatedProfile):
-        return f"tabulated ({profile.positions.size} points, {np.ptp(profile.deviations) * 1e6:.3g} µm)"
+        return f"tabulated {np.ptp(profile.deviations) * 1e6:.3g} µm ({profile.positions.size} points)"
     return type(profile).__name__

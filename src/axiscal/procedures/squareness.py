@@ -200,6 +200,8 @@ class MethodResult:
     squareness : Squareness
     label_at : tuple of float, m
         Where a plot places the result (the crossing of the two trajectories, or the centre).
+    group : str
+        For tests that belong together (a row of ballbar tests), the row's name; else ``""``.
     """
 
     method: str
@@ -207,6 +209,7 @@ class MethodResult:
     size: tuple[float, float]
     squareness: Squareness
     label_at: tuple[float, float]
+    group: str = ""
 
     def __str__(self) -> str:
         return (f"{self.method:<9} at ({self.centre[0] * 1e3:+.0f}, {self.centre[1] * 1e3:+.0f}) "

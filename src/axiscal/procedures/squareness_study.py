@@ -19,7 +19,7 @@ Seed 004, "Global squareness simulation results", "Local squareness simulation r
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -93,7 +93,7 @@ class MethodComparison:
         return {
             "machine": self.machine, "scope": self.scope, "truth_um_per_m": self.truth,
             "convention": "positive when the angle between +X and +Y exceeds 90°",
-            "results": [{"method": r.method, "centre_mm": [c * 1e3 for c in r.centre],
+            "results": [{"method": r.method, "group": r.group, "centre_mm": [c * 1e3 for c in r.centre],
                          "size_mm": [s * 1e3 for s in r.size],
                          "um_per_m": r.squareness.um_per_m, "arcsec": r.squareness.arcsec,
                          "iso_um_per_m": r.squareness.iso_um_per_m} for r in self.results],
@@ -162,10 +162,11 @@ def compare_methods(machine: XYPlaneMachine, scope: str = "global") -> MethodCom
         radius = min(lx, ly) / 2
         count = int(np.floor(max(lx, ly) / (2 * radius) + 1e-9))
         for arrangement, n in (("adjacent", count), ("overlapping", count + 1)):
-            row = [run_test(machine, t) for t in ballbar_row(machine, radius, n,
-                                                             arrangement=arrangement)]
+            group = f"{n} {arrangement} ballbar tests"
+            row = [replace(run_test(machine, t), group=group)
+                   for t in ballbar_row(machine, radius, n, arrangement=arrangement)]
             results.extend(row)
-            averages.append((f"{n} {arrangement} ballbar tests", (0.0, 0.0),
+            averages.append((group, (0.0, 0.0),
                              float(np.mean([r.squareness.um_per_m for r in row]))))
     return MethodComparison(str(machine), scope, tuple(results), tuple(averages),
                             machine.squareness * 1e6)
