@@ -61,7 +61,7 @@ def save_comparison_plot(machine, comparison, path) -> Path:
 def ballbar_figure(runs, result, title: str = "Ballbar test"):
     """Polar plot of a ballbar test: deviations magnified about the nominal circle."""
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(8, 7.2))
+    fig, ax = plt.subplots(figsize=(8, 8.4))
     devs = np.concatenate([r.deviations for r in runs])
     span = max(float(np.max(np.abs(devs))), 1e-9)
     ring = _nice(span)  # µm-scale rings at ±ring around the nominal circle
@@ -70,17 +70,21 @@ def ballbar_figure(runs, result, title: str = "Ballbar test"):
     for v, style in ((-ring, ":"), (0.0, "-"), (ring, ":")):
         ax.plot((base + k * v) * np.cos(t), (base + k * v) * np.sin(t), color="0.6", ls=style,
                 lw=0.8)
-        ax.annotate(f"{v * 1e6:+.3g} µm" if v else "nominal", (base + k * v, 0.0),
-                    fontsize=8, color="0.35", xytext=(3, 3), textcoords="offset points")
+        c, sn = np.cos(np.radians(62)), np.sin(np.radians(62))
+        ax.annotate(f"{v * 1e6:+.3g} µm" if v else "nominal", ((base + k * v) * c,
+                    (base + k * v) * sn), fontsize=8, color="0.35", xytext=(4, 0),
+                    textcoords="offset points", va="center")
     colours = {"ccw": "tab:blue", "cw": "tab:red"}
     for r in runs:
         order = np.argsort(r.angles)
         a, d = r.angles[order], r.deviations[order]
+        if result.arc_deg >= 359.0:  # close the loop of a full circle
+            a, d = np.r_[a, a[:1] + 2 * np.pi], np.r_[d, d[:1]]
         ax.plot((base + k * d) * np.cos(a), (base + k * d) * np.sin(a), color=colours[r.direction],
                 lw=1.4, label=r.direction.upper())
     ax.set_aspect("equal")
     ax.set_xlim(-1.75, 1.75)
-    ax.set_ylim(-1.6, 1.6)
+    ax.set_ylim(-2.25, 1.6)
     ax.axhline(0, color="0.85", lw=0.6)
     ax.axvline(0, color="0.85", lw=0.6)
     a0, a1 = result.squareness.axes
@@ -89,7 +93,7 @@ def ballbar_figure(runs, result, title: str = "Ballbar test"):
     ax.set_xticks([])
     ax.set_yticks([])
     ax.legend(loc="upper right")
-    ax.text(-1.7, -1.55, _ballbar_text(result), fontsize=9, family="monospace", va="bottom",
+    ax.text(-1.7, -2.2, _ballbar_text(result), fontsize=9, family="monospace", va="bottom",
             bbox=dict(boxstyle="round", fc="white", ec="0.7"))
     ax.set_title(f"{title}, R = {result.radius * 1e3:g} mm, {result.arc_deg:.0f}°")
     fig.tight_layout()
