@@ -2,6 +2,8 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import InputError
 from axiscal.machines.xy_plane import XYPlaneMachine
@@ -98,3 +100,22 @@ def test_bad_runs_are_refused():
     with pytest.raises(InputError):
         CircularRun(phi[:3], phi[:3])
     assert arc_coverage(phi) == pytest.approx(360.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(-20e-6, 20e-6), st.floats(-30e-6, 30e-6), st.floats(-10e-6, 10e-6),
+       st.integers(0, 2**31))
+def test_radius_offset_and_reading_order_do_not_change_the_diagnosis(offset, sq, bx, seed):
+    """Property: a ballbar length error (constant on every reading) and the order of the
+    readings change neither squareness, scale mismatch, backlash, G nor H."""
+    m = XYPlaneMachine(squareness=sq, backlash_x=bx)
+    test = BallbarTest(radius=0.1, n_points=90)
+    ccw, cw = measure_ballbar(m, test)
+    a = evaluate_circular([ccw, cw], 0.1)
+    p = np.random.default_rng(seed).permutation(90)
+    shifted = [CircularRun(r.angles[p], r.deviations[p] + offset, r.direction) for r in (cw, ccw)]
+    b = evaluate_circular(shifted, 0.1)
+    for key in ("scale_mismatch", "backlash_x", "backlash_y", "G_ccw", "G_cw", "H"):
+        assert getattr(b, key) == pytest.approx(getattr(a, key), abs=1e-12), key
+    assert b.squareness.excess == pytest.approx(a.squareness.excess, abs=1e-12)
+    assert a.squareness.excess == pytest.approx(sq, abs=2e-9)

@@ -32,7 +32,7 @@ import typer
 
 from axiscal.cli._common import note, out_path, print_json
 
-__all__ = ["register"]
+__all__ = ["register", "render_comparison"]
 
 REFERENCES = ("least_squares", "end_point", "minimum_zone")
 _REF_HELP = "Reference line: least_squares, end_point or minimum_zone (ISO 230-1)."
@@ -218,9 +218,43 @@ def simulate(
     if json_out:
         print_json(c.as_dict())
     else:
-        typer.echo(str(c))
+        render_comparison(c)
     if plot is not None:
         note(f"wrote plot {plot}")
+
+
+def render_comparison(c, console=None) -> None:
+    """Methods as rows, test locations as columns (µm/m), then the averages the same way."""
+    from rich.table import Table
+
+    from axiscal.cli._common import console as make_console
+
+    con = console or make_console()
+    where = (lambda p: f"({p[0] * 1e3:+.0f}, {p[1] * 1e3:+.0f}) mm")
+    con.print(f"[bold]{c.machine}[/bold]")
+    con.print(f"{c.scope} squareness in µm/m, positive when the angle between +X and +Y exceeds "
+              f"90°; truth θ0 = {c.truth:+.2f} µm/m")
+    locations = c.locations()
+
+    def table(title, names, value):
+        t = Table(title=title, title_justify="left", caption="columns: test centre (x, y) in mm",
+                  caption_justify="left")
+        t.add_column("", no_wrap=True)
+        for loc in locations:
+            t.add_column(f"{loc[0] * 1e3:+.0f}, {loc[1] * 1e3:+.0f}", justify="right",
+                         no_wrap=True)
+        for name in names:
+            t.add_row(name, *[f"{value(name, loc):+.2f}" for loc in locations])
+        con.print(t)
+
+    table("results", list(dict.fromkeys(r.method for r in c.results if not r.group)), c.value)
+    names = list(dict.fromkeys(n for n, _, _ in c.averages if "ballbar" not in n))
+    table("averages of opposite corners (L) and sides (T)", names, c.average)
+    for r in (r for r in c.results if r.group):
+        con.print(f"  {r.group}: circle at {where(r.centre)}: {r.squareness.um_per_m:+.2f}")
+    for name, _, v in c.averages:
+        if "ballbar" in name:
+            con.print(f"  [bold]average of {name}: {v:+.2f}[/bold]")
 
 
 def register(app: typer.Typer) -> None:
