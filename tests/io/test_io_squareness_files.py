@@ -15,7 +15,6 @@ from axiscal.io.ballbar import (
     read_diagonal,
 )
 from axiscal.io.straightness import (
-    StraightnessData,
     format_straightness,
     parse_straightness,
     read_straightness,

@@ -217,15 +217,7 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
     g = {d: _circular_deviation(r) for d, r in by.items()}
     devs = np.concatenate([r.deviations for r in runs])
     if len(by) == 2:
-        phi, ccw, cw = _common(by["ccw"], by["cw"], arc)
-        mean, half = 0.5 * (ccw + cw), 0.5 * (ccw - cw)
-        c_mean, rms1 = _lstsq(_harmonics(phi), mean)
-        c_half, rms2 = _lstsq(np.column_stack([_harmonics(phi)[:, :3], _backlash_basis(phi)]),
-                              half)
-        q, m = float(c_mean[4]), float(c_mean[3])
-        bx, by_ = float(c_half[3]), float(c_half[4])  # (ccw - cw)/2 = b_x B_x + b_y B_y + ...
-        rms = math.hypot(rms1, rms2)
-        h = _hysteresis(phi, ccw, cw)
+        q, m, bx, by_, rms, h = _diagnose_both(by["ccw"], by["cw"], arc)
     else:
         (d, run), = by.items()
         s = 1.0 if d == "ccw" else -1.0
@@ -242,6 +234,17 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
 
 
 # --- helpers -------------------------------------------------------------------------------------
+
+def _diagnose_both(ccw_run: CircularRun, cw_run: CircularRun, arc: float):
+    """Squareness and scale terms from the mean, backlash from the half difference."""
+    phi, ccw, cw = _common(ccw_run, cw_run, arc)
+    mean, half = 0.5 * (ccw + cw), 0.5 * (ccw - cw)
+    c_mean, rms1 = _lstsq(_harmonics(phi), mean)
+    c_half, rms2 = _lstsq(np.column_stack([_harmonics(phi)[:, :3], _backlash_basis(phi)]), half)
+    # (ccw - cw)/2 = b_x B_x + b_y B_y + centre and radius shifts between the runs
+    return (float(c_mean[4]), float(c_mean[3]), float(c_half[3]), float(c_half[4]),
+            math.hypot(rms1, rms2), _hysteresis(phi, ccw, cw))
+
 
 def _harmonics(phi: np.ndarray) -> np.ndarray:
     return np.column_stack([np.ones_like(phi), np.cos(phi), np.sin(phi), np.cos(2 * phi),
