@@ -119,3 +119,18 @@ def test_radius_offset_and_reading_order_do_not_change_the_diagnosis(offset, sq,
         assert getattr(b, key) == pytest.approx(getattr(a, key), abs=1e-12), key
     assert b.squareness.excess == pytest.approx(a.squareness.excess, abs=1e-12)
     assert a.squareness.excess == pytest.approx(sq, abs=2e-9)
+
+
+def test_minimum_zone_G_is_exact_and_never_wider_than_the_lsc_value():
+    """ISO 230-4 G: minimum radial separation of two concentric circles. For a path with a
+    one-sided bump the least-squares centre is pulled off and its band is wider; the minimum zone
+    is checked against a brute-force search over centres."""
+    phi = np.radians(np.arange(0, 360, 2.0))
+    dev = 2e-6 * np.exp(-((phi - 1.0) / 0.3) ** 2) + 0.5e-6 * np.cos(3 * phi)
+    r = evaluate_circular([CircularRun(phi, dev, "ccw")], 0.1)
+    assert r.G_ccw <= r.G_lsc_ccw + 1e-15
+    assert r.G_ccw < 0.97 * r.G_lsc_ccw
+    grid = np.linspace(-2e-6, 2e-6, 161)
+    best = min(np.ptp(dev - a * np.cos(phi) - b * np.sin(phi)) for a in grid for b in grid)
+    assert r.G_ccw <= best + 1e-15
+    assert r.G_ccw == pytest.approx(best, rel=0.02)

@@ -16,7 +16,8 @@ JSON output (``--json``), stable keys:
   ``error_d1_um``, ``error_d2_um``, ``slope_d1_um_per_m``, ``slope_d2_um_per_m`` (null for two
   lengths), ``labels`` (the D1/D2 definitions).
 * ``squareness circular``: ``squareness``, ``radius_mm``, ``scale_mismatch_um_per_m``,
-  ``backlash_x_um``, ``backlash_y_um``, ``G_ccw_um``, ``G_cw_um``, ``H_um``, ``F_max_um``,
+  ``backlash_x_um``, ``backlash_y_um``, ``G_ccw_um``, ``G_cw_um`` (minimum zone), ``G_lsc_ccw_um``,
+  ``G_lsc_cw_um`` (least-squares centre), ``H_um``, ``F_max_um``,
   ``F_min_um``, ``arc_deg``, ``fit_rms_um``, ``warnings``.
 * ``squareness simulate``: ``machine``, ``scope``, ``truth_um_per_m``, ``convention``,
   ``results`` (``method``, ``group``, ``centre_mm``, ``size_mm``, ``um_per_m``, ``arcsec``,

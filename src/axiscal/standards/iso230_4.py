@@ -8,9 +8,12 @@ ISO 230-4 definitions (§3, evaluated here on the sampled path):
 
 * **F, radial deviation** — deviation of the actual path from the nominal path about the nominal
   centre (the ballbar's pivot): ``F_max = max Δr``, ``F_min = min Δr`` over all runs.
-* **G, circular deviation** — radial separation of two concentric circles enveloping the actual
-  path of one direction, centred on the least-squares circle (ISO 230-4 allows the LSC centre;
-  its value is not smaller than the minimum-zone one). ``G_ccw``, ``G_cw``.
+* **G, circular deviation** — the minimum radial separation of two concentric circles
+  enveloping the actual path of one direction (minimum-zone centre), ``G_ccw``, ``G_cw``. Solved
+  exactly as a linear programme on the first-order model ``Δr - (a cos φ + b sin φ)`` (valid while
+  the deviations are small against R, as they are on a machine). The value about the
+  least-squares centre, which ISO 230-4 also allows and which is never smaller, is in
+  ``G_lsc_ccw``, ``G_lsc_cw``.
 * **H, circular hysteresis** — largest radial difference between the CW and CCW paths at the same
   angle, both referred to their common least-squares centre.
 
@@ -108,7 +111,7 @@ class CircularResult:
     backlash_x, backlash_y : float or None, m
         Reversal values (None with one direction).
     G_ccw, G_cw : float or None, m
-        Circular deviation of each direction.
+        Circular deviation of each direction (minimum-zone centre).
     H : float or None, m
         Circular hysteresis (both directions needed).
     F_max, F_min : float, m
@@ -118,6 +121,8 @@ class CircularResult:
     fit_rms : float, m
         RMS residual of the diagnosis model.
     warnings : tuple of str
+    G_lsc_ccw, G_lsc_cw : float or None, m
+        Circular deviation about the least-squares centre.
     """
 
     radius: float
@@ -133,6 +138,8 @@ class CircularResult:
     arc_deg: float
     fit_rms: float
     warnings: tuple[str, ...] = ()
+    G_lsc_ccw: float | None = None
+    G_lsc_cw: float | None = None
 
     def as_dict(self) -> dict:
         """Numbers for JSON: lengths in µm, ratios in µm/m."""
@@ -141,6 +148,7 @@ class CircularResult:
                 "scale_mismatch_um_per_m": self.scale_mismatch * 1e6,
                 "backlash_x_um": um(self.backlash_x), "backlash_y_um": um(self.backlash_y),
                 "G_ccw_um": um(self.G_ccw), "G_cw_um": um(self.G_cw), "H_um": um(self.H),
+                "G_lsc_ccw_um": um(self.G_lsc_ccw), "G_lsc_cw_um": um(self.G_lsc_cw),
                 "F_max_um": um(self.F_max), "F_min_um": um(self.F_min), "arc_deg": self.arc_deg,
                 "fit_rms_um": um(self.fit_rms), "warnings": list(self.warnings)}
 
@@ -215,6 +223,7 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
     by = {r.direction: r for r in runs}
     warnings: list[str] = []
     g = {d: _circular_deviation(r) for d, r in by.items()}
+    g_lsc = {d: _circular_deviation_lsc(r) for d, r in by.items()}
     devs = np.concatenate([r.deviations for r in runs])
     if len(by) == 2:
         q, m, bx, by_, rms, h = _diagnose_both(by["ccw"], by["cw"], arc)
@@ -230,7 +239,8 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
         radius=float(radius), squareness=Squareness(-2.0 * q / radius, axes, datum),
         scale_mismatch=2.0 * m / radius, backlash_x=bx, backlash_y=by_,
         G_ccw=g.get("ccw"), G_cw=g.get("cw"), H=h, F_max=float(devs.max()),
-        F_min=float(devs.min()), arc_deg=arc, fit_rms=float(rms), warnings=tuple(warnings))
+        F_min=float(devs.min()), arc_deg=arc, fit_rms=float(rms), warnings=tuple(warnings),
+        G_lsc_ccw=g_lsc.get("ccw"), G_lsc_cw=g_lsc.get("cw"))
 
 
 # --- helpers -------------------------------------------------------------------------------------
@@ -265,6 +275,27 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
 
 
 def _circular_deviation(run: CircularRun) -> float:
+    """Minimum-zone G: min over (a, b) of max - min of Δr - a cos φ - b sin φ (an LP)."""
+    from scipy.optimize import linprog
+
+    cos, sin, d = np.cos(run.angles), np.sin(run.angles), run.deviations
+    scale = max(float(np.ptp(d)), 1e-300)
+    dn = d / scale
+    ones, zeros = np.ones_like(d), np.zeros_like(d)
+    # variables a, b, u, l: minimise u - l with l <= dn - a cos - b sin <= u
+    a_ub = np.vstack([np.column_stack([-cos, -sin, -ones, zeros]),
+                      np.column_stack([cos, sin, zeros, ones])])
+    b_ub = np.concatenate([-dn, dn])
+    res = linprog([0, 0, 1, -1], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * 4,
+                  method="highs")
+    if not res.success:  # pragma: no cover - a bounded LP with a feasible start always solves
+        return _circular_deviation_lsc(run)
+    a, b = res.x[0] * scale, res.x[1] * scale
+    r = d - a * cos - b * sin
+    return float(r.max() - r.min())
+
+
+def _circular_deviation_lsc(run: CircularRun) -> float:
     c, _ = _lstsq(_harmonics(run.angles)[:, :3], run.deviations)
     res = run.deviations - _harmonics(run.angles)[:, :3] @ c
     return float(res.max() - res.min())
