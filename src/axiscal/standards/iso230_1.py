@@ -248,9 +248,14 @@ class TrajectorySquareness:
     reference_excess: float = 0.0
 
     def __str__(self) -> str:
-        return (f"{self.squareness}\n  {self.squareness.axes[0]} trajectory: {self.first}\n"
-                f"  {self.squareness.axes[1]} trajectory: {self.second}\n"
-                f"  reference square correction: {self.reference_excess * 1e6:+.2f} µm/m")
+        a, b = self.squareness.axes
+        method = self.first.line.method.replace("_", " ")
+        return (f"{self.squareness}\n"
+                f"  {a} trajectory: straightness {self.first.deviation * 1e6:.3f} µm, slope "
+                f"{self.slope_first * 1e6:+.3f} µm/m towards +{b} ({method} line)\n"
+                f"  {b} trajectory: straightness {self.second.deviation * 1e6:.3f} µm, slope "
+                f"{self.slope_second * 1e6:+.3f} µm/m towards +{a} ({method} line)\n"
+                f"  reference square correction: {self.reference_excess * 1e6:+.3f} µm/m")
 
 
 def reference_line(positions, deviations, method: Method = "least_squares") -> ReferenceLine:
