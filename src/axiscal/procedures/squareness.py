@@ -24,6 +24,13 @@ T 270   middle                                        left edge
 \\+      middle                                        middle (straightedge on a 90° indexer)
 ======  ============================================  ==============================================
 
+Seed 004 names the orientations but shows them only in its figures: "T" 0° is the T with its bar
+at the top and "T" 180° the inverted T (the seed's set-up for a vertical axis), 90° turns the
+equipment clockwise (the seed's Figure 14 note); "L" 0° is the letter L. The seed's remark that
+with a vertical axis the "L" orientations 0° and 90° are the easy ones suggests that its "L" 90°
+may be the mirror image with the corner at the bottom right (here "L" 270°). Either way the four
+results are the same set; only their labels could differ.
+
 The straightness readings are the deviations perpendicular to each reference: δy along the X
 trajectory, δx along the Y trajectory (plus the tilt of a reference square with an angle error).
 A ballbar test reads ``|P(φ) - P(centre)| - R`` with P the actual positions; a diagonal test
