@@ -30,6 +30,8 @@ COMMANDS: dict[str, str] = {
     "simulate": "axiscal.cli.simulate",
     "demo": "axiscal.cli.demo",
     "motion": "axiscal.cli.motion",
+    "straightness": "axiscal.cli.squareness",
+    "squareness": "axiscal.cli.squareness",
 }
 
 
