@@ -44,6 +44,7 @@ import numpy as np
 
 from axiscal import units
 from axiscal.compensation.apply import CompensatedAxis
+from axiscal.compensation.controllers import check_options
 from axiscal.compensation.controllers import controller as controller_module
 from axiscal.compensation.tables import CompensationTable, table_from_deviations, table_from_result
 from axiscal.datasets import AxisKind
@@ -197,7 +198,11 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
                                   axis=axis.name)
     except InputError as exc:
         raise ConfigError(f"[compensation]: {exc}") from None
-    cf = mod.write(table, travel, **s["options"])
+    try:
+        options = check_options(mod.write, s["options"], f"[compensation] {mod.NAME}")
+    except InputError as exc:
+        raise ConfigError(str(exc)) from None
+    cf = mod.write(table, travel, **options)
     applied = _read_back(mod, cf, s["options"])
     comp = CompensatedAxis(axis, applied, sign=sign)
     ds1 = simulate_positioning_test(plan, comp, rng, measurement_sigma=msigma)

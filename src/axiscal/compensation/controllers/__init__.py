@@ -25,7 +25,7 @@ import importlib
 from axiscal.compensation.controllers._common import ControllerFile
 from axiscal.errors import InputError
 
-__all__ = ["CONTROLLERS", "controller", "ControllerFile"]
+__all__ = ["CONTROLLERS", "controller", "ControllerFile", "check_options"]
 
 #: Controller name -> module name.
 CONTROLLERS = {
@@ -43,3 +43,17 @@ def controller(name: str):
     if key not in CONTROLLERS:
         raise InputError(f"controller {name!r} is not one of {', '.join(CONTROLLERS)}")
     return importlib.import_module(f"axiscal.compensation.controllers.{CONTROLLERS[key]}")
+
+
+def check_options(function, options: dict, what: str) -> dict:
+    """Refuse options a writer or parser does not take, naming them and the allowed ones."""
+    import inspect
+
+    params = inspect.signature(function).parameters
+    allowed = sorted(k for k, p in params.items() if p.kind is p.KEYWORD_ONLY or
+                     (p.default is not p.empty and k not in ("travel", "source")))
+    unknown = sorted(set(options) - set(allowed))
+    if unknown:
+        raise InputError(f"{what}: unknown option(s) {', '.join(unknown)}; allowed: "
+                         f"{', '.join(allowed) or 'none'}")
+    return options

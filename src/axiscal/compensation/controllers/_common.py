@@ -63,9 +63,9 @@ def check_points(n: int, maximum: int, fmt: str, what: str = "points") -> None:
 def check_spacing(spacing: float, resolution: float, unit: str, fmt: str) -> int:
     """Refuse a spacing that is not a whole number of ``resolution``; return that number."""
     k = spacing / resolution
-    if not math.isfinite(k) or k < 1 or abs(k - round(k)) > 1e-6 * max(1.0, k):
+    if not math.isfinite(k) or k < 1 or abs(k - round(k)) > 1e-6:
         raise ControllerLimitError(
-            f"{fmt}: spacing {spacing:g} {unit} is not a whole multiple of the controller's "
+            f"{fmt}: spacing {spacing:.10g} {unit} is not a whole multiple of the controller's "
             f"position unit {resolution:g} {unit}")
     return int(round(k))
 

@@ -120,8 +120,10 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1, refere
               "3605#0 = 1 (bidirectional pitch error compensation)" if table.bidirectional
               else "3605#0 = 0 (one table for both directions)",
               "power the control off and on, then return to the reference position (G28)"]
+    step = mag * detection_unit / correction_factor(table, table.position_unit)
     notes = (f"magnification 3623 = {mag}; point {ref} is the reference position "
-             f"{table.reference_position:g} {table.position_unit}",)
+             f"{table.reference_position:g} {table.position_unit}",
+             f"corrections rounded to one count x magnification = {step:g} {table.correction_unit}")
     return ControllerFile(NAME, "\n".join(lines) + "\n", f"PITCH_{table.axis or 'AXIS'}.TXT",
                           table, tuple(enable), notes=notes)
 
