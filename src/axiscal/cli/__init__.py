@@ -65,9 +65,9 @@ def _root(
 
 def _register_all() -> None:
     # One line per command module; each module imports only typer at import time.
-    from axiscal.cli import compensate, demo, iso230_2, plan, simulate
+    from axiscal.cli import compensate, demo, iso230_2, plan, simulate, squareness
 
-    for module in (iso230_2, plan, simulate, demo, compensate):
+    for module in (iso230_2, plan, simulate, demo, squareness, compensate):
         module.register(app)
 
 
