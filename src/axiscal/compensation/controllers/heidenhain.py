@@ -50,7 +50,8 @@ _BEGIN = re.compile(r"^BEGIN\s+(\S+?)(?:\.COM)?\s+(MM|INCH)?\s*$", re.IGNORECASE
 
 
 def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS,
-          position_resolution: float = 0.0001, power_of_two: bool = False) -> ControllerFile:
+          position_resolution: float = 0.0001, power_of_two: bool = False,
+          driving_axis: str | None = None) -> ControllerFile:
     """Write ``table`` as ``<AXIS>.COM`` with its ``.CMA`` assignment (in ``extra_files``).
 
     Parameters
@@ -63,6 +64,10 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
         The spacing must be a whole multiple of this.
     power_of_two : bool
         Require a spacing of 2^k µm (TNC 4xx).
+    driving_axis : str, optional
+        For a cross-axis table ``table.axis = F(driving_axis)``: AXISPOS holds positions of the
+        driving axis and the ``.CMA`` enters the table in the driving axis's column (MANUALplus
+        620: "[axis in column from *.com] = F(axis in column from *.cma ...)").
     """
     check_points(table.n_points, max_points, NAME)
     check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
@@ -88,12 +93,15 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
             row.append(f"{b:+.{nd}f}")
         lines.append("  ".join(f"{c:<12}" for c in row).rstrip())
     lines.append("[END]")
-    enable = [f"copy {ax}.COM and {ax}.CMA to the control (PLC partition / TNC:\\)",
-              f"in {ax}.CMA the line with {ax}.COM in column {ax} is marked active (*)",
+    drv = (driving_axis or ax).upper()
+    name = f"{ax}.COM" if drv == ax else f"{ax}{drv}.COM"
+    lines[0] = f"BEGIN {name} MM"
+    enable = [f"copy {name} and {drv}.CMA to the control (PLC partition / TNC:\\)",
+              f"in {drv}.CMA the line with {name} in column {drv} is marked active (*)",
               "activate nonlinear axis error compensation in the machine parameters "
               "(MP730 on TNC 4xx; CfgAxisComp on newer controls: not confirmed)"]
-    return ControllerFile(NAME, "\n".join(lines) + "\n", f"{ax}.COM", _as_written(table, up, extra, k),
-                          tuple(enable), extra_files={f"{ax}.CMA": write_cma({ax: f"{ax}.COM"})})
+    return ControllerFile(NAME, "\n".join(lines) + "\n", name, _as_written(table, up, extra, k),
+                          tuple(enable), extra_files={f"{drv}.CMA": write_cma({drv: name})})
 
 
 def write_cma(assignments: dict[str, str]) -> str:

@@ -210,3 +210,91 @@ def _check(table, travel, max_points, position_resolution) -> None:
 def _fmt(v: float, nd: int = 9) -> str:
     s = f"{v:.{nd}f}".rstrip("0")
     return s + "0" if s.endswith(".") else s
+
+
+# -- cross-axis (sag / angularity) compensation: the CEC table -------------------------------
+_CEC_VALUE = re.compile(r"^\$AN_CEC\[\s*(\d+)\s*,\s*(\d+)\s*\]\s*=\s*(\S+)")
+_CEC_PARAM = re.compile(r"^\$AN_CEC_([A-Z_]+)\[\s*(\d+)\s*\]\s*=\s*(\S+)")
+
+
+def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str = "AX1",
+                     output_axis: str = "AX2", table_index: int = 0, max_points: int = MAX_POINTS,
+                     position_resolution: float = 0.001) -> ControllerFile:
+    """Write a cross-axis table (positions of the base axis, corrections of the compensation axis)
+    as a sag/angularity compensation file ``%_N_NC_CEC_INI``.
+
+    Format (SINUMERIK 802D sl / 840D sl Function Manual K3, "Compensation of sag and angularity
+    errors", table example for axis Y1)::
+
+        %_N_NC_CEC_INI
+        CHANDATA(1)
+        $AN_CEC[0,0]=0              ; value at interpolation point 0, mm
+        ...
+        $AN_CEC_INPUT_AXIS[0]=(AX2)  ; base axis (drives the table)
+        $AN_CEC_OUTPUT_AXIS[0]=(AX1) ; compensation axis (receives the values)
+        $AN_CEC_STEP[0]=6.73
+        $AN_CEC_MIN[0]=-400.0
+        $AN_CEC_MAX[0]=400.0
+        $AN_CEC_DIRECTION[0]=0       ; both directions of the base axis
+        $AN_CEC_MULT_BY_TABLE[0]=0
+        $AN_CEC_IS_MODULO[0]=0
+        M17
+
+    Enabling: MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` ≥ points, MD32710 ``$MA_CEC_ENABLE[AXi]`` = 1
+    for the compensation axis, SD41300 ``$SN_CEC_TABLE_ENABLE[t]`` = 1. Sign: written like the
+    EEC table, file value = −correction; that the CEC uses the same sign as the EEC is not
+    confirmed.
+    """
+    check_points(table.n_points, max_points, NAME, "points (MD18342)")
+    check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
+    check_travel(table, travel, NAME)
+    k = correction_factor(table, table.position_unit)
+    nd = decimals(table.position_unit)
+    values = np.round(-table.mean * k, nd) + 0.0
+    t = int(table_index)
+    lines = ["%_N_NC_CEC_INI", "CHANDATA(1)",
+             f"; axiscal cross-axis table: {output_axis} corrected as a function of {input_axis}, "
+             f"values = -correction in {table.position_unit}"]
+    lines += [f"$AN_CEC[{t},{i}]={_fmt(v)}" for i, v in enumerate(values)]
+    lines += [f"$AN_CEC_INPUT_AXIS[{t}]=({input_axis})", f"$AN_CEC_OUTPUT_AXIS[{t}]=({output_axis})",
+              f"$AN_CEC_STEP[{t}]={_fmt(table.spacing)}", f"$AN_CEC_MIN[{t}]={_fmt(table.start)}",
+              f"$AN_CEC_MAX[{t}]={_fmt(table.end)}", f"$AN_CEC_DIRECTION[{t}]=0",
+              f"$AN_CEC_MULT_BY_TABLE[{t}]=0", f"$AN_CEC_IS_MODULO[{t}]=0", "M17"]
+    enable = [f"MD18342 $MN_MM_CEC_MAX_POINTS[{t}] >= {table.n_points} (power-on re-formats memory)",
+              f"MD32710 $MA_CEC_ENABLE[{output_axis}] = 1 (load the table while it is 0)",
+              f"SD41300 $SN_CEC_TABLE_ENABLE[{t}] = 1"]
+    as_file = np.round(-values / k, 6) + 0.0
+    written = replace(table, up=as_file, down=as_file, bidirectional=False)
+    return ControllerFile(NAME, "\n".join(lines) + "\n", "NC_CEC.INI", written, tuple(enable))
+
+
+def parse_cross_axis(text: str, source: str = "<text>", correction_unit: str = "um"):
+    """Read a ``%_N_NC_CEC_INI`` table: (table, input axis, output axis) of its first table."""
+    values: dict[int, float] = {}
+    params: dict[str, str] = {}
+    for n, raw in enumerate(text.splitlines(), 1):
+        line = raw.split(";")[0].strip()
+        if not line or line.startswith(("%", "CHANDATA", "M17", "M30")):
+            continue
+        m = _CEC_VALUE.match(line)
+        if m:
+            values[int(m.group(2))] = parse_number(m.group(3), source, n)
+            continue
+        m = _CEC_PARAM.match(line)
+        if m:
+            params[m.group(1)] = m.group(3).strip("()")
+            continue
+        raise DataFormatError(f"not a $AN_CEC line: {raw[:60]!r}", source, n)
+    for key in ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX"):
+        if key not in params:
+            raise DataFormatError(f"$AN_CEC_{key} is missing", source)
+    if len(values) < 2 or sorted(values) != list(range(len(values))):
+        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps", source)
+    dev = np.array([values[i] for i in range(len(values))])
+    try:
+        step, lo = float(params["STEP"]), float(params["MIN"])
+        t = CompensationTable("", AxisKind.LINEAR, "mm", correction_unit, lo, step, dev, dev)
+    except ValueError as exc:
+        raise DataFormatError(str(exc), source) from None
+    c = np.round(-dev / correction_factor(t, "mm"), 6) + 0.0
+    return replace(t, up=c, down=c), params["INPUT_AXIS"], params["OUTPUT_AXIS"]
