@@ -114,3 +114,18 @@ def test_bad_config_names_the_key(tmp_path):
     cfg.write_text(LINEAR.read_text().replace("spacing = 10.0", "spacing = -3"))
     r = _run("compensate", "--verify", cfg)
     assert r.exit_code == 2 and "spacing" in r.stderr
+
+
+def test_squareness_cross_axis_table(tmp_path):
+    """Seed 004 Appendix II lathe example: XZ 40 µm/m, Z aligned: δz during X motion."""
+    r = _run("compensate", "--squareness", 40, "--axes", "XZ", "--aligned", "Z", "--start", -200,
+             "--end", 200, "--spacing", 100, "-c", "siemens-840d", "--json", "--out", tmp_path / "cec.ini")
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["driving_axis"] == "X" and d["compensated_axis"] == "Z"
+    assert d["factor_um_per_m"] == pytest.approx(40.0)
+    assert d["table"]["up"] == pytest.approx([-8.0, -4.0, 0.0, 4.0, 8.0])
+    assert (tmp_path / "cec.ini").read_text().startswith("%_N_NC_CEC_INI")
+    r = _run("compensate", "--squareness", 40, "--axes", "XZ", "--start", -200, "--end", 200,
+             "--spacing", 100)
+    assert r.exit_code == 2 and "aligned" in r.stderr

@@ -10,6 +10,9 @@ Three uses:
   simulated machine of the configuration and prints A, E, M, R, B before and after.
 * ``axiscal compensate --read TABLE --controller NAME [DATA_OR_RESULT]`` reads a table back and,
   with a data file or result, compares it with the deviations it should correct.
+* ``axiscal compensate --squareness 40 --axes XZ --aligned Z --start -200 --end 200 --spacing 50
+  --controller siemens-840d`` writes the cross-axis table of seed 004 Appendix II (corrections on
+  the axis aligned to the spindle, driven by the other axis).
 
 Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``. Format options
 (``machine_axis``, ``detection_unit``, ``file_type``, ``reference_position`` …) go through
@@ -22,7 +25,8 @@ JSON (``--json``), stable keys. Table: ``controller``, ``file`` (path written or
 (positions, up, down …). Verify: ``controller``, ``before`` and ``after`` (A … B_mean),
 ``reduction``, ``budget_E``, ``spacing_residual``, ``sigma``, ``between_targets_E``,
 ``truth_before``, ``truth_after``, ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``.
-Read: the table keys plus ``residual`` (per target: ``target``, ``deviation``, ``correction``,
+Squareness: the table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``,
+``advice``. Read: the table keys plus ``residual`` (per target: ``target``, ``deviation``, ``correction``,
 ``residual`` = deviation + correction) and ``largest_residual`` when a result is given.
 """
 
@@ -54,6 +58,9 @@ def compensate(
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here (Heidenhain's .CMA goes next to it)."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
+    squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (seed 004 sign: angle between + axes minus 90°)."),
+    axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
+    aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (seed 004 Appendix II)."),
     seed: int = typer.Option(1, "--seed", help="Seed of the simulation (with --verify)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
 ) -> None:
@@ -69,6 +76,9 @@ def compensate(
         return _verify(verify, seed, controller, spacing, opts, out, json_out)
     if read is not None:
         return _read(read, controller or "csv", source, opts, json_out)
+    if squareness is not None:
+        return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
+                           resolution, travel, opts, out, json_out)
     if source is None:
         raise InputError("give a data file or ISO 230-2 result (or --verify CONFIG.toml, --read FILE)")
     from axiscal.compensation.controllers import check_options
@@ -143,6 +153,37 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
             typer.echo(f"  {r['target']:>10.4g} {table.position_unit}: deviation {r['deviation']:+8.3f}, "
                        f"correction {r['correction']:+8.3f}, residual {r['residual']:+8.3f} {u}")
         typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
+
+
+def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolution, travel,
+                opts, out, json_out) -> None:
+    from axiscal.compensation.cross_axis import cross_axis_table, write_cross_axis
+    from axiscal.compensation.squareness import squareness_compensation
+    from axiscal.errors import InputError
+    from axiscal.standards.iso230_1 import Squareness
+
+    if len(axes) != 2:
+        raise InputError(f"--axes {axes!r}: give two axis letters, e.g. XY")
+    if start is None or end is None or spacing is None:
+        raise InputError("--squareness needs --start, --end and --spacing (driving axis, mm)")
+    comp = squareness_compensation(Squareness(um_per_m * 1e-6, (axes[0], axes[1])), aligned)
+    ct = cross_axis_table(comp, start, end, spacing, resolution)
+    cf = write_cross_axis(ct, controller, _travel(travel), **opts)
+    _write_files(cf, out)
+    if json_out:
+        d = dict(controller=cf.controller, file=None if out is None else str(out),
+                 driving_axis=ct.driving_axis, compensated_axis=ct.compensated_axis,
+                 factor_um_per_m=ct.factor, advice=list(comp.advice), enable=list(cf.enable))
+        d.update(_table_json(ct.table))
+        print_json(d)
+        return
+    typer.echo(str(comp))
+    typer.echo(str(ct))
+    for e in cf.enable:
+        typer.echo(f"  enable: {e}")
+    if out is None:
+        typer.echo("")
+        typer.echo(cf.text.rstrip("\n"))
 
 
 # -- helpers ---------------------------------------------------------------------------------
