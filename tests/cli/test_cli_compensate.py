@@ -129,3 +129,11 @@ def test_squareness_cross_axis_table(tmp_path):
     r = _run("compensate", "--squareness", 40, "--axes", "XZ", "--start", -200, "--end", 200,
              "--spacing", 100)
     assert r.exit_code == 2 and "aligned" in r.stderr
+
+
+def test_verify_plot(tmp_path):
+    r = _run("compensate", "--verify", LINEAR, "--plot", tmp_path / "loop.png")
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "loop.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    r = _run("compensate", "--verify", LINEAR, "--plot", tmp_path / "loop.gif")
+    assert r.exit_code == 2 and ".png" in r.stderr

@@ -62,6 +62,7 @@ def compensate(
     axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
     aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (seed 004 Appendix II)."),
     seed: int = typer.Option(1, "--seed", help="Seed of the simulation (with --verify)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
 ) -> None:
     """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring."""
@@ -70,10 +71,12 @@ def compensate(
     opts = _options(option or [])
     if out is not None:
         out_path(out, "controller file")
+    if plot is not None:
+        out_path(plot, "plot")
     if sum(x is not None for x in (verify, read)) > 1:
         raise InputError("give either --verify or --read, not both")
     if verify is not None:
-        return _verify(verify, seed, controller, spacing, opts, out, json_out)
+        return _verify(verify, seed, controller, spacing, opts, out, json_out, plot)
     if read is not None:
         return _read(read, controller or "csv", source, opts, json_out)
     if squareness is not None:
@@ -98,7 +101,7 @@ def compensate(
 
 
 # -- the three actions -----------------------------------------------------------------------
-def _verify(config: Path, seed, controller, spacing, opts, out, json_out) -> None:
+def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=None) -> None:
     from axiscal.compensation.loop import run_compensation_loop
     from axiscal.machines.config import load_toml
 
@@ -111,6 +114,11 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out) -> Non
         over.update(spacing=spacing)
     r = run_compensation_loop(load_toml(config), seed=seed, **over)
     _write_files(r.controller_file, out)
+    if plot is not None:
+        from axiscal.report.compensation_plots import save_compensation_plot
+
+        save_compensation_plot(r, plot)
+        note(f"wrote plot {plot}")
     if json_out:
         print_json(dict(controller=r.controller_file.controller, before=r.before.parameters(),
                         after=r.after.parameters(), reduction=r.reduction, budget_E=r.budget_E,

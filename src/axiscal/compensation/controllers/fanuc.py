@@ -50,7 +50,7 @@ from dataclasses import replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, check_points, check_spacing, check_travel, correction_factor, parse_number)
+    ControllerFile, check_points, check_spacing, check_travel, correction_factor)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError
