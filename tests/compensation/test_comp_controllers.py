@@ -215,3 +215,36 @@ def test_linuxcnc_line_cut_short_is_refused():
     cut = text[: text.index("\n", 40) - 10] + "\n"
     with pytest.raises(DataFormatError, match="stops reading"):
         linuxcnc.parse(cut)
+
+
+def test_siemens_zero_ends():
+    """zero_ends forces the first and last values to 0 (the table fades out at its ends)."""
+    f = siemens_840d.write(_linear(False), zero_ends=True)
+    back = siemens_840d.parse(f.text)
+    assert back.up[0] == 0.0 and back.up[-1] == 0.0
+    assert np.allclose(back.up[1:-1], _expected("siemens-840d", _linear(False)).up[1:-1], atol=1e-6)
+
+
+@settings(max_examples=25, deadline=None)
+@given(values=st.lists(st.integers(-300, 300), min_size=2, max_size=40),
+       step_counts=st.integers(1, 50000), start_counts=st.integers(-100000, 100000),
+       bidirectional=st.booleans(), name=st.sampled_from(list(CONTROLLERS)))
+def test_round_trip_property(values, step_counts, start_counts, bidirectional, name):
+    """Any table on the controllers' grids (0.001 mm spacing, 0.1 µm values) comes back."""
+    up = np.array(values) * 0.1
+    down = up + 1.5 if bidirectional else up
+    t0 = np.arange(len(values)) * step_counts * 0.001 + start_counts * 0.001
+    table = table_from_deviations(t0, -up, -down if bidirectional else None,
+                                  spacing=step_counts * 0.001, start=t0[0], end=t0[-1],
+                                  resolution=0.1, axis="X")
+    opts = {"fanuc": dict(detection_unit=0.0001)}.get(name, {})
+    written = controller(name).write(table, **opts)
+    back = _read_back(name, written, table)
+    expected = _expected(name, table)
+    assert back.n_points == table.n_points
+    assert back.start == pytest.approx(table.start, abs=1e-6)
+    # Fanuc rounds to one count x magnification (3623 grows when an increment exceeds 127)
+    tol = back.resolution / 2 + 1e-6 if name == "fanuc" else 1e-5
+    assert np.allclose(back.up, expected.up, atol=tol)
+    assert np.allclose(back.down, expected.down, atol=tol)
+    assert np.allclose(back.up, written.table.up, atol=1e-6)

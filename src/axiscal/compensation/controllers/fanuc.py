@@ -28,6 +28,11 @@ reference position is 0 by construction, so :func:`write` shifts the table to ze
 are corrections (added to the motion): correction = −deviation. (That the value belongs to the
 interval *ending* at N, and the sign, are this module's reading of the sources above.)
 
+**Bidirectional.** The negative-direction table takes the point numbers after the positive one
+(3626 = 3622 + 1 by default) and 3627 holds its absolute correction at the reference position;
+the reference return is assumed to be made in the positive direction (so the positive table is
+the one that is zero there).
+
 **Rotary axis** (0i-PB Example 2): 3621 = 3620, 3622 = 3620 + 360°/interval; the increments from
 3620+1 to 3622 must sum to zero (else the error accumulates every revolution: refused here) and
 point 3620 holds the same value as point 3622.

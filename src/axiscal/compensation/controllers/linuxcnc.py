@@ -7,9 +7,12 @@ is not three numbers (so the file carries no comments); with type 0 the numbers 
 ``nominal − reverse``; with type 1 they are already *nominal, forward_trim, reverse_trim*.
 ``src/emc/motion/motion.h``: ``EMCMOT_COMP_SIZE 256`` entries at most. The LinuxCNC INI
 documentation names the keys ``COMP_FILE`` and ``COMP_FILE_TYPE`` of the ``[JOINT_n]`` section
-(``[AXIS_n]`` before 2.8). The trim is added to the commanded joint position, forward while the
-joint moves in the positive direction and reverse while it moves in the negative one, linearly
-interpolated between entries; the file is in machine units.
+(``[AXIS_n]`` before 2.8). ``src/emc/motion/control.c`` (``compute_screw_comp``): the trim is
+added to the commanded joint position (``backlash_corr = fwd_trim + fwd_slope·dpos`` while
+``vel_cmd > 0``, the reverse trim while ``vel_cmd < 0``, the last value while at rest), linearly
+interpolated between entries; plain backlash compensation is the special case
+``fwd_trim = +backlash/2``, ``rev_trim = −backlash/2``. The table is bracketed by sentinel
+entries with zero trim, so it should cover the whole travel. The file is in machine units.
 
 Here: trim = correction (= −deviation) converted to the machine unit (mm or deg); type 0 writes
 ``forward = nominal − correction_up`` and ``reverse = nominal − correction_down``, i.e. the
