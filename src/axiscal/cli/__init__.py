@@ -32,6 +32,7 @@ COMMANDS: dict[str, str] = {
     "motion": "axiscal.cli.motion",
     "straightness": "axiscal.cli.squareness",
     "squareness": "axiscal.cli.squareness",
+    "compensate": "axiscal.cli.compensate",
 }
 
 

@@ -1,1 +1,59 @@
-"""axiscal.compensation.controllers."""
+"""Writers and parsers of controller compensation formats, one module per controller.
+
+Each module has ``NAME``, ``write(table, travel=None, **options) -> ControllerFile`` and
+``parse(text, ...) -> CompensationTable``, documents its format with the source it was checked
+against, and refuses what the controller would refuse with a
+:class:`~axiscal.errors.ControllerLimitError` (too many points, a spacing that is not a whole
+number of the controller's position unit, a range outside the axis travel, a rotary table whose
+increments do not sum to zero ...).
+
+============== =================================================== ===========================
+name           module                                              file
+============== =================================================== ===========================
+siemens-840d   :mod:`~axiscal.compensation.controllers.siemens_840d`  ``%_N_AX_EEC_INI``
+fanuc          :mod:`~axiscal.compensation.controllers.fanuc`         parameters 3620-3627 + data
+heidenhain     :mod:`~axiscal.compensation.controllers.heidenhain`    ``.COM`` table + ``.CMA``
+linuxcnc       :mod:`~axiscal.compensation.controllers.linuxcnc`      ``COMP_FILE`` (type 0 or 1)
+csv            :mod:`~axiscal.compensation.controllers.csv`           plain CSV with a header
+============== =================================================== ===========================
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from axiscal.compensation.controllers._common import ControllerFile
+from axiscal.errors import InputError
+
+__all__ = ["CONTROLLERS", "controller", "ControllerFile", "check_options"]
+
+#: Controller name -> module name.
+CONTROLLERS = {
+    "siemens-840d": "siemens_840d",
+    "fanuc": "fanuc",
+    "heidenhain": "heidenhain",
+    "linuxcnc": "linuxcnc",
+    "csv": "csv",
+}
+
+
+def controller(name: str):
+    """The module for a controller name (``siemens-840d``, ``fanuc``, ``heidenhain``, ...)."""
+    key = str(name).strip().lower().replace("_", "-")
+    if key not in CONTROLLERS:
+        raise InputError(f"controller {name!r} is not one of {', '.join(CONTROLLERS)}")
+    return importlib.import_module(f"axiscal.compensation.controllers.{CONTROLLERS[key]}")
+
+
+def check_options(function, options: dict, what: str) -> dict:
+    """Refuse options a writer or parser does not take, naming them and the allowed ones."""
+    import inspect
+
+    params = inspect.signature(function).parameters
+    allowed = sorted(k for k, p in params.items() if p.kind is p.KEYWORD_ONLY or
+                     (p.default is not p.empty and k not in ("travel", "source")))
+    unknown = sorted(set(options) - set(allowed))
+    if unknown:
+        raise InputError(f"{what}: unknown option(s) {', '.join(unknown)}; allowed: "
+                         f"{', '.join(allowed) or 'none'}")
+    return options

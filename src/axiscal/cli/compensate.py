@@ -1,0 +1,308 @@
+"""``axiscal compensate``: compensation tables a CNC controller accepts, and the loop that checks them.
+
+Three uses:
+
+* ``axiscal compensate DATA_OR_RESULT --controller NAME --spacing S [--bidirectional] [--out FILE]``
+  builds a table from a positioning data file (evaluated by ISO 230-2) or an
+  ``axiscal iso230-2 --json`` result, writes it in the controller's format and prints points,
+  spacing, range, reference point, largest correction and what the controller must be told.
+* ``axiscal compensate --verify CONFIG.toml`` runs measure → compensate → re-measure on the
+  simulated machine of the configuration and prints A, E, M, R, B before and after.
+* ``axiscal compensate --read TABLE --controller NAME [DATA_OR_RESULT]`` reads a table back and,
+  with a data file or result, compares it with the deviations it should correct.
+* ``axiscal compensate --squareness 40 --axes XZ --aligned Z --start -200 --end 200 --spacing 50
+  --controller siemens-840d`` writes the cross-axis table of seed 004 Appendix II (corrections on
+  the axis aligned to the spindle, driven by the other axis).
+
+Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``. Format options
+(``machine_axis``, ``detection_unit``, ``file_type``, ``reference_position`` …) go through
+``--option KEY=VALUE``.
+
+JSON (``--json``), stable keys. Table: ``controller``, ``file`` (path written or null),
+``extra_files``, ``n_points``, ``spacing``, ``start``, ``end``, ``position_unit``,
+``correction_unit``, ``reference_index``, ``reference_position``, ``largest_correction``,
+``backlash``, ``bidirectional``, ``modulo``, ``enable`` (list), ``notes`` (list), ``table``
+(positions, up, down …). Verify: ``controller``, ``before`` and ``after`` (A … B_mean),
+``reduction``, ``budget_E``, ``spacing_residual``, ``sigma``, ``between_targets_E``,
+``truth_before``, ``truth_after``, ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``.
+Squareness: the table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``,
+``advice``. Read: the table keys plus ``residual`` (per target: ``target``, ``deviation``, ``correction``,
+``residual`` = deviation + correction) and ``largest_residual`` when a result is given.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+__all__ = ["register"]
+
+
+def compensate(
+    source: Optional[Path] = typer.Argument(None, help="Positioning data (CSV, JSON, ecmc) or an 'axiscal iso230-2 --json' result."),
+    controller: Optional[str] = typer.Option(None, "--controller", "-c", help="siemens-840d, fanuc, heidenhain, linuxcnc or csv (default csv; with --verify the configuration's)."),
+    spacing: Optional[float] = typer.Option(None, "--spacing", help="Distance between table points, mm or deg (default: the mean target spacing)."),
+    bidirectional: bool = typer.Option(False, "--bidirectional", help="Separate tables for the + and - directions (or one table plus a backlash value where the format has one)."),
+    resolution: float = typer.Option(0.1, "--resolution", help="Round corrections to this step, um or arcsec (0: no rounding)."),
+    start: Optional[float] = typer.Option(None, "--start", help="First table point, mm or deg (default: first target)."),
+    end: Optional[float] = typer.Option(None, "--end", help="Last table point at or beyond this, mm or deg (default: last target)."),
+    extrapolation: str = typer.Option("hold", "--extrapolation", help="Beyond the measured targets: 'hold' the end value or continue 'linear'."),
+    reference: Optional[float] = typer.Option(None, "--reference", help="Reference (home) position, mm or deg (default: the table start)."),
+    travel: Optional[List[float]] = typer.Option(None, "--travel", help="Axis travel low and high, mm or deg (give twice); the table must lie inside."),
+    axis: str = typer.Option("", "--axis", help="Axis name written in the table (X, C ...)."),
+    option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here (Heidenhain's .CMA goes next to it)."),
+    verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
+    read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
+    squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (seed 004 sign: angle between + axes minus 90°)."),
+    axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
+    aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (seed 004 Appendix II)."),
+    seed: int = typer.Option(1, "--seed", help="Seed of the simulation (with --verify)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
+    json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
+) -> None:
+    """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring."""
+    from axiscal.errors import InputError
+
+    opts = _options(option or [])
+    if out is not None:
+        out_path(out, "controller file")
+    if plot is not None:
+        out_path(plot, "plot")
+    if sum(x is not None for x in (verify, read)) > 1:
+        raise InputError("give either --verify or --read, not both")
+    if verify is not None:
+        return _verify(verify, seed, controller, spacing, opts, out, json_out, plot)
+    if read is not None:
+        return _read(read, controller or "csv", source, opts, json_out)
+    if squareness is not None:
+        return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
+                           resolution, travel, opts, out, json_out)
+    if source is None:
+        raise InputError("give a data file or ISO 230-2 result (or --verify CONFIG.toml, --read FILE)")
+    from axiscal.compensation.controllers import check_options
+    from axiscal.compensation.controllers import controller as get_controller
+    from axiscal.compensation.inputs import load_mean_deviations
+    from axiscal.compensation.tables import table_from_result
+
+    mod = get_controller(controller or "csv")
+    result = load_mean_deviations(source)
+    step = spacing if spacing is not None else _mean_step(result.targets)
+    table = table_from_result(result, step, start=start, end=end, bidirectional=bidirectional,
+                              resolution=resolution, extrapolation=extrapolation,  # type: ignore[arg-type]
+                              reference=reference, axis=axis)
+    cf = mod.write(table, _travel(travel), **check_options(mod.write, opts, f"--option for {mod.NAME}"))
+    _write_files(cf, out)
+    _render_table(cf, out, json_out)
+
+
+# -- the three actions -----------------------------------------------------------------------
+def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=None) -> None:
+    from axiscal.compensation.loop import run_compensation_loop
+    from axiscal.machines.config import load_toml
+
+    over = {}
+    if controller is not None:   # another controller: the configuration's options do not apply
+        over.update(controller=controller, options=opts)
+    elif opts:
+        over.update(options=opts)
+    if spacing is not None:
+        over.update(spacing=spacing)
+    r = run_compensation_loop(load_toml(config), seed=seed, **over)
+    _write_files(r.controller_file, out)
+    if plot is not None:
+        from axiscal.report.compensation_plots import save_compensation_plot
+
+        save_compensation_plot(r, plot)
+        note(f"wrote plot {plot}")
+    if json_out:
+        print_json(dict(controller=r.controller_file.controller, before=r.before.parameters(),
+                        after=r.after.parameters(), reduction=r.reduction, budget_E=r.budget_E,
+                        spacing_residual=r.spacing_residual, sigma=r.sigma,
+                        between_targets_E=r.between_targets_E, truth_before=r.truth_before,
+                        truth_after=r.truth_after, unit=r.unit, n_points=r.table.n_points,
+                        spacing=r.table.spacing, seed=seed, sign=r.sign))
+        return
+    _render_loop(r)
+
+
+def _read(path: Path, controller, source, opts, json_out) -> None:
+    import numpy as np
+
+    from axiscal.compensation.controllers import check_options
+    from axiscal.compensation.controllers import controller as get_controller
+    from axiscal.compensation.inputs import load_mean_deviations
+    from axiscal.io import read_text
+
+    mod = get_controller(controller)
+    opts = check_options(mod.parse, opts, f"--option for reading {mod.NAME}")
+    table = mod.parse(read_text(path), source=str(path), **opts)
+    d = _table_json(table)
+    rows = []
+    if source is not None:
+        res = load_mean_deviations(source)
+        dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
+        corr = 0.5 * (table.correction_at(res.targets, 1) + table.correction_at(res.targets, -1))
+        rows = [dict(target=float(t), deviation=float(x), correction=float(c), residual=float(x + c))
+                for t, x, c in zip(res.targets, dev, corr)]
+        d.update(residual=rows, largest_residual=max(abs(r["residual"]) for r in rows))
+    if json_out:
+        print_json(d)
+        return
+    typer.echo(str(table))
+    if rows:
+        u = table.correction_unit
+        typer.echo(f"compared with {source} (mean bidirectional deviation + correction):")
+        for r in rows:
+            typer.echo(f"  {r['target']:>10.4g} {table.position_unit}: deviation {r['deviation']:+8.3f}, "
+                       f"correction {r['correction']:+8.3f}, residual {r['residual']:+8.3f} {u}")
+        typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
+
+
+def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolution, travel,
+                opts, out, json_out) -> None:
+    from axiscal.compensation.cross_axis import cross_axis_table, write_cross_axis
+    from axiscal.compensation.squareness import squareness_compensation
+    from axiscal.errors import InputError
+    from axiscal.standards.iso230_1 import Squareness
+
+    if len(axes) != 2:
+        raise InputError(f"--axes {axes!r}: give two axis letters, e.g. XY")
+    if start is None or end is None or spacing is None:
+        raise InputError("--squareness needs --start, --end and --spacing (driving axis, mm)")
+    comp = squareness_compensation(Squareness(um_per_m * 1e-6, (axes[0], axes[1])), aligned)
+    ct = cross_axis_table(comp, start, end, spacing, resolution)
+    cf = write_cross_axis(ct, controller, _travel(travel), **opts)
+    _write_files(cf, out)
+    if json_out:
+        d = dict(controller=cf.controller, file=None if out is None else str(out),
+                 driving_axis=ct.driving_axis, compensated_axis=ct.compensated_axis,
+                 factor_um_per_m=ct.factor, advice=list(comp.advice), enable=list(cf.enable))
+        d.update(_table_json(ct.table))
+        print_json(d)
+        return
+    typer.echo(str(comp))
+    typer.echo(str(ct))
+    for e in cf.enable:
+        typer.echo(f"  enable: {e}")
+    if out is None:
+        typer.echo("")
+        typer.echo(cf.text.rstrip("\n"))
+
+
+# -- helpers ---------------------------------------------------------------------------------
+def _options(items: list[str]) -> dict:
+    from axiscal.errors import InputError
+
+    out = {}
+    for item in items:
+        if "=" not in item:
+            raise InputError(f"--option {item!r} must be KEY=VALUE")
+        k, v = item.split("=", 1)
+        out[k.strip()] = _value(v.strip())
+    return out
+
+
+def _value(v: str):
+    low = v.lower()
+    if low in ("true", "false"):
+        return low == "true"
+    for cast in (int, float):
+        try:
+            return cast(v)
+        except ValueError:
+            pass
+    return v
+
+
+def _travel(travel):
+    from axiscal.errors import InputError
+
+    if not travel:
+        return None
+    if len(travel) != 2 or not travel[1] > travel[0]:
+        raise InputError(f"--travel needs two values, low then high; got {list(travel)}")
+    return (travel[0], travel[1])
+
+
+def _mean_step(targets) -> float:
+    return float((targets[-1] - targets[0]) / (len(targets) - 1))
+
+
+def _write_files(cf, out) -> None:
+    if out is None:
+        return
+    from axiscal.io._files import write_text_atomic
+
+    write_text_atomic(out, cf.text)
+    note(f"wrote {cf.controller} table {out}")
+    for name, text in cf.extra_files.items():
+        p = Path(out).parent / name
+        write_text_atomic(p, text)
+        note(f"wrote {p}")
+
+
+def _table_json(t) -> dict:
+    return dict(n_points=t.n_points, spacing=t.spacing, start=t.start, end=t.end,
+                position_unit=t.position_unit, correction_unit=t.correction_unit,
+                reference_index=t.reference_index, reference_position=t.reference_position,
+                largest_correction=t.largest, backlash=t.backlash, bidirectional=t.bidirectional,
+                modulo=t.modulo, table=t.to_dict())
+
+
+def _render_table(cf, out, json_out) -> None:
+    t = cf.table
+    if json_out:
+        d = dict(controller=cf.controller, file=None if out is None else str(out),
+                 extra_files=sorted(cf.extra_files), enable=list(cf.enable), notes=list(cf.notes))
+        d.update(_table_json(t))
+        print_json(d)
+        return
+    pu, cu = t.position_unit, t.correction_unit
+    typer.echo(f"{cf.controller} compensation table for axis {t.axis or '-'} "
+               f"({'bidirectional' if t.bidirectional else 'one table for both directions'})")
+    typer.echo(f"  points           {t.n_points}")
+    typer.echo(f"  spacing          {t.spacing:g} {pu}")
+    typer.echo(f"  range            {t.start:g} … {t.end:g} {pu}{' (modulo 360)' if t.modulo else ''}")
+    typer.echo(f"  reference point  {t.reference_index} at {t.reference_position:g} {pu}")
+    typer.echo(f"  largest corr.    {t.largest:.4g} {cu} (correction = −deviation)")
+    if t.bidirectional:
+        typer.echo(f"  mean reversal    {t.backlash:+.4g} {cu}")
+    for e in cf.enable:
+        typer.echo(f"  enable: {e}")
+    for n in cf.notes:
+        typer.echo(f"  note: {n}")
+    if out is None:
+        typer.echo("")
+        typer.echo(cf.text.rstrip("\n"))
+
+
+def _render_loop(r) -> None:
+    from rich.table import Table
+
+    from axiscal.cli._common import console
+
+    u = {"um": "µm"}.get(r.unit, r.unit)
+    con = console()
+    con.print(f"Compensation loop: {r.controller_file.controller} table, {r.table.n_points} points "
+              f"every {r.table.spacing:g} {r.table.position_unit}, written, read back and applied")
+    t = Table(title=f"ISO 230-2 before and after [{u}]", title_justify="left")
+    for c in ("parameter", "before", "after"):
+        t.add_column(c, justify="left" if c == "parameter" else "right")
+    for k, b, a in r.rows():
+        t.add_row(k, "n/a" if b is None else f"{b:.3f}", "n/a" if a is None else f"{a:.3f}")
+    con.print(t)
+    con.print(f"E fell by {100 * r.reduction:.1f} % ({r.before.E:.3f} → {r.after.E:.3f} {u}).")
+    con.print(f"Budget for E after: {r.budget_E:.3f} {u} = table/target spacing {r.spacing_residual:.3f} "
+              f"+ repeatability (σ = {r.sigma:.3f} {u}, {r.n_runs} runs) + rounding.")
+    con.print(f"Truth: E {r.truth_before['E']:.3f} → {r.truth_after['E']:.3f} {u} at the targets; "
+              f"{r.between_targets_E:.3f} {u} over the whole range.")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``compensate`` command."""
+    app.command("compensate")(compensate)

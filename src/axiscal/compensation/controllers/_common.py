@@ -1,0 +1,117 @@
+"""What the controller writers share: the written file and the limit checks."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from axiscal import units
+from axiscal.errors import ControllerLimitError, DataFormatError
+
+__all__ = ["ControllerFile", "check_points", "check_spacing", "check_travel", "check_modulo",
+           "correction_factor", "parse_number", "decimals"]
+
+
+@dataclass(frozen=True, eq=False)
+class ControllerFile:
+    """A compensation table written for one controller.
+
+    Attributes
+    ----------
+    controller : str
+        Controller name (``siemens-840d`` ...).
+    text : str
+        The main file's content.
+    filename : str
+        The name the controller expects or a good default (``X.COM``, ``AX_EEC.INI`` ...).
+    table : CompensationTable
+        The table as written (after the format's rounding or re-referencing), which is what
+        :func:`parse` gives back.
+    enable : tuple of str
+        What the controller must be told to use the table (machine data, parameters, INI keys).
+    extra_files : dict of str to str
+        Further files that belong to it (Heidenhain's ``.CMA``), name -> content.
+    notes : tuple of str
+        What a user should know (shifts applied, limits approached, conventions).
+    """
+
+    controller: str
+    text: str
+    filename: str
+    table: object
+    enable: tuple[str, ...] = ()
+    extra_files: dict = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
+
+    def __str__(self) -> str:
+        lines = [f"{self.controller}: {self.filename} ({len(self.text.splitlines())} lines)"]
+        lines += [f"  enable: {e}" for e in self.enable]
+        lines += [f"  note: {n}" for n in self.notes]
+        return "\n".join(lines)
+
+
+def check_points(n: int, maximum: int, fmt: str, what: str = "points") -> None:
+    """Refuse a table with more than ``maximum`` points."""
+    if n > maximum:
+        raise ControllerLimitError(
+            f"{fmt}: {n} compensation {what}; the format allows at most {maximum} "
+            "(use a larger --spacing or a shorter range)")
+
+
+def check_spacing(spacing: float, resolution: float, unit: str, fmt: str) -> int:
+    """Refuse a spacing that is not a whole number of ``resolution``; return that number."""
+    k = spacing / resolution
+    if not math.isfinite(k) or k < 1 or abs(k - round(k)) > 1e-6:
+        raise ControllerLimitError(
+            f"{fmt}: spacing {spacing:.10g} {unit} is not a whole multiple of the controller's "
+            f"position unit {resolution:g} {unit}")
+    return int(round(k))
+
+
+def check_travel(table, travel, fmt: str) -> None:
+    """Refuse a table reaching outside ``travel`` = (low, high) in the table's position unit."""
+    if travel is None:
+        return
+    lo, hi = float(travel[0]), float(travel[1])
+    tol = 1e-9 * max(1.0, abs(hi - lo))
+    if table.start < lo - tol or table.end > hi + tol:
+        u = table.position_unit
+        raise ControllerLimitError(
+            f"{fmt}: table range {table.start:g} … {table.end:g} {u} lies outside the axis travel "
+            f"{lo:g} … {hi:g} {u}")
+
+
+def check_modulo(table, fmt: str) -> None:
+    """A modulo table must close: the value at 360° equals the value at 0° (each direction)."""
+    if not table.modulo:
+        return
+    for name in ("up", "down"):
+        c = getattr(table, name)
+        if abs(c[-1] - c[0]) > 1e-9 * max(1.0, float(np.max(np.abs(c)))):
+            raise ControllerLimitError(
+                f"{fmt}: rotary table ({name}) does not close on itself: {c[0]:g} at "
+                f"{table.start:g} deg but {c[-1]:g} at {table.end:g} deg {table.correction_unit}; "
+                "the increments over one revolution must sum to zero")
+
+
+def correction_factor(table, to_unit: str) -> float:
+    """Multiply a correction in ``table.correction_unit`` by this to get ``to_unit``."""
+    return units.factor(table.correction_unit) / units.factor(to_unit)
+
+
+def parse_number(token: str, source: str, line: int) -> float:
+    """A float from a file, or a :class:`DataFormatError` naming the line."""
+    try:
+        v = float(token)
+    except ValueError:
+        raise DataFormatError(f"{token!r} is not a number", source, line) from None
+    if not math.isfinite(v):
+        raise DataFormatError(f"{token!r} is not a finite number", source, line)
+    return v
+
+
+def decimals(position_unit: str) -> int:
+    """Decimals written for a correction in ``position_unit``: 1 nm in mm, 1e-9 deg (4 µarcsec)."""
+    return 6 if position_unit == "mm" else 9

@@ -1,0 +1,300 @@
+"""SINUMERIK 840D: leadscrew / measuring-system error compensation (LEC, "EEC") file.
+
+Format (Siemens SINUMERIK 840D sl Function Manual *Extended Functions*, K3 "Compensation",
+section "Interpolatory compensation", example for axis X1; and SINUMERIK 808D Function Manual,
+"Leadscrew error compensation")::
+
+    %_N_AX_EEC_INI
+    CHANDATA(1)
+    $AA_ENC_COMP[0,0,AX1]=0.003        ; value at interpolation point 0, mm (deg for rotary)
+    $AA_ENC_COMP[0,1,AX1]=0.01
+    ...
+    $AA_ENC_COMP_STEP[0,AX1]=1.0       ; distance between interpolation points
+    $AA_ENC_COMP_MIN[0,AX1]=-200.0     ; position of point 0
+    $AA_ENC_COMP_MAX[0,AX1]=600.0      ; position of the last point
+    $AA_ENC_COMP_IS_MODULO[0,AX1]=0    ; 1: the table repeats (rotary axis, 0 to 360 deg)
+    M17
+
+The first index is the measuring system (0 = encoder 1). Linear interpolation between points.
+
+**Sign.** The 808D manual: "A positive compensation value causes the corresponding machine axis
+to move in the negative direction." The controller therefore expects the *error* (deviation):
+file value = −correction = +deviation, in mm (deg for a rotary axis).
+
+**Enabling.** MD38000 ``$MA_MM_ENC_COMP_MAX_POINTS[0,AX1]`` ≥ number of points (memory is
+re-formatted at the next power-on); the table loads only while MD32700
+``$MA_ENC_COMP_ENABLE[0,AX1] = 0``; then MD32700 = 1 and reference the axis (compensation acts
+only on a referenced axis). The compensation value at the reference point should be zero to avoid
+a jump when it becomes active (808D manual): :func:`write` zeroes the table there by default.
+
+**Direction.** This file holds one table; a bidirectional result is written as its mean table
+plus a backlash value for MD32450 ``$MA_BACKLASH[0,AX1]`` (given in the enable list and as a
+comment the parser reads back). The backlash sign used: positive for the normal case of play
+(an approach in the positive direction stops short, ISO 230-2 B̄ < 0), i.e. MD32450 = −B̄; not
+confirmed against a Siemens source. Direction-dependent LEC through the CEC tables
+(``$AN_CEC_DIRECTION``) is not written.
+
+**Limits checked.** Number of points ≤ ``max_points`` (MD38000; the 840D sl manuals show tables
+of several thousand points, the default 5000 here is not confirmed; the 808D allows 200);
+spacing a whole number of ``position_resolution`` (0.001 mm or deg by default); modulo tables
+run 0…360° and close on themselves; the range lies inside the axis travel when given.
+
+**Ends** (``zero_ends=True``): outside MIN…MAX the controller keeps applying the end values
+(not confirmed against the manual); ``zero_ends`` forces the first and last values to zero so
+the table fades out instead, at the cost of the correction in the last interval.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+import numpy as np
+
+from axiscal.compensation.controllers._common import (
+    ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
+    decimals, parse_number)
+from axiscal.compensation.tables import CompensationTable
+from axiscal.datasets import AxisKind
+from axiscal.errors import ControllerLimitError, DataFormatError
+
+__all__ = ["NAME", "write", "parse", "MAX_POINTS"]
+
+NAME = "siemens-840d"
+#: Default MD38000 limit (not confirmed; the machine's MD38000 value is the real limit).
+MAX_POINTS = 5000
+
+_VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d+)\s*,\s*(\d+)\s*,\s*([A-Za-z0-9_]+)\s*\]\s*=\s*(\S+)")
+_PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d+)\s*,\s*([A-Za-z0-9_]+)\s*\]"
+                    r"\s*=\s*(\S+)")
+_BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
+
+
+def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
+          max_points: int = MAX_POINTS, position_resolution: float = 0.001,
+          zero_at_reference: bool = True, zero_ends: bool = False) -> ControllerFile:
+    """Write ``table`` as a ``%_N_AX_EEC_INI`` file for ``machine_axis``.
+
+    Parameters
+    ----------
+    table : CompensationTable
+        Positions in mm (linear) or deg (rotary).
+    travel : (float, float), optional, ``table.position_unit``
+        Axis travel; the table must lie inside it.
+    machine_axis : str
+        Machine axis name in the file (``AX1``, ``X1`` ...).
+    max_points : int
+        MD38000 ``$MA_MM_ENC_COMP_MAX_POINTS``.
+    position_resolution : float, mm or deg
+        The spacing must be a whole multiple of this.
+    zero_at_reference : bool
+        Shift the table so the value at its reference point is 0 (Siemens' advice).
+    zero_ends : bool
+        Set the first and last values to 0 (see the module docstring).
+
+    Returns
+    -------
+    ControllerFile
+    """
+    _check(table, travel, max_points, position_resolution)
+    notes = []
+    if zero_at_reference and table.mean[table.reference_index] != 0:
+        notes.append(f"table shifted by {-table.mean[table.reference_index]:+.4g} "
+                     f"{table.correction_unit} so it is zero at the reference point "
+                     f"{table.reference_position:g} {table.position_unit}")
+        table = table.zeroed_at_reference(on="mean")
+    k = correction_factor(table, table.position_unit)  # correction unit -> mm or deg
+    nd = decimals(table.position_unit)
+    mean = table.mean
+    if zero_ends:
+        mean = mean.copy()
+        mean[[0, -1]] = 0.0
+    values = np.round(-mean * k, nd) + 0.0      # file value = deviation = −correction
+    ax = machine_axis
+    lines = ["%_N_AX_EEC_INI", "CHANDATA(1)",
+             f"; axiscal: axis {table.axis or '-'}, {table.n_points} points, values = deviation "
+             f"(-correction) in {table.position_unit}"]
+    lines += [f"$AA_ENC_COMP[0,{i},{ax}]={_fmt(v)}" for i, v in enumerate(values)]
+    lines += [f"$AA_ENC_COMP_STEP[0,{ax}]={_fmt(table.spacing)}",
+              f"$AA_ENC_COMP_MIN[0,{ax}]={_fmt(table.start)}",
+              f"$AA_ENC_COMP_MAX[0,{ax}]={_fmt(table.end)}",
+              f"$AA_ENC_COMP_IS_MODULO[0,{ax}]={1 if table.modulo else 0}"]
+    enable = [f"MD38000 $MA_MM_ENC_COMP_MAX_POINTS[0,{ax}] >= {table.n_points} "
+              "(memory is re-formatted at the next power-on)",
+              f"load the file while MD32700 $MA_ENC_COMP_ENABLE[0,{ax}] = 0",
+              f"then MD32700 $MA_ENC_COMP_ENABLE[0,{ax}] = 1 and reference the axis"]
+    if table.bidirectional:
+        b = np.round(-table.backlash * k, nd) + 0.0
+        lines.append(f"; MD32450 $MA_BACKLASH[0,{ax}]={_fmt(b)}")
+        enable.append(f"MD32450 $MA_BACKLASH[0,{ax}] = {_fmt(b)} {table.position_unit} "
+                      "(mean reversal; the table holds the mean of both directions)")
+    lines.append("M17")
+    as_file = np.round(-values / k, 6) + 0.0          # what the file holds, back in the table's unit
+    written = replace(table, up=as_file, down=as_file, bidirectional=False)
+    if table.bidirectional:
+        written = _with_backlash(written, b / k)
+    return ControllerFile(NAME, "\n".join(lines) + "\n", "AX_EEC.INI", written, tuple(enable),
+                          notes=tuple(notes))
+
+
+def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" = None,
+          axis: str = "", correction_unit: str | None = None) -> CompensationTable:
+    """Read a ``%_N_AX_EEC_INI`` file back into a table (corrections = −file values).
+
+    ``axis_kind`` defaults to rotary if the table is modulo, else linear. Corrections come back
+    in ``correction_unit`` (default µm or arcsec). A ``; MD32450`` comment written by
+    :func:`write` makes the table bidirectional again (mean ± backlash/2).
+    """
+    values: dict[int, float] = {}
+    params: dict[str, float] = {}
+    backlash = None
+    for n, raw in enumerate(text.splitlines(), 1):
+        line = raw.strip()
+        m = _BACKLASH.search(line)
+        if m:
+            backlash = parse_number(m.group(1), source, n)
+        if not line or line.startswith((";", "%", "CHANDATA", "M17", "M30")):
+            continue
+        m = _VALUE.match(line)
+        if m:
+            values[int(m.group(2))] = parse_number(m.group(4).split(";")[0], source, n)
+            continue
+        m = _PARAM.match(line)
+        if m:
+            params[m.group(1)] = parse_number(m.group(4).split(";")[0], source, n)
+            continue
+        raise DataFormatError(f"not a $AA_ENC_COMP line: {raw[:60]!r}", source, n)
+    for key in ("STEP", "MIN", "MAX"):
+        if key not in params:
+            raise DataFormatError(f"$AA_ENC_COMP_{key} is missing", source)
+    if not values or sorted(values) != list(range(len(values))):
+        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps", source)
+    modulo = bool(params.get("IS_MODULO", 0))
+    kind = AxisKind.parse(axis_kind or ("rotary" if modulo else "linear"))
+    pu = "mm" if kind is AxisKind.LINEAR else "deg"
+    cu = correction_unit or ("um" if kind is AxisKind.LINEAR else "arcsec")
+    dev = np.array([values[i] for i in range(len(values))])
+    span = (len(dev) - 1) * params["STEP"]
+    if abs(params["MIN"] + span - params["MAX"]) > 1e-6 * max(1.0, abs(span)):
+        raise DataFormatError(f"MIN {params['MIN']:g} + {len(dev) - 1} x STEP {params['STEP']:g} "
+                              f"does not reach MAX {params['MAX']:g}", source)
+    try:
+        t = CompensationTable(axis, kind, pu, cu, params["MIN"], params["STEP"], dev, dev,
+                              modulo=modulo)
+    except ControllerLimitError:
+        raise
+    except Exception as exc:
+        raise DataFormatError(str(exc), source) from None
+    t = replace(t, up=np.round(-dev / correction_factor(t, pu), 6) + 0.0,
+                down=np.round(-dev / correction_factor(t, pu), 6) + 0.0)
+    return t if backlash is None else _with_backlash(t, backlash / correction_factor(t, pu))
+
+
+def _with_backlash(table: CompensationTable, md32450: float) -> CompensationTable:
+    """Mean table plus a backlash value (correction unit) -> up/down tables (B̄ = −MD32450)."""
+    half = 0.5 * md32450
+    return replace(table, up=np.round(table.mean + half, 6) + 0.0,
+                   down=np.round(table.mean - half, 6) + 0.0, bidirectional=True)
+
+
+def _check(table, travel, max_points, position_resolution) -> None:
+    check_points(table.n_points, max_points, NAME, "points (MD38000)")
+    check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
+    check_travel(table, travel, NAME)
+    check_modulo(table, NAME)
+    if table.modulo and abs(table.start) > 1e-9:
+        raise ControllerLimitError(f"{NAME}: a modulo table must start at 0 deg, not "
+                                   f"{table.start:g} deg")
+
+
+def _fmt(v: float, nd: int = 9) -> str:
+    s = f"{v:.{nd}f}".rstrip("0")
+    return s + "0" if s.endswith(".") else s
+
+
+# -- cross-axis (sag / angularity) compensation: the CEC table -------------------------------
+_CEC_VALUE = re.compile(r"^\$AN_CEC\[\s*(\d+)\s*,\s*(\d+)\s*\]\s*=\s*(\S+)")
+_CEC_PARAM = re.compile(r"^\$AN_CEC_([A-Z_]+)\[\s*(\d+)\s*\]\s*=\s*(\S+)")
+
+
+def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str = "AX1",
+                     output_axis: str = "AX2", table_index: int = 0, max_points: int = MAX_POINTS,
+                     position_resolution: float = 0.001) -> ControllerFile:
+    """Write a cross-axis table (positions of the base axis, corrections of the compensation axis)
+    as a sag/angularity compensation file ``%_N_NC_CEC_INI``.
+
+    Format (SINUMERIK 802D sl / 840D sl Function Manual K3, "Compensation of sag and angularity
+    errors", table example for axis Y1)::
+
+        %_N_NC_CEC_INI
+        CHANDATA(1)
+        $AN_CEC[0,0]=0              ; value at interpolation point 0, mm
+        ...
+        $AN_CEC_INPUT_AXIS[0]=(AX2)  ; base axis (drives the table)
+        $AN_CEC_OUTPUT_AXIS[0]=(AX1) ; compensation axis (receives the values)
+        $AN_CEC_STEP[0]=6.73
+        $AN_CEC_MIN[0]=-400.0
+        $AN_CEC_MAX[0]=400.0
+        $AN_CEC_DIRECTION[0]=0       ; both directions of the base axis
+        $AN_CEC_MULT_BY_TABLE[0]=0
+        $AN_CEC_IS_MODULO[0]=0
+        M17
+
+    Enabling: MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` ≥ points, MD32710 ``$MA_CEC_ENABLE[AXi]`` = 1
+    for the compensation axis, SD41300 ``$SN_CEC_TABLE_ENABLE[t]`` = 1. Sign: written like the
+    EEC table, file value = −correction; that the CEC uses the same sign as the EEC is not
+    confirmed.
+    """
+    check_points(table.n_points, max_points, NAME, "points (MD18342)")
+    check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
+    check_travel(table, travel, NAME)
+    k = correction_factor(table, table.position_unit)
+    nd = decimals(table.position_unit)
+    values = np.round(-table.mean * k, nd) + 0.0
+    t = int(table_index)
+    lines = ["%_N_NC_CEC_INI", "CHANDATA(1)",
+             f"; axiscal cross-axis table: {output_axis} corrected as a function of {input_axis}, "
+             f"values = -correction in {table.position_unit}"]
+    lines += [f"$AN_CEC[{t},{i}]={_fmt(v)}" for i, v in enumerate(values)]
+    lines += [f"$AN_CEC_INPUT_AXIS[{t}]=({input_axis})", f"$AN_CEC_OUTPUT_AXIS[{t}]=({output_axis})",
+              f"$AN_CEC_STEP[{t}]={_fmt(table.spacing)}", f"$AN_CEC_MIN[{t}]={_fmt(table.start)}",
+              f"$AN_CEC_MAX[{t}]={_fmt(table.end)}", f"$AN_CEC_DIRECTION[{t}]=0",
+              f"$AN_CEC_MULT_BY_TABLE[{t}]=0", f"$AN_CEC_IS_MODULO[{t}]=0", "M17"]
+    enable = [f"MD18342 $MN_MM_CEC_MAX_POINTS[{t}] >= {table.n_points} (power-on re-formats memory)",
+              f"MD32710 $MA_CEC_ENABLE[{output_axis}] = 1 (load the table while it is 0)",
+              f"SD41300 $SN_CEC_TABLE_ENABLE[{t}] = 1"]
+    as_file = np.round(-values / k, 6) + 0.0
+    written = replace(table, up=as_file, down=as_file, bidirectional=False)
+    return ControllerFile(NAME, "\n".join(lines) + "\n", "NC_CEC.INI", written, tuple(enable))
+
+
+def parse_cross_axis(text: str, source: str = "<text>", correction_unit: str = "um"):
+    """Read a ``%_N_NC_CEC_INI`` table: (table, input axis, output axis) of its first table."""
+    values: dict[int, float] = {}
+    params: dict[str, str] = {}
+    for n, raw in enumerate(text.splitlines(), 1):
+        line = raw.split(";")[0].strip()
+        if not line or line.startswith(("%", "CHANDATA", "M17", "M30")):
+            continue
+        m = _CEC_VALUE.match(line)
+        if m:
+            values[int(m.group(2))] = parse_number(m.group(3), source, n)
+            continue
+        m = _CEC_PARAM.match(line)
+        if m:
+            params[m.group(1)] = m.group(3).strip("()")
+            continue
+        raise DataFormatError(f"not a $AN_CEC line: {raw[:60]!r}", source, n)
+    for key in ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX"):
+        if key not in params:
+            raise DataFormatError(f"$AN_CEC_{key} is missing", source)
+    if len(values) < 2 or sorted(values) != list(range(len(values))):
+        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps", source)
+    dev = np.array([values[i] for i in range(len(values))])
+    try:
+        step, lo = float(params["STEP"]), float(params["MIN"])
+        t = CompensationTable("", AxisKind.LINEAR, "mm", correction_unit, lo, step, dev, dev)
+    except ValueError as exc:
+        raise DataFormatError(str(exc), source) from None
+    c = np.round(-dev / correction_factor(t, "mm"), 6) + 0.0
+    return replace(t, up=c, down=c), params["INPUT_AXIS"], params["OUTPUT_AXIS"]
