@@ -22,8 +22,26 @@ __all__ = ["app", "main"]
 EXIT_USER_ERROR = 2
 
 
+#: Command name -> module that registers it. Modules are imported only when their command runs
+#: (or when help lists them), so start-up cost does not grow with the number of commands.
+COMMANDS: dict[str, str] = {
+    "iso230-2": "axiscal.cli.iso230_2",
+    "plan": "axiscal.cli.plan",
+    "simulate": "axiscal.cli.simulate",
+    "demo": "axiscal.cli.demo",
+}
+
+
 class AxiscalGroup(typer.core.TyperGroup):
-    """Top-level group that turns library errors into one clean line and exit code 2."""
+    """Top-level group: lazy command modules, and library errors as one line with exit code 2."""
+
+    def list_commands(self, ctx):  # noqa: D401 - click API
+        return sorted(set(super().list_commands(ctx)) | set(COMMANDS))
+
+    def get_command(self, ctx, name):  # noqa: D401 - click API
+        if name in COMMANDS:
+            return _load_command(name)
+        return super().get_command(ctx, name)
 
     def invoke(self, ctx):  # noqa: D401 - click API
         try:
@@ -34,6 +52,20 @@ class AxiscalGroup(typer.core.TyperGroup):
         except KeyboardInterrupt:  # pragma: no cover - interactive only
             typer.echo("axiscal: interrupted; nothing was written", err=True)
             raise typer.Exit(130) from None
+
+
+def _load_command(name: str):
+    """Import the module of command ``name``, let it register on a scratch app, return the command."""
+    import importlib
+
+    module = importlib.import_module(COMMANDS[name])
+    scratch = typer.Typer()
+    module.register(scratch)
+    # A scratch app with a single group or command collapses to it; otherwise look the name up.
+    group = typer.main.get_group(scratch) if scratch.registered_groups or len(scratch.registered_commands) > 1 else None
+    if group is None:
+        return typer.main.get_command(scratch)
+    return group.get_command(None, name)
 
 
 app = typer.Typer(
@@ -61,17 +93,6 @@ def _root(
     ),
 ) -> None:
     """Calibrate machine-tool and turntable axes."""
-
-
-def _register_all() -> None:
-    # One line per command module; each module imports only typer at import time.
-    from axiscal.cli import iso230_2
-
-    for module in (iso230_2,):
-        module.register(app)
-
-
-_register_all()
 
 
 def main() -> None:

@@ -77,6 +77,7 @@ def render_result(result, ds=None, title: str = "", console=None) -> None:
     """Print the per-target table and the axis parameters as rich tables."""
     import math
 
+    from rich.markup import escape
     from rich.table import Table
 
     from axiscal.cli._common import console as make_console
@@ -93,8 +94,8 @@ def render_result(result, ds=None, title: str = "", console=None) -> None:
         heading += f" — {ds.metadata.machine} {ds.metadata.axis}".rstrip()
     elif title:
         heading += f" — {title}"
-    t = Table(title=heading, title_justify="left")
-    t.add_column(f"target [{tu}]", justify="right")
+    t = Table(title=escape(heading), title_justify="left")
+    t.add_column(escape(f"target [{tu}]"), justify="right")
     cols = [("n↑", "n_up"), (f"x̄↑ [{sym}]", "mean_up"), (f"s↑ [{sym}]", "s_up"),
             ("n↓", "n_down"), (f"x̄↓ [{sym}]", "mean_down"), (f"s↓ [{sym}]", "s_down"),
             (f"x̄ [{sym}]", "mean_bi"), (f"B_i [{sym}]", "reversal"), (f"R_i [{sym}]", "R_i")]
@@ -103,7 +104,7 @@ def render_result(result, ds=None, title: str = "", console=None) -> None:
             and getattr(result, c[1])[0] is not None]
     keep = [c for c in keep if not (c[1].startswith("n_") and int(getattr(result, c[1]).max()) == 0)]
     for name, _ in keep:
-        t.add_column(name, justify="right")
+        t.add_column(escape(name), justify="right")
     for i, target in enumerate(result.targets):
         cells = [f"{target:g}"]
         for _, attr in keep:
@@ -112,7 +113,7 @@ def render_result(result, ds=None, title: str = "", console=None) -> None:
         t.add_row(*cells)
     con.print(t)
 
-    p = Table(title=f"Axis parameters [{sym}]", title_justify="left")
+    p = Table(title=escape(f"Axis parameters [{sym}]"), title_justify="left")
     p.add_column("parameter")
     p.add_column("value", justify="right")
     p.add_column("meaning")

@@ -1,0 +1,63 @@
+"""Latency of ``axiscal iso230-2 FILE --json`` on a 41-target, 5-run bidirectional file.
+
+Reference, measured in the same run: ``python -c "import numpy"`` (the floor any NumPy tool pays).
+Aim (issue 2): under 2x that reference. Also the in-process evaluation throughput.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def _best_wall(cmd: list[str], repeat: int = 15) -> float:
+    """Fastest of ``repeat`` runs: the intrinsic cost, least disturbed by other load."""
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def _write_file(folder: Path) -> Path:
+    from axiscal.datasets import PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(0)
+    targets = np.round(np.linspace(0, 2000, 41) + rng.uniform(-10, 10, 41) * (np.arange(41) % 40 > 0), 3)
+    base = 5 * np.sin(targets / 300)[:, None]
+    ds = PositioningDataset.from_arrays("linear", targets, base + rng.normal(0, 0.5, (41, 5)),
+                                        base - 2 + rng.normal(0, 0.5, (41, 5)))
+    p = folder / "x41.csv"
+    p.write_text(format_positioning_csv(ds))
+    return p
+
+
+def run() -> list[dict]:
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        f = _write_file(Path(tmp))
+        ref = _best_wall([sys.executable, "-c", "import numpy"])
+        cli = _best_wall([sys.executable, "-m", "axiscal", "iso230-2", str(f), "--json"])
+        rows.append(dict(name="iso230-2 --json latency, 41 targets x 5 runs x 2 dirs",
+                         value=cli * 1e3, unit="ms", reference=f"python -c 'import numpy' {ref * 1e3:.0f} ms (best of 15 each)",
+                         ratio=cli / ref, aim="ratio < 2"))
+    from axiscal.datasets import PositioningDataset
+    from axiscal.standards.iso230_2 import evaluate
+
+    rng = np.random.default_rng(1)
+    ds = PositioningDataset.from_arrays("linear", np.arange(41.0), rng.normal(0, 1, (41, 5)),
+                                        rng.normal(0, 1, (41, 5)))
+    n = 2000
+    t0 = time.perf_counter()
+    for _ in range(n):
+        evaluate(ds)
+    dt = (time.perf_counter() - t0) / n
+    rows.append(dict(name="evaluate() in process, 41 x 5 x 2", value=1.0 / dt, unit="evals/s"))
+    return rows

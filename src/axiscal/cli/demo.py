@@ -1,0 +1,62 @@
+"""``axiscal demo``: the main job on the embedded defaults (what ``make demo`` runs).
+
+Simulates an ISO 230-2 positioning test of an 800 mm linear axis and of a turntable over a full
+turn (configurations in ``axiscal/data/``), evaluates both, prints the tables beside the truth,
+and writes plots, HTML reports, the simulated data and an index page into ``--out``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from axiscal.cli._common import note
+
+DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn"))
+
+
+def demo(
+    out: Path = typer.Option(Path("axiscal-demo"), "--out", help="Folder for plots, reports and data (created)."),
+    seed: int = typer.Option(1, "--seed", help="Seed of the simulation's random numbers."),
+) -> None:
+    """Run the demonstration: simulated linear and rotary positioning tests, evaluated and reported."""
+    import tomllib
+    from importlib import resources
+
+    from axiscal.cli.simulate import render_simulation, write_outputs
+    from axiscal.errors import InputError
+    from axiscal.procedures.positioning import simulate_from_config
+
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out {out} exists and is not a folder")
+    out.mkdir(parents=True, exist_ok=True)
+    pages = []
+    for name, cfg, label in DEMOS:
+        config = tomllib.loads(resources.files("axiscal.data").joinpath(cfg).read_text("utf-8"))
+        sim = simulate_from_config(config, seed=seed)
+        typer.echo("")
+        render_simulation(sim)
+        write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
+                      out / f"{name}_data.csv")
+        pages.append((label, f"{name}_report.html", sim))
+    _write_index(out, pages)
+    note(f"\nopen {out / 'index.html'} for the reports")
+
+
+def _write_index(out: Path, pages) -> None:
+    from axiscal.report.html import Report
+
+    rep = Report("axiscal demonstration", subtitle="Simulated ISO 230-2 positioning tests, evaluated and compared with the truth")
+    rows = [[f'{label}', p.result.A, p.result.E, p.result.R, p.result.B, p.result.deviation_unit]
+            for label, _, p in pages]
+    rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
+    rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
+                                  for label, href, _ in pages) + "</ul>")
+    rep.write(out / "index.html")
+    note(f"wrote {out / 'index.html'}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``demo`` command."""
+    app.command("demo")(demo)

@@ -1,0 +1,89 @@
+"""``axiscal plan linear|rotary``: ISO 230-2 test plans, printed or exported as CSV.
+
+The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
+after one comment line; ``kind`` is ``measure`` (take a reading after the dwell) or ``overrun``
+(a reversing move). ``--json`` prints ``targets``, ``target_unit``, ``runs``, ``cycle``,
+``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
+                       no_args_is_help=True)
+
+
+@plan_app.command("linear")
+def plan_linear_cmd(
+    length: float = typer.Option(..., "--length", help="Measurement travel in mm."),
+    start: float = typer.Option(0.0, "--start", help="First target in mm."),
+    n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
+    irregularity: float = typer.Option(0.25, "--irregularity", help="Random offset of each target as a fraction of the interval (0 = even spacing)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the random offsets (plans are reproducible)."),
+    runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
+    cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
+    unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
+    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
+    dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
+    axis: str = typer.Option("X", "--axis", help="Axis name."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV."),
+    json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
+) -> None:
+    """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2)."""
+    from axiscal.procedures.positioning import plan_linear
+
+    p = plan_linear(length, start, n_targets, irregularity, seed, runs, cycle, not unidirectional,  # type: ignore[arg-type]
+                    overrun, dwell, axis)
+    _emit(p, csv, json_out)
+
+
+@plan_app.command("rotary")
+def plan_rotary_cmd(
+    travel: float = typer.Option(360.0, "--travel", help="Measurement travel in degrees."),
+    start: float = typer.Option(0.0, "--start", help="First target in degrees."),
+    step: Optional[float] = typer.Option(None, "--step", help="Interval between targets in degrees (default 45)."),
+    n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of evenly spaced targets (instead of --step)."),
+    runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
+    cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
+    unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
+    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (seed 001: 5)."),
+    dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
+    axis: str = typer.Option("C", "--axis", help="Axis name."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV."),
+    json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
+) -> None:
+    """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included)."""
+    from axiscal.procedures.positioning import plan_rotary
+
+    p = plan_rotary(travel, start, step, n_targets, runs, cycle, not unidirectional, overrun,  # type: ignore[arg-type]
+                    dwell, axis)
+    _emit(p, csv, json_out)
+
+
+def _emit(p, csv: Optional[Path], json_out: bool) -> None:
+    if csv is not None:
+        from axiscal.io._files import write_text_atomic
+
+        write_text_atomic(out_path(csv, "plan CSV"), p.to_csv())
+    if json_out:
+        print_json({
+            "targets": p.targets, "target_unit": p.target_unit, "runs": p.runs, "cycle": p.cycle,
+            "bidirectional": p.bidirectional, "overrun": p.overrun, "dwell": p.dwell,
+            "n_measurements": p.n_measurements,
+            "steps": [s.__dict__ for s in p.steps()],
+        })
+    else:
+        typer.echo(str(p))
+    if csv is not None:
+        note(f"wrote plan {csv} ({len(p.steps())} moves)")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``plan`` command group."""
+    app.add_typer(plan_app, name="plan")

@@ -1,0 +1,232 @@
+"""Simulated axes from configuration tables (TOML), in the units people write.
+
+A linear axis (``kind = "linear"``)::
+
+    [axis]
+    name = "X"
+    kind = "linear"
+    travel_mm = [0, 800]
+    scale_error_ppm = 12          # slope of the deviation, µm per m = ppm
+    bend_um = 0.0                 # quadratic bow: deviation at mid-travel relative to the ends
+    backlash_um = 3.0             # reversal value b: B_i = x↑ - x↓ = b
+    repeatability_um = 0.5        # standard deviation of one approach
+    thermal_ppm_per_hour = 0.0    # scale growth during the test
+    periodic = [{ amplitude_um = 1.5, period_mm = 20, phase_deg = 0 }]
+    irregular = { rms_um = 0.8, seed = 7 }
+
+A rotary axis (``kind = "rotary"``), angles in arcseconds and degrees, displacements in µm::
+
+    [axis]
+    name = "C"
+    kind = "rotary"
+    travel_deg = [-120, 120]      # omit for a continuous axis
+    backlash_arcsec = 2.0
+    repeatability_arcsec = 0.4
+    drift_arcsec_per_hour = 0.0
+    harmonics = [{ order = 1, amplitude_arcsec = 3.0, phase_deg = 20 }]
+    irregular = { rms_arcsec = 0.5, seed = 3 }
+
+    [axis.error_motions.radial_x]  # also radial_y, axial (µm) and tilt_x, tilt_y (arcsec)
+    offset_um = 0.0
+    asynchronous_um = 0.05
+    harmonics = [{ order = 2, amplitude_um = 0.8, phase_deg = 0 }]
+
+Unknown keys are refused with a :class:`~axiscal.errors.ConfigError` that names them, so a typo
+never silently becomes a perfect machine.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from axiscal.errors import ConfigError
+from axiscal.machines.error_functions import ZERO, Harmonic, HarmonicSeries, random_profile
+from axiscal.machines.linear import LinearAxis
+from axiscal.machines.rotary import TWO_PI, ErrorMotion, RotaryAxis
+from axiscal.units import ARCSEC, DEG, MM, UM
+
+__all__ = ["axis_from_config", "linear_axis_from_config", "rotary_axis_from_config", "load_toml"]
+
+_LINEAR_KEYS = {"name", "kind", "travel_mm", "scale_error_ppm", "bend_um", "backlash_um",
+                "repeatability_um", "thermal_ppm_per_hour", "periodic", "irregular"}
+_ROTARY_KEYS = {"name", "kind", "travel_deg", "backlash_arcsec", "repeatability_arcsec",
+                "drift_arcsec_per_hour", "harmonics", "irregular", "error_motions"}
+_MOTIONS = {"radial_x": ("um", UM), "radial_y": ("um", UM), "axial": ("um", UM),
+            "tilt_x": ("arcsec", ARCSEC), "tilt_y": ("arcsec", ARCSEC)}
+
+
+def load_toml(path) -> dict[str, Any]:
+    """Read a TOML file; a syntax error becomes a :class:`ConfigError` with the file name."""
+    import tomllib
+
+    from axiscal.io._files import read_text
+
+    text = read_text(path)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+
+
+def axis_from_config(table: dict[str, Any]) -> LinearAxis | RotaryAxis:
+    """Build a simulated axis from an ``[axis]`` table (``kind`` decides which)."""
+    kind = str(table.get("kind", "")).lower()
+    if kind == "linear":
+        return linear_axis_from_config(table)
+    if kind == "rotary":
+        return rotary_axis_from_config(table)
+    raise ConfigError(f"[axis] kind = {table.get('kind')!r}; use 'linear' or 'rotary'")
+
+
+def linear_axis_from_config(t: dict[str, Any]) -> LinearAxis:
+    """Build a :class:`LinearAxis` from a table in mm/µm/ppm (see the module docstring).
+
+    Examples
+    --------
+    >>> ax = linear_axis_from_config({"travel_mm": [0, 1000], "scale_error_ppm": 10})
+    >>> round(float(ax.systematic_deviation(1.0, +1)) / UM, 6)
+    10.0
+    """
+    _refuse_unknown("[axis]", t, _LINEAR_KEYS)
+    lo, hi = _pair(t.get("travel_mm", [0.0, 1000.0]), "travel_mm")
+    length = (hi - lo) * MM
+    poly = [0.0, _num(t, "scale_error_ppm", 0.0) * 1e-6]
+    bend = _num(t, "bend_um", 0.0) * UM
+    if bend:
+        # e(x) = 4 bend (x - lo)(hi - x) / L²: zero at the ends, ``bend`` at mid-travel.
+        a, b = lo * MM, hi * MM
+        k = 4.0 * bend / length**2
+        poly = [poly[0] - k * a * b, poly[1] + k * (a + b), -k]
+    harmonics = []
+    for i, h in enumerate(_list(t, "periodic")):
+        _refuse_unknown(f"[axis] periodic[{i}]", h, {"amplitude_um", "period_mm", "phase_deg"})
+        harmonics.append(Harmonic(_num(h, "amplitude_um", None) * UM, _num(h, "period_mm", None) * MM,
+                                  _num(h, "phase_deg", 0.0) * DEG))
+    error = HarmonicSeries(tuple(harmonics), tuple(poly))
+    irr = t.get("irregular")
+    if irr:
+        _refuse_unknown("[axis] irregular", irr, {"rms_um", "seed"})
+        error = error + random_profile(_num(irr, "rms_um", None) * UM, length, range(3, 60),
+                                       np.random.default_rng(int(irr.get("seed", 0))))
+    try:
+        return LinearAxis(
+            name=str(t.get("name", "X")),
+            travel=(lo * MM, hi * MM),
+            error=error,
+            backlash=_num(t, "backlash_um", 0.0) * UM,
+            repeatability_sigma=_num(t, "repeatability_um", 0.0) * UM,
+            thermal_scale_rate=_num(t, "thermal_ppm_per_hour", 0.0) * 1e-6 / 3600.0,
+        )
+    except ConfigError:
+        raise
+    except Exception as exc:  # an InputError from the axis: say it is the config
+        raise ConfigError(f"[axis]: {exc}") from None
+
+
+def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
+    """Build a :class:`RotaryAxis` from a table in arcsec/deg/µm (see the module docstring).
+
+    Examples
+    --------
+    >>> ax = rotary_axis_from_config({"harmonics": [{"order": 1, "amplitude_arcsec": 3.0}]})
+    >>> round(float(ax.systematic_error(math.pi / 2, 1)) / ARCSEC, 6)
+    3.0
+    """
+    _refuse_unknown("[axis]", t, _ROTARY_KEYS)
+    positioning = _orders(t.get("harmonics", []), "arcsec", ARCSEC, "[axis] harmonics")
+    irr = t.get("irregular")
+    if irr:
+        _refuse_unknown("[axis] irregular", irr, {"rms_arcsec", "seed", "orders"})
+        lo, hi = _pair(irr.get("orders", [5, 40]), "irregular.orders")
+        positioning = positioning + random_profile(
+            _num(irr, "rms_arcsec", None) * ARCSEC, TWO_PI, range(int(lo), int(hi) + 1),
+            np.random.default_rng(int(irr.get("seed", 0))))
+    travel = None
+    if "travel_deg" in t:
+        lo, hi = _pair(t["travel_deg"], "travel_deg")
+        travel = (lo * DEG, hi * DEG)
+    motions = {}
+    em = t.get("error_motions", {}) or {}
+    _refuse_unknown("[axis.error_motions]", em, set(_MOTIONS))
+    for name, (unit, k) in _MOTIONS.items():
+        if name in em:
+            motions[name] = _error_motion(em[name], unit, k, f"[axis.error_motions.{name}]")
+    try:
+        return RotaryAxis(
+            name=str(t.get("name", "C")),
+            positioning=positioning,
+            backlash=_num(t, "backlash_arcsec", 0.0) * ARCSEC,
+            repeatability_sigma=_num(t, "repeatability_arcsec", 0.0) * ARCSEC,
+            drift_rate=_num(t, "drift_arcsec_per_hour", 0.0) * ARCSEC / 3600.0,
+            travel=travel,
+            **motions,
+        )
+    except ConfigError:
+        raise
+    except Exception as exc:
+        raise ConfigError(f"[axis]: {exc}") from None
+
+
+def _error_motion(t: dict[str, Any], unit: str, k: float, where: str) -> ErrorMotion:
+    _refuse_unknown(where, t, {f"offset_{unit}", f"asynchronous_{unit}", "harmonics"})
+    return ErrorMotion(
+        synchronous=_orders(t.get("harmonics", []), unit, k, f"{where} harmonics"),
+        asynchronous_sigma=_num(t, f"asynchronous_{unit}", 0.0) * k,
+        offset=_num(t, f"offset_{unit}", 0.0) * k,
+    )
+
+
+def _orders(items, unit: str, k: float, where: str) -> HarmonicSeries:
+    if not isinstance(items, list):
+        raise ConfigError(f"{where} must be a list of tables")
+    out = []
+    for i, h in enumerate(items):
+        if not isinstance(h, dict):
+            raise ConfigError(f"{where}[{i}] must be a table")
+        _refuse_unknown(f"{where}[{i}]", h, {"order", f"amplitude_{unit}", "phase_deg"})
+        order = h.get("order")
+        if not isinstance(order, int) or order < 1:
+            raise ConfigError(f"{where}[{i}] order = {order!r} must be a whole number >= 1 per turn")
+        out.append(Harmonic(_num(h, f"amplitude_{unit}", None) * k, TWO_PI / order,
+                            _num(h, "phase_deg", 0.0) * DEG))
+    return HarmonicSeries(tuple(out)) if out else ZERO
+
+
+def _refuse_unknown(where: str, t: Any, allowed: set[str]) -> None:
+    if not isinstance(t, dict):
+        raise ConfigError(f"{where} must be a table, got {t!r}")
+    unknown = sorted(set(t) - allowed)
+    if unknown:
+        raise ConfigError(f"{where}: unknown key(s) {', '.join(unknown)}; allowed: "
+                          f"{', '.join(sorted(allowed))}")
+
+
+def _num(t: dict[str, Any], key: str, default: float | None) -> float:
+    if key not in t:
+        if default is None:
+            raise ConfigError(f"missing key {key!r}")
+        return default
+    v = t[key]
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise ConfigError(f"{key} = {v!r} must be a finite number")
+    return float(v)
+
+
+def _pair(v: Any, key: str) -> tuple[float, float]:
+    if (not isinstance(v, list) or len(v) != 2
+            or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
+        raise ConfigError(f"{key} = {v!r} must be a pair of numbers [low, high]")
+    lo, hi = float(v[0]), float(v[1])
+    if not hi > lo:
+        raise ConfigError(f"{key} = {v!r}: the second number must be larger than the first")
+    return lo, hi
+
+
+def _list(t: dict[str, Any], key: str) -> list:
+    v = t.get(key, [])
+    if not isinstance(v, list):
+        raise ConfigError(f"{key} must be a list of tables")
+    return v

@@ -1,0 +1,121 @@
+"""Plots of positioning tests (matplotlib, Agg backend, no display needed).
+
+The ISO 230-2 plot follows the layout of the standard's figures and of the reports calibration
+engineers are used to: the mean positioning deviation per direction (x̄↑, x̄↓) against the target,
+the ±2s bands around each, every run's readings as points, and a box with A, E, M, R, B.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["iso230_2_figure", "save_iso230_2_plot", "save_figure", "UP_COLOR", "DOWN_COLOR"]
+
+UP_COLOR = "#0b5fa5"
+DOWN_COLOR = "#c0392b"
+BI_COLOR = "#2d3436"
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None):
+    """The standard ISO 230-2 plot of one positioning test.
+
+    Parameters
+    ----------
+    result : Iso230_2Result
+    dataset : PositioningDataset, optional
+        If given, every run's readings are drawn as points.
+    title : str, optional
+    truth : tuple of (ndarray, ndarray), optional
+        ``(positions, systematic deviation)`` a simulation knew, drawn as a dashed line.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = _pyplot()
+    u = {"um": "µm", "arcsec": "arcsec"}.get(result.deviation_unit, result.deviation_unit)
+    tu = {"deg": "°"}.get(result.target_unit, result.target_unit)
+    fig, ax = plt.subplots(figsize=(10, 5.2), dpi=110)
+    t = result.targets
+    for name, mean, s, color, arr in (
+        ("positive ↑", result.mean_up, result.s_up, UP_COLOR, None if dataset is None else dataset.up),
+        ("negative ↓", result.mean_down, result.s_down, DOWN_COLOR,
+         None if dataset is None else dataset.down),
+    ):
+        if np.all(np.isnan(mean)):
+            continue
+        ax.fill_between(t, mean - 2 * s, mean + 2 * s, color=color, alpha=0.13, linewidth=0,
+                        label=f"x̄ ± 2s, {name.split()[0]}")
+        ax.plot(t, mean, "-", color=color, lw=1.8, marker="o", ms=3.5, label=f"mean x̄, {name}")
+        if arr is not None and arr.shape[1]:
+            jitter = 0.004 * (t[-1] - t[0]) * (1 if color == UP_COLOR else -1)
+            for j in range(arr.shape[1]):
+                ax.plot(t + jitter, arr[:, j], ".", color=color, ms=3, alpha=0.55,
+                        label="readings" if j == 0 and color == UP_COLOR else None)
+    if result.bidirectional:
+        ax.plot(t, result.mean_bi, ":", color=BI_COLOR, lw=1.2, label="mean bidirectional x̄")
+    if truth is not None:
+        ax.plot(truth[0], truth[1], "--", color="#27ae60", lw=1.2, label="truth (simulation)")
+    ax.axhline(0, color="#888", lw=0.6)
+    ax.set_xlabel(f"Target position [{tu}]")
+    ax.set_ylabel(f"Positioning deviation [{u}]")
+    ax.grid(True, color="#e3e7ec", lw=0.7)
+    ax.set_xlim(t[0] - 0.02 * (t[-1] - t[0]), t[-1] + 0.02 * (t[-1] - t[0]))
+    if result.axis_kind.value == "rotary" and result.target_unit == "deg":
+        span = t[-1] - t[0]
+        if span >= 90:
+            ax.set_xticks(np.arange(np.ceil(t[0] / 45) * 45, t[-1] + 1e-9, 45 if span <= 720 else 90))
+    ax.set_title(title or "Positioning deviation, ISO 230-2:2014", loc="left", fontsize=12)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
+    ax.text(1.015, 0.0, _parameter_box(result, u), transform=ax.transAxes, fontsize=9,
+            family="monospace", va="bottom", ha="left",
+            bbox=dict(boxstyle="round,pad=0.5", fc="#f5f7fa", ec="#c9d1db"))
+    fig.tight_layout()
+    return fig
+
+
+def _parameter_box(result, u: str) -> str:
+    labels = [("A", "A"), ("A_up", "A↑"), ("A_down", "A↓"), ("E", "E"), ("M", "M"), ("R", "R"),
+              ("R_up", "R↑"), ("R_down", "R↓"), ("B", "B"), ("B_mean", "B̄")]
+    lines = [f"ISO 230-2 [{u}]"]
+    for key, label in labels:
+        v = getattr(result, key)
+        if v is not None:
+            lines.append(f"{label:<3}{v:9.2f}")
+    lines.append(f"runs {result.n_runs}, targets {result.targets.size}")
+    return "\n".join(lines)
+
+
+def save_figure(fig, path) -> Path:
+    """Save a figure by the file's extension (png, svg, pdf) atomically and close it."""
+    import io
+
+    from axiscal.errors import InputError
+    from axiscal.io._files import write_bytes_atomic
+
+    plt = _pyplot()
+    p = Path(path)
+    fmt = p.suffix.lower().lstrip(".") or "png"
+    if fmt not in {"png", "svg", "pdf"}:
+        plt.close(fig)
+        raise InputError(f"plot file {p.name}: use a .png, .svg or .pdf extension")
+    buf = io.BytesIO()
+    fig.savefig(buf, format=fmt, bbox_inches="tight", dpi=150 if fmt == "png" else None)
+    plt.close(fig)
+    return write_bytes_atomic(p, buf.getvalue())
+
+
+def save_iso230_2_plot(result, dataset, path, title: str | None = None, truth=None) -> Path:
+    """Write the ISO 230-2 plot (PNG, SVG or PDF by the file's extension)."""
+    return save_figure(iso230_2_figure(result, dataset, title, truth), path)
