@@ -44,6 +44,7 @@ __all__ = [
     "tradeoff_table",
     "SEED000_FIGURE22",
     "reflector_pose",
+    "max_alpha",
 ]
 
 TWO_PI = 2.0 * math.pi
@@ -282,3 +283,44 @@ def _rz(t: float) -> np.ndarray:
 def _ry(t: float) -> np.ndarray:
     c, s = math.cos(t), math.sin(t)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def max_alpha(accuracy: float, beta: float, omega: float = 2.5e-3,
+              base: float = 0.8 * ARCSEC) -> float:
+    """Largest α for which ``base + peak|E|`` stays within ``accuracy``, radians.
+
+    Answers the set-up question "how well must I align the axes for this accuracy?" for a given
+    laser alignment β and reflector twist ω (the peak grows monotonically with α).
+
+    Parameters
+    ----------
+    accuracy : float, radians
+        The ± accuracy wanted.
+    beta, omega, base : float, radians
+        As in :func:`tradeoff_table`.
+
+    Returns
+    -------
+    float, radians
+        0.0 if even perfect axes cannot reach ``accuracy`` (``accuracy <= base``).
+
+    Examples
+    --------
+    >>> a = max_alpha(1.0 * ARCSEC, 1e-3)
+    >>> round(a * 1e3, 2), round((0.8 * ARCSEC + peak_error(a, 1e-3, 2.5e-3)) / ARCSEC, 6)
+    (0.35, 1.0)
+    """
+    if not accuracy > 0:
+        raise InputError(f"accuracy={accuracy!r} rad must be positive")
+    if accuracy <= base:
+        return 0.0
+    lo, hi = 0.0, 0.1
+    if base + peak_error(hi, beta, omega) <= accuracy:
+        return hi
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if base + peak_error(mid, beta, omega) <= accuracy:
+            lo = mid
+        else:
+            hi = mid
+    return lo
