@@ -29,6 +29,7 @@ COMMANDS: dict[str, str] = {
     "plan": "axiscal.cli.plan",
     "simulate": "axiscal.cli.simulate",
     "demo": "axiscal.cli.demo",
+    "rotary": "axiscal.cli.rotary",
 }
 
 
