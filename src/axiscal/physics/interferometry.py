@@ -384,24 +384,28 @@ class OpticsCalibration:
 
 
 def optics_self_calibration(delta_l_plus: float, delta_l_minus: float, spacing: float,
-                            step: float = math.radians(5.0),
-                            delta_l_zero: float = 0.0) -> OpticsCalibration:
+                            step: float = math.radians(5.0), step_minus: float | None = None,
+                            delta_l_zero: float = 0.0, step_zero: float = 0.0) -> OpticsCalibration:
     """Find K and the reflector's datum misalignment from readings at 0, +step and −step.
 
-    The reference calibrator turns the reflector by exactly +step and −step from the datum (its
-    encoder is the reference); the laser reports the path difference relative to the datum.
+    The reference calibrator turns the reflector from the datum by ``step`` and ``step_minus``
+    (nominally ±5°; pass the angles its encoder *read*, not the commanded ones: a servo error in
+    the steps would otherwise pass straight into the datum misalignment); the laser reports the
+    path difference relative to the datum.
 
     Parameters
     ----------
     delta_l_plus, delta_l_minus : float, metres
-        Path difference read at +step and −step.
+        Path difference read at the two steps.
     spacing : float, metres
         Nominal spacing S.
     step : float, radians
-        Calibration step (default 5°, seed 000).
-    delta_l_zero : float, metres
-        Reading on the return to 0 after the two steps (normally 0; a non-zero value is drift,
-        removed from the two readings and reported as ``zero_return``).
+        Reference angle of the first step (default +5°, seed 000).
+    step_minus : float, radians, optional
+        Reference angle of the second step (default ``-step``).
+    delta_l_zero, step_zero : float, metres and radians
+        Path difference and reference angle on the return to the datum; their disagreement is
+        reported as ``zero_return`` (drift during the calibration).
 
     Returns
     -------
@@ -409,15 +413,14 @@ def optics_self_calibration(delta_l_plus: float, delta_l_minus: float, spacing: 
 
     Notes
     -----
-    With the reflector turned by φ₀ at the datum and an effective spacing K·S, the readings are
-    ``ΔL± = K·S·(sin(φ₀ ± a) − sin φ₀)``. Their sum and difference give::
-
-        ΔL₊ + ΔL₋ = 2·K·S·sin φ₀·(cos a − 1)
-        ΔL₊ − ΔL₋ = 2·K·S·cos φ₀·sin a
-
-    so ``tan φ₀ = (ΔL₊+ΔL₋)·sin a / ((ΔL₊−ΔL₋)·(cos a − 1))`` and
-    ``K = (ΔL₊−ΔL₋) / (2·S·cos φ₀·sin a)``. Seed 000, "Incorrect retro-reflector spacing" and
-    "Misaligned reflector at datum".
+    With the reflector turned by φ₀ at the datum and an effective spacing K·S, a step a gives
+    ``ΔL = K·S·(sin(φ₀ + a) − sin φ₀) = X·(cos a − 1) + Y·sin a`` with ``X = K·S·sin φ₀`` and
+    ``Y = K·S·cos φ₀``. Two steps give a 2×2 linear system for X and Y, hence
+    ``φ₀ = atan2(X, Y)`` and ``K = √(X² + Y²)/S``. For symmetric steps ±a this is
+    ``tan φ₀ = (ΔL₊+ΔL₋)·sin a / ((ΔL₊−ΔL₋)·(cos a − 1))``. Seed 000, "Incorrect retro-reflector
+    spacing" and "Misaligned reflector at datum". Note the sum of the two readings carries φ₀
+    with a gain of only ``cos a − 1`` (−0.0038 at 5°): an error δ in a reference step moves φ₀ by
+    about ``δ/(2·0.0038)``, 130 times δ.
 
     Examples
     --------
@@ -428,23 +431,28 @@ def optics_self_calibration(delta_l_plus: float, delta_l_minus: float, spacing: 
     (1.003333333, 2.0)
     """
     _check_positive("spacing", spacing)
-    if not 0 < step < math.pi / 4:
-        raise InputError(f"calibration step {math.degrees(step):g} deg must be in (0, 45) deg")
-    p = float(delta_l_plus) - delta_l_zero
-    m = float(delta_l_minus) - delta_l_zero
-    diff, total = p - m, p + m
-    if not diff > 0:
+    a_p = float(step)
+    a_m = -a_p if step_minus is None else float(step_minus)
+    for name, v in (("step", a_p), ("step_minus", a_m)):
+        if not 0 < abs(v) < math.pi / 4:
+            raise InputError(f"calibration {name} {math.degrees(v):g} deg must be within (0, 45) deg")
+    if not a_p > 0 > a_m:
+        raise InputError(f"calibration steps {math.degrees(a_p):g} and {math.degrees(a_m):g} deg "
+                         "must lie either side of the datum (positive, then negative)")
+    p, m = float(delta_l_plus), float(delta_l_minus)
+    if not p > m:
         raise InputError(
             f"readings at +step ({p:.4g} m) and -step ({m:.4g} m) do not increase with the angle; "
             "check the laser's angular sign or the reflector"
         )
-    phi0 = math.atan2(total * math.sin(step), diff * (math.cos(step) - 1.0))
-    # atan2 of (num, den) with den < 0 puts phi0 near ±pi; fold back to the small solution
-    phi0 = math.atan(math.tan(phi0))
-    k = diff / (2.0 * spacing * math.cos(phi0) * math.sin(step))
-    zero_return = math.asin(max(-1.0, min(1.0, delta_l_zero / (k * spacing))))
-    return OpticsCalibration(k=float(k), datum_misalignment=float(phi0), step=float(step),
-                             zero_return=zero_return)
+    mat = np.array([[math.cos(a_p) - 1.0, math.sin(a_p)], [math.cos(a_m) - 1.0, math.sin(a_m)]])
+    x, y = np.linalg.solve(mat, np.array([p, m]))
+    phi0 = math.atan2(x, y)
+    ks = math.hypot(x, y)
+    ratio = max(-1.0, min(1.0, delta_l_zero / ks + math.sin(phi0)))
+    zero_return = math.asin(ratio) - phi0 - step_zero
+    return OpticsCalibration(k=float(ks / spacing), datum_misalignment=float(phi0), step=a_p,
+                             zero_return=float(zero_return))
 
 
 def _passes(optics: str) -> int:

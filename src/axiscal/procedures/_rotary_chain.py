@@ -108,10 +108,12 @@ class Rig:
         step = 5.0 * DEG
         cmds = datum.phi + np.array([step, -step, 0.0])
         phi = self.cal.move(cmds, rng)
+        ref = self.cal.read(phi, rng) - datum.psi           # the calibrator's own reading of the steps
         y = None if self.alignment is None else np.full(3, datum.y)
         dl = self.path(np.full(3, datum.theta), phi, y) - datum.dl
         dl = dl + rng.normal(0.0, self.laser.noise * self.laser.spacing, 3)
-        cal = optics_self_calibration(dl[0], dl[1], self.laser.nominal_spacing, step, dl[2])
+        cal = optics_self_calibration(dl[0], dl[1], self.laser.nominal_spacing, ref[0], ref[1],
+                                      dl[2], ref[2])
         return cal, self._datum_at(datum.theta, datum.phi - cal.datum_misalignment, cal.k, rng)
 
     # -- capture ----------------------------------------------------------------------
