@@ -139,7 +139,7 @@ def test_offaxis_right_sign_recovers_the_rotary_error():
     assert np.max(np.abs(r.mean_errors)) < r.budget.worst_case / ARCSEC
     program = r.offaxis.program.splitlines()
     assert program[2] == "G90 G94" and program[-1] == "M30"
-    assert sum(line.startswith("G01 C") for line in program) == len(r.plan.steps())
+    assert sum(line.startswith("G01 A") for line in program) == len(r.plan.steps())
 
 
 def test_offaxis_wrong_sign_is_refused_and_would_double_the_error():
@@ -154,8 +154,7 @@ def test_offaxis_wrong_sign_is_refused_and_would_double_the_error():
     meas = np.concatenate([ds.up.ravel(), ds.down.ravel()]) * ARCSEC
     order = _reading_order(r)
     right = meas[order]
-    raw = subtract_linear_yaw(right, y, 0.0 + r.capture.linear_positions[0] * 0 + _datum_y(r),
-                              r.offaxis.profile, +1 * -r.offaxis.sign)
+    raw = subtract_linear_yaw(right, y, _datum_y(r), r.offaxis.profile, -r.offaxis.sign)  # undo
     wrong = subtract_linear_yaw(raw, y, _datum_y(r), r.offaxis.profile, -r.offaxis.sign)
     truth = np.concatenate([r.capture.truth.up.ravel(), r.capture.truth.down.ravel()])[order] * ARCSEC
     e_right = right - truth

@@ -166,12 +166,18 @@ def rotary_config_from_dict(config: dict[str, Any]) -> RotaryCalibrationConfig:
     _refuse("[meta]", meta_t, {"machine", "operator", "date", "instrument", "notes"})
     meta = Metadata(axis=axis.name, instrument="angular interferometer + rotary calibrator (simulated)",
                     **{k: str(v) for k, v in meta_t.items()})
+    offaxis = None
+    if "offaxis" in config:
+        from dataclasses import replace
+
+        offaxis = _offaxis(config["offaxis"])
+        if len(axis.name) == 1 and axis.name.isalpha():   # the program drives the axis under test
+            offaxis = replace(offaxis, rotary_letter=axis.name.upper())
     return RotaryCalibrationConfig(
         axis=axis, plan=plan, setup=_setup(config.get("setup", {}) or {}),
         laser=_build("[laser]", SimulatedAngularInterferometer, config.get("laser", {}) or {}, _LASER),
         calibrator=_calibrator(config.get("calibrator", {}) or {}),
-        offaxis=_offaxis(config["offaxis"]) if "offaxis" in config else None,
-        speed=speed, seed=seed, metadata=meta)
+        offaxis=offaxis, speed=speed, seed=seed, metadata=meta)
 
 
 def run_rotary_config(config: dict[str, Any]):
