@@ -104,3 +104,24 @@ def test_seed000_nonparallel_beams_half_arcsec_per_mm():
 def test_angle_beyond_spacing_is_refused():
     with pytest.raises(InputError, match=r"\|ΔL/\(K·S\)\|"):
         itf.angle_from_path_difference(0.04, 0.03)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.floats(0.99, 1.01), st.floats(-0.01, 0.01), st.floats(1.0, 10.0), st.floats(-10.0, -1.0))
+def test_self_calibration_recovers_any_k_and_datum_angle(k, phi0, step_p, step_m):
+    """Property: for any spacing factor, datum misalignment and (asymmetric) reference steps, the
+    two-step solution returns K and φ0 exactly (no noise)."""
+    s = 30e-3
+    a, b = math.radians(step_p), math.radians(step_m)
+
+    def dl(x):
+        return k * s * (math.sin(phi0 + x) - math.sin(phi0))
+
+    cal = itf.optics_self_calibration(dl(a), dl(b), s, a, b)
+    assert cal.k == pytest.approx(k, rel=1e-9)
+    assert cal.datum_misalignment == pytest.approx(phi0, abs=1e-10)
+    assert abs(cal.zero_return) < 1e-12

@@ -202,3 +202,43 @@ def test_config_errors_name_the_key():
         run_rotary_config(_config("rotary_trunnion.toml", offaxis={"yaw_sign": 2}))
     with pytest.raises(ConfigError, match="kind"):
         run_rotary_config(_config(axis={"kind": "linear"}))
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from axiscal.procedures.rotary_offaxis import (  # noqa: E402
+    YawProfile, three_point_alignment, yaw_subtraction_sign)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.01, 0.5), st.floats(-3.1, 3.1), st.floats(-0.2, 0.2),
+       st.sampled_from([(-60.0, 0.0, 60.0), (-90.0, 10.0, 100.0), (0.0, 120.0, 240.0)]))
+def test_three_point_alignment_recovers_any_offset(radius, phase, y0, angles):
+    th = np.radians(angles)
+    al = three_point_alignment(th, y0 + radius * np.sin(th + phase))
+    assert al.radius == pytest.approx(radius, rel=1e-9)
+    assert math.cos(al.phase - phase) == pytest.approx(1.0, abs=1e-9)
+    assert al.y0 == pytest.approx(y0, abs=1e-12)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from(["interferometer", "reflector"]), st.sampled_from([1, -1]),
+       st.sampled_from(["interferometer", "reflector"]), st.sampled_from([1, -1]))
+def test_yaw_sign_from_records_always_removes_the_yaw(p_optic, p_dir, c_optic, c_dir):
+    """Property: whatever optic moved and whatever laser direction each record used, the sign the
+    records give removes the linear axis's yaw exactly; the other sign doubles it."""
+    y = np.linspace(0.0, 0.1, 11)
+    yaw = 5e-6 * y / 0.1 + 2e-6 * np.sin(y / 0.02)
+
+    def sense(optic, direction):
+        return (-1 if optic == "interferometer" else 1) * direction
+
+    captured = sense(c_optic, c_dir) * (yaw - yaw[0])
+    prof = YawProfile(y, sense(p_optic, p_dir) * (yaw - yaw[0]), p_optic, p_dir)
+    sign = yaw_subtraction_sign(prof, c_optic, c_dir)
+    assert np.allclose(subtract_linear_yaw(captured, y, 0.0, prof, sign), 0.0, atol=1e-18)
+    doubled = subtract_linear_yaw(captured, y, 0.0, prof, -sign)
+    assert np.allclose(doubled, 2 * captured)
+    with pytest.raises(SignConventionError):
+        yaw_subtraction_sign(prof, c_optic, c_dir, stated_sign=-sign)

@@ -149,7 +149,7 @@ class SimulatedRotaryCalibrator:
             chi = np.mod(th - psi, TWO_PI)
             sde = self.encoder.phase_to_angle(
                 interpolation_error(np.mod(chi, self.encoder.period) * (TWO_PI / self.encoder.period), imp))
-            lateral = readhead_displacement_error(ex + wander_x, ey + wander_y, psi + th * 0,
+            lateral = readhead_displacement_error(ex + wander_x, ey + wander_y, psi,
                                                   self.encoder.radius)
             rows.append(self.graduation_error(chi) + sde + lateral)
         return np.stack(rows)
