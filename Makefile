@@ -28,7 +28,7 @@ bench: $(STAMP)
 # so a person can look at what a customer would see.
 shots: demo
 	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium)
-	$(PY) benchmarks/../tools/screenshot.py $(OUT)
+	$(PY) tools/screenshot.py $(OUT)
 
 clean:
 	rm -rf $(VENV) $(OUT) .pytest_cache .hypothesis

@@ -124,3 +124,19 @@ def test_demo_writes_reports(tmp_path):
                  "rotary_data.csv"):
         assert (out / name).stat().st_size > 0, name
     assert "Measured beside the simulation's truth" in r.stdout
+
+
+def test_tolerances_give_verdicts_and_exit_code(good, tmp_path):
+    """B = 2 µm by construction: B=2.5 passes, B=1 fails (exit 1); a bad item is a user error."""
+    r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "B=2.5", "--tolerance", "E=10", "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["accepted"] is True and [a["parameter"] for a in d["acceptance"]] == ["E", "B"]
+    html = tmp_path / "r.html"
+    r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "B=1", "--report", str(html)])
+    assert r.exit_code == 1 and "FAIL" in r.stdout
+    assert 'class="bad">FAIL' in html.read_text()
+    r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "Q=1"])
+    assert r.exit_code == 2 and "not an ISO 230-2 parameter" in r.stderr
+    r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "A:1"])
+    assert r.exit_code == 2 and "write NAME=VALUE" in r.stderr

@@ -29,6 +29,9 @@ COMMANDS: dict[str, str] = {
     "plan": "axiscal.cli.plan",
     "simulate": "axiscal.cli.simulate",
     "demo": "axiscal.cli.demo",
+    "motion": "axiscal.cli.motion",
+    "straightness": "axiscal.cli.squareness",
+    "squareness": "axiscal.cli.squareness",
     "rotary": "axiscal.cli.rotary",
 }
 

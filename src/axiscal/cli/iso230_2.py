@@ -5,13 +5,17 @@ JSON output (``--json``), stable: top-level keys ``A``, ``A_up``, ``A_down``, ``
 a unidirectional test makes them not apply), ``unit``, ``target_unit``, ``axis_kind``,
 ``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
-``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text).
+``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
+``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
+``tolerance``, ``passed``) and ``accepted`` (true, false, or null if nothing applied).
+
+Exit codes: 0 evaluated (and every tolerance met), 1 a tolerance was exceeded, 2 a user error.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import List, Optional
 
 import typer
 
@@ -28,10 +32,13 @@ def iso230_2(
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+    tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if one is exceeded)."),
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target)."""
     from axiscal.io import read_positioning
-    from axiscal.standards.iso230_2 import evaluate
+    from axiscal.standards.iso230_2 import check_tolerances, evaluate
+
+    tolerances = parse_tolerances(tolerance)
 
     if plot is not None:
         out_path(plot, "plot")
@@ -39,6 +46,7 @@ def iso230_2(
         out_path(report, "report")
     ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
     result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
+    verdicts = check_tolerances(result, tolerances) if tolerances else ()
     if plot is not None:
         from axiscal.report.plots import save_iso230_2_plot
 
@@ -46,17 +54,42 @@ def iso230_2(
     if report is not None:
         from axiscal.report.html import write_positioning_report
 
-        write_positioning_report(report, ds, result)
+        write_positioning_report(report, ds, result, verdicts=verdicts)
     if json_out:
-        print_json(result_json(result))
+        print_json(result_json(result, verdicts))
     else:
-        render_result(result, ds, title=str(file))
+        render_result(result, ds, title=str(file), verdicts=verdicts)
     for p, what in ((plot, "plot"), (report, "report")):
         if p is not None:
             note(f"wrote {what} {p}")
+    if any(v.passed is False for v in verdicts):
+        raise typer.Exit(1)
 
 
-def result_json(result) -> dict:
+def parse_tolerances(items: List[str]) -> dict:
+    """``["A=12", "R=4"]`` -> ``{"A": 12.0, "R": 4.0}``; a malformed item is an InputError."""
+    from axiscal.errors import InputError
+
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep:
+            raise InputError(f"--tolerance {item!r}: write NAME=VALUE, e.g. A=12")
+    return out
+
+
+def verdicts_json(verdicts) -> dict:
+    """The acceptance part of the JSON output."""
+    states = [v.passed for v in verdicts if v.passed is not None]
+    return {"acceptance": [v.__dict__ for v in verdicts],
+            "accepted": None if not states else all(states)}
+
+
+def result_json(result, verdicts=()) -> dict:
     """The stable JSON object of an ISO 230-2 result (see the module docstring)."""
     d = dict(result.parameters())
     d.update(
@@ -70,10 +103,12 @@ def result_json(result) -> dict:
         targets=result.target_table(),
         warnings=list(result.warnings),
     )
+    if verdicts:
+        d.update(verdicts_json(verdicts))
     return d
 
 
-def render_result(result, ds=None, title: str = "", console=None) -> None:
+def render_result(result, ds=None, title: str = "", console=None, verdicts=()) -> None:
     """Print the per-target table and the axis parameters as rich tables."""
     import math
 
@@ -129,6 +164,14 @@ def render_result(result, ds=None, title: str = "", console=None) -> None:
         p.add_row(name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"),
                   f(v), meanings[name])
     con.print(p)
+    if verdicts:
+        a = Table(title="Acceptance", title_justify="left")
+        for c in ("parameter", "measured", "tolerance", "verdict"):
+            a.add_column(c, justify="left" if c in ("parameter", "verdict") else "right")
+        for v in verdicts:
+            state = {True: "[green]PASS[/green]", False: "[bold red]FAIL[/bold red]", None: "n/a"}[v.passed]
+            a.add_row(v.parameter, f(v.value), f"{v.tolerance:g}", state)
+        con.print(a)
     for w in result.warnings:
         con.print(f"[yellow]warning:[/yellow] {w}")
 

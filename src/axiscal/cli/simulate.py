@@ -77,7 +77,9 @@ def add_truth_section(rep, sim) -> None:
     rep.add_heading("Evaluation beside the truth of the simulation")
     rep.add_text("The simulated axis's injected errors imply the figures below without noise; "
                  "the measured figures differ by the repeatability noise of a 5-run test.")
-    rows = [[k, sim.result.parameters().get(k) if k in sim.result.parameters() else None, v]
+    from axiscal.report.html import _PARAM_LABEL
+
+    rows = [[_PARAM_LABEL[k], sim.result.parameters()[k], v]
             for k, v in sim.truth.items() if k != "R_expected"]
     rows.append(["R (4σ + |b|)", sim.result.R, sim.truth.get("R_expected")])
     rep.add_table(["Parameter", "Measured", "Truth"], rows, digits=2)

@@ -486,13 +486,14 @@ def _truth(plan: TestPlan, axis, deviation_unit: str):
     up = np.asarray(sys_fn(x, 1)) * k
     down = np.asarray(sys_fn(x, -1)) * k if plan.bidirectional else np.full(x.size, np.nan)
     sigma = axis.repeatability_sigma * k
-    truth = {"E_up": float(up.max() - up.min())}
+    e_up = float(up.max() - up.min())
     if plan.bidirectional:
         both = np.concatenate([up, down])
         b = up - down
-        truth.update(E=float(both.max() - both.min()), E_down=float(down.max() - down.min()),
-                     M=float(np.ptp(0.5 * (up + down))), B=float(np.max(np.abs(b))),
-                     B_mean=float(np.mean(b)), R_expected=float(4 * sigma + np.max(np.abs(b))))
+        truth = dict(E=float(both.max() - both.min()), E_up=e_up,
+                     E_down=float(down.max() - down.min()), M=float(np.ptp(0.5 * (up + down))),
+                     B=float(np.max(np.abs(b))), B_mean=float(np.mean(b)),
+                     R_expected=float(4 * sigma + np.max(np.abs(b))))
     else:
-        truth.update(R_expected=float(4 * sigma))
+        truth = dict(E_up=e_up, R_expected=float(4 * sigma))
     return up, down, truth

@@ -115,16 +115,12 @@ class Report:
         return write_text_atomic(path, self.html())
 
 
-def write_positioning_report(path, dataset, result, title: str | None = None,
-                             extra: "list[tuple[str, str]] | None" = None) -> Path:
+def write_positioning_report(path, dataset, result, title: str | None = None, verdicts=()) -> Path:
     """Write the ISO 230-2 report of one positioning test: plot, tables, metadata, warnings."""
-    from axiscal.report.plots import iso230_2_figure
-
-    rep = positioning_report(dataset, result, title)
-    return rep.write(path)
+    return positioning_report(dataset, result, title, verdicts).write(path)
 
 
-def positioning_report(dataset, result, title: str | None = None) -> Report:
+def positioning_report(dataset, result, title: str | None = None, verdicts=()) -> Report:
     """Build (without writing) the ISO 230-2 report of one positioning test."""
     from axiscal.report.plots import iso230_2_figure
 
@@ -149,6 +145,16 @@ def positioning_report(dataset, result, title: str | None = None) -> Report:
     rows = [[_PARAM_LABEL[k], v, _PARAM_MEANING[k]] for k, v in params.items()]
     rep.add_table(["Parameter", f"Value [{u}]", "Meaning (ISO 230-2:2014)"], rows, digits=2,
                   css_class="params")
+    if verdicts:
+        verdict = {True: '<span class="ok">PASS</span>', False: '<span class="bad">FAIL</span>',
+                   None: "n/a"}
+        rows = "".join(
+            f"<tr><td>{_PARAM_LABEL[v.parameter]}</td><td>{_cell(v.value, 2)}</td>"
+            f"<td>{v.tolerance:g}</td><td>{verdict[v.passed]}</td></tr>" for v in verdicts)
+        rep.add_html(f"<h3>Acceptance</h3><table><thead><tr><th>Parameter</th><th>Measured [{u}]</th>"
+                     f"<th>Tolerance [{u}]</th><th>Verdict</th></tr></thead><tbody>{rows}</tbody>"
+                     "<caption>Measured value compared with the tolerance, without a guard band "
+                     "for measurement uncertainty (ISO 14253-1 decision rules not applied).</caption></table>")
     rep.add_warnings(result.warnings)
     rep.add_figure(iso230_2_figure(result, dataset),
                    f"Mean deviation per direction with ±2s bands and every run's readings "

@@ -76,6 +76,8 @@ __all__ = [
     "minimum_linear_targets",
     "RECOMMENDED_RUNS",
     "PARAMETER_NAMES",
+    "Verdict",
+    "check_tolerances",
 ]
 
 #: Runs per direction ISO 230-2:2014 §5.3 asks for.
@@ -479,3 +481,77 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a)
     a.flags.writeable = False
     return a
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """One parameter checked against its tolerance.
+
+    Attributes
+    ----------
+    parameter : str
+        ``A``, ``E``, ``R``, ... (a key of :data:`PARAMETER_NAMES`).
+    value : float or None
+        Measured value in the result's deviation unit (None if it does not apply).
+    tolerance : float
+        The largest value accepted, same unit.
+    passed : bool or None
+        ``value <= tolerance`` (for ``B_mean``, ``|value| <= tolerance``); None if not applicable.
+    """
+
+    parameter: str
+    value: float | None
+    tolerance: float
+    passed: bool | None
+
+    def __str__(self) -> str:
+        state = {True: "PASS", False: "FAIL", None: "n/a"}[self.passed]
+        v = "n/a" if self.value is None else f"{self.value:.4g}"
+        return f"{self.parameter}: {v} (tolerance {self.tolerance:g}) {state}"
+
+
+def check_tolerances(result: Iso230_2Result, tolerances: dict[str, float]) -> tuple[Verdict, ...]:
+    """Compare axis parameters with the tolerances of an acceptance test.
+
+    Parameters
+    ----------
+    result : Iso230_2Result
+    tolerances : dict of str to float
+        Parameter name (``A``, ``A_up``, ..., ``B_mean``) to the largest accepted value, in the
+        result's deviation unit.
+
+    Returns
+    -------
+    tuple of Verdict
+        In the order of :data:`PARAMETER_NAMES`.
+
+    Notes
+    -----
+    A plain comparison of the measured value with the tolerance, as ISO 230-2 acceptance tests
+    state them. It applies no guard band for the measurement uncertainty: where a contract
+    invokes the decision rules of ISO 14253-1, the uncertainty (ISO 230-9) must be subtracted from
+    the tolerance before calling this function.
+
+    Examples
+    --------
+    >>> from axiscal.datasets import PositioningDataset
+    >>> r = evaluate(PositioningDataset.from_arrays(
+    ...     "linear", [0, 500, 1000], up=[[1, 3], [2, 2], [0, 2]], down=[[0, 0], [1, 1], [-1, -1]]))
+    >>> [str(v) for v in check_tolerances(r, {"E": 4, "B": 1.5})]
+    ['E: 3 (tolerance 4) PASS', 'B: 2 (tolerance 1.5) FAIL']
+    """
+    out = []
+    for name, tol in tolerances.items():
+        if name not in PARAMETER_NAMES:
+            raise InputError(f"tolerance for {name!r}: not an ISO 230-2 parameter; use one of "
+                             f"{', '.join(PARAMETER_NAMES)}")
+        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
+            raise InputError(f"tolerance {name} = {tol!r} must be a number >= 0")
+    for name in PARAMETER_NAMES:
+        if name not in tolerances:
+            continue
+        tol = float(tolerances[name])
+        v = getattr(result, name)
+        passed = None if v is None else bool((abs(v) if name == "B_mean" else v) <= tol)
+        out.append(Verdict(name, v, tol, passed))
+    return tuple(out)

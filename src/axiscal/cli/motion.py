@@ -1,0 +1,317 @@
+"""``axiscal motion ...``: five motion errors of a rotary axis (seed 003) and ISO 230-7.
+
+Commands: ``simulate CONFIG`` (one indexing test on the simulation, measured beside the truth),
+``stability [CONFIG]`` (60 min every 10 s), ``repeatability CONFIG`` (three runs), ``analyze FILE``
+(ISO 230-7 evaluation of a measured data file; format in :mod:`axiscal.io.motion`).
+
+JSON output (``--json``), stable keys. Units are in the key names (``_arcsec``, ``_um``, ``_deg``).
+
+* ``iso230_7`` object (simulate, repeatability, analyze): ``n_runs``, ``angles_deg``, ``motions``
+  (list of ``name``, ``unit``, ``total``, ``synchronous``, ``asynchronous`` (null for one run),
+  ``fundamental``, ``fundamental_removed``), ``location`` (``x0_um`` (null if δx not measured),
+  ``y0_um``, ``a0_arcsec``, ``b0_arcsec``), ``positioning`` (``range_arcsec``,
+  ``repeatability_arcsec``, ``mean_arcsec``), ``closure`` (channel -> largest 360°−0° difference,
+  arcsec or µm), ``warnings``.
+* ``simulate``: ``config``, ``compensated``, ``positions`` (list of ``angle_deg``, ``measured`` and
+  ``truth``, each with ``ez_arcsec``, ``ey_arcsec``, ``ex_arcsec``, ``dy_um``, ``dz_um``),
+  ``max_abs_error`` (same five keys), ``resolutions`` (``angular_arcsec``, ``tilt_x_arcsec``,
+  ``displacement_um``), ``crosstalk`` (``inputs``, ``outputs``, ``matrix``, ``spurious``,
+  ``residual``), ``iso230_7``.
+* ``stability``: ``readings``, ``duration_min``, ``interval_s``, ``std`` and
+  ``std_uncompensated`` (five keys), ``seed_std`` (the seed's figures, five keys).
+* ``repeatability``: ``runs``, ``repeatability`` (± per channel, five keys), ``seed_repeatability``,
+  ``iso230_7``.
+* ``analyze``: ``file``, ``title``, ``iso230_7``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+__all__ = ["register", "iso_json"]
+
+app = typer.Typer(help="Five motion errors of a rotary axis at once (seed 003) and ISO 230-7 "
+                  "error motion evaluation.", no_args_is_help=True)
+
+_MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' crosstalk: an eccentric or "
+                  "tilted reference axis shows as a once-per-turn term in δy, εx and εy (see the "
+                  "crosstalk table), which ISO 230-7 removes as the fundamental.")
+_KEYS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um", "dz": "dz_um"}
+_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs).")
+_REPORT = typer.Option(None, "--report", help="Write a self-contained HTML report.")
+
+
+def _five(errors, i=None) -> dict:
+    from axiscal.units import ARCSEC, UM
+
+    out = {}
+    for ch, key in _KEYS.items():
+        v = getattr(errors, ch) if i is None else getattr(errors, ch)[i]
+        out[key] = v / (ARCSEC if ch[0] == "e" else UM)
+    return out
+
+
+def iso_json(result) -> dict:
+    """The stable JSON object of an ISO 230-7 result (see the module docstring)."""
+    import math
+
+    import numpy as np
+
+    from axiscal.units import ARCSEC, UM
+
+    def k(kind):
+        return (UM, "um") if kind == "length" else (ARCSEC, "arcsec")
+
+    motions = [{"name": m.name, "unit": k(m.kind)[1], "total": m.total / k(m.kind)[0],
+                "synchronous": m.synchronous / k(m.kind)[0],
+                "asynchronous": None if math.isnan(m.asynchronous) else m.asynchronous / k(m.kind)[0],
+                "fundamental": m.fundamental / k(m.kind)[0], "fundamental_removed": m.fundamental_removed}
+               for m in result.motions]
+    loc, pos = result.location, result.positioning
+    return {
+        "n_runs": result.n_runs, "angles_deg": np.round(np.degrees(result.theta), 9), "motions": motions,
+        "location": {"x0_um": None if math.isnan(loc.x0) else loc.x0 / UM, "y0_um": loc.y0 / UM,
+                     "a0_arcsec": loc.a0 / ARCSEC, "b0_arcsec": loc.b0 / ARCSEC},
+        "positioning": {"range_arcsec": pos.range / ARCSEC,
+                        "repeatability_arcsec": None if math.isnan(pos.repeatability)
+                        else pos.repeatability / ARCSEC, "mean_arcsec": pos.mean / ARCSEC},
+        "closure": {c: v / (ARCSEC if c[0] == "e" else UM) for c, v in result.closure.items()},
+        "warnings": list(result.warnings),
+    }
+
+
+@app.command("simulate")
+def simulate(
+    config: Path = typer.Argument(..., help="Configuration TOML (see examples/motion_indexing_table.toml)."),
+    json_out: bool = _JSON,
+    report: Optional[Path] = _REPORT,
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Write the measured errors as a data file "
+                                       "that 'axiscal motion analyze' reads."),
+    no_compensation: bool = typer.Option(False, "--no-compensation", help="Show the errors without "
+                                         "the beam-drift compensation (seed 003 eqs. 1-6 only)."),
+) -> None:
+    """Simulate one indexing test (30° steps over 360°, reference axis counter-rotating)."""
+    import numpy as np
+
+    from axiscal.io.motion import format_motion_errors, read_motion_config
+    from axiscal.procedures.motion_errors import crosstalk, indexing_test, to_motion_data
+    from axiscal.standards.iso230_7 import evaluate
+
+    paths = _check_outputs(report=report, csv=csv)
+    cfg = read_motion_config(config)
+    run = indexing_test(cfg.axis, cfg.system, np.random.default_rng(cfg.seed), cfg.step_deg,
+                        cfg.reference, cfg.drift, cfg.dwell, samples=cfg.samples)
+    which = "uncompensated" if no_compensation else "measured"
+    measured = getattr(run, which)
+    data = to_motion_data([run], which, title=cfg.machine)
+    result = evaluate(data)
+    ct = crosstalk(cfg.system)
+    res = cfg.system.resolutions()
+    if paths.get("csv"):
+        from axiscal.io._files import write_text_atomic
+
+        write_text_atomic(csv, format_motion_errors(data))
+    if paths.get("report"):
+        from axiscal.report.motion_report import motion_report
+
+        motion_report(f"Five motion errors — {cfg.machine or config.name}", result=result,
+                      runs=[measured], truth=[run.truth], crosstalk=ct, resolutions=res,
+                      metadata={"Configuration": str(config), "Axis": cfg.axis_name,
+                                "Drift compensation": not no_compensation},
+                      notes=[_MOUNTING_NOTE]).write(report)
+    diff = measured - run.truth
+    if json_out:
+        from axiscal.procedures.motion_errors import INPUTS
+
+        print_json({
+            "config": str(config), "compensated": not no_compensation,
+            "positions": [{"angle_deg": round(float(np.degrees(t)), 9), "measured": _five(measured, i),
+                           "truth": _five(run.truth, i)} for i, t in enumerate(measured.theta)],
+            "max_abs_error": {k: float(np.max(np.abs(v))) for k, v in _five(diff).items()},
+            "resolutions": {"angular_arcsec": res.angular / _arcsec(), "tilt_x_arcsec": res.tilt_x / _arcsec(),
+                            "displacement_um": res.displacement * 1e6},
+            "crosstalk": {"inputs": list(INPUTS), "outputs": list(_KEYS), "matrix": ct.table(),
+                          "spurious": _five_dict(ct.spurious), "residual": _five_dict(ct.residual)},
+            "iso230_7": iso_json(result),
+        })
+    else:
+        _render_positions(measured, run.truth, cfg.machine or str(config))
+        typer.echo(_MOUNTING_NOTE)
+        typer.echo(str(res))
+        typer.echo(str(ct))
+        typer.echo(str(result))
+    _wrote(paths)
+
+
+@app.command("stability")
+def stability(
+    config: Optional[Path] = typer.Argument(None, help="Configuration TOML (default: the seed 003 set-up)."),
+    duration_min: Optional[float] = typer.Option(None, "--duration-min", help="Duration in minutes (default 60)."),
+    interval_s: Optional[float] = typer.Option(None, "--interval-s", help="Sampling interval in seconds (default 10)."),
+    json_out: bool = _JSON,
+    report: Optional[Path] = _REPORT,
+) -> None:
+    """Run the stability experiment of seed 003 §3.2 on the simulation (still set-up)."""
+    import numpy as np
+
+    from axiscal.procedures.motion_errors import stability_test
+    from axiscal.report.motion_report import STABILITY_SEED
+
+    paths = _check_outputs(report=report)
+    cfg = _config(config)
+    duration = cfg.duration if duration_min is None else 60 * duration_min
+    interval = cfg.interval if interval_s is None else interval_s
+    run = stability_test(cfg.system, np.random.default_rng(cfg.seed), duration, interval, cfg.drift,
+                         cfg.drift_window)
+    std = {k: float(np.std(v)) for k, v in _five(run.measured).items()}
+    raw = {k: float(np.std(v)) for k, v in _five(run.uncompensated).items()}
+    seed = {_KEYS[c]: v for c, v in STABILITY_SEED.items()}
+    if paths.get("report"):
+        from axiscal.report.motion_report import motion_report
+
+        motion_report("Stability of the five-DOF measuring system", stability=run,
+                      resolutions=cfg.system.resolutions()).write(report)
+    if json_out:
+        print_json({"readings": int(run.time.size), "duration_min": duration / 60, "interval_s": interval,
+                    "std": std, "std_uncompensated": raw, "seed_std": seed})
+    else:
+        typer.echo(f"stability: {run.time.size} readings over {duration / 60:g} min, every {interval:g} s")
+        typer.echo(f"{'error':<10}{'σ':>10}{'σ uncomp.':>12}{'seed 003':>10}")
+        for k in _KEYS.values():
+            typer.echo(f"{k:<10}{std[k]:10.3f}{raw[k]:12.3f}{seed[k]:10.2f}")
+    _wrote(paths)
+
+
+@app.command("repeatability")
+def repeatability(
+    config: Path = typer.Argument(..., help="Configuration TOML (see examples/motion_indexing_table.toml)."),
+    runs: Optional[int] = typer.Option(None, "--runs", help="Number of runs (default from the config: 3)."),
+    json_out: bool = _JSON,
+    report: Optional[Path] = _REPORT,
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file for 'analyze'."),
+) -> None:
+    """Run the indexing test several times (seed 003 §3.3) and report the ± repeatability."""
+    import numpy as np
+
+    from axiscal.io.motion import format_motion_errors, read_motion_config
+    from axiscal.procedures.motion_errors import repeatability_test, to_motion_data
+    from axiscal.report.motion_report import REPEATABILITY_SEED
+    from axiscal.standards.iso230_7 import evaluate, halfrange
+
+    paths = _check_outputs(report=report, csv=csv)
+    cfg = read_motion_config(config)
+    n = cfg.runs if runs is None else runs
+    out = repeatability_test(cfg.axis, cfg.system, np.random.default_rng(cfg.seed), n,
+                             step_deg=cfg.step_deg, reference=cfg.reference, drift=cfg.drift,
+                             dwell=cfg.dwell, samples=cfg.samples)
+    data = to_motion_data(out, title=cfg.machine)
+    result = evaluate(data)
+    rep = {c: halfrange(getattr(data, c)) for c in _KEYS}
+    if paths.get("csv"):
+        from axiscal.io._files import write_text_atomic
+
+        write_text_atomic(csv, format_motion_errors(data))
+    if paths.get("report"):
+        from axiscal.report.motion_report import motion_report
+
+        motion_report(f"Repeatability — {cfg.machine or config.name}", result=result,
+                      runs=[r.measured for r in out], truth=[r.truth for r in out],
+                      repeatability=rep, resolutions=cfg.system.resolutions(),
+                      notes=[_MOUNTING_NOTE]).write(report)
+    if json_out:
+        print_json({"runs": n, "repeatability": _five_dict(rep),
+                    "seed_repeatability": {_KEYS[c]: v for c, v in REPEATABILITY_SEED.items()},
+                    "iso230_7": iso_json(result)})
+    else:
+        typer.echo(f"repeatability over {n} runs (± largest half-range at one angle):")
+        for c, k in _KEYS.items():
+            typer.echo(f"  {k:<10} ±{_five_dict(rep)[k]:.2f}   (seed 003: ±{REPEATABILITY_SEED[c]})")
+        typer.echo(str(result))
+    _wrote(paths)
+
+
+@app.command("analyze")
+def analyze(
+    file: Path = typer.Argument(..., help="Five-error data file (CSV; format in the axiscal.io.motion docs)."),
+    json_out: bool = _JSON,
+    report: Optional[Path] = _REPORT,
+) -> None:
+    """Evaluate measured five-error data by ISO 230-7 (error motion values, axis location)."""
+    from axiscal.io.motion import read_motion_errors
+    from axiscal.standards.iso230_7 import evaluate
+
+    paths = _check_outputs(report=report)
+    data = read_motion_errors(file)
+    result = evaluate(data)
+    if paths.get("report"):
+        from axiscal.instruments.five_dof import FiveErrors
+        from axiscal.report.motion_report import motion_report
+
+        runs = [FiveErrors(data.theta, *(getattr(data, c)[j] for c in _KEYS)) for j in range(data.n_runs)]
+        motion_report(f"ISO 230-7 evaluation — {data.title or file.name}", result=result, runs=runs,
+                      metadata={"File": str(file)}).write(report)
+    if json_out:
+        print_json({"file": str(file), "title": data.title, "iso230_7": iso_json(result)})
+    else:
+        typer.echo(str(result))
+    _wrote(paths)
+
+
+def _config(path):
+    from axiscal.io.motion import parse_motion_config, read_motion_config
+
+    return parse_motion_config("") if path is None else read_motion_config(path)
+
+
+def _check_outputs(**paths) -> dict:
+    return {k: out_path(p, k) for k, p in paths.items() if p is not None}
+
+
+def _wrote(paths: dict) -> None:
+    for what, p in paths.items():
+        note(f"wrote {what} {p}")
+
+
+def _arcsec() -> float:
+    from axiscal.units import ARCSEC
+
+    return ARCSEC
+
+
+def _five_dict(values: dict) -> dict:
+    from axiscal.units import ARCSEC, UM
+
+    return {_KEYS[c]: v / (ARCSEC if c[0] == "e" else UM) for c, v in values.items()}
+
+
+def _render_positions(measured, truth, title: str) -> None:
+    from rich.table import Table
+
+    from axiscal.cli._common import console
+
+    from rich import box
+
+    t = Table(title=f"Five errors per position, measured (truth) — {title}", title_justify="left",
+              box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False, padding=(0, 0))
+    t.add_column("θ°", justify="right", no_wrap=True)
+    heads = {"ez": "εz [″]", "ey": "εy [″]", "ex": "εx [″]", "dy": "δy [µm]", "dz": "δz [µm]"}
+    for c in _KEYS:
+        t.add_column(heads[c], justify="right", no_wrap=True)
+    m, tr = _five(measured), _five(truth)
+    for i, th in enumerate(measured.theta):
+        cells = [f"{float(th) * 57.29577951308232:.0f}"]
+        for c, k in _KEYS.items():
+            d = 1 if c[0] == "e" else 2
+            cells.append(f"{m[k][i]:.{d}f} ({tr[k][i]:.{d}f})")
+        t.add_row(*cells)
+    console().print(t)
+
+
+def register(root: typer.Typer) -> None:
+    """Add the ``motion`` command group to the application."""
+    root.add_typer(app, name="motion")

@@ -1,0 +1,268 @@
+"""``axiscal straightness FILE`` and ``axiscal squareness biaxial|diagonal|circular|simulate``.
+
+Every squareness result states its sign convention and carries both (seed 004 Note 1).
+
+JSON output (``--json``), stable keys:
+
+* ``straightness``: ``file``, ``axis``, ``direction``, ``reference``, ``straightness_um``,
+  ``slope_um_per_m``, ``intercept_um``, ``n``, ``methods`` (object per reference line:
+  ``straightness_um``, ``slope_um_per_m``).
+* a *squareness object* (used below): ``axes``, ``um_per_m``, ``arcsec``, ``convention``,
+  ``iso_datum``, ``iso_referred``, ``iso_um_per_m``, ``iso_arcsec``, ``angle_note``.
+* ``squareness biaxial``: ``squareness`` (squareness object), ``config``, ``orientation``,
+  ``reference``, ``prism_error_arcsec``, ``correction_um_per_m``, ``slope_first_um_per_m``,
+  ``slope_second_um_per_m``, ``straightness_first_um``, ``straightness_second_um``.
+* ``squareness diagonal``: ``squareness``, ``length_x_mm``, ``length_y_mm``, ``nominal_mm``,
+  ``error_d1_um``, ``error_d2_um``, ``slope_d1_um_per_m``, ``slope_d2_um_per_m`` (null for two
+  lengths), ``labels`` (the D1/D2 definitions).
+* ``squareness circular``: ``squareness``, ``radius_mm``, ``scale_mismatch_um_per_m``,
+  ``backlash_x_um``, ``backlash_y_um``, ``G_ccw_um``, ``G_cw_um`` (minimum zone), ``G_lsc_ccw_um``,
+  ``G_lsc_cw_um`` (least-squares centre), ``H_um``, ``F_max_um``,
+  ``F_min_um``, ``arc_deg``, ``fit_rms_um``, ``warnings``.
+* ``squareness simulate``: ``machine``, ``scope``, ``truth_um_per_m``, ``convention``,
+  ``results`` (``method``, ``group``, ``centre_mm``, ``size_mm``, ``um_per_m``, ``arcsec``,
+  ``iso_um_per_m``), ``averages`` (``name``, ``centre_mm``, ``um_per_m``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+__all__ = ["register", "render_comparison"]
+
+REFERENCES = ("least_squares", "end_point", "minimum_zone")
+_REF_HELP = "Reference line: least_squares, end_point or minimum_zone (ISO 230-1)."
+_JSON_HELP = "Print the result as JSON (stable keys, see the module docs)."
+_DATUM_HELP = "Datum axis of the ISO 230-1 sign (default the first axis)."
+
+squareness_app = typer.Typer(
+    help="Squareness between two linear axes by ISO 230-1, -4 and -6; every result gives the seed "
+    "004 sign (positive when the angle exceeds 90°) and the ISO 230-1 datum/referred-axis sign.",
+    no_args_is_help=True,
+)
+
+
+def _reference(value: str) -> str:
+    from axiscal.errors import InputError
+
+    v = value.lower().replace("-", "_")
+    if v not in REFERENCES:
+        raise InputError(f"--reference {value!r}: choose least_squares, end_point or minimum_zone")
+    return v
+
+
+def straightness(
+    file: Path = typer.Argument(..., help="Straightness CSV (position,deviation; see io.straightness)."),
+    reference: str = typer.Option("least_squares", "--reference", help=_REF_HELP),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write a plot of the readings and the line (PNG/SVG/PDF)."),
+) -> None:
+    """Straightness deviation and slope of one trajectory (ISO 230-1 reference lines)."""
+    from axiscal.io.straightness import read_straightness
+    from axiscal.standards.iso230_1 import straightness as evaluate
+
+    method = _reference(reference)
+    if plot is not None:
+        out_path(plot, "plot")
+    data = read_straightness(file)
+    results = {m: evaluate(data.positions, data.deviations, m) for m in REFERENCES}  # type: ignore[arg-type]
+    chosen = results[method]
+    if plot is not None:
+        from axiscal.report.squareness_plots import save_straightness_plot
+
+        save_straightness_plot(data, chosen, plot)
+    if json_out:
+        print_json({"file": str(file), "axis": data.axis, "direction": data.direction,
+                    "reference": method, "straightness_um": chosen.deviation * 1e6,
+                    "slope_um_per_m": chosen.line.slope * 1e6,
+                    "intercept_um": chosen.line.intercept * 1e6, "n": chosen.n,
+                    "methods": {m: {"straightness_um": r.deviation * 1e6,
+                                    "slope_um_per_m": r.line.slope * 1e6}
+                                for m, r in results.items()}})
+    else:
+        what = f"{data.axis or '?'} axis, deviation along {data.direction or '?'}"
+        typer.echo(f"straightness of {file} ({what}, {chosen.n} readings)")
+        for m, r in results.items():
+            mark = "*" if m == method else " "
+            typer.echo(f" {mark} {m:<14} straightness {r.deviation * 1e6:9.3f} µm   "
+                       f"slope {r.line.slope * 1e6:+10.3f} µm/m")
+    if plot is not None:
+        note(f"wrote plot {plot}")
+
+
+def biaxial(
+    xfile: Path = typer.Argument(..., help="Trajectory of the first axis (deviations along the second), straightness CSV."),
+    yfile: Path = typer.Argument(..., help="Trajectory of the second axis (deviations along the first), straightness CSV."),
+    config: str = typer.Option("L", "--config", help="Set-up: L, T or + (seed 004 Methods 1-3)."),
+    orientation: int = typer.Option(0, "--orientation", help="Equipment orientation, degrees clockwise: 0, 90, 180 or 270."),
+    prism_error: float = typer.Option(0.0, "--prism-error", help="Angle error of the optical or mechanical square in orientation 0, arcsec (its angle minus 90°)."),
+    reference: str = typer.Option("least_squares", "--reference", help=_REF_HELP),
+    datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, seed 004 Methods 1-3)."""
+    from axiscal.errors import InputError
+    from axiscal.io.straightness import read_straightness
+    from axiscal.standards.iso230_1 import correct_reference_angle, squareness_from_trajectories
+    from axiscal.units import ARCSEC
+
+    if config.upper() not in ("L", "T", "+"):
+        raise InputError(f"--config {config!r}: must be L, T or +")
+    one, two = read_straightness(xfile), read_straightness(yfile)
+    axes = (one.axis or "X", two.axis or "Y")
+    correction = correct_reference_angle(prism_error * ARCSEC, orientation)
+    r = squareness_from_trajectories(one.positions, one.deviations, two.positions,
+                                     two.deviations, axes=axes, method=_reference(reference),  # type: ignore[arg-type]
+                                     datum=datum, reference_excess=correction)
+    if json_out:
+        print_json({"squareness": r.squareness.as_dict(), "config": config.upper(),
+                    "orientation": orientation, "reference": _reference(reference),
+                    "prism_error_arcsec": prism_error, "correction_um_per_m": correction * 1e6,
+                    "slope_first_um_per_m": r.slope_first * 1e6,
+                    "slope_second_um_per_m": r.slope_second * 1e6,
+                    "straightness_first_um": r.first.deviation * 1e6,
+                    "straightness_second_um": r.second.deviation * 1e6})
+    else:
+        typer.echo(f"bi-axial {config.upper()} {orientation}°: {r}")
+
+
+def diagonal(
+    x_length: Optional[float] = typer.Option(None, "--x-length", help="Programmed X travel X, mm."),
+    y_length: Optional[float] = typer.Option(None, "--y-length", help="Programmed Y travel Y, mm."),
+    d1: Optional[float] = typer.Option(None, "--d1", help="Length error of D1 (along -X +Y, from corner +X -Y), µm."),
+    d2: Optional[float] = typer.Option(None, "--d2", help="Length error of D2 (along +X +Y, from corner -X -Y), µm."),
+    file: Optional[Path] = typer.Option(None, "--file", help="Multi-point diagonal CSV (diagonal,position,error) instead of the lengths."),
+    datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """Squareness = D0 (D1 − D2) / (2XY) from two diagonals (ISO 230-6, seed 004 Method 5)."""
+    from axiscal.errors import InputError
+    from axiscal.standards.iso230_6 import diagonal_squareness, diagonal_squareness_multipoint
+
+    if file is not None:
+        from axiscal.io.ballbar import read_diagonal
+
+        d = read_diagonal(file)
+        r = diagonal_squareness_multipoint(d.length_x, d.length_y, d.positions_d1, d.errors_d1,
+                                           d.positions_d2, d.errors_d2, datum=datum)
+    else:
+        given = {"--x-length": x_length, "--y-length": y_length, "--d1": d1, "--d2": d2}
+        missing = [k for k, v in given.items() if v is None]
+        if missing:
+            raise InputError(f"missing {', '.join(missing)}: give the travels and both diagonal "
+                             "errors, or --file")
+        r = diagonal_squareness(x_length * 1e-3, y_length * 1e-3, d1 * 1e-6, d2 * 1e-6,  # type: ignore[operator]
+                                datum=datum)
+    if json_out:
+        um = (lambda v: None if v is None else v * 1e6)
+        print_json({"squareness": r.squareness.as_dict(), "length_x_mm": r.length_x * 1e3,
+                    "length_y_mm": r.length_y * 1e3, "nominal_mm": r.nominal * 1e3,
+                    "error_d1_um": r.error_d1 * 1e6, "error_d2_um": r.error_d2 * 1e6,
+                    "slope_d1_um_per_m": um(r.slope_d1), "slope_d2_um_per_m": um(r.slope_d2),
+                    "labels": {"D1": "along -X +Y, from corner (+X, -Y)",
+                               "D2": "along +X +Y, from corner (-X, -Y)"}})
+    else:
+        typer.echo(str(r))
+
+
+def circular(
+    file: Path = typer.Argument(..., help="Ballbar CSV (angle,direction,deviation; see io.ballbar)."),
+    radius: Optional[float] = typer.Option(None, "--radius", help="Nominal radius, mm (overrides the file)."),
+    datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ballbar polar plot (PNG/SVG/PDF)."),
+) -> None:
+    """Circular test by ISO 230-4: G, H, F, and squareness free of backlash and scale mismatch."""
+    from axiscal.io.ballbar import read_ballbar
+    from axiscal.standards.iso230_4 import evaluate_circular
+
+    if plot is not None:
+        out_path(plot, "plot")
+    data = read_ballbar(file, radius_mm=radius)
+    r = evaluate_circular(data.runs, data.radius, axes=data.axes, datum=datum)
+    if plot is not None:
+        from axiscal.report.squareness_plots import save_ballbar_plot
+
+        save_ballbar_plot(data.runs, r, plot, title=f"Ballbar test {file.name}")
+    if json_out:
+        d = r.as_dict()
+        print_json(d)
+    else:
+        typer.echo(str(r))
+    if plot is not None:
+        note(f"wrote plot {plot}")
+
+
+def simulate(
+    machine: int = typer.Option(1, "--machine", help="Seed 004 machine 1 to 7."),
+    scope: str = typer.Option("global", "--scope", help="global (full travel) or local (five 1/4-travel locations)."),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the distorted plane with every test and its result (PNG/SVG/PDF)."),
+) -> None:
+    """Every squareness method on a simulated seed 004 machine (Figures 14-26)."""
+    from axiscal.machines.xy_plane import seed004_machine
+    from axiscal.procedures.squareness_study import compare_methods
+
+    if plot is not None:
+        out_path(plot, "plot")
+    m = seed004_machine(machine)
+    c = compare_methods(m, scope)
+    if plot is not None:
+        from axiscal.report.squareness_plots import save_comparison_plot
+
+        save_comparison_plot(m, c, plot)
+    if json_out:
+        print_json(c.as_dict())
+    else:
+        render_comparison(c)
+    if plot is not None:
+        note(f"wrote plot {plot}")
+
+
+def render_comparison(c, console=None) -> None:
+    """Methods as rows, test locations as columns (µm/m), then the averages the same way."""
+    from rich.table import Table
+
+    from axiscal.cli._common import console as make_console
+
+    con = console or make_console()
+    where = (lambda p: f"({p[0] * 1e3:+.0f}, {p[1] * 1e3:+.0f}) mm")
+    con.print(f"[bold]{c.machine}[/bold]")
+    con.print(f"{c.scope} squareness in µm/m, positive when the angle between +X and +Y exceeds "
+              f"90°; truth θ0 = {c.truth:+.2f} µm/m")
+    locations = c.locations()
+
+    def table(title, names, value):
+        t = Table(title=title, title_justify="left", caption="columns: test centre (x, y) in mm",
+                  caption_justify="left")
+        t.add_column("", no_wrap=True)
+        for loc in locations:
+            t.add_column(f"{loc[0] * 1e3:+.0f}, {loc[1] * 1e3:+.0f}", justify="right",
+                         no_wrap=True)
+        for name in names:
+            t.add_row(name, *[f"{value(name, loc):+.2f}" for loc in locations])
+        con.print(t)
+
+    table("results", list(dict.fromkeys(r.method for r in c.results if not r.group)), c.value)
+    names = list(dict.fromkeys(n for n, _, _ in c.averages if "ballbar" not in n))
+    table("averages of opposite corners (L) and sides (T)", names, c.average)
+    for r in (r for r in c.results if r.group):
+        con.print(f"  {r.group}: circle at {where(r.centre)}: {r.squareness.um_per_m:+.2f}")
+    for name, _, v in c.averages:
+        if "ballbar" in name:
+            con.print(f"  [bold]average of {name}: {v:+.2f}[/bold]")
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``straightness`` and the ``squareness`` group to the application."""
+    app.command("straightness")(straightness)
+    squareness_app.command("biaxial")(biaxial)
+    squareness_app.command("diagonal")(diagonal)
+    squareness_app.command("circular")(circular)
+    squareness_app.command("simulate")(simulate)
+    app.add_typer(squareness_app, name="squareness")

@@ -1,0 +1,95 @@
+"""Shared parser of the tidy CSV files of axiscal (one reading per line, ``#`` comments).
+
+A comment line may declare metadata as ``key=value`` pairs (shell quoting allowed); the first
+non-comment line is the header. Used by :mod:`axiscal.io.straightness` and
+:mod:`axiscal.io.ballbar`.
+"""
+
+from __future__ import annotations
+
+import csv as _csv
+import io
+import math
+import shlex
+
+from axiscal import units
+from axiscal.errors import AxiscalError, DataFormatError
+
+__all__ = ["parse_tidy", "number", "length_factor"]
+
+
+def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source: str):
+    """Split a tidy CSV into its metadata and its rows.
+
+    Returns
+    -------
+    meta : dict of str
+        The declared ``key=value`` pairs whose key is in ``meta_keys`` (lower-case keys).
+    rows : list of (int, dict)
+        Line number and the row's cells by column name (only ``columns``).
+
+    Raises
+    ------
+    DataFormatError
+        No header, a missing column, a short row, or no data.
+    """
+    meta: dict[str, str] = {}
+    header: list[str] | None = None
+    rows: list[tuple[int, dict[str, str]]] = []
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped:
+            continue
+        if stripped.startswith("#"):
+            meta.update(_comment(stripped[1:], meta_keys))
+            continue
+        cells = [c.strip() for c in next(_csv.reader(io.StringIO(stripped)))]
+        if header is None:
+            header = [c.lower() for c in cells]
+            missing = [c for c in columns if c not in header]
+            if missing:
+                raise DataFormatError(f"header {','.join(cells)!r} lacks column(s) "
+                                      f"{', '.join(missing)}; expected {','.join(columns)}",
+                                      source, lineno)
+            continue
+        if len(cells) < len(header):
+            raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
+                                  source, lineno)
+        rows.append((lineno, {c: cells[header.index(c)] for c in columns}))
+    if header is None or not rows:
+        raise DataFormatError(f"no data: expected a header {','.join(columns)} and readings",
+                              source)
+    return meta, rows
+
+
+def number(text: str, column: str, source: str, lineno: int) -> float:
+    """A finite number, or a DataFormatError naming the column and the line."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise DataFormatError(f"{column} {text!r} is not a number", source, lineno) from None
+    if not math.isfinite(v):
+        raise DataFormatError(f"{column} {text!r} is not a finite number", source, lineno)
+    return v
+
+
+def length_factor(unit: str, key: str, source: str) -> float:
+    """Metres per ``unit`` (a length unit), or a DataFormatError naming the key."""
+    try:
+        return units.factor(unit, "length")
+    except AxiscalError as exc:
+        raise DataFormatError(f"{key}={unit!r}: {exc}", source) from None
+
+
+def _comment(text: str, keys: set[str]) -> dict[str, str]:
+    try:
+        tokens = shlex.split(text)
+    except ValueError:
+        return {}
+    out = {}
+    for tok in tokens:
+        if "=" in tok:
+            k, v = tok.split("=", 1)
+            if k.strip().lower() in keys:
+                out[k.strip().lower()] = v.strip()
+    return out

@@ -1,0 +1,142 @@
+"""Plots of the five-DOF motion-error measurement (matplotlib, Agg backend).
+
+* :func:`five_errors_figure`: the five errors against angle, every run, with the truth if known;
+* :func:`stability_figure`: the five stability traces against time, with and without the drift
+  compensation;
+* :func:`polar_figure`: ISO 230-7 polar plots of radial, axial and tilt error motion.
+
+Each returns a matplotlib figure; :func:`save_figure` writes one atomically by extension.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.units import ARCSEC, UM
+
+__all__ = ["five_errors_figure", "stability_figure", "polar_figure", "save_figure", "LABELS"]
+
+#: Channel -> (axis label, SI factor of its display unit).
+LABELS = {
+    "ez": ("εz angular positioning [arcsec]", ARCSEC),
+    "ey": ("εy tilt about Y [arcsec]", ARCSEC),
+    "ex": ("εx tilt about X [arcsec]", ARCSEC),
+    "dy": ("δy radial [µm]", UM),
+    "dz": ("δz axial [µm]", UM),
+}
+_COLOURS = ["#1f5fa8", "#d1601f", "#2f8f46", "#8a3ea8", "#a82f3e"]
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def five_errors_figure(runs, truth=None, title: str = "Five motion errors against angle"):
+    """One panel per error against angle (degrees) for each run; the truth dashed if given.
+
+    Parameters
+    ----------
+    runs : sequence of FiveErrors (or objects with theta, ez, ey, ex, dy, dz in SI)
+    truth : sequence of FiveErrors, optional
+    title : str
+    """
+    plt = _pyplot()
+    fig, axes = plt.subplots(5, 1, figsize=(7.5, 10.5), sharex=True)
+    for k, (ch, (label, unit)) in enumerate(LABELS.items()):
+        ax = axes[k]
+        for j, run in enumerate(runs):
+            ax.plot(np.degrees(run.theta), getattr(run, ch) / unit, "o-", ms=3.5, lw=1.2,
+                    color=_COLOURS[j % len(_COLOURS)], label=f"run {j + 1} (measured)")
+        for j, t in enumerate(truth or ()):
+            ax.plot(np.degrees(t.theta), getattr(t, ch) / unit, "--", lw=1.0, color="0.35",
+                    label=f"truth, run {j + 1} (simulation)")
+        ax.set_ylabel(label, fontsize=8.5)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel("commanded angle θ [deg]")
+    axes[-1].set_xticks(np.arange(0, 361, 30))
+    axes[0].legend(fontsize=7.5, ncol=2, loc="best")
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def stability_figure(run, title: str = "Stability: five errors of a still set-up"):
+    """The five errors against time (minutes) with (solid) and without (grey) drift compensation.
+
+    Parameters
+    ----------
+    run : MotionRun
+        From :func:`axiscal.procedures.motion_errors.stability_test`.
+    """
+    plt = _pyplot()
+    fig, axes = plt.subplots(5, 1, figsize=(7.5, 10.5), sharex=True)
+    minutes = run.time / 60.0
+    for k, (ch, (label, unit)) in enumerate(LABELS.items()):
+        ax = axes[k]
+        raw = getattr(run.uncompensated, ch) / unit
+        meas = getattr(run.measured, ch) / unit
+        ax.plot(minutes, raw, lw=0.8, color="0.65", label="without drift compensation")
+        ax.plot(minutes, meas, lw=0.9, color=_COLOURS[k],
+                label=f"compensated (σ = {np.std(meas):.3f})")
+        ax.set_ylabel(label, fontsize=8.5)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    axes[-1].set_xlabel("time [min]")
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def polar_figure(result, title: str = "ISO 230-7 error motion (polar plots)"):
+    """Polar plots of every error motion in ``result`` (an ISO 230-7 result).
+
+    Each panel draws every run (thin) and the synchronous curve (thick) as
+    ``base + value`` around a base circle of radius 2 × the largest |value|, with the scale in
+    the panel's unit; the fundamental is removed where ISO 230-7 removes it.
+    """
+    plt = _pyplot()
+    motions = result.motions
+    cols = 2
+    rows = (len(motions) + 1) // 2
+    fig, axes = plt.subplots(rows, cols, figsize=(8.0, 4.0 * rows), subplot_kw={"projection": "polar"})
+    axes = np.atleast_1d(axes).ravel()
+    th = np.append(result.theta, result.theta[0])
+    for ax, m in zip(axes, motions):
+        unit, sym = (UM, "µm") if m.kind == "length" else (ARCSEC, "arcsec")
+        runs = m.runs / unit
+        base = 2.0 * max(float(np.max(np.abs(runs))), 1e-9)
+        for r in runs:
+            ax.plot(th, base + np.append(r, r[0]), lw=0.7, color="0.55")
+        sync = m.synchronous_curve / unit
+        ax.plot(th, base + np.append(sync, sync[0]), lw=2.0, color="#1f5fa8")
+        ax.plot(np.linspace(0, 2 * np.pi, 200), np.full(200, base), lw=0.6, ls=":", color="k")
+        ax.set_rmin(0.0)
+        ax.set_rticks([])
+        asy = "—" if np.isnan(m.asynchronous) else f"{m.asynchronous / unit:.2f}"
+        ax.set_title(f"{m.name}: total {m.total / unit:.2f}, sync {m.synchronous / unit:.2f}, "
+                     f"async {asy} {sym}\n(dotted circle = zero, radius {base:.2f} {sym})", fontsize=8.5)
+    for ax in axes[len(motions):]:
+        ax.set_visible(False)
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def save_figure(fig, path) -> Path:
+    """Write a figure atomically (format from the extension: png, svg, pdf) and close it."""
+    import io
+
+    from axiscal.io._files import write_bytes_atomic
+
+    p = Path(path)
+    buf = io.BytesIO()
+    fig.savefig(buf, format=(p.suffix.lstrip(".") or "png").lower(), dpi=120, bbox_inches="tight")
+    _pyplot().close(fig)
+    return write_bytes_atomic(p, buf.getvalue())

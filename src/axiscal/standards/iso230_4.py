@@ -1,0 +1,328 @@
+"""ISO 230-4:2005 circular test — G, H, F, and squareness from the elliptical component.
+
+A run is the radial deviation ``Δr(φ)`` of the actual path from the nominal circle of radius R
+(a telescoping ballbar's reading), at the nominal angular positions φ (rad, counter-clockwise from
++X), contoured counter-clockwise (``"ccw"``) or clockwise (``"cw"``).
+
+ISO 230-4 definitions (§3, evaluated here on the sampled path):
+
+* **F, radial deviation** — deviation of the actual path from the nominal path about the nominal
+  centre (the ballbar's pivot): ``F_max = max Δr``, ``F_min = min Δr`` over all runs.
+* **G, circular deviation** — the minimum radial separation of two concentric circles
+  enveloping the actual path of one direction (minimum-zone centre), ``G_ccw``, ``G_cw``. Solved
+  exactly as a linear programme on the first-order model ``Δr - (a cos φ + b sin φ)`` (valid while
+  the deviations are small against R, as they are on a machine). The value about the
+  least-squares centre, which ISO 230-4 also allows and which is never smaller, is in
+  ``G_lsc_ccw``, ``G_lsc_cw``.
+* **H, circular hysteresis** — largest radial difference between the CW and CCW paths at the same
+  angle, both referred to their common least-squares centre.
+
+Diagnosis (seed 004 Method 4: squareness "isolated from backlash, scale mismatch ..."): to first
+order the errors enter ``Δr`` as
+
+====================  ============================================  ===========================
+error                 model                                        ``Δr(φ)`` term
+====================  ============================================  ===========================
+squareness θ          δx = -θ y (seed 004 Eq. 2)                    ``-(θR/2) sin 2φ``
+scale mismatch        δx = e_x x, δy = e_y y                        ``R(e_x - e_y)/2 cos 2φ``
+                                                                    (+ a radius change)
+backlash b_x, b_y     δx = (b_x/2) sign(v_x) (``LinearAxis``)        ``±(b_x/2) sign(sin φ) cos φ``,
+                                                                    ``∓(b_y/2) sign(cos φ) sin φ``
+centre offset         —                                            ``c_x cos φ + c_y sin φ``
+====================  ============================================  ===========================
+
+The backlash terms change sign with the direction (upper sign CW), so the **mean** of the CCW and
+CW runs holds squareness and scale mismatch free of backlash: a least-squares fit of
+``[1, cos φ, sin φ, cos 2φ, sin 2φ]`` to the mean gives them. Half the difference of the runs holds
+the backlash (with any centre and radius shift between runs): a fit of
+``[1, cos φ, sin φ, B_x(φ), B_y(φ)]`` gives b_x and b_y. Least squares (not Fourier sums) keeps
+this valid on partial arcs, accepted down to 220° (seed 004). With one direction only, all terms
+are fitted together and the result carries a warning.
+
+References
+----------
+ISO 230-4:2005, Test code for machine tools — Part 4: Circular tests for numerically controlled
+machine tools, §3. Seed 004, Method 4 (Figure 9) and "Testing global squareness errors on
+machines with unequal aspect ratios".
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.errors import InputError
+from axiscal.standards.iso230_1 import Squareness
+
+__all__ = ["CircularRun", "CircularResult", "evaluate_circular", "MIN_ARC_DEG", "arc_coverage"]
+
+#: Smallest arc accepted for squareness, degrees (seed 004: "partial arc tests (down to 220°)").
+MIN_ARC_DEG = 220.0
+
+
+@dataclass(frozen=True, eq=False)
+class CircularRun:
+    """One circular run (one direction).
+
+    Attributes
+    ----------
+    angles : numpy.ndarray, rad
+        Nominal angular positions, counter-clockwise from +X.
+    deviations : numpy.ndarray, m
+        Radial deviation from the nominal radius at each angle.
+    direction : str
+        ``"ccw"`` or ``"cw"``.
+    """
+
+    angles: np.ndarray
+    deviations: np.ndarray
+    direction: str = "ccw"
+
+    def __post_init__(self):
+        a = np.asarray(self.angles, dtype=float).ravel()
+        d = np.asarray(self.deviations, dtype=float).ravel()
+        if a.shape != d.shape or a.size < 8:
+            raise InputError(f"circular run needs at least 8 angles and as many deviations "
+                             f"(got {a.size} and {d.size})")
+        if not (np.isfinite(a).all() and np.isfinite(d).all()):
+            raise InputError("circular run holds NaN or infinite values")
+        direction = str(self.direction).lower()
+        if direction not in ("ccw", "cw"):
+            raise InputError(f"direction={self.direction!r}: must be 'ccw' or 'cw'")
+        object.__setattr__(self, "angles", _frozen(a))
+        object.__setattr__(self, "deviations", _frozen(d))
+        object.__setattr__(self, "direction", direction)
+
+
+@dataclass(frozen=True)
+class CircularResult:
+    """ISO 230-4 circular test evaluation with the squareness diagnosis.
+
+    Attributes
+    ----------
+    radius : float, m
+        Nominal radius R.
+    squareness : Squareness
+        From the sin 2φ (elliptical) term.
+    scale_mismatch : float, m/m
+        ``e_x - e_y`` from the cos 2φ term.
+    backlash_x, backlash_y : float or None, m
+        Reversal values (None with one direction).
+    G_ccw, G_cw : float or None, m
+        Circular deviation of each direction (minimum-zone centre).
+    H : float or None, m
+        Circular hysteresis (both directions needed).
+    F_max, F_min : float, m
+        Radial deviation extremes about the nominal centre.
+    arc_deg : float
+        Angular coverage of the runs, degrees.
+    fit_rms : float, m
+        RMS residual of the diagnosis model.
+    warnings : tuple of str
+    G_lsc_ccw, G_lsc_cw : float or None, m
+        Circular deviation about the least-squares centre.
+    """
+
+    radius: float
+    squareness: Squareness
+    scale_mismatch: float
+    backlash_x: float | None
+    backlash_y: float | None
+    G_ccw: float | None
+    G_cw: float | None
+    H: float | None
+    F_max: float
+    F_min: float
+    arc_deg: float
+    fit_rms: float
+    warnings: tuple[str, ...] = ()
+    G_lsc_ccw: float | None = None
+    G_lsc_cw: float | None = None
+
+    def as_dict(self) -> dict:
+        """Numbers for JSON: lengths in µm, ratios in µm/m."""
+        um = (lambda v: None if v is None else v * 1e6)
+        return {"radius_mm": self.radius * 1e3, "squareness": self.squareness.as_dict(),
+                "scale_mismatch_um_per_m": self.scale_mismatch * 1e6,
+                "backlash_x_um": um(self.backlash_x), "backlash_y_um": um(self.backlash_y),
+                "G_ccw_um": um(self.G_ccw), "G_cw_um": um(self.G_cw), "H_um": um(self.H),
+                "G_lsc_ccw_um": um(self.G_lsc_ccw), "G_lsc_cw_um": um(self.G_lsc_cw),
+                "F_max_um": um(self.F_max), "F_min_um": um(self.F_min), "arc_deg": self.arc_deg,
+                "fit_rms_um": um(self.fit_rms), "warnings": list(self.warnings)}
+
+    def __str__(self) -> str:
+        f = (lambda v: "—" if v is None else f"{v * 1e6:.3f} µm")
+        lines = [f"circular test R = {self.radius * 1e3:g} mm over {self.arc_deg:.0f}°",
+                 f"  {self.squareness}",
+                 f"  scale mismatch X−Y {self.scale_mismatch * 1e6:+.2f} µm/m, "
+                 f"backlash X {f(self.backlash_x)}, Y {f(self.backlash_y)}",
+                 f"  G ccw {f(self.G_ccw)}, G cw {f(self.G_cw)}, H {f(self.H)}, "
+                 f"F max {f(self.F_max)}, F min {f(self.F_min)}"]
+        lines += [f"  warning: {w}" for w in self.warnings]
+        return "\n".join(lines)
+
+
+def arc_coverage(angles) -> float:
+    """Angular coverage of a set of angles, degrees (360 minus the largest empty gap, one sample
+    step added back so that an evenly sampled full circle gives 360).
+
+    Examples
+    --------
+    >>> arc_coverage(np.radians(np.arange(0, 360, 10)))
+    360.0
+    >>> round(arc_coverage(np.radians(np.arange(0, 221, 5))), 6)
+    225.0
+    """
+    a = np.sort(np.mod(np.asarray(angles, dtype=float), 2 * np.pi))
+    gaps = np.diff(np.r_[a, a[0] + 2 * np.pi])
+    step = float(np.median(gaps))
+    return float(np.degrees(min(2 * np.pi, 2 * np.pi - gaps.max() + step)))
+
+
+def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y"),
+                      datum: str = "") -> CircularResult:
+    """Evaluate a circular (ballbar) test by ISO 230-4 with the squareness diagnosis.
+
+    Parameters
+    ----------
+    runs : sequence of CircularRun
+        One CCW and/or one CW run.
+    radius : float, m
+        Nominal radius.
+    axes, datum
+        Naming of the plane for the result's :class:`~axiscal.standards.iso230_1.Squareness`.
+
+    Returns
+    -------
+    CircularResult
+
+    Raises
+    ------
+    InputError
+        No run, two runs of one direction, an arc under 220°, a bad radius.
+
+    Examples
+    --------
+    >>> phi = np.radians(np.arange(0, 360, 1.0))
+    >>> dr = -(15e-6 * 0.1 / 2) * np.sin(2 * phi)          # 15 µm/m on R = 100 mm
+    >>> r = evaluate_circular([CircularRun(phi, dr, "ccw"), CircularRun(phi, dr, "cw")], 0.1)
+    >>> round(r.squareness.um_per_m, 6), round(r.backlash_x * 1e6, 6)
+    (15.0, 0.0)
+    """
+    runs = list(runs)
+    if not runs or len(runs) > 2 or len({r.direction for r in runs}) != len(runs):
+        raise InputError(f"{len(runs)} run(s) given: need one CCW and/or one CW run")
+    if not (math.isfinite(radius) and radius > 0):
+        raise InputError(f"radius={radius!r} m: must be positive")
+    arc = min(arc_coverage(r.angles) for r in runs)
+    if arc < MIN_ARC_DEG - 1e-6:
+        raise InputError(f"arc of {arc:.1f}°: squareness needs at least {MIN_ARC_DEG:.0f}° "
+                         "(seed 004, partial arcs down to 220°)")
+    by = {r.direction: r for r in runs}
+    warnings: list[str] = []
+    g = {d: _circular_deviation(r) for d, r in by.items()}
+    g_lsc = {d: _circular_deviation_lsc(r) for d, r in by.items()}
+    devs = np.concatenate([r.deviations for r in runs])
+    if len(by) == 2:
+        q, m, bx, by_, rms, h = _diagnose_both(by["ccw"], by["cw"], arc)
+    else:
+        (d, run), = by.items()
+        s = 1.0 if d == "ccw" else -1.0
+        cols = np.column_stack([_harmonics(run.angles), s * _backlash_basis(run.angles)])
+        c, rms = _lstsq(cols, run.deviations)
+        q, m, bx, by_, h = float(c[4]), float(c[3]), None, None, None
+        warnings.append(f"one direction ({d}) only: backlash is not separated from squareness; "
+                        "measure both directions")
+    return CircularResult(
+        radius=float(radius), squareness=Squareness(-2.0 * q / radius, axes, datum),
+        scale_mismatch=2.0 * m / radius, backlash_x=bx, backlash_y=by_,
+        G_ccw=g.get("ccw"), G_cw=g.get("cw"), H=h, F_max=float(devs.max()),
+        F_min=float(devs.min()), arc_deg=arc, fit_rms=float(rms), warnings=tuple(warnings),
+        G_lsc_ccw=g_lsc.get("ccw"), G_lsc_cw=g_lsc.get("cw"))
+
+
+# --- helpers -------------------------------------------------------------------------------------
+
+def _diagnose_both(ccw_run: CircularRun, cw_run: CircularRun, arc: float):
+    """Squareness and scale terms from the mean, backlash from the half difference."""
+    phi, ccw, cw = _common(ccw_run, cw_run, arc)
+    mean, half = 0.5 * (ccw + cw), 0.5 * (ccw - cw)
+    c_mean, rms1 = _lstsq(_harmonics(phi), mean)
+    c_half, rms2 = _lstsq(np.column_stack([_harmonics(phi)[:, :3], _backlash_basis(phi)]), half)
+    # (ccw - cw)/2 = b_x B_x + b_y B_y + centre and radius shifts between the runs
+    return (float(c_mean[4]), float(c_mean[3]), float(c_half[3]), float(c_half[4]),
+            math.hypot(rms1, rms2), _hysteresis(phi, ccw, cw))
+
+
+def _harmonics(phi: np.ndarray) -> np.ndarray:
+    return np.column_stack([np.ones_like(phi), np.cos(phi), np.sin(phi), np.cos(2 * phi),
+                            np.sin(2 * phi)])
+
+
+def _backlash_basis(phi: np.ndarray) -> np.ndarray:
+    """Δr per unit reversal value of X and Y in a CCW run, columns B_x, B_y (the CW run has the
+    opposite sign): δx = (b_x/2) sign(v_x) with v_x = -sin φ gives -(b_x/2) sign(sin φ) cos φ."""
+    return np.column_stack([-0.5 * np.sign(np.sin(phi)) * np.cos(phi),
+                            0.5 * np.sign(np.cos(phi)) * np.sin(phi)])
+
+
+def _lstsq(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
+    c, *_ = np.linalg.lstsq(a, b, rcond=None)
+    res = b - a @ c
+    return c, float(np.sqrt(np.mean(res**2)))
+
+
+def _circular_deviation(run: CircularRun) -> float:
+    """Minimum-zone G: min over (a, b) of max - min of Δr - a cos φ - b sin φ (an LP)."""
+    from scipy.optimize import linprog
+
+    cos, sin, d = np.cos(run.angles), np.sin(run.angles), run.deviations
+    scale = max(float(np.ptp(d)), 1e-300)
+    dn = d / scale
+    ones, zeros = np.ones_like(d), np.zeros_like(d)
+    # variables a, b, u, l: minimise u - l with l <= dn - a cos - b sin <= u
+    a_ub = np.vstack([np.column_stack([-cos, -sin, -ones, zeros]),
+                      np.column_stack([cos, sin, zeros, ones])])
+    b_ub = np.concatenate([-dn, dn])
+    res = linprog([0, 0, 1, -1], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * 4,
+                  method="highs")
+    if not res.success:  # pragma: no cover - a bounded LP with a feasible start always solves
+        return _circular_deviation_lsc(run)
+    a, b = res.x[0] * scale, res.x[1] * scale
+    r = d - a * cos - b * sin
+    return float(r.max() - r.min())
+
+
+def _circular_deviation_lsc(run: CircularRun) -> float:
+    c, _ = _lstsq(_harmonics(run.angles)[:, :3], run.deviations)
+    res = run.deviations - _harmonics(run.angles)[:, :3] @ c
+    return float(res.max() - res.min())
+
+
+def _common(ccw: CircularRun, cw: CircularRun, arc: float):
+    """Both runs on the CCW run's angles (the CW run interpolated, periodically on full circles)."""
+    phi = ccw.angles
+    a, d = np.mod(cw.angles, 2 * np.pi), cw.deviations
+    order = np.argsort(a)
+    a, d = a[order], d[order]
+    if arc >= 360.0 - 1e-9:
+        cw_on = np.interp(np.mod(phi, 2 * np.pi), a, d, period=2 * np.pi)
+        return phi, ccw.deviations, cw_on
+    p = np.mod(phi - a[0], 2 * np.pi) + a[0]  # partial arcs: the overlap only
+    inside = (p >= a[0]) & (p <= a[-1])
+    if inside.sum() < 8:
+        raise InputError("the CCW and CW runs overlap on fewer than 8 angles")
+    return phi[inside], ccw.deviations[inside], np.interp(p[inside], a, d)
+
+
+def _hysteresis(phi, ccw, cw) -> float:
+    """Both runs referred to the same centre, so the centre cancels in their difference."""
+    return float(np.max(np.abs(ccw - cw)))
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float)
+    a.setflags(write=False)
+    return a
