@@ -242,3 +242,18 @@ def test_yaw_sign_from_records_always_removes_the_yaw(p_optic, p_dir, c_optic, c
     assert np.allclose(doubled, 2 * captured)
     with pytest.raises(SignConventionError):
         yaw_subtraction_sign(prof, c_optic, c_dir, stated_sign=-sign)
+
+
+def test_unidirectional_and_pilgrim_plans_run_through_the_chain(tmp_path):
+    """The capture executes any ISO 230-2 plan of the positioning module (pilgrim cycle, one
+    direction); the report copes with the parameters that do not apply."""
+    from axiscal.report.rotary import write_rotary_report
+
+    uni = run_rotary_config(_config("rotary_trunnion.toml", test={"bidirectional": False}))
+    assert uni.result.A is None and uni.result.A_up is not None
+    assert np.max(np.abs(uni.mean_errors)) < 1.0
+    assert "A_up" in str(uni)
+    write_rotary_report(tmp_path / "uni.html", uni)
+    assert "Result beside the truth" in (tmp_path / "uni.html").read_text()
+    pil = run_rotary_config(_config(test={"cycle": "pilgrim"}))
+    assert np.max(np.abs(pil.mean_errors)) < 1.0

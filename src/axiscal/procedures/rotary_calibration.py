@@ -312,6 +312,9 @@ class BudgetItem:
     value: float
     source: str
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "value", float(self.value))
+
 
 @dataclass(frozen=True)
 class ErrorBudget:
@@ -438,8 +441,9 @@ class RotaryCalibrationResult:
 
     def __str__(self) -> str:
         s = self.summary()
+        key = "A" if s["measured"]["A"] is not None else "A_up"
         return (f"rotary calibration of axis {self.plan.axis or '-'}: {s['n_readings']} readings; "
-                f"A = {s['measured']['A']:.2f} arcsec (truth {s['truth']['A']:.2f}); largest "
+                f"{key} = {s['measured'][key]:.2f} arcsec (truth {s['truth'][key]:.2f}); largest "
                 f"per-target error {s['max_mean_error_arcsec']:.3f} arcsec within the budget "
                 f"± {s['budget']['worst_case_arcsec']:.2f} arcsec: {s['within_budget']}")
 
