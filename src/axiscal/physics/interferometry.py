@@ -378,7 +378,7 @@ class OpticsCalibration:
     zero_return: float
 
     def __str__(self) -> str:
-        return (f"optics self-calibration at 0, ±{math.degrees(self.step):g}°: K = {self.k:.6f}, "
+        return (f"optics self-calibration at 0, ±{math.degrees(self.step):.3f}°: K = {self.k:.6f}, "
                 f"reflector at datum {self.datum_misalignment / ARCSEC:+.2f} arcsec, "
                 f"return to zero {self.zero_return / ARCSEC:+.3f} arcsec")
 
