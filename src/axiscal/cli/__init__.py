@@ -33,6 +33,7 @@ COMMANDS: dict[str, str] = {
     "straightness": "axiscal.cli.squareness",
     "squareness": "axiscal.cli.squareness",
     "compensate": "axiscal.cli.compensate",
+    "rotary": "axiscal.cli.rotary",
 }
 
 

@@ -1,0 +1,168 @@
+"""``axiscal rotary``: simulated rotary-axis calibration and the alignment budget.
+
+``axiscal rotary simulate CONFIG.toml [--json] [--report FILE]`` runs a complete simulated
+calibration (set-up checks, optics self-calibration, counter-rotating capture, ISO 230-2
+evaluation) and compares it with the truth. ``--json`` keys (stable): ``axis``, ``n_targets``,
+``n_runs``, ``n_readings``, ``measured`` and ``truth`` (ISO 230-2 parameters ``A`` ... ``B_mean``
+in arcsec), ``max_mean_error_arcsec``, ``max_reading_error_arcsec``, ``within_budget``, ``setup``
+(``tir_mm``, ``return_offset_mm``, ``centring_mm``, ``alpha_bound_mrad``, ``beta_bound_mrad``,
+``passed``, ``warnings``), ``optics`` (``k``, ``datum_misalignment_arcsec``, or null),
+``budget`` (``items``: list of ``name``/``arcsec``/``source``; ``worst_case_arcsec``,
+``rss_arcsec``), ``true_misalignment_mrad`` (``alpha``, ``beta``, ``omega``, ``eta_deg``),
+``max_laser_angle_arcsec``, ``offaxis`` (``radius_mm``, ``phase_deg``, ``yaw_sign``,
+``yaw_removed_arcsec``, ``program_lines``, or null) and ``warnings``.
+
+``axiscal rotary budget --alpha A --beta B [--omega W] [--accuracy X] [--json]`` answers "how
+well must I align for this accuracy?" from seed 000 equation 1. ``--json`` keys (stable):
+``alpha_mrad``, ``beta_mrad``, ``omega_mrad``, ``terms_arcsec`` (``quadratic``, ``alpha_beta``,
+``alpha_omega``: amplitudes), ``peak_arcsec``, ``half_range_arcsec``, ``base_arcsec``,
+``expected_accuracy_arcsec``, ``accuracy_arcsec`` and ``max_alpha_mrad`` (null without
+``--accuracy``), ``table`` (``alpha_mrad``, ``beta_mrad``, ``accuracy_arcsec``,
+``seed_figure22_arcsec``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+__all__ = ["register"]
+
+
+def simulate(
+    config: Path = typer.Argument(..., help="Rotary calibration configuration (TOML); see examples/rotary_*.toml."),
+    json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+) -> None:
+    """Simulate a complete rotary-axis calibration and compare it with the truth."""
+    from axiscal.machines.config import load_toml
+    from axiscal.procedures.rotary_config import run_rotary_config
+
+    if report is not None:
+        out_path(report, "report")
+    result = run_rotary_config(load_toml(config))
+    if report is not None:
+        from axiscal.report.rotary import write_rotary_report
+
+        write_rotary_report(report, result)
+    if json_out:
+        print_json(result.summary())
+    else:
+        _render(result, str(config))
+    if report is not None:
+        note(f"wrote report {report}")
+
+
+def budget(
+    alpha: float = typer.Option(..., "--alpha", help="Misalignment α between the axes, mrad."),
+    beta: float = typer.Option(..., "--beta", help="Misalignment β of the laser's line of sight, mrad."),
+    omega: float = typer.Option(2.5, "--omega", help="Twist ω of the reflector, mrad (manufacturing tolerance 2.5)."),
+    accuracy: Optional[float] = typer.Option(None, "--accuracy", help="Wanted ± accuracy, arcsec: print the largest α that reaches it."),
+    base: float = typer.Option(0.8, "--base", help="Accuracy of the system at perfect alignment, arcsec."),
+    json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
+) -> None:
+    """Error of seed 000 equation 1 for α, β, ω, and the alignment a wanted accuracy needs."""
+    data = _budget_data(alpha, beta, omega, accuracy, base)
+    if json_out:
+        print_json(data)
+        return
+    from rich.table import Table
+
+    from axiscal.cli._common import console
+
+    con = console()
+    con.print(f"α = {alpha:g} mrad, β = {beta:g} mrad, ω = {omega:g} mrad (seed 000 eq. 1)")
+    for k, v in data["terms_arcsec"].items():
+        con.print(f"  term {k:<12} ±{v:.3f} arcsec")
+    con.print(f"  peak |E| over a turn   {data['peak_arcsec']:.3f} arcsec (half range "
+              f"{data['half_range_arcsec']:.3f})")
+    con.print(f"  expected accuracy      ±{data['expected_accuracy_arcsec']:.2f} arcsec "
+              f"(base {base:g} + peak)")
+    if accuracy is not None:
+        ma = data["max_alpha_mrad"]
+        con.print(f"  for ±{accuracy:g} arcsec at this β, ω: align α within {ma:.3f} mrad "
+                  f"(TIR < {2 * 50 * ma * 1e-3:.3f} mm at 50 mm, before the calibrator's own 0.44 mrad)")
+    tab = data["table"]
+    for title, rows in (("Model: base + eq. 1 peak [± arcsec]", tab["accuracy_arcsec"]),
+                        ("Seed 000 Figure 22 [± arcsec]", tab["seed_figure22_arcsec"])):
+        t = Table(title=title, title_justify="left")
+        t.add_column("β \\ α [mrad]")
+        for a in tab["alpha_mrad"]:
+            t.add_column(f"{a:g}", justify="right")
+        for b, row in zip(tab["beta_mrad"], rows):
+            t.add_row(f"{b:g}", *[f"{v:.1f}" for v in row])
+        con.print(t)
+
+
+def _budget_data(alpha, beta, omega, accuracy, base) -> dict:
+    import numpy as np
+
+    from axiscal.errors import InputError
+    from axiscal.physics import misalignment as mis
+    from axiscal.units import ARCSEC
+
+    for name, v in (("--alpha", alpha), ("--beta", beta), ("--omega", omega)):
+        if not (abs(v) <= 100):
+            raise InputError(f"{name} {v!r} mrad is not a small misalignment (at most 100 mrad)")
+    if not base >= 0:
+        raise InputError(f"--base {base!r} arcsec must be >= 0")
+    a, b, w = alpha * 1e-3, beta * 1e-3, omega * 1e-3
+    turn = np.linspace(0, 2 * np.pi, 3601)
+    terms = mis.misalignment_terms(turn, a, b, w)
+    peak = mis.peak_error(a, b, w) / ARCSEC
+    fig = mis.SEED000_FIGURE22
+    table = mis.tradeoff_table(np.array(fig["alpha_mrad"]) * 1e-3, np.array(fig["beta_mrad"]) * 1e-3,
+                               w, base * ARCSEC)
+    max_a = None
+    if accuracy is not None:
+        max_a = mis.max_alpha(accuracy * ARCSEC, b, w, base * ARCSEC) * 1e3
+    return {
+        "alpha_mrad": alpha, "beta_mrad": beta, "omega_mrad": omega,
+        "terms_arcsec": {k: float(np.max(np.abs(getattr(terms, k)))) / ARCSEC
+                         for k in ("quadratic", "alpha_beta", "alpha_omega")},
+        "peak_arcsec": peak, "half_range_arcsec": mis.half_range(a, b, w) / ARCSEC,
+        "base_arcsec": base, "expected_accuracy_arcsec": base + peak,
+        "accuracy_arcsec": accuracy, "max_alpha_mrad": max_a,
+        "table": {"alpha_mrad": list(fig["alpha_mrad"]), "beta_mrad": list(fig["beta_mrad"]),
+                  "accuracy_arcsec": table.rows(),
+                  "seed_figure22_arcsec": [list(r) for r in fig["accuracy_arcsec"]]},
+    }
+
+
+def _render(result, title: str) -> None:
+    from rich.table import Table
+
+    from axiscal.cli._common import console
+    from axiscal.cli.iso230_2 import render_result
+
+    con = console()
+    render_result(result.result, result.capture.dataset, title=title, console=con)
+    s = result.summary()
+    t = Table(title="Measured beside the truth [arcsec]", title_justify="left")
+    for c in ("parameter", "measured", "true", "difference"):
+        t.add_column(c, justify="right" if c != "parameter" else "left")
+    for k, m in s["measured"].items():
+        tv = s["truth"][k]
+        if m is not None and tv is not None:
+            t.add_row(k, f"{m:.2f}", f"{tv:.2f}", f"{m - tv:+.2f}")
+    con.print(t)
+    con.print(str(result.setup))
+    if result.optics is not None:
+        con.print(str(result.optics))
+    con.print(str(result.budget))
+    con.print(f"largest per-target error against the truth: {s['max_mean_error_arcsec']:.3f} arcsec "
+              f"({'within' if s['within_budget'] else 'OUTSIDE'} the budget)")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``rotary`` command group (``simulate``, ``budget``)."""
+    group = typer.Typer(help="Rotary-axis calibration with an angular interferometer and a "
+                             "counter-rotating reference calibrator (seed 000).",
+                        no_args_is_help=True)
+    group.command("simulate")(simulate)
+    group.command("budget")(budget)
+    app.add_typer(group, name="rotary")

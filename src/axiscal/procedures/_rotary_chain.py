@@ -1,0 +1,175 @@
+"""The simulated measurement chain of a rotary calibration (private to rotary_calibration).
+
+:class:`Rig` holds the machine, the set-up and the two instruments, and performs the steps of
+:func:`axiscal.procedures.rotary_calibration.simulate_rotary_calibration`: the set-up readings,
+the datum, the optics self-calibration and the capture. Every reading is computed from the
+physical state (axis angle, calibrator shaft angle, reflector pose, beam directions); no error
+formula of the seed is added on top, so equation 1 and the read-head cancellation are results.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.datasets import AxisKind, Metadata, PositioningDataset
+from axiscal.physics.interferometry import optics_self_calibration
+from axiscal.physics.misalignment import reflector_pose
+from axiscal.procedures.rotary_offaxis import (
+    YawProfile, part_program, subtract_linear_yaw, three_point_alignment, yaw_subtraction_sign)
+from axiscal.units import ARCSEC, DEG
+
+TWO_PI = 2.0 * math.pi
+
+
+def read_setup(setup, rng: np.random.Generator, offaxis=None):
+    """Simulated readings of the set-up checks (dial gauge, shutter, centring) -> SetupCheck."""
+    from axiscal.procedures.rotary_calibration import setup_checks
+
+    tir = abs(2.0 * setup.tir_radius * setup.mount_tilt + rng.normal(0.0, setup.dial_noise))
+    ret = abs(2.0 * setup.laser_distance * (setup.beam_tilt + setup.target_misalignment)
+              + rng.normal(0.0, setup.shutter_noise))
+    if offaxis is None:
+        centring = abs(math.hypot(*setup.lateral_offset) + rng.normal(0.0, setup.centring_noise))
+    else:  # off axis the beam is kept on the reflector by the alignment: its error is the offset
+        centring = 2.0 * offaxis.alignment_noise
+    return setup_checks(tir, ret, centring, setup.tir_radius, setup.laser_distance)
+
+
+@dataclass(frozen=True)
+class Datum:
+    """State at the datum: axis actual angle, calibrator command and reading, path difference."""
+
+    theta: float
+    phi: float
+    psi: float
+    dl: float
+    y: float
+    k: float = 1.0
+
+
+class Rig:
+    """The simulated calibration rig: machine, set-up, laser, calibrator (and off-axis linear axis)."""
+
+    def __init__(self, axis, setup, laser, calibrator, offaxis=None):
+        self.axis, self.setup, self.laser, self.cal, self.off = axis, setup, laser, calibrator, offaxis
+        self.alignment = None
+        if offaxis is not None:
+            self.offset = (offaxis.radius * math.cos(offaxis.phase),
+                           offaxis.radius * math.sin(offaxis.phase))
+        else:
+            self.offset = tuple(setup.lateral_offset)
+
+    # -- geometry ---------------------------------------------------------------------
+    def path(self, theta, phi, y=None) -> np.ndarray:
+        """Path difference (m) for actual axis and shaft angles; raises on loss of signal."""
+        s = self.setup
+        u, c = reflector_pose(theta, phi, s.alpha, s.eta, s.reflector_twist, s.reflector_height,
+                              self.offset)
+        if self.off is None:
+            interferometer, yaw = np.array([1.0, 0.0, 0.0]), 0.0
+        else:
+            yy = np.atleast_1d(np.asarray(y, dtype=float))
+            interferometer = np.stack([np.full_like(yy, self.off.interferometer_distance), yy,
+                                       np.zeros_like(yy)], -1)
+            yaw = self.off.beam_yaw + self.off.linear_yaw(yy)
+        self.laser.check_signal(u, yaw)
+        return self.laser.path_difference(u, c, interferometer, yaw)
+
+    def align(self, rng: np.random.Generator) -> None:
+        """Off axis: the operator's three-point alignment (beam centred at three angles)."""
+        th = np.asarray(self.off.alignment_angles, dtype=float)
+        true_y = self.offset[0] * np.sin(th) + self.offset[1] * np.cos(th)
+        self.alignment = three_point_alignment(th, true_y + rng.normal(0, self.off.alignment_noise, 3))
+
+    def linear_position(self, theta):
+        """Off axis: the commanded linear position for commanded angles; None on axis."""
+        return None if self.alignment is None else self.alignment.position(theta)
+
+    # -- datum and self-calibration ---------------------------------------------------
+    def datum(self, rng: np.random.Generator) -> Datum:
+        """Axis at 0° (approached +), reflector turned by the operator's datum misalignment."""
+        if self.off is not None:
+            self.align(rng)
+        theta = float(self.axis.move(0.0, 1, rng, 0.0))
+        return self._datum_at(theta, self.setup.datum_misalignment, 1.0, rng)
+
+    def _datum_at(self, theta, phi_cmd, k, rng) -> Datum:
+        phi = self.cal.move(phi_cmd, rng)
+        y = self.linear_position(0.0)
+        dl = float(self.path(theta, phi, y)[0])
+        return Datum(theta, float(phi_cmd), float(self.cal.read(phi, rng)[0]), dl,
+                     0.0 if y is None else float(y), k)
+
+    def self_calibrate(self, datum: Datum, rng: np.random.Generator):
+        """Optics calibration at 0, +5°, −5° of the calibrator; re-datum square to the beams."""
+        step = 5.0 * DEG
+        cmds = datum.phi + np.array([step, -step, 0.0])
+        phi = self.cal.move(cmds, rng)
+        ref = self.cal.read(phi, rng) - datum.psi           # the calibrator's own reading of the steps
+        y = None if self.alignment is None else np.full(3, datum.y)
+        dl = self.path(np.full(3, datum.theta), phi, y) - datum.dl
+        dl = dl + rng.normal(0.0, self.laser.noise * self.laser.spacing, 3)
+        cal = optics_self_calibration(dl[0], dl[1], self.laser.nominal_spacing, ref[0], ref[1],
+                                      dl[2], ref[2])
+        return cal, self._datum_at(datum.theta, datum.phi - cal.datum_misalignment, cal.k, rng)
+
+    # -- capture ----------------------------------------------------------------------
+    def capture(self, plan, datum: Datum, rng: np.random.Generator, speed: float,
+                metadata: Metadata | None):
+        """Execute the plan; return (RotaryCapture, OffAxisRecord or None)."""
+        from axiscal.procedures.rotary_calibration import RotaryCapture
+
+        steps = plan.steps()
+        pos = np.array([s.position for s in steps])
+        is_meas = np.array([s.kind == "measure" for s in steps])
+        moves = np.abs(np.diff(np.concatenate(([0.0], pos)))) / speed
+        time = np.cumsum(moves + plan.dwell * is_meas)[is_meas]
+        meas = [s for s in steps if s.kind == "measure"]
+        target = np.array([s.position for s in meas]) * DEG
+        direction = np.array([1 if s.direction == "+" else -1 for s in meas])
+        theta = self.axis.move(target, direction, rng, time)
+        phi = self.cal.move(datum.phi - target if self.setup.counter_rotation
+                            else np.full(target.shape, datum.phi), rng)
+        psi = self.cal.read(phi, rng)
+        y = self.linear_position(target)
+        dl = self.path(theta, phi, y) - datum.dl
+        laser = self.laser.read(dl, datum.k, self.setup.periscope_drift * time, rng)
+        calib = -(psi - datum.psi)
+        dev = laser + calib - target
+        record = None
+        if self.off is not None:
+            dev, record = self._remove_yaw(plan, dev, y, datum, rng)
+        truth = theta - target - datum.theta
+        meta = metadata or Metadata(axis=plan.axis)
+        ds = _dataset(plan, meas, dev / ARCSEC, meta)
+        tr = _dataset(plan, meas, truth / ARCSEC, meta)
+        for a in (target, laser, calib, time):
+            a.flags.writeable = False
+        return RotaryCapture(ds, tr, target, laser, calib, time, y), record
+
+    def _remove_yaw(self, plan, dev, y, datum, rng):
+        from axiscal.procedures.rotary_calibration import OffAxisRecord
+
+        off = self.off
+        lo, hi = float(np.min(y)) - 5e-3, float(np.max(y)) + 5e-3
+        grid = np.linspace(lo, hi, 41)
+        sense = (-1 if off.profile_moving_optic == "interferometer" else 1) * off.profile_direction_sign
+        readings = sense * (off.linear_yaw(grid) - off.linear_yaw(grid[0]))
+        readings = readings + rng.normal(0.0, off.profile_noise, grid.size)
+        profile = YawProfile(grid, readings, off.profile_moving_optic, off.profile_direction_sign)
+        sign = yaw_subtraction_sign(profile, "interferometer", 1, off.stated_sign)
+        corrected = subtract_linear_yaw(dev, y, datum.y, profile, sign)
+        program = part_program(plan, self.alignment, off.rotary_letter, off.linear_letter, off.feed)
+        return corrected, OffAxisRecord(self.alignment, program, profile, sign,
+                                        float(np.max(np.abs(corrected - dev))))
+
+
+def _dataset(plan, meas, values, meta) -> PositioningDataset:
+    up = np.full((plan.targets.size, plan.runs), np.nan)
+    down = np.full((plan.targets.size, plan.runs if plan.bidirectional else 0), np.nan)
+    for s, v in zip(meas, values):
+        (up if s.direction == "+" else down)[s.target_index, s.run - 1] = v
+    return PositioningDataset(AxisKind.ROTARY, plan.targets, up, down, "deg", "arcsec", meta)

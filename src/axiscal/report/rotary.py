@@ -1,0 +1,166 @@
+"""The report of a (simulated) rotary axis calibration: result beside the truth, set-up, budget.
+
+Built with :class:`axiscal.report.html.Report`: the ISO 230-2 plot with the truth the simulation
+knew, the measurement error per target against the stated budget and equation 1, the ISO 230-2
+parameters measured and true, the per-target table, the set-up values, the optics calibration,
+the error budget and, off axis, the alignment, the yaw correction and the start of the part
+program.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.report.html import Report
+from axiscal.units import ARCSEC
+
+__all__ = ["rotary_report", "write_rotary_report", "rotary_error_figure"]
+
+_PARAMS = ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "B", "B_mean")
+
+
+def rotary_error_figure(r):
+    """Measured minus true per-target mean deviation (each direction), with the ± budget band and
+    the equation-1 curve the true misalignments predict (both less their mean), arcsec."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from axiscal.physics.misalignment import misalignment_terms
+    from axiscal.report.plots import DOWN_COLOR, UP_COLOR
+
+    t = r.plan.targets
+    off = np.nanmean(np.concatenate([r.result.mean_up - r.truth_result.mean_up,
+                                     r.result.mean_down - r.truth_result.mean_down]))
+    fig, ax = plt.subplots(figsize=(10, 4.2), dpi=110)
+    wc = r.budget.worst_case / ARCSEC
+    ax.axhspan(-wc, wc, color="#27ae60", alpha=0.08, label=f"budget ± {wc:.2f} arcsec (worst case)")
+    ax.plot(t, r.result.mean_up - r.truth_result.mean_up - off, "o-", color=UP_COLOR, ms=3.5, lw=1.3,
+            label="measured − true, positive ↑")
+    if r.plan.bidirectional:
+        ax.plot(t, r.result.mean_down - r.truth_result.mean_down - off, "s-", color=DOWN_COLOR,
+                ms=3.5, lw=1.3, label="measured − true, negative ↓")
+    dense = np.linspace(t[0], t[-1], 721)
+    s = r.true_setup
+    e = misalignment_terms(np.radians(dense), s.alpha, s.beam_tilt, s.reflector_twist, s.eta).total
+    ax.plot(dense, (e - e.mean()) / ARCSEC, "--", color="#7f8c8d", lw=1.1,
+            label="seed 000 eq. 1 for the true α, β, ω")
+    ax.axhline(0, color="#888", lw=0.6)
+    ax.set_xlabel("Target position [°]")
+    ax.set_ylabel("Measurement error [arcsec]")
+    ax.set_xlim(t[0] - 0.02 * (t[-1] - t[0]), t[-1] + 0.02 * (t[-1] - t[0]))
+    if t[-1] - t[0] >= 90:
+        ax.set_xticks(np.arange(np.ceil(t[0] / 45) * 45, t[-1] + 1e-9, 45))
+    ax.set_ylim(-1.3 * max(wc, 0.1), 1.3 * max(wc, 0.1))
+    ax.grid(True, color="#e3e7ec", lw=0.7)
+    ax.set_title("Measurement error: per-target mean deviation, measured minus true (common offset "
+                 "removed)", loc="left", fontsize=11)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
+    fig.tight_layout()
+    return fig
+
+
+def rotary_report(r, title: str | None = None) -> Report:
+    """Build (without writing) the report of a :class:`RotaryCalibrationResult`."""
+    from axiscal.report.plots import iso230_2_figure
+
+    md = r.capture.dataset.metadata
+    summary = r.summary()
+    rep = Report(title or f"Rotary axis calibration — {md.machine or 'machine'} axis {r.plan.axis}",
+                 subtitle="Angular interferometer with counter-rotating reference calibrator "
+                          "(simulated), evaluated by ISO 230-2:2014",
+                 metadata={"Machine": md.machine, "Axis": md.axis, "Operator": md.operator,
+                           "Date": md.date, "Instrument": md.instrument, "Notes": md.notes,
+                           "Plan": str(r.plan)})
+    rep.add_heading("Result beside the truth")
+    verdict = "within" if summary["within_budget"] else "OUTSIDE"
+    rep.add_text(
+        f"Largest per-target error of the measured mean deviation against the truth: "
+        f"{summary['max_mean_error_arcsec']:.3f} arcsec (single readings: "
+        f"{summary['max_reading_error_arcsec']:.3f} arcsec), {verdict} the stated budget of "
+        f"±{r.budget.worst_case / ARCSEC:.2f} arcsec (worst case; RSS "
+        f"±{r.budget.rss / ARCSEC:.2f} arcsec).")
+    rows = []
+    for k in _PARAMS:
+        m, t = summary["measured"][k], summary["truth"][k]
+        rows.append([k.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"), m, t,
+                     None if m is None or t is None else m - t])
+    rep.add_table(["Parameter", "Measured [arcsec]", "True [arcsec]", "Difference"], rows,
+                  caption="ISO 230-2:2014 parameters of the measured and of the true deviations "
+                          "(both relative to the datum at 0°).", digits=2, css_class="params")
+    rep.add_warnings(list(r.result.warnings) + [f"set-up: {w}" for w in r.setup.warnings])
+    truth_line = (r.plan.targets, r.truth_result.mean_bi if r.plan.bidirectional else r.truth_result.mean_up)
+    rep.add_figure(iso230_2_figure(r.result, r.capture.dataset, truth=truth_line),
+                   "Measured deviations (ISO 230-2 plot) with the true mean deviation the simulation "
+                   "knew (dashed).")
+    rep.add_figure(rotary_error_figure(r), "Measurement error per target against the budget band "
+                   "and the misalignment error of seed 000 eq. 1.")
+    _per_target(rep, r)
+    _setup_section(rep, r)
+    _budget_section(rep, r)
+    if r.offaxis is not None:
+        _offaxis_section(rep, r)
+    return rep
+
+
+def write_rotary_report(path, r, title: str | None = None) -> Path:
+    """Write the report atomically."""
+    return rotary_report(r, title).write(path)
+
+
+def _per_target(rep: Report, r) -> None:
+    rep.add_heading("Per target (ISO 230-2)")
+    rows = []
+    for i, row in enumerate(r.result.target_table()):
+        rows.append([row["target"], row["mean_up"], row["mean_down"], row["mean_bi"], row["reversal"],
+                     row["R_i"], float(r.truth_result.mean_bi[i]) if r.plan.bidirectional
+                     else float(r.truth_result.mean_up[i])])
+    rep.add_table(["Target [°]", "x̄↑", "x̄↓", "x̄", "B_i", "R_i", "true x̄"], rows,
+                  caption="Deviations in arcsec (actual − target).", digits=2, css_class="targets")
+
+
+def _setup_section(rep: Report, r) -> None:
+    rep.add_heading("Set-up")
+    rep.add_key_values(dict(r.setup.as_rows()), caption="Set-up checks (seed 000 thresholds)")
+    s = r.true_setup
+    items = {"α (true)": f"{s.alpha * 1e3:.3f} mrad at η = {np.degrees(s.eta):.1f}°",
+             "β (true)": f"{s.beam_tilt * 1e3:.3f} mrad",
+             "ω (true)": f"{s.reflector_twist * 1e3:.3f} mrad",
+             "counter-rotation": "on" if s.counter_rotation else "off",
+             "largest laser angle": f"{r.capture.max_laser_angle / ARCSEC:.2f} arcsec"}
+    if r.optics is not None:
+        items["optics self-calibration"] = str(r.optics)
+    else:
+        items["optics self-calibration"] = "not done (K = 1, reflector not squared at the datum)"
+    rep.add_key_values(items, caption="Misalignments the simulation used, and the optics calibration")
+
+
+def _budget_section(rep: Report, r) -> None:
+    rep.add_heading("Error budget")
+    rows = [[i.name, i.value / ARCSEC, i.source] for i in r.budget.items]
+    rows.append(["worst case (sum)", r.budget.worst_case / ARCSEC, ""])
+    rows.append(["root sum of squares", r.budget.rss / ARCSEC, ""])
+    rep.add_table(["Contribution", "± arcsec", "Source"], rows, digits=3)
+
+
+def _offaxis_section(rep: Report, r) -> None:
+    o = r.offaxis
+    rep.add_heading("Off-axis calibration")
+    rep.add_key_values({
+        "three-point alignment": str(o.alignment),
+        "yaw profile": f"{o.profile.positions.size} points, moving optic {o.profile.moving_optic}, "
+                       f"laser direction {o.profile.direction_sign:+d}",
+        "yaw subtracted with sign": f"{o.sign:+d} (checked against both records)",
+        "largest yaw correction": f"{o.yaw_removed / ARCSEC:.2f} arcsec",
+    })
+    head = "\n".join(o.program.splitlines()[:12])
+    rep.add_html("<pre>" + _esc(head) + "\n…</pre>")
+
+
+def _esc(text: str) -> str:
+    import html
+
+    return html.escape(text)
