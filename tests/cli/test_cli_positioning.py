@@ -121,6 +121,7 @@ def test_demo_writes_reports(tmp_path):
     r = runner.invoke(app, ["demo", "--out", str(out)])
     assert r.exit_code == 0, r.output
     for name in ("index.html", "linear_report.html", "rotary_report.html", "linear_iso230-2.png",
+                 "rotary_calibration_report.html",
                  "rotary_data.csv"):
         assert (out / name).stat().st_size > 0, name
     assert "Measured beside the simulation's truth" in r.stdout

@@ -1,8 +1,11 @@
 """``axiscal demo``: the main job on the embedded defaults (what ``make demo`` runs).
 
 Simulates an ISO 230-2 positioning test of an 800 mm linear axis and of a turntable over a full
-turn (configurations in ``axiscal/data/``), evaluates both, prints the tables beside the truth,
-and writes plots, HTML reports, the simulated data and an index page into ``--out``.
+turn, then a complete rotary-axis calibration of the turntable with the angular interferometer and
+the counter-rotating reference calibrator (set-up checks, optics self-calibration, capture,
+evaluation, error budget). Configurations are in ``axiscal/data/``. It prints every result beside
+the truth the simulation knew and writes plots, HTML reports, the simulated data and an index page
+into ``--out``.
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ import typer
 
 from axiscal.cli._common import note
 
-DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn"))
+DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn (ideal reference)"))
 
 
 def demo(
@@ -39,17 +42,35 @@ def demo(
         render_simulation(sim)
         write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
                       out / f"{name}_data.csv")
-        pages.append((label, f"{name}_report.html", sim))
+        pages.append((label, f"{name}_report.html", sim.result))
+    pages.append(_rotary_calibration(out))
     _write_index(out, pages)
     note(f"\nopen {out / 'index.html'} for the reports")
+
+
+def _rotary_calibration(out: Path):
+    """The full rotary calibration chain on the embedded turntable configuration."""
+    import tomllib
+    from importlib import resources
+
+    from axiscal.cli.rotary import render_rotary
+    from axiscal.procedures.rotary_config import run_rotary_config
+    from axiscal.report.rotary import write_rotary_report
+
+    cfg = resources.files("axiscal.data").joinpath("rotary_turntable.toml").read_text("utf-8")
+    result = run_rotary_config(tomllib.loads(cfg))
+    typer.echo("")
+    render_rotary(result, "rotary calibration of the turntable (angular interferometer + reference calibrator)")
+    write_rotary_report(out / "rotary_calibration_report.html", result)
+    note(f"wrote report {out / 'rotary_calibration_report.html'}")
+    return ("C axis, rotary calibration chain", "rotary_calibration_report.html", result.result)
 
 
 def _write_index(out: Path, pages) -> None:
     from axiscal.report.html import Report
 
     rep = Report("axiscal demonstration", subtitle="Simulated ISO 230-2 positioning tests, evaluated and compared with the truth")
-    rows = [[f'{label}', p.result.A, p.result.E, p.result.R, p.result.B, p.result.deviation_unit]
-            for label, _, p in pages]
+    rows = [[label, r.A, r.E, r.R, r.B, r.deviation_unit] for label, _, r in pages]
     rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
     rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
                                   for label, href, _ in pages) + "</ul>")

@@ -52,7 +52,7 @@ def simulate(
     if json_out:
         print_json(result.summary())
     else:
-        _render(result, str(config))
+        render_rotary(result, str(config))
     if report is not None:
         note(f"wrote report {report}")
 
@@ -133,7 +133,7 @@ def _budget_data(alpha, beta, omega, accuracy, base) -> dict:
     }
 
 
-def _render(result, title: str) -> None:
+def render_rotary(result, title: str) -> None:
     from rich.table import Table
 
     from axiscal.cli._common import console
