@@ -28,17 +28,11 @@ from axiscal.datasets import PositioningDataset
 from axiscal.procedures.positioning import simulate_from_config
 from axiscal.standards.iso230_2 import evaluate
 
+from _timing import best_of
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _best(fn, repeat=5, number=1):
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
 
 
 def _result(m=201):
@@ -54,9 +48,9 @@ def run() -> list[dict]:
     rows = []
     res = _result()
     spacing = 0.25                                  # 4001 points over 1000 mm
-    t_ours = _best(lambda: table_from_result(res, spacing, bidirectional=True, resolution=0.1), number=20)
+    t_ours = best_of(lambda: table_from_result(res, spacing, bidirectional=True, resolution=0.1), number=20)
     x = np.arange(4001) * spacing
-    t_ref = _best(lambda: (np.interp(x, res.targets, res.mean_up), np.interp(x, res.targets, res.mean_down)),
+    t_ref = best_of(lambda: (np.interp(x, res.targets, res.mean_up), np.interp(x, res.targets, res.mean_down)),
                   number=200)
     rows.append(dict(name="table_from_result, 4001-point bidirectional table", value=4001 / t_ours,
                      unit="points/s", reference=f"np.interp x2: {4001 / t_ref:.3g} points/s",
@@ -69,16 +63,16 @@ def run() -> list[dict]:
         if name == "fanuc":
             tab = table_from_result(res, 1.0, bidirectional=False, resolution=1.0)   # 1001 points
         n = tab.n_points
-        t_w = _best(lambda: mod.write(tab), number=5)
+        t_w = best_of(lambda: mod.write(tab), number=5)
         up = tab.up
-        t_f = _best(lambda: "\n".join(f"{p:.6f} {v:.6f}" for p, v in zip(tab.positions, up)), number=20)
+        t_f = best_of(lambda: "\n".join(f"{p:.6f} {v:.6f}" for p, v in zip(tab.positions, up)), number=20)
         rows.append(dict(name=f"write {name}, {n} points", value=n / t_w, unit="points/s",
                          reference=f"one f-string per point: {n / t_f:.3g} points/s",
                          ratio=t_f / t_w, aim="> 1e4 points/s"))
     cfg = tomllib.loads((ROOT / "examples" / "compensation_linear.toml").read_text())
-    t_loop = _best(lambda: run_compensation_loop(cfg, seed=1), repeat=3)
+    t_loop = best_of(lambda: run_compensation_loop(cfg, seed=1), repeat=3)
     bare = {k: v for k, v in cfg.items() if k != "compensation"}
-    t_test = _best(lambda: simulate_from_config(bare, seed=1), repeat=3)
+    t_test = best_of(lambda: simulate_from_config(bare, seed=1), repeat=3)
     rows.append(dict(name="compensation loop (81 targets x 5 runs x 2 directions, twice)",
                      value=t_loop, unit="s", reference=f"one simulated test: {t_test:.3g} s",
                      ratio=t_loop / t_test, aim="< 1 s; ratio near 2 (two tests)"))

@@ -16,14 +16,9 @@ from axiscal.instruments.five_dof import FiveDofSystem, reconstruct, rotation
 from axiscal.machines.rotary import Pose
 from axiscal.standards.iso230_7 import MotionErrorData, evaluate
 
+from _timing import best_of
 
-def _best(fn, repeat=5):
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
+
 
 
 def run() -> list[dict]:
@@ -39,8 +34,8 @@ def run() -> list[dict]:
         r = system.read(pose, th, (1e-6, -1e-6), rng)
         reconstruct(r, system)
 
-    t_sim = _best(simulate, 3)
-    t_ref = _best(lambda: rotation("x", e[1]) @ rotation("y", e[2]) @ rotation("z", th), 3)
+    t_sim = best_of(simulate, 3)
+    t_ref = best_of(lambda: rotation("x", e[1]) @ rotation("y", e[2]) @ rotation("z", th), 3)
     rows.append({"name": "five-DOF simulate+reconstruct (readings/s; ratio = value/reference)",
                  "value": n / t_sim, "unit": "readings/s", "reference": f"{n / t_ref:.3g} readings/s "
                  "of bare 3x3 rotation products", "ratio": t_ref / t_sim,
@@ -49,15 +44,15 @@ def run() -> list[dict]:
     z12 = np.radians(np.arange(0, 360, 30.0))
     small = MotionErrorData(z12, *(rng.normal(0, 1e-6, (3, 12)) for _ in range(5)))
     k = 200
-    t_small = _best(lambda: [evaluate(small) for _ in range(k)], 3) / k
+    t_small = best_of(lambda: [evaluate(small) for _ in range(k)], 3) / k
     rows.append({"name": "ISO 230-7 evaluation of an indexing test (3 runs x 12 angles)",
                  "value": 1 / t_small, "unit": "evaluations/s", "aim": ">= 1000/s (interactive)"})
 
     big_th = np.radians(np.arange(0, 360, 0.1))
     arrays = [rng.normal(0, 1e-6, (50, big_th.size)) for _ in range(5)]
     big = MotionErrorData(big_th, *arrays)
-    t_big = _best(lambda: evaluate(big), 3)
-    t_ptp = _best(lambda: [np.ptp(a) for a in arrays], 3)
+    t_big = best_of(lambda: evaluate(big), 3)
+    t_ptp = best_of(lambda: [np.ptp(a) for a in arrays], 3)
     samples = 5 * arrays[0].size
     rows.append({"name": "ISO 230-7 evaluation, 50 rev x 3600 angles (samples/s; ratio = value/reference)",
                  "value": samples / t_big, "unit": "samples/s",

@@ -16,16 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
+from _timing import best_of
+
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "rotary_turntable.toml"
 
 
-def _best(fn, repeat: int = 5) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def run() -> list[dict]:
@@ -46,9 +41,9 @@ def run() -> list[dict]:
     def plain():
         return evaluate(simulate_positioning_test(c.plan, c.axis, np.random.default_rng(1)))
 
-    t_full = _best(full)
-    t_plain = _best(plain)
-    t_build = _best(lambda: rotary_config_from_dict(cfg))
+    t_full = best_of(full)
+    t_plain = best_of(plain)
+    t_build = best_of(lambda: rotary_config_from_dict(cfg))
     return [
         dict(name=f"rotary calibration, {c.plan.targets.size} targets x 5 runs x 2 ({n} readings)",
              value=t_full, unit="s", reference=f"1 s aim; plain positioning executor {t_plain * 1e3:.1f} ms",

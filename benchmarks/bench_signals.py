@@ -11,16 +11,11 @@ import time
 
 import numpy as np
 
+from _timing import best_of
+
 N = 10**7
 
 
-def _best(fn, repeat: int = 3) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def run() -> list[dict]:
@@ -33,22 +28,22 @@ def run() -> list[dict]:
     s, c = np.sin(2 * np.pi * x), np.cos(2 * np.pi * x)
 
     rows = []
-    t_dec = _best(lambda: decode_quadrature(a, b))
-    t_copy_counts = _best(lambda: np.copy(counts))
-    t_copy_ab = _best(lambda: (np.copy(a), np.copy(b)))
+    t_dec = best_of(lambda: decode_quadrature(a, b))
+    t_copy_counts = best_of(lambda: np.copy(counts))
+    t_copy_ab = best_of(lambda: (np.copy(a), np.copy(b)))
     rows.append(dict(name="quadrature decode x4, 10^7 samples", value=N / t_dec, unit="samples/s",
                      reference=f"numpy.copy of the int64 count array ({t_copy_counts * 1e3:.1f} ms)",
                      ratio=t_dec / t_copy_counts, aim="ratio (time / copy) <= 10"))
     rows.append(dict(name="quadrature decode vs copy of the A/B bool inputs", value=t_dec * 1e3,
                      unit="ms", reference=f"numpy.copy of A and B ({t_copy_ab * 1e3:.2f} ms)",
                      ratio=t_dec / t_copy_ab, aim="informative (bool inputs are 8x smaller)"))
-    t_int = _best(lambda: interpolate_sincos(s, c))
-    t_copy_s = _best(lambda: np.copy(s))
+    t_int = best_of(lambda: interpolate_sincos(s, c))
+    t_copy_s = best_of(lambda: np.copy(s))
     rows.append(dict(name="sin/cos interpolation + period count, 10^7", value=N / t_int,
                      unit="samples/s",
                      reference=f"numpy.copy of the float64 sine array ({t_copy_s * 1e3:.1f} ms)",
                      ratio=t_int / t_copy_s, aim="ratio (time / copy) <= 10"))
-    t_atan = _best(lambda: np.arctan2(s, c))
+    t_atan = best_of(lambda: np.arctan2(s, c))
     rows.append(dict(name="numpy.arctan2 alone (floor of the interpolation)", value=N / t_atan,
                      unit="samples/s", reference="numpy.copy of the sine array",
                      ratio=t_atan / t_copy_s, aim="informative"))

@@ -18,14 +18,9 @@ from axiscal.machines.xy_plane import seed004_machine
 from axiscal.procedures.squareness_study import compare_methods
 from axiscal.standards.iso230_1 import minimum_zone_line
 
+from _timing import best_of
 
-def _best(fn, repeats: int = 3) -> float:
-    best = float("inf")
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
+
 
 
 def run() -> list[dict]:
@@ -36,19 +31,19 @@ def run() -> list[dict]:
     shuffle = rng.permutation(n)
     xs, ys = x[shuffle], y[shuffle]
     rows = []
-    ref = _best(lambda: np.polyfit(x, y, 1))
+    ref = best_of(lambda: np.polyfit(x, y, 1))
     for label, (px, py) in (("in position order", (x, y)), ("shuffled", (xs, ys))):
-        t = _best(lambda: minimum_zone_line(px, py))
+        t = best_of(lambda: minimum_zone_line(px, py))
         rows.append(dict(name=f"minimum-zone line, 10^6 readings {label} (time / polyfit)",
                          value=t, unit="s", reference=f"np.polyfit {ref:.3f} s",
                          ratio=t / ref, aim="< 0.5 s"))
     machine = seed004_machine(5)
     for scope, tests in (("global", 11), ("local", 55)):
-        t = _best(lambda: compare_methods(machine, scope))
+        t = best_of(lambda: compare_methods(machine, scope))
         points = tests * 400  # about as many commanded positions as the tests use
         gx = rng.uniform(-0.4, 0.4, points)
         gy = rng.uniform(-0.4, 0.4, points)
-        r = _best(lambda: machine.deviation(gx, gy))
+        r = best_of(lambda: machine.deviation(gx, gy))
         rows.append(dict(name=f"method comparison, Machine 5, {scope} ({tests} tests) "
                               "(time / model)", value=t, unit="s",
                          reference=f"model on {points} points {r * 1e3:.2f} ms", ratio=t / r,

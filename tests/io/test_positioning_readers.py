@@ -133,7 +133,7 @@ def test_ecmc_mismatch_and_defects_are_reported():
         parse_ecmc("UNIT=mm\nREF_DATA_FWD[1,1]=1\n")
     with pytest.raises(DataFormatError, match="position 4, which has no TGT_DATA"):
         parse_ecmc(ECMC + "REF_DATA_FWD[4,1]=1\n")
-    with pytest.raises(DataFormatError, match=r"f:11: REF_DATA_FWD\[2,1\] = 'x'"):
+    with pytest.raises(DataFormatError, match=r"f:11: REF_DATA_FWD\[2,1\] 'x' is not a number"):
         parse_ecmc(ECMC.replace("REF_DATA_FWD[2,1]=25.02160", "REF_DATA_FWD[2,1]=x"), source="f")
 
 

@@ -13,6 +13,7 @@ import math
 import shlex
 
 from axiscal import units
+from axiscal._parse import finite_number
 from axiscal.errors import AxiscalError, DataFormatError
 
 __all__ = ["parse_tidy", "number", "length_factor"]
@@ -64,13 +65,7 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
 
 def number(text: str, column: str, source: str, lineno: int) -> float:
     """A finite number, or a DataFormatError naming the column and the line."""
-    try:
-        v = float(text)
-    except ValueError:
-        raise DataFormatError(f"{column} {text!r} is not a number", source, lineno) from None
-    if not math.isfinite(v):
-        raise DataFormatError(f"{column} {text!r} is not a finite number", source, lineno)
-    return v
+    return finite_number(text, column, source, lineno)
 
 
 def length_factor(unit: str, key: str, source: str) -> float:

@@ -26,6 +26,7 @@ import math
 import shlex
 
 from axiscal import units
+from axiscal._parse import finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 
@@ -126,19 +127,19 @@ def parse_positioning_csv(
         row = next(_csv.reader([line]))
         if len(row) < len(columns):
             raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}", source, lineno)
-        target = _number(row[idx["target"]], "target", source, lineno)
+        target = finite_number(row[idx["target"]], "target", source, lineno)
         try:
             direction = _direction(row[idx["direction"]])
         except InputError as exc:
             raise DataFormatError(str(exc), source, lineno) from None
-        run_f = _number(row[idx["run"]], "run", source, lineno)
+        run_f = finite_number(row[idx["run"]], "run", source, lineno)
         if run_f != int(run_f) or run_f < 1:
             raise DataFormatError(f"run {row[idx['run']].strip()!r} is not a whole number >= 1",
                                   source, lineno)
         raw = row[idx[value_col]].strip()
         if raw == "" or raw.lower() in {"nan", "na", "missing"}:
             continue  # a missing reading: counted by the dataset as NaN
-        value = _number(raw, value_col, source, lineno)
+        value = finite_number(raw, value_col, source, lineno)
         dev = (value - target) * to_dev if to_dev is not None else value
         records.append((target, direction, int(run_f), dev))
     if not records:
@@ -181,14 +182,6 @@ def _parse_comment(text: str, source: str, lineno: int) -> dict[str, str]:
     return out
 
 
-def _number(text: str, column: str, source: str, lineno: int) -> float:
-    try:
-        v = float(text.strip())
-    except ValueError:
-        raise DataFormatError(f"{column} {text.strip()!r} is not a number", source, lineno) from None
-    if not math.isfinite(v):
-        raise DataFormatError(f"{column} {text.strip()!r} is not a finite number", source, lineno)
-    return v
 
 
 def _direction(text: str) -> str:

@@ -26,6 +26,7 @@ import math
 import re
 
 from axiscal import units
+from axiscal._parse import finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
 
@@ -82,7 +83,7 @@ def parse_ecmc(
             scalars[key.upper()] = value
             continue
         name, i, j = m.group(1), int(m.group(2)), m.group(3)
-        number = _number(value, key, source, lineno)
+        number = finite_number(value, key, source, lineno)
         if name == "TGT_DATA":
             if j is not None:
                 raise DataFormatError(f"{key} takes one index", source, lineno)
@@ -148,14 +149,6 @@ def format_ecmc(ds: PositioningDataset) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _number(text: str, key: str, source: str, lineno: int) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise DataFormatError(f"{key} = {text!r} is not a number", source, lineno) from None
-    if not math.isfinite(v):
-        raise DataFormatError(f"{key} = {text!r} is not a finite number", source, lineno)
-    return v
 
 
 def _check_declared(scalars: dict[str, str], key: str, found: int, source: str) -> None:

@@ -48,7 +48,7 @@ from axiscal.machines.linear import LinearAxis
 from axiscal.machines.rotary import TWO_PI, ErrorMotion, RotaryAxis
 from axiscal.units import ARCSEC, DEG, MM, UM
 
-__all__ = ["axis_from_config", "linear_axis_from_config", "rotary_axis_from_config", "load_toml"]
+__all__ = ["refuse_unknown_keys", "axis_from_config", "linear_axis_from_config", "rotary_axis_from_config", "load_toml"]
 
 _LINEAR_KEYS = {"name", "kind", "travel_mm", "scale_error_ppm", "bend_um", "backlash_um",
                 "repeatability_um", "thermal_ppm_per_hour", "periodic", "irregular"}
@@ -90,7 +90,7 @@ def linear_axis_from_config(t: dict[str, Any]) -> LinearAxis:
     >>> round(float(ax.systematic_deviation(1.0, +1)) / UM, 6)
     10.0
     """
-    _refuse_unknown("[axis]", t, _LINEAR_KEYS)
+    refuse_unknown_keys("[axis]", t, _LINEAR_KEYS)
     lo, hi = _pair(t.get("travel_mm", [0.0, 1000.0]), "travel_mm")
     length = (hi - lo) * MM
     poly = [0.0, _num(t, "scale_error_ppm", 0.0) * 1e-6]
@@ -102,13 +102,13 @@ def linear_axis_from_config(t: dict[str, Any]) -> LinearAxis:
         poly = [poly[0] - k * a * b, poly[1] + k * (a + b), -k]
     harmonics = []
     for i, h in enumerate(_list(t, "periodic")):
-        _refuse_unknown(f"[axis] periodic[{i}]", h, {"amplitude_um", "period_mm", "phase_deg"})
+        refuse_unknown_keys(f"[axis] periodic[{i}]", h, {"amplitude_um", "period_mm", "phase_deg"})
         harmonics.append(Harmonic(_num(h, "amplitude_um", None) * UM, _num(h, "period_mm", None) * MM,
                                   _num(h, "phase_deg", 0.0) * DEG))
     error = HarmonicSeries(tuple(harmonics), tuple(poly))
     irr = t.get("irregular")
     if irr:
-        _refuse_unknown("[axis] irregular", irr, {"rms_um", "seed"})
+        refuse_unknown_keys("[axis] irregular", irr, {"rms_um", "seed"})
         error = error + random_profile(_num(irr, "rms_um", None) * UM, length, range(3, 60),
                                        np.random.default_rng(int(irr.get("seed", 0))))
     try:
@@ -135,11 +135,11 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
     >>> round(float(ax.systematic_error(math.pi / 2, 1)) / ARCSEC, 6)
     3.0
     """
-    _refuse_unknown("[axis]", t, _ROTARY_KEYS)
+    refuse_unknown_keys("[axis]", t, _ROTARY_KEYS)
     positioning = _orders(t.get("harmonics", []), "arcsec", ARCSEC, "[axis] harmonics")
     irr = t.get("irregular")
     if irr:
-        _refuse_unknown("[axis] irregular", irr, {"rms_arcsec", "seed", "orders"})
+        refuse_unknown_keys("[axis] irregular", irr, {"rms_arcsec", "seed", "orders"})
         lo, hi = _pair(irr.get("orders", [5, 40]), "irregular.orders")
         positioning = positioning + random_profile(
             _num(irr, "rms_arcsec", None) * ARCSEC, TWO_PI, range(int(lo), int(hi) + 1),
@@ -150,7 +150,7 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
         travel = (lo * DEG, hi * DEG)
     motions = {}
     em = t.get("error_motions", {}) or {}
-    _refuse_unknown("[axis.error_motions]", em, set(_MOTIONS))
+    refuse_unknown_keys("[axis.error_motions]", em, set(_MOTIONS))
     for name, (unit, k) in _MOTIONS.items():
         if name in em:
             motions[name] = _error_motion(em[name], unit, k, f"[axis.error_motions.{name}]")
@@ -171,7 +171,7 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
 
 
 def _error_motion(t: dict[str, Any], unit: str, k: float, where: str) -> ErrorMotion:
-    _refuse_unknown(where, t, {f"offset_{unit}", f"asynchronous_{unit}", "harmonics"})
+    refuse_unknown_keys(where, t, {f"offset_{unit}", f"asynchronous_{unit}", "harmonics"})
     return ErrorMotion(
         synchronous=_orders(t.get("harmonics", []), unit, k, f"{where} harmonics"),
         asynchronous_sigma=_num(t, f"asynchronous_{unit}", 0.0) * k,
@@ -186,7 +186,7 @@ def _orders(items, unit: str, k: float, where: str) -> HarmonicSeries:
     for i, h in enumerate(items):
         if not isinstance(h, dict):
             raise ConfigError(f"{where}[{i}] must be a table")
-        _refuse_unknown(f"{where}[{i}]", h, {"order", f"amplitude_{unit}", "phase_deg"})
+        refuse_unknown_keys(f"{where}[{i}]", h, {"order", f"amplitude_{unit}", "phase_deg"})
         order = h.get("order")
         if not isinstance(order, int) or order < 1:
             raise ConfigError(f"{where}[{i}] order = {order!r} must be a whole number >= 1 per turn")
@@ -195,7 +195,8 @@ def _orders(items, unit: str, k: float, where: str) -> HarmonicSeries:
     return HarmonicSeries(tuple(out)) if out else ZERO
 
 
-def _refuse_unknown(where: str, t: Any, allowed: set[str]) -> None:
+def refuse_unknown_keys(where: str, t: Any, allowed: set[str]) -> None:
+    """Raise :class:`ConfigError` if ``t`` is not a table or has keys outside ``allowed``."""
     if not isinstance(t, dict):
         raise ConfigError(f"{where} must be a table, got {t!r}")
     unknown = sorted(set(t) - allowed)

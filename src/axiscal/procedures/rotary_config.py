@@ -87,6 +87,7 @@ from axiscal.datasets import AxisKind, Metadata
 from axiscal.errors import ConfigError, InputError
 from axiscal.instruments.laser import SimulatedAngularInterferometer
 from axiscal.instruments.rotary_calibrator import SimulatedRotaryCalibrator
+from axiscal.machines.config import refuse_unknown_keys
 from axiscal.machines.error_functions import Harmonic, HarmonicSeries
 from axiscal.machines.rotary import RotaryAxis
 from axiscal.procedures.positioning import TestPlan
@@ -152,7 +153,7 @@ def rotary_config_from_dict(config: dict[str, Any]) -> RotaryCalibrationConfig:
 
     if not isinstance(config, dict):
         raise ConfigError("the configuration must be a TOML table")
-    _refuse("top level", config, _TABLES)
+    refuse_unknown_keys("top level", config, _TABLES)
     seed = _int(config, "seed", 1, "top level")
     axis_t = dict(config.get("axis", {}) or {})
     axis_t.setdefault("kind", "rotary")
@@ -163,7 +164,7 @@ def rotary_config_from_dict(config: dict[str, Any]) -> RotaryCalibrationConfig:
     speed = _num(test.pop("speed_deg_s", 10.0), "[test] speed_deg_s", positive=True)
     plan = plan_from_config(test, AxisKind.ROTARY, axis.name)
     meta_t = config.get("meta", {}) or {}
-    _refuse("[meta]", meta_t, {"machine", "operator", "date", "instrument", "notes"})
+    refuse_unknown_keys("[meta]", meta_t, {"machine", "operator", "date", "instrument", "notes"})
     meta = Metadata(axis=axis.name, instrument="angular interferometer + rotary calibrator (simulated)",
                     **{k: str(v) for k, v in meta_t.items()})
     offaxis = None
@@ -251,7 +252,7 @@ def _build(where: str, cls, t: dict[str, Any], table: dict[str, tuple[str, float
 
 
 def _convert(where: str, t: Any, table: dict[str, tuple[str, float]], extra: set[str]) -> dict:
-    _refuse(where, t, set(table) | extra)
+    refuse_unknown_keys(where, t, set(table) | extra)
     return {name: _num(t[key], f"{where} {key}") * k for key, (name, k) in table.items() if key in t}
 
 
@@ -263,14 +264,6 @@ def _make(where: str, fn, kw: dict):
     except (InputError, TypeError, ValueError) as exc:
         raise ConfigError(f"{where}: {exc}") from None
 
-
-def _refuse(where: str, t: Any, allowed: set[str]) -> None:
-    if not isinstance(t, dict):
-        raise ConfigError(f"{where} must be a table, got {t!r}")
-    unknown = sorted(set(t) - allowed)
-    if unknown:
-        raise ConfigError(f"{where}: unknown key(s) {', '.join(unknown)}; allowed: "
-                          f"{', '.join(sorted(allowed))}")
 
 
 def _num(v: Any, where: str, positive: bool = False) -> float:

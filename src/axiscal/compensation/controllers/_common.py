@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal import units
+from axiscal._parse import finite_number
 from axiscal.errors import ControllerLimitError, DataFormatError
 
 __all__ = ["ControllerFile", "check_points", "check_spacing", "check_travel", "check_modulo",
@@ -103,13 +104,7 @@ def correction_factor(table, to_unit: str) -> float:
 
 def parse_number(token: str, source: str, line: int) -> float:
     """A float from a file, or a :class:`DataFormatError` naming the line."""
-    try:
-        v = float(token)
-    except ValueError:
-        raise DataFormatError(f"{token!r} is not a number", source, line) from None
-    if not math.isfinite(v):
-        raise DataFormatError(f"{token!r} is not a finite number", source, line)
-    return v
+    return finite_number(token, "value", source, line)
 
 
 def decimals(position_unit: str) -> int:
