@@ -23,7 +23,7 @@ def demo(
     out: Path = typer.Option(Path("axiscal-demo"), "--out", help="Folder for plots, reports and data (created)."),
     seed: int = typer.Option(1, "--seed", help="Seed of the simulation's random numbers."),
 ) -> None:
-    """Run the demonstration: simulated linear and rotary positioning tests, evaluated and reported."""
+    """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported."""
     import tomllib
     from importlib import resources
 
