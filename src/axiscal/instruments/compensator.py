@@ -1,0 +1,506 @@
+"""The environmental compensator of a laser scale (RCU10-like, seed 002).
+
+It sits between the laser head and the machine controller and does three things (seed 002,
+"Compensated laser scale system"):
+
+1. **Compensation by exact pulse multiplication and addition.** The laser's uncompensated count
+   ``c`` (one count per ``λ_vac/k`` of optical path) becomes the output count
+
+   .. math::
+       o = \\left\\lfloor \\frac{c\\,P}{2^{B}} \\right\\rfloor,\\qquad
+       \\frac{P}{2^{B}} \\approx R = \\frac{\\lambda_{vac}/k}{n\\,[1 + \\alpha(t_m - 20)]\\;q},
+
+   with n the refractive index of the air (:mod:`axiscal.physics.air`), α and t_m the work-piece
+   expansion coefficient and temperature (:mod:`axiscal.physics.thermal`, so that the controller
+   tracks the part as it would be at 20 °C) and q the output count size. P is an integer (the
+   factor held to ``B = 32`` fractional bits); every output count is computed from the *total*
+   laser count with integer arithmetic, so nothing is rounded twice and no error accumulates
+   however long the move. When the sensors give a new factor, the output jumps to
+   ``floor(c P_new / 2^B)``: the difference is the "pulse addition" of the seed. The streaming
+   :class:`PulseMultiplier` does the same incrementally with a remainder accumulator
+   (Bresenham) and gives identical counts.
+
+2. **Synthesis of low-bandwidth sine/cosine outputs** with a period of 20, 25, 40, 50 or 100 µm
+   and N output counts per period (seed: 256 counts of 78.125 nm for 20 µm). The controller-side
+   count is ``m``; the outputs are ``sin(2π m/N)`` and ``cos(2π m/N)`` (a DAC staircase of N
+   steps per period).
+
+3. **Rephasing of the reference mark** (:func:`rephase`).
+
+The pulse model of the reference mark
+-------------------------------------
+Seed 002 places B 256 output counts of real motion beyond the switch A, Z 64 counts beyond B
+(320 beyond A), says the reference mark is active at Z, and then says the pulse ends at C
+"64 output counts beyond point B", i.e. at Z itself, which contradicts "active at Z". The
+physically consistent model used here: the reference pulse is **half a period wide and centred
+on Z**. With N counts per period it starts at B (N real counts beyond A, phase -45°), Z is N/4
+further (phase 45°, where sine = cosine and both are positive, as a conventional scale's mark is
+phased) and it ends at C, another N/4 beyond Z (phase 135°). Over the pulse sin + cos > 0. For
+N = 256: A = 0, B = 256, **Z = 320**, C = 384 output counts beyond the switch. The seed's
+"64 output counts beyond point B" for C is read as "beyond point Z".
+
+Examples
+--------
+>>> out = SineOutput(period=20e-6, counts_per_period=256)
+>>> out.count_size * 1e9
+78.125
+>>> mult = PulseMultiplier(factor_to_integer(8.1))
+>>> mult.feed([1, 1, 1, 1]).tolist()   # 8.1 output counts per input count, spread exactly
+[8, 8, 8, 8]
+>>> mult.output
+32
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from axiscal.errors import InputError
+from axiscal.instruments.laser_scale import LaserHead
+from axiscal.physics.air import refractive_index
+from axiscal.physics.thermal import REFERENCE_TEMPERATURE
+
+__all__ = [
+    "OUTPUT_PERIODS",
+    "Compensator",
+    "FACTOR_BITS",
+    "SineOutput",
+    "factor_to_integer",
+    "multiply",
+    "PulseMultiplier",
+    "RephaseResult",
+    "rephase",
+    "synthesise",
+    "reference_window",
+    "reference_virtual",
+]
+
+#: Periods of the synthesised sine/cosine outputs the compensator offers (seed 002), metres.
+OUTPUT_PERIODS = (20e-6, 25e-6, 40e-6, 50e-6, 100e-6)
+
+#: Fractional bits of the multiplication factor (P / 2**FACTOR_BITS).
+FACTOR_BITS = 32
+
+_INT64_MAX = np.iinfo(np.int64).max
+
+
+@dataclass(frozen=True)
+class SineOutput:
+    """The compensator's sine/cosine output format.
+
+    Attributes
+    ----------
+    period : float, metres
+        One of :data:`OUTPUT_PERIODS` (20, 25, 40, 50 or 100 µm).
+    counts_per_period : int
+        Output counts N per signal period; a multiple of 8 so that B, Z and C fall on whole
+        counts (seed: 256).
+    """
+
+    period: float = 20e-6
+    counts_per_period: int = 256
+
+    def __post_init__(self) -> None:
+        if not any(abs(self.period - p) < 1e-12 for p in OUTPUT_PERIODS):
+            allowed = ", ".join(f"{p * 1e6:g}" for p in OUTPUT_PERIODS)
+            raise InputError(f"sine/cosine output period {self.period * 1e6:g} µm is not one the "
+                             f"compensator offers ({allowed} µm)")
+        n = self.counts_per_period
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 8 or n % 8:
+            raise InputError(f"counts_per_period = {n!r} must be a whole multiple of 8 "
+                             "(B, Z and C fall on whole counts only then)")
+        object.__setattr__(self, "counts_per_period", int(n))
+
+    @property
+    def count_size(self) -> float:
+        """Size of one output count, metres (period / N)."""
+        return self.period / self.counts_per_period
+
+    @property
+    def stage2_counts(self) -> int:
+        """Real motion from the switch (A) to the start of the reference pulse (B): N counts."""
+        return self.counts_per_period
+
+    @property
+    def switch_to_home(self) -> int:
+        """Real motion from the switch (A) to the home position (Z): 5N/4 (320 for N = 256)."""
+        return self.counts_per_period * 5 // 4
+
+    @property
+    def pulse_counts(self) -> int:
+        """Width of the reference pulse from B to C: N/2 counts, centred on Z."""
+        return self.counts_per_period // 2
+
+    def signal_frequency(self, speed) -> float:
+        """Frequency of the sine/cosine outputs at a speed (m/s), Hz."""
+        return abs(float(speed)) / self.period
+
+
+@dataclass(frozen=True)
+class Compensator:
+    """Settings of the compensator and the multiplication factor it derives from its sensors.
+
+    Attributes
+    ----------
+    laser : LaserHead
+        The head whose counts arrive (count size λ_vac / k; 0.633 µm in seed 002).
+    output : SineOutput
+        Sine/cosine output format (period and counts per period).
+    equation : {"ciddor", "birch-downs", "edlen"}
+        Refractive index equation (:func:`axiscal.physics.air.refractive_index`).
+    expansion_coefficient : float, 1/K
+        α of the work-piece whose expansion the controller should track; 0 for none.
+    update_interval : float, seconds
+        The sensors are read and the factor renewed every this often (sample and hold).
+    co2 : float, µmol/mol
+        CO2 content assumed (the compensator has no CO2 sensor).
+    bits : int
+        Fractional bits of the factor.
+    """
+
+    laser: LaserHead = field(default_factory=LaserHead)
+    output: SineOutput = field(default_factory=SineOutput)
+    equation: str = "ciddor"
+    expansion_coefficient: float = 0.0
+    update_interval: float = 1.0
+    co2: float = 450.0
+    bits: int = FACTOR_BITS
+
+    def __post_init__(self) -> None:
+        if not np.isfinite(self.expansion_coefficient) or abs(self.expansion_coefficient) > 1e-4:
+            raise InputError(f"expansion_coefficient = {self.expansion_coefficient!r} 1/K must "
+                             "lie within ±1e-4")
+        if not np.isfinite(self.update_interval) or self.update_interval <= 0:
+            raise InputError(f"update_interval = {self.update_interval!r} s must be positive")
+
+    @property
+    def input_count_size(self) -> float:
+        """Uncompensated size of one laser count, metres."""
+        return self.laser.count_size
+
+    def ratio(self, temperature, pressure, humidity, material_temperature=REFERENCE_TEMPERATURE):
+        """Output counts per laser count for sensor readings (float or array).
+
+        :math:`R = (\\lambda_{vac}/k) / (n\\,[1 + \\alpha (t_m - 20)]\\, q)`.
+
+        Parameters
+        ----------
+        temperature : array_like, degrees Celsius (air)
+        pressure : array_like, Pa
+        humidity : array_like, %RH
+        material_temperature : array_like, degrees Celsius (work-piece)
+        """
+        n = refractive_index(temperature, pressure, humidity, co2=self.co2,
+                             vacuum_wavelength=self.laser.vacuum_wavelength, equation=self.equation)
+        growth = 1.0 + self.expansion_coefficient * (
+            np.asarray(material_temperature, dtype=float) - REFERENCE_TEMPERATURE)
+        r = self.input_count_size / (np.asarray(n) * growth * self.output.count_size)
+        return float(r) if np.ndim(r) == 0 else r
+
+    def factor(self, temperature, pressure, humidity, material_temperature=REFERENCE_TEMPERATURE):
+        """The integer factor P (output counts per laser count times 2**bits)."""
+        r = np.asarray(self.ratio(temperature, pressure, humidity, material_temperature))
+        p = np.rint(r * float(1 << self.bits)).astype(np.int64)
+        return int(p) if p.ndim == 0 else p
+
+    def correction_ppm(self, temperature, pressure, humidity,
+                       material_temperature=REFERENCE_TEMPERATURE) -> float:
+        """The compensation the factor applies to the vacuum-wavelength count, ppm:
+        :math:`(1/(n[1 + \\alpha\\Delta t]) - 1) 10^6`."""
+        r = self.ratio(temperature, pressure, humidity, material_temperature)
+        return (np.asarray(r) * self.output.count_size / self.input_count_size - 1.0) * 1e6
+
+    def factor_schedule(self, times, temperature, pressure, humidity,
+                        material_temperature=REFERENCE_TEMPERATURE) -> np.ndarray:
+        """Factor in force at each sample: sensors read every ``update_interval`` and held.
+
+        Parameters
+        ----------
+        times : array_like, seconds (non-decreasing)
+        temperature, pressure, humidity, material_temperature : array_like
+            What the sensors read at each sample (broadcast to ``times``).
+
+        Returns
+        -------
+        ndarray of int64, one P per sample.
+        """
+        t = np.asarray(times, dtype=float)
+        if t.ndim != 1 or t.size == 0 or np.any(np.diff(t) < 0):
+            raise InputError("sample times must be a non-empty, non-decreasing 1-D array")
+        block = np.floor((t - t[0]) / self.update_interval).astype(np.int64)
+        first = np.flatnonzero(np.r_[True, np.diff(block) > 0])  # sample of each sensor update
+        readings = [np.broadcast_to(np.asarray(a, dtype=float), t.shape)[first]
+                    for a in (temperature, pressure, humidity, material_temperature)]
+        p = np.atleast_1d(self.factor(*readings))
+        return p[np.cumsum(np.r_[True, np.diff(block) > 0]) - 1]
+
+
+def factor_to_integer(ratio: float, bits: int = FACTOR_BITS) -> int:
+    """The multiplication factor as the integer P of P / 2**bits (rounded to nearest).
+
+    Parameters
+    ----------
+    ratio : float
+        Output counts per laser count (positive).
+    bits : int
+        Fractional bits.
+
+    Examples
+    --------
+    >>> factor_to_integer(0.5, bits=4)
+    8
+    """
+    r = float(ratio)
+    if not np.isfinite(r) or r <= 0:
+        raise InputError(f"multiplication factor {ratio!r} must be a positive number")
+    return int(round(r * (1 << bits)))
+
+
+def multiply(counts, factors, bits: int = FACTOR_BITS) -> np.ndarray:
+    """Output counts from laser counts: ``floor(c * P / 2**bits)``, exactly.
+
+    Parameters
+    ----------
+    counts : array_like of int
+        Laser counts since power-up, one per sample.
+    factors : int or array_like of int
+        The integer factor P in force at each sample (broadcast).
+    bits : int
+
+    Returns
+    -------
+    ndarray of int64
+        Output counts.
+
+    Raises
+    ------
+    InputError
+        If a product would not fit in 64 bits (a move of more than about 160 m at 78 nm).
+
+    Notes
+    -----
+    ``(c * P) >> bits`` is the floor of the exact rational c P / 2^bits for either sign of c
+    (arithmetic shift), so each output count is exact and independent of every earlier one.
+    """
+    c = np.asarray(counts, dtype=np.int64)
+    p = np.asarray(factors, dtype=np.int64)
+    if c.size and p.size:
+        worst = int(np.max(np.abs(c))) * int(np.max(np.abs(p)))
+        if worst > _INT64_MAX:
+            raise InputError(f"laser count {int(np.max(np.abs(c)))} times factor "
+                             f"{int(np.max(p))} overflows 64 bits; the move is too long for "
+                             "this factor resolution")
+    return (c * p) >> bits
+
+
+@dataclass
+class PulseMultiplier:
+    """Streaming pulse multiplier with a remainder accumulator (Bresenham-like), exact.
+
+    Feed it laser count increments; it returns output count increments. The state is the integer
+    accumulator ``acc = c * P`` (kept in Python integers, so it never overflows) and the output
+    emitted so far; the output always equals ``floor(c * P / 2**bits)``. A new factor
+    (:meth:`set_factor`) re-scales the whole count: the pulses it adds or removes are returned.
+
+    Attributes
+    ----------
+    factor : int
+        P, output counts per laser count times 2**bits.
+    bits : int
+    count : int
+        Laser counts received (net).
+    output : int
+        Output counts emitted (net).
+    """
+
+    factor: int
+    bits: int = FACTOR_BITS
+    count: int = 0
+    output: int = 0
+    _acc: int = field(default=0, repr=False)
+
+    def feed(self, increments) -> np.ndarray:
+        """Process laser count increments (one per sample); return the output increments."""
+        inc = np.asarray(increments, dtype=np.int64)
+        c = self.count + np.cumsum(inc, dtype=np.int64)
+        out = multiply(c, self.factor, self.bits)
+        prev = np.concatenate(([self.output], out[:-1])) if out.size else out
+        if out.size:
+            self.count = int(c[-1])
+            self.output = int(out[-1])
+            self._acc = self.count * self.factor
+        return out - prev
+
+    def set_factor(self, factor: int) -> int:
+        """Change P; return the output counts added (+) or removed (-) to re-scale the position."""
+        self.factor = int(factor)
+        self._acc = self.count * self.factor
+        new = self._acc >> self.bits
+        added = new - self.output
+        self.output = new
+        return int(added)
+
+    @property
+    def remainder(self) -> Fraction:
+        """Fraction of an output count not yet emitted, in [0, 1)."""
+        return Fraction(self._acc - (self.output << self.bits), 1 << self.bits)
+
+
+@dataclass(frozen=True)
+class RephaseResult:
+    """What the rephasing did over one trajectory.
+
+    Attributes
+    ----------
+    m : ndarray of int64
+        Controller-side count per sample: the real output count plus the power-up phase and
+        the virtual movement.
+    reference : ndarray of bool
+        The reference mark output per sample.
+    index_a : int or None
+        Sample at which the compensator saw the switch (A); None if it never did.
+    count_a : int or None
+        Real output count at A.
+    virtual : int
+        Virtual movement v added in stage 2, 0 to N-1 counts.
+    m_b, m_z, m_c : int or None
+        Controller-side counts of B (pulse starts), Z (sine = cosine, pulse active) and C
+        (pulse ends).
+    direction : int
+        +1 or -1, the direction of homing.
+    counts_per_period : int
+    """
+
+    m: np.ndarray
+    reference: np.ndarray
+    index_a: int | None
+    count_a: int | None
+    virtual: int
+    m_b: int | None
+    m_z: int | None
+    m_c: int | None
+    direction: int
+    counts_per_period: int
+
+    @property
+    def rephased(self) -> bool:
+        """True if the trajectory reached B, where the stage-2 adjustment is complete."""
+        if self.m_b is None:
+            return False
+        return bool(np.any(self.direction * self.m >= self.direction * self.m_b))
+
+
+def rephase(output_counts, switch, counts_per_period: int = 256, direction: int = 1,
+            power_up_phase: int = 0) -> RephaseResult:
+    """Rephase the synthesised signals at the reference switch (seed 002, Figure 4).
+
+    Parameters
+    ----------
+    output_counts : array_like of int
+        Real output counts o per sample (the result of :func:`multiply`).
+    switch : array_like of bool
+        Reference switch state per sample as the compensator sees it.
+    counts_per_period : int
+        N (256 in the seed).
+    direction : {+1, -1}
+        Direction of the homing move in output counts.
+    power_up_phase : int
+        Phase of the synthesised outputs at power-up, in counts (0 to N-1): the controller
+        count is ``m = o + power_up_phase`` before the switch.
+
+    Returns
+    -------
+    RephaseResult
+
+    Notes
+    -----
+    Stage 1: ``m = o + φ``. At A (the first sample with the switch on) the compensator holds the
+    reference back and chooses the virtual movement
+
+    .. math::
+        v = \\left(\\tfrac{N}{8} - d\\,(m_A + \\tfrac{5N}{4}\\,d)\\right) \\bmod N \\quad (d = +1),
+
+    (generally the v in 0..N-1 that puts m_Z = m_A + d(5N/4 + v) on phase 45°, m_Z ≡ N/8 mod N).
+    Stage 2: over the next N counts of real motion it adds ``floor(v (u - u_A) / N)`` counts
+    (u = d·o), an exact integer spread, so the controller sees N + v counts (N to 2N - 1: the
+    seed's "256 to 512"). At B (u = u_A + N) the adjustment is complete and latched: from then
+    on ``m = o + φ + d v`` for ever (stage 3, the phase is preserved). The reference pulse is
+    active while the controller count lies in the half period from B to C centred on Z; it is
+    registered to position like a conventional scale's mark. The spread is a function of the
+    real position until it completes, so a reversal during stage 2 takes back what was added.
+    """
+    o = np.asarray(output_counts, dtype=np.int64)
+    sw = np.asarray(switch, dtype=bool)
+    if o.shape != sw.shape or o.ndim != 1:
+        raise InputError(f"output counts {o.shape} and switch states {sw.shape} must be 1-D "
+                         "arrays of the same length")
+    n = int(counts_per_period)
+    if n < 8 or n % 8:
+        raise InputError(f"counts_per_period = {n} must be a multiple of 8")
+    d = _direction(direction)
+    phi = int(power_up_phase) % n
+    m = o + phi
+    ref = np.zeros(o.shape, dtype=bool)
+    if not sw.any():
+        return RephaseResult(m, ref, None, None, 0, None, None, None, d, n)
+    ka = int(np.argmax(sw))
+    o_a = int(o[ka])
+    m_a = o_a + phi
+    v = reference_virtual(m_a, n, d)
+    u = d * o[ka:]
+    u_a = d * o_a
+    progress = np.clip(u - u_a, 0, n)
+    done = np.maximum.accumulate(u) >= u_a + n
+    extra = np.where(done, v, (v * progress) // n)
+    m[ka:] = o[ka:] + phi + d * extra
+    m_b = m_a + d * (n + v)
+    m_z = m_b + d * (n // 4)
+    m_c = m_b + d * (n // 2)
+    lo, hi = reference_window(m_b, n, d)
+    seg = m[ka:]
+    ref[ka:] = done & (seg >= lo) & (seg < hi)
+    return RephaseResult(m, ref, ka, o_a, v, m_b, m_z, m_c, d, n)
+
+
+def reference_virtual(m_a: int, counts_per_period: int, direction: int = 1) -> int:
+    """Virtual movement v (0..N-1) that puts Z on phase 45° for a switch seen at count m_A."""
+    n = int(counts_per_period)
+    d = _direction(direction)
+    # m_Z = m_A + d (5N/4 + v) ≡ N/8 (mod N)  ->  d v ≡ N/8 - m_A - d 5N/4
+    return int((d * (n // 8 - m_a) - (5 * n) // 4) % n)
+
+
+def reference_window(m_b: int, counts_per_period: int, direction: int = 1) -> tuple[int, int]:
+    """Controller counts [lo, hi) where the reference pulse is active (B to C, centred on Z)."""
+    n = int(counts_per_period)
+    if _direction(direction) > 0:
+        return m_b, m_b + n // 2
+    return m_b - n // 2 + 1, m_b + 1
+
+
+def synthesise(m, counts_per_period: int = 256, amplitude: float = 1.0):
+    """The sine and cosine outputs for controller counts m: ``A sin(2π m/N)``, ``A cos(2π m/N)``.
+
+    A DAC staircase of N steps per period; sine = cosine > 0 at m ≡ N/8 (mod N).
+
+    Examples
+    --------
+    >>> s, c = synthesise([32], 256)
+    >>> bool(abs(s[0] - c[0]) < 1e-12 and s[0] > 0)
+    True
+    """
+    n = int(counts_per_period)
+    k = np.mod(np.asarray(m, dtype=np.int64), n)
+    table = 2.0 * np.pi * np.arange(n) / n
+    return amplitude * np.sin(table)[k], amplitude * np.cos(table)[k]
+
+
+def _direction(direction) -> int:
+    if direction in (1, "+", "+1", "up", "positive"):
+        return 1
+    if direction in (-1, "-", "-1", "down", "negative"):
+        return -1
+    raise InputError(f"direction {direction!r} must be +1 or -1")
