@@ -65,9 +65,9 @@ def _root(
 
 def _register_all() -> None:
     # One line per command module; each module imports only typer at import time.
-    from axiscal.cli import air, iso230_2
+    from axiscal.cli import air, iso230_2, scale
 
-    for module in (iso230_2, air):
+    for module in (iso230_2, air, scale):
         module.register(app)
 
 

@@ -60,12 +60,14 @@ import numpy as np
 
 from axiscal.errors import InputError
 from axiscal.instruments.laser_scale import LaserHead
-from axiscal.physics.air import refractive_index
+from axiscal.physics.air import refractive_index, saturation_vapour_pressure, water_vapour_pressure
 from axiscal.physics.thermal import REFERENCE_TEMPERATURE
 
 __all__ = [
     "OUTPUT_PERIODS",
     "Compensator",
+    "CompensationSummary",
+    "compensation_summary",
     "FACTOR_BITS",
     "SineOutput",
     "factor_to_integer",
@@ -236,6 +238,132 @@ class Compensator:
                     for a in (temperature, pressure, humidity, material_temperature)]
         p = np.atleast_1d(self.factor(*readings))
         return p[np.cumsum(np.r_[True, np.diff(block) > 0]) - 1]
+
+
+@dataclass(frozen=True)
+class CompensationSummary:
+    """What the compensator applies for given conditions, and what no compensation would cost.
+
+    Attributes
+    ----------
+    n : float
+        Refractive index of the air.
+    n_standard : float
+        Refractive index of standard workshop air (20 °C, 101325 Pa, 50 %RH).
+    growth : float
+        1 + α (t_m - 20) of the work-piece (1 without material compensation).
+    ratio : float
+        Output counts per laser count the compensator multiplies by (as applied, P / 2**bits).
+    factor : int
+        P.
+    correction_ppm : float
+        (1/(n growth) - 1) 10⁶: the compensation applied to the vacuum-wavelength count.
+    length : float, metres
+        The nominal length the errors are given for.
+    raw_error : float, metres
+        Error of the raw count read with the vacuum wavelength over ``length``: L (n g - 1).
+    weather_error : float, metres
+        Error if the scale were corrected once for standard air and never again:
+        L (n/n_std - 1) (sign: reading minus true).
+    material_error : float, metres
+        Work-piece expansion over ``length`` that the material compensation tracks: L (g - 1)
+        (a scale compensated for the air only reads the warm part this much too long).
+    count_size_in, count_size_out : float, metres
+        Laser count (vacuum) and output count.
+    """
+
+    n: float
+    n_standard: float
+    growth: float
+    ratio: float
+    factor: int
+    correction_ppm: float
+    length: float
+    raw_error: float
+    weather_error: float
+    material_error: float
+    count_size_in: float
+    count_size_out: float
+
+    def to_dict(self) -> dict:
+        """Plain-data form (the ``axiscal scale compensate --json`` object)."""
+        return {
+            "n": self.n, "n_standard": self.n_standard, "growth": self.growth,
+            "ratio": self.ratio, "factor": self.factor, "correction_ppm": self.correction_ppm,
+            "length_mm": self.length * 1e3, "raw_error_um": self.raw_error * 1e6,
+            "weather_error_um": self.weather_error * 1e6,
+            "material_error_um": self.material_error * 1e6,
+            "count_size_in_nm": self.count_size_in * 1e9,
+            "count_size_out_nm": self.count_size_out * 1e9,
+        }
+
+    def __str__(self) -> str:
+        L = self.length * 1e3
+        return "\n".join([
+            f"compensation factor: {self.correction_ppm:+.3f} ppm "
+            f"(n = {self.n:.9f}, work-piece growth {(self.growth - 1) * 1e6:+.3f} ppm)",
+            f"pulse multiplication: {self.ratio:.9f} output counts of "
+            f"{self.count_size_out * 1e9:.3f} nm per laser count of "
+            f"{self.count_size_in * 1e9:.3f} nm (P = {self.factor} / 2^{FACTOR_BITS})",
+            f"over {L:g} mm of the part (at 20 °C) a scale without this compensation reads:",
+            f"  {self.raw_error * 1e6:+10.2f} µm  raw count read with the vacuum wavelength",
+            f"  {self.weather_error * 1e6:+10.2f} µm  corrected once for 20 °C, 101.325 kPa, "
+            "50 %RH and never again (the weather)",
+            f"  {self.material_error * 1e6:+10.2f} µm  air compensated, work-piece expansion not "
+            "tracked",
+        ])
+
+
+def compensation_summary(compensator: "Compensator", temperature: float = 20.0,
+                         pressure: float = 101325.0, humidity: float | None = None, *,
+                         dew_point: float | None = None,
+                         material_temperature: float = REFERENCE_TEMPERATURE,
+                         length: float = 1.0) -> CompensationSummary:
+    """The factor a compensator applies for given conditions and the errors without it.
+
+    Parameters
+    ----------
+    compensator : Compensator
+    temperature : float, °C
+    pressure : float, Pa
+    humidity : float, %RH, optional (default 50 unless a dew point is given)
+    dew_point : float, °C, optional
+    material_temperature : float, °C
+        Work-piece temperature (mean of its sensors).
+    length : float, metres
+        Length over which to state the errors.
+
+    Examples
+    --------
+    >>> s = compensation_summary(Compensator(), 20.0, 101325.0, 50.0, length=1.0)
+    >>> round(s.correction_ppm, 2), round(s.raw_error * 1e6, 1)
+    (-271.3, 271.4)
+    """
+    if humidity is None and dew_point is None:
+        humidity = 50.0
+    if dew_point is not None:
+        if humidity is not None:
+            raise InputError("give the humidity as a relative humidity or a dew point, not both")
+        humidity = 100.0 * water_vapour_pressure(temperature, dew_point=dew_point) / \
+            saturation_vapour_pressure(temperature)
+    if not np.isfinite(length) or length <= 0:
+        raise InputError(f"length = {length!r} m must be positive")
+    comp = compensator
+    n = float(refractive_index(temperature, pressure, humidity, co2=comp.co2,
+                               vacuum_wavelength=comp.laser.vacuum_wavelength,
+                               equation=comp.equation))
+    n_std = float(refractive_index(20.0, 101325.0, 50.0, co2=comp.co2,
+                                   vacuum_wavelength=comp.laser.vacuum_wavelength,
+                                   equation=comp.equation))
+    g = 1.0 + comp.expansion_coefficient * (float(material_temperature) - REFERENCE_TEMPERATURE)
+    p = int(comp.factor(temperature, pressure, humidity, material_temperature))
+    ratio = p / float(1 << comp.bits)
+    return CompensationSummary(
+        n=n, n_standard=n_std, growth=g, ratio=ratio, factor=p,
+        correction_ppm=(1.0 / (n * g) - 1.0) * 1e6, length=float(length),
+        raw_error=length * (n * g - 1.0), weather_error=length * (n / n_std - 1.0),
+        material_error=length * (g - 1.0), count_size_in=comp.input_count_size,
+        count_size_out=comp.output.count_size)
 
 
 def factor_to_integer(ratio: float, bits: int = FACTOR_BITS) -> int:

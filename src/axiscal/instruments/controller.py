@@ -49,7 +49,7 @@ class ControllerAlarm:
     index : int
         Sample at which it was raised (-1 if not tied to a sample).
     value : float
-        The offending value (Hz, or counts of skew).
+        The offending value (the highest frequency seen, Hz, or the skew, counts).
     limit : float
     """
 
@@ -174,18 +174,20 @@ class Controller:
         return (path - path[start]) / self.counts_per_period / span
 
     def frequency_alarms(self, counts, times) -> list[ControllerAlarm]:
-        """Alarm at the first sample whose input frequency exceeds the limit (empty if none)."""
+        """An alarm if the input frequency exceeds the limit anywhere (empty list if not): raised
+        at the first sample over the limit, reporting the highest frequency seen."""
         f = self.input_frequency(counts, times)
         over = f > self.max_input_frequency
         if not over.any():
             return []
         k = int(np.argmax(over))
+        peak = float(f.max())
         return [ControllerAlarm(
             "input frequency",
-            f"sine/cosine input at {f[k] / 1e3:.1f} kHz exceeds the controller's "
-            f"{self.max_input_frequency / 1e3:g} kHz at t = {float(np.asarray(times)[k]):.6f} s; "
-            "counts after this point are not trusted",
-            k, float(f[k]), float(self.max_input_frequency))]
+            f"sine/cosine input at up to {peak / 1e3:.1f} kHz exceeds the controller's "
+            f"{self.max_input_frequency / 1e3:g} kHz, first at t = "
+            f"{float(np.asarray(times)[k]):.6f} s; counts from there on are not trusted",
+            k, peak, float(self.max_input_frequency))]
 
     def max_speed(self) -> float:
         """Fastest speed the inputs accept, m/s: max frequency times the period."""

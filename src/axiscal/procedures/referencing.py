@@ -230,6 +230,48 @@ class ReferencingRun:
             raise InputError("the axis was not homed")
         return self.decoded - self.home_count
 
+    @property
+    def home_output_count(self) -> int:
+        """Real output count o at which the controller zeroed (o_A ± 5N/4)."""
+        k = self.event("Z").index
+        return int(self.home_count - (int(self.decoded[k]) - int(self.output_counts[k])))
+
+    def exact_compensated_counts(self, index=slice(None)) -> list:
+        """The compensated position as exact rationals, output counts from home:
+        ``c P / 2**B - o_Z`` per sample (:class:`fractions.Fraction`), the real number the pulse
+        multiplication rounds down."""
+        from fractions import Fraction
+
+        o_z = self.home_output_count
+        den = 1 << self.axis.compensator.bits
+        return [Fraction(int(c) * int(p), den) - o_z
+                for c, p in zip(self.laser_counts[index].tolist(), self.factor[index].tolist())]
+
+    def tracking(self) -> dict[str, float]:
+        """After homing, how the controller's position compares with the compensated position
+        (``max_count_error``, counts) and with the true position of the part referred to 20 °C
+        (``max_part_error_um``; both taken from the home sample, so it includes up to one laser
+        count of quantisation, the dead-path error and the lag of the sensors)."""
+        kz = self.event("Z").index
+        k = slice(kz, None)
+        q = self.axis.output.count_size
+        p = self.controller_position()[k].astype(float)
+        exact = (self.laser_counts[k].astype(float) * self.factor[k].astype(float)
+                 / float(1 << self.axis.compensator.bits) - self.home_output_count)
+        _, _, _, tmat = self.axis.air.at(self.time[k])
+        growth = 1.0 + self.axis.compensator.expansion_coefficient * (
+            np.asarray(tmat) - REFERENCE_TEMPERATURE)
+        part = (self.position[k] - self.position[kz]) / growth
+        raw = self.axis.laser.uncompensated_position(self.laser_counts[k] - self.laser_counts[kz])
+        return {
+            "max_count_error": float(np.max(np.abs(p - exact))),
+            "max_part_error_um": float(np.max(np.abs((p - p[0]) * q - part)) * 1e6),
+            "end_controller_mm": float(p[-1] * q * 1e3),
+            "end_true_mm": float((self.position[-1] - self.position[kz]) * 1e3),
+            "end_part_mm": float(part[-1] * 1e3),
+            "end_uncompensated_mm": float(raw[-1] * 1e3),
+        }
+
     def to_dict(self) -> dict[str, Any]:
         """Plain-data summary (the ``axiscal scale home --json`` object)."""
         out = self.axis.output

@@ -40,7 +40,8 @@ from axiscal.errors import InputError
 from axiscal.instruments.compensator import SineOutput, reference_virtual
 from axiscal.instruments.controller import Controller, SkewCheck
 
-__all__ = ["TwinAxis", "TwinHomingResult", "simulate_twin_homing", "required_skew_limit"]
+__all__ = ["TwinAxis", "TwinHomingResult", "simulate_twin_homing", "required_skew_limit",
+           "phase_for_virtual", "worst_case_runs"]
 
 
 @dataclass(frozen=True)
@@ -172,8 +173,8 @@ class TwinHomingResult:
         else:
             lines.append(f"  deskew: X2 moved {self.skew_check.deskew_move} counts; p1 - p2 = "
                          f"{self.skew_after} (offset parameter)")
-        lines.append(f"  skew limit this configuration needs: more than "
-                     f"{required_skew_limit(g) - 1} counts (set >= {required_skew_limit(g)})")
+        lines.append(f"  skew limit this configuration needs, switch scatter aside: at least "
+                     f"{required_skew_limit(g)} counts")
         return "\n".join(lines)
 
 
@@ -242,6 +243,27 @@ def simulate_twin_homing(gantry: TwinAxis, power_up_phase_1: int = 0, power_up_p
         phase=np.concatenate([np.full(np.size(s), p, dtype=np.int8)
                               for s, p in zip(steps1, phases)]),
         home_1=int(home_1), home_2=int(home_2), skew_check=check, skew_after=skew_after)
+
+
+def phase_for_virtual(switch: int, virtual: int, counts_per_period: int, direction: int = 1) -> int:
+    """The power-up phase (0..N-1) that makes a compensator whose switch trips at real count
+    ``switch`` rephase by ``virtual`` counts."""
+    n = int(counts_per_period)
+    for phi in range(n):
+        if reference_virtual(int(switch) + phi, n, direction) == int(virtual) % n:
+            return phi
+    raise InputError(f"no power-up phase gives a virtual movement of {virtual}")  # pragma: no cover
+
+
+def worst_case_runs(gantry: TwinAxis) -> tuple[TwinHomingResult, TwinHomingResult]:
+    """The two extreme runs: X1 rephased by N-1 and X2 by 0 counts, and the reverse."""
+    n = gantry.output.counts_per_period
+    runs = []
+    for v1, v2 in ((n - 1, 0), (0, n - 1)):
+        runs.append(simulate_twin_homing(
+            gantry, phase_for_virtual(gantry.switch_1, v1, n, gantry.direction),
+            phase_for_virtual(gantry.switch_2, v2, n, gantry.direction)))
+    return runs[0], runs[1]
 
 
 class _Axis:
