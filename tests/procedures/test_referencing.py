@@ -188,3 +188,15 @@ def test_start_beyond_the_switch_is_refused():
         simulate_referencing(_axis(), 0.2)
     with pytest.raises(InputError, match="counts"):
         ScaleAxis(controller=Controller(counts_per_period=128, count_size=20e-6 / 128))
+
+
+def test_a_jump_the_controller_cannot_follow_is_reported():
+    """A sudden large factor change (the sensors' reading steps by 10 K at an update, far from
+    the laser's power-up point) adds hundreds of output pulses at once; the model reports it
+    rather than letting the decoder miscount silently."""
+    air = AirHistory(temperature=20.0, temperature_rate=10.0)
+    ax = _axis(air=air, position=0.01, fmax=1e9)
+    run = simulate_referencing(ax, 0.0, moves=(Move(1.5, 0.5, 1.0),))
+    assert "signal step" in {a.kind for a in run.alarms}
+    quiet = simulate_referencing(_axis(position=0.01, fmax=1e9), 0.0, moves=(Move(1.5, 0.5, 1.0),))
+    assert quiet.alarms == ()

@@ -122,6 +122,7 @@ class ScaleAxis:
 
     @property
     def output(self) -> SineOutput:
+        """The compensator's sine/cosine output format."""
         return self.compensator.output
 
 
@@ -390,7 +391,7 @@ def simulate_referencing(
     temp, pres, hum, tmat = axis.air.at(t)
     n_true = np.asarray(refractive_index(temp, pres, hum, co2=axis.compensator.co2,
                                          vacuum_wavelength=axis.laser.vacuum_wavelength,
-                                         equation="ciddor", check="warn"))
+                                         equation="ciddor"))
     x0 = start if power_up_position is None else float(power_up_position)
     counts = axis.laser.counts(x, n_true, x0, float(n_true[0]), fphase)
     e = axis.sensor_error
@@ -401,7 +402,8 @@ def simulate_referencing(
     rep = rephase(o, sw, n_per, d, phi)
     sine, cosine = synthesise(rep.m, n_per)
     decoded = axis.controller.decode(sine, cosine)
-    alarms = axis.controller.frequency_alarms(decoded, t)
+    # the frequency monitor measures the signal itself (the compensator-side count)
+    alarms = axis.controller.frequency_alarms(rep.m, t) + _step_alarms(rep.m, n_per)
     latch = axis.controller.find_home(decoded, rep.reference, d)
     events = _events(rep, latch, decoded, o, x, t, out)
     return ReferencingRun(
@@ -448,6 +450,18 @@ def _events(rep, latch, decoded, o, x, t, out: SineOutput) -> list[HomingEvent]:
             events.append(ev("C", ka + int(past_c[0]), out.stage2_counts + out.pulse_counts,
                              rep.m_c))
     return events
+
+
+def _step_alarms(m: np.ndarray, n_per: int) -> list[ControllerAlarm]:
+    """A jump of half a period or more between two samples cannot be decoded: say so."""
+    steps = np.abs(np.diff(m))
+    if steps.size == 0 or steps.max() < n_per // 2:
+        return []
+    k = int(np.argmax(steps >= n_per // 2)) + 1
+    return [ControllerAlarm(
+        "signal step", f"the outputs jumped {int(steps.max())} counts between two samples (half "
+        f"a period is {n_per // 2}); the controller cannot follow such a jump and may miscount",
+        k, float(steps.max()), float(n_per // 2))]
 
 
 def _homing_path(start: float, end: float, speed: float, step: float):
