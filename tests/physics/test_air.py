@@ -55,7 +55,8 @@ def test_agrees_with_nist_calculator_over_grid(equation):
 
 @pytest.mark.parametrize("equation", ["ciddor", "birch-downs"])
 def test_dew_point_and_partial_pressure_agree_with_nist(equation):
-    """NIST A-II: dew point gives p_v = p_sv,water(t_d); x_v = f p_v / p with f at the air temperature."""
+    """NIST A-II: dew point gives p_v = p_sv,water(t_d); x_v = f p_v / p, f at the air
+    temperature."""
     for t, p, td in [(20.0, 101325.0, 9.0), (35.0, 90e3, 25.0), (5.0, 120e3, -10.0),
                      (-10.0, 60e3, -15.0), (60.0, 101325.0, 40.0)]:
         pv = ref_index.dew_point_wvpp(td)

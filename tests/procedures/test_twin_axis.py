@@ -78,7 +78,8 @@ def test_alarm_fires_exactly_when_the_skew_exceeds_the_limit(limit):
     g = _gantry(limit=limit)
     seen = {True: 0, False: 0}
     for v1, v2 in itertools.product([0, 1, 50, 128, 200, 254, 255], repeat=2):
-        r = simulate_twin_homing(g, phase_for_virtual(1000, v1, 256), phase_for_virtual(1000, v2, 256))
+        r = simulate_twin_homing(g, phase_for_virtual(1000, v1, 256),
+                                 phase_for_virtual(1000, v2, 256))
         assert (r.virtual_1, r.virtual_2) == (v1, v2)
         assert r.alarm == (abs(v2 - v1) > limit)
         seen[r.alarm] += 1

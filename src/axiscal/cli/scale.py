@@ -141,7 +141,8 @@ def compensate(
         [], "--material-temperature", help="Work-piece sensor, °C (repeat for several; averaged)."),
     length: float = typer.Option(1000.0, "--length", help="Length for the errors, mm."),
     period: float = typer.Option(20.0, "--period", help="Output period, µm (20, 25, 40, 50, 100)."),
-    counts_per_period: int = typer.Option(256, "--counts-per-period", help="Output counts per period."),
+    counts_per_period: int = typer.Option(256, "--counts-per-period",
+                                          help="Output counts per period."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
 ) -> None:
     """The compensation factor for given conditions, and the error without compensation."""

@@ -120,7 +120,7 @@ class LaserHead:
         return (state == 1) | (state == 2), (state == 2) | (state == 3)
 
     def analogue(self, position, n: float = 1.0):
-        """Analogue sine and cosine of the fringes at the effective pitch λ/(2n) (unit amplitude)."""
+        """Analogue sine and cosine of the fringes, effective pitch λ/(2n), unit amplitude."""
         x = np.asarray(position, dtype=float)
         phase = 2.0 * np.pi * (self.dead_path + x) / self.effective_pitch(n)
         return np.sin(phase), np.cos(phase)

@@ -232,7 +232,8 @@ def water_vapour_pressure(temperature, humidity=None, *, dew_point=None, vapour_
 def enhancement_factor(pressure, temperature):
     """Enhancement factor f of water vapour in air (NIST A-II), dimensionless.
 
-    :math:`f = 1.00062 + 3.14\\times10^{-8}\\, p + 5.60\\times10^{-7}\\, t^2` with p in Pa and t in °C;
+    :math:`f = 1.00062 + 3.14\\times10^{-8}\\, p + 5.60\\times10^{-7}\\, t^2` with p in Pa and t
+    in °C;
     the mole fraction of water vapour is :math:`x_v = f\\, p_v / p`.
     """
     p = np.asarray(pressure, dtype=float)

@@ -187,7 +187,10 @@ def expansion(length, temperature, alpha):
 
 
 def length_at(length_20, temperature, alpha):
-    """Length at ``temperature`` of what measures ``length_20`` at 20 °C: :math:`L_{20}(1 + \\alpha\\Delta t)`."""
+    """Length at ``temperature`` of what measures ``length_20`` at 20 °C.
+
+    :math:`L_t = L_{20}(1 + \\alpha\\Delta t)`, same unit as ``length_20``.
+    """
     return _out(np.asarray(length_20, dtype=float)
                 * (1.0 + np.asarray(alpha, dtype=float)
                    * (np.asarray(temperature, dtype=float) - REFERENCE_TEMPERATURE)))

@@ -18,8 +18,8 @@ controller count on the commanded value. The skew the controller sees before syn
     p1 - p2 = s0 + (switch_2 - switch_1) + d (v2 - v1)
 
 (s0 the real skew X1 - X2 before homing, d the homing direction): the homing adds d (v2 - v1),
-never more than ±(N - 1) counts, the seed's ±256 for N = 256. A compensator rephases at the first hit
-of its own switch, whether its axis is master or slave at the time.
+never more than ±(N - 1) counts, the seed's ±256 for N = 256. A compensator rephases at the first
+hit of its own switch, whether its axis is master or slave at the time.
 
 Examples
 --------

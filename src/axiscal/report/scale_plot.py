@@ -81,7 +81,8 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
                  fontsize=8, color="0.3")
     axes[3].set_xlim(lo, hi)
     sec = axes[3].secondary_xaxis(
-        "bottom", functions=(lambda c: c * out.count_size * 1e6, lambda m: m / (out.count_size * 1e6)))
+        "bottom", functions=(lambda c: c * out.count_size * 1e6,
+                             lambda m: m / (out.count_size * 1e6)))
     sec.spines["bottom"].set_position(("outward", 38))
     sec.set_xlabel("µm beyond the switch")
     beyond = {e.name: e.counts_beyond_switch for e in run.events}
