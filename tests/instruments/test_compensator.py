@@ -170,3 +170,41 @@ def test_compensation_summary_errors_over_a_metre():
     assert warm.weather_error * 1e6 == pytest.approx(-0.95, abs=0.03)
     with pytest.raises(InputError):
         compensation_summary(comp, humidity=50.0, dew_point=9.0)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.integers(-20, 20), min_size=2, max_size=300), st.integers(0, 63),
+       st.integers(-50, 50), st.sampled_from([1, -1]))
+def test_rephase_invariants_on_any_trajectory(steps, phi, switch_at, d):
+    """Property: for any back-and-forth trajectory, the virtual movement lies in 0..N-1, is
+    added only between A and completion, and the reference mark is active only where the
+    controller count lies in the B-to-C window after completion."""
+    n = 64
+    o = np.concatenate(([-100 * d], -100 * d + np.cumsum(steps))).astype(np.int64)
+    sw = d * o >= d * switch_at
+    r = rephase(o, sw, n, d, phi)
+    extra = d * (r.m - o - phi)
+    assert np.all((extra >= 0) & (extra < n))
+    if r.index_a is None:
+        assert np.all(extra == 0) and not r.reference.any()
+        return
+    assert np.all(extra[:r.index_a] == 0)
+    assert 0 <= r.virtual < n
+    done = np.maximum.accumulate(d * o[r.index_a:]) >= d * r.count_a + n
+    assert np.all(extra[r.index_a:][done] == r.virtual)
+    assert not r.reference[:r.index_a].any()
+    assert not r.reference[r.index_a:][~done].any()
+    if r.reference.any():
+        assert np.all(np.mod(r.m[r.reference] - r.m_z + n // 4, n) < n // 2)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.integers(-10**4, 10**4), min_size=1, max_size=60))
+def test_expand_counts_steps_by_one_through_every_count(values):
+    """Property: the pulse train visits every sample's count, one count at a time."""
+    from axiscal.instruments.compensator import expand_counts
+
+    e = expand_counts(values)
+    assert e[0] == values[0] and e[-1] == values[-1]
+    assert np.all(np.abs(np.diff(e)) == 1)
+    assert e.size == 1 + sum(abs(b - a) for a, b in zip(values, values[1:]))
