@@ -34,6 +34,8 @@ COMMANDS: dict[str, str] = {
     "squareness": "axiscal.cli.squareness",
     "compensate": "axiscal.cli.compensate",
     "rotary": "axiscal.cli.rotary",
+    "air": "axiscal.cli.air",
+    "scale": "axiscal.cli.scale",
 }
 
 

@@ -1,0 +1,169 @@
+"""``axiscal scale``: the laser scale with an environmental compensator (seed 002).
+
+``scale home CONFIG.toml [--plot FILE] [--json]``
+    Referencing of one axis. JSON keys: ``homed``, ``counts_per_period``, ``count_size_nm``,
+    ``period_um``, ``direction``, ``virtual_counts``, ``power_up_phase``, ``switch_trip_mm``,
+    ``home_position_mm``, ``events`` (``name``, ``counts_beyond_switch``, ``controller_count``,
+    ``position_mm``, ``time_s``), ``alarms``, ``compensation_ppm``, ``laser_count_rate_hz``,
+    ``controller_max_speed_m_per_s`` and, when the configuration has moves, ``tracking``
+    (``max_count_error``, ``max_part_error_um``, ``end_controller_mm``, ``end_true_mm``,
+    ``end_part_mm``, ``end_uncompensated_mm``).
+``scale gantry CONFIG.toml [--json]``
+    Twin-axis homing. JSON keys: those of the run (``virtual_1``, ``virtual_2``,
+    ``homing_skew_min``, ``homing_skew_max``, ``skew_before_sync``, ``skew_limit``, ``alarm``,
+    ``deskew_move``, ``skew_after_sync``, ``offset``, ``required_skew_limit``, ...), plus
+    ``worst_case`` (the two extreme phase combinations) and ``switch_sigma_counts``.
+``scale compensate [options] [--json]``
+    The factor for given conditions and the error of an uncompensated scale. JSON keys:
+    ``n``, ``n_standard``, ``growth``, ``ratio``, ``factor``, ``correction_ppm``, ``length_mm``,
+    ``raw_error_um``, ``weather_error_um``, ``material_error_um``, ``count_size_in_nm``,
+    ``count_size_out_nm``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, print_json
+
+__all__ = ["register", "scale_app"]
+
+scale_app = typer.Typer(
+    name="scale",
+    help="Laser scale with an environmental compensator: referencing, gantry homing, "
+    "compensation factor (seed 002).",
+    no_args_is_help=True,
+)
+
+
+@scale_app.command("home")
+def home(
+    config: Path = typer.Argument(..., help="Laser-scale configuration (TOML, see examples/)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the signals-against-position "
+                                        "plot (PNG, SVG or PDF by extension)."),
+    json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
+) -> None:
+    """Simulate the referencing of one axis: events A, B, Z, C and the signals."""
+    from axiscal.io.scale_config import axis_from_config, homing_from_config, read_scale_config
+    from axiscal.procedures.referencing import simulate_referencing
+
+    if plot is not None:
+        out_path(plot, "plot")
+    cfg = read_scale_config(config)
+    axis = axis_from_config(cfg)
+    kwargs = homing_from_config(cfg, axis)
+    run = simulate_referencing(axis, **kwargs)
+    air = axis.air
+    ppm = float(axis.compensator.correction_ppm(air.temperature, air.pressure, air.humidity,
+                                                air.material_temperature))
+    rate = axis.laser.count_rate(kwargs["homing_speed"])
+    d = run.to_dict()
+    d.update(compensation_ppm=ppm, laser_count_rate_hz=rate,
+             controller_max_speed_m_per_s=axis.controller.max_speed())
+    if kwargs["moves"] and run.homed:
+        d["tracking"] = run.tracking()
+    if plot is not None:
+        from axiscal.report.scale_plot import save_referencing_plot
+
+        save_referencing_plot(run, plot)
+    if json_out:
+        print_json(d)
+    else:
+        typer.echo(str(run))
+        typer.echo(f"  compensation factor {ppm:+.3f} ppm; controller inputs accept up to "
+                   f"{axis.controller.max_speed() * 60e3:.0f} mm/min "
+                   f"({axis.controller.max_input_frequency / 1e3:g} kHz); the raw fringes "
+                   f"({axis.laser.effective_pitch() * 1e6:.3f} µm pitch) would need "
+                   f"{axis.laser.fringe_frequency(axis.controller.max_speed()) / 1e6:.1f} MHz "
+                   "at that speed")
+        if "tracking" in d:
+            t = d["tracking"]
+            typer.echo(f"  after homing: controller vs exact compensated position within "
+                       f"{t['max_count_error']:.3f} counts; vs the part at 20 °C within "
+                       f"{t['max_part_error_um']:.3f} µm; at the end the controller reads "
+                       f"{t['end_controller_mm']:.6f} mm, an uncompensated scale "
+                       f"{t['end_uncompensated_mm']:.6f} mm (part {t['end_part_mm']:.6f} mm)")
+    if plot is not None:
+        note(f"wrote plot {plot}")
+
+
+@scale_app.command("gantry")
+def gantry(
+    config: Path = typer.Argument(..., help="Twin-axis configuration (TOML with a [gantry] "
+                                  "section, see examples/)."),
+    json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
+) -> None:
+    """Simulate twin-axis (gantry) homing: skew, skew-limit alarm, deskew, limit needed."""
+    from axiscal.io.scale_config import read_scale_config, twin_axis_from_config
+    from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
+                                              worst_case_runs)
+
+    cfg = read_scale_config(config)
+    g, run_kwargs, sigma = twin_axis_from_config(cfg)
+    run = simulate_twin_homing(g, **run_kwargs)
+    worst = worst_case_runs(g)
+    spread = int(round(3.0 * sigma * 2 ** 0.5))
+    d = run.to_dict()
+    d["required_skew_limit"] = required_skew_limit(g, spread)
+    d["switch_sigma_counts"] = sigma
+    d["worst_case"] = [{"virtual_1": w.virtual_1, "virtual_2": w.virtual_2,
+                        "skew_before_sync": w.skew_check.skew, "alarm": w.alarm} for w in worst]
+    if json_out:
+        print_json(d)
+        return
+    typer.echo(str(run))
+    for w in worst:
+        typer.echo(f"  worst case v1 = {w.virtual_1}, v2 = {w.virtual_2}: skew "
+                   f"{w.skew_check.skew} counts -> {'ALARM' if w.alarm else 'within the limit'}")
+    typer.echo(f"  set the skew limit to at least {d['required_skew_limit']} counts "
+               f"({d['required_skew_limit'] * g.output.count_size * 1e6:.2f} µm)"
+               + (f", including 3 sigma of the two switches ({spread} counts)" if spread else ""))
+
+
+@scale_app.command("compensate")
+def compensate(
+    temperature: float = typer.Option(20.0, "--temperature", "-t", help="Air temperature, °C."),
+    pressure: float = typer.Option(101325.0, "--pressure", "-p", help="Air pressure, Pa."),
+    humidity: Optional[float] = typer.Option(None, "--humidity",
+                                             help="Relative humidity, %RH (default 50)."),
+    dew_point: Optional[float] = typer.Option(None, "--dew-point", help="Dew point, °C."),
+    co2: float = typer.Option(450.0, "--co2", help="CO2 content, µmol/mol."),
+    equation: str = typer.Option("ciddor", "--equation", "-e",
+                                 help="ciddor, edlen or birch-downs."),
+    material: Optional[str] = typer.Option(None, "--material",
+                                           help="Work-piece material (steel, aluminium ...)."),
+    alpha: Optional[float] = typer.Option(None, "--alpha",
+                                          help="Work-piece expansion coefficient, 1/K."),
+    material_temperature: List[float] = typer.Option(
+        [], "--material-temperature", help="Work-piece sensor, °C (repeat for several; averaged)."),
+    length: float = typer.Option(1000.0, "--length", help="Length for the errors, mm."),
+    period: float = typer.Option(20.0, "--period", help="Output period, µm (20, 25, 40, 50, 100)."),
+    counts_per_period: int = typer.Option(256, "--counts-per-period",
+                                          help="Output counts per period."),
+    json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
+) -> None:
+    """The compensation factor for given conditions, and the error without compensation."""
+    from axiscal.errors import InputError
+    from axiscal.instruments.compensator import Compensator, SineOutput, compensation_summary
+    from axiscal.physics.thermal import material as lookup, mean_temperature
+
+    if material is not None and alpha is not None:
+        raise InputError("give --material or --alpha, not both")
+    a = alpha if alpha is not None else (lookup(material).alpha if material else 0.0)
+    t_mat = mean_temperature(material_temperature) if material_temperature else 20.0
+    comp = Compensator(output=SineOutput(period * 1e-6, counts_per_period), equation=equation,
+                       expansion_coefficient=a, co2=co2)
+    s = compensation_summary(comp, temperature, pressure, humidity, dew_point=dew_point,
+                             material_temperature=t_mat, length=length * 1e-3)
+    if json_out:
+        print_json(s.to_dict())
+    else:
+        typer.echo(str(s))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``scale`` command group to the application."""
+    app.add_typer(scale_app, name="scale")

@@ -1,0 +1,497 @@
+"""The environmental compensator of a laser scale (RCU10-like, seed 002).
+
+It sits between the laser head and the machine controller and does three things (seed 002,
+"Compensated laser scale system"):
+
+1. **Compensation by exact pulse multiplication and addition.** The laser's uncompensated count
+   ``c`` (one count per ``λ_vac/k`` of optical path) becomes the output count
+
+   .. math::
+       o = \\left\\lfloor \\frac{c\\,P}{2^{B}} \\right\\rfloor,\\qquad
+       \\frac{P}{2^{B}} \\approx R = \\frac{\\lambda_{vac}/k}{n\\,[1 + \\alpha(t_m - 20)]\\;q},
+
+   with n the refractive index of the air (:mod:`axiscal.physics.air`), α and t_m the work-piece
+   expansion coefficient and temperature (:mod:`axiscal.physics.thermal`, so that the controller
+   tracks the part as it would be at 20 °C) and q the output count size. P is an integer (the
+   factor held to ``B = 32`` fractional bits); every output count is computed from the *total*
+   laser count with integer arithmetic, so nothing is rounded twice and no error accumulates
+   however long the move. When the sensors give a new factor, the output jumps to
+   ``floor(c P_new / 2^B)``: the difference is the "pulse addition" of the seed. The streaming
+   :class:`PulseMultiplier` does the same incrementally with a remainder accumulator
+   (Bresenham) and gives identical counts.
+
+2. **Synthesis of low-bandwidth sine/cosine outputs** with a period of 20, 25, 40, 50 or 100 µm
+   and N output counts per period (seed: 256 counts of 78.125 nm for 20 µm). The controller-side
+   count is ``m``; the outputs are ``sin(2π m/N)`` and ``cos(2π m/N)`` (a DAC staircase of N
+   steps per period).
+
+3. **Rephasing of the reference mark** (:func:`~axiscal.instruments.reference_mark.rephase`,
+   re-exported here).
+
+The rephasing and the pulse model of the reference mark are in
+:mod:`axiscal.instruments.reference_mark`.
+
+Examples
+--------
+>>> out = SineOutput(period=20e-6, counts_per_period=256)
+>>> out.count_size * 1e9
+78.125
+>>> mult = PulseMultiplier(factor_to_integer(8.1))
+>>> mult.feed([1, 1, 1, 1]).tolist()   # 8.1 output counts per input count, spread exactly
+[8, 8, 8, 8]
+>>> mult.output
+32
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from axiscal.errors import InputError
+from axiscal.instruments.laser_scale import LaserHead
+from axiscal.instruments.reference_mark import (RephaseResult, reference_virtual,
+                                                reference_window, rephase, synthesise)
+from axiscal.physics.air import (refractive_index, saturation_vapour_pressure,
+                                 water_vapour_pressure)
+from axiscal.physics.thermal import REFERENCE_TEMPERATURE
+
+__all__ = [
+    "OUTPUT_PERIODS",
+    "Compensator",
+    "CompensationSummary",
+    "compensation_summary",
+    "FACTOR_BITS",
+    "SineOutput",
+    "factor_to_integer",
+    "multiply",
+    "PulseMultiplier",
+    "expand_counts",
+    "RephaseResult",
+    "rephase",
+    "synthesise",
+    "reference_window",
+    "reference_virtual",
+]
+
+#: Periods of the synthesised sine/cosine outputs the compensator offers (seed 002), metres.
+OUTPUT_PERIODS = (20e-6, 25e-6, 40e-6, 50e-6, 100e-6)
+
+#: Fractional bits of the multiplication factor (P / 2**FACTOR_BITS).
+FACTOR_BITS = 32
+
+_INT64_MAX = np.iinfo(np.int64).max
+
+
+@dataclass(frozen=True)
+class SineOutput:
+    """The compensator's sine/cosine output format.
+
+    Attributes
+    ----------
+    period : float, metres
+        One of :data:`OUTPUT_PERIODS` (20, 25, 40, 50 or 100 µm).
+    counts_per_period : int
+        Output counts N per signal period; a multiple of 8 so that B, Z and C fall on whole
+        counts (seed: 256).
+    """
+
+    period: float = 20e-6
+    counts_per_period: int = 256
+
+    def __post_init__(self) -> None:
+        if not any(abs(self.period - p) < 1e-12 for p in OUTPUT_PERIODS):
+            allowed = ", ".join(f"{p * 1e6:g}" for p in OUTPUT_PERIODS)
+            raise InputError(f"sine/cosine output period {self.period * 1e6:g} µm is not one the "
+                             f"compensator offers ({allowed} µm)")
+        n = self.counts_per_period
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 8 or n % 8:
+            raise InputError(f"counts_per_period = {n!r} must be a whole multiple of 8 "
+                             "(B, Z and C fall on whole counts only then)")
+        object.__setattr__(self, "counts_per_period", int(n))
+
+    @property
+    def count_size(self) -> float:
+        """Size of one output count, metres (period / N)."""
+        return self.period / self.counts_per_period
+
+    @property
+    def stage2_counts(self) -> int:
+        """Real motion from the switch (A) to the start of the reference pulse (B): N counts."""
+        return self.counts_per_period
+
+    @property
+    def switch_to_home(self) -> int:
+        """Real motion from the switch (A) to the home position (Z): 5N/4 (320 for N = 256)."""
+        return self.counts_per_period * 5 // 4
+
+    @property
+    def pulse_counts(self) -> int:
+        """Width of the reference pulse from B to C: N/2 counts, centred on Z."""
+        return self.counts_per_period // 2
+
+    def signal_frequency(self, speed) -> float:
+        """Frequency of the sine/cosine outputs at a speed (m/s), Hz."""
+        return abs(float(speed)) / self.period
+
+
+@dataclass(frozen=True)
+class Compensator:
+    """Settings of the compensator and the multiplication factor it derives from its sensors.
+
+    Attributes
+    ----------
+    laser : LaserHead
+        The head whose counts arrive (count size λ_vac / k; 0.633 µm in seed 002).
+    output : SineOutput
+        Sine/cosine output format (period and counts per period).
+    equation : {"ciddor", "birch-downs", "edlen"}
+        Refractive index equation (:func:`axiscal.physics.air.refractive_index`).
+    expansion_coefficient : float, 1/K
+        α of the work-piece whose expansion the controller should track; 0 for none.
+    update_interval : float, seconds
+        The sensors are read and the factor renewed every this often (sample and hold).
+    co2 : float, µmol/mol
+        CO2 content assumed (the compensator has no CO2 sensor).
+    bits : int
+        Fractional bits of the factor.
+    """
+
+    laser: LaserHead = field(default_factory=LaserHead)
+    output: SineOutput = field(default_factory=SineOutput)
+    equation: str = "ciddor"
+    expansion_coefficient: float = 0.0
+    update_interval: float = 1.0
+    co2: float = 450.0
+    bits: int = FACTOR_BITS
+
+    def __post_init__(self) -> None:
+        if not np.isfinite(self.expansion_coefficient) or abs(self.expansion_coefficient) > 1e-4:
+            raise InputError(f"expansion_coefficient = {self.expansion_coefficient!r} 1/K must "
+                             "lie within ±1e-4")
+        if not np.isfinite(self.update_interval) or self.update_interval <= 0:
+            raise InputError(f"update_interval = {self.update_interval!r} s must be positive")
+
+    @property
+    def input_count_size(self) -> float:
+        """Uncompensated size of one laser count, metres."""
+        return self.laser.count_size
+
+    def ratio(self, temperature, pressure, humidity, material_temperature=REFERENCE_TEMPERATURE):
+        """Output counts per laser count for sensor readings (float or array).
+
+        :math:`R = (\\lambda_{vac}/k) / (n\\,[1 + \\alpha (t_m - 20)]\\, q)`.
+
+        Parameters
+        ----------
+        temperature : array_like, degrees Celsius (air)
+        pressure : array_like, Pa
+        humidity : array_like, %RH
+        material_temperature : array_like, degrees Celsius (work-piece)
+        """
+        n = refractive_index(temperature, pressure, humidity, co2=self.co2,
+                             vacuum_wavelength=self.laser.vacuum_wavelength, equation=self.equation)
+        growth = 1.0 + self.expansion_coefficient * (
+            np.asarray(material_temperature, dtype=float) - REFERENCE_TEMPERATURE)
+        r = self.input_count_size / (np.asarray(n) * growth * self.output.count_size)
+        return float(r) if np.ndim(r) == 0 else r
+
+    def factor(self, temperature, pressure, humidity, material_temperature=REFERENCE_TEMPERATURE):
+        """The integer factor P (output counts per laser count times 2**bits)."""
+        r = np.asarray(self.ratio(temperature, pressure, humidity, material_temperature))
+        p = np.rint(r * float(1 << self.bits)).astype(np.int64)
+        return int(p) if p.ndim == 0 else p
+
+    def correction_ppm(self, temperature, pressure, humidity,
+                       material_temperature=REFERENCE_TEMPERATURE) -> float:
+        """The compensation the factor applies to the vacuum-wavelength count, ppm:
+        :math:`(1/(n[1 + \\alpha\\Delta t]) - 1) 10^6`."""
+        r = self.ratio(temperature, pressure, humidity, material_temperature)
+        return (np.asarray(r) * self.output.count_size / self.input_count_size - 1.0) * 1e6
+
+    def factor_schedule(self, times, temperature, pressure, humidity,
+                        material_temperature=REFERENCE_TEMPERATURE) -> np.ndarray:
+        """Factor in force at each sample: sensors read every ``update_interval`` and held.
+
+        Parameters
+        ----------
+        times : array_like, seconds (non-decreasing)
+        temperature, pressure, humidity, material_temperature : array_like
+            What the sensors read at each sample (broadcast to ``times``).
+
+        Returns
+        -------
+        ndarray of int64, one P per sample.
+        """
+        t = np.asarray(times, dtype=float)
+        if t.ndim != 1 or t.size == 0 or np.any(np.diff(t) < 0):
+            raise InputError("sample times must be a non-empty, non-decreasing 1-D array")
+        block = np.floor((t - t[0]) / self.update_interval).astype(np.int64)
+        first = np.flatnonzero(np.r_[True, np.diff(block) > 0])  # sample of each sensor update
+        readings = [np.broadcast_to(np.asarray(a, dtype=float), t.shape)[first]
+                    for a in (temperature, pressure, humidity, material_temperature)]
+        p = np.atleast_1d(self.factor(*readings))
+        return p[np.cumsum(np.r_[True, np.diff(block) > 0]) - 1]
+
+
+@dataclass(frozen=True)
+class CompensationSummary:
+    """What the compensator applies for given conditions, and what no compensation would cost.
+
+    Attributes
+    ----------
+    n : float
+        Refractive index of the air.
+    n_standard : float
+        Refractive index of standard workshop air (20 °C, 101325 Pa, 50 %RH).
+    growth : float
+        1 + α (t_m - 20) of the work-piece (1 without material compensation).
+    ratio : float
+        Output counts per laser count the compensator multiplies by (as applied, P / 2**bits).
+    factor : int
+        P.
+    correction_ppm : float
+        (1/(n growth) - 1) 10⁶: the compensation applied to the vacuum-wavelength count.
+    length : float, metres
+        The nominal length the errors are given for.
+    raw_error : float, metres
+        Error of the raw count read with the vacuum wavelength over ``length``: L (n g - 1).
+    weather_error : float, metres
+        Error if the scale were corrected once for standard air and never again:
+        L (n/n_std - 1) (sign: reading minus true).
+    material_error : float, metres
+        Work-piece expansion over ``length`` that the material compensation tracks: L (g - 1)
+        (a scale compensated for the air only reads the warm part this much too long).
+    count_size_in, count_size_out : float, metres
+        Laser count (vacuum) and output count.
+    """
+
+    n: float
+    n_standard: float
+    growth: float
+    ratio: float
+    factor: int
+    correction_ppm: float
+    length: float
+    raw_error: float
+    weather_error: float
+    material_error: float
+    count_size_in: float
+    count_size_out: float
+
+    def to_dict(self) -> dict:
+        """Plain-data form (the ``axiscal scale compensate --json`` object)."""
+        return {
+            "n": self.n, "n_standard": self.n_standard, "growth": self.growth,
+            "ratio": self.ratio, "factor": self.factor, "correction_ppm": self.correction_ppm,
+            "length_mm": self.length * 1e3, "raw_error_um": self.raw_error * 1e6,
+            "weather_error_um": self.weather_error * 1e6,
+            "material_error_um": self.material_error * 1e6,
+            "count_size_in_nm": self.count_size_in * 1e9,
+            "count_size_out_nm": self.count_size_out * 1e9,
+        }
+
+    def __str__(self) -> str:
+        L = self.length * 1e3
+        return "\n".join([
+            f"compensation factor: {self.correction_ppm:+.3f} ppm "
+            f"(n = {self.n:.9f}, work-piece growth {(self.growth - 1) * 1e6:+.3f} ppm)",
+            f"pulse multiplication: {self.ratio:.9f} output counts of "
+            f"{self.count_size_out * 1e9:.3f} nm per laser count of "
+            f"{self.count_size_in * 1e9:.3f} nm (P = {self.factor} / 2^{FACTOR_BITS})",
+            f"over {L:g} mm of the part (at 20 °C) a scale without this compensation reads:",
+            f"  {self.raw_error * 1e6:+10.2f} µm  raw count read with the vacuum wavelength",
+            f"  {self.weather_error * 1e6:+10.2f} µm  corrected once for 20 °C, 101.325 kPa, "
+            "50 %RH and never again (the weather)",
+            f"  {self.material_error * 1e6:+10.2f} µm  air compensated, work-piece expansion not "
+            "tracked",
+        ])
+
+
+def compensation_summary(compensator: "Compensator", temperature: float = 20.0,
+                         pressure: float = 101325.0, humidity: float | None = None, *,
+                         dew_point: float | None = None,
+                         material_temperature: float = REFERENCE_TEMPERATURE,
+                         length: float = 1.0) -> CompensationSummary:
+    """The factor a compensator applies for given conditions and the errors without it.
+
+    Parameters
+    ----------
+    compensator : Compensator
+    temperature : float, °C
+    pressure : float, Pa
+    humidity : float, %RH, optional (default 50 unless a dew point is given)
+    dew_point : float, °C, optional
+    material_temperature : float, °C
+        Work-piece temperature (mean of its sensors).
+    length : float, metres
+        Length over which to state the errors.
+
+    Examples
+    --------
+    >>> s = compensation_summary(Compensator(), 20.0, 101325.0, 50.0, length=1.0)
+    >>> round(s.correction_ppm, 2), round(s.raw_error * 1e6, 1)
+    (-271.3, 271.4)
+    """
+    if humidity is None and dew_point is None:
+        humidity = 50.0
+    if dew_point is not None:
+        if humidity is not None:
+            raise InputError("give the humidity as a relative humidity or a dew point, not both")
+        humidity = 100.0 * water_vapour_pressure(temperature, dew_point=dew_point) / \
+            saturation_vapour_pressure(temperature)
+    if not np.isfinite(length) or length <= 0:
+        raise InputError(f"length = {length!r} m must be positive")
+    comp = compensator
+    n = float(refractive_index(temperature, pressure, humidity, co2=comp.co2,
+                               vacuum_wavelength=comp.laser.vacuum_wavelength,
+                               equation=comp.equation))
+    n_std = float(refractive_index(20.0, 101325.0, 50.0, co2=comp.co2,
+                                   vacuum_wavelength=comp.laser.vacuum_wavelength,
+                                   equation=comp.equation))
+    g = 1.0 + comp.expansion_coefficient * (float(material_temperature) - REFERENCE_TEMPERATURE)
+    p = int(comp.factor(temperature, pressure, humidity, material_temperature))
+    ratio = p / float(1 << comp.bits)
+    return CompensationSummary(
+        n=n, n_standard=n_std, growth=g, ratio=ratio, factor=p,
+        correction_ppm=(1.0 / (n * g) - 1.0) * 1e6, length=float(length),
+        raw_error=length * (n * g - 1.0), weather_error=length * (n / n_std - 1.0),
+        material_error=length * (g - 1.0), count_size_in=comp.input_count_size,
+        count_size_out=comp.output.count_size)
+
+
+def factor_to_integer(ratio: float, bits: int = FACTOR_BITS) -> int:
+    """The multiplication factor as the integer P of P / 2**bits (rounded to nearest).
+
+    Parameters
+    ----------
+    ratio : float
+        Output counts per laser count (positive).
+    bits : int
+        Fractional bits.
+
+    Examples
+    --------
+    >>> factor_to_integer(0.5, bits=4)
+    8
+    """
+    r = float(ratio)
+    if not np.isfinite(r) or r <= 0:
+        raise InputError(f"multiplication factor {ratio!r} must be a positive number")
+    return int(round(r * (1 << bits)))
+
+
+def multiply(counts, factors, bits: int = FACTOR_BITS) -> np.ndarray:
+    """Output counts from laser counts: ``floor(c * P / 2**bits)``, exactly.
+
+    Parameters
+    ----------
+    counts : array_like of int
+        Laser counts since power-up, one per sample.
+    factors : int or array_like of int
+        The integer factor P in force at each sample (broadcast).
+    bits : int
+
+    Returns
+    -------
+    ndarray of int64
+        Output counts.
+
+    Raises
+    ------
+    InputError
+        If a product would not fit in 64 bits (a move of more than about 160 m at 78 nm).
+
+    Notes
+    -----
+    ``(c * P) >> bits`` is the floor of the exact rational c P / 2^bits for either sign of c
+    (arithmetic shift), so each output count is exact and independent of every earlier one.
+    """
+    c = np.asarray(counts, dtype=np.int64)
+    p = np.asarray(factors, dtype=np.int64)
+    if c.size and p.size:
+        worst = int(np.max(np.abs(c))) * int(np.max(np.abs(p)))
+        if worst > _INT64_MAX:
+            raise InputError(f"laser count {int(np.max(np.abs(c)))} times factor "
+                             f"{int(np.max(p))} overflows 64 bits; the move is too long for "
+                             "this factor resolution")
+    return (c * p) >> bits
+
+
+@dataclass
+class PulseMultiplier:
+    """Streaming pulse multiplier with a remainder accumulator (Bresenham-like), exact.
+
+    Feed it laser count increments; it returns output count increments. The state is the integer
+    accumulator ``acc = c * P`` (kept in Python integers, so it never overflows) and the output
+    emitted so far; the output always equals ``floor(c * P / 2**bits)``. A new factor
+    (:meth:`set_factor`) re-scales the whole count: the pulses it adds or removes are returned.
+
+    Attributes
+    ----------
+    factor : int
+        P, output counts per laser count times 2**bits.
+    bits : int
+    count : int
+        Laser counts received (net).
+    output : int
+        Output counts emitted (net).
+    """
+
+    factor: int
+    bits: int = FACTOR_BITS
+    count: int = 0
+    output: int = 0
+    _acc: int = field(default=0, repr=False)
+
+    def feed(self, increments) -> np.ndarray:
+        """Process laser count increments (one per sample); return the output increments."""
+        inc = np.asarray(increments, dtype=np.int64)
+        c = self.count + np.cumsum(inc, dtype=np.int64)
+        out = multiply(c, self.factor, self.bits)
+        prev = np.concatenate(([self.output], out[:-1])) if out.size else out
+        if out.size:
+            self.count = int(c[-1])
+            self.output = int(out[-1])
+            self._acc = self.count * self.factor
+        return out - prev
+
+    def set_factor(self, factor: int) -> int:
+        """Change P; return the output counts added (+) or removed (-) to re-scale the position."""
+        self.factor = int(factor)
+        self._acc = self.count * self.factor
+        new = self._acc >> self.bits
+        added = new - self.output
+        self.output = new
+        return int(added)
+
+    @property
+    def remainder(self) -> Fraction:
+        """Fraction of an output count not yet emitted, in [0, 1)."""
+        return Fraction(self._acc - (self.output << self.bits), 1 << self.bits)
+
+
+def expand_counts(output_counts) -> np.ndarray:
+    """Every output count the compensator emits between samples, in order (the pulse train).
+
+    Between two samples whose output counts differ by k, the compensator emits k pulses; this
+    returns the count after each pulse, so consecutive values differ by exactly one (what the
+    digital A/B or the DAC staircase of the outputs steps through).
+
+    Examples
+    --------
+    >>> expand_counts([0, 3, 3, 1]).tolist()
+    [0, 1, 2, 3, 2, 1]
+    """
+    o = np.asarray(output_counts, dtype=np.int64)
+    if o.size == 0:
+        return o
+    steps = np.diff(o)
+    lengths = np.abs(steps)
+    total = int(lengths.sum())
+    starts = np.repeat(o[:-1], lengths)
+    sign = np.repeat(np.sign(steps), lengths)
+    within = np.arange(total, dtype=np.int64) - np.repeat(np.cumsum(lengths) - lengths, lengths)
+    return np.concatenate((o[:1], starts + sign * (within + 1)))

@@ -1,0 +1,243 @@
+"""Laser-scale configurations in TOML (``examples/scale_*.toml``).
+
+:func:`parse_scale_config` reads the text into plain sections and refuses unknown sections or
+keys (a misspelt key never silently falls back to a default); :func:`axis_from_config` and
+:func:`twin_axis_from_config` build the simulation objects. Units are in the key names
+(``_mm``, ``_um``, ``_khz`` ...). Sections and keys, all optional:
+
+``[laser]``
+    ``vacuum_wavelength_nm`` (632.991), ``counts_per_wavelength`` (1: 0.633 µm counts),
+    ``dead_path_mm`` (0).
+``[compensator]``
+    ``period_um`` (20), ``counts_per_period`` (256), ``equation`` ("ciddor"), ``material``
+    (a name from :data:`axiscal.physics.thermal.MATERIALS`, or "none") or
+    ``expansion_coefficient`` (1/K), ``update_interval_s`` (1), ``co2`` (450 µmol/mol).
+``[air]``
+    The true conditions: ``temperature`` (°C), ``pressure`` (Pa), ``humidity`` (%RH),
+    ``material_temperature`` (°C) and their rates per second ``temperature_rate``,
+    ``pressure_rate``, ``humidity_rate``, ``material_rate``.
+``[sensors]``
+    Errors of the compensator's sensors: ``temperature_error`` (K), ``pressure_error`` (Pa),
+    ``humidity_error`` (%RH), ``material_error`` (K).
+``[switch]``
+    ``position_mm`` (100), ``repeatability_um`` (0), ``direction`` ("+" or "-").
+``[controller]``
+    ``max_input_frequency_khz`` (100), ``frequency_gate_us`` (100), ``skew_limit_counts`` (300),
+    ``offset_counts`` (0).
+``[homing]``
+    ``start_mm`` (40 µm before the switch), ``speed_mm_per_min`` (300), ``seed`` (random switch
+    error and power-up phases; omit for none), ``power_up_phase`` (counts).
+``[[move]]``
+    Moves after homing: ``target_mm``, ``speed_mm_per_min`` (6000), ``acceleration`` (1 m/s²).
+``[gantry]``
+    Twin axis: ``switch_1_mm``, ``switch_2_mm``, ``start_1_mm``, ``start_2_mm``,
+    ``switch_repeatability_um`` (0), ``direction``, ``seed``, ``power_up_phase_1``,
+    ``power_up_phase_2``.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from typing import Any
+
+import numpy as np
+
+from axiscal.errors import ConfigError
+from axiscal.io._files import read_text
+
+__all__ = ["parse_scale_config", "read_scale_config", "axis_from_config",
+           "homing_from_config", "twin_axis_from_config", "compensator_from_config"]
+
+_SCHEMA: dict[str, set[str]] = {
+    "laser": {"vacuum_wavelength_nm", "counts_per_wavelength", "dead_path_mm"},
+    "compensator": {"period_um", "counts_per_period", "equation", "material",
+                    "expansion_coefficient", "update_interval_s", "co2"},
+    "air": {"temperature", "pressure", "humidity", "material_temperature", "temperature_rate",
+            "pressure_rate", "humidity_rate", "material_rate"},
+    "sensors": {"temperature_error", "pressure_error", "humidity_error", "material_error"},
+    "switch": {"position_mm", "repeatability_um", "direction"},
+    "controller": {"max_input_frequency_khz", "frequency_gate_us", "skew_limit_counts",
+                   "offset_counts"},
+    "homing": {"start_mm", "speed_mm_per_min", "seed", "power_up_phase"},
+    "move": {"target_mm", "speed_mm_per_min", "acceleration"},
+    "gantry": {"switch_1_mm", "switch_2_mm", "start_1_mm", "start_2_mm",
+               "switch_repeatability_um", "direction", "seed", "power_up_phase_1",
+               "power_up_phase_2"},
+}
+
+
+def parse_scale_config(text: str, source: str = "<text>") -> dict[str, Any]:
+    """Parse TOML text into sections, refusing unknown sections and keys."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{source}: not valid TOML: {exc}") from None
+    for name, value in data.items():
+        if name not in _SCHEMA:
+            raise ConfigError(f"{source}: unknown section [{name}]; known: "
+                              f"{', '.join(sorted(_SCHEMA))}")
+        tables = value if isinstance(value, list) else [value]
+        if name == "move" and not isinstance(value, list):
+            raise ConfigError(f"{source}: moves are written [[move]] (an array of tables)")
+        for table in tables:
+            if not isinstance(table, dict):
+                raise ConfigError(f"{source}: [{name}] must be a table")
+            unknown = sorted(set(table) - _SCHEMA[name])
+            if unknown:
+                raise ConfigError(f"{source}: unknown key(s) in [{name}]: {', '.join(unknown)}; "
+                                  f"known: {', '.join(sorted(_SCHEMA[name]))}")
+    data.setdefault("move", [])
+    data["_source"] = source
+    return data
+
+
+def read_scale_config(path) -> dict[str, Any]:
+    """Read a laser-scale configuration file (TOML)."""
+    return parse_scale_config(read_text(path), source=str(path))
+
+
+def compensator_from_config(cfg: dict[str, Any]):
+    """The :class:`~axiscal.instruments.compensator.Compensator` of a configuration."""
+    from axiscal.instruments.compensator import Compensator, SineOutput
+    from axiscal.instruments.laser_scale import LaserHead
+    from axiscal.physics.thermal import material
+
+    las = cfg.get("laser", {})
+    com = cfg.get("compensator", {})
+    laser = LaserHead(
+        vacuum_wavelength=_num(cfg, "laser", "vacuum_wavelength_nm", las, 632.991) * 1e-9,
+        counts_per_wavelength=_int(cfg, "laser", "counts_per_wavelength", las, 1),
+        dead_path=_num(cfg, "laser", "dead_path_mm", las, 0.0) * 1e-3)
+    output = SineOutput(period=_num(cfg, "compensator", "period_um", com, 20.0) * 1e-6,
+                        counts_per_period=_int(cfg, "compensator", "counts_per_period", com, 256))
+    if "material" in com and "expansion_coefficient" in com:
+        raise ConfigError(f"{cfg['_source']}: [compensator] gives both material and "
+                          "expansion_coefficient; give one")
+    alpha = 0.0
+    if "expansion_coefficient" in com:
+        alpha = _num(cfg, "compensator", "expansion_coefficient", com, 0.0)
+    elif str(com.get("material", "none")).strip().lower() != "none":
+        alpha = material(str(com["material"])).alpha
+    return Compensator(
+        laser=laser, output=output, equation=str(com.get("equation", "ciddor")),
+        expansion_coefficient=alpha,
+        update_interval=_num(cfg, "compensator", "update_interval_s", com, 1.0),
+        co2=_num(cfg, "compensator", "co2", com, 450.0))
+
+
+def axis_from_config(cfg: dict[str, Any]):
+    """The :class:`~axiscal.procedures.referencing.ScaleAxis` of a configuration."""
+    from axiscal.instruments.laser_scale import ReferenceSwitch
+    from axiscal.procedures.referencing import AirHistory, ScaleAxis
+
+    comp = compensator_from_config(cfg)
+    air = cfg.get("air", {})
+    sen = cfg.get("sensors", {})
+    sw = cfg.get("switch", {})
+    history = AirHistory(**{k: _num(cfg, "air", k, air, v) for k, v in (
+        ("temperature", 20.0), ("pressure", 101325.0), ("humidity", 50.0),
+        ("material_temperature", 20.0), ("temperature_rate", 0.0), ("pressure_rate", 0.0),
+        ("humidity_rate", 0.0), ("material_rate", 0.0))})
+    errors = tuple(_num(cfg, "sensors", k, sen, 0.0) for k in (
+        "temperature_error", "pressure_error", "humidity_error", "material_error"))
+    switch = ReferenceSwitch(position=_num(cfg, "switch", "position_mm", sw, 100.0) * 1e-3,
+                             repeatability=_num(cfg, "switch", "repeatability_um", sw, 0.0) * 1e-6,
+                             active_above=_direction(cfg, "switch", sw) > 0)
+    return ScaleAxis(laser=comp.laser, compensator=comp, switch=switch,
+                     controller=_controller(cfg, comp.output), air=history,
+                     sensor_error=errors)  # type: ignore[arg-type]
+
+
+def homing_from_config(cfg: dict[str, Any], axis) -> dict[str, Any]:
+    """Keyword arguments of :func:`~axiscal.procedures.referencing.simulate_referencing`."""
+    from axiscal.procedures.referencing import Move
+
+    h = cfg.get("homing", {})
+    d = axis.direction
+    default_start = (axis.switch.position - d * 40e-6) * 1e3
+    kwargs: dict[str, Any] = {
+        "start": _num(cfg, "homing", "start_mm", h, default_start) * 1e-3,
+        "homing_speed": _num(cfg, "homing", "speed_mm_per_min", h, 300.0) / 60e3,
+    }
+    if "seed" in h:
+        kwargs["rng"] = np.random.default_rng(_int(cfg, "homing", "seed", h, 0))
+    if "power_up_phase" in h:
+        kwargs["power_up_phase"] = _int(cfg, "homing", "power_up_phase", h, 0)
+    moves = []
+    for mv in cfg.get("move", []):
+        if "target_mm" not in mv:
+            raise ConfigError(f"{cfg['_source']}: a [[move]] needs target_mm")
+        moves.append(Move(target=_num(cfg, "move", "target_mm", mv, 0.0) * 1e-3,
+                          speed=_num(cfg, "move", "speed_mm_per_min", mv, 6000.0) / 60e3,
+                          acceleration=_num(cfg, "move", "acceleration", mv, 1.0)))
+    kwargs["moves"] = tuple(moves)
+    return kwargs
+
+
+def twin_axis_from_config(cfg: dict[str, Any]):
+    """A :class:`~axiscal.procedures.twin_axis.TwinAxis` and the run's keyword arguments
+    (power-up phases and switch errors, drawn from ``seed`` where not given)."""
+    from axiscal.procedures.twin_axis import TwinAxis
+
+    comp = compensator_from_config(cfg)
+    out = comp.output
+    g = cfg.get("gantry", {})
+    q = out.count_size
+    d = _direction(cfg, "gantry", g)
+
+    def counts(key, default_mm):
+        return int(round(_num(cfg, "gantry", key, g, default_mm) * 1e-3 / q))
+
+    s1 = counts("switch_1_mm", 100.0)
+    s2 = counts("switch_2_mm", 100.0)
+    gantry = TwinAxis(output=out, controller=_controller(cfg, out), switch_1=s1, switch_2=s2,
+                      start_1=counts("start_1_mm", (s1 - d * 512) * q * 1e3),
+                      start_2=counts("start_2_mm", (s2 - d * 512) * q * 1e3), direction=d)
+    rng = np.random.default_rng(_int(cfg, "gantry", "seed", g, 0)) if "seed" in g else None
+    sigma = _num(cfg, "gantry", "switch_repeatability_um", g, 0.0) * 1e-6 / q
+    run: dict[str, Any] = {}
+    for i in (1, 2):
+        key = f"power_up_phase_{i}"
+        if key in g:
+            run[key] = _int(cfg, "gantry", key, g, 0)
+        elif rng is not None:
+            run[key] = int(rng.integers(out.counts_per_period))
+        if rng is not None and sigma > 0:
+            run[f"switch_error_{i}"] = int(round(rng.normal(0.0, sigma)))
+    return gantry, run, sigma
+
+
+# -- helpers ------------------------------------------------------------------------------
+def _controller(cfg, out):
+    from axiscal.instruments.controller import Controller
+
+    c = cfg.get("controller", {})
+    return Controller(
+        counts_per_period=out.counts_per_period, count_size=out.count_size,
+        max_input_frequency=_num(cfg, "controller", "max_input_frequency_khz", c, 100.0) * 1e3,
+        frequency_gate=_num(cfg, "controller", "frequency_gate_us", c, 100.0) * 1e-6,
+        skew_limit=_int(cfg, "controller", "skew_limit_counts", c, 300),
+        offset=_int(cfg, "controller", "offset_counts", c, 0))
+
+
+def _num(cfg, section, key, table, default) -> float:
+    v = table.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
+        raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {v!r} must be a number")
+    return float(v)
+
+
+def _int(cfg, section, key, table, default) -> int:
+    v = table.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {v!r} must be a whole number")
+    return int(v)
+
+
+def _direction(cfg, section, table) -> int:
+    v = str(table.get("direction", "+")).strip()
+    if v in ("+", "+1", "1", "positive"):
+        return 1
+    if v in ("-", "-1", "negative"):
+        return -1
+    raise ConfigError(f"{cfg['_source']}: [{section}] direction = {v!r} must be '+' or '-'")

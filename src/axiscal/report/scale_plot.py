@@ -1,0 +1,103 @@
+"""Plot of a laser-scale referencing run against position, like Figure 4 of seed 002.
+
+Panels, sharing the position axis (real output counts of motion beyond the switch, and µm):
+the laser head's digital A/B quadrature, the reference switch, the synthesised sine and cosine
+(with the stage-1 phase continued as a faint line, to show the virtual movement of stage 2), and
+the reference mark; the events A, B, Z, C and the stages 1, 2, 3 are marked.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["referencing_figure", "save_referencing_plot"]
+
+
+def referencing_figure(run, before_counts: float | None = None, after_counts: float | None = None):
+    """A matplotlib Figure of a :class:`~axiscal.procedures.referencing.ReferencingRun`."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = run.axis.output
+    n = out.counts_per_period
+    d = run.axis.direction
+    if run.events:
+        o_a = int(run.output_counts[run.event("A").index])
+    else:
+        o_a = int(run.output_counts[0])
+    u = d * (run.output_counts - o_a)  # real output counts beyond the switch
+    lo = -(1.5 * n if before_counts is None else before_counts)
+    hi = 2.0 * n if after_counts is None else after_counts
+    first = int(np.argmax(u >= lo)) if np.any(u >= lo) else 0
+    beyond = np.flatnonzero(u > hi)
+    last = int(beyond[0]) if beyond.size else u.size
+    sl = slice(first, max(last, first + 2))
+    # abscissa: the true position beyond the switch's trip point, in output-count lengths
+    xk = d * (run.position[sl] - run.switch_trip) / out.count_size
+
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 7.5),
+                             gridspec_kw={"height_ratios": [1.0, 0.6, 2.0, 0.8]})
+    a, b = run.axis.laser.quadrature(run.laser_counts[sl])
+    axes[0].step(xk, a + 1.6, where="post", lw=0.9, color="tab:blue", label="A")
+    axes[0].step(xk, b + 0.0, where="post", lw=0.9, color="tab:orange", label="B")
+    axes[0].set_yticks([0.5, 2.1], ["B", "A"])
+    axes[0].set_title(f"laser head quadrature ({run.axis.laser.count_size * 1e6:.3f} µm, "
+                      "uncompensated)", fontsize=9, loc="left")
+    axes[1].step(xk, run.switch[sl].astype(float), where="post", color="k", lw=1.0)
+    axes[1].set_yticks([0, 1], ["off", "on"])
+    axes[1].set_title("reference switch (into the compensator)", fontsize=9, loc="left")
+    axes[2].plot(xk, run.sine[sl], lw=1.2, color="tab:red", label="sine")
+    axes[2].plot(xk, run.cosine[sl], lw=1.2, color="tab:green", label="cosine")
+    unphased = 2 * np.pi * (run.output_counts[sl] + run.power_up_phase) / n
+    axes[2].plot(xk, np.sin(unphased), lw=0.6, color="tab:red", alpha=0.25,
+                 label="sine if not rephased")
+    axes[2].set_ylim(-1.25, 1.25)
+    axes[2].legend(loc="lower left", fontsize=8, ncol=3)
+    axes[2].set_title(f"synthesised outputs to the controller ({n} counts per "
+                      f"{out.period * 1e6:g} µm period)", fontsize=9, loc="left")
+    axes[3].step(xk, run.reference[sl].astype(float), where="post", color="tab:purple", lw=1.2)
+    axes[3].set_yticks([0, 1], ["off", "on"])
+    axes[3].set_title("reference mark (to the controller)", fontsize=9, loc="left")
+    axes[3].set_xlabel("true position beyond the switch's trip point [lengths of one output "
+                       f"count, {out.count_size * 1e9:.3f} nm]")
+
+    marks = {e.name: d * (e.position - run.switch_trip) / out.count_size for e in run.events}
+    for name, k in marks.items():
+        for ax in axes:
+            ax.axvline(k, color="0.3", lw=0.8, ls="--")
+        axes[0].annotate(name, (k, 1.0), xycoords=("data", "axes fraction"),
+                         xytext=(0, 3), textcoords="offset points", ha="center", fontsize=10,
+                         fontweight="bold")
+    stages = [("Stage 1", lo, 0.0), ("Stage 2", 0.0, float(out.stage2_counts)),
+              ("Stage 3", float(out.stage2_counts), hi)]
+    for label, s0, s1 in stages:
+        axes[2].axvspan(s0, s1, color={"Stage 2": "0.85"}.get(label, "1.0"), zorder=-1)
+        axes[2].text((s0 + s1) / 2, 1.12, label, ha="center", fontsize=9)
+    axes[2].text(out.stage2_counts / 2, -1.17, f"+{run.virtual} virtual counts", ha="center",
+                 fontsize=8, color="0.3")
+    axes[3].set_xlim(lo, hi)
+    sec = axes[3].secondary_xaxis(
+        "bottom", functions=(lambda c: c * out.count_size * 1e6,
+                             lambda m: m / (out.count_size * 1e6)))
+    sec.spines["bottom"].set_position(("outward", 38))
+    sec.set_xlabel("µm beyond the switch")
+    beyond = {e.name: e.counts_beyond_switch for e in run.events}
+    z = f"Z {beyond['Z']} output counts beyond the switch" if "Z" in beyond else "no home found"
+    fig.suptitle(f"Single-axis referencing with a compensated laser scale ({z})", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def save_referencing_plot(run, path) -> Path:
+    """Write the referencing plot to ``path`` (PNG, SVG or PDF by extension)."""
+    import matplotlib.pyplot as plt
+
+    fig = referencing_figure(run)
+    p = Path(path)
+    fig.savefig(p, dpi=120)
+    plt.close(fig)
+    return p

@@ -1,0 +1,97 @@
+"""``axiscal scale home | gantry | compensate`` and the TOML configurations in examples/."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from axiscal.cli import app
+from axiscal.errors import ConfigError
+from axiscal.io.scale_config import parse_scale_config, read_scale_config
+
+runner = CliRunner()
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_scale_home_prints_events_and_writes_the_plot(tmp_path):
+    png = tmp_path / "home.png"
+    r = runner.invoke(app, ["scale", "home", str(EXAMPLES / "scale_single.toml"), "--plot",
+                            str(png)])
+    assert r.exit_code == 0, r.output
+    for word in ("A ", "B ", "Z ", "C ", "home (Z)", "compensation factor", "after homing"):
+        assert word in r.output
+    assert png.stat().st_size > 20_000
+
+
+def test_scale_home_json():
+    r = runner.invoke(app, ["scale", "home", str(EXAMPLES / "scale_single.toml"), "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["homed"] is True
+    assert [e["counts_beyond_switch"] for e in d["events"]] == [0, 256, 320, 384]
+    assert d["tracking"]["max_count_error"] < 1.0
+    assert d["alarms"] == []
+    for key in ("virtual_counts", "home_position_mm", "compensation_ppm", "laser_count_rate_hz"):
+        assert key in d
+
+
+def test_scale_gantry_text_and_json():
+    r = runner.invoke(app, ["scale", "gantry", str(EXAMPLES / "scale_gantry.toml")])
+    assert r.exit_code == 0, r.output
+    assert "skew limit" in r.output and "worst case" in r.output
+    r = runner.invoke(app, ["scale", "gantry", str(EXAMPLES / "scale_gantry.toml"), "--json"])
+    d = json.loads(r.stdout)
+    assert d["skew_after_sync"] == d["offset"] == -13
+    assert d["required_skew_limit"] > 256
+    assert abs(d["homing_skew_min"]) <= 255 and abs(d["homing_skew_max"]) <= 255
+    assert len(d["worst_case"]) == 2
+
+
+def test_scale_gantry_alarm(tmp_path):
+    cfg = tmp_path / "g.toml"
+    cfg.write_text((EXAMPLES / "scale_gantry.toml").read_text().replace(
+        "skew_limit_counts = 300", "skew_limit_counts = 100"))
+    r = runner.invoke(app, ["scale", "gantry", str(cfg)])
+    assert r.exit_code == 0
+    assert "ALARM" in r.output
+
+
+def test_scale_compensate():
+    r = runner.invoke(app, ["scale", "compensate", "--json", "-t", "21", "--material", "steel",
+                            "--material-temperature", "22", "--material-temperature", "24",
+                            "--length", "2000"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["material_error_um"] == pytest.approx(2000e-3 * 11.5e-6 * 3 * 1e6, rel=1e-9)
+    assert d["weather_error_um"] == pytest.approx(-0.95 * 2, abs=0.1)
+    r = runner.invoke(app, ["scale", "compensate"])
+    assert "ppm" in r.output and "weather" in r.output
+    r = runner.invoke(app, ["scale", "compensate", "--period", "30"])
+    assert r.exit_code == 2 and "period" in r.output
+
+
+def test_config_errors_are_clean(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[switch]\nposition = 3\n")
+    r = runner.invoke(app, ["scale", "home", str(bad)])
+    assert r.exit_code == 2 and "unknown key" in r.output and "Traceback" not in r.output
+    r = runner.invoke(app, ["scale", "home", str(tmp_path / "missing.toml")])
+    assert r.exit_code == 2
+    with pytest.raises(ConfigError, match="unknown section"):
+        parse_scale_config("[lazer]\n")
+    with pytest.raises(ConfigError, match="TOML"):
+        parse_scale_config("[laser\n")
+    with pytest.raises(ConfigError, match="whole number"):
+        from axiscal.io.scale_config import axis_from_config
+        axis_from_config(parse_scale_config("[compensator]\ncounts_per_period = 25.5\n"))
+    with pytest.raises(ConfigError, match="direction"):
+        from axiscal.io.scale_config import axis_from_config
+        axis_from_config(parse_scale_config("[switch]\ndirection = 'up-ish'\n"))
+
+
+def test_examples_parse():
+    for p in EXAMPLES.glob("scale_*.toml"):
+        assert read_scale_config(p)["_source"] == str(p)
