@@ -90,11 +90,11 @@ def compensate(
     from axiscal.compensation.tables import table_from_result
 
     mod = get_controller(controller or "csv")
-    result = load_mean_deviations(source)
+    result, file_axis = load_mean_deviations(source)
     step = spacing if spacing is not None else _mean_step(result.targets)
     table = table_from_result(result, step, start=start, end=end, bidirectional=bidirectional,
                               resolution=resolution, extrapolation=extrapolation,  # type: ignore[arg-type]
-                              reference=reference, axis=axis)
+                              reference=reference, axis=axis or file_axis)
     cf = mod.write(table, _travel(travel), **check_options(mod.write, opts, f"--option for {mod.NAME}"))
     _write_files(cf, out)
     _render_table(cf, out, json_out)
@@ -144,7 +144,7 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     d = _table_json(table)
     rows = []
     if source is not None:
-        res = load_mean_deviations(source)
+        res, _ = load_mean_deviations(source)
         dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
         corr = 0.5 * (table.correction_at(res.targets, 1) + table.correction_at(res.targets, -1))
         rows = [dict(target=float(t), deviation=float(x), correction=float(c), residual=float(x + c))

@@ -46,7 +46,14 @@ class MeanDeviations:
 
 
 def load_mean_deviations(path, full_turn: str = "separate"):
-    """Read ``path`` as a result JSON or a positioning data file (evaluated by ISO 230-2)."""
+    """Read ``path`` as a result JSON or a positioning data file (evaluated by ISO 230-2).
+
+    Returns
+    -------
+    result : MeanDeviations or Iso230_2Result
+    axis : str
+        The axis name the data file's metadata gives ("" for a result JSON, which has none).
+    """
     from axiscal.io import read_positioning, read_text
     from axiscal.standards.iso230_2 import evaluate
 
@@ -57,8 +64,9 @@ def load_mean_deviations(path, full_turn: str = "separate"):
         except json.JSONDecodeError as exc:
             raise DataFormatError(f"not valid JSON: {exc.msg}", str(path), exc.lineno) from None
         if isinstance(d, dict) and "format" not in d and "targets" in d:
-            return parse_result_json(d, str(path))
-    return evaluate(read_positioning(path), full_turn=full_turn)  # type: ignore[arg-type]
+            return parse_result_json(d, str(path)), ""
+    ds = read_positioning(path)
+    return evaluate(ds, full_turn=full_turn), ds.metadata.axis  # type: ignore[arg-type]
 
 
 def parse_result_json(d: dict, source: str = "<json>") -> MeanDeviations:
