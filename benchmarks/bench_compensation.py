@@ -15,7 +15,6 @@ Rows (see ``benchmarks/run.py``):
 
 from __future__ import annotations
 
-import time
 import tomllib
 from pathlib import Path
 

@@ -8,7 +8,6 @@ second of a spindle-sized record (50 revolutions x 3600 angles) against ``np.ptp
 
 from __future__ import annotations
 
-import time
 
 import numpy as np
 

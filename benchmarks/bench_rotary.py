@@ -10,7 +10,6 @@ model. Best of five runs. Run alone with ``python benchmarks/run.py bench_rotary
 
 from __future__ import annotations
 
-import time
 import tomllib
 from pathlib import Path
 

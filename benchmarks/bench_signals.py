@@ -7,7 +7,6 @@ runs for every timing. Run alone with ``python benchmarks/run.py bench_signals``
 
 from __future__ import annotations
 
-import time
 
 import numpy as np
 

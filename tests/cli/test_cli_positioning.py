@@ -141,3 +141,9 @@ def test_tolerances_give_verdicts_and_exit_code(good, tmp_path):
     assert r.exit_code == 2 and "not an ISO 230-2 parameter" in r.stderr
     r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "A:1"])
     assert r.exit_code == 2 and "write NAME=VALUE" in r.stderr
+
+
+def test_plot_extension_is_checked_before_any_work(good, tmp_path):
+    r = runner.invoke(app, ["iso230-2", str(good), "--plot", str(tmp_path / "p.gif")])
+    assert r.exit_code == 2 and "use a .png, .svg or .pdf extension" in r.stderr
+    assert not (tmp_path / "p.gif").exists()

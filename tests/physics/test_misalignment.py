@@ -1,6 +1,5 @@
 """Seed 000 equation 1: its terms, the exact geometry behind it, the Figure 22 trade-off."""
 
-import math
 
 import numpy as np
 import pytest

@@ -15,7 +15,7 @@ import typer
 
 from axiscal.errors import InputError
 
-__all__ = ["console", "print_json", "jsonable", "out_path", "note"]
+__all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "note"]
 
 
 def console():
@@ -58,6 +58,17 @@ def out_path(path: Path, what: str) -> Path:
     if not path.parent.exists():
         raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
     return path
+
+
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def plot_path(path: Path) -> Path:
+    """Check a plot file before any work: writable folder and a .png, .svg or .pdf name."""
+    p = out_path(path, "plot")
+    if p.suffix.lower() not in PLOT_SUFFIXES:
+        raise InputError(f"plot file {p.name}: use a .png, .svg or .pdf extension")
+    return p
 
 
 def note(message: str) -> None:

@@ -37,7 +37,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, out_path, plot_path, print_json
 
 __all__ = ["register"]
 
@@ -72,7 +72,7 @@ def compensate(
     if out is not None:
         out_path(out, "controller file")
     if plot is not None:
-        out_path(plot, "plot")
+        plot_path(plot)
     if sum(x is not None for x in (verify, read)) > 1:
         raise InputError("give either --verify or --read, not both")
     if verify is not None:

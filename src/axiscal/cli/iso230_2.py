@@ -19,7 +19,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, out_path, plot_path, print_json
 
 __all__ = ["register", "result_json", "render_result"]
 
@@ -41,7 +41,7 @@ def iso230_2(
     tolerances = parse_tolerances(tolerance)
 
     if plot is not None:
-        out_path(plot, "plot")
+        plot_path(plot)
     if report is not None:
         out_path(report, "report")
     ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)

@@ -27,7 +27,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, plot_path, print_json
 
 __all__ = ["register", "scale_app"]
 
@@ -51,7 +51,7 @@ def home(
     from axiscal.procedures.referencing import simulate_referencing
 
     if plot is not None:
-        out_path(plot, "plot")
+        plot_path(plot)
     cfg = read_scale_config(config)
     axis = axis_from_config(cfg)
     kwargs = homing_from_config(cfg, axis)

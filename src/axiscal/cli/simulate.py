@@ -15,7 +15,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, out_path, plot_path, print_json
 
 
 def simulate(
@@ -30,7 +30,9 @@ def simulate(
     from axiscal.machines.config import load_toml
     from axiscal.procedures.positioning import simulate_from_config
 
-    for p, what in ((plot, "plot"), (report, "report"), (data, "data file")):
+    if plot is not None:
+        plot_path(plot)
+    for p, what in ((report, "report"), (data, "data file")):
         if p is not None:
             out_path(p, what)
     sim = simulate_from_config(load_toml(config), seed=seed)

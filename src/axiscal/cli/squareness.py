@@ -31,7 +31,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, plot_path, print_json
 
 __all__ = ["register", "render_comparison"]
 
@@ -68,7 +68,7 @@ def straightness(
 
     method = _reference(reference)
     if plot is not None:
-        out_path(plot, "plot")
+        plot_path(plot)
     data = read_straightness(file)
     results = {m: evaluate(data.positions, data.deviations, m) for m in REFERENCES}  # type: ignore[arg-type]
     chosen = results[method]
@@ -182,7 +182,7 @@ def circular(
     from axiscal.standards.iso230_4 import evaluate_circular
 
     if plot is not None:
-        out_path(plot, "plot")
+        plot_path(plot)
     data = read_ballbar(file, radius_mm=radius)
     r = evaluate_circular(data.runs, data.radius, axes=data.axes, datum=datum)
     if plot is not None:
@@ -209,7 +209,7 @@ def simulate(
     from axiscal.procedures.squareness_study import compare_methods
 
     if plot is not None:
-        out_path(plot, "plot")
+        plot_path(plot)
     m = seed004_machine(machine)
     c = compare_methods(m, scope)
     if plot is not None:

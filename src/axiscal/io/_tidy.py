@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import csv as _csv
 import io
-import math
 import shlex
 
 from axiscal import units

@@ -8,7 +8,7 @@ a polynomial for scale and bend, and a seeded random profile for the irregular r
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 

@@ -33,13 +33,13 @@ from __future__ import annotations
 import csv as _csv
 import io
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
 from axiscal import units
-from axiscal.datasets import AxisKind, Direction, Metadata, PositioningDataset
+from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import InputError
 from axiscal.standards.iso230_2 import minimum_linear_targets, minimum_rotary_targets
 

@@ -160,7 +160,7 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
                    f"Mean deviation per direction with ±2s bands and every run's readings "
                    f"({u} against target in {result.target_unit}).")
     rep.add_heading("Per target")
-    headers = [f"Target [{result.target_unit}]", "n↑", f"x̄↑", "s↑", "n↓", "x̄↓", "s↓", "x̄",
+    headers = [f"Target [{result.target_unit}]", "n↑", "x̄↑", "s↑", "n↓", "x̄↓", "s↓", "x̄",
                "B_i", "R↑_i", "R↓_i", "R_i"]
     rows = [[r["target"], r["n_up"], r["mean_up"], r["s_up"], r["n_down"], r["mean_down"],
              r["s_down"], r["mean_bi"], r["reversal"], r["R_up_i"], r["R_down_i"], r["R_i"]]

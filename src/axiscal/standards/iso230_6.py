@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
 
 from axiscal.errors import InputError
 from axiscal.standards.iso230_1 import Squareness, least_squares_line
@@ -130,6 +129,7 @@ def diagonal_squareness_multipoint(length_x: float, length_y: float, positions_d
 
     Examples
     --------
+    >>> import numpy as np
     >>> s = np.linspace(0, 1.0, 11)
     >>> r = diagonal_squareness_multipoint(0.6, 0.8, s, 12e-6 * s, s, -12e-6 * s)
     >>> round(r.squareness.um_per_m, 3)

@@ -9,7 +9,7 @@ import numpy as np
 
 from axiscal import units
 from axiscal._parse import finite_number
-from axiscal.errors import ControllerLimitError, DataFormatError
+from axiscal.errors import ControllerLimitError
 
 __all__ = ["ControllerFile", "check_points", "check_spacing", "check_travel", "check_modulo",
            "correction_factor", "parse_number", "decimals"]
