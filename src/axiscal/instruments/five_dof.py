@@ -38,6 +38,7 @@ QP50-6SD2-DIAG 0.08 µm, PSD DL16-7-PCBA3 0.5 µm, f = 200 mm, h = 30 mm, l = 25
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -47,7 +48,23 @@ from axiscal.physics import five_dof as eq
 from axiscal.units import ARCSEC, UM
 
 __all__ = ["Detector", "Mounting", "FiveDofSystem", "Readings", "FiveErrors", "reconstruct",
-           "motion_at_unit", "rotation"]
+           "motion_at_unit", "rotation", "FiveDofSensor", "SimulatedFiveDofSensor"]
+
+
+@runtime_checkable
+class FiveDofSensor(Protocol):
+    """What the five-DOF measuring system does for a procedure (real driver or simulator).
+
+    A real driver samples the four detectors' spot positions; the reconstruction
+    (:func:`reconstruct`) turns them into the five errors. The simulator
+    :class:`SimulatedFiveDofSensor` implements it on :class:`FiveDofSystem`;
+    :mod:`axiscal.procedures.motion_errors` calls the same physics in vectorised form
+    (:meth:`FiveDofSystem.read` over all angles at once) for speed.
+    """
+
+    def read_detectors(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Spot positions (Y, Z) on PSD1, PSD2, QD1 and QD2 now, each of shape (2,), metres."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -419,3 +436,33 @@ def _moving_mean(a, window: int):
     padded = np.concatenate([np.repeat(a[:1], k, axis=0), a, np.repeat(a[-1:], k, axis=0)])
     c = np.cumsum(np.concatenate([np.zeros((1, a.shape[1])), padded]), axis=0)
     return (c[window:] - c[:-window]) / window
+
+
+class SimulatedFiveDofSensor:
+    """The :class:`FiveDofSensor` interface on a simulated :class:`FiveDofSystem`.
+
+    A small stateful adapter: the simulated world sets the pose of the target axis, the angle the
+    reference axis turned back and the beam drift (:meth:`place`); :meth:`read_detectors`
+    samples the detectors there, with noise drawn from ``rng`` (None: noise-free).
+    """
+
+    def __init__(self, system: FiveDofSystem, rng: np.random.Generator | None = None) -> None:
+        self.system = system
+        self.rng = rng
+        self._state: tuple | None = None
+
+    def place(self, pose: Pose, theta_ref: float, drift=(0.0, 0.0)) -> None:
+        """The simulated world: a one-angle ``pose`` (radians, metres), the reference axis's
+        actual angle θref (radians) and the beam drift (Δβ, Δγ) (radians)."""
+        if np.size(pose.theta) != 1:
+            raise InputError(f"place() takes the pose at one angle, not {np.size(pose.theta)}")
+        self._state = (pose, float(theta_ref), (float(drift[0]), float(drift[1])))
+
+    def read_detectors(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Spot positions (Y, Z) on PSD1, PSD2, QD1, QD2, metres."""
+        if self._state is None:
+            raise InputError("simulated five-DOF sensor: no pose placed; call place(pose, "
+                             "theta_ref) first")
+        pose, tref, drift = self._state
+        r = self.system.read(pose, tref, drift, self.rng)
+        return r.psd1[0], r.psd2[0], r.qd1[0], r.qd2[0]

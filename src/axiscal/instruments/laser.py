@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -36,17 +36,39 @@ from axiscal.errors import InputError, SignalLossError
 from axiscal.physics.interferometry import angle_from_path_difference
 from axiscal.units import ARCSEC
 
-__all__ = ["AngularLaser", "SimulatedAngularInterferometer", "PERISCOPE_SENSITIVITY"]
+__all__ = ["AngularLaser", "SimulatedAngularInterferometer", "SimulatedAngularLaser",
+           "PERISCOPE_SENSITIVITY"]
 
 #: Temperature sensitivity of the angular periscope, rad/K (seed 000: 13.8 µrad/°C).
 PERISCOPE_SENSITIVITY = 13.8e-6
 
 
+@runtime_checkable
 class AngularLaser(Protocol):
-    """What an angular laser does for a procedure (real driver or simulator)."""
+    """What an angular laser does for a procedure (real driver or simulator).
+
+    A real driver datums the reading where the optics stand (``zero``), takes the correction
+    factor K of the optics self-calibration (``set_correction``) and reads the angle. The simulator
+    :class:`SimulatedAngularLaser` implements it on :class:`SimulatedAngularInterferometer`; the
+    simulated rotary calibration (:mod:`axiscal.procedures._rotary_chain`) calls the same
+    physics in vectorised form (:meth:`SimulatedAngularInterferometer.path_difference`,
+    :meth:`~SimulatedAngularInterferometer.check_signal`, :meth:`~SimulatedAngularInterferometer.read`)
+    for speed; a test checks that both give the same reading.
+    """
+
+    def zero(self) -> None:
+        """Datum the reading where the reflector stands now."""
+        ...
+
+    def set_correction(self, k: float) -> None:
+        """Apply the correction factor K of the optics self-calibration (1 for none)."""
+        ...
 
     def read_angle(self) -> float:
-        """The current angular reading relative to the datum, radians."""
+        """The current angular reading relative to the datum, radians.
+
+        Raises :class:`~axiscal.errors.SignalLossError` when the beams are lost.
+        """
         ...
 
 
@@ -169,3 +191,68 @@ class SimulatedAngularInterferometer:
         return (f"simulated angular interferometer: S = {self.spacing * 1e3:.3f} mm (nominal "
                 f"{self.nominal_spacing * 1e3:.3f}), β = {self.beam_tilt * 1e3:.2f} mrad, beams "
                 f"parallel within {self.nonparallelism / ARCSEC:.1f} arcsec")
+
+
+class SimulatedAngularLaser:
+    """The :class:`AngularLaser` interface on a :class:`SimulatedAngularInterferometer`.
+
+    A small stateful adapter: the simulated world puts the reflector somewhere (:meth:`place`),
+    the procedure zeroes, corrects and reads as it would with a real laser. Radians, metres.
+
+    Parameters
+    ----------
+    optics : SimulatedAngularInterferometer
+    rng : numpy.random.Generator, optional
+        Noise source of the readings (None: noise-free).
+
+    Examples
+    --------
+    >>> from axiscal.physics.misalignment import reflector_pose
+    >>> laser = SimulatedAngularLaser(SimulatedAngularInterferometer())
+    >>> isinstance(laser, AngularLaser)
+    True
+    >>> laser.place(*reflector_pose(0.0, 0.0, 0.0, 0.0, 0.0)); laser.zero()
+    >>> laser.place(*reflector_pose(math.radians(2.0), 0.0, 0.0, 0.0, 0.0))
+    >>> round(math.degrees(laser.read_angle()), 9)
+    2.0
+    """
+
+    def __init__(self, optics: SimulatedAngularInterferometer,
+                 rng: np.random.Generator | None = None) -> None:
+        self.optics = optics
+        self.rng = rng
+        self.k = 1.0
+        self.temperature_change = 0.0
+        self._pose: tuple | None = None
+        self._datum = 0.0
+
+    def place(self, u, centre, interferometer=(0.0, 0.0, 0.0), interferometer_yaw: float = 0.0,
+              temperature_change: float = 0.0) -> None:
+        """The simulated world: the reflector's direction ``u`` and centre (metres), where the
+        interferometer stands and its yaw (radians), and the periscope's temperature change (K)."""
+        self._pose = (np.atleast_2d(np.asarray(u, dtype=float))[:1],
+                      np.atleast_2d(np.asarray(centre, dtype=float))[:1],
+                      np.asarray(interferometer, dtype=float), float(interferometer_yaw))
+        self.temperature_change = float(temperature_change)
+
+    def _path(self) -> float:
+        if self._pose is None:
+            raise InputError("simulated laser: no reflector placed; call place(u, centre) first")
+        u, c, i, yaw = self._pose
+        self.optics.check_signal(u, yaw)
+        return float(self.optics.path_difference(u, c, i, yaw)[0])
+
+    def zero(self) -> None:
+        """Datum the reading at the reflector's present pose."""
+        self._datum = self._path()
+
+    def set_correction(self, k: float) -> None:
+        """Set K (seed 000 optics self-calibration); must be positive and finite."""
+        if not (math.isfinite(k) and k > 0):
+            raise InputError(f"k={k!r} must be a positive correction factor")
+        self.k = float(k)
+
+    def read_angle(self) -> float:
+        """The reading relative to the datum, radians (noise, resolution, periscope drift)."""
+        dl = self._path() - self._datum
+        return float(self.optics.read(dl, self.k, self.temperature_change, self.rng)[0])

@@ -34,13 +34,38 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from axiscal.errors import InputError
 from axiscal.physics.air import HENE_VACUUM_WAVELENGTH
 
-__all__ = ["LaserHead", "ReferenceSwitch"]
+__all__ = ["LaserHead", "ReferenceSwitch", "LaserScale", "HomeSwitch", "SimulatedLaserScale",
+           "SimulatedHomeSwitch"]
+
+
+@runtime_checkable
+class LaserScale(Protocol):
+    """What a laser scale's head does for a procedure (real driver or simulator): it counts.
+
+    The simulator :class:`SimulatedLaserScale` implements it on :class:`LaserHead`;
+    :mod:`axiscal.procedures.referencing` calls the same physics in vectorised form
+    (:meth:`LaserHead.counts` over a whole trajectory) for speed.
+    """
+
+    def read_counts(self) -> int:
+        """Quadrature counts since power-up (uncompensated, one per λ_vac/k of optical path)."""
+        ...
+
+
+@runtime_checkable
+class HomeSwitch(Protocol):
+    """What a reference (home) switch does for a procedure: it is on or off."""
+
+    def is_on(self) -> bool:
+        """True while the switch is activated."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -170,3 +195,66 @@ class ReferenceSwitch:
         x = np.asarray(position, dtype=float)
         trip = self.position if trip_point is None else trip_point
         return x >= trip if self.active_above else x <= trip
+
+
+class SimulatedLaserScale:
+    """The :class:`LaserScale` interface on a :class:`LaserHead` (a small stateful adapter).
+
+    Powered up with the reflector at ``position`` in air of refractive index ``n`` and a fringe
+    phase ``phase`` (counts, in [0, 1)); the simulated world moves the reflector
+    (:meth:`move_to`) and the head counts.
+
+    Examples
+    --------
+    >>> scale = SimulatedLaserScale(LaserHead(), position=0.0, n=1.0)
+    >>> isinstance(scale, LaserScale)
+    True
+    >>> scale.move_to(6.33e-6); scale.read_counts()
+    10
+    """
+
+    def __init__(self, head: LaserHead, position: float = 0.0, n: float = 1.0,
+                 phase: float = 0.0) -> None:
+        if not 0.0 <= phase < 1.0:
+            raise InputError(f"phase = {phase!r} counts must lie in [0, 1)")
+        self.head = head
+        self._power_up = (float(position), float(n), float(phase))
+        self._state = (float(position), float(n))
+
+    def move_to(self, position: float, n: float | None = None) -> None:
+        """The simulated world: the reflector at ``position`` (metres) in air of index ``n``
+        (unchanged if None)."""
+        self._state = (float(position), self._state[1] if n is None else float(n))
+
+    def read_counts(self) -> int:
+        x0, n0, phase = self._power_up
+        x, n = self._state
+        return int(self.head.counts([x], [n], x0, n0, phase)[0])
+
+
+class SimulatedHomeSwitch:
+    """The :class:`HomeSwitch` interface on a :class:`ReferenceSwitch`.
+
+    The trip point is drawn once per activation (:meth:`arm`, called at construction) from the
+    switch's repeatability with ``rng`` (None: the nominal trip point).
+    """
+
+    def __init__(self, switch: ReferenceSwitch, rng: np.random.Generator | None = None) -> None:
+        self.switch = switch
+        self.rng = rng
+        self.position = float("nan")
+        self.arm()
+
+    def arm(self) -> float:
+        """Draw the trip point of the next activation; return it, metres."""
+        self.trip = self.switch.trip_point(self.rng)
+        return self.trip
+
+    def move_to(self, position: float) -> None:
+        """The simulated world: the axis at ``position``, metres."""
+        self.position = float(position)
+
+    def is_on(self) -> bool:
+        if not np.isfinite(self.position):
+            raise InputError("simulated home switch: the axis position is not set; call move_to()")
+        return bool(self.switch.state(self.position, self.trip))

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -43,8 +43,15 @@ __all__ = ["RotaryCalibrator", "SimulatedRotaryCalibrator"]
 TWO_PI = 2.0 * math.pi
 
 
+@runtime_checkable
 class RotaryCalibrator(Protocol):
-    """What a reference rotary calibrator does for a procedure (real driver or simulator)."""
+    """What a reference rotary calibrator does for a procedure (real driver or simulator).
+
+    :class:`SimulatedRotaryCalibrator` implements it (:meth:`~SimulatedRotaryCalibrator.rotate_to`);
+    the simulated rotary calibration calls the same physics in vectorised form
+    (:meth:`~SimulatedRotaryCalibrator.move` then :meth:`~SimulatedRotaryCalibrator.read`, with
+    servo noise and bearing wander) for speed.
+    """
 
     def rotate_to(self, angle: float) -> float:
         """Servo to ``angle`` (radians, own axis) and return the encoder reading (radians)."""
