@@ -1,5 +1,6 @@
 """Every instrument simulator implements the typing.Protocol a real driver would implement
-(ARCHITECTURE.md, layer 5), and its reading agrees with the vectorised physics the procedures use."""
+(ARCHITECTURE.md, layer 5), and its reading agrees with the vectorised physics the procedures
+use."""
 
 import math
 
