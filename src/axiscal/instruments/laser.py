@@ -52,8 +52,9 @@ class AngularLaser(Protocol):
     :class:`SimulatedAngularLaser` implements it on :class:`SimulatedAngularInterferometer`; the
     simulated rotary calibration (:mod:`axiscal.procedures._rotary_chain`) calls the same
     physics in vectorised form (:meth:`SimulatedAngularInterferometer.path_difference`,
-    :meth:`~SimulatedAngularInterferometer.check_signal`, :meth:`~SimulatedAngularInterferometer.read`)
-    for speed; a test checks that both give the same reading.
+    :meth:`~SimulatedAngularInterferometer.check_signal`,
+    :meth:`~SimulatedAngularInterferometer.read`) for speed; a test checks that both give the
+    same reading.
     """
 
     def zero(self) -> None:
