@@ -24,7 +24,7 @@ from typing import Any, Iterable, Sequence
 
 from axiscal import __version__
 
-__all__ = ["Report", "figure_svg", "write_positioning_report"]
+__all__ = ["Report", "figure_svg", "write_positioning_report", "target_label"]
 
 
 def figure_svg(fig) -> str:
@@ -102,7 +102,7 @@ class Report:
         return env.get_template("base.html").render(
             title=self.title,
             subtitle=self.subtitle,
-            metadata={k: v for k, v in self.metadata.items() if v not in (None, "", [])},
+            metadata={k: _meta(v) for k, v in self.metadata.items() if v not in (None, "", [])},
             body="\n".join(self._parts),
             version=__version__,
             generated=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
@@ -158,11 +158,12 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
     rep.add_warnings(result.warnings)
     rep.add_figure(iso230_2_figure(result, dataset),
                    f"Mean deviation per direction with ±2s bands and every run's readings "
-                   f"({u} against target in {result.target_unit}).")
+                   f"({u} against target in {_unit_label(result.target_unit)}).")
     rep.add_heading("Per target")
-    headers = [f"Target [{result.target_unit}]", "n↑", "x̄↑", "s↑", "n↓", "x̄↓", "s↓", "x̄",
-               "B_i", "R↑_i", "R↓_i", "R_i"]
-    rows = [[r["target"], r["n_up"], r["mean_up"], r["s_up"], r["n_down"], r["mean_down"],
+    headers = [f"Target [{_unit_label(result.target_unit)}]", "n↑",
+               *(f"{h} [{u}]" for h in ("x̄↑", "s↑")), "n↓",
+               *(f"{h} [{u}]" for h in ("x̄↓", "s↓", "x̄", "B_i", "R↑_i", "R↓_i", "R_i"))]
+    rows = [[target_label(r["target"]), r["n_up"], r["mean_up"], r["s_up"], r["n_down"], r["mean_down"],
              r["s_down"], r["mean_bi"], r["reversal"], r["R_up_i"], r["R_down_i"], r["R_i"]]
             for r in result.target_table()]
     rep.add_table(headers, rows, caption=f"Deviations in {u}; n = readings used.", digits=2,
@@ -191,8 +192,22 @@ _PARAM_MEANING = {
 }
 
 
+def target_label(value: float) -> str:
+    """A target position as planned: up to 4 decimals, trailing zeros dropped (34.736, 45, 0.5).
+
+    Rounding a target to the table's two decimals would show 34.74 mm for a 34.736 mm target.
+    """
+    text = f"{float(value):.4f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
 def _unit_label(unit: str) -> str:
-    return {"um": "µm", "deg": "°", "arcsec": "″"}.get(unit, unit)
+    return {"um": "µm", "deg": "°"}.get(unit, unit)
+
+
+def _meta(v: Any) -> Any:
+    """A metadata value as a reader wants it: yes/no rather than True/False."""
+    return ("yes" if v else "no") if isinstance(v, bool) else v
 
 
 def _esc(text: Any) -> str:

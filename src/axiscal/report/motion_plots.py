@@ -61,7 +61,9 @@ def five_errors_figure(runs, truth=None, title: str = "Five motion errors agains
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel("commanded angle θ [deg]")
     axes[-1].set_xticks(np.arange(0, 361, 30))
-    axes[0].legend(fontsize=7.5, ncol=2, loc="best")
+    # above the first panel, never over the data
+    axes[0].legend(fontsize=7.5, ncol=2, loc="lower right", bbox_to_anchor=(1.0, 1.0),
+                   frameon=False)
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()
     return fig
@@ -98,45 +100,56 @@ def polar_figure(result, title: str = "ISO 230-7 error motion (polar plots)"):
     """Polar plots of every error motion in ``result`` (an ISO 230-7 result).
 
     Each panel draws every run (thin) and the synchronous curve (thick) as
-    ``base + value`` around a base circle of radius 2 × the largest |value|, with the scale in
-    the panel's unit; the fundamental is removed where ISO 230-7 removes it.
+    ``base + value`` around a dotted zero circle of radius ``base`` (2 × the largest |value|),
+    with labelled rings at a round step in the panel's unit so the error can be read off the
+    plot; the fundamental is removed where ISO 230-7 removes it.
     """
     plt = _pyplot()
     motions = result.motions
     cols = 2
     rows = (len(motions) + 1) // 2
-    fig, axes = plt.subplots(rows, cols, figsize=(8.0, 4.0 * rows), subplot_kw={"projection": "polar"})
+    fig, axes = plt.subplots(rows, cols, figsize=(8.0, 4.2 * rows), subplot_kw={"projection": "polar"})
     axes = np.atleast_1d(axes).ravel()
     th = np.append(result.theta, result.theta[0])
     for ax, m in zip(axes, motions):
         unit, sym = (UM, "µm") if m.kind == "length" else (ARCSEC, "arcsec")
         runs = m.runs / unit
-        base = 2.0 * max(float(np.max(np.abs(runs))), 1e-9)
+        peak = max(float(np.max(np.abs(runs))), 1e-9)
+        base = 2.0 * peak
         for r in runs:
             ax.plot(th, base + np.append(r, r[0]), lw=0.7, color="0.55")
         sync = m.synchronous_curve / unit
         ax.plot(th, base + np.append(sync, sync[0]), lw=2.0, color="#1f5fa8")
         ax.plot(np.linspace(0, 2 * np.pi, 200), np.full(200, base), lw=0.6, ls=":", color="k")
+        step = ring_step(peak)
         ax.set_rmin(0.0)
-        ax.set_rticks([])
+        ax.set_rmax(base + 1.1 * peak)
+        rings = step * np.arange(-np.floor(peak / step), np.floor(1.1 * peak / step) + 1)
+        ax.set_rticks(base + rings, [f"{v:+g}" if v else "0" for v in rings], fontsize=7,
+                      color="0.3")
+        ax.set_rlabel_position(67.5)
         asy = "—" if np.isnan(m.asynchronous) else f"{m.asynchronous / unit:.2f}"
         ax.set_title(f"{m.name}: total {m.total / unit:.2f}, sync {m.synchronous / unit:.2f}, "
-                     f"async {asy} {sym}\n(dotted circle = zero, radius {base:.2f} {sym})", fontsize=8.5)
+                     f"async {asy} {sym}\n(dotted circle = zero; rings every {step:g} {sym})",
+                     fontsize=8.5)
     for ax in axes[len(motions):]:
         ax.set_visible(False)
     fig.suptitle(title, fontsize=11)
-    fig.tight_layout()
+    fig.tight_layout(h_pad=2.0)   # keep a panel's title clear of the 270° label above it
     return fig
+
+
+def ring_step(peak: float) -> float:
+    """A round ring spacing (1, 2 or 5 × 10^k) giving one to two rings over ``peak``."""
+    k = 10.0 ** np.floor(np.log10(peak))
+    for m in (1.0, 2.0, 5.0, 10.0):
+        if peak / (m * k) <= 2.0:
+            return float(m * k)
+    return float(10.0 * k)
 
 
 def save_figure(fig, path) -> Path:
     """Write a figure atomically (format from the extension: png, svg, pdf) and close it."""
-    import io
+    from axiscal.report.plots import save_figure as _save
 
-    from axiscal.io._files import write_bytes_atomic
-
-    p = Path(path)
-    buf = io.BytesIO()
-    fig.savefig(buf, format=(p.suffix.lstrip(".") or "png").lower(), dpi=120, bbox_inches="tight")
-    _pyplot().close(fig)
-    return write_bytes_atomic(p, buf.getvalue())
+    return _save(fig, path)

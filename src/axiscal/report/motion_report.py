@@ -20,6 +20,7 @@ __all__ = ["motion_report", "iso230_7_rows", "STABILITY_SEED"]
 STABILITY_SEED = {"ez": 0.05, "ey": 0.06, "ex": 0.19, "dy": 0.04, "dz": 0.03}
 #: Seed 003 §3.3 repeatability deviations (±, arcsec and µm).
 REPEATABILITY_SEED = {"ez": 3.4, "ey": 4.6, "ex": 3.2, "dy": 2.6, "dz": 2.3}
+_SYMBOL = {"ez": "εz", "ey": "εy", "ex": "εx", "dx": "δx", "dy": "δy", "dz": "δz"}
 _NAMES = {"ez": "εz angular positioning", "ey": "εy tilt about Y", "ex": "εx tilt about X",
           "dy": "δy radial", "dz": "δz axial"}
 
@@ -75,7 +76,11 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
     if runs:
         rep.add_heading("Five errors against angle")
         rep.add_figure(mp.five_errors_figure(runs, truth[:1] if truth else None),
-                       "Measured errors per run (zeroed at 0°); dashed: the simulation's truth of run 1.")
+                       "Measured errors per run (zeroed at 0°); dashed: the simulation's truth of run "
+                       "1 at the sensitive unit. Where the two differ by a once-per-turn wave (a "
+                       "tilted or eccentric reference axis shows in εy, εx and δy), the gap is the "
+                       "mounting's crosstalk, quantified in the crosstalk table when it is given; "
+                       "ISO 230-7 removes it as the fundamental.")
     if result is not None:
         _iso_section(rep, result)
     if repeatability:
@@ -132,7 +137,7 @@ def _crosstalk_section(rep, ct):
 
     rep.add_heading("Crosstalk of the mounting errors")
     rows = [[_NAMES[out], *row] for out, row in zip(_NAMES, ct.table())]
-    rep.add_table(["measured ↓ / true →", *INPUTS], rows, digits=4,
+    rep.add_table(["measured ↓ / true →", *(_SYMBOL[c] for c in INPUTS)], rows, digits=4,
                   caption="Largest leak over a turn per unit of true error (arcsec or µm per arcsec "
                           "or µm); 0 for a perfect set-up.")
     rep.add_table(["Error", "spurious p-v on a perfect axis", "after removing once-per-turn", "unit"],

@@ -7,6 +7,7 @@ the ±2s bands around each, every run's readings as points, and a box with A, E,
 
 from __future__ import annotations
 
+import unicodedata
 from pathlib import Path
 
 import numpy as np
@@ -76,13 +77,24 @@ def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None):
         span = t[-1] - t[0]
         if span >= 90:
             ax.set_xticks(np.arange(np.ceil(t[0] / 45) * 45, t[-1] + 1e-9, 45 if span <= 720 else 90))
-    ax.set_title(title or "Positioning deviation, ISO 230-2:2014", loc="left", fontsize=12)
+    ax.set_title(title or default_title(dataset), loc="left", fontsize=12)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
     ax.text(1.015, 0.0, _parameter_box(result, u), transform=ax.transAxes, fontsize=9,
             family="monospace", va="bottom", ha="left",
             bbox=dict(boxstyle="round,pad=0.5", fc="#f5f7fa", ec="#c9d1db"))
     fig.tight_layout()
     return fig
+
+
+def default_title(dataset=None) -> str:
+    """"Positioning deviation, ISO 230-2:2014", followed by the machine and axis when the
+    dataset's metadata names them (a plot file leaves the report that named them)."""
+    base = "Positioning deviation, ISO 230-2:2014"
+    if dataset is None:
+        return base
+    md = dataset.metadata
+    who = " ".join(str(v) for v in (md.machine, md.axis and f"axis {md.axis}") if v)
+    return f"{base} — {who}" if who else base
 
 
 def _parameter_box(result, u: str) -> str:
@@ -92,7 +104,8 @@ def _parameter_box(result, u: str) -> str:
     for key, label in labels:
         v = getattr(result, key)
         if v is not None:
-            lines.append(f"{label:<3}{v:9.2f}")
+            pad = 3 - sum(not unicodedata.combining(c) for c in label)  # B̄ is one column wide
+            lines.append(f"{label}{' ' * pad}{v:9.2f}")
     lines.append(f"runs {result.n_runs}, targets {result.targets.size}")
     return "\n".join(lines)
 

@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.report.html import Report
+from axiscal.report.html import Report, target_label
 from axiscal.units import ARCSEC
 
-__all__ = ["rotary_report", "write_rotary_report", "rotary_error_figure"]
+__all__ = ["rotary_report", "write_rotary_report", "rotary_error_figure", "common_offset"]
 
 _PARAMS = ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "B", "B_mean")
 
@@ -33,16 +33,18 @@ def rotary_error_figure(r):
     from axiscal.report.plots import DOWN_COLOR, UP_COLOR
 
     t = r.plan.targets
-    off = np.nanmean(np.concatenate([r.result.mean_up - r.truth_result.mean_up,
-                                     r.result.mean_down - r.truth_result.mean_down]))
+    off = common_offset(r)
     fig, ax = plt.subplots(figsize=(10, 4.2), dpi=110)
     wc = r.budget.worst_case / ARCSEC
     ax.axhspan(-wc, wc, color="#27ae60", alpha=0.08, label=f"budget ± {wc:.2f} arcsec (worst case)")
-    ax.plot(t, r.result.mean_up - r.truth_result.mean_up - off, "o-", color=UP_COLOR, ms=3.5, lw=1.3,
-            label="measured − true, positive ↑")
+    up = r.result.mean_up - r.truth_result.mean_up - off
+    ax.plot(t, up, "o-", color=UP_COLOR, ms=3.5, lw=1.3, label="measured − true, positive ↑")
+    shown = [up]
     if r.plan.bidirectional:
-        ax.plot(t, r.result.mean_down - r.truth_result.mean_down - off, "s-", color=DOWN_COLOR,
-                ms=3.5, lw=1.3, label="measured − true, negative ↓")
+        down = r.result.mean_down - r.truth_result.mean_down - off
+        ax.plot(t, down, "s-", color=DOWN_COLOR, ms=3.5, lw=1.3,
+                label="measured − true, negative ↓")
+        shown.append(down)
     dense = np.linspace(t[0], t[-1], 721)
     s = r.true_setup
     e = misalignment_terms(np.radians(dense), s.alpha, s.beam_tilt, s.reflector_twist, s.eta).total
@@ -54,13 +56,29 @@ def rotary_error_figure(r):
     ax.set_xlim(t[0] - 0.02 * (t[-1] - t[0]), t[-1] + 0.02 * (t[-1] - t[0]))
     if t[-1] - t[0] >= 90:
         ax.set_xticks(np.arange(np.ceil(t[0] / 45) * 45, t[-1] + 1e-9, 45))
-    ax.set_ylim(-1.3 * max(wc, 0.1), 1.3 * max(wc, 0.1))
+    # the band sets the scale, but an error outside the budget must stay on the plot
+    worst = float(np.nanmax(np.abs(np.concatenate(shown)))) if np.isfinite(shown[0]).any() else 0.0
+    lim = 1.3 * max(wc, 0.1, worst)
+    ax.set_ylim(-lim, lim)
     ax.grid(True, color="#e3e7ec", lw=0.7)
-    ax.set_title("Measurement error: per-target mean deviation, measured minus true (common offset "
-                 "removed)", loc="left", fontsize=11)
+    ax.set_title(f"Measurement error per target: measured minus true mean deviation, less their "
+                 f"mean ({off:+.3f} arcsec)", loc="left", fontsize=10.5)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
     fig.tight_layout()
     return fig
+
+
+def common_offset(r) -> float:
+    """Mean of measured minus true per-target mean deviations (both directions), arcsec.
+
+    An angle calibration is defined up to a constant (the datum); no ISO 230-2 parameter depends
+    on it, so the per-target errors are compared with the budget less this mean, as
+    :attr:`~axiscal.procedures.rotary_calibration.RotaryCalibrationResult.mean_errors` does.
+    """
+    d = np.concatenate([r.result.mean_up - r.truth_result.mean_up,
+                        r.result.mean_down - r.truth_result.mean_down])
+    d = d[np.isfinite(d)]
+    return float(d.mean()) if d.size else 0.0
 
 
 def rotary_report(r, title: str | None = None) -> Report:
@@ -82,22 +100,26 @@ def rotary_report(r, title: str | None = None) -> Report:
         f"{summary['max_mean_error_arcsec']:.3f} arcsec (single readings: "
         f"{summary['max_reading_error_arcsec']:.3f} arcsec), {verdict} the stated budget of "
         f"±{r.budget.worst_case / ARCSEC:.2f} arcsec (worst case; RSS "
-        f"±{r.budget.rss / ARCSEC:.2f} arcsec).")
+        f"±{r.budget.rss / ARCSEC:.2f} arcsec). The errors are taken less their common mean "
+        f"({common_offset(r):+.3f} arcsec): an angle calibration is defined up to a constant "
+        "and no ISO 230-2 parameter depends on it.")
     rows = []
     for k in _PARAMS:
         m, t = summary["measured"][k], summary["truth"][k]
         rows.append([k.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"), m, t,
-                     None if m is None or t is None else m - t])
-    rep.add_table(["Parameter", "Measured [arcsec]", "True [arcsec]", "Difference"], rows,
-                  caption="ISO 230-2:2014 parameters of the measured and of the true deviations "
-                          "(both relative to the datum at 0°).", digits=2, css_class="params")
+                     None if m is None or t is None else f"{m - t:+.2f}"])
+    rep.add_table(["Parameter", "Measured [arcsec]", "True [arcsec]", "Measured − true [arcsec]"],
+                  rows, caption="ISO 230-2:2014 parameters of the measured and of the true "
+                                "deviations (both relative to the datum at 0°).", digits=2)
     rep.add_warnings(list(r.result.warnings) + [f"set-up: {w}" for w in r.setup.warnings])
     truth_line = (r.plan.targets, r.truth_result.mean_bi if r.plan.bidirectional else r.truth_result.mean_up)
     rep.add_figure(iso230_2_figure(r.result, r.capture.dataset, truth=truth_line),
                    "Measured deviations (ISO 230-2 plot) with the true mean deviation the simulation "
                    "knew (dashed).")
-    rep.add_figure(rotary_error_figure(r), "Measurement error per target against the budget band "
-                   "and the misalignment error of seed 000 eq. 1.")
+    rep.add_figure(rotary_error_figure(r), "Measurement error per target (measured minus true "
+                   "mean deviation, less their common mean) against the ± worst-case budget band, "
+                   "with the misalignment error seed 000 eq. 1 predicts for the true α, β, ω (less "
+                   "its mean over the travel).")
     _per_target(rep, r)
     _setup_section(rep, r)
     _budget_section(rep, r)
@@ -115,11 +137,13 @@ def _per_target(rep: Report, r) -> None:
     rep.add_heading("Per target (ISO 230-2)")
     rows = []
     for i, row in enumerate(r.result.target_table()):
-        rows.append([row["target"], row["mean_up"], row["mean_down"], row["mean_bi"], row["reversal"],
+        rows.append([target_label(row["target"]), row["mean_up"], row["mean_down"], row["mean_bi"], row["reversal"],
                      row["R_i"], float(r.truth_result.mean_bi[i]) if r.plan.bidirectional
                      else float(r.truth_result.mean_up[i])])
-    rep.add_table(["Target [°]", "x̄↑", "x̄↓", "x̄", "B_i", "R_i", "true x̄"], rows,
-                  caption="Deviations in arcsec (actual − target).", digits=2, css_class="targets")
+    rep.add_table(["Target [°]", "x̄↑ [arcsec]", "x̄↓ [arcsec]", "x̄ [arcsec]", "B_i [arcsec]",
+                   "R_i [arcsec]", "true x̄ [arcsec]"], rows,
+                  caption="Deviations actual − target; true x̄: the mean deviation the simulation "
+                          "knew.", digits=2, css_class="targets")
 
 
 def _setup_section(rep: Report, r) -> None:
@@ -132,7 +156,7 @@ def _setup_section(rep: Report, r) -> None:
              "counter-rotation": "on" if s.counter_rotation else "off",
              "largest laser angle": f"{r.capture.max_laser_angle / ARCSEC:.2f} arcsec"}
     if r.optics is not None:
-        items["optics self-calibration"] = str(r.optics)
+        items["optics self-calibration"] = str(r.optics).removeprefix("optics self-calibration ")
     else:
         items["optics self-calibration"] = "not done (K = 1, reflector not squared at the datum)"
     rep.add_key_values(items, caption="Misalignments the simulation used, and the optics calibration")
@@ -143,7 +167,7 @@ def _budget_section(rep: Report, r) -> None:
     rows = [[i.name, i.value / ARCSEC, i.source] for i in r.budget.items]
     rows.append(["worst case (sum)", r.budget.worst_case / ARCSEC, ""])
     rows.append(["root sum of squares", r.budget.rss / ARCSEC, ""])
-    rep.add_table(["Contribution", "± arcsec", "Source"], rows, digits=3)
+    rep.add_table(["Contribution", "± arcsec", "Source"], rows, digits=3, css_class="params")
 
 
 def _offaxis_section(rep: Report, r) -> None:

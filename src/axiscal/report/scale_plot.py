@@ -56,7 +56,9 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
     axes[2].plot(xk, np.sin(unphased), lw=0.6, color="tab:red", alpha=0.25,
                  label="sine if not rephased")
     axes[2].set_ylim(-1.25, 1.25)
-    axes[2].legend(loc="lower left", fontsize=8, ncol=3)
+    # outside the panel, at the right of its title: inside it the legend hid the stage-1 trough
+    axes[2].legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), fontsize=8, ncol=3,
+                   frameon=False, borderaxespad=0.1)
     axes[2].set_title(f"synthesised outputs to the controller ({n} counts per "
                       f"{out.period * 1e6:g} µm period)", fontsize=9, loc="left")
     axes[3].step(xk, run.reference[sl].astype(float), where="post", color="tab:purple", lw=1.2)
@@ -93,11 +95,8 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
 
 
 def save_referencing_plot(run, path) -> Path:
-    """Write the referencing plot to ``path`` (PNG, SVG or PDF by extension)."""
-    import matplotlib.pyplot as plt
+    """Write the referencing plot to ``path`` (PNG, SVG or PDF by extension), atomically; any
+    other extension is refused with :class:`~axiscal.errors.InputError` and nothing is written."""
+    from axiscal.report.plots import save_figure
 
-    fig = referencing_figure(run)
-    p = Path(path)
-    fig.savefig(p, dpi=120)
-    plt.close(fig)
-    return p
+    return save_figure(referencing_figure(run), path)
