@@ -161,3 +161,21 @@ def test_referencing_plot_legend_is_outside_the_signals_and_the_file_is_checked(
     assert list(tmp_path.iterdir()) == []
     out = save_referencing_plot(run, tmp_path / "home.svg")
     assert out.read_text().lstrip().startswith("<?xml")
+
+
+def test_compensation_plot_of_a_part_turn_uses_the_tested_range():
+    """A rotary table over 0-90° was drawn on fixed 0-360° ticks, squeezed into a quarter."""
+    import matplotlib.pyplot as plt
+
+    from axiscal.compensation.loop import run_compensation_loop
+    from axiscal.report.compensation_plots import compensation_figure
+
+    cfg = tomllib.loads((EXAMPLES / "compensation_rotary.toml").read_text())
+    cfg["test"]["travel_deg"] = 90
+    cfg["compensation"] = {"controller": "csv", "spacing": 10.0, "bidirectional": True,
+                           "resolution": 0.36}
+    fig = compensation_figure(run_compensation_loop(cfg))
+    lo, hi = fig.axes[0].get_xlim()
+    assert -5.0 < lo < 0.0 and 90.0 < hi < 95.0
+    assert fig.axes[0].get_title(loc="left").endswith("every 10°")
+    plt.close(fig)

@@ -32,7 +32,7 @@ def compensation_figure(loop, title: str | None = None):
     for mean, color, name, d in ((b.mean_up, UP_COLOR, "↑", 1), (b.mean_down, DOWN_COLOR, "↓", -1)):
         ax0.plot(b.targets, mean, "o", color=color, ms=3.5, label=f"measured mean x̄{name}")
         ax0.plot(x, shift - np.asarray(t.correction_at(x, d)), "-", color=color, lw=1.1, alpha=0.8,
-                 label=f"table, −correction {name}{shifted}")
+                 label=f"−(table correction) {name}" + (f", shifted{shifted}" if shifted else ""))
     ax0.plot(t.positions, shift - t.up, "|", color="#2d3436", ms=7, label="table points")
     if shifted:
         ax0.text(1.015, 0.0, f"The table is re-referenced\n(zero at its reference point);\n"
@@ -40,7 +40,8 @@ def compensation_figure(loop, title: str | None = None):
                  transform=ax0.transAxes, fontsize=8, va="bottom", ha="left", color="#555")
     ax0.set_ylabel(f"Deviation before [{u}]")
     ax0.set_title(title or f"Compensation loop: {loop.controller_file.controller} table, "
-                  f"{t.n_points} points every {t.spacing:g} {tu}", loc="left", fontsize=12)
+                  f"{t.n_points} points every {t.spacing:g}{'' if tu == '°' else ' '}{tu}",
+                  loc="left", fontsize=12)
     for mean, s, color, name in ((a.mean_up, a.s_up, UP_COLOR, "↑"), (a.mean_down, a.s_down, DOWN_COLOR, "↓")):
         ax1.fill_between(a.targets, mean - 2 * s, mean + 2 * s, color=color, alpha=0.13, lw=0)
         ax1.plot(a.targets, mean, "-o", color=color, ms=3, lw=1.3, label=f"re-measured x̄{name} ± 2s")
@@ -54,8 +55,13 @@ def compensation_figure(loop, title: str | None = None):
         ax.axhline(0, color="#888", lw=0.6)
         ax.grid(True, color="#e3e7ec", lw=0.7)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
-    if b.axis_kind.value == "rotary":
-        ax1.set_xticks(np.arange(0, 361, 45))
+    if b.axis_kind.value == "rotary" and b.target_unit == "deg":
+        # ticks every 45° over the tested range only: fixed 0-360 ticks squeezed a shorter
+        # (or negative) travel into a corner of the plot
+        lo, hi = float(b.targets[0]), float(b.targets[-1])
+        if hi - lo >= 90:
+            ax1.set_xticks(np.arange(np.ceil(lo / 45) * 45, hi + 1e-9, 45 if hi - lo <= 720 else 90))
+        ax1.set_xlim(lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo))
     fig.tight_layout()
     return fig
 
