@@ -179,3 +179,18 @@ def test_compensation_plot_of_a_part_turn_uses_the_tested_range():
     assert -5.0 < lo < 0.0 and 90.0 < hi < 95.0
     assert fig.axes[0].get_title(loc="left").endswith("every 10°")
     plt.close(fig)
+
+
+def test_stability_legends_sit_beside_the_traces():
+    import matplotlib.pyplot as plt
+
+    from axiscal.instruments.five_dof import FiveDofSystem
+    from axiscal.procedures.motion_errors import stability_test
+    from axiscal.report.motion_plots import stability_figure
+
+    run = stability_test(FiveDofSystem(), np.random.default_rng(1), duration=600.0)
+    fig = stability_figure(run)
+    fig.canvas.draw()
+    for ax in fig.axes:
+        assert ax.get_legend().get_window_extent().x0 >= ax.get_window_extent().x1 - 1
+    plt.close(fig)

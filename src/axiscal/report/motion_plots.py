@@ -78,7 +78,7 @@ def stability_figure(run, title: str = "Stability: five errors of a still set-up
         From :func:`axiscal.procedures.motion_errors.stability_test`.
     """
     plt = _pyplot()
-    fig, axes = plt.subplots(5, 1, figsize=(7.5, 10.5), sharex=True)
+    fig, axes = plt.subplots(5, 1, figsize=(9.5, 10.5), sharex=True)
     minutes = run.time / 60.0
     for k, (ch, (label, unit)) in enumerate(LABELS.items()):
         ax = axes[k]
@@ -89,7 +89,8 @@ def stability_figure(run, title: str = "Stability: five errors of a still set-up
                 label=f"compensated (σ = {np.std(meas):.3f})")
         ax.set_ylabel(label, fontsize=8.5)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="upper left")
+        # beside the panel: inside, it hid the first minutes of the traces
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     axes[-1].set_xlabel("time [min]")
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()
