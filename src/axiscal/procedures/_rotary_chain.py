@@ -5,6 +5,13 @@
 the datum, the optics self-calibration and the capture. Every reading is computed from the
 physical state (axis angle, calibrator shaft angle, reflector pose, beam directions); no error
 formula of the seed is added on top, so equation 1 and the read-head cancellation are results.
+
+The rig drives the simulators' vectorised methods (``path_difference``, ``check_signal``,
+``read``; ``move``, ``read``), not the one-reading interfaces a real driver implements
+(:class:`~axiscal.instruments.laser.AngularLaser`,
+:class:`~axiscal.instruments.rotary_calibrator.RotaryCalibrator`): a whole test is one array
+operation. :class:`~axiscal.instruments.laser.SimulatedAngularLaser` gives the same readings one
+at a time (tests/instruments/test_review_protocols.py).
 """
 
 from __future__ import annotations

@@ -1,7 +1,10 @@
 """Rotary axis calibration with an angular interferometer and a counter-rotating calibrator.
 
-The procedure of seed 000, run on simulated instruments (or, through the same steps, on real
-ones):
+The procedure of seed 000, run on simulated instruments. A run on real instruments would take
+the same steps through the interfaces :class:`~axiscal.instruments.laser.AngularLaser` and
+:class:`~axiscal.instruments.rotary_calibrator.RotaryCalibrator`; the simulated chain
+(:mod:`axiscal.procedures._rotary_chain`) instead calls the simulators' vectorised physics
+directly, for speed (a test checks the protocol adapters read the same):
 
 1. **Set-up checks** (:func:`setup_checks`): the dial-gauge TIR on the calibrator's mounting ring
    gives the tilt of the mounting face, ``TIR/(2r)``; the offset of the beam returned by the
