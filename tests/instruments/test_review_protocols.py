@@ -111,3 +111,24 @@ def test_home_switch_adapter_trips_at_its_drawn_trip_point():
     assert sim.is_on() is False
     sim.move_to(trip + 0.1 * UM)
     assert sim.is_on() is True
+
+
+def test_compensator_unit_adapter_gives_the_counts_of_the_vectorised_chain():
+    """Streaming through the adapter (feed, sensor update, feed) gives exactly
+    floor(c·P/2^32) with the factor in force at each sample, as referencing computes it."""
+    from axiscal.instruments.compensator import (
+        Compensator, CompensatorUnit, SimulatedCompensatorUnit, multiply)
+
+    comp = Compensator()
+    unit = SimulatedCompensatorUnit(comp, 20.0, 101325.0, 50.0)
+    assert isinstance(unit, CompensatorUnit)
+    rng = np.random.default_rng(5)
+    inc1, inc2 = rng.integers(-3, 40, 500), rng.integers(-3, 40, 500)
+    out = list(np.cumsum(unit.feed(inc1)))
+    added = unit.update_sensors(24.0, 99000.0, 30.0, 21.0)
+    out2 = out[-1] + added + np.cumsum(unit.feed(inc2))
+    counts = np.cumsum(np.concatenate([inc1, inc2]))
+    p1, p2 = comp.factor(20.0, 101325.0, 50.0), comp.factor(24.0, 99000.0, 30.0, 21.0)
+    expected = multiply(counts, np.r_[np.full(500, p1), np.full(500, p2)])
+    assert np.array_equal(np.r_[out, out2], expected)
+    assert added != 0                                   # the weather change re-scales the count

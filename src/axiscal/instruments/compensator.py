@@ -47,6 +47,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -68,6 +69,8 @@ __all__ = [
     "factor_to_integer",
     "multiply",
     "PulseMultiplier",
+    "CompensatorUnit",
+    "SimulatedCompensatorUnit",
     "expand_counts",
     "RephaseResult",
     "rephase",
@@ -495,3 +498,56 @@ def expand_counts(output_counts) -> np.ndarray:
     sign = np.repeat(np.sign(steps), lengths)
     within = np.arange(total, dtype=np.int64) - np.repeat(np.cumsum(lengths) - lengths, lengths)
     return np.concatenate((o[:1], starts + sign * (within + 1)))
+
+
+@runtime_checkable
+class CompensatorUnit(Protocol):
+    """What an environmental compensator does in the chain (real unit or simulator).
+
+    Its sensors give a new factor from time to time (``update_sensors``, returning the output
+    counts it adds or removes to re-scale the position: the "pulse addition" of seed 002), and it
+    turns laser count increments into output count increments (``feed``). The simulator
+    :class:`SimulatedCompensatorUnit` implements it; :mod:`axiscal.procedures.referencing` calls the
+    same arithmetic in vectorised form (:meth:`Compensator.factor_schedule` then
+    :func:`multiply`), which gives identical counts.
+    """
+
+    def update_sensors(self, temperature: float, pressure: float, humidity: float,
+                       material_temperature: float = REFERENCE_TEMPERATURE) -> int:
+        """Read new sensor values (°C, Pa, %RH, °C); return the output counts added (+) or
+        removed (−)."""
+        ...
+
+    def feed(self, increments) -> np.ndarray:
+        """Laser count increments in, output count increments out."""
+        ...
+
+
+class SimulatedCompensatorUnit:
+    """The :class:`CompensatorUnit` interface on a :class:`Compensator` and a
+    :class:`PulseMultiplier` (a small stateful adapter).
+
+    Examples
+    --------
+    >>> unit = SimulatedCompensatorUnit(Compensator(), 20.0, 101325.0, 50.0)
+    >>> isinstance(unit, CompensatorUnit)
+    True
+    >>> int(unit.feed([1000]).sum())       # 1000 laser counts of 0.633 µm in 78.125 nm counts
+    8100
+    """
+
+    def __init__(self, compensator: Compensator, temperature: float = REFERENCE_TEMPERATURE,
+                 pressure: float = 101325.0, humidity: float = 50.0,
+                 material_temperature: float = REFERENCE_TEMPERATURE) -> None:
+        self.compensator = compensator
+        self.multiplier = PulseMultiplier(
+            compensator.factor(temperature, pressure, humidity, material_temperature),
+            compensator.bits)
+
+    def update_sensors(self, temperature: float, pressure: float, humidity: float,
+                       material_temperature: float = REFERENCE_TEMPERATURE) -> int:
+        return self.multiplier.set_factor(self.compensator.factor(
+            temperature, pressure, humidity, material_temperature))
+
+    def feed(self, increments) -> np.ndarray:
+        return self.multiplier.feed(increments)
