@@ -123,7 +123,7 @@ def test_compensator_unit_adapter_gives_the_counts_of_the_vectorised_chain():
     unit = SimulatedCompensatorUnit(comp, 20.0, 101325.0, 50.0)
     assert isinstance(unit, CompensatorUnit)
     rng = np.random.default_rng(5)
-    inc1, inc2 = rng.integers(-3, 40, 500), rng.integers(-3, 40, 500)
+    inc1, inc2 = rng.integers(-30, 4000, 500), rng.integers(-30, 4000, 500)   # about 0.6 m
     out = list(np.cumsum(unit.feed(inc1)))
     added = unit.update_sensors(24.0, 99000.0, 30.0, 21.0)
     out2 = out[-1] + added + np.cumsum(unit.feed(inc2))
