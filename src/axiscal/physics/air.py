@@ -17,8 +17,10 @@ of the air in the beam. This module gives ``n`` by three equations:
     comparison with older instruments and papers.
 
 Humidity is given as relative humidity (%RH), dew point (°C) or partial pressure of water vapour
-(Pa); CO2 content in µmol/mol (default 450); vacuum wavelength in metres (default the HeNe line
-632.991 nm that seed 002 rounds to 0.633 µm). Every function broadcasts over NumPy arrays.
+(Pa); the conversions (saturation vapour pressure, enhancement factor, dew point, relative
+humidity) live in :mod:`axiscal.physics.humidity` and are re-exported here. CO2 content in
+µmol/mol (default 450); vacuum wavelength in metres (default the HeNe line 632.991 nm that seed
+002 rounds to 0.633 µm). Every function broadcasts over NumPy arrays.
 
 Inputs outside an equation's range of validity (table :data:`VALIDITY`) raise
 :class:`~axiscal.errors.InputError` naming the parameter, the value and the range; with
@@ -57,6 +59,16 @@ from typing import Literal
 import numpy as np
 
 from axiscal.errors import InputError
+from axiscal.physics._validate import finite as _finite
+from axiscal.physics._validate import refuse as _refuse
+from axiscal.physics._validate import scalar_or_array as _out
+from axiscal.physics.humidity import (
+    dew_point,
+    enhancement_factor,
+    relative_humidity,
+    saturation_vapour_pressure,
+    water_vapour_pressure,
+)
 
 __all__ = [
     "HENE_VACUUM_WAVELENGTH",
@@ -68,6 +80,8 @@ __all__ = [
     "saturation_vapour_pressure",
     "water_vapour_pressure",
     "enhancement_factor",
+    "relative_humidity",
+    "dew_point",
     "refractive_index",
     "air_wavelength",
     "air_conditions",
@@ -93,7 +107,13 @@ EQUATIONS: dict[str, str] = {
 
 #: Range of validity per equation: parameter -> (low, high, unit). Outside it ``check="raise"``
 #: refuses the input. Ciddor and modified Edlén: the input limits of the NIST calculator
-#: (Stone and Zimmerman, section IV). Edlén (1966): laboratory air, the conditions of the
+#: (Stone and Zimmerman, sections IV and VI: 300-1700 nm, 10-140 kPa, -40 to 100 °C,
+#: 0-2000 µmol/mol CO2, water-vapour mole fraction up to 0.2). Inside them the calculator
+#: still warns outside the narrower band where the equations were tested against measurements,
+#: 350-1600 nm, 60-120 kPa, 0-40 °C, RH 1-85 % (as transcribed by the ``ref-index`` package
+#: the tests use as oracle); the uncertainty grows there. The modified Edlén equation has
+#: no CO2 input in the NIST calculator (450 µmol/mol); the CO2 scaling here is Edlén's (1966)
+#: factor, see :func:`birch_downs`. Edlén (1966): laboratory air, the conditions of the
 #: measurements the equation was fitted to (axiscal's choice, stated here).
 VALIDITY: dict[str, dict[str, tuple[float, float, str]]] = {
     "ciddor": {
@@ -125,120 +145,6 @@ _TORR = 101325.0 / 760.0  # Pa per torr
 
 class AirValidityWarning(UserWarning):
     """An input lies outside the equation's range of validity (only with ``check="warn"``)."""
-
-
-# -- humidity -----------------------------------------------------------------------------------
-def saturation_vapour_pressure(temperature, over: Literal["auto", "water", "ice"] = "auto"):
-    """Saturation pressure of water vapour, Pa.
-
-    Parameters
-    ----------
-    temperature : array_like, degrees Celsius
-    over : {"auto", "water", "ice"}
-        ``"water"``: IAPWS-IF97 saturation curve; ``"ice"``: sublimation curve of Wagner et al.
-        (1994); ``"auto"``: ice below 0 °C, water from 0 °C up (the NIST calculator's rule for a
-        relative humidity).
-
-    Returns
-    -------
-    p_sv : float or ndarray, Pa
-
-    Notes
-    -----
-    Over water (NIST A-I, IAPWS-IF97), with :math:`T` in kelvin:
-
-    .. math::
-        \\Omega = T + K_9/(T - K_{10}),\\quad A = \\Omega^2 + K_1\\Omega + K_2,\\quad
-        B = K_3\\Omega^2 + K_4\\Omega + K_5,\\quad C = K_6\\Omega^2 + K_7\\Omega + K_8,
-
-        p_{sv} = 10^6 \\left( \\frac{2C}{-B + \\sqrt{B^2 - 4AC}} \\right)^4 .
-
-    Over ice, with :math:`\\theta = T/273.16`:
-    :math:`p_{sv} = 611.657 \\exp[A_1(1 - \\theta^{-1.5}) + A_2(1 - \\theta^{-1.25})]`.
-
-    Examples
-    --------
-    >>> round(saturation_vapour_pressure(20.0), 2)
-    2339.21
-    """
-    t = np.asarray(temperature, dtype=float)
-    if over == "water":
-        out = _psv_water(t)
-    elif over == "ice":
-        out = _psv_ice(t)
-    elif over == "auto":
-        out = np.where(t < 0.0, _psv_ice(np.minimum(t, 0.0)), _psv_water(t))
-    else:
-        raise InputError(f"over = {over!r} is not 'auto', 'water' or 'ice'")
-    return _out(out)
-
-
-def water_vapour_pressure(temperature, humidity=None, *, dew_point=None, vapour_pressure=None):
-    """Partial pressure of water vapour from one of the three ways to state humidity, Pa.
-
-    Parameters
-    ----------
-    temperature : array_like, degrees Celsius
-        Air temperature.
-    humidity : array_like, percent relative humidity, optional
-        :math:`p_v = (RH/100)\\, p_{sv}(t)` (saturation over ice below 0 °C).
-    dew_point : array_like, degrees Celsius, optional
-        :math:`p_v = p_{sv,water}(t_d)`; it may not exceed the air temperature.
-    vapour_pressure : array_like, Pa, optional
-        Given directly; it may not exceed the saturation pressure at the air temperature.
-
-    Exactly one of ``humidity``, ``dew_point`` and ``vapour_pressure`` is given.
-
-    Raises
-    ------
-    InputError
-        If none or more than one is given, or the value is impossible (RH outside 0-100 %, a dew
-        point above the air temperature, a negative or supersaturated vapour pressure).
-
-    Examples
-    --------
-    >>> round(water_vapour_pressure(20.0, 50.0), 2)
-    1169.61
-    >>> round(water_vapour_pressure(20.0, dew_point=9.27), 1)
-    1169.4
-    """
-    given = [k for k, v in (("humidity", humidity), ("dew_point", dew_point),
-                            ("vapour_pressure", vapour_pressure)) if v is not None]
-    if len(given) != 1:
-        raise InputError(
-            "give the humidity exactly one way: relative humidity (%RH), dew point (°C) or "
-            f"water vapour partial pressure (Pa); got {', '.join(given) or 'none'}"
-        )
-    t = _finite("temperature", temperature)
-    if humidity is not None:
-        rh = _finite("humidity", humidity)
-        _refuse("humidity", rh, (rh < 0) | (rh > 100), "%RH", "must lie between 0 and 100 %RH")
-        return _out(rh / 100.0 * saturation_vapour_pressure(t))
-    if dew_point is not None:
-        td = _finite("dew_point", dew_point)
-        t_b, td_b = np.broadcast_arrays(t, td)
-        _refuse("dew_point", td_b, td_b > t_b + 1e-9, "°C",
-                "cannot exceed the air temperature (the air would be supersaturated)")
-        return _out(saturation_vapour_pressure(td, over="water"))
-    pv = _finite("vapour_pressure", vapour_pressure)
-    _refuse("vapour_pressure", pv, pv < 0, "Pa", "cannot be negative")
-    psv = np.asarray(saturation_vapour_pressure(t))
-    pv_b, psv_b = np.broadcast_arrays(pv, psv)
-    _refuse("vapour_pressure", pv_b, pv_b > psv_b * (1 + 1e-9), "Pa",
-            "exceeds the saturation pressure at the air temperature")
-    return _out(pv)
-
-
-def enhancement_factor(pressure, temperature):
-    """Enhancement factor f of water vapour in air (NIST A-II), dimensionless.
-
-    :math:`f = 1.00062 + 3.14\\times10^{-8}\\, p + 5.60\\times10^{-7}\\, t^2` with p in Pa and t
-    in °C;
-    the mole fraction of water vapour is :math:`x_v = f\\, p_v / p`.
-    """
-    p = np.asarray(pressure, dtype=float)
-    t = np.asarray(temperature, dtype=float)
-    return _out(1.00062 + 3.14e-8 * p + 5.60e-7 * t * t)
 
 
 # -- the three equations, on the partial pressure of water vapour -------------------------------
@@ -569,7 +475,7 @@ def air_conditions(
     else:
         pv = float(water_vapour_pressure(temperature, humidity, dew_point=dew_point,
                                          vapour_pressure=vapour_pressure))
-    rh = 100.0 * pv / float(saturation_vapour_pressure(temperature))
+    rh = float(relative_humidity(temperature, pv))
     return AirResult(n=n, wavelength=float(vacuum_wavelength) / n,
                      vacuum_wavelength=float(vacuum_wavelength), equation=_equation(equation),
                      temperature=float(temperature), pressure=float(pressure),
@@ -653,25 +559,6 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
 
 
 # -- helpers --------------------------------------------------------------------------------
-def _psv_water(t):
-    k = (1.16705214528e3, -7.24213167032e5, -1.70738469401e1, 1.20208247025e4,
-         -3.23255503223e6, 1.49151086135e1, -4.82326573616e3, 4.05113405421e5,
-         -2.38555575678e-1, 6.50175348448e2)
-    big_t = np.asarray(t, dtype=float) + _T0
-    om = big_t + k[8] / (big_t - k[9])
-    a = om * om + k[0] * om + k[1]
-    b = k[2] * om * om + k[3] * om + k[4]
-    c = k[5] * om * om + k[6] * om + k[7]
-    x = -b + np.sqrt(b * b - 4.0 * a * c)
-    return 1e6 * (2.0 * c / x) ** 4
-
-
-def _psv_ice(t):
-    theta = (np.asarray(t, dtype=float) + _T0) / 273.16
-    y = -13.928169 * (1.0 - theta ** -1.5) + 34.7078238 * (1.0 - theta ** -1.25)
-    return 611.657 * np.exp(y)
-
-
 def _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure):
     lam_um = np.asarray(vacuum_wavelength, dtype=float) * 1e6
     return (1.0 / (lam_um * lam_um), np.asarray(temperature, dtype=float),
@@ -691,24 +578,6 @@ def _equation(equation) -> str:
     return key
 
 
-def _finite(name: str, value) -> np.ndarray:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number or an array of numbers, got {value!r:.60}") \
-            from None
-    if not np.all(np.isfinite(arr)):
-        raise InputError(f"{name} must be finite (found NaN or infinity)")
-    return arr
-
-
-def _refuse(name: str, values: np.ndarray, bad: np.ndarray, unit: str, rule: str) -> None:
-    bad = np.asarray(bad)
-    if np.any(bad):
-        v = np.broadcast_to(values, bad.shape)[bad].ravel()[0]
-        raise InputError(f"{name} = {v:g} {unit} {rule}".replace("  ", " "))
-
-
 def _check_validity(name: str, check: str, **values) -> None:
     for param, (lo, hi, unit) in VALIDITY[name].items():
         arr = np.asarray(values[param])
@@ -726,9 +595,3 @@ def _check_validity(name: str, check: str, **values) -> None:
             raise InputError(msg + " (check='warn', or --allow-outside on the command line, "
                              "computes anyway)")
         warnings.warn(msg, AirValidityWarning, stacklevel=3)
-
-
-def _out(x):
-    """A 0-d result as a Python float, an array as it is."""
-    arr = np.asarray(x, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr
