@@ -299,13 +299,15 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
     n_down, mean_down, s_down = _direction_stats(targets, down, tu, "-")
     has_up, has_down = up.shape[1] > 0, down.shape[1] > 0
 
-    n_runs = int(max(up.shape[1], down.shape[1]))
+    # runs and missing readings of the test as measured: pooling 360° into 0° (full_turn="merge")
+    # widens the arrays with padding that is neither a run nor a missing reading
+    n_runs = int(max(dataset.up.shape[1], dataset.down.shape[1]))
     if n_runs < RECOMMENDED_RUNS:
         warn.append(
             f"{n_runs} runs; ISO 230-2:2014 asks for {RECOMMENDED_RUNS} in each direction, "
             "so the repeatability estimates are less certain"
         )
-    missing = int(np.isnan(up).sum() + np.isnan(down).sum())
+    missing = int(np.isnan(dataset.up).sum() + np.isnan(dataset.down).sum())
     if missing:
         warn.append(
             f"{missing} reading(s) missing; each target was evaluated from the readings it has "
