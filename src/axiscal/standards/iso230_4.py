@@ -278,8 +278,15 @@ def _circular_deviation(run: CircularRun) -> float:
     """Minimum-zone G: min over (a, b) of max - min of Δr - a cos φ - b sin φ (an LP)."""
     from scipy.optimize import linprog
 
-    cos, sin, d = np.cos(run.angles), np.sin(run.angles), run.deviations
-    scale = max(float(np.ptp(d)), 1e-300)
+    cos, sin = np.cos(run.angles), np.sin(run.angles)
+    # start from the least-squares centre: the LP then solves for a small correction on data of
+    # unit spread, whatever the radius offset (a constant moves both envelope circles alike)
+    h3 = _harmonics(run.angles)[:, :3]
+    c0, _ = _lstsq(h3, run.deviations)
+    d = run.deviations - h3 @ c0
+    scale = float(np.ptp(d))
+    if not scale > 0:
+        return 0.0
     dn = d / scale
     ones, zeros = np.ones_like(d), np.zeros_like(d)
     # variables a, b, u, l: minimise u - l with l <= dn - a cos - b sin <= u
