@@ -240,6 +240,7 @@ def interpolate_sincos(sin, cos, initial_period: int = 0) -> Interpolation:
     if n == 0:
         empty = np.zeros(0, np.int64)
         return Interpolation(_frozen(position), _frozen(phase), _frozen(empty))
+    _refuse_non_finite(s, c)
     np.arctan2(s[:1], c[:1], out=phase[:1])
     position[0] = phase[0] / TWO_PI + initial_period
     turns = float(initial_period)
@@ -442,6 +443,7 @@ def heydemann_fit(sin, cos) -> HeydemannCorrection:
     x = np.asarray(cos, dtype=float).ravel()
     if x.size != y.size or x.size < 5:
         raise InputError(f"heydemann_fit needs at least 5 (sin, cos) pairs, got {min(x.size, y.size)}")
+    _refuse_non_finite(y, x)
     mx, my = float(x.mean()), float(y.mean())
     sx, sy = float(x.std()), float(y.std())
     if not (sx > 0 and sy > 0):
@@ -477,6 +479,23 @@ def heydemann_correct(sin, cos, fit: HeydemannCorrection) -> tuple[np.ndarray, n
     s = (np.asarray(sin, dtype=float) - fit.offset_sin) / fit.amplitude_sin
     s = (s - c * math.sin(fit.phase_error)) / math.cos(fit.phase_error)
     return s, c
+
+
+def _refuse_non_finite(s: np.ndarray, c: np.ndarray) -> None:
+    """A NaN or infinite sample has no phase: refuse it rather than lose a period count there
+    (a wrap across a NaN sample is not seen, and arctan2 of an infinity is a finite angle).
+
+    Fast path: a dot product is finite whenever every sample is (barring |values| > 1e150), and a
+    NaN or infinity in either array makes it NaN or infinite; only then are the samples scanned."""
+    with np.errstate(all="ignore"):
+        if np.isfinite(np.dot(s, c)):
+            return
+    for name, arr in (("sin", s), ("cos", c)):
+        ok = np.isfinite(arr)
+        if not ok.all():
+            i = int(np.argmin(ok))
+            raise InputError(f"{name}[{i}] = {arr[i]!r}: every sample must be finite; a missing "
+                             "sample cannot be interpolated (split the record there or fill it)")
 
 
 def _wrap(x):
