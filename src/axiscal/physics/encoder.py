@@ -212,8 +212,8 @@ class ErrorMap:
     errors: np.ndarray
 
     def __post_init__(self) -> None:
-        a = np.asarray(self.angles, dtype=float)
-        e = np.asarray(self.errors, dtype=float)
+        a = np.array(self.angles, dtype=float)  # copies: freezing must not touch the caller's
+        e = np.array(self.errors, dtype=float)
         if a.ndim != 1 or a.shape != e.shape or a.size < 2:
             raise InputError("error map needs matching 1-D angles and errors with at least 2 points")
         if np.any(np.diff(a) <= 0) or a[0] < 0 or a[-1] >= TWO_PI:

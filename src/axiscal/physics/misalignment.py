@@ -220,8 +220,8 @@ def tradeoff_table(alphas, betas, omega: float = 2.5e-3, base: float = 0.8 * ARC
     map's loss of validity and the cosine-type errors of a tilted calibrator). We do not invent
     that term; the comparison is printed in the report and checked in the tests.
     """
-    a = np.atleast_1d(np.asarray(alphas, dtype=float))
-    b = np.atleast_1d(np.asarray(betas, dtype=float))
+    a = np.atleast_1d(np.array(alphas, dtype=float))  # copies: the caller's arrays stay writeable
+    b = np.atleast_1d(np.array(betas, dtype=float))
     acc = np.array([[base + peak_error(ai, bi, omega) for ai in a] for bi in b])
     for arr in (a, b, acc):
         arr.flags.writeable = False
