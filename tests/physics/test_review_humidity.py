@@ -14,7 +14,7 @@ import pytest
 import ref_index
 
 from axiscal.errors import InputError
-from axiscal.physics import air, humidity
+from axiscal.physics import air, air_equations, humidity
 
 
 def test_air_still_exports_the_humidity_functions():
@@ -23,8 +23,11 @@ def test_air_still_exports_the_humidity_functions():
                  "relative_humidity", "dew_point"):
         assert name in air.__all__
         assert getattr(air, name) is getattr(humidity, name)
+    for name in ("ciddor", "birch_downs", "edlen_1966"):
+        assert name in air.__all__
+        assert getattr(air, name) is getattr(air_equations, name)
     from axiscal.physics.air import (  # noqa: F401  the old import line still works
-        saturation_vapour_pressure, water_vapour_pressure, enhancement_factor)
+        saturation_vapour_pressure, water_vapour_pressure, enhancement_factor, ciddor)
 
 
 @pytest.mark.parametrize("kelvin, mpa", [(300.0, 0.353658941e-2), (500.0, 0.263889776e1),

@@ -62,6 +62,7 @@ from axiscal.errors import InputError
 from axiscal.physics._validate import finite as _finite
 from axiscal.physics._validate import refuse as _refuse
 from axiscal.physics._validate import scalar_or_array as _out
+from axiscal.physics.air_equations import birch_downs, ciddor, edlen_1966
 from axiscal.physics.humidity import (
     dew_point,
     enhancement_factor,
@@ -139,130 +140,10 @@ VALIDITY: dict[str, dict[str, tuple[float, float, str]]] = {
     },
 }
 
-_T0 = 273.15  # K at 0 °C
-_TORR = 101325.0 / 760.0  # Pa per torr
 
 
 class AirValidityWarning(UserWarning):
     """An input lies outside the equation's range of validity (only with ``check="warn"``)."""
-
-
-# -- the three equations, on the partial pressure of water vapour -------------------------------
-def ciddor(vacuum_wavelength, temperature, pressure, vapour_pressure, co2=450.0):
-    """Refractive index of air by the Ciddor (1996) equation (NIST A-III). No range check.
-
-    Parameters
-    ----------
-    vacuum_wavelength : array_like, metres
-    temperature : array_like, degrees Celsius
-    pressure : array_like, Pa
-    vapour_pressure : array_like, Pa (partial pressure of water vapour)
-    co2 : array_like, µmol/mol
-
-    Returns
-    -------
-    n : float or ndarray
-
-    Notes
-    -----
-    With :math:`S = 1/\\lambda^2` (λ in µm), :math:`x_v = f p_v / p`:
-
-    .. math::
-        n_{as} - 1 = 10^{-8}[k_1/(k_0 - S) + k_3/(k_2 - S)],\\qquad
-        n_{ws} - 1 = 1.022\\times10^{-8}(w_0 + w_1 S + w_2 S^2 + w_3 S^3),
-
-        n_{axs} - 1 = (n_{as} - 1)[1 + 0.534\\times10^{-6}(x_{CO_2} - 450)],\\quad
-        M_a = 0.0289635 + 1.2011\\times10^{-8}(x_{CO_2} - 400),
-
-        n - 1 = \\frac{\\rho_a}{\\rho_{axs}}(n_{axs} - 1) + \\frac{\\rho_v}{\\rho_{vs}}(n_{ws} - 1),
-
-    the densities from the BIPM compressibility Z of moist air. Constants as in NIST A-III
-    (R = 8.314472 J/(mol K)).
-    """
-    lam_um = np.asarray(vacuum_wavelength, dtype=float) * 1e6
-    t = np.asarray(temperature, dtype=float)
-    p = np.asarray(pressure, dtype=float)
-    pv = np.asarray(vapour_pressure, dtype=float)
-    x_co2 = np.asarray(co2, dtype=float)
-    s = 1.0 / (lam_um * lam_um)
-    n_as = 1e-8 * (5792105.0 / (238.0185 - s) + 167917.0 / (57.362 - s))
-    n_ws = 1.022e-8 * (295.235 + 2.6422 * s - 0.03238 * s * s + 0.004028 * s * s * s)
-    m_a = 0.0289635 + 1.2011e-8 * (x_co2 - 400.0)
-    n_axs = n_as * (1.0 + 5.34e-7 * (x_co2 - 450.0))
-    big_t = t + _T0
-    xv = enhancement_factor(p, t) * pv / p
-    p_t = p / big_t
-    z = (1.0
-         - p_t * (1.58123e-6 - 2.9331e-8 * t + 1.1043e-10 * t * t
-                  + (5.707e-6 - 2.051e-8 * t) * xv + (1.9898e-4 - 2.376e-6 * t) * xv * xv)
-         + p_t * p_t * (1.83e-11 - 0.765e-8 * xv * xv))
-    r_gas = 8.314472
-    rho_axs = 101325.0 * m_a / (0.9995922115 * r_gas * 288.15)
-    rho_v = xv * p * 0.018015 / (z * r_gas * big_t)
-    rho_a = (1.0 - xv) * p * m_a / (z * r_gas * big_t)
-    return _out(1.0 + (rho_a / rho_axs) * n_axs + (rho_v / 0.00985938) * n_ws)
-
-
-def birch_downs(vacuum_wavelength, temperature, pressure, vapour_pressure, co2=450.0):
-    """Refractive index by the modified Edlén equation (NIST A-IV). No range check.
-
-    Parameters as :func:`ciddor`.
-
-    Notes
-    -----
-    With :math:`S = 1/\\lambda^2` (λ in µm), p and :math:`p_v` in Pa, t in °C, T in K:
-
-    .. math::
-        (n - 1)_s = 10^{-8}[8342.54 + 2406147/(130 - S) + 15998/(38.9 - S)],
-
-        X = \\frac{1 + 10^{-8}(0.601 - 0.00972\\,t)\\,p}{1 + 0.003661\\,t},\\qquad
-        n_{tp} - 1 = \\frac{p\\,(n - 1)_s X}{96095.43},
-
-        n = n_{tp} - \\frac{292.75}{T}(3.7345 - 0.0401\\,S)\\,p_v \\times 10^{-10}.
-
-    The factor 292.75/T is NIST's modification of Birch and Downs' water-vapour term. The
-    equation holds for air with 450 µmol/mol CO2 (Birch and Downs' standard air); for another
-    content the dry-air refractivity is scaled by Edlén's (1966) factor
-    :math:`1 + 0.540(x - 0.00045)` (x as a volume fraction), which leaves the NIST value unchanged
-    at the default 450.
-    """
-    s, t, p, pv = _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure)
-    n_s = 1e-8 * (8342.54 + 2406147.0 / (130.0 - s) + 15998.0 / (38.9 - s))
-    n_s = n_s * _edlen_co2_factor(co2, 450.0)
-    x = (1.0 + 1e-8 * (0.601 - 0.00972 * t) * p) / (1.0 + 0.003661 * t)
-    n_tp = p * n_s * x / 96095.43
-    return _out(1.0 + n_tp - 292.75 / (t + _T0) * (3.7345 - 0.0401 * s) * pv * 1e-10)
-
-
-def edlen_1966(vacuum_wavelength, temperature, pressure, vapour_pressure, co2=450.0):
-    """Refractive index by the original Edlén (1966) equation. No range check.
-
-    Parameters as :func:`ciddor`.
-
-    Notes
-    -----
-    In Edlén's units (p and f in torr, σ in µm⁻¹, S = σ²), for standard air (15 °C, 760 torr,
-    dry, 300 µmol/mol CO2):
-
-    .. math::
-        (n - 1)_s \\times 10^{8} = 8342.13 + \\frac{2406030}{130 - S} + \\frac{15997}{38.9 - S},
-
-        (n - 1)_{tp} = \\frac{p\\,(n - 1)_s}{720.775}
-            \\cdot \\frac{1 + p\\,(0.817 - 0.0133\\,t)\\times10^{-6}}{1 + 0.0036610\\,t},
-
-        n_{tpf} - n_{tp} = -f\\,(5.722 - 0.0457\\,S)\\times 10^{-8},
-
-    and for a CO2 volume fraction x: :math:`(n-1)_x = [1 + 0.540(x - 0.0003)](n-1)_s`.
-    Pressures given in Pa are converted with 1 torr = 101325/760 Pa.
-    """
-    s, t, p, pv = _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure)
-    p_torr = p / _TORR
-    f_torr = pv / _TORR
-    n_s = 1e-8 * (8342.13 + 2406030.0 / (130.0 - s) + 15997.0 / (38.9 - s))
-    n_s = n_s * _edlen_co2_factor(co2, 300.0)
-    n_tp = p_torr * n_s / 720.775 * (1.0 + p_torr * (0.817 - 0.0133 * t) * 1e-6) / (
-        1.0 + 0.0036610 * t)
-    return _out(1.0 + n_tp - f_torr * (5.722 - 0.0457 * s) * 1e-8)
 
 
 _FUNCTIONS = {"ciddor": ciddor, "birch-downs": birch_downs, "edlen": edlen_1966}
@@ -312,6 +193,14 @@ def refractive_index(
     InputError
         Unknown equation, impossible humidity, or (``check="raise"``) an input outside validity.
 
+    Notes
+    -----
+    The humidity becomes a partial pressure :math:`p_v` and a mole fraction
+    :math:`x_v = f\\,p_v/p` (NIST A-II, :mod:`axiscal.physics.humidity`); the validity is checked
+    on t, p, λ, CO2 and :math:`x_v`; then :func:`ciddor` (NIST A-III), :func:`birch_downs` (NIST
+    A-IV) or :func:`edlen_1966` (Edlén 1966, eqs. 1, 12, 13) gives n; their Notes hold the
+    equations.
+
     Examples
     --------
     >>> print(f"{refractive_index(20, 101325, 50, equation='birch-downs'):.9f}")
@@ -340,7 +229,21 @@ def refractive_index(
 def air_wavelength(temperature=20.0, pressure=101325.0, humidity=None, **kwargs):
     """Wavelength of the light in air, :math:`\\lambda = \\lambda_{vac}/n`, metres.
 
-    Same parameters as :func:`refractive_index`.
+    Parameters
+    ----------
+    temperature : array_like, degrees Celsius
+    pressure : array_like, Pa
+    humidity : array_like, percent relative humidity, optional
+    **kwargs
+        The other keywords of :func:`refractive_index` (``vacuum_wavelength`` in metres ...).
+
+    Returns
+    -------
+    wavelength : float or ndarray, metres
+
+    Notes
+    -----
+    Stone and Zimmerman (NIST), eq. 1: :math:`\\lambda = \\lambda_{vac}/n`.
 
     Examples
     --------
@@ -354,9 +257,30 @@ def air_wavelength(temperature=20.0, pressure=101325.0, humidity=None, **kwargs)
 def compensation_factor(temperature=20.0, pressure=101325.0, humidity=None, **kwargs):
     """Factor that turns a length counted in vacuum wavelengths into the true length: 1/n.
 
-    A fringe count N gives :math:`L = N\\lambda_{vac}/(2n)`, so a reading computed with the vacuum
+    Parameters
+    ----------
+    temperature : array_like, degrees Celsius
+    pressure : array_like, Pa
+    humidity : array_like, percent relative humidity, optional
+    **kwargs
+        The other keywords of :func:`refractive_index`.
+
+    Returns
+    -------
+    factor : float or ndarray, dimensionless
+        :math:`1/n`.
+
+    Notes
+    -----
+    A fringe count N gives :math:`L = N\\lambda_{vac}/(2n)` (seed 001 eq. 22, d = λN/2 with the
+    wavelength in air; seed 002, wavelength compensation), so a reading computed with the vacuum
     wavelength is multiplied by :math:`1/n`; the correction in ppm is :math:`(1/n - 1)\\times10^6`,
-    about -271 ppm in a standard workshop. Same parameters as :func:`refractive_index`.
+    about -271 ppm in a standard workshop.
+
+    Examples
+    --------
+    >>> round((compensation_factor(20.0, 101325.0, 50.0) - 1) * 1e6, 2)
+    -271.3
     """
     return _out(1.0 / np.asarray(refractive_index(temperature, pressure, humidity, **kwargs)))
 
@@ -455,11 +379,17 @@ def air_conditions(
 ) -> AirResult:
     """The refractive index and the derived quantities for one (scalar) set of conditions.
 
-    Same parameters as :func:`refractive_index`, scalars only.
+    Same parameters (and units) as :func:`refractive_index`, scalars only.
 
     Returns
     -------
     AirResult
+        n, the wavelength in air (m), the inputs, and the relative humidity they amount to
+        (:func:`~axiscal.physics.humidity.relative_humidity`, %).
+
+    Notes
+    -----
+    n as :func:`refractive_index`; wavelength :math:`\\lambda_{vac}/n` (NIST eq. 1).
     """
     kw = dict(dew_point=dew_point, vapour_pressure=vapour_pressure, co2=co2,
               vacuum_wavelength=vacuum_wavelength, equation=equation, check=check)
@@ -559,16 +489,6 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
 
 
 # -- helpers --------------------------------------------------------------------------------
-def _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure):
-    lam_um = np.asarray(vacuum_wavelength, dtype=float) * 1e6
-    return (1.0 / (lam_um * lam_um), np.asarray(temperature, dtype=float),
-            np.asarray(pressure, dtype=float), np.asarray(vapour_pressure, dtype=float))
-
-
-def _edlen_co2_factor(co2, reference_umol):
-    return 1.0 + 0.540 * (np.asarray(co2, dtype=float) - reference_umol) * 1e-6
-
-
 def _equation(equation) -> str:
     key = str(equation).strip().lower().replace("_", "-").replace(" ", "-")
     key = {"edlen-1966": "edlen", "edlén": "edlen", "modified-edlen": "birch-downs",
