@@ -96,6 +96,11 @@ def encode_quadrature(counts) -> tuple[np.ndarray, np.ndarray]:
         The phase ``counts mod 4`` = 0, 1, 2, 3 gives (A, B) = (0,0), (1,0), (1,1), (0,1): A leads B
         for a positive motion.
 
+    Notes
+    -----
+    The Gray-code cycle of ×4 quadrature counting (issue 3; seed 002, "digital A/B quadrature" of
+    the laser head): consecutive states differ in one signal only.
+
     Examples
     --------
     >>> a, b = encode_quadrature([0, 1, 2, 3, 4, -1])
@@ -313,7 +318,12 @@ def synthesize_sincos(position, imperfections: SignalImperfections = SignalImper
 
     Returns
     -------
-    sin, cos : ndarray
+    sin, cos : ndarray, signal units
+
+    Notes
+    -----
+    The signal model of :class:`SignalImperfections` (seed 000 Figures 17-19: phase error,
+    amplitude mismatch, DC offset; Heydemann 1981 eq. 1).
     """
     p = imperfections
     phi = TWO_PI * np.asarray(position, dtype=float)
@@ -340,6 +350,11 @@ def interpolation_error(phase, imperfections: SignalImperfections):
     -------
     ndarray, radians in (−π, π]
         Interpolated minus true phase: the sub-divisional error as a function of phase.
+
+    Notes
+    -----
+    ``arctan2(sin, cos) − φ`` on the signals of :func:`synthesize_sincos` (seed 000,
+    "Sub-divisional errors": φ = arctan(sin/cos) on imperfect signals).
 
     Examples
     --------
@@ -373,6 +388,8 @@ def subdivisional_error(phase_error, phase, bins: int = 64) -> float:
     float, radians
     """
     err = _wrap(np.asarray(phase_error, dtype=float))
+    if not (np.all(np.isfinite(err)) and np.all(np.isfinite(phase))):
+        raise InputError("phase_error and phase must be finite (a NaN has no bin)")
     idx = (np.mod(np.asarray(phase, dtype=float), TWO_PI) * (bins / TWO_PI)).astype(np.int64)
     idx = np.minimum(idx, bins - 1)
     n = np.bincount(idx, minlength=bins)
@@ -469,6 +486,18 @@ def heydemann_fit(sin, cos) -> HeydemannCorrection:
 
 def heydemann_correct(sin, cos, fit: HeydemannCorrection) -> tuple[np.ndarray, np.ndarray]:
     """Map imperfect signals back onto the unit circle with a fitted correction.
+
+    Parameters
+    ----------
+    sin, cos : array_like, signal units
+        Measured signals.
+    fit : HeydemannCorrection
+        From :func:`heydemann_fit` (offsets and amplitudes in signal units, phase in radians).
+
+    Notes
+    -----
+    Heydemann (1981): the inverse of the signal model of :func:`synthesize_sincos`, with the
+    ellipse parameters of :func:`heydemann_fit` (its Notes hold the algebra).
 
     Returns
     -------
