@@ -49,3 +49,13 @@ def test_minimum_zone_g_against_a_brute_force_centre_search():
         brute = float(np.min(res.max(axis=-1) - res.min(axis=-1)))
         assert r.G_ccw <= brute + 1e-15
         assert r.G_ccw >= brute - 2 * 1e-8 * 1.0  # grid step 1e-8 m bounds the search's miss
+
+
+@pytest.mark.parametrize("angles", [[], [0.3], [0.0, float("nan"), 1.0]])
+def test_arc_coverage_refuses_what_has_no_arc(angles):
+    """Before the review [] raised numpy's 'zero-size array' ValueError and NaN gave NaN."""
+    from axiscal.errors import InputError
+    from axiscal.standards.iso230_4 import arc_coverage
+
+    with pytest.raises(InputError, match="at least 2 finite angles"):
+        arc_coverage(angles)

@@ -239,6 +239,11 @@ def minimum_linear_targets(travel_mm: float) -> int:
     ----------
     travel_mm : float, millimetres
 
+    Returns
+    -------
+    int
+        ``max(5, ceil(5 · travel / 1000 mm))``.
+
     Examples
     --------
     >>> minimum_linear_targets(150), minimum_linear_targets(800), minimum_linear_targets(1000.5)
