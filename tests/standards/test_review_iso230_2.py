@@ -65,3 +65,18 @@ def test_worked_example_by_hand():
                 R=2 * r2, R_up=2 * r2, R_down=2 * r2, B=2.0, B_mean=1.0)
     for name, value in want.items():
         assert getattr(r, name) == pytest.approx(value, abs=1e-12), name
+
+
+def test_no_closure_warning_from_floating_point_rounding():
+    """A noise-free full turn whose error is 3 sin θ: at 360° float gives 3 sin(2π) = −7e-16,
+    not 0, and with zero scatter the closure test warned about a 7e-16 arcsec 'drift'. A real
+    closure (one resolution step, 0.1 arcsec) is still reported."""
+    t = np.arange(0.0, 361.0, 45.0)
+    up = np.repeat((3 * np.sin(np.radians(t)))[:, None], 5, axis=1)
+    r = evaluate(PositioningDataset.from_arrays("rotary", t, up, up - 1.0))
+    assert abs(r.closure_up) < 1e-14
+    assert not any("closure" in w for w in r.warnings)
+    up[-1] += 0.1
+    r = evaluate(PositioningDataset.from_arrays("rotary", t, up, up - 1.0))
+    assert r.closure_up == pytest.approx(0.1)
+    assert any("closure in direction +" in w for w in r.warnings)

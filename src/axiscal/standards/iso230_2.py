@@ -461,7 +461,9 @@ def _closure(mean_up, s_up, n_up, mean_down, s_down, n_down, unit, warn):
             continue
         c = float(mean[-1] - mean[0])
         se = math.sqrt(s[0] ** 2 / n[0] + s[-1] ** 2 / n[-1])
-        if abs(c) > 3 * se and abs(c) > 0:
+        # floor for rounding: with no scatter (se = 0) sin(2π) ≠ 0 alone gives |c| ~ 1e-16
+        rounding = 1e-9 * float(np.max(np.abs(mean)))
+        if abs(c) > 3 * se and abs(c) > rounding:
             warn.append(
                 f"closure in direction {name}: the mean deviation at 360° differs from 0° by "
                 f"{c:.3g} {unit}, more than repeatability explains (3 standard errors = "
