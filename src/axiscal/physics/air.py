@@ -457,7 +457,7 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
     ----------
     temperature : float, degrees Celsius
     pressure : float, Pa
-    humidity : float, percent relative humidity (held constant when T changes)
+    humidity : float, percent relative humidity (held constant when T changes); None for dry air
     co2 : float, µmol/mol
     vacuum_wavelength : float, metres
     equation : {"ciddor", "birch-downs", "edlen"}
@@ -476,7 +476,8 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
         return float(refractive_index(t, p, rh, co2=co2, vacuum_wavelength=vacuum_wavelength,
                                       equation=equation, check="warn"))
 
-    t, p, rh = float(temperature), float(pressure), float(humidity)
+    t, p = float(_finite("temperature", temperature)), float(_finite("pressure", pressure))
+    rh = 0.0 if humidity is None else float(_finite("humidity", humidity))  # None: dry air
     dt, dp, drh = 0.01, 1.0, 0.1
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", AirValidityWarning)

@@ -34,6 +34,7 @@ so the effective scale pitch is 0.316 microns".
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Literal
 
@@ -513,5 +514,7 @@ def _passes(optics: str) -> int:
 
 
 def _check_positive(name: str, value: float) -> None:
-    if not (isinstance(value, (int, float, np.floating)) and math.isfinite(value) and value > 0):
+    # numbers.Real takes NumPy scalars too (np.int64, np.float32), not bool
+    if not (isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+            and math.isfinite(value) and value > 0):
         raise InputError(f"{name}={value!r} must be a positive finite number")
