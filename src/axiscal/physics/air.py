@@ -112,9 +112,11 @@ EQUATIONS: dict[str, str] = {
 #: 0-2000 µmol/mol CO2, water-vapour mole fraction up to 0.2). Inside them the calculator
 #: still warns outside the narrower band where the equations were tested against measurements,
 #: 350-1600 nm, 60-120 kPa, 0-40 °C, RH 1-85 % (as transcribed by the ``ref-index`` package
-#: the tests use as oracle); the uncertainty grows there. The modified Edlén equation has
-#: no CO2 input in the NIST calculator (450 µmol/mol); the CO2 scaling here is Edlén's (1966)
-#: factor, see :func:`birch_downs`. Edlén (1966): laboratory air, the conditions of the
+#: the tests use as oracle); the uncertainty grows there. (Ciddor's own dispersion data span
+#: 0.23-1.69 µm, refractiveindex.info's summary of Ciddor 1996; the calculator's 1700 nm edge
+#: is a 10 nm extrapolation, kept to agree with it.) The modified Edlén equation has no CO2
+#: input in the NIST calculator (450 µmol/mol); the CO2 scaling here is Edlén's (1966) factor,
+#: see :func:`birch_downs`. Edlén (1966): laboratory air, the conditions of the
 #: measurements the equation was fitted to (axiscal's choice, stated here).
 VALIDITY: dict[str, dict[str, tuple[float, float, str]]] = {
     "ciddor": {
