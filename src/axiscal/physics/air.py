@@ -17,8 +17,10 @@ of the air in the beam. This module gives ``n`` by three equations:
     comparison with older instruments and papers.
 
 Humidity is given as relative humidity (%RH), dew point (°C) or partial pressure of water vapour
-(Pa); CO2 content in µmol/mol (default 450); vacuum wavelength in metres (default the HeNe line
-632.991 nm that seed 002 rounds to 0.633 µm). Every function broadcasts over NumPy arrays.
+(Pa); the conversions (saturation vapour pressure, enhancement factor, dew point, relative
+humidity) live in :mod:`axiscal.physics.humidity` and are re-exported here. CO2 content in
+µmol/mol (default 450); vacuum wavelength in metres (default the HeNe line 632.991 nm that seed
+002 rounds to 0.633 µm). Every function broadcasts over NumPy arrays.
 
 Inputs outside an equation's range of validity (table :data:`VALIDITY`) raise
 :class:`~axiscal.errors.InputError` naming the parameter, the value and the range; with
@@ -57,6 +59,17 @@ from typing import Literal
 import numpy as np
 
 from axiscal.errors import InputError
+from axiscal.physics._validate import finite as _finite
+from axiscal.physics._validate import refuse as _refuse
+from axiscal.physics._validate import scalar_or_array as _out
+from axiscal.physics.air_equations import birch_downs, ciddor, edlen_1966
+from axiscal.physics.humidity import (
+    dew_point,
+    enhancement_factor,
+    relative_humidity,
+    saturation_vapour_pressure,
+    water_vapour_pressure,
+)
 
 __all__ = [
     "HENE_VACUUM_WAVELENGTH",
@@ -68,6 +81,8 @@ __all__ = [
     "saturation_vapour_pressure",
     "water_vapour_pressure",
     "enhancement_factor",
+    "relative_humidity",
+    "dew_point",
     "refractive_index",
     "air_wavelength",
     "air_conditions",
@@ -93,7 +108,15 @@ EQUATIONS: dict[str, str] = {
 
 #: Range of validity per equation: parameter -> (low, high, unit). Outside it ``check="raise"``
 #: refuses the input. Ciddor and modified Edlén: the input limits of the NIST calculator
-#: (Stone and Zimmerman, section IV). Edlén (1966): laboratory air, the conditions of the
+#: (Stone and Zimmerman, sections IV and VI: 300-1700 nm, 10-140 kPa, -40 to 100 °C,
+#: 0-2000 µmol/mol CO2, water-vapour mole fraction up to 0.2). Inside them the calculator
+#: still warns outside the narrower band where the equations were tested against measurements,
+#: 350-1600 nm, 60-120 kPa, 0-40 °C, RH 1-85 % (as transcribed by the ``ref-index`` package
+#: the tests use as oracle); the uncertainty grows there. (Ciddor's own dispersion data span
+#: 0.23-1.69 µm, refractiveindex.info's summary of Ciddor 1996; the calculator's 1700 nm edge
+#: is a 10 nm extrapolation, kept to agree with it.) The modified Edlén equation has no CO2
+#: input in the NIST calculator (450 µmol/mol); the CO2 scaling here is Edlén's (1966) factor,
+#: see :func:`birch_downs`. Edlén (1966): laboratory air, the conditions of the
 #: measurements the equation was fitted to (axiscal's choice, stated here).
 VALIDITY: dict[str, dict[str, tuple[float, float, str]]] = {
     "ciddor": {
@@ -119,244 +142,10 @@ VALIDITY: dict[str, dict[str, tuple[float, float, str]]] = {
     },
 }
 
-_T0 = 273.15  # K at 0 °C
-_TORR = 101325.0 / 760.0  # Pa per torr
 
 
 class AirValidityWarning(UserWarning):
     """An input lies outside the equation's range of validity (only with ``check="warn"``)."""
-
-
-# -- humidity -----------------------------------------------------------------------------------
-def saturation_vapour_pressure(temperature, over: Literal["auto", "water", "ice"] = "auto"):
-    """Saturation pressure of water vapour, Pa.
-
-    Parameters
-    ----------
-    temperature : array_like, degrees Celsius
-    over : {"auto", "water", "ice"}
-        ``"water"``: IAPWS-IF97 saturation curve; ``"ice"``: sublimation curve of Wagner et al.
-        (1994); ``"auto"``: ice below 0 °C, water from 0 °C up (the NIST calculator's rule for a
-        relative humidity).
-
-    Returns
-    -------
-    p_sv : float or ndarray, Pa
-
-    Notes
-    -----
-    Over water (NIST A-I, IAPWS-IF97), with :math:`T` in kelvin:
-
-    .. math::
-        \\Omega = T + K_9/(T - K_{10}),\\quad A = \\Omega^2 + K_1\\Omega + K_2,\\quad
-        B = K_3\\Omega^2 + K_4\\Omega + K_5,\\quad C = K_6\\Omega^2 + K_7\\Omega + K_8,
-
-        p_{sv} = 10^6 \\left( \\frac{2C}{-B + \\sqrt{B^2 - 4AC}} \\right)^4 .
-
-    Over ice, with :math:`\\theta = T/273.16`:
-    :math:`p_{sv} = 611.657 \\exp[A_1(1 - \\theta^{-1.5}) + A_2(1 - \\theta^{-1.25})]`.
-
-    Examples
-    --------
-    >>> round(saturation_vapour_pressure(20.0), 2)
-    2339.21
-    """
-    t = np.asarray(temperature, dtype=float)
-    if over == "water":
-        out = _psv_water(t)
-    elif over == "ice":
-        out = _psv_ice(t)
-    elif over == "auto":
-        out = np.where(t < 0.0, _psv_ice(np.minimum(t, 0.0)), _psv_water(t))
-    else:
-        raise InputError(f"over = {over!r} is not 'auto', 'water' or 'ice'")
-    return _out(out)
-
-
-def water_vapour_pressure(temperature, humidity=None, *, dew_point=None, vapour_pressure=None):
-    """Partial pressure of water vapour from one of the three ways to state humidity, Pa.
-
-    Parameters
-    ----------
-    temperature : array_like, degrees Celsius
-        Air temperature.
-    humidity : array_like, percent relative humidity, optional
-        :math:`p_v = (RH/100)\\, p_{sv}(t)` (saturation over ice below 0 °C).
-    dew_point : array_like, degrees Celsius, optional
-        :math:`p_v = p_{sv,water}(t_d)`; it may not exceed the air temperature.
-    vapour_pressure : array_like, Pa, optional
-        Given directly; it may not exceed the saturation pressure at the air temperature.
-
-    Exactly one of ``humidity``, ``dew_point`` and ``vapour_pressure`` is given.
-
-    Raises
-    ------
-    InputError
-        If none or more than one is given, or the value is impossible (RH outside 0-100 %, a dew
-        point above the air temperature, a negative or supersaturated vapour pressure).
-
-    Examples
-    --------
-    >>> round(water_vapour_pressure(20.0, 50.0), 2)
-    1169.61
-    >>> round(water_vapour_pressure(20.0, dew_point=9.27), 1)
-    1169.4
-    """
-    given = [k for k, v in (("humidity", humidity), ("dew_point", dew_point),
-                            ("vapour_pressure", vapour_pressure)) if v is not None]
-    if len(given) != 1:
-        raise InputError(
-            "give the humidity exactly one way: relative humidity (%RH), dew point (°C) or "
-            f"water vapour partial pressure (Pa); got {', '.join(given) or 'none'}"
-        )
-    t = _finite("temperature", temperature)
-    if humidity is not None:
-        rh = _finite("humidity", humidity)
-        _refuse("humidity", rh, (rh < 0) | (rh > 100), "%RH", "must lie between 0 and 100 %RH")
-        return _out(rh / 100.0 * saturation_vapour_pressure(t))
-    if dew_point is not None:
-        td = _finite("dew_point", dew_point)
-        t_b, td_b = np.broadcast_arrays(t, td)
-        _refuse("dew_point", td_b, td_b > t_b + 1e-9, "°C",
-                "cannot exceed the air temperature (the air would be supersaturated)")
-        return _out(saturation_vapour_pressure(td, over="water"))
-    pv = _finite("vapour_pressure", vapour_pressure)
-    _refuse("vapour_pressure", pv, pv < 0, "Pa", "cannot be negative")
-    psv = np.asarray(saturation_vapour_pressure(t))
-    pv_b, psv_b = np.broadcast_arrays(pv, psv)
-    _refuse("vapour_pressure", pv_b, pv_b > psv_b * (1 + 1e-9), "Pa",
-            "exceeds the saturation pressure at the air temperature")
-    return _out(pv)
-
-
-def enhancement_factor(pressure, temperature):
-    """Enhancement factor f of water vapour in air (NIST A-II), dimensionless.
-
-    :math:`f = 1.00062 + 3.14\\times10^{-8}\\, p + 5.60\\times10^{-7}\\, t^2` with p in Pa and t
-    in °C;
-    the mole fraction of water vapour is :math:`x_v = f\\, p_v / p`.
-    """
-    p = np.asarray(pressure, dtype=float)
-    t = np.asarray(temperature, dtype=float)
-    return _out(1.00062 + 3.14e-8 * p + 5.60e-7 * t * t)
-
-
-# -- the three equations, on the partial pressure of water vapour -------------------------------
-def ciddor(vacuum_wavelength, temperature, pressure, vapour_pressure, co2=450.0):
-    """Refractive index of air by the Ciddor (1996) equation (NIST A-III). No range check.
-
-    Parameters
-    ----------
-    vacuum_wavelength : array_like, metres
-    temperature : array_like, degrees Celsius
-    pressure : array_like, Pa
-    vapour_pressure : array_like, Pa (partial pressure of water vapour)
-    co2 : array_like, µmol/mol
-
-    Returns
-    -------
-    n : float or ndarray
-
-    Notes
-    -----
-    With :math:`S = 1/\\lambda^2` (λ in µm), :math:`x_v = f p_v / p`:
-
-    .. math::
-        n_{as} - 1 = 10^{-8}[k_1/(k_0 - S) + k_3/(k_2 - S)],\\qquad
-        n_{ws} - 1 = 1.022\\times10^{-8}(w_0 + w_1 S + w_2 S^2 + w_3 S^3),
-
-        n_{axs} - 1 = (n_{as} - 1)[1 + 0.534\\times10^{-6}(x_{CO_2} - 450)],\\quad
-        M_a = 0.0289635 + 1.2011\\times10^{-8}(x_{CO_2} - 400),
-
-        n - 1 = \\frac{\\rho_a}{\\rho_{axs}}(n_{axs} - 1) + \\frac{\\rho_v}{\\rho_{vs}}(n_{ws} - 1),
-
-    the densities from the BIPM compressibility Z of moist air. Constants as in NIST A-III
-    (R = 8.314472 J/(mol K)).
-    """
-    lam_um = np.asarray(vacuum_wavelength, dtype=float) * 1e6
-    t = np.asarray(temperature, dtype=float)
-    p = np.asarray(pressure, dtype=float)
-    pv = np.asarray(vapour_pressure, dtype=float)
-    x_co2 = np.asarray(co2, dtype=float)
-    s = 1.0 / (lam_um * lam_um)
-    n_as = 1e-8 * (5792105.0 / (238.0185 - s) + 167917.0 / (57.362 - s))
-    n_ws = 1.022e-8 * (295.235 + 2.6422 * s - 0.03238 * s * s + 0.004028 * s * s * s)
-    m_a = 0.0289635 + 1.2011e-8 * (x_co2 - 400.0)
-    n_axs = n_as * (1.0 + 5.34e-7 * (x_co2 - 450.0))
-    big_t = t + _T0
-    xv = enhancement_factor(p, t) * pv / p
-    p_t = p / big_t
-    z = (1.0
-         - p_t * (1.58123e-6 - 2.9331e-8 * t + 1.1043e-10 * t * t
-                  + (5.707e-6 - 2.051e-8 * t) * xv + (1.9898e-4 - 2.376e-6 * t) * xv * xv)
-         + p_t * p_t * (1.83e-11 - 0.765e-8 * xv * xv))
-    r_gas = 8.314472
-    rho_axs = 101325.0 * m_a / (0.9995922115 * r_gas * 288.15)
-    rho_v = xv * p * 0.018015 / (z * r_gas * big_t)
-    rho_a = (1.0 - xv) * p * m_a / (z * r_gas * big_t)
-    return _out(1.0 + (rho_a / rho_axs) * n_axs + (rho_v / 0.00985938) * n_ws)
-
-
-def birch_downs(vacuum_wavelength, temperature, pressure, vapour_pressure, co2=450.0):
-    """Refractive index by the modified Edlén equation (NIST A-IV). No range check.
-
-    Parameters as :func:`ciddor`.
-
-    Notes
-    -----
-    With :math:`S = 1/\\lambda^2` (λ in µm), p and :math:`p_v` in Pa, t in °C, T in K:
-
-    .. math::
-        (n - 1)_s = 10^{-8}[8342.54 + 2406147/(130 - S) + 15998/(38.9 - S)],
-
-        X = \\frac{1 + 10^{-8}(0.601 - 0.00972\\,t)\\,p}{1 + 0.003661\\,t},\\qquad
-        n_{tp} - 1 = \\frac{p\\,(n - 1)_s X}{96095.43},
-
-        n = n_{tp} - \\frac{292.75}{T}(3.7345 - 0.0401\\,S)\\,p_v \\times 10^{-10}.
-
-    The factor 292.75/T is NIST's modification of Birch and Downs' water-vapour term. The
-    equation holds for air with 450 µmol/mol CO2 (Birch and Downs' standard air); for another
-    content the dry-air refractivity is scaled by Edlén's (1966) factor
-    :math:`1 + 0.540(x - 0.00045)` (x as a volume fraction), which leaves the NIST value unchanged
-    at the default 450.
-    """
-    s, t, p, pv = _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure)
-    n_s = 1e-8 * (8342.54 + 2406147.0 / (130.0 - s) + 15998.0 / (38.9 - s))
-    n_s = n_s * _edlen_co2_factor(co2, 450.0)
-    x = (1.0 + 1e-8 * (0.601 - 0.00972 * t) * p) / (1.0 + 0.003661 * t)
-    n_tp = p * n_s * x / 96095.43
-    return _out(1.0 + n_tp - 292.75 / (t + _T0) * (3.7345 - 0.0401 * s) * pv * 1e-10)
-
-
-def edlen_1966(vacuum_wavelength, temperature, pressure, vapour_pressure, co2=450.0):
-    """Refractive index by the original Edlén (1966) equation. No range check.
-
-    Parameters as :func:`ciddor`.
-
-    Notes
-    -----
-    In Edlén's units (p and f in torr, σ in µm⁻¹, S = σ²), for standard air (15 °C, 760 torr,
-    dry, 300 µmol/mol CO2):
-
-    .. math::
-        (n - 1)_s \\times 10^{8} = 8342.13 + \\frac{2406030}{130 - S} + \\frac{15997}{38.9 - S},
-
-        (n - 1)_{tp} = \\frac{p\\,(n - 1)_s}{720.775}
-            \\cdot \\frac{1 + p\\,(0.817 - 0.0133\\,t)\\times10^{-6}}{1 + 0.0036610\\,t},
-
-        n_{tpf} - n_{tp} = -f\\,(5.722 - 0.0457\\,S)\\times 10^{-8},
-
-    and for a CO2 volume fraction x: :math:`(n-1)_x = [1 + 0.540(x - 0.0003)](n-1)_s`.
-    Pressures given in Pa are converted with 1 torr = 101325/760 Pa.
-    """
-    s, t, p, pv = _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure)
-    p_torr = p / _TORR
-    f_torr = pv / _TORR
-    n_s = 1e-8 * (8342.13 + 2406030.0 / (130.0 - s) + 15997.0 / (38.9 - s))
-    n_s = n_s * _edlen_co2_factor(co2, 300.0)
-    n_tp = p_torr * n_s / 720.775 * (1.0 + p_torr * (0.817 - 0.0133 * t) * 1e-6) / (
-        1.0 + 0.0036610 * t)
-    return _out(1.0 + n_tp - f_torr * (5.722 - 0.0457 * s) * 1e-8)
 
 
 _FUNCTIONS = {"ciddor": ciddor, "birch-downs": birch_downs, "edlen": edlen_1966}
@@ -406,6 +195,14 @@ def refractive_index(
     InputError
         Unknown equation, impossible humidity, or (``check="raise"``) an input outside validity.
 
+    Notes
+    -----
+    The humidity becomes a partial pressure :math:`p_v` and a mole fraction
+    :math:`x_v = f\\,p_v/p` (NIST A-II, :mod:`axiscal.physics.humidity`); the validity is checked
+    on t, p, λ, CO2 and :math:`x_v`; then :func:`ciddor` (NIST A-III), :func:`birch_downs` (NIST
+    A-IV) or :func:`edlen_1966` (Edlén 1966, eqs. 1, 12, 13) gives n; their Notes hold the
+    equations.
+
     Examples
     --------
     >>> print(f"{refractive_index(20, 101325, 50, equation='birch-downs'):.9f}")
@@ -434,7 +231,21 @@ def refractive_index(
 def air_wavelength(temperature=20.0, pressure=101325.0, humidity=None, **kwargs):
     """Wavelength of the light in air, :math:`\\lambda = \\lambda_{vac}/n`, metres.
 
-    Same parameters as :func:`refractive_index`.
+    Parameters
+    ----------
+    temperature : array_like, degrees Celsius
+    pressure : array_like, Pa
+    humidity : array_like, percent relative humidity, optional
+    **kwargs
+        The other keywords of :func:`refractive_index` (``vacuum_wavelength`` in metres ...).
+
+    Returns
+    -------
+    wavelength : float or ndarray, metres
+
+    Notes
+    -----
+    Stone and Zimmerman (NIST), eq. 1: :math:`\\lambda = \\lambda_{vac}/n`.
 
     Examples
     --------
@@ -448,9 +259,30 @@ def air_wavelength(temperature=20.0, pressure=101325.0, humidity=None, **kwargs)
 def compensation_factor(temperature=20.0, pressure=101325.0, humidity=None, **kwargs):
     """Factor that turns a length counted in vacuum wavelengths into the true length: 1/n.
 
-    A fringe count N gives :math:`L = N\\lambda_{vac}/(2n)`, so a reading computed with the vacuum
+    Parameters
+    ----------
+    temperature : array_like, degrees Celsius
+    pressure : array_like, Pa
+    humidity : array_like, percent relative humidity, optional
+    **kwargs
+        The other keywords of :func:`refractive_index`.
+
+    Returns
+    -------
+    factor : float or ndarray, dimensionless
+        :math:`1/n`.
+
+    Notes
+    -----
+    A fringe count N gives :math:`L = N\\lambda_{vac}/(2n)` (seed 001 eq. 22, d = λN/2 with the
+    wavelength in air; seed 002, wavelength compensation), so a reading computed with the vacuum
     wavelength is multiplied by :math:`1/n`; the correction in ppm is :math:`(1/n - 1)\\times10^6`,
-    about -271 ppm in a standard workshop. Same parameters as :func:`refractive_index`.
+    about -271 ppm in a standard workshop.
+
+    Examples
+    --------
+    >>> round((compensation_factor(20.0, 101325.0, 50.0) - 1) * 1e6, 2)
+    -271.3
     """
     return _out(1.0 / np.asarray(refractive_index(temperature, pressure, humidity, **kwargs)))
 
@@ -549,11 +381,17 @@ def air_conditions(
 ) -> AirResult:
     """The refractive index and the derived quantities for one (scalar) set of conditions.
 
-    Same parameters as :func:`refractive_index`, scalars only.
+    Same parameters (and units) as :func:`refractive_index`, scalars only.
 
     Returns
     -------
     AirResult
+        n, the wavelength in air (m), the inputs, and the relative humidity they amount to
+        (:func:`~axiscal.physics.humidity.relative_humidity`, %).
+
+    Notes
+    -----
+    n as :func:`refractive_index`; wavelength :math:`\\lambda_{vac}/n` (NIST eq. 1).
     """
     kw = dict(dew_point=dew_point, vapour_pressure=vapour_pressure, co2=co2,
               vacuum_wavelength=vacuum_wavelength, equation=equation, check=check)
@@ -569,7 +407,7 @@ def air_conditions(
     else:
         pv = float(water_vapour_pressure(temperature, humidity, dew_point=dew_point,
                                          vapour_pressure=vapour_pressure))
-    rh = 100.0 * pv / float(saturation_vapour_pressure(temperature))
+    rh = float(relative_humidity(temperature, pv))
     return AirResult(n=n, wavelength=float(vacuum_wavelength) / n,
                      vacuum_wavelength=float(vacuum_wavelength), equation=_equation(equation),
                      temperature=float(temperature), pressure=float(pressure),
@@ -621,7 +459,7 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
     ----------
     temperature : float, degrees Celsius
     pressure : float, Pa
-    humidity : float, percent relative humidity (held constant when T changes)
+    humidity : float, percent relative humidity (held constant when T changes); None for dry air
     co2 : float, µmol/mol
     vacuum_wavelength : float, metres
     equation : {"ciddor", "birch-downs", "edlen"}
@@ -640,7 +478,8 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
         return float(refractive_index(t, p, rh, co2=co2, vacuum_wavelength=vacuum_wavelength,
                                       equation=equation, check="warn"))
 
-    t, p, rh = float(temperature), float(pressure), float(humidity)
+    t, p = float(_finite("temperature", temperature)), float(_finite("pressure", pressure))
+    rh = 0.0 if humidity is None else float(_finite("humidity", humidity))  # None: dry air
     dt, dp, drh = 0.01, 1.0, 0.1
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", AirValidityWarning)
@@ -653,35 +492,6 @@ def sensitivities(temperature=20.0, pressure=101325.0, humidity=50.0, *, co2=450
 
 
 # -- helpers --------------------------------------------------------------------------------
-def _psv_water(t):
-    k = (1.16705214528e3, -7.24213167032e5, -1.70738469401e1, 1.20208247025e4,
-         -3.23255503223e6, 1.49151086135e1, -4.82326573616e3, 4.05113405421e5,
-         -2.38555575678e-1, 6.50175348448e2)
-    big_t = np.asarray(t, dtype=float) + _T0
-    om = big_t + k[8] / (big_t - k[9])
-    a = om * om + k[0] * om + k[1]
-    b = k[2] * om * om + k[3] * om + k[4]
-    c = k[5] * om * om + k[6] * om + k[7]
-    x = -b + np.sqrt(b * b - 4.0 * a * c)
-    return 1e6 * (2.0 * c / x) ** 4
-
-
-def _psv_ice(t):
-    theta = (np.asarray(t, dtype=float) + _T0) / 273.16
-    y = -13.928169 * (1.0 - theta ** -1.5) + 34.7078238 * (1.0 - theta ** -1.25)
-    return 611.657 * np.exp(y)
-
-
-def _edlen_inputs(vacuum_wavelength, temperature, pressure, vapour_pressure):
-    lam_um = np.asarray(vacuum_wavelength, dtype=float) * 1e6
-    return (1.0 / (lam_um * lam_um), np.asarray(temperature, dtype=float),
-            np.asarray(pressure, dtype=float), np.asarray(vapour_pressure, dtype=float))
-
-
-def _edlen_co2_factor(co2, reference_umol):
-    return 1.0 + 0.540 * (np.asarray(co2, dtype=float) - reference_umol) * 1e-6
-
-
 def _equation(equation) -> str:
     key = str(equation).strip().lower().replace("_", "-").replace(" ", "-")
     key = {"edlen-1966": "edlen", "edlén": "edlen", "modified-edlen": "birch-downs",
@@ -689,24 +499,6 @@ def _equation(equation) -> str:
     if key not in EQUATIONS:
         raise InputError(f"equation {equation!r} is not one of {', '.join(EQUATIONS)}")
     return key
-
-
-def _finite(name: str, value) -> np.ndarray:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number or an array of numbers, got {value!r:.60}") \
-            from None
-    if not np.all(np.isfinite(arr)):
-        raise InputError(f"{name} must be finite (found NaN or infinity)")
-    return arr
-
-
-def _refuse(name: str, values: np.ndarray, bad: np.ndarray, unit: str, rule: str) -> None:
-    bad = np.asarray(bad)
-    if np.any(bad):
-        v = np.broadcast_to(values, bad.shape)[bad].ravel()[0]
-        raise InputError(f"{name} = {v:g} {unit} {rule}".replace("  ", " "))
 
 
 def _check_validity(name: str, check: str, **values) -> None:
@@ -726,9 +518,3 @@ def _check_validity(name: str, check: str, **values) -> None:
             raise InputError(msg + " (check='warn', or --allow-outside on the command line, "
                              "computes anyway)")
         warnings.warn(msg, AirValidityWarning, stacklevel=3)
-
-
-def _out(x):
-    """A 0-d result as a Python float, an array as it is."""
-    arr = np.asarray(x, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr

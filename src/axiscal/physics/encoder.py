@@ -148,6 +148,20 @@ def eccentricity_displacement(angle, eccentricity: float, phase: float = 0.0):
 
     The centre of the graduated circle sits ``eccentricity`` from the axis of rotation at angle
     ``angle + phase``; it turns with the shaft.
+
+    Parameters
+    ----------
+    angle : array_like, radians
+        Shaft angle.
+    eccentricity : float, metres
+    phase : float, radians
+
+    Returns
+    -------
+    dx, dy : ndarray, metres
+        ``e·cos(angle + phase)``, ``e·sin(angle + phase)``; fed to
+        :func:`readhead_displacement_error` (seed 000, "Bearing wander and encoder mounting
+        eccentricity").
     """
     th = np.asarray(angle, dtype=float) + phase
     return eccentricity * np.cos(th), eccentricity * np.sin(th)
@@ -155,7 +169,18 @@ def eccentricity_displacement(angle, eccentricity: float, phase: float = 0.0):
 
 def average_readheads(*readings):
     """Average the angles read by several read-heads (seed 000: "the average of the angular
-    positions indicated by each read-head"), radians."""
+    positions indicated by each read-head"), radians.
+
+    Parameters
+    ----------
+    *readings : array_like, radians
+        One angle (or array of angles) per head, all of one shape.
+
+    Returns
+    -------
+    ndarray, radians
+        The arithmetic mean over the heads (seed 000 Figure 21).
+    """
     if not readings:
         raise InputError("average_readheads needs at least one reading")
     return np.mean(np.stack([np.asarray(r, dtype=float) for r in readings]), axis=0)
@@ -212,8 +237,8 @@ class ErrorMap:
     errors: np.ndarray
 
     def __post_init__(self) -> None:
-        a = np.asarray(self.angles, dtype=float)
-        e = np.asarray(self.errors, dtype=float)
+        a = np.array(self.angles, dtype=float)  # copies: freezing must not touch the caller's
+        e = np.array(self.errors, dtype=float)
         if a.ndim != 1 or a.shape != e.shape or a.size < 2:
             raise InputError("error map needs matching 1-D angles and errors with at least 2 points")
         if np.any(np.diff(a) <= 0) or a[0] < 0 or a[-1] >= TWO_PI:

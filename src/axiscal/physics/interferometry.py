@@ -34,6 +34,7 @@ so the effective scale pitch is 0.316 microns".
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Literal
 
@@ -79,6 +80,15 @@ def wavelength_in_air(vacuum_wavelength: float = HENE_VACUUM_WAVELENGTH,
     n : float, dimensionless
         Refractive index of the air (from :mod:`axiscal.physics.air`; default standard air).
 
+    Returns
+    -------
+    float, metres
+
+    Notes
+    -----
+    Definition of the refractive index (NIST, Stone and Zimmerman, eq. 1); seed 002, "wavelength
+    compensation".
+
     Examples
     --------
     >>> round(wavelength_in_air() * 1e9, 3)
@@ -101,8 +111,13 @@ def effective_pitch(wavelength: float, optics: Optics = "linear") -> float:
     wavelength : float, metres
     optics : {"linear", "plane_mirror"}
 
+    Returns
+    -------
+    float, metres per fringe
+
     Notes
     -----
+    Seed 001 eq. 22 (d = λN/2) for linear optics; the plane mirror's double pass halves it again.
     Seed 002: "0.633 microns ... the use of a reflector doubles the sensitivity, so the effective
     scale pitch is 0.316 microns" (0.3165 µm, written truncated in the seed).
 
@@ -116,7 +131,18 @@ def effective_pitch(wavelength: float, optics: Optics = "linear") -> float:
 
 
 def fringes_per_metre(wavelength: float, optics: Optics = "linear") -> float:
-    """Fringes counted per metre of reflector travel, 1/m."""
+    """Fringes counted per metre of reflector travel, 1/m.
+
+    Parameters
+    ----------
+    wavelength : float, metres
+    optics : {"linear", "plane_mirror"}
+
+    Returns
+    -------
+    float, 1/m
+        ``1 / effective_pitch(wavelength, optics)`` (seed 001 eq. 22).
+    """
     return 1.0 / effective_pitch(wavelength, optics)
 
 
@@ -203,6 +229,11 @@ def cosine_error(length, misalignment):
     ndarray or float, metres
         ``L·(cos φ − 1)``, always <= 0: the laser reads short.
 
+    Notes
+    -----
+    The beam measures the projection ``L cos φ`` of the travel on its own direction: the
+    cosine error of beam alignment (issue 3; not derived in the seeds, plain geometry).
+
     Examples
     --------
     >>> round(cosine_error(1.0, 1e-3) * 1e6, 3)   # 1 mrad over 1 m: 0.5 µm short
@@ -223,6 +254,14 @@ def path_difference(angle, spacing: float):
         Rotation of the reflector pair from perpendicular to the beams.
     spacing : float, metres
         True centre-to-centre spacing S of the retro-reflectors.
+
+    Returns
+    -------
+    float or ndarray, metres
+
+    Notes
+    -----
+    Seed 000, "Interferometric angular measurement" (Figure 1), read as in the module Notes.
     """
     _check_positive("spacing", spacing)
     out = spacing * np.sin(np.asarray(angle, dtype=float))
@@ -240,6 +279,10 @@ def angle_from_path_difference(delta_l, spacing: float, k: float = 1.0):
         Nominal spacing S used by the software.
     k : float
         Correction factor K from :func:`optics_self_calibration` (1 before calibration).
+
+    Returns
+    -------
+    float or ndarray, radians
 
     Raises
     ------
@@ -309,6 +352,10 @@ def refraction_angle_error(misalignment, delta_n):
         Change of the refractive index since the last compensation (about −0.95e-6 per +1 K in
         standard air; take it from :mod:`axiscal.physics.air`).
 
+    Returns
+    -------
+    float or ndarray, radians
+
     Notes
     -----
     Seed 000, "Air refractive index compensation errors": "a 1 °C change in air temperature, when
@@ -336,6 +383,10 @@ def nonparallel_beam_error(lateral, nonparallelism: float, spacing: float):
     nonparallelism : float, radians
         Angle between the two beams (seed 000: within ±15 arcsec).
     spacing : float, metres
+
+    Returns
+    -------
+    float or ndarray, radians
 
     Notes
     -----
@@ -463,5 +514,7 @@ def _passes(optics: str) -> int:
 
 
 def _check_positive(name: str, value: float) -> None:
-    if not (isinstance(value, (int, float, np.floating)) and math.isfinite(value) and value > 0):
+    # numbers.Real takes NumPy scalars too (np.int64, np.float32), not bool
+    if not (isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+            and math.isfinite(value) and value > 0):
         raise InputError(f"{name}={value!r} must be a positive finite number")

@@ -96,6 +96,11 @@ def encode_quadrature(counts) -> tuple[np.ndarray, np.ndarray]:
         The phase ``counts mod 4`` = 0, 1, 2, 3 gives (A, B) = (0,0), (1,0), (1,1), (0,1): A leads B
         for a positive motion.
 
+    Notes
+    -----
+    The Gray-code cycle of ×4 quadrature counting (issue 3; seed 002, "digital A/B quadrature" of
+    the laser head): consecutive states differ in one signal only.
+
     Examples
     --------
     >>> a, b = encode_quadrature([0, 1, 2, 3, 4, -1])
@@ -240,6 +245,7 @@ def interpolate_sincos(sin, cos, initial_period: int = 0) -> Interpolation:
     if n == 0:
         empty = np.zeros(0, np.int64)
         return Interpolation(_frozen(position), _frozen(phase), _frozen(empty))
+    _refuse_non_finite(s, c)
     np.arctan2(s[:1], c[:1], out=phase[:1])
     position[0] = phase[0] / TWO_PI + initial_period
     turns = float(initial_period)
@@ -312,7 +318,12 @@ def synthesize_sincos(position, imperfections: SignalImperfections = SignalImper
 
     Returns
     -------
-    sin, cos : ndarray
+    sin, cos : ndarray, signal units
+
+    Notes
+    -----
+    The signal model of :class:`SignalImperfections` (seed 000 Figures 17-19: phase error,
+    amplitude mismatch, DC offset; Heydemann 1981 eq. 1).
     """
     p = imperfections
     phi = TWO_PI * np.asarray(position, dtype=float)
@@ -339,6 +350,11 @@ def interpolation_error(phase, imperfections: SignalImperfections):
     -------
     ndarray, radians in (−π, π]
         Interpolated minus true phase: the sub-divisional error as a function of phase.
+
+    Notes
+    -----
+    ``arctan2(sin, cos) − φ`` on the signals of :func:`synthesize_sincos` (seed 000,
+    "Sub-divisional errors": φ = arctan(sin/cos) on imperfect signals).
 
     Examples
     --------
@@ -372,6 +388,8 @@ def subdivisional_error(phase_error, phase, bins: int = 64) -> float:
     float, radians
     """
     err = _wrap(np.asarray(phase_error, dtype=float))
+    if not (np.all(np.isfinite(err)) and np.all(np.isfinite(phase))):
+        raise InputError("phase_error and phase must be finite (a NaN has no bin)")
     idx = (np.mod(np.asarray(phase, dtype=float), TWO_PI) * (bins / TWO_PI)).astype(np.int64)
     idx = np.minimum(idx, bins - 1)
     n = np.bincount(idx, minlength=bins)
@@ -442,6 +460,7 @@ def heydemann_fit(sin, cos) -> HeydemannCorrection:
     x = np.asarray(cos, dtype=float).ravel()
     if x.size != y.size or x.size < 5:
         raise InputError(f"heydemann_fit needs at least 5 (sin, cos) pairs, got {min(x.size, y.size)}")
+    _refuse_non_finite(y, x)
     mx, my = float(x.mean()), float(y.mean())
     sx, sy = float(x.std()), float(y.std())
     if not (sx > 0 and sy > 0):
@@ -468,6 +487,18 @@ def heydemann_fit(sin, cos) -> HeydemannCorrection:
 def heydemann_correct(sin, cos, fit: HeydemannCorrection) -> tuple[np.ndarray, np.ndarray]:
     """Map imperfect signals back onto the unit circle with a fitted correction.
 
+    Parameters
+    ----------
+    sin, cos : array_like, signal units
+        Measured signals.
+    fit : HeydemannCorrection
+        From :func:`heydemann_fit` (offsets and amplitudes in signal units, phase in radians).
+
+    Notes
+    -----
+    Heydemann (1981): the inverse of the signal model of :func:`synthesize_sincos`, with the
+    ellipse parameters of :func:`heydemann_fit` (its Notes hold the algebra).
+
     Returns
     -------
     sin, cos : ndarray, dimensionless
@@ -477,6 +508,23 @@ def heydemann_correct(sin, cos, fit: HeydemannCorrection) -> tuple[np.ndarray, n
     s = (np.asarray(sin, dtype=float) - fit.offset_sin) / fit.amplitude_sin
     s = (s - c * math.sin(fit.phase_error)) / math.cos(fit.phase_error)
     return s, c
+
+
+def _refuse_non_finite(s: np.ndarray, c: np.ndarray) -> None:
+    """A NaN or infinite sample has no phase: refuse it rather than lose a period count there
+    (a wrap across a NaN sample is not seen, and arctan2 of an infinity is a finite angle).
+
+    Fast path: a dot product is finite whenever every sample is (barring |values| > 1e150), and a
+    NaN or infinity in either array makes it NaN or infinite; only then are the samples scanned."""
+    with np.errstate(all="ignore"):
+        if np.isfinite(np.dot(s, c)):
+            return
+    for name, arr in (("sin", s), ("cos", c)):
+        ok = np.isfinite(arr)
+        if not ok.all():
+            i = int(np.argmin(ok))
+            raise InputError(f"{name}[{i}] = {arr[i]!r}: every sample must be finite; a missing "
+                             "sample cannot be interpolated (split the record there or fill it)")
 
 
 def _wrap(x):

@@ -119,6 +119,16 @@ _ALIASES = {
 def material(name: str) -> Material:
     """Look a material up by name (case-insensitive; ``"aluminum"``, ``"zerodur"`` ... accepted).
 
+    Parameters
+    ----------
+    name : str
+        A key of :data:`MATERIALS` or a common alias.
+
+    Returns
+    -------
+    Material
+        With ``alpha`` in 1/K and the source of the value.
+
     Raises
     ------
     InputError
@@ -139,9 +149,15 @@ def mean_temperature(temperatures, weights=None) -> float:
     ----------
     temperatures : array_like, degrees Celsius
         One reading per sensor (at least one).
-    weights : array_like, optional
+    weights : array_like, optional, dimensionless
         Relative weights (for instance the length of material each sensor stands for); equal
         weights if omitted.
+
+    Returns
+    -------
+    float, degrees Celsius
+        :math:`\\sum w_k t_k / \\sum w_k`, the material temperature ISO 230-2 asks to record
+        (the mean of the sensors on the axis).
 
     Raises
     ------
@@ -181,6 +197,14 @@ def expansion(length, temperature, alpha):
         Length at 20 °C.
     temperature : array_like, degrees Celsius
     alpha : array_like, 1/K
+
+    Returns
+    -------
+    float or ndarray, unit of ``length``
+
+    Notes
+    -----
+    Linear expansion about the ISO 1 reference temperature 20 °C (module docstring).
     """
     return _out(np.asarray(length, dtype=float) * np.asarray(alpha, dtype=float)
                 * (np.asarray(temperature, dtype=float) - REFERENCE_TEMPERATURE))
@@ -189,7 +213,20 @@ def expansion(length, temperature, alpha):
 def length_at(length_20, temperature, alpha):
     """Length at ``temperature`` of what measures ``length_20`` at 20 °C.
 
-    :math:`L_t = L_{20}(1 + \\alpha\\Delta t)`, same unit as ``length_20``.
+    Parameters
+    ----------
+    length_20 : array_like, any length unit
+        Length at 20 °C.
+    temperature : array_like, degrees Celsius
+    alpha : array_like, 1/K
+
+    Returns
+    -------
+    float or ndarray, unit of ``length_20``
+
+    Notes
+    -----
+    :math:`L_t = L_{20}(1 + \\alpha\\,(t - 20\\,^\\circ\\mathrm{C}))`, ISO 1 reference temperature.
     """
     return _out(np.asarray(length_20, dtype=float)
                 * (1.0 + np.asarray(alpha, dtype=float)
@@ -207,6 +244,15 @@ def normalise_length(length, temperature, alpha):
         Material temperature (the mean of its sensors).
     alpha : array_like, 1/K
         Linear expansion coefficient of the material.
+
+    Returns
+    -------
+    float or ndarray, unit of ``length``
+
+    Notes
+    -----
+    The inverse of :func:`length_at`, referring a length to the ISO 1 reference temperature
+    (ISO 230-2:2014 asks for results at 20 °C; seed 001, "necessary correction has to applied").
     """
     return _out(np.asarray(length, dtype=float)
                 / (1.0 + np.asarray(alpha, dtype=float)

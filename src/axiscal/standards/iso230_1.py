@@ -49,6 +49,9 @@ from typing import Literal
 import numpy as np
 
 from axiscal.errors import InputError, InsufficientRunsError
+from axiscal.standards._convex_hull import band_widths as _band_widths
+from axiscal.standards._convex_hull import edge_slopes as _edge_slopes
+from axiscal.standards._convex_hull import hull_chains as _hull_chains
 from axiscal.units import ARCSEC
 
 __all__ = [
@@ -291,6 +294,22 @@ def reference_line(positions, deviations, method: Method = "least_squares") -> R
 def least_squares_line(positions, deviations) -> ReferenceLine:
     """Least-squares reference straight line (ISO 230-1 §3.4.8, seed 004 Figure 1).
 
+    Parameters
+    ----------
+    positions, deviations : array_like
+        As for :func:`reference_line` (any length units).
+
+    Returns
+    -------
+    ReferenceLine
+        Slope in deviation unit per position unit.
+
+    Notes
+    -----
+    Minimises :math:`\\sum (y_i - m x_i - c)^2`: :math:`m = \\sum (x_i - \\bar x)(y_i - \\bar y)
+    / \\sum (x_i - \\bar x)^2`, :math:`c = \\bar y - m \\bar x`, computed on centred, scaled
+    positions so that neither tiny nor huge position ranges lose digits.
+
     Examples
     --------
     >>> least_squares_line([0, 1, 2, 3], [0.0, 1.1, 1.9, 3.0]).slope
@@ -305,6 +324,20 @@ def least_squares_line(positions, deviations) -> ReferenceLine:
 
 def end_point_line(positions, deviations) -> ReferenceLine:
     """End-point reference straight line: through the first and last readings in position order.
+
+    Parameters
+    ----------
+    positions, deviations : array_like
+        As for :func:`reference_line` (any length units).
+
+    Returns
+    -------
+    ReferenceLine
+
+    Notes
+    -----
+    ISO 230-1 §3.4.8 (seed 004, reference line (b)): the line joining the readings at the
+    smallest and the largest position.
 
     Examples
     --------
@@ -448,7 +481,16 @@ def orientation_sign(orientation: int) -> int:
 
     Turning the square by 90° makes its arms point along (+first, -second) or (-first, +second),
     so the angle between the references of the + directions becomes 90° − ε instead of 90° + ε;
-    turning by 180° keeps it. Returns +1 for 0° and 180°, −1 for 90° and 270°.
+    turning by 180° keeps it (seed 004 Method 3 and Figure 14).
+
+    Parameters
+    ----------
+    orientation : {0, 90, 180, 270}, degrees
+
+    Returns
+    -------
+    int
+        +1 for 0° and 180°, −1 for 90° and 270°.
 
     Examples
     --------
@@ -530,74 +572,3 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.setflags(write=False)
     return a
-
-
-def _edge_slopes(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
-    return np.diff(ys) / np.diff(xs)
-
-
-def _band_widths(upper, lower, slopes: np.ndarray) -> np.ndarray:
-    """w(m) for each slope: rotating calipers as binary searches on the monotone edge slopes."""
-    xu, yu = upper
-    xl, yl = lower
-    su = _edge_slopes(xu, yu)  # decreasing along the upper chain
-    sl = _edge_slopes(xl, yl)  # increasing along the lower chain
-    ku = np.searchsorted(-su, -slopes, side="left")  # vertex maximising y - m x
-    kl = np.searchsorted(sl, slopes, side="left")  # vertex minimising y - m x
-    return (yu[ku] - slopes * xu[ku]) - (yl[kl] - slopes * xl[kl])
-
-
-def _hull_chains(x: np.ndarray, y: np.ndarray):
-    """Upper and lower convex chains, each sorted by x (distinct x, extreme y at ties)."""
-    if np.all(x[1:] > x[:-1]):  # the usual case: readings in increasing position order
-        xs, ys = x, y
-    else:
-        order = np.lexsort((y, x))
-        xs, ys = x[order], y[order]
-    keep_hi = np.r_[xs[1:] != xs[:-1], True]  # highest y at each x
-    keep_lo = np.r_[True, xs[1:] != xs[:-1]]  # lowest y at each x
-    if xs.size > 64:
-        cand = _qhull_candidates(xs, ys)
-        if cand is not None:
-            keep_hi &= cand
-            keep_lo &= cand
-    upper = _monotone_chain(xs[keep_hi], ys[keep_hi], upper=True)
-    lower = _monotone_chain(xs[keep_lo], ys[keep_lo], upper=False)
-    return upper, lower
-
-
-def _qhull_candidates(xs: np.ndarray, ys: np.ndarray):
-    """Mask of hull vertices found by Qhull on scaled coordinates (None if Qhull refuses)."""
-    from scipy.spatial import ConvexHull, QhullError
-
-    sx, sy = np.ptp(xs), np.ptp(ys)
-    if sy == 0:
-        return None
-    pts = np.column_stack(((xs - xs[0]) / sx, (ys - ys.min()) / sy))
-    try:
-        hull = ConvexHull(pts)
-    except (QhullError, ValueError):
-        return None
-    mask = np.zeros(xs.size, dtype=bool)
-    mask[hull.vertices] = True
-    # keep the end columns whole so each chain starts and ends at the extreme positions
-    mask |= (xs == xs[0]) | (xs == xs[-1])
-    return mask
-
-
-def _monotone_chain(xs: np.ndarray, ys: np.ndarray, upper: bool):
-    """Andrew's monotone chain on x-sorted points with distinct x (exact cross products)."""
-    sign = -1.0 if upper else 1.0
-    hx: list[float] = []
-    hy: list[float] = []
-    for px, py in zip(xs.tolist(), ys.tolist()):
-        while len(hx) >= 2:
-            cross = (hx[-1] - hx[-2]) * (py - hy[-2]) - (hy[-1] - hy[-2]) * (px - hx[-2])
-            if sign * cross > 0:
-                break
-            hx.pop()
-            hy.pop()
-        hx.append(px)
-        hy.append(py)
-    return np.array(hx), np.array(hy)
-

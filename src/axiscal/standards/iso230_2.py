@@ -239,6 +239,11 @@ def minimum_linear_targets(travel_mm: float) -> int:
     ----------
     travel_mm : float, millimetres
 
+    Returns
+    -------
+    int
+        ``max(5, ceil(5 · travel / 1000 mm))``.
+
     Examples
     --------
     >>> minimum_linear_targets(150), minimum_linear_targets(800), minimum_linear_targets(1000.5)
@@ -299,13 +304,15 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
     n_down, mean_down, s_down = _direction_stats(targets, down, tu, "-")
     has_up, has_down = up.shape[1] > 0, down.shape[1] > 0
 
-    n_runs = int(max(up.shape[1], down.shape[1]))
+    # runs and missing readings of the test as measured: pooling 360° into 0° (full_turn="merge")
+    # widens the arrays with padding that is neither a run nor a missing reading
+    n_runs = int(max(dataset.up.shape[1], dataset.down.shape[1]))
     if n_runs < RECOMMENDED_RUNS:
         warn.append(
             f"{n_runs} runs; ISO 230-2:2014 asks for {RECOMMENDED_RUNS} in each direction, "
             "so the repeatability estimates are less certain"
         )
-    missing = int(np.isnan(up).sum() + np.isnan(down).sum())
+    missing = int(np.isnan(dataset.up).sum() + np.isnan(dataset.down).sum())
     if missing:
         warn.append(
             f"{missing} reading(s) missing; each target was evaluated from the readings it has "
@@ -454,7 +461,9 @@ def _closure(mean_up, s_up, n_up, mean_down, s_down, n_down, unit, warn):
             continue
         c = float(mean[-1] - mean[0])
         se = math.sqrt(s[0] ** 2 / n[0] + s[-1] ** 2 / n[-1])
-        if abs(c) > 3 * se and abs(c) > 0:
+        # floor for rounding: with no scatter (se = 0) sin(2π) ≠ 0 alone gives |c| ~ 1e-16
+        rounding = 1e-9 * float(np.max(np.abs(mean)))
+        if abs(c) > 3 * se and abs(c) > rounding:
             warn.append(
                 f"closure in direction {name}: the mean deviation at 360° differs from 0° by "
                 f"{c:.3g} {unit}, more than repeatability explains (3 standard errors = "

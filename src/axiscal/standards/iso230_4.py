@@ -168,6 +168,16 @@ def arc_coverage(angles) -> float:
     """Angular coverage of a set of angles, degrees (360 minus the largest empty gap, one sample
     step added back so that an evenly sampled full circle gives 360).
 
+    Parameters
+    ----------
+    angles : array_like, radians
+        Nominal angular positions of one run (at least two).
+
+    Returns
+    -------
+    float, degrees
+        At most 360. The arc a partial-arc test covers (seed 004: down to 220°).
+
     Examples
     --------
     >>> arc_coverage(np.radians(np.arange(0, 360, 10)))
@@ -175,7 +185,9 @@ def arc_coverage(angles) -> float:
     >>> round(arc_coverage(np.radians(np.arange(0, 221, 5))), 6)
     225.0
     """
-    a = np.sort(np.mod(np.asarray(angles, dtype=float), 2 * np.pi))
+    a = np.sort(np.mod(np.asarray(angles, dtype=float).ravel(), 2 * np.pi))
+    if a.size < 2 or not np.all(np.isfinite(a)):
+        raise InputError(f"arc coverage needs at least 2 finite angles, got {a.size}")
     gaps = np.diff(np.r_[a, a[0] + 2 * np.pi])
     step = float(np.median(gaps))
     return float(np.degrees(min(2 * np.pi, 2 * np.pi - gaps.max() + step)))
@@ -278,8 +290,15 @@ def _circular_deviation(run: CircularRun) -> float:
     """Minimum-zone G: min over (a, b) of max - min of Δr - a cos φ - b sin φ (an LP)."""
     from scipy.optimize import linprog
 
-    cos, sin, d = np.cos(run.angles), np.sin(run.angles), run.deviations
-    scale = max(float(np.ptp(d)), 1e-300)
+    cos, sin = np.cos(run.angles), np.sin(run.angles)
+    # start from the least-squares centre: the LP then solves for a small correction on data of
+    # unit spread, whatever the radius offset (a constant moves both envelope circles alike)
+    h3 = _harmonics(run.angles)[:, :3]
+    c0, _ = _lstsq(h3, run.deviations)
+    d = run.deviations - h3 @ c0
+    scale = float(np.ptp(d))
+    if not scale > 0:
+        return 0.0
     dn = d / scale
     ones, zeros = np.ones_like(d), np.zeros_like(d)
     # variables a, b, u, l: minimise u - l with l <= dn - a cos - b sin <= u

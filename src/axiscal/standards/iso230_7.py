@@ -301,8 +301,14 @@ def fundamental(theta, values):
 
     Returns
     -------
-    ndarray, shape (M,)
+    ndarray, shape (M,), unit of ``values``
         The fitted fundamental at ``theta``.
+
+    Notes
+    -----
+    ISO 230-7:2015 §3 (fundamental error motion; the once-per-revolution sinusoid whose removal
+    puts the polar-chart centre at the least-squares circle centre): least squares on
+    ``[1, cos θ, sin θ]``, the constant dropped.
 
     Examples
     --------
@@ -329,7 +335,12 @@ def polar_coordinates(theta, values, base_radius: float, gain: float):
 
     Returns
     -------
-    x, y : ndarray
+    x, y : ndarray, plot units
+
+    Notes
+    -----
+    ISO 230-7:2015 §5.4 polar plot: radius = base circle + gain × error motion, at the angle of
+    rotation (the error motions being many orders below the base radius).
     """
     th = np.asarray(theta, float)
     r = base_radius + gain * np.asarray(values, float)
@@ -341,7 +352,22 @@ def halfrange(runs) -> float:
 
     Parameters
     ----------
-    runs : array_like, shape (R, M)
+    runs : array_like, shape (R, M), any unit
+
+    Returns
+    -------
+    float, unit of ``runs``
+        ``max over angles of (max − min across runs) / 2``.
+
+    Raises
+    ------
+    InsufficientRunsError
+        Fewer than 2 runs.
+
+    Notes
+    -----
+    Seed 003, section 3, "Repeatability experiments" (the "deviation of repeatability" ± of three
+    runs, Fig. 7); the seed does not define it further, half the spread is axiscal's reading.
 
     Examples
     --------
