@@ -1,0 +1,60 @@
+"""Mistakes on the command line itself are one line ``axiscal: error: ...`` with exit code 2.
+
+Click's usage panel (several lines in a box) used to reach the user for an unknown command, a
+missing option or ``--length abc``; number options also took ``nan`` and ``inf`` and failed later,
+some with a traceback (``compensate --reference nan``).
+"""
+
+import pytest
+from typer.testing import CliRunner
+
+from axiscal.cli import app
+
+runner = CliRunner()
+
+
+def _one_error_line(r, *words):
+    assert r.exit_code == 2, r.output
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("axiscal: error: "), r.stderr
+    assert "Traceback" not in r.output and r.stdout == ""
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+    return lines[0]
+
+
+@pytest.mark.parametrize("args, words", [
+    (["bogus"], ["no such command 'bogus'", "axiscal --help"]),
+    (["--bogus"], ["no such option: --bogus"]),
+    (["plan", "bogus"], ["plan: no such command 'bogus'", "axiscal plan --help"]),
+    (["plan", "linear"], ["plan linear: missing option '--length'", "axiscal plan linear --help"]),
+    (["plan", "linear", "--length", "abc"], ["'--length'", "'abc' is not a valid float"]),
+    (["plan", "linear", "--length", "800", "--targets", "x"], ["'--targets'", "not a valid int"]),
+    (["iso230-2"], ["iso230-2: missing argument"]),
+    (["iso230-2", "a.csv", "b.csv"], ["unexpected extra argument"]),
+    (["rotary", "budget", "--alpha", "1"], ["missing option '--beta'"]),
+])
+def test_usage_errors_are_one_line(args, words):
+    _one_error_line(runner.invoke(app, args), *words)
+
+
+@pytest.mark.parametrize("args", [
+    ["plan", "linear", "--length", "800", "--start", "nan"],
+    ["plan", "rotary", "--start", "inf"],
+    ["rotary", "budget", "--alpha", "1", "--beta", "1", "--base", "inf"],
+    ["rotary", "budget", "--alpha", "1", "--beta", "1", "--accuracy", "inf"],
+    ["squareness", "biaxial", "x.csv", "y.csv", "--prism-error", "nan"],
+    ["compensate", "x.csv", "--reference", "nan"],
+    ["compensate", "x.csv", "--travel", "0", "--travel", "inf"],
+    ["motion", "stability", "--duration-min", "inf"],
+    ["scale", "compensate", "--material-temperature", "-inf"],
+    ["air", "--temperature", "nan"],
+])
+def test_number_options_must_be_finite(args):
+    """No length, angle, time or temperature is NaN or infinite; refused while parsing."""
+    _one_error_line(runner.invoke(app, args), "is not a finite number")
+
+
+def test_group_without_a_command_still_shows_its_help():
+    r = runner.invoke(app, ["plan"])
+    assert r.exit_code == 2 and "linear" in r.output and "rotary" in r.output
