@@ -15,7 +15,8 @@ import typer
 
 from axiscal.errors import InputError
 
-__all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "note"]
+__all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report_path",
+           "typed_path", "note"]
 
 
 def console():
@@ -69,6 +70,23 @@ def plot_path(path: Path) -> Path:
     if p.suffix.lower() not in PLOT_SUFFIXES:
         raise InputError(f"plot file {p.name}: use a .png, .svg or .pdf extension")
     return p
+
+
+def typed_path(path: Path, what: str, suffixes: tuple[str, ...]) -> Path:
+    """Check an output file before any work: writable folder and one of ``suffixes``.
+
+    A report named ``r.png`` or a CSV named ``plan.pdf`` is a slip of the keyboard; writing it
+    would leave a file no program opens.
+    """
+    p = out_path(path, what)
+    if p.suffix.lower() not in suffixes:
+        raise InputError(f"{what} file {p.name}: use a {' or '.join(suffixes)} extension")
+    return p
+
+
+def report_path(path: Path) -> Path:
+    """Check an HTML report file before any work: writable folder and a .html or .htm name."""
+    return typed_path(path, "report", (".html", ".htm"))
 
 
 def note(message: str) -> None:

@@ -21,7 +21,7 @@ DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rota
 
 def demo(
     out: Path = typer.Option(Path("axiscal-demo"), "--out", help="Folder for plots, reports and data (created)."),
-    seed: int = typer.Option(1, "--seed", help="Seed of the simulation's random numbers."),
+    seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
 ) -> None:
     """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported."""
     import tomllib

@@ -19,7 +19,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, plot_path, print_json
+from axiscal.cli._common import note, plot_path, print_json, report_path
 
 __all__ = ["register", "result_json", "render_result"]
 
@@ -43,7 +43,7 @@ def iso230_2(
     if plot is not None:
         plot_path(plot)
     if report is not None:
-        out_path(report, "report")
+        report_path(report)
     ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
     result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
     verdicts = check_tolerances(result, tolerances) if tolerances else ()

@@ -31,7 +31,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, print_json, report_path, typed_path
 
 __all__ = ["register", "iso_json"]
 
@@ -268,8 +268,14 @@ def _config(path):
     return parse_motion_config("") if path is None else read_motion_config(path)
 
 
-def _check_outputs(**paths) -> dict:
-    return {k: out_path(p, k) for k, p in paths.items() if p is not None}
+def _check_outputs(report=None, csv=None) -> dict:
+    """Check the output files before any work (folder exists, .html report, .csv data)."""
+    paths = {}
+    if report is not None:
+        paths["report"] = report_path(report)
+    if csv is not None:
+        paths["csv"] = typed_path(csv, "csv", (".csv",))
+    return paths
 
 
 def _wrote(paths: dict) -> None:

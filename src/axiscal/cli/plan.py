@@ -13,7 +13,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, print_json, typed_path
 
 plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
                        no_args_is_help=True)
@@ -25,7 +25,7 @@ def plan_linear_cmd(
     start: float = typer.Option(0.0, "--start", help="First target in mm."),
     n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
     irregularity: float = typer.Option(0.25, "--irregularity", help="Random offset of each target as a fraction of the interval (0 = even spacing)."),
-    seed: int = typer.Option(0, "--seed", help="Seed of the random offsets (plans are reproducible)."),
+    seed: int = typer.Option(0, "--seed", min=0, help="Seed of the random offsets, a whole number >= 0 (plans are reproducible)."),
     runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
     cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
     unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
@@ -38,6 +38,7 @@ def plan_linear_cmd(
     """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2)."""
     from axiscal.procedures.positioning import plan_linear
 
+    _check_csv(csv)
     p = plan_linear(length, start, n_targets, irregularity, seed, runs, cycle, not unidirectional,  # type: ignore[arg-type]
                     overrun, dwell, axis)
     _emit(p, csv, json_out)
@@ -61,16 +62,22 @@ def plan_rotary_cmd(
     """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included)."""
     from axiscal.procedures.positioning import plan_rotary
 
+    _check_csv(csv)
     p = plan_rotary(travel, start, step, n_targets, runs, cycle, not unidirectional, overrun,  # type: ignore[arg-type]
                     dwell, axis)
     _emit(p, csv, json_out)
+
+
+def _check_csv(csv: Optional[Path]) -> None:
+    if csv is not None:
+        typed_path(csv, "plan CSV", (".csv",))
 
 
 def _emit(p, csv: Optional[Path], json_out: bool) -> None:
     if csv is not None:
         from axiscal.io._files import write_text_atomic
 
-        write_text_atomic(out_path(csv, "plan CSV"), p.to_csv())
+        write_text_atomic(csv, p.to_csv())
     if json_out:
         print_json({
             "targets": p.targets, "target_unit": p.target_unit, "runs": p.runs, "cycle": p.cycle,

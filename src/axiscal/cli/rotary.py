@@ -28,7 +28,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, print_json, report_path
 
 __all__ = ["register"]
 
@@ -43,7 +43,7 @@ def simulate(
     from axiscal.procedures.rotary_config import run_rotary_config
 
     if report is not None:
-        out_path(report, "report")
+        report_path(report)
     result = run_rotary_config(load_toml(config))
     if report is not None:
         from axiscal.report.rotary import write_rotary_report

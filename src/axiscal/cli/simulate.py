@@ -15,12 +15,12 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, plot_path, print_json
+from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
 
 
 def simulate(
     config: Path = typer.Argument(..., help="Machine and test configuration (TOML)."),
-    seed: int = typer.Option(1, "--seed", help="Seed of the simulation's random numbers."),
+    seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result and the truth as JSON."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot with the truth."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report."),
@@ -32,9 +32,10 @@ def simulate(
 
     if plot is not None:
         plot_path(plot)
-    for p, what in ((report, "report"), (data, "data file")):
-        if p is not None:
-            out_path(p, what)
+    if report is not None:
+        report_path(report)
+    if data is not None:
+        typed_path(data, "data", (".csv", ".json"))
     sim = simulate_from_config(load_toml(config), seed=seed)
     write_outputs(sim, plot, report, data)
     if json_out:
