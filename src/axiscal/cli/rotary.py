@@ -17,7 +17,7 @@ well must I align for this accuracy?" from seed 000 equation 1. ``--json`` keys 
 ``alpha_mrad``, ``beta_mrad``, ``omega_mrad``, ``terms_arcsec`` (``quadratic``, ``alpha_beta``,
 ``alpha_omega``: amplitudes), ``peak_arcsec``, ``half_range_arcsec``, ``base_arcsec``,
 ``expected_accuracy_arcsec``, ``accuracy_arcsec`` and ``max_alpha_mrad`` (null without
-``--accuracy``), ``table`` (``alpha_mrad``, ``beta_mrad``, ``accuracy_arcsec``,
+``--accuracy``; 0.0 when the accuracy is out of reach even at perfect alignment), ``table`` (``alpha_mrad``, ``beta_mrad``, ``accuracy_arcsec``,
 ``seed_figure22_arcsec``).
 """
 
@@ -82,7 +82,10 @@ def budget(
               f"{data['half_range_arcsec']:.3f})")
     con.print(f"  expected accuracy      ±{data['expected_accuracy_arcsec']:.2f} arcsec "
               f"(base {base:g} + peak)")
-    if accuracy is not None:
+    if accuracy is not None and data["max_alpha_mrad"] == 0.0:
+        con.print(f"  ±{accuracy:g} arcsec cannot be reached at any alignment: the system alone "
+                  f"gives ±{base:g} arcsec (--base)")
+    elif accuracy is not None:
         ma = data["max_alpha_mrad"]
         con.print(f"  for ±{accuracy:g} arcsec at this β, ω: align α within {ma:.3f} mrad "
                   f"(TIR < {2 * 50 * ma * 1e-3:.3f} mm at 50 mm, before the calibrator's own 0.44 mrad)")

@@ -7,12 +7,10 @@ non-comment line is the header. Used by :mod:`axiscal.io.straightness` and
 
 from __future__ import annotations
 
-import csv as _csv
-import io
 import shlex
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import csv_cells, finite_number
 from axiscal.errors import AxiscalError, DataFormatError
 
 __all__ = ["parse_tidy", "number", "length_factor"]
@@ -43,7 +41,7 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         if stripped.startswith("#"):
             meta.update(_comment(stripped[1:], meta_keys))
             continue
-        cells = [c.strip() for c in next(_csv.reader(io.StringIO(stripped)))]
+        cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
         if header is None:
             header = [c.lower() for c in cells]
             missing = [c for c in columns if c not in header]

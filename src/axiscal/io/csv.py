@@ -20,12 +20,11 @@ give numbers that look right and are not).
 
 from __future__ import annotations
 
-import csv as _csv
 import io
 import shlex
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import check_run_number, csv_cells, finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 
@@ -91,7 +90,7 @@ def parse_positioning_csv(
     header_meta.pop("axis_kind", None)
 
     header_lineno, header_line = data_lines[0]
-    columns = [c.strip().lower() for c in next(_csv.reader([header_line]))]
+    columns = [c.strip().lower() for c in csv_cells(header_line, source, header_lineno)]
     value_col = "deviation" if "deviation" in columns else "actual" if "actual" in columns else None
     needed = ["target", "direction", "run"]
     if value_col is None or any(c not in columns for c in needed):
@@ -123,7 +122,7 @@ def parse_positioning_csv(
 
     records = []
     for lineno, line in data_lines[1:]:
-        row = next(_csv.reader([line]))
+        row = csv_cells(line, source, lineno)
         if len(row) < len(columns):
             raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}", source, lineno)
         target = finite_number(row[idx["target"]], "target", source, lineno)
@@ -131,16 +130,14 @@ def parse_positioning_csv(
             direction = _direction(row[idx["direction"]])
         except InputError as exc:
             raise DataFormatError(str(exc), source, lineno) from None
-        run_f = finite_number(row[idx["run"]], "run", source, lineno)
-        if run_f != int(run_f) or run_f < 1:
-            raise DataFormatError(f"run {row[idx['run']].strip()!r} is not a whole number >= 1",
-                                  source, lineno)
+        run = check_run_number(finite_number(row[idx["run"]], "run", source, lineno),
+                               len(data_lines) - 1, source, lineno, row[idx["run"]])
         raw = row[idx[value_col]].strip()
         if raw == "" or raw.lower() in {"nan", "na", "missing"}:
             continue  # a missing reading: counted by the dataset as NaN
         value = finite_number(raw, value_col, source, lineno)
         dev = (value - target) * to_dev if to_dev is not None else value
-        records.append((target, direction, int(run_f), dev))
+        records.append((target, direction, run, dev))
     if not records:
         raise DataFormatError("the header is there but no readings follow", source)
     meta = Metadata(**{k: v for k, v in header_meta.items() if k in _META_KEYS})

@@ -26,7 +26,7 @@ import math
 import re
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import check_run_number, finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
 
@@ -119,6 +119,7 @@ def parse_ecmc(
     _check_declared(scalars, "POSITIONS", len(ids), source)
     cycles = max((j for d in ref.values() for (_i, j) in d), default=0)
     _check_declared(scalars, "CYCLES", cycles, source)
+    check_run_number(cycles, sum(len(d) for d in ref.values()), source)
 
     records = []
     for dname, sign in (("FWD", "+"), ("BWD", "-")):

@@ -109,11 +109,11 @@ def linear_axis_from_config(t: dict[str, Any]) -> LinearAxis:
     irr = t.get("irregular")
     if irr:
         refuse_unknown_keys("[axis] irregular", irr, {"rms_um", "seed"})
-        error = error + random_profile(_num(irr, "rms_um", None) * UM, length, range(3, 60),
-                                       np.random.default_rng(int(irr.get("seed", 0))))
+        error = error + random_profile(_nonnegative(irr, "rms_um") * UM, length, range(3, 60),
+                                       np.random.default_rng(_seed(irr, "[axis] irregular")))
     try:
         return LinearAxis(
-            name=str(t.get("name", "X")),
+            name=_name(t, "X"),
             travel=(lo * MM, hi * MM),
             error=error,
             backlash=_num(t, "backlash_um", 0.0) * UM,
@@ -140,10 +140,10 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
     irr = t.get("irregular")
     if irr:
         refuse_unknown_keys("[axis] irregular", irr, {"rms_arcsec", "seed", "orders"})
-        lo, hi = _pair(irr.get("orders", [5, 40]), "irregular.orders")
+        lo, hi = _orders_range(irr.get("orders", [5, 40]))
         positioning = positioning + random_profile(
-            _num(irr, "rms_arcsec", None) * ARCSEC, TWO_PI, range(int(lo), int(hi) + 1),
-            np.random.default_rng(int(irr.get("seed", 0))))
+            _nonnegative(irr, "rms_arcsec") * ARCSEC, TWO_PI, range(lo, hi + 1),
+            np.random.default_rng(_seed(irr, "[axis] irregular")))
     travel = None
     if "travel_deg" in t:
         lo, hi = _pair(t["travel_deg"], "travel_deg")
@@ -156,7 +156,7 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
             motions[name] = _error_motion(em[name], unit, k, f"[axis.error_motions.{name}]")
     try:
         return RotaryAxis(
-            name=str(t.get("name", "C")),
+            name=_name(t, "C"),
             positioning=positioning,
             backlash=_num(t, "backlash_arcsec", 0.0) * ARCSEC,
             repeatability_sigma=_num(t, "repeatability_arcsec", 0.0) * ARCSEC,
@@ -216,10 +216,46 @@ def _num(t: dict[str, Any], key: str, default: float | None) -> float:
     return float(v)
 
 
+def _nonnegative(t: dict[str, Any], key: str) -> float:
+    """A required number >= 0 (an rms or a standard deviation)."""
+    v = _num(t, key, None)
+    if v < 0:
+        raise ConfigError(f"{key} = {t[key]!r} must be >= 0 (it is a root mean square)")
+    return v
+
+
+def _seed(t: dict[str, Any], where: str) -> int:
+    """A random seed: a whole number >= 0 (numpy refuses negative seeds)."""
+    v = t.get("seed", 0)
+    if isinstance(v, bool) or not isinstance(v, int) or v < 0:
+        raise ConfigError(f"{where} seed = {v!r} must be a whole number >= 0")
+    return v
+
+
+def _name(t: dict[str, Any], default: str) -> str:
+    v = t.get("name", default)
+    if not isinstance(v, str) or not v.strip():
+        raise ConfigError(f"[axis] name = {v!r} must be the axis name as text, e.g. \"{default}\"")
+    return v
+
+
+#: Highest order of a rotary axis's irregular profile: one harmonic per 0.1 degree.
+MAX_IRREGULAR_ORDER = 3600
+
+
+def _orders_range(v: Any) -> tuple[int, int]:
+    lo, hi = _pair(v, "irregular.orders")
+    if lo != int(lo) or hi != int(hi) or lo < 1 or hi > MAX_IRREGULAR_ORDER:
+        raise ConfigError(f"irregular.orders = {v!r} must be whole orders per turn, 1 <= low < "
+                          f"high <= {MAX_IRREGULAR_ORDER}")
+    return int(lo), int(hi)
+
+
 def _pair(v: Any, key: str) -> tuple[float, float]:
     if (not isinstance(v, list) or len(v) != 2
-            or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
-        raise ConfigError(f"{key} = {v!r} must be a pair of numbers [low, high]")
+            or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+                       for x in v)):
+        raise ConfigError(f"{key} = {v!r} must be a pair of finite numbers [low, high]")
     lo, hi = float(v[0]), float(v[1])
     if not hi > lo:
         raise ConfigError(f"{key} = {v!r}: the second number must be larger than the first")
