@@ -57,7 +57,7 @@ def csv_cells(line: str, source: str | None = None, lineno: int | None = None) -
 
 
 def check_run_number(run: float, n_readings: int, source: str | None = None,
-                     line: int | None = None, text: str | None = None) -> int:
+                     line: int | None = None, text: str | None = None, what: str = "run") -> int:
     """A run number as an int: whole, at least 1 and not more than the readings the file holds.
 
     Runs are numbered 1, 2, 3 ... in each direction; a run numbered beyond the count of readings
@@ -73,10 +73,10 @@ def check_run_number(run: float, n_readings: int, source: str | None = None,
     ...
     axiscal.errors.DataFormatError: f.csv:7: run 1e+09 is beyond the 10 readings in the file; runs are numbered 1, 2, 3 ... in each direction
     """
-    shown = repr(text.strip()) if text is not None else f"{run:g}"
+    shown = repr(text.strip()) if text is not None else str(run) if isinstance(run, int) else f"{run:g}"
     if run != int(run) or run < 1:
-        raise DataFormatError(f"run {shown} is not a whole number >= 1", source, line)
+        raise DataFormatError(f"{what} {shown} is not a whole number >= 1", source, line)
     if run > n_readings:
-        raise DataFormatError(f"run {shown} is beyond the {n_readings} readings in the file; runs "
+        raise DataFormatError(f"{what} {shown} is beyond the {n_readings} readings in the file; runs "
                               "are numbered 1, 2, 3 ... in each direction", source, line)
     return int(run)

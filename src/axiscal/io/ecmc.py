@@ -119,7 +119,7 @@ def parse_ecmc(
     _check_declared(scalars, "POSITIONS", len(ids), source)
     cycles = max((j for d in ref.values() for (_i, j) in d), default=0)
     _check_declared(scalars, "CYCLES", cycles, source)
-    check_run_number(cycles, sum(len(d) for d in ref.values()), source)
+    check_run_number(cycles, sum(len(d) for d in ref.values()), source, what="cycle")
 
     records = []
     for dname, sign in (("FWD", "+"), ("BWD", "-")):
