@@ -58,3 +58,31 @@ def test_number_options_must_be_finite(args):
 def test_group_without_a_command_still_shows_its_help():
     r = runner.invoke(app, ["plan"])
     assert r.exit_code == 2 and "linear" in r.output and "rotary" in r.output
+
+
+def _all_command_paths():
+    import typer
+
+    root = typer.main.get_command(app)
+    stack = [((), root)]
+    while stack:
+        path, cmd = stack.pop()
+        yield path
+        for name in getattr(cmd, "list_commands", lambda ctx: [])(None):
+            stack.append((path + (name,), cmd.get_command(None, name)))
+
+
+def test_help_is_accurate():
+    """Single commands (iso230-2, simulate, demo, air, compensate) offered --install-completion
+    for a scratch app; rich markup ate '[gantry]' out of 'scale gantry --help'."""
+    seen = 0
+    for path in _all_command_paths():
+        r = runner.invoke(app, [*path, "--help"], env={"COLUMNS": "200"})
+        assert r.exit_code == 0, path
+        assert "--install-completion" not in r.stdout, path
+        seen += 1
+    assert seen >= 20
+    r = runner.invoke(app, ["scale", "gantry", "--help"], env={"COLUMNS": "200"})
+    assert "TOML with a gantry table" in r.stdout
+    r = runner.invoke(app, ["iso230-2", "--help"], env={"COLUMNS": "200"})
+    assert "HTML report (.html)" in r.stdout

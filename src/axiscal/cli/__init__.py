@@ -116,7 +116,7 @@ def _load_command(name: str):
     import importlib
 
     module = importlib.import_module(COMMANDS[name])
-    scratch = typer.Typer()
+    scratch = typer.Typer(add_completion=False)   # completion belongs to the root only
     module.register(scratch)
     # A scratch app with a single group or command collapses to it; otherwise look the name up.
     group = typer.main.get_group(scratch) if scratch.registered_groups or len(scratch.registered_commands) > 1 else None

@@ -18,16 +18,25 @@ Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``.
 (``machine_axis``, ``detection_unit``, ``file_type``, ``reference_position`` …) go through
 ``--option KEY=VALUE``.
 
-JSON (``--json``), stable keys. Table: ``controller``, ``file`` (path written or null),
-``extra_files``, ``n_points``, ``spacing``, ``start``, ``end``, ``position_unit``,
-``correction_unit``, ``reference_index``, ``reference_position``, ``largest_correction``,
-``backlash``, ``bidirectional``, ``modulo``, ``enable`` (list), ``notes`` (list), ``table``
-(positions, up, down …). Verify: ``controller``, ``before`` and ``after`` (A … B_mean),
-``reduction``, ``budget_E``, ``spacing_residual``, ``sigma``, ``between_targets_E``,
-``truth_before``, ``truth_after``, ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``.
-Squareness: the table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``,
-``advice``. Read: the table keys plus ``residual`` (per target: ``target``, ``deviation``, ``correction``,
-``residual`` = deviation + correction) and ``largest_residual`` when a result is given.
+JSON (``--json``), stable keys. The *table data* keys: ``n_points``, ``spacing``, ``start``,
+``end``, ``position_unit``, ``correction_unit``, ``reference_index``, ``reference_position``,
+``largest_correction``, ``backlash``, ``bidirectional``, ``modulo`` and ``table`` (the table
+itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, ``start``, ``end``,
+``n_points``, ``position_unit``, ``correction_unit``, ``reference_index``,
+``reference_position``, ``resolution``, ``extrapolation``, ``bidirectional``, ``modulo``,
+``backlash``, ``largest``). Table: ``controller``, ``file`` (path written or null),
+``extra_files`` (names), ``enable`` (list), ``notes`` (list) and the table data keys. Verify:
+``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``, ``A_down``,
+``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``, ``B_mean``), ``reduction``, ``budget_E``,
+``spacing_residual``, ``sigma``, ``between_targets_E``, ``truth_before``, ``truth_after`` (E,
+E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``. Squareness: the
+table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
+``controller`` and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
+``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
+given.
+
+Options that the chosen use does not read (``--bidirectional`` with ``--verify``, ``--plot``
+without it ...) are refused by name rather than ignored.
 """
 
 from __future__ import annotations
@@ -142,7 +151,7 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     mod = get_controller(controller)
     opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
     table = mod.parse(read_text(path), source=str(path), **opts)
-    d = _table_json(table)
+    d = dict(controller=mod.NAME, **_table_json(table))
     rows = []
     if source is not None:
         res, _ = load_mean_deviations(source)
@@ -181,8 +190,9 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
     _write_files(cf, out)
     if json_out:
         d = dict(controller=cf.controller, file=None if out is None else str(out),
+                 extra_files=sorted(cf.extra_files), enable=list(cf.enable), notes=list(cf.notes),
                  driving_axis=ct.driving_axis, compensated_axis=ct.compensated_axis,
-                 factor_um_per_m=ct.factor, advice=list(comp.advice), enable=list(cf.enable))
+                 factor_um_per_m=ct.factor, advice=list(comp.advice))
         d.update(_table_json(ct.table))
         print_json(d)
         return

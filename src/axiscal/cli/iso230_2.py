@@ -31,7 +31,7 @@ def iso230_2(
     full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if one is exceeded)."),
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target)."""

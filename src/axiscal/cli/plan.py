@@ -3,7 +3,8 @@
 The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
 after one comment line; ``kind`` is ``measure`` (take a reading after the dwell) or ``overrun``
 (a reversing move). ``--json`` prints ``targets``, ``target_unit``, ``runs``, ``cycle``,
-``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps``.
+``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps`` (one object per move:
+``seq``, ``kind``, ``position``, ``direction``, ``run``, ``target_index``; the dwell is ``dwell``).
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ def plan_linear_cmd(
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
     dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
     axis: str = typer.Option("X", "--axis", help="Axis name."),
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
     """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2)."""
@@ -56,7 +57,7 @@ def plan_rotary_cmd(
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (seed 001: 5)."),
     dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
     axis: str = typer.Option("C", "--axis", help="Axis name."),
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
     """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included)."""

@@ -3,8 +3,9 @@
 ``axiscal rotary simulate CONFIG.toml [--json] [--report FILE]`` runs a complete simulated
 calibration (set-up checks, optics self-calibration, counter-rotating capture, ISO 230-2
 evaluation) and compares it with the truth. ``--json`` keys (stable): ``axis``, ``n_targets``,
-``n_runs``, ``n_readings``, ``measured`` and ``truth`` (ISO 230-2 parameters ``A`` ... ``B_mean``
-in arcsec), ``max_mean_error_arcsec``, ``max_reading_error_arcsec``, ``within_budget``, ``setup``
+``n_runs``, ``n_readings``, ``measured`` and ``truth`` (ISO 230-2 parameters in arcsec: ``A``,
+``A_up``, ``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
+``B_mean``), ``max_mean_error_arcsec``, ``max_reading_error_arcsec``, ``within_budget``, ``setup``
 (``tir_mm``, ``return_offset_mm``, ``centring_mm``, ``alpha_bound_mrad``, ``beta_bound_mrad``,
 ``passed``, ``warnings``), ``optics`` (``k``, ``datum_misalignment_arcsec``, or null),
 ``budget`` (``items``: list of ``name``/``arcsec``/``source``; ``worst_case_arcsec``,
@@ -36,7 +37,7 @@ __all__ = ["register"]
 def simulate(
     config: Path = typer.Argument(..., help="Rotary calibration configuration (TOML); see examples/rotary_*.toml."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
 ) -> None:
     """Simulate a complete rotary-axis calibration and compare it with the truth."""
     from axiscal.machines.config import load_toml

@@ -5,8 +5,8 @@ Every squareness result states its sign convention and carries both (seed 004 No
 JSON output (``--json``), stable keys:
 
 * ``straightness``: ``file``, ``axis``, ``direction``, ``reference``, ``straightness_um``,
-  ``slope_um_per_m``, ``intercept_um``, ``n``, ``methods`` (object per reference line:
-  ``straightness_um``, ``slope_um_per_m``).
+  ``slope_um_per_m``, ``intercept_um``, ``n``, ``methods`` (object per reference line,
+  ``least_squares``, ``end_point``, ``minimum_zone``: ``straightness_um``, ``slope_um_per_m``).
 * a *squareness object* (used below): ``axes``, ``um_per_m``, ``arcsec``, ``convention``,
   ``iso_datum``, ``iso_referred``, ``iso_um_per_m``, ``iso_arcsec``, ``angle_note``.
 * ``squareness biaxial``: ``squareness`` (squareness object), ``config``, ``orientation``,
