@@ -116,3 +116,26 @@ def test_the_right_names_still_write(work):
     assert (work / "x.com").read_text().startswith("BEGIN X.COM") and (work / "X.CMA").exists()
     r = runner.invoke(app, ["plan", "rotary", "--csv", "PLAN.CSV"])
     assert r.exit_code == 0 and (work / "PLAN.CSV").read_text().count("\n") > 10
+
+
+UNWRITABLE = Path("/proc/axiscal-review")   # procfs: no file can be created there, even by root
+
+
+@pytest.mark.parametrize("args", [
+    ["plan", "rotary", "--csv", UNWRITABLE.with_suffix(".csv")],
+    ["iso230-2", "d.csv", "--report", UNWRITABLE.with_suffix(".html")],
+    ["iso230-2", "d.csv", "--plot", UNWRITABLE.with_suffix(".png")],
+    ["compensate", "d.csv", "--out", UNWRITABLE.with_suffix(".csv")],
+    ["demo", "--out", UNWRITABLE],
+])
+def test_a_folder_that_cannot_be_written_is_one_line(work, args):
+    """PermissionError / FileNotFoundError from tempfile.mkstemp used to end in a traceback."""
+    _refused(work, args, "cannot ")
+
+
+def test_a_pipe_or_device_is_not_read(work):
+    """read_text on /dev/zero read forever; a FIFO blocked until a writer came."""
+    os.mkfifo(work / "fifo.csv")
+    for name in ("fifo.csv", "/dev/zero"):
+        r = runner.invoke(app, ["iso230-2", name])
+        assert r.exit_code == 2 and "is not a regular file" in r.stderr, r.output

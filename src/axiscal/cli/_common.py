@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
+import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -58,6 +60,12 @@ def out_path(path: Path, what: str) -> Path:
         raise InputError(f"{what} {path} is a folder; give a file name")
     if not path.parent.exists():
         raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
+    try:   # a read-only or pseudo file system refuses here, before any work is done
+        tempfile.TemporaryFile(dir=path.parent).close()
+    except OSError as exc:
+        raise InputError(f"cannot write {what} {path}: {exc.strerror or exc}") from None
+    if path.exists() and not os.access(path, os.W_OK):
+        raise InputError(f"cannot write {what} {path}: the file is read-only")
     return path
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import typer
 
-from axiscal.cli._common import note
+from axiscal.cli._common import note, out_path
 
 DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn (ideal reference)"))
 
@@ -33,7 +33,11 @@ def demo(
 
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out} exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the folder --out {out}: {exc.strerror or exc}") from None
+    out_path(out / "index.html", "the demonstration")   # writable, before the simulations run
     pages = []
     for name, cfg, label in DEMOS:
         config = tomllib.loads(resources.files("axiscal.data").joinpath(cfg).read_text("utf-8"))

@@ -6,7 +6,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from axiscal.errors import DataFormatError, MissingFileError
+from axiscal.errors import DataFormatError, InputError, MissingFileError
 
 __all__ = ["read_text", "write_text_atomic", "write_bytes_atomic"]
 
@@ -21,6 +21,8 @@ def read_text(path) -> str:
         raise MissingFileError(p)
     if p.is_dir():
         raise MissingFileError(p, "is a folder, not a file")
+    if not p.is_file():   # a FIFO or a device would block or never end
+        raise MissingFileError(p, "is not a regular file")
     try:
         if p.stat().st_size > MAX_TEXT_BYTES:
             raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
@@ -37,16 +39,21 @@ def read_text(path) -> str:
 def write_bytes_atomic(path, data: bytes) -> Path:
     """Write ``data`` to ``path`` through a temporary file so no half-written file is left."""
     p = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    except OSError as exc:   # a read-only or pseudo file system, a full disk ...
+        raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
         os.replace(tmp, p)
-    except BaseException:
+    except BaseException as exc:
         try:
             os.unlink(tmp)
         except OSError:
             pass
+        if isinstance(exc, OSError):
+            raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
         raise
     return p
 
