@@ -10,7 +10,7 @@ import math
 
 from axiscal.errors import DataFormatError
 
-__all__ = ["finite_number", "csv_cells", "check_run_number"]
+__all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit"]
 
 
 def finite_number(text: str, what: str, source: str | None = None, line: int | None = None) -> float:
@@ -80,3 +80,27 @@ def check_run_number(run: float, n_readings: int, source: str | None = None,
         raise DataFormatError(f"{what} {shown} is beyond the {n_readings} readings in the file; runs "
                               "are numbered 1, 2, 3 ... in each direction", source, line)
     return int(run)
+
+
+def agreed_unit(option: str | None, declared: str | None, key: str,
+                source: str | None = None) -> str | None:
+    """The unit an option gives or the file declares; both given, they must be the same unit.
+
+    A file that says ``deviation_unit=um`` read with ``--deviation-unit mm`` would give numbers a
+    thousand times too large that look right: the disagreement is refused, not resolved.
+
+    Examples
+    --------
+    >>> agreed_unit("µm", "um", "deviation_unit"), agreed_unit(None, "deg", "target_unit")
+    ('µm', 'deg')
+    >>> agreed_unit("mm", "um", "deviation_unit", "f.csv")
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.DataFormatError: f.csv: the file declares deviation_unit=um but the option gives mm; drop the option or correct the file
+    """
+    from axiscal import units
+
+    if option and declared and units.canonical(option) != units.canonical(declared):
+        raise DataFormatError(f"the file declares {key}={declared} but the option gives {option}; "
+                              "drop the option or correct the file", source)
+    return option or declared

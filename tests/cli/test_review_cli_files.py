@@ -148,3 +148,41 @@ def test_budget_says_when_an_accuracy_is_out_of_reach():
     assert "align α within" not in r.stdout
     r = runner.invoke(app, ["rotary", "budget", "--alpha", "1", "--beta", "1", "--accuracy", "2"])
     assert "align α within" in r.stdout
+
+
+@pytest.mark.parametrize("content, args, words", [
+    # µm read as mm (a factor 1000) because the option silently overrode the file's declaration
+    (POS, ["--deviation-unit", "mm"], ["declares deviation_unit=um but the option gives mm"]),
+    (POS, ["--target-unit", "deg", "--deviation-unit", "arcsec"], ["declares target_unit=mm"]),
+    (ECMC + "REF_DATA_FWD[1,2]=0\nREF_DATA_FWD[2,2]=10\n", ["--target-unit", "deg"], ["declares UNIT=mm"]),
+    # pooling 0 and 360 deg was accepted (and did nothing) on a linear axis
+    (POS, ["--full-turn", "merge"], ["--full-turn merge pools 0 and 360 deg", "linear axis"]),
+    # the second tolerance replaced the first without a word
+    (POS, ["--tolerance", "A=1", "--tolerance", "A=100"], ["--tolerance A is given twice"]),
+])
+def test_positioning_options_that_contradict_the_file(tmp_path, content, args, words):
+    f = tmp_path / ("f.txt" if content.startswith("UNIT") else "f.csv")
+    f.write_text(content)
+    r = runner.invoke(app, ["iso230-2", str(f), *args])
+    assert r.exit_code == 2 and r.stdout == "", r.output
+    assert len(r.stderr.strip().splitlines()) == 1
+    for w in words:
+        assert w in r.stderr, (w, r.stderr)
+
+
+def test_an_option_may_still_supply_an_undeclared_or_equal_unit(tmp_path):
+    f = tmp_path / "f.csv"
+    f.write_text(POS.replace("# target_unit=mm deviation_unit=um\n", ""))
+    assert runner.invoke(app, ["iso230-2", str(f), "--target-unit", "mm", "--deviation-unit", "um"]).exit_code == 0
+    f.write_text(POS)
+    assert runner.invoke(app, ["iso230-2", str(f), "--deviation-unit", "µm"]).exit_code == 0
+
+
+def test_json_metadata_that_is_not_an_object(tmp_path):
+    """Used to say "dictionary update sequence element #0 has length 1; 2 is required"."""
+    f = tmp_path / "d.json"
+    f.write_text('{"format":"axiscal.positioning/1","axis_kind":"linear","target_unit":"mm",'
+                 '"deviation_unit":"um","targets":[0,1],"up":[[1,2],[1,2]],"down":[[],[]],'
+                 '"metadata":"VMC-800"}')
+    r = runner.invoke(app, ["iso230-2", str(f)])
+    assert r.exit_code == 2 and "d.json: 'metadata' must be a JSON object, not 'VMC-800'" in r.stderr

@@ -13,9 +13,9 @@ metadata as ``key=value`` pairs::
     0,+,1,0.8
     0,-,1,-1.2
 
-Units given as options override the file; without either, a linear test in mm/µm is assumed
-only if the header says so: missing units are an error (a rotary file read as millimetres would
-give numbers that look right and are not).
+Units given as options stand in for units the file does not declare; an option that disagrees
+with the file's declaration is refused, and missing units are an error (a rotary file read as
+millimetres, or µm read as mm, would give numbers that look right and are not).
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import io
 import shlex
 
 from axiscal import units
-from axiscal._parse import check_run_number, csv_cells, finite_number
+from axiscal._parse import agreed_unit, check_run_number, csv_cells, finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 
@@ -82,12 +82,14 @@ def parse_positioning_csv(
     if not data_lines:
         raise DataFormatError("no header and no readings (empty file?)", source)
 
-    tu = target_unit or header_meta.pop("target_unit", None)
-    du = deviation_unit or header_meta.pop("deviation_unit", None)
-    header_meta.pop("target_unit", None)
-    header_meta.pop("deviation_unit", None)
-    kind_text = axis_kind or header_meta.pop("axis_kind", None)
-    header_meta.pop("axis_kind", None)
+    tu = agreed_unit(target_unit, header_meta.pop("target_unit", None), "target_unit", source)
+    du = agreed_unit(deviation_unit, header_meta.pop("deviation_unit", None), "deviation_unit",
+                     source)
+    declared_kind = header_meta.pop("axis_kind", None)
+    if axis_kind and declared_kind and AxisKind.parse(axis_kind) is not AxisKind.parse(declared_kind):
+        raise DataFormatError(f"the file declares axis_kind={declared_kind} but the option gives "
+                              f"{axis_kind}", source)
+    kind_text = axis_kind or declared_kind
 
     header_lineno, header_line = data_lines[0]
     columns = [c.strip().lower() for c in csv_cells(header_line, source, header_lineno)]
