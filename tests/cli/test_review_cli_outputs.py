@@ -139,3 +139,14 @@ def test_a_pipe_or_device_is_not_read(work):
     for name in ("fifo.csv", "/dev/zero"):
         r = runner.invoke(app, ["iso230-2", name])
         assert r.exit_code == 2 and "is not a regular file" in r.stderr, r.output
+
+
+@pytest.mark.parametrize("args, words", [
+    (["iso230-2", "a" * 300 + ".csv"], ["File name too long"]),
+    (["iso230-2", "d.csv", "--report", "a" * 300 + ".html"], ["cannot write report"]),
+    (["iso230-2", "d.csv", "--report", "b" * 300 + "/x.html"], ["cannot write report", "too long"]),
+    (["iso230-2", "d.csv", "--plot", "d.csv/x.png"], ["cannot write plot", "Not a directory"]),
+])
+def test_impossible_path_names_are_one_line(work, args, words):
+    """Path.exists() raises OSError (ENAMETOOLONG) instead of answering: it was a traceback."""
+    _refused(work, args, *words)

@@ -56,16 +56,19 @@ def print_json(obj: Any) -> None:
 def out_path(path: Path, what: str) -> Path:
     """Check that an output file can be written (its folder exists), before any work is done."""
     path = Path(path)
-    if path.exists() and path.is_dir():
-        raise InputError(f"{what} {path} is a folder; give a file name")
-    if not path.parent.exists():
-        raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
-    try:   # a read-only or pseudo file system refuses here, before any work is done
+    try:
+        if path.exists() and path.is_dir():
+            raise InputError(f"{what} {path} is a folder; give a file name")
+        if not path.parent.exists():
+            raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
+        # a read-only or pseudo file system refuses here, before any work is done
         tempfile.TemporaryFile(dir=path.parent).close()
-    except OSError as exc:
+        if path.exists() and not os.access(path, os.W_OK):
+            raise InputError(f"cannot write {what} {path}: the file is read-only")
+        if len(path.name.encode()) > 255:
+            raise InputError(f"cannot write {what}: the file name is longer than 255 bytes")
+    except OSError as exc:   # a name too long, a path through a file ...
         raise InputError(f"cannot write {what} {path}: {exc.strerror or exc}") from None
-    if path.exists() and not os.access(path, os.W_OK):
-        raise InputError(f"cannot write {what} {path}: the file is read-only")
     return path
 
 

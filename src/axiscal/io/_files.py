@@ -17,23 +17,31 @@ MAX_TEXT_BYTES = 256 * 1024 * 1024
 def read_text(path) -> str:
     """Read a UTF-8 (or UTF-8 with BOM) text file; errors name the file and the problem."""
     p = Path(path)
+    try:
+        data = _read_regular_file(p)
+    except MissingFileError:
+        raise
+    except PermissionError:
+        raise MissingFileError(p, "permission denied") from None
+    except OSError as exc:   # a name too long, a loop of links, an I/O error ...
+        raise MissingFileError(p, exc.strerror or str(exc)) from None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise DataFormatError(f"not UTF-8 text (byte {exc.start}); is this a binary file?",
+                              str(p)) from None
+
+
+def _read_regular_file(p: Path) -> bytes:
     if not p.exists():
         raise MissingFileError(p)
     if p.is_dir():
         raise MissingFileError(p, "is a folder, not a file")
     if not p.is_file():   # a FIFO or a device would block or never end
         raise MissingFileError(p, "is not a regular file")
-    try:
-        if p.stat().st_size > MAX_TEXT_BYTES:
-            raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
-        data = p.read_bytes()
-    except PermissionError:
-        raise MissingFileError(p, "permission denied") from None
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise DataFormatError(f"not UTF-8 text (byte {exc.start}); is this a binary file?",
-                              str(p)) from None
+    if p.stat().st_size > MAX_TEXT_BYTES:
+        raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
+    return p.read_bytes()
 
 
 def write_bytes_atomic(path, data: bytes) -> Path:
