@@ -186,3 +186,14 @@ def test_json_metadata_that_is_not_an_object(tmp_path):
                  '"metadata":"VMC-800"}')
     r = runner.invoke(app, ["iso230-2", str(f)])
     assert r.exit_code == 2 and "d.json: 'metadata' must be a JSON object, not 'VMC-800'" in r.stderr
+
+
+def test_text_in_another_encoding_is_not_called_binary(tmp_path):
+    """A spreadsheet's Windows-1252 CSV (µ = 0xB5) was reported as 'is this a binary file?'."""
+    f = tmp_path / "excel.csv"
+    f.write_bytes(POS.replace("deviation_unit=um", "deviation_unit=µm").encode("cp1252"))
+    r = runner.invoke(app, ["iso230-2", str(f)])
+    assert r.exit_code == 2 and "byte 32 is 0xB5); save the file as UTF-8" in r.stderr, r.stderr
+    f.write_bytes(bytes(range(256)))
+    r = runner.invoke(app, ["iso230-2", str(f)])
+    assert r.exit_code == 2 and "is this a binary file?" in r.stderr

@@ -28,8 +28,21 @@ def read_text(path) -> str:
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        raise DataFormatError(f"not UTF-8 text (byte {exc.start}); is this a binary file?",
-                              str(p)) from None
+        raise DataFormatError(_not_utf8(data, exc.start), str(p)) from None
+
+
+def _not_utf8(data: bytes, start: int) -> str:
+    """Why the bytes are not UTF-8 text: a binary file, or text saved in another encoding.
+
+    A CSV saved by a spreadsheet in Windows-1252 (``µm`` as the byte 0xB5) is the common case on
+    the shop floor; saying "binary file" there sends the user looking in the wrong place.
+    """
+    head = data[:4096]
+    controls = sum(b < 32 and b not in (9, 10, 13) for b in head)
+    if b"\x00" in head or controls > len(head) // 20:
+        return f"not UTF-8 text (byte {start}); is this a binary file?"
+    return (f"not UTF-8 text (byte {start} is 0x{data[start]:02X}); save the file as UTF-8 "
+            "(it looks like text in another encoding, such as Windows-1252)")
 
 
 def _read_regular_file(p: Path) -> bytes:
