@@ -73,12 +73,15 @@ def check_run_number(run: float, n_readings: int, source: str | None = None,
     ...
     axiscal.errors.DataFormatError: f.csv:7: run 1e+09 is beyond the 10 readings in the file; runs are numbered 1, 2, 3 ... in each direction
     """
-    shown = repr(text.strip()) if text is not None else str(run) if isinstance(run, int) else f"{run:g}"
+    if text is not None:
+        shown = repr(text.strip())
+    else:
+        shown = str(run) if isinstance(run, int) else f"{run:g}"
     if run != int(run) or run < 1:
         raise DataFormatError(f"{what} {shown} is not a whole number >= 1", source, line)
     if run > n_readings:
-        raise DataFormatError(f"{what} {shown} is beyond the {n_readings} readings in the file; runs "
-                              "are numbered 1, 2, 3 ... in each direction", source, line)
+        raise DataFormatError(f"{what} {shown} is beyond the {n_readings} readings in the file; "
+                              "runs are numbered 1, 2, 3 ... in each direction", source, line)
     return int(run)
 
 

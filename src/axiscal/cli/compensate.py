@@ -26,8 +26,9 @@ itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, `
 ``reference_position``, ``resolution``, ``extrapolation``, ``bidirectional``, ``modulo``,
 ``backlash``, ``largest``). Table: ``controller``, ``file`` (path written or null),
 ``extra_files`` (names), ``enable`` (list), ``notes`` (list) and the table data keys. Verify:
-``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``, ``A_down``,
-``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``, ``B_mean``), ``reduction``, ``budget_E``,
+``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``,
+``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
+``B_mean``), ``reduction``, ``budget_E``,
 ``spacing_residual``, ``sigma``, ``between_targets_E``, ``truth_before``, ``truth_after`` (E,
 E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``. Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
@@ -239,8 +240,8 @@ def _check_out(cf, out) -> None:
     p, own = Path(out), Path(cf.filename)
     if any(cf.filename in text for text in cf.extra_files.values()):
         if p.name.upper() != own.name.upper():
-            raise InputError(f"{cf.controller}: {', '.join(sorted(cf.extra_files))} names the table "
-                             f"{cf.filename}; write it as --out {p.parent / own.name}")
+            raise InputError(f"{cf.controller}: {', '.join(sorted(cf.extra_files))} names the "
+                             f"table {cf.filename}; write it as --out {p.parent / own.name}")
         return
     allowed = {own.suffix.lower()} | ({".txt"} if cf.controller != "csv" else set())
     if p.suffix.lower() not in allowed:
@@ -249,7 +250,7 @@ def _check_out(cf, out) -> None:
 
 
 def _options(items: list[str]) -> dict[str, str]:
-    """``["KEY=VALUE", ...]`` as text; :func:`_typed` converts them for the function that reads them."""
+    """``["KEY=VALUE", ...]`` as text; :func:`_typed` converts them for their reader."""
     from axiscal.errors import InputError
 
     out = {}

@@ -95,7 +95,7 @@ def simulate(
     no_compensation: bool = typer.Option(False, "--no-compensation", help="Show the errors without "
                                          "the beam-drift compensation (seed 003 eqs. 1-6 only)."),
 ) -> None:
-    """Simulate one indexing test (step_deg steps over 360°, 30° by default; reference axis counter-rotating)."""
+    """Simulate one indexing test (steps of step_deg, 30° by default; reference counter-rotating)."""
     import numpy as np
 
     from axiscal.io.motion import format_motion_errors, read_motion_config

@@ -172,8 +172,8 @@ def parse_diagonal(text: str, source: str = "<text>") -> DiagonalData:
             raise DataFormatError(f"diagonal {r['diagonal']!r} must be D1 or D2", source, n)
         position = number(r["position"], "position", source, n) * fp
         if not -1e-6 <= position <= nominal + 1e-6:   # 1 µm for rounding in the file
-            raise DataFormatError(f"position {r['position']} {meta.get('position_unit', 'mm')} "
-                                  f"lies off the diagonal, 0 to {nominal * 1e3:g} mm from its start",
+            raise DataFormatError(f"position {r['position']} {meta.get('position_unit', 'mm')} lies "
+                                  f"off the diagonal, 0 to {nominal * 1e3:g} mm from its start",
                                   source, n)
         data[key].append((position, number(r["error"], "error", source, n) * fe))
     for key, pairs in data.items():

@@ -86,7 +86,8 @@ def parse_positioning_csv(
     du = agreed_unit(deviation_unit, header_meta.pop("deviation_unit", None), "deviation_unit",
                      source)
     declared_kind = header_meta.pop("axis_kind", None)
-    if axis_kind and declared_kind and AxisKind.parse(axis_kind) is not AxisKind.parse(declared_kind):
+    if (axis_kind and declared_kind
+            and AxisKind.parse(axis_kind) is not AxisKind.parse(declared_kind)):
         raise DataFormatError(f"the file declares axis_kind={declared_kind} but the option gives "
                               f"{axis_kind}", source)
     kind_text = axis_kind or declared_kind
