@@ -55,6 +55,18 @@ def test_number_options_must_be_finite(args):
     _one_error_line(runner.invoke(app, args), "is not a finite number")
 
 
+@pytest.mark.parametrize("args", [
+    ["plan", "linear", "--length", "800", "--targets", "1000000000"],
+    ["plan", "rotary", "--targets", "1000000000"],
+    ["plan", "rotary", "--runs", "100000000"],
+    ["plan", "linear", "--length", "800", "--runs", "0"],
+    ["motion", "repeatability", "x.toml", "--runs", "1000000"],
+])
+def test_counts_that_would_only_exhaust_memory(args):
+    """A billion targets made numpy try to allocate tens of GiB (MemoryError traceback)."""
+    _one_error_line(runner.invoke(app, args), "is not in the range")
+
+
 def test_group_without_a_command_still_shows_its_help():
     r = runner.invoke(app, ["plan"])
     assert r.exit_code == 2 and "linear" in r.output and "rotary" in r.output

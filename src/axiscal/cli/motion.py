@@ -190,7 +190,7 @@ def stability(
 @app.command("repeatability")
 def repeatability(
     config: Path = typer.Argument(..., help="Configuration TOML (see examples/motion_indexing_table.toml)."),
-    runs: Optional[int] = typer.Option(None, "--runs", help="Number of runs (default from the config: 3)."),
+    runs: Optional[int] = typer.Option(None, "--runs", max=100, help="Number of runs, at most 100 (default from the config: 3)."),
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
     csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file (.csv) for 'analyze'."),

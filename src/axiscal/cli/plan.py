@@ -16,6 +16,9 @@ import typer
 
 from axiscal.cli._common import note, print_json, typed_path
 
+#: Bounds of the counts a plan is asked for: beyond them a typing slip would only exhaust memory.
+MAX_TARGETS, MAX_RUNS = 10_000, 100
+
 plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
                        no_args_is_help=True)
 
@@ -24,10 +27,10 @@ plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) fo
 def plan_linear_cmd(
     length: float = typer.Option(..., "--length", help="Measurement travel in mm."),
     start: float = typer.Option(0.0, "--start", help="First target in mm."),
-    n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
+    n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
     irregularity: float = typer.Option(0.25, "--irregularity", help="Random offset of each target as a fraction of the interval (0 = even spacing)."),
     seed: int = typer.Option(0, "--seed", min=0, help="Seed of the random offsets, a whole number >= 0 (plans are reproducible)."),
-    runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
+    runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
     cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
     unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
@@ -50,8 +53,8 @@ def plan_rotary_cmd(
     travel: float = typer.Option(360.0, "--travel", help="Measurement travel in degrees."),
     start: float = typer.Option(0.0, "--start", help="First target in degrees."),
     step: Optional[float] = typer.Option(None, "--step", help="Interval between targets in degrees (default 45)."),
-    n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of evenly spaced targets (instead of --step)."),
-    runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
+    n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of evenly spaced targets (instead of --step)."),
+    runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
     cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
     unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (seed 001: 5)."),
