@@ -61,10 +61,17 @@ def test_number_options_must_be_finite(args):
     ["plan", "rotary", "--runs", "100000000"],
     ["plan", "linear", "--length", "800", "--runs", "0"],
     ["motion", "repeatability", "x.toml", "--runs", "1000000"],
+    ["plan", "linear", "--length", "1e12"],
+    ["plan", "rotary", "--travel", "1e300"],
 ])
 def test_counts_that_would_only_exhaust_memory(args):
     """A billion targets made numpy try to allocate tens of GiB (MemoryError traceback)."""
     _one_error_line(runner.invoke(app, args), "is not in the range")
+
+
+def test_a_step_that_gives_too_many_targets():
+    _one_error_line(runner.invoke(app, ["plan", "rotary", "--step", "1e-9"]),
+                    "--step 1e-09 deg over 360 deg gives more than 10000 targets")
 
 
 def test_group_without_a_command_still_shows_its_help():

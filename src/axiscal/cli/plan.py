@@ -18,6 +18,7 @@ from axiscal.cli._common import note, print_json, typed_path
 
 #: Bounds of the counts a plan is asked for: beyond them a typing slip would only exhaust memory.
 MAX_TARGETS, MAX_RUNS = 10_000, 100
+MAX_LENGTH_MM, MAX_TRAVEL_DEG = 1e6, 36_000.0
 
 plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
                        no_args_is_help=True)
@@ -25,7 +26,7 @@ plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) fo
 
 @plan_app.command("linear")
 def plan_linear_cmd(
-    length: float = typer.Option(..., "--length", help="Measurement travel in mm."),
+    length: float = typer.Option(..., "--length", max=MAX_LENGTH_MM, help="Measurement travel in mm (at most 1 km)."),
     start: float = typer.Option(0.0, "--start", help="First target in mm."),
     n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
     irregularity: float = typer.Option(0.25, "--irregularity", help="Random offset of each target as a fraction of the interval (0 = even spacing)."),
@@ -50,7 +51,7 @@ def plan_linear_cmd(
 
 @plan_app.command("rotary")
 def plan_rotary_cmd(
-    travel: float = typer.Option(360.0, "--travel", help="Measurement travel in degrees."),
+    travel: float = typer.Option(360.0, "--travel", max=MAX_TRAVEL_DEG, help="Measurement travel in degrees (at most 100 turns)."),
     start: float = typer.Option(0.0, "--start", help="First target in degrees."),
     step: Optional[float] = typer.Option(None, "--step", help="Interval between targets in degrees (default 45)."),
     n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of evenly spaced targets (instead of --step)."),
@@ -64,9 +65,13 @@ def plan_rotary_cmd(
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
     """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included)."""
+    from axiscal.errors import InputError
     from axiscal.procedures.positioning import plan_rotary
 
     _check_csv(csv)
+    if step is not None and step > 0 and travel / step > MAX_TARGETS:
+        raise InputError(f"--step {step:g} deg over {travel:g} deg gives more than {MAX_TARGETS} "
+                         "targets")
     p = plan_rotary(travel, start, step, n_targets, runs, cycle, not unidirectional, overrun,  # type: ignore[arg-type]
                     dwell, axis)
     _emit(p, csv, json_out)
