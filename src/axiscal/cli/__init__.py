@@ -19,7 +19,7 @@ import typer
 
 from axiscal import __version__
 from typer._click.exceptions import NoArgsIsHelpError, UsageError  # typer 0.28 vendors click
-from typer._click.types import FloatParamType
+from typer._click.types import FloatParamType, FloatRange
 
 from axiscal.errors import AxiscalError
 
@@ -88,10 +88,8 @@ def _usage_error(exc) -> None:
     raise typer.Exit(EXIT_USER_ERROR) from None
 
 
-class FiniteFloat(FloatParamType):
-    """A float option that refuses ``nan`` and ``inf`` (no length, angle or time is infinite)."""
-
-    name = "float"
+class _Finite:
+    """Mixin: a float option that refuses ``nan`` and ``inf`` (no length, angle or time is)."""
 
     def convert(self, value, param, ctx):  # noqa: D401 - click API
         import math
@@ -102,10 +100,25 @@ class FiniteFloat(FloatParamType):
         return v
 
 
+class FiniteFloat(_Finite, FloatParamType):
+    """``float`` without NaN and infinity."""
+
+    name = "float"
+
+
+class FiniteFloatRange(_Finite, FloatRange):
+    """A bounded ``float`` (``typer.Option(min=, max=)``) without NaN."""
+
+
 def _finite_floats(command) -> None:
-    """Give every float option of ``command`` (and of its sub-commands) the finite type."""
+    """Give every float option of ``command`` (and of its sub-commands) a finite type."""
     for param in command.params:
-        if isinstance(param.type, FloatParamType) and not isinstance(param.type, FiniteFloat):
+        t = param.type
+        if isinstance(t, _Finite):
+            continue
+        if isinstance(t, FloatRange):
+            param.type = FiniteFloatRange(t.min, t.max, t.min_open, t.max_open, t.clamp)
+        elif isinstance(t, FloatParamType):
             param.type = FiniteFloat()
     for sub in getattr(command, "commands", {}).values():
         _finite_floats(sub)
