@@ -120,27 +120,8 @@ def parse_positioning_csv(
     kind = AxisKind.parse(kind_text) if kind_text else (
         AxisKind.LINEAR if units.dimension(tu) == "length" else AxisKind.ROTARY
     )
-    idx = {c: columns.index(c) for c in needed + [value_col]}
     to_dev = units.convert(1.0, tu, du) if value_col == "actual" else None
-
-    records = []
-    for lineno, line in data_lines[1:]:
-        row = csv_cells(line, source, lineno)
-        if len(row) < len(columns):
-            raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}", source, lineno)
-        target = finite_number(row[idx["target"]], "target", source, lineno)
-        try:
-            direction = _direction(row[idx["direction"]])
-        except InputError as exc:
-            raise DataFormatError(str(exc), source, lineno) from None
-        run = check_run_number(finite_number(row[idx["run"]], "run", source, lineno),
-                               len(data_lines) - 1, source, lineno, row[idx["run"]])
-        raw = row[idx[value_col]].strip()
-        if raw == "" or raw.lower() in {"nan", "na", "missing"}:
-            continue  # a missing reading: counted by the dataset as NaN
-        value = finite_number(raw, value_col, source, lineno)
-        dev = (value - target) * to_dev if to_dev is not None else value
-        records.append((target, direction, run, dev))
+    records = _records(data_lines[1:], columns, value_col, to_dev, source)
     if not records:
         raise DataFormatError("the header is there but no readings follow", source)
     meta = Metadata(**{k: v for k, v in header_meta.items() if k in _META_KEYS})
@@ -150,6 +131,31 @@ def parse_positioning_csv(
         raise
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
+
+
+def _records(lines, columns: list[str], value_col: str, to_dev: float | None, source: str):
+    """``(target, direction, run, deviation)`` of every reading line; missing readings left out."""
+    idx = {c: columns.index(c) for c in ("target", "direction", "run", value_col)}
+    records = []
+    for lineno, line in lines:
+        row = csv_cells(line, source, lineno)
+        if len(row) < len(columns):
+            raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}",
+                                  source, lineno)
+        target = finite_number(row[idx["target"]], "target", source, lineno)
+        try:
+            direction = _direction(row[idx["direction"]])
+        except InputError as exc:
+            raise DataFormatError(str(exc), source, lineno) from None
+        run = check_run_number(finite_number(row[idx["run"]], "run", source, lineno),
+                               len(lines), source, lineno, row[idx["run"]])
+        raw = row[idx[value_col]].strip()
+        if raw == "" or raw.lower() in {"nan", "na", "missing"}:
+            continue  # a missing reading: counted by the dataset as NaN
+        value = finite_number(raw, value_col, source, lineno)
+        records.append((target, direction, run,
+                        (value - target) * to_dev if to_dev is not None else value))
+    return records
 
 
 def format_positioning_csv(ds: PositioningDataset) -> str:
