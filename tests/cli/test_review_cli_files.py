@@ -197,3 +197,21 @@ def test_text_in_another_encoding_is_not_called_binary(tmp_path):
     f.write_bytes(bytes(range(256)))
     r = runner.invoke(app, ["iso230-2", str(f)])
     assert r.exit_code == 2 and "is this a binary file?" in r.stderr
+
+
+def test_a_later_comment_does_not_silently_redeclare(tmp_path):
+    """A second '# radius_mm=100' further down replaced the first declaration without a word."""
+    f = tmp_path / "b.csv"
+    f.write_text(BALL + "# radius_mm=100\n")
+    r = runner.invoke(app, ["squareness", "circular", str(f)])
+    assert r.exit_code == 2 and "b.csv:39: radius_mm=100 contradicts radius_mm=150" in r.stderr, r.stderr
+    f.write_text(BALL + "# radius_mm=150 plane=XY\n")   # repeating the same value is fine
+    assert runner.invoke(app, ["squareness", "circular", str(f)]).exit_code == 0
+
+
+def test_axis_that_is_not_a_table(tmp_path):
+    """simulate with 'axis = 5' raised AttributeError: 'int' object has no attribute 'get'."""
+    f = tmp_path / "c.toml"
+    f.write_text("axis = 5\n[test]\nlength_mm = 800\n")
+    r = runner.invoke(app, ["simulate", str(f)])
+    assert r.exit_code == 2 and "[axis] must be a table, got 5" in r.stderr, r.output

@@ -39,7 +39,11 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         if not stripped:
             continue
         if stripped.startswith("#"):
-            meta.update(_comment(stripped[1:], meta_keys))
+            for key, value in _comment(stripped[1:], meta_keys).items():
+                if meta.get(key, value) != value:
+                    raise DataFormatError(f"{key}={value} contradicts {key}={meta[key]} declared "
+                                          "above", source, lineno)
+                meta[key] = value
             continue
         cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
         if header is None:

@@ -73,6 +73,8 @@ def load_toml(path) -> dict[str, Any]:
 
 def axis_from_config(table: dict[str, Any]) -> LinearAxis | RotaryAxis:
     """Build a simulated axis from an ``[axis]`` table (``kind`` decides which)."""
+    if not isinstance(table, dict):
+        raise ConfigError(f"[axis] must be a table, got {table!r}")
     kind = str(table.get("kind", "")).lower()
     if kind == "linear":
         return linear_axis_from_config(table)
