@@ -215,3 +215,11 @@ def test_axis_that_is_not_a_table(tmp_path):
     f.write_text("axis = 5\n[test]\nlength_mm = 800\n")
     r = runner.invoke(app, ["simulate", str(f)])
     assert r.exit_code == 2 and "[axis] must be a table, got 5" in r.stderr, r.output
+
+
+def test_positioning_file_pasted_from_two_units(tmp_path):
+    """A second block '# target_unit=deg ...' below the mm block was ignored: degrees read as mm."""
+    f = tmp_path / "two.csv"
+    f.write_text(POS + "# target_unit=deg deviation_unit=arcsec\n0,+,4,1\n")
+    r = runner.invoke(app, ["iso230-2", str(f)])
+    assert r.exit_code == 2 and "two.csv:21: target_unit=deg contradicts target_unit=mm" in r.stderr, r.stderr

@@ -75,8 +75,12 @@ def parse_positioning_csv(
         if not s:
             continue
         if s.startswith("#"):
-            if not data_lines:
-                header_meta.update(_parse_comment(s[1:], source, lineno))
+            for key, value in _parse_comment(s[1:], source, lineno).items():
+                if header_meta.get(key, value) != value:   # two files pasted together?
+                    raise DataFormatError(f"{key}={value} contradicts {key}={header_meta[key]} "
+                                          "declared above", source, lineno)
+                if not data_lines:
+                    header_meta[key] = value
             continue
         data_lines.append((lineno, line))
     if not data_lines:
