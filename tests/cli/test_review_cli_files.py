@@ -223,3 +223,17 @@ def test_positioning_file_pasted_from_two_units(tmp_path):
     f.write_text(POS + "# target_unit=deg deviation_unit=arcsec\n0,+,4,1\n")
     r = runner.invoke(app, ["iso230-2", str(f)])
     assert r.exit_code == 2 and "two.csv:21: target_unit=deg contradicts target_unit=mm" in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("command, content, words", [
+    ("rotary simulate", _sub(TRUNNION, 'yaw_sign = "auto"', "yaw_sign = true"), ["yaw_sign = True"]),
+    ("simulate", _sub(ROTARY, "order = 1,", "order = true,"), ["order = True must be a whole number"]),
+])
+def test_true_is_not_the_number_one(tmp_path, command, content, words):
+    """TOML true passed 'in (1, -1)' and 'isinstance(v, int)' checks and became 1."""
+    f = tmp_path / "c.toml"
+    f.write_text(content)
+    r = runner.invoke(app, [*command.split(), str(f)])
+    assert r.exit_code == 2, r.output
+    for w in words:
+        assert w in r.stderr, r.stderr

@@ -190,7 +190,7 @@ def _orders(items, unit: str, k: float, where: str) -> HarmonicSeries:
             raise ConfigError(f"{where}[{i}] must be a table")
         refuse_unknown_keys(f"{where}[{i}]", h, {"order", f"amplitude_{unit}", "phase_deg"})
         order = h.get("order")
-        if not isinstance(order, int) or order < 1:
+        if isinstance(order, bool) or not isinstance(order, int) or order < 1:
             raise ConfigError(f"{where}[{i}] order = {order!r} must be a whole number >= 1 per turn")
         out.append(Harmonic(_num(h, f"amplitude_{unit}", None) * k, TWO_PI / order,
                             _num(h, "phase_deg", 0.0) * DEG))

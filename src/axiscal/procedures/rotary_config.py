@@ -237,7 +237,7 @@ def _offaxis(t: dict[str, Any]) -> OffAxisSetup:
     kw["profile_moving_optic"] = str(t.get("yaw_profile_moving_optic", "interferometer"))
     kw["profile_direction_sign"] = _int(t, "yaw_profile_direction_sign", 1, "[offaxis]")
     sign = t.get("yaw_sign", "auto")
-    if sign != "auto" and sign not in (1, -1):
+    if sign != "auto" and (isinstance(sign, bool) or sign not in (1, -1)):
         raise ConfigError(f"[offaxis] yaw_sign = {sign!r} must be \"auto\", 1 or -1")
     kw["stated_sign"] = None if sign == "auto" else int(sign)
     letter = str(t.get("linear_axis", "Y"))
