@@ -237,3 +237,33 @@ def test_true_is_not_the_number_one(tmp_path, command, content, words):
     assert r.exit_code == 2, r.output
     for w in words:
         assert w in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("old, new, words", [
+    ("runs = 5", 'runs = "five"', ["[test] runs = 'five' must be a whole number >= 1"]),   # ValueError
+    ("runs = 5", "runs = 2.7", ["[test] runs = 2.7"]),                                     # became 2
+    ("dwell_s = 2.0", "dwell_s = []", ["[test] dwell_s = [] must be a finite number"]),    # TypeError
+    ("step_deg = 45", 'step_deg = "45"', ["[test] step_deg = '45'"]),                      # accepted
+])
+def test_rotary_test_table_types(tmp_path, old, new, words):
+    f = tmp_path / "c.toml"
+    f.write_text(_sub(TURNTABLE, old, new))
+    r = runner.invoke(app, ["rotary", "simulate", str(f)])
+    assert r.exit_code == 2 and r.stdout == "", r.output
+    for w in words:
+        assert w in r.stderr, r.stderr
+
+
+def test_rotary_bidirectional_must_be_a_boolean(tmp_path):
+    f = tmp_path / "c.toml"
+    f.write_text(_sub(TURNTABLE, "runs = 5", 'runs = 5\nbidirectional = "no"'))   # "no" was true
+    r = runner.invoke(app, ["rotary", "simulate", str(f)])
+    assert r.exit_code == 2 and "[test] bidirectional = 'no' must be true or false" in r.stderr
+
+
+def test_gantry_position_beyond_any_machine(tmp_path):
+    """Found by the property test: start_1_mm = 1.4e304 overflowed int(round(inf)) in counts."""
+    f = tmp_path / "g.toml"
+    f.write_text(_sub(GANTRY, "start_1_mm = 99.95", "start_1_mm = 1.4e304"))
+    r = runner.invoke(app, ["scale", "gantry", str(f)])
+    assert r.exit_code == 2 and "[gantry] start_1_mm = 1.4e+304 mm lies beyond ±1e+06 mm" in r.stderr

@@ -190,7 +190,11 @@ def twin_axis_from_config(cfg: dict[str, Any]):
     d = _direction(cfg, "gantry", g)
 
     def counts(key, default_mm):
-        return int(round(_num(cfg, "gantry", key, g, default_mm) * 1e-3 / q))
+        mm = _num(cfg, "gantry", key, g, default_mm)
+        if abs(mm) > MAX_POSITION_MM:   # beyond any machine (and beyond a float of counts)
+            raise ConfigError(f"{cfg['_source']}: [gantry] {key} = {mm:g} mm lies beyond "
+                              f"±{MAX_POSITION_MM:g} mm")
+        return int(round(mm * 1e-3 / q))
 
     s1 = counts("switch_1_mm", 100.0)
     s2 = counts("switch_2_mm", 100.0)
@@ -244,6 +248,8 @@ def _int(cfg, section, key, table, default) -> int:
 #: Longest distance the simulation follows from the switch: it samples every 1/8 period (about
 #: 10 nm), so 5 m is already some hundred megabytes.
 MAX_REACH_MM = 5000.0
+#: Largest machine coordinate taken: 1 km.
+MAX_POSITION_MM = 1e6
 #: Largest switch repeatability taken as one (a reference switch repeats within micrometres).
 MAX_REPEATABILITY_UM = 1000.0
 

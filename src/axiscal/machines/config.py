@@ -48,7 +48,8 @@ from axiscal.machines.linear import LinearAxis
 from axiscal.machines.rotary import TWO_PI, ErrorMotion, RotaryAxis
 from axiscal.units import ARCSEC, DEG, MM, UM
 
-__all__ = ["refuse_unknown_keys", "axis_from_config", "linear_axis_from_config", "rotary_axis_from_config", "load_toml"]
+__all__ = ["refuse_unknown_keys", "axis_from_config", "linear_axis_from_config",
+           "rotary_axis_from_config", "load_toml", "check_test_types"]
 
 _LINEAR_KEYS = {"name", "kind", "travel_mm", "scale_error_ppm", "bend_um", "backlash_um",
                 "repeatability_um", "thermal_ppm_per_hour", "periodic", "irregular"}
@@ -69,6 +70,47 @@ def load_toml(path) -> dict[str, Any]:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+
+
+#: The value type of each ``[test]`` key a positioning plan reads (see
+#: :func:`axiscal.procedures.positioning.plan_from_config`); the plan refuses unknown keys.
+_TEST_TYPES = {
+    "runs": "count", "n_targets": "count", "seed": "seed", "cycle": "text",
+    "bidirectional": "bool", "overrun": "number", "dwell_s": "number", "length_mm": "number",
+    "start_mm": "number", "irregularity": "number", "travel_deg": "number", "start_deg": "number",
+    "step_deg": "number", "measurement_sigma": "number", "speed_deg_s": "number",
+}
+
+
+def check_test_types(test: Any) -> None:
+    """Refuse a ``[test]`` value of the wrong TOML type before the plan converts it.
+
+    ``runs = "five"`` would end in ``int()``'s ValueError, ``runs = 2.7`` would silently become 2
+    and ``bidirectional = "no"`` would be true; each is named here instead.
+
+    Examples
+    --------
+    >>> check_test_types({"runs": 5, "step_deg": 45.0, "bidirectional": True})
+    >>> check_test_types({"runs": 2.7})
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.ConfigError: [test] runs = 2.7 must be a whole number >= 1
+    """
+    if not isinstance(test, dict):
+        raise ConfigError(f"[test] must be a table, got {test!r}")
+    for key, v in test.items():
+        kind = _TEST_TYPES.get(key)
+        is_int = isinstance(v, int) and not isinstance(v, bool)
+        if kind == "count" and not (is_int and v >= 1):
+            raise ConfigError(f"[test] {key} = {v!r} must be a whole number >= 1")
+        if kind == "seed" and not (is_int and v >= 0):
+            raise ConfigError(f"[test] {key} = {v!r} must be a whole number >= 0")
+        if kind == "number":
+            _num(test, key, None, "[test] ")
+        if kind == "text" and not isinstance(v, str):
+            raise ConfigError(f"[test] {key} = {v!r} must be text")
+        if kind == "bool" and not isinstance(v, bool):
+            raise ConfigError(f"[test] {key} = {v!r} must be true or false")
 
 
 def axis_from_config(table: dict[str, Any]) -> LinearAxis | RotaryAxis:
@@ -207,14 +249,14 @@ def refuse_unknown_keys(where: str, t: Any, allowed: set[str]) -> None:
                           f"{', '.join(sorted(allowed))}")
 
 
-def _num(t: dict[str, Any], key: str, default: float | None) -> float:
+def _num(t: dict[str, Any], key: str, default: float | None, where: str = "") -> float:
     if key not in t:
         if default is None:
             raise ConfigError(f"missing key {key!r}")
         return default
     v = t[key]
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ConfigError(f"{key} = {v!r} must be a finite number")
+        raise ConfigError(f"{where}{key} = {v!r} must be a finite number")
     return float(v)
 
 

@@ -87,7 +87,7 @@ from axiscal.datasets import AxisKind, Metadata
 from axiscal.errors import ConfigError, InputError
 from axiscal.instruments.laser import SimulatedAngularInterferometer
 from axiscal.instruments.rotary_calibrator import SimulatedRotaryCalibrator
-from axiscal.machines.config import refuse_unknown_keys
+from axiscal.machines.config import check_test_types, refuse_unknown_keys
 from axiscal.machines.error_functions import Harmonic, HarmonicSeries
 from axiscal.machines.rotary import RotaryAxis
 from axiscal.procedures.positioning import TestPlan
@@ -164,6 +164,7 @@ def rotary_config_from_dict(config: dict[str, Any]) -> RotaryCalibrationConfig:
         raise ConfigError(f"[axis] kind = {axis_t['kind']!r}; a rotary calibration needs 'rotary'")
     axis = axis_from_config(axis_t)
     test = dict(_table(config, "test"))
+    check_test_types(test)
     speed = _num(test.pop("speed_deg_s", 10.0), "[test] speed_deg_s", positive=True)
     plan = plan_from_config(test, AxisKind.ROTARY, axis.name)
     meta_t = config.get("meta", {}) or {}
