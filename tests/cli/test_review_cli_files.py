@@ -267,3 +267,18 @@ def test_gantry_position_beyond_any_machine(tmp_path):
     f.write_text(_sub(GANTRY, "start_1_mm = 99.95", "start_1_mm = 1.4e304"))
     r = runner.invoke(app, ["scale", "gantry", str(f)])
     assert r.exit_code == 2 and "[gantry] start_1_mm = 1.4e+304 mm lies beyond ±1e+06 mm" in r.stderr
+
+
+@pytest.mark.parametrize("old, new, words", [
+    ("step_deg = 45", "n_targets = 1000000000000", ["[test] n_targets = 1000000000000 is more than 10000"]),
+    ("step_deg = 45", "step_deg = 1e-9", ["gives more than 10000 targets"]),
+    ("travel_deg = 360", "travel_deg = 1e300", ["[test] travel_deg = 1e+300 is more than 36000"]),
+])
+def test_rotary_test_table_that_would_exhaust_memory(tmp_path, old, new, words):
+    """Found by the property test: n_targets = 10**12 made plan_rotary allocate 7 TiB."""
+    f = tmp_path / "c.toml"
+    f.write_text(_sub(TURNTABLE, old, new))
+    r = runner.invoke(app, ["rotary", "simulate", str(f)])
+    assert r.exit_code == 2, r.output
+    for w in words:
+        assert w in r.stderr, r.stderr

@@ -82,11 +82,16 @@ _TEST_TYPES = {
 }
 
 
+#: Bounds beyond which a plan would only exhaust memory (the command line uses the same).
+MAX_TEST = {"runs": 100, "n_targets": 10_000, "length_mm": 1e6, "travel_deg": 36_000.0}
+
+
 def check_test_types(test: Any) -> None:
     """Refuse a ``[test]`` value of the wrong TOML type before the plan converts it.
 
     ``runs = "five"`` would end in ``int()``'s ValueError, ``runs = 2.7`` would silently become 2
-    and ``bidirectional = "no"`` would be true; each is named here instead.
+    and ``bidirectional = "no"`` would be true; each is named here instead, and so are counts and
+    travels beyond :data:`MAX_TEST` (a billion targets is a typing slip that exhausts memory).
 
     Examples
     --------
@@ -111,6 +116,12 @@ def check_test_types(test: Any) -> None:
             raise ConfigError(f"[test] {key} = {v!r} must be text")
         if kind == "bool" and not isinstance(v, bool):
             raise ConfigError(f"[test] {key} = {v!r} must be true or false")
+        if key in MAX_TEST and abs(v) > MAX_TEST[key]:
+            raise ConfigError(f"[test] {key} = {v!r} is more than {MAX_TEST[key]:g}")
+    step, travel = test.get("step_deg"), test.get("travel_deg", 360.0)
+    if step is not None and step > 0 and travel / step > MAX_TEST["n_targets"]:
+        raise ConfigError(f"[test] step_deg = {step!r} over {travel!r} deg gives more than "
+                          f"{MAX_TEST['n_targets']} targets")
 
 
 def axis_from_config(table: dict[str, Any]) -> LinearAxis | RotaryAxis:
