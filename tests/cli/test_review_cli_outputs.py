@@ -150,3 +150,12 @@ def test_a_pipe_or_device_is_not_read(work):
 def test_impossible_path_names_are_one_line(work, args, words):
     """Path.exists() raises OSError (ENAMETOOLONG) instead of answering: it was a traceback."""
     _refused(work, args, *words)
+
+
+def test_read_compares_only_data_in_the_table_units(work):
+    """Rotary data (deg, arcsec) was compared with a linear table and printed as '330 mm ... um'."""
+    rot = ROOT / "src/axiscal/data/demo_rotary.toml"
+    assert runner.invoke(app, ["simulate", str(rot), "--data", "rot.csv"]).exit_code == 0
+    assert runner.invoke(app, ["compensate", "d.csv", "-c", "linuxcnc", "--out", "lin.comp"]).exit_code == 0
+    _refused(work, ["compensate", "--read", "lin.comp", "-c", "linuxcnc", "rot.csv"],
+             "rot.csv is in deg and arcsec, the table in mm and um")

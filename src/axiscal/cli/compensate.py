@@ -156,6 +156,7 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     rows = []
     if source is not None:
         res, _ = load_mean_deviations(source)
+        _same_units(res, table, source)
         dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
         corr = 0.5 * (table.correction_at(res.targets, 1) + table.correction_at(res.targets, -1))
         rows = [dict(target=float(t), deviation=float(x), correction=float(c), residual=float(x + c))
@@ -172,6 +173,19 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
             typer.echo(f"  {r['target']:>10.4g} {table.position_unit}: deviation {r['deviation']:+8.3f}, "
                        f"correction {r['correction']:+8.3f}, residual {r['residual']:+8.3f} {u}")
         typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
+
+
+def _same_units(res, table, source) -> None:
+    """A table is compared only with data in its own units (mm/µm against deg/arcsec is nonsense)."""
+    from axiscal import units
+    from axiscal.errors import InputError
+
+    data = (units.canonical(res.target_unit), units.canonical(res.deviation_unit))
+    own = (units.canonical(table.position_unit), units.canonical(table.correction_unit))
+    if data != own:
+        raise InputError(f"{source} is in {data[0]} and {data[1]}, the table in {own[0]} and "
+                         f"{own[1]}; compare a table with data of the same axis (a rotary table "
+                         "is read with -o axis_kind=rotary)")
 
 
 def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolution, travel,
