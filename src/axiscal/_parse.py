@@ -10,7 +10,7 @@ import math
 
 from axiscal.errors import DataFormatError
 
-__all__ = ["finite_number"]
+__all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit"]
 
 
 def finite_number(text: str, what: str, source: str | None = None, line: int | None = None) -> float:
@@ -33,3 +33,77 @@ def finite_number(text: str, what: str, source: str | None = None, line: int | N
     if not math.isfinite(v):
         raise DataFormatError(f"{what} {stripped!r} is not a finite number", source, line)
     return v
+
+
+def csv_cells(line: str, source: str | None = None, lineno: int | None = None) -> list[str]:
+    """The cells of one CSV line; the csv module's own errors (a field over its size limit)
+    become a :class:`DataFormatError` naming the line.
+
+    Examples
+    --------
+    >>> csv_cells('0,"+",1')
+    ['0', '+', '1']
+    >>> csv_cells("1," + "2" * 200000, "f.csv", 4)
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.DataFormatError: f.csv:4: not a CSV line: field larger than field limit (131072)
+    """
+    import csv
+
+    try:
+        return next(csv.reader([line]), [])
+    except csv.Error as exc:
+        raise DataFormatError(f"not a CSV line: {exc}", source, lineno) from None
+
+
+def check_run_number(run: float, n_readings: int, source: str | None = None,
+                     line: int | None = None, text: str | None = None, what: str = "run") -> int:
+    """A run number as an int: whole, at least 1 and not more than the readings the file holds.
+
+    Runs are numbered 1, 2, 3 ... in each direction; a run numbered beyond the count of readings
+    would stand for whole runs of missing readings (and make the table of runs as wide as the
+    number), so it is a typing error.
+
+    Examples
+    --------
+    >>> check_run_number(3.0, 10)
+    3
+    >>> check_run_number(1e9, 10, "f.csv", 7)
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.DataFormatError: f.csv:7: run 1e+09 is beyond the 10 readings in the file; runs are numbered 1, 2, 3 ... in each direction
+    """
+    if text is not None:
+        shown = repr(text.strip())
+    else:
+        shown = str(run) if isinstance(run, int) else f"{run:g}"
+    if run != int(run) or run < 1:
+        raise DataFormatError(f"{what} {shown} is not a whole number >= 1", source, line)
+    if run > n_readings:
+        raise DataFormatError(f"{what} {shown} is beyond the {n_readings} readings in the file; "
+                              "runs are numbered 1, 2, 3 ... in each direction", source, line)
+    return int(run)
+
+
+def agreed_unit(option: str | None, declared: str | None, key: str,
+                source: str | None = None) -> str | None:
+    """The unit an option gives or the file declares; both given, they must be the same unit.
+
+    A file that says ``deviation_unit=um`` read with ``--deviation-unit mm`` would give numbers a
+    thousand times too large that look right: the disagreement is refused, not resolved.
+
+    Examples
+    --------
+    >>> agreed_unit("µm", "um", "deviation_unit"), agreed_unit(None, "deg", "target_unit")
+    ('µm', 'deg')
+    >>> agreed_unit("mm", "um", "deviation_unit", "f.csv")
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.DataFormatError: f.csv: the file declares deviation_unit=um but the option gives mm; drop the option or correct the file
+    """
+    from axiscal import units
+
+    if option and declared and units.canonical(option) != units.canonical(declared):
+        raise DataFormatError(f"the file declares {key}={declared} but the option gives {option}; "
+                              "drop the option or correct the file", source)
+    return option or declared

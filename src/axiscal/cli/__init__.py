@@ -5,7 +5,10 @@ options, calls one library function and renders; heavy imports (matplotlib, scip
 happen inside the command body so ``axiscal ... --json`` starts fast.
 
 Every :class:`axiscal.errors.AxiscalError` becomes one line on stderr, ``axiscal: error: ...``,
-and exit code 2; no traceback for a user's mistake.
+and exit code 2; no traceback for a user's mistake. A mistake on the command line itself (an
+unknown command or option, a missing argument, ``--length abc``) is reported the same way, with
+the command's ``--help`` to look at, instead of click's usage panel. Every number option must be
+finite: ``nan`` and ``inf`` are refused where the command line is parsed.
 """
 
 from __future__ import annotations
@@ -15,6 +18,9 @@ import sys
 import typer
 
 from axiscal import __version__
+from typer._click.exceptions import NoArgsIsHelpError, UsageError  # typer 0.28 vendors click
+from typer._click.types import FloatParamType, FloatRange
+
 from axiscal.errors import AxiscalError
 
 __all__ = ["app", "main"]
@@ -50,15 +56,72 @@ class AxiscalGroup(typer.core.TyperGroup):
             return _load_command(name)
         return super().get_command(ctx, name)
 
+    def parse_args(self, ctx, args):  # noqa: D401 - click API
+        try:
+            return super().parse_args(ctx, args)
+        except UsageError as exc:
+            _usage_error(exc)
+
     def invoke(self, ctx):  # noqa: D401 - click API
         try:
             return super().invoke(ctx)
         except AxiscalError as exc:
             typer.echo(f"axiscal: error: {exc}", err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None
+        except UsageError as exc:
+            _usage_error(exc)
         except KeyboardInterrupt:  # pragma: no cover - interactive only
             typer.echo("axiscal: interrupted; nothing was written", err=True)
             raise typer.Exit(130) from None
+
+
+def _usage_error(exc) -> None:
+    """Report a command-line mistake as one line with exit code 2 (help on no arguments stays)."""
+    if isinstance(exc, NoArgsIsHelpError):
+        raise exc
+    message = " ".join(exc.format_message().split())
+    message = (message[:1].lower() + message[1:]).rstrip(".")
+    path = exc.ctx.command_path if exc.ctx is not None else "axiscal"
+    where = path.partition(" ")[2]
+    typer.echo(f"axiscal: error: {where + ': ' if where else ''}{message} "
+               f"(see '{path} --help')", err=True)
+    raise typer.Exit(EXIT_USER_ERROR) from None
+
+
+class _Finite:
+    """Mixin: a float option that refuses ``nan`` and ``inf`` (no length, angle or time is)."""
+
+    def convert(self, value, param, ctx):  # noqa: D401 - click API
+        import math
+
+        v = super().convert(value, param, ctx)
+        if not math.isfinite(v):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        return v
+
+
+class FiniteFloat(_Finite, FloatParamType):
+    """``float`` without NaN and infinity."""
+
+    name = "float"
+
+
+class FiniteFloatRange(_Finite, FloatRange):
+    """A bounded ``float`` (``typer.Option(min=, max=)``) without NaN."""
+
+
+def _finite_floats(command) -> None:
+    """Give every float option of ``command`` (and of its sub-commands) a finite type."""
+    for param in command.params:
+        t = param.type
+        if isinstance(t, _Finite):
+            continue
+        if isinstance(t, FloatRange):
+            param.type = FiniteFloatRange(t.min, t.max, t.min_open, t.max_open, t.clamp)
+        elif isinstance(t, FloatParamType):
+            param.type = FiniteFloat()
+    for sub in getattr(command, "commands", {}).values():
+        _finite_floats(sub)
 
 
 def _load_command(name: str):
@@ -66,13 +129,13 @@ def _load_command(name: str):
     import importlib
 
     module = importlib.import_module(COMMANDS[name])
-    scratch = typer.Typer()
+    scratch = typer.Typer(add_completion=False)   # completion belongs to the root only
     module.register(scratch)
     # A scratch app with a single group or command collapses to it; otherwise look the name up.
     group = typer.main.get_group(scratch) if scratch.registered_groups or len(scratch.registered_commands) > 1 else None
-    if group is None:
-        return typer.main.get_command(scratch)
-    return group.get_command(None, name)
+    command = typer.main.get_command(scratch) if group is None else group.get_command(None, name)
+    _finite_floats(command)
+    return command
 
 
 app = typer.Typer(

@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
+import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -15,7 +17,8 @@ import typer
 
 from axiscal.errors import InputError
 
-__all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "note"]
+__all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report_path",
+           "typed_path", "note"]
 
 
 def console():
@@ -53,10 +56,19 @@ def print_json(obj: Any) -> None:
 def out_path(path: Path, what: str) -> Path:
     """Check that an output file can be written (its folder exists), before any work is done."""
     path = Path(path)
-    if path.exists() and path.is_dir():
-        raise InputError(f"{what} {path} is a folder; give a file name")
-    if not path.parent.exists():
-        raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
+    try:
+        if path.exists() and path.is_dir():
+            raise InputError(f"{what} {path} is a folder; give a file name")
+        if not path.parent.exists():
+            raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
+        # a read-only or pseudo file system refuses here, before any work is done
+        tempfile.TemporaryFile(dir=path.parent).close()
+        if path.exists() and not os.access(path, os.W_OK):
+            raise InputError(f"cannot write {what} {path}: the file is read-only")
+        if len(path.name.encode()) > 255:
+            raise InputError(f"cannot write {what}: the file name is longer than 255 bytes")
+    except OSError as exc:   # a name too long, a path through a file ...
+        raise InputError(f"cannot write {what} {path}: {exc.strerror or exc}") from None
     return path
 
 
@@ -69,6 +81,23 @@ def plot_path(path: Path) -> Path:
     if p.suffix.lower() not in PLOT_SUFFIXES:
         raise InputError(f"plot file {p.name}: use a .png, .svg or .pdf extension")
     return p
+
+
+def typed_path(path: Path, what: str, suffixes: tuple[str, ...]) -> Path:
+    """Check an output file before any work: writable folder and one of ``suffixes``.
+
+    A report named ``r.png`` or a CSV named ``plan.pdf`` is a slip of the keyboard; writing it
+    would leave a file no program opens.
+    """
+    p = out_path(path, what)
+    if p.suffix.lower() not in suffixes:
+        raise InputError(f"{what} file {p.name}: use a {' or '.join(suffixes)} extension")
+    return p
+
+
+def report_path(path: Path) -> Path:
+    """Check an HTML report file before any work: writable folder and a .html or .htm name."""
+    return typed_path(path, "report", (".html", ".htm"))
 
 
 def note(message: str) -> None:

@@ -18,16 +18,26 @@ Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``.
 (``machine_axis``, ``detection_unit``, ``file_type``, ``reference_position`` …) go through
 ``--option KEY=VALUE``.
 
-JSON (``--json``), stable keys. Table: ``controller``, ``file`` (path written or null),
-``extra_files``, ``n_points``, ``spacing``, ``start``, ``end``, ``position_unit``,
-``correction_unit``, ``reference_index``, ``reference_position``, ``largest_correction``,
-``backlash``, ``bidirectional``, ``modulo``, ``enable`` (list), ``notes`` (list), ``table``
-(positions, up, down …). Verify: ``controller``, ``before`` and ``after`` (A … B_mean),
-``reduction``, ``budget_E``, ``spacing_residual``, ``sigma``, ``between_targets_E``,
-``truth_before``, ``truth_after``, ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``.
-Squareness: the table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``,
-``advice``. Read: the table keys plus ``residual`` (per target: ``target``, ``deviation``, ``correction``,
-``residual`` = deviation + correction) and ``largest_residual`` when a result is given.
+JSON (``--json``), stable keys. The *table data* keys: ``n_points``, ``spacing``, ``start``,
+``end``, ``position_unit``, ``correction_unit``, ``reference_index``, ``reference_position``,
+``largest_correction``, ``backlash``, ``bidirectional``, ``modulo`` and ``table`` (the table
+itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, ``start``, ``end``,
+``n_points``, ``position_unit``, ``correction_unit``, ``reference_index``,
+``reference_position``, ``resolution``, ``extrapolation``, ``bidirectional``, ``modulo``,
+``backlash``, ``largest``). Table: ``controller``, ``file`` (path written or null),
+``extra_files`` (names), ``enable`` (list), ``notes`` (list) and the table data keys. Verify:
+``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``,
+``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
+``B_mean``), ``reduction``, ``budget_E``,
+``spacing_residual``, ``sigma``, ``between_targets_E``, ``truth_before``, ``truth_after`` (E,
+E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``. Squareness: the
+table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
+``controller`` and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
+``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
+given.
+
+Options that the chosen use does not read (``--bidirectional`` with ``--verify``, ``--plot``
+without it ...) are refused by name rather than ignored.
 """
 
 from __future__ import annotations
@@ -43,6 +53,7 @@ __all__ = ["register"]
 
 
 def compensate(
+    ctx: typer.Context,
     source: Optional[Path] = typer.Argument(None, help="Positioning data (CSV, JSON, ecmc) or an 'axiscal iso230-2 --json' result."),
     controller: Optional[str] = typer.Option(None, "--controller", "-c", help="siemens-840d, fanuc, heidenhain, linuxcnc or csv (default csv; with --verify the configuration's)."),
     spacing: Optional[float] = typer.Option(None, "--spacing", help="Distance between table points, mm or deg (default: the mean target spacing)."),
@@ -55,13 +66,13 @@ def compensate(
     travel: Optional[List[float]] = typer.Option(None, "--travel", help="Axis travel low and high, mm or deg (give twice); the table must lie inside."),
     axis: str = typer.Option("", "--axis", help="Axis name written in the table (X, C ...)."),
     option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001."),
-    out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here (Heidenhain's .CMA goes next to it)."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
     squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (seed 004 sign: angle between + axes minus 90°)."),
     axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
     aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (seed 004 Appendix II)."),
-    seed: int = typer.Option(1, "--seed", help="Seed of the simulation (with --verify)."),
+    seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation, a whole number >= 0 (with --verify)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
 ) -> None:
@@ -75,6 +86,8 @@ def compensate(
         plot_path(plot)
     if sum(x is not None for x in (verify, read)) > 1:
         raise InputError("give either --verify or --read, not both")
+    _refuse_unused(ctx, "verify" if verify is not None else "read" if read is not None
+                   else "squareness" if squareness is not None else "table")
     if verify is not None:
         return _verify(verify, seed, controller, spacing, opts, out, json_out, plot)
     if read is not None:
@@ -84,7 +97,6 @@ def compensate(
                            resolution, travel, opts, out, json_out)
     if source is None:
         raise InputError("give a data file or ISO 230-2 result (or --verify CONFIG.toml, --read FILE)")
-    from axiscal.compensation.controllers import check_options
     from axiscal.compensation.controllers import controller as get_controller
     from axiscal.compensation.inputs import load_mean_deviations
     from axiscal.compensation.tables import table_from_result
@@ -95,7 +107,7 @@ def compensate(
     table = table_from_result(result, step, start=start, end=end, bidirectional=bidirectional,
                               resolution=resolution, extrapolation=extrapolation,  # type: ignore[arg-type]
                               reference=reference, axis=axis or file_axis)
-    cf = mod.write(table, _travel(travel), **check_options(mod.write, opts, f"--option for {mod.NAME}"))
+    cf = mod.write(table, _travel(travel), **_typed(mod.write, opts, f"--option for {mod.NAME}"))
     _write_files(cf, out)
     _render_table(cf, out, json_out)
 
@@ -107,9 +119,9 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
 
     over = {}
     if controller is not None:   # another controller: the configuration's options do not apply
-        over.update(controller=controller, options=opts)
+        over.update(controller=controller, options=_guessed(opts))
     elif opts:
-        over.update(options=opts)
+        over.update(options=_guessed(opts))
     if spacing is not None:
         over.update(spacing=spacing)
     r = run_compensation_loop(load_toml(config), seed=seed, **over)
@@ -133,18 +145,18 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
 def _read(path: Path, controller, source, opts, json_out) -> None:
     import numpy as np
 
-    from axiscal.compensation.controllers import check_options
     from axiscal.compensation.controllers import controller as get_controller
     from axiscal.compensation.inputs import load_mean_deviations
     from axiscal.io import read_text
 
     mod = get_controller(controller)
-    opts = check_options(mod.parse, opts, f"--option for reading {mod.NAME}")
+    opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
     table = mod.parse(read_text(path), source=str(path), **opts)
-    d = _table_json(table)
+    d = dict(controller=mod.NAME, **_table_json(table))
     rows = []
     if source is not None:
         res, _ = load_mean_deviations(source)
+        _same_units(res, table, source)
         dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
         corr = 0.5 * (table.correction_at(res.targets, 1) + table.correction_at(res.targets, -1))
         rows = [dict(target=float(t), deviation=float(x), correction=float(c), residual=float(x + c))
@@ -163,6 +175,19 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
         typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
 
 
+def _same_units(res, table, source) -> None:
+    """A table is compared only with data in its own units (mm/µm against deg/arcsec is nonsense)."""
+    from axiscal import units
+    from axiscal.errors import InputError
+
+    data = (units.canonical(res.target_unit), units.canonical(res.deviation_unit))
+    own = (units.canonical(table.position_unit), units.canonical(table.correction_unit))
+    if data != own:
+        raise InputError(f"{source} is in {data[0]} and {data[1]}, the table in {own[0]} and "
+                         f"{own[1]}; compare a table with data of the same axis (a rotary table "
+                         "is read with -o axis_kind=rotary)")
+
+
 def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolution, travel,
                 opts, out, json_out) -> None:
     from axiscal.compensation.cross_axis import cross_axis_table, write_cross_axis
@@ -176,12 +201,13 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
         raise InputError("--squareness needs --start, --end and --spacing (driving axis, mm)")
     comp = squareness_compensation(Squareness(um_per_m * 1e-6, (axes[0], axes[1])), aligned)
     ct = cross_axis_table(comp, start, end, spacing, resolution)
-    cf = write_cross_axis(ct, controller, _travel(travel), **opts)
+    cf = write_cross_axis(ct, controller, _travel(travel), **_cross_axis_options(controller, opts))
     _write_files(cf, out)
     if json_out:
         d = dict(controller=cf.controller, file=None if out is None else str(out),
+                 extra_files=sorted(cf.extra_files), enable=list(cf.enable), notes=list(cf.notes),
                  driving_axis=ct.driving_axis, compensated_axis=ct.compensated_axis,
-                 factor_um_per_m=ct.factor, advice=list(comp.advice), enable=list(cf.enable))
+                 factor_um_per_m=ct.factor, advice=list(comp.advice))
         d.update(_table_json(ct.table))
         print_json(d)
         return
@@ -195,7 +221,50 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
 
 
 # -- helpers ---------------------------------------------------------------------------------
-def _options(items: list[str]) -> dict:
+#: The options each use of the command reads; any other option given is a mistake to name.
+_USES = {
+    "table": ("a table from SOURCE", {"source", "controller", "spacing", "bidirectional",
+              "resolution", "start", "end", "extrapolation", "reference", "travel", "axis",
+              "option", "out", "json_out"}),
+    "verify": ("--verify", {"verify", "controller", "spacing", "option", "out", "seed", "plot",
+               "json_out"}),
+    "read": ("--read", {"read", "source", "controller", "option", "json_out"}),
+    "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
+                   "start", "end", "resolution", "travel", "option", "out", "json_out"}),
+}
+
+
+def _refuse_unused(ctx, use: str) -> None:
+    """Refuse options the chosen use ignores (``--verify --bidirectional`` would do nothing)."""
+    from axiscal.errors import InputError
+
+    what, reads = _USES[use]
+    given = [p for p in ctx.command.params if p.name not in reads
+             and getattr(ctx.get_parameter_source(p.name), "name", "DEFAULT") not in
+             ("DEFAULT", "DEFAULT_MAP")]
+    if given:
+        names = ", ".join(p.opts[0] if p.opts[0].startswith("-") else p.name.upper() for p in given)
+        raise InputError(f"{what} does not use {names}; drop {'it' if len(given) == 1 else 'them'}")
+
+
+def _check_out(cf, out) -> None:
+    """The controller file's name must suit the format (and what its companion files name)."""
+    from axiscal.errors import InputError
+
+    p, own = Path(out), Path(cf.filename)
+    if any(cf.filename in text for text in cf.extra_files.values()):
+        if p.name.upper() != own.name.upper():
+            raise InputError(f"{cf.controller}: {', '.join(sorted(cf.extra_files))} names the "
+                             f"table {cf.filename}; write it as --out {p.parent / own.name}")
+        return
+    allowed = {own.suffix.lower()} | ({".txt"} if cf.controller != "csv" else set())
+    if p.suffix.lower() not in allowed:
+        raise InputError(f"{cf.controller} table {p.name}: use a {' or '.join(sorted(allowed))} "
+                         "extension")
+
+
+def _options(items: list[str]) -> dict[str, str]:
+    """``["KEY=VALUE", ...]`` as text; :func:`_typed` converts them for their reader."""
     from axiscal.errors import InputError
 
     out = {}
@@ -203,8 +272,71 @@ def _options(items: list[str]) -> dict:
         if "=" not in item:
             raise InputError(f"--option {item!r} must be KEY=VALUE")
         k, v = item.split("=", 1)
-        out[k.strip()] = _value(v.strip())
+        out[k.strip()] = v.strip()
     return out
+
+
+def _typed(function, raw: dict[str, str], what: str, exclude: tuple[str, ...] = ()) -> dict:
+    """Options ``function`` takes, converted to the type of its default (named on error).
+
+    ``detection_unit=abc`` or ``zero_ends=maybe`` would otherwise reach the writer as text and fail
+    there with a traceback; ``machine_axis=01`` stays the text ``01``.
+    """
+    import inspect
+
+    from axiscal.compensation.controllers import check_options
+    from axiscal.errors import InputError
+
+    check_options(function, raw, what)
+    fixed = sorted(set(raw) & set(exclude))
+    if fixed:
+        raise InputError(f"{what}: {', '.join(fixed)} is set by the command, not by --option")
+    params = inspect.signature(function).parameters
+    return {k: _convert(k, v, params[k].default, what) for k, v in raw.items()}
+
+
+def _convert(key: str, text: str, default, what: str):
+    import math
+
+    from axiscal.errors import InputError
+
+    if isinstance(default, bool):
+        if text.lower() not in ("true", "false"):
+            raise InputError(f"{what}: {key}={text!r} must be true or false")
+        return text.lower() == "true"
+    if isinstance(default, (int, float)):
+        try:
+            value = int(text) if isinstance(default, int) else float(text)
+        except ValueError:
+            kind = "a whole number" if isinstance(default, int) else "a number"
+            raise InputError(f"{what}: {key}={text!r} must be {kind}") from None
+        if not math.isfinite(value):
+            raise InputError(f"{what}: {key}={text!r} must be a finite number")
+        return value
+    if isinstance(default, str):
+        return text
+    return _value(text)
+
+
+def _guessed(raw: dict[str, str]) -> dict:
+    """Options for a writer not known here (the configuration's): numbers and booleans by look."""
+    return {k: _value(v) for k, v in raw.items()}
+
+
+def _cross_axis_options(controller: str, raw: dict[str, str]) -> dict:
+    """Check ``--option`` against the cross-axis writer of ``controller`` (csv takes none)."""
+    from axiscal.compensation.controllers import controller as get_controller
+    from axiscal.errors import InputError
+
+    mod = get_controller(controller)
+    what = f"--option for a {mod.NAME} cross-axis table"
+    if mod.NAME == "siemens-840d":
+        return _typed(mod.write_cross_axis, raw, what)
+    if mod.NAME == "heidenhain":
+        return _typed(mod.write, raw, what, exclude=("driving_axis",))
+    if raw and mod.NAME == "csv":
+        raise InputError(f"{what}: the csv table takes no options; drop {', '.join(sorted(raw))}")
+    return _guessed(raw)
 
 
 def _value(v: str):
@@ -238,6 +370,7 @@ def _write_files(cf, out) -> None:
         return
     from axiscal.io._files import write_text_atomic
 
+    _check_out(cf, out)
     write_text_atomic(out, cf.text)
     note(f"wrote {cf.controller} table {out}")
     for name, text in cf.extra_files.items():

@@ -14,14 +14,14 @@ from pathlib import Path
 
 import typer
 
-from axiscal.cli._common import note
+from axiscal.cli._common import note, out_path
 
 DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn (ideal reference)"))
 
 
 def demo(
     out: Path = typer.Option(Path("axiscal-demo"), "--out", help="Folder for plots, reports and data (created)."),
-    seed: int = typer.Option(1, "--seed", help="Seed of the simulation's random numbers."),
+    seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
 ) -> None:
     """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported."""
     import tomllib
@@ -33,7 +33,11 @@ def demo(
 
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out} exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the folder --out {out}: {exc.strerror or exc}") from None
+    out_path(out / "index.html", "the demonstration")   # writable, before the simulations run
     pages = []
     for name, cfg, label in DEMOS:
         config = tomllib.loads(resources.files("axiscal.data").joinpath(cfg).read_text("utf-8"))

@@ -19,19 +19,19 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, plot_path, print_json
+from axiscal.cli._common import note, plot_path, print_json, report_path
 
 __all__ = ["register", "result_json", "render_result"]
 
 
 def iso230_2(
     file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON or EPICS ecmc file."),
-    target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a CSV: mm or deg (overrides the file)."),
-    deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV: um, mm or arcsec (overrides the file)."),
+    target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a CSV or ecmc file that does not declare it: mm or deg (a different declaration in the file is an error)."),
+    deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec (a different declaration in the file is an error)."),
     full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if one is exceeded)."),
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target)."""
@@ -43,8 +43,13 @@ def iso230_2(
     if plot is not None:
         plot_path(plot)
     if report is not None:
-        out_path(report, "report")
+        report_path(report)
     ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
+    if full_turn != "separate" and ds.axis_kind.value != "rotary":
+        from axiscal.errors import InputError
+
+        raise InputError(f"--full-turn {full_turn} pools 0 and 360 deg of a rotary test; {file} "
+                         f"is a {ds.axis_kind.value} axis")
     result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
     verdicts = check_tolerances(result, tolerances) if tolerances else ()
     if plot is not None:
@@ -73,6 +78,8 @@ def parse_tolerances(items: List[str]) -> dict:
     out = {}
     for item in items:
         name, sep, value = item.partition("=")
+        if name.strip() in out:
+            raise InputError(f"--tolerance {name.strip()} is given twice; give each parameter once")
         try:
             out[name.strip()] = float(value)
         except ValueError:

@@ -31,7 +31,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, print_json, report_path, typed_path
 
 __all__ = ["register", "iso_json"]
 
@@ -43,7 +43,7 @@ _MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' cross
                   "crosstalk table), which ISO 230-7 removes as the fundamental.")
 _KEYS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um", "dz": "dz_um"}
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs).")
-_REPORT = typer.Option(None, "--report", help="Write a self-contained HTML report.")
+_REPORT = typer.Option(None, "--report", help="Write a self-contained HTML report (.html).")
 
 
 def _five(errors, i=None) -> dict:
@@ -91,11 +91,11 @@ def simulate(
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
     csv: Optional[Path] = typer.Option(None, "--csv", help="Write the measured errors as a data file "
-                                       "that 'axiscal motion analyze' reads."),
+                                       "(.csv) that 'axiscal motion analyze' reads."),
     no_compensation: bool = typer.Option(False, "--no-compensation", help="Show the errors without "
                                          "the beam-drift compensation (seed 003 eqs. 1-6 only)."),
 ) -> None:
-    """Simulate one indexing test (30° steps over 360°, reference axis counter-rotating)."""
+    """Simulate one indexing test (steps of step_deg, 30° by default; reference counter-rotating)."""
     import numpy as np
 
     from axiscal.io.motion import format_motion_errors, read_motion_config
@@ -151,8 +151,8 @@ def simulate(
 @app.command("stability")
 def stability(
     config: Optional[Path] = typer.Argument(None, help="Configuration TOML (default: the seed 003 set-up)."),
-    duration_min: Optional[float] = typer.Option(None, "--duration-min", help="Duration in minutes (default 60)."),
-    interval_s: Optional[float] = typer.Option(None, "--interval-s", help="Sampling interval in seconds (default 10)."),
+    duration_min: Optional[float] = typer.Option(None, "--duration-min", help="Duration in minutes (default: the configuration's stability_duration_min, 60)."),
+    interval_s: Optional[float] = typer.Option(None, "--interval-s", help="Sampling interval in seconds (default: the configuration's stability_interval_s, 10)."),
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
 ) -> None:
@@ -190,10 +190,10 @@ def stability(
 @app.command("repeatability")
 def repeatability(
     config: Path = typer.Argument(..., help="Configuration TOML (see examples/motion_indexing_table.toml)."),
-    runs: Optional[int] = typer.Option(None, "--runs", help="Number of runs (default from the config: 3)."),
+    runs: Optional[int] = typer.Option(None, "--runs", max=100, help="Number of runs, at most 100 (default from the config: 3)."),
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file for 'analyze'."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file (.csv) for 'analyze'."),
 ) -> None:
     """Run the indexing test several times (seed 003 §3.3) and report the ± repeatability."""
     import numpy as np
@@ -268,8 +268,14 @@ def _config(path):
     return parse_motion_config("") if path is None else read_motion_config(path)
 
 
-def _check_outputs(**paths) -> dict:
-    return {k: out_path(p, k) for k, p in paths.items() if p is not None}
+def _check_outputs(report=None, csv=None) -> dict:
+    """Check the output files before any work (folder exists, .html report, .csv data)."""
+    paths = {}
+    if report is not None:
+        paths["report"] = report_path(report)
+    if csv is not None:
+        paths["csv"] = typed_path(csv, "csv", (".csv",))
+    return paths
 
 
 def _wrote(paths: dict) -> None:

@@ -3,7 +3,8 @@
 The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
 after one comment line; ``kind`` is ``measure`` (take a reading after the dwell) or ``overrun``
 (a reversing move). ``--json`` prints ``targets``, ``target_unit``, ``runs``, ``cycle``,
-``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps``.
+``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps`` (one object per move:
+``seq``, ``kind``, ``position``, ``direction``, ``run``, ``target_index``; the dwell is ``dwell``).
 """
 
 from __future__ import annotations
@@ -13,7 +14,11 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, print_json, typed_path
+
+#: Bounds of the counts a plan is asked for: beyond them a typing slip would only exhaust memory.
+MAX_TARGETS, MAX_RUNS = 10_000, 100
+MAX_LENGTH_MM, MAX_TRAVEL_DEG = 1e6, 36_000.0
 
 plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
                        no_args_is_help=True)
@@ -21,23 +26,24 @@ plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) fo
 
 @plan_app.command("linear")
 def plan_linear_cmd(
-    length: float = typer.Option(..., "--length", help="Measurement travel in mm."),
+    length: float = typer.Option(..., "--length", max=MAX_LENGTH_MM, help="Measurement travel in mm (at most 1 km)."),
     start: float = typer.Option(0.0, "--start", help="First target in mm."),
-    n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
+    n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
     irregularity: float = typer.Option(0.25, "--irregularity", help="Random offset of each target as a fraction of the interval (0 = even spacing)."),
-    seed: int = typer.Option(0, "--seed", help="Seed of the random offsets (plans are reproducible)."),
-    runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
+    seed: int = typer.Option(0, "--seed", min=0, help="Seed of the random offsets, a whole number >= 0 (plans are reproducible)."),
+    runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
     cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
     unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
     dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
     axis: str = typer.Option("X", "--axis", help="Axis name."),
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
     """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2)."""
     from axiscal.procedures.positioning import plan_linear
 
+    _check_csv(csv)
     p = plan_linear(length, start, n_targets, irregularity, seed, runs, cycle, not unidirectional,  # type: ignore[arg-type]
                     overrun, dwell, axis)
     _emit(p, csv, json_out)
@@ -45,32 +51,42 @@ def plan_linear_cmd(
 
 @plan_app.command("rotary")
 def plan_rotary_cmd(
-    travel: float = typer.Option(360.0, "--travel", help="Measurement travel in degrees."),
+    travel: float = typer.Option(360.0, "--travel", max=MAX_TRAVEL_DEG, help="Measurement travel in degrees (at most 100 turns)."),
     start: float = typer.Option(0.0, "--start", help="First target in degrees."),
     step: Optional[float] = typer.Option(None, "--step", help="Interval between targets in degrees (default 45)."),
-    n_targets: Optional[int] = typer.Option(None, "--targets", help="Number of evenly spaced targets (instead of --step)."),
-    runs: int = typer.Option(5, "--runs", help="Runs per direction (ISO 230-2: 5)."),
+    n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of evenly spaced targets (instead of --step)."),
+    runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
     cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
     unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (seed 001: 5)."),
     dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
     axis: str = typer.Option("C", "--axis", help="Axis name."),
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV."),
+    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
     """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included)."""
+    from axiscal.errors import InputError
     from axiscal.procedures.positioning import plan_rotary
 
+    _check_csv(csv)
+    if step is not None and step > 0 and travel / step > MAX_TARGETS:
+        raise InputError(f"--step {step:g} deg over {travel:g} deg gives more than {MAX_TARGETS} "
+                         "targets")
     p = plan_rotary(travel, start, step, n_targets, runs, cycle, not unidirectional, overrun,  # type: ignore[arg-type]
                     dwell, axis)
     _emit(p, csv, json_out)
+
+
+def _check_csv(csv: Optional[Path]) -> None:
+    if csv is not None:
+        typed_path(csv, "plan CSV", (".csv",))
 
 
 def _emit(p, csv: Optional[Path], json_out: bool) -> None:
     if csv is not None:
         from axiscal.io._files import write_text_atomic
 
-        write_text_atomic(out_path(csv, "plan CSV"), p.to_csv())
+        write_text_atomic(csv, p.to_csv())
     if json_out:
         print_json({
             "targets": p.targets, "target_unit": p.target_unit, "runs": p.runs, "cycle": p.cycle,

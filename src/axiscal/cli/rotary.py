@@ -3,8 +3,9 @@
 ``axiscal rotary simulate CONFIG.toml [--json] [--report FILE]`` runs a complete simulated
 calibration (set-up checks, optics self-calibration, counter-rotating capture, ISO 230-2
 evaluation) and compares it with the truth. ``--json`` keys (stable): ``axis``, ``n_targets``,
-``n_runs``, ``n_readings``, ``measured`` and ``truth`` (ISO 230-2 parameters ``A`` ... ``B_mean``
-in arcsec), ``max_mean_error_arcsec``, ``max_reading_error_arcsec``, ``within_budget``, ``setup``
+``n_runs``, ``n_readings``, ``measured`` and ``truth`` (ISO 230-2 parameters in arcsec: ``A``,
+``A_up``, ``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
+``B_mean``), ``max_mean_error_arcsec``, ``max_reading_error_arcsec``, ``within_budget``, ``setup``
 (``tir_mm``, ``return_offset_mm``, ``centring_mm``, ``alpha_bound_mrad``, ``beta_bound_mrad``,
 ``passed``, ``warnings``), ``optics`` (``k``, ``datum_misalignment_arcsec``, or null),
 ``budget`` (``items``: list of ``name``/``arcsec``/``source``; ``worst_case_arcsec``,
@@ -17,7 +18,7 @@ well must I align for this accuracy?" from seed 000 equation 1. ``--json`` keys 
 ``alpha_mrad``, ``beta_mrad``, ``omega_mrad``, ``terms_arcsec`` (``quadratic``, ``alpha_beta``,
 ``alpha_omega``: amplitudes), ``peak_arcsec``, ``half_range_arcsec``, ``base_arcsec``,
 ``expected_accuracy_arcsec``, ``accuracy_arcsec`` and ``max_alpha_mrad`` (null without
-``--accuracy``), ``table`` (``alpha_mrad``, ``beta_mrad``, ``accuracy_arcsec``,
+``--accuracy``; 0.0 when the accuracy is out of reach even at perfect alignment), ``table`` (``alpha_mrad``, ``beta_mrad``, ``accuracy_arcsec``,
 ``seed_figure22_arcsec``).
 """
 
@@ -28,7 +29,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, print_json
+from axiscal.cli._common import note, print_json, report_path
 
 __all__ = ["register"]
 
@@ -36,14 +37,14 @@ __all__ = ["register"]
 def simulate(
     config: Path = typer.Argument(..., help="Rotary calibration configuration (TOML); see examples/rotary_*.toml."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
 ) -> None:
     """Simulate a complete rotary-axis calibration and compare it with the truth."""
     from axiscal.machines.config import load_toml
     from axiscal.procedures.rotary_config import run_rotary_config
 
     if report is not None:
-        out_path(report, "report")
+        report_path(report)
     result = run_rotary_config(load_toml(config))
     if report is not None:
         from axiscal.report.rotary import write_rotary_report
@@ -82,7 +83,10 @@ def budget(
               f"{data['half_range_arcsec']:.3f})")
     con.print(f"  expected accuracy      ±{data['expected_accuracy_arcsec']:.2f} arcsec "
               f"(base {base:g} + peak)")
-    if accuracy is not None:
+    if accuracy is not None and data["max_alpha_mrad"] == 0.0:
+        con.print(f"  ±{accuracy:g} arcsec cannot be reached at any alignment: the system alone "
+                  f"gives ±{base:g} arcsec (--base)")
+    elif accuracy is not None:
         ma = data["max_alpha_mrad"]
         con.print(f"  for ±{accuracy:g} arcsec at this β, ω: align α within {ma:.3f} mrad "
                   f"(TIR < {2 * 50 * ma * 1e-3:.3f} mm at 50 mm, before the calibrator's own 0.44 mrad)")

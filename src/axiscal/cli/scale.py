@@ -9,10 +9,11 @@
     (``max_count_error``, ``max_part_error_um``, ``end_controller_mm``, ``end_true_mm``,
     ``end_part_mm``, ``end_uncompensated_mm``).
 ``scale gantry CONFIG.toml [--json]``
-    Twin-axis homing. JSON keys: those of the run (``virtual_1``, ``virtual_2``,
-    ``homing_skew_min``, ``homing_skew_max``, ``skew_before_sync``, ``skew_limit``, ``alarm``,
-    ``deskew_move``, ``skew_after_sync``, ``offset``, ``required_skew_limit``, ...), plus
-    ``worst_case`` (the two extreme phase combinations) and ``switch_sigma_counts``.
+    Twin-axis homing. JSON keys: those of the run (``counts_per_period``, ``count_size_nm``,
+    ``virtual_1``, ``virtual_2``, ``homing_skew_min``, ``homing_skew_max``, ``skew_before_sync``,
+    ``skew_limit``, ``alarm``, ``deskew_move``, ``skew_after_sync``, ``offset``), plus
+    ``required_skew_limit`` (counts), ``switch_sigma_counts`` and ``worst_case`` (the two
+    extreme phase combinations: ``virtual_1``, ``virtual_2``, ``skew_before_sync``, ``alarm``).
 ``scale compensate [options] [--json]``
     The factor for given conditions and the error of an uncompensated scale. JSON keys:
     ``n``, ``n_standard``, ``growth``, ``ratio``, ``factor``, ``correction_ppm``, ``length_mm``,
@@ -92,8 +93,8 @@ def home(
 
 @scale_app.command("gantry")
 def gantry(
-    config: Path = typer.Argument(..., help="Twin-axis configuration (TOML with a [gantry] "
-                                  "section, see examples/)."),
+    config: Path = typer.Argument(..., help="Twin-axis configuration (TOML with a gantry "
+                                  "table, see examples/scale_gantry.toml)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
 ) -> None:
     """Simulate twin-axis (gantry) homing: skew, skew-limit alarm, deskew, limit needed."""

@@ -3,8 +3,10 @@
 The configuration has ``[axis]`` (see :mod:`axiscal.machines.config`), ``[test]`` (see
 :func:`axiscal.procedures.positioning.plan_from_config`) and an optional ``[meta]``. The output
 sets the evaluation beside the truth the simulation knew. ``--json`` prints the ISO 230-2 object of
-``axiscal iso230-2 --json`` plus ``truth`` (E, E_up, E_down, M, B, B_mean implied by the injected
-errors, and R_expected) and ``seed``. ``--data FILE`` writes the simulated readings (CSV or JSON by
+``axiscal iso230-2 --json`` (keys in :mod:`axiscal.cli.iso230_2`) plus ``truth`` (``E``,
+``E_up``, ``E_down``, ``M``, ``B``, ``B_mean`` implied by the injected errors, and
+``R_expected`` = 4σ + |b|; ``E_up`` and ``R_expected`` only for a unidirectional test) and
+``seed``. ``--data FILE`` writes the simulated readings (CSV or JSON by
 extension) so they can be evaluated again with ``axiscal iso230-2``.
 """
 
@@ -15,15 +17,15 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, plot_path, print_json
+from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
 
 
 def simulate(
     config: Path = typer.Argument(..., help="Machine and test configuration (TOML)."),
-    seed: int = typer.Option(1, "--seed", help="Seed of the simulation's random numbers."),
+    seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result and the truth as JSON."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot with the truth."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot with the truth (PNG, SVG or PDF by extension)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report (.html)."),
     data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv or .json)."),
 ) -> None:
     """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it."""
@@ -32,9 +34,10 @@ def simulate(
 
     if plot is not None:
         plot_path(plot)
-    for p, what in ((report, "report"), (data, "data file")):
-        if p is not None:
-            out_path(p, what)
+    if report is not None:
+        report_path(report)
+    if data is not None:
+        typed_path(data, "data", (".csv", ".json"))
     sim = simulate_from_config(load_toml(config), seed=seed)
     write_outputs(sim, plot, report, data)
     if json_out:

@@ -5,8 +5,8 @@ Every squareness result states its sign convention and carries both (seed 004 No
 JSON output (``--json``), stable keys:
 
 * ``straightness``: ``file``, ``axis``, ``direction``, ``reference``, ``straightness_um``,
-  ``slope_um_per_m``, ``intercept_um``, ``n``, ``methods`` (object per reference line:
-  ``straightness_um``, ``slope_um_per_m``).
+  ``slope_um_per_m``, ``intercept_um``, ``n``, ``methods`` (object per reference line,
+  ``least_squares``, ``end_point``, ``minimum_zone``: ``straightness_um``, ``slope_um_per_m``).
 * a *squareness object* (used below): ``axes``, ``um_per_m``, ``arcsec``, ``convention``,
   ``iso_datum``, ``iso_referred``, ``iso_um_per_m``, ``iso_arcsec``, ``angle_note``.
 * ``squareness biaxial``: ``squareness`` (squareness object), ``config``, ``orientation``,
@@ -115,6 +115,7 @@ def biaxial(
         raise InputError(f"--config {config!r}: must be L, T or +")
     one, two = read_straightness(xfile), read_straightness(yfile)
     axes = (one.axis or "X", two.axis or "Y")
+    _check_crossed(one, two, axes)
     correction = correct_reference_angle(prism_error * ARCSEC, orientation)
     r = squareness_from_trajectories(one.positions, one.deviations, two.positions,
                                      two.deviations, axes=axes, method=_reference(reference),  # type: ignore[arg-type]
@@ -131,6 +132,17 @@ def biaxial(
         typer.echo(f"bi-axial {config.upper()} {orientation}°: {r}")
 
 
+def _check_crossed(one, two, axes) -> None:
+    """Each trajectory's deviations must be read along the other axis (ISO 230-1 §3.6.7)."""
+    from axiscal.errors import InputError
+
+    for data, other in ((one, axes[1]), (two, axes[0])):
+        if data.direction and data.direction != other:
+            raise InputError(f"{data.source} reads the {data.axis or '?'} axis's deviations along "
+                             f"{data.direction}; a bi-axial {''.join(axes)} test needs them along "
+                             f"{other}")
+
+
 def diagonal(
     x_length: Optional[float] = typer.Option(None, "--x-length", help="Programmed X travel X, mm."),
     y_length: Optional[float] = typer.Option(None, "--y-length", help="Programmed Y travel Y, mm."),
@@ -144,14 +156,18 @@ def diagonal(
     from axiscal.errors import InputError
     from axiscal.standards.iso230_6 import diagonal_squareness, diagonal_squareness_multipoint
 
+    given = {"--x-length": x_length, "--y-length": y_length, "--d1": d1, "--d2": d2}
     if file is not None:
         from axiscal.io.ballbar import read_diagonal
+
+        both = [k for k, v in given.items() if v is not None]
+        if both:
+            raise InputError(f"--file holds the travels and the diagonals; drop {', '.join(both)}")
 
         d = read_diagonal(file)
         r = diagonal_squareness_multipoint(d.length_x, d.length_y, d.positions_d1, d.errors_d1,
                                            d.positions_d2, d.errors_d2, datum=datum)
     else:
-        given = {"--x-length": x_length, "--y-length": y_length, "--d1": d1, "--d2": d2}
         missing = [k for k, v in given.items() if v is None]
         if missing:
             raise InputError(f"missing {', '.join(missing)}: give the travels and both diagonal "

@@ -6,7 +6,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from axiscal.errors import DataFormatError, MissingFileError
+from axiscal.errors import DataFormatError, InputError, MissingFileError
 
 __all__ = ["read_text", "write_text_atomic", "write_bytes_atomic"]
 
@@ -17,36 +17,64 @@ MAX_TEXT_BYTES = 256 * 1024 * 1024
 def read_text(path) -> str:
     """Read a UTF-8 (or UTF-8 with BOM) text file; errors name the file and the problem."""
     p = Path(path)
+    try:
+        data = _read_regular_file(p)
+    except MissingFileError:
+        raise
+    except PermissionError:
+        raise MissingFileError(p, "permission denied") from None
+    except OSError as exc:   # a name too long, a loop of links, an I/O error ...
+        raise MissingFileError(p, exc.strerror or str(exc)) from None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise DataFormatError(_not_utf8(data, exc.start), str(p)) from None
+
+
+def _not_utf8(data: bytes, start: int) -> str:
+    """Why the bytes are not UTF-8 text: a binary file, or text saved in another encoding.
+
+    A CSV saved by a spreadsheet in Windows-1252 (``µm`` as the byte 0xB5) is the common case on
+    the shop floor; saying "binary file" there sends the user looking in the wrong place.
+    """
+    head = data[:4096]
+    controls = sum(b < 32 and b not in (9, 10, 13) for b in head)
+    if b"\x00" in head or controls > len(head) // 20:
+        return f"not UTF-8 text (byte {start}); is this a binary file?"
+    return (f"not UTF-8 text (byte {start} is 0x{data[start]:02X}); save the file as UTF-8 "
+            "(it looks like text in another encoding, such as Windows-1252)")
+
+
+def _read_regular_file(p: Path) -> bytes:
     if not p.exists():
         raise MissingFileError(p)
     if p.is_dir():
         raise MissingFileError(p, "is a folder, not a file")
-    try:
-        if p.stat().st_size > MAX_TEXT_BYTES:
-            raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
-        data = p.read_bytes()
-    except PermissionError:
-        raise MissingFileError(p, "permission denied") from None
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise DataFormatError(f"not UTF-8 text (byte {exc.start}); is this a binary file?",
-                              str(p)) from None
+    if not p.is_file():   # a FIFO or a device would block or never end
+        raise MissingFileError(p, "is not a regular file")
+    if p.stat().st_size > MAX_TEXT_BYTES:
+        raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
+    return p.read_bytes()
 
 
 def write_bytes_atomic(path, data: bytes) -> Path:
     """Write ``data`` to ``path`` through a temporary file so no half-written file is left."""
     p = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    except OSError as exc:   # a read-only or pseudo file system, a full disk ...
+        raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
         os.replace(tmp, p)
-    except BaseException:
+    except BaseException as exc:
         try:
             os.unlink(tmp)
         except OSError:
             pass
+        if isinstance(exc, OSError):
+            raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
         raise
     return p
 

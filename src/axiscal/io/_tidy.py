@@ -7,12 +7,10 @@ non-comment line is the header. Used by :mod:`axiscal.io.straightness` and
 
 from __future__ import annotations
 
-import csv as _csv
-import io
 import shlex
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import csv_cells, finite_number
 from axiscal.errors import AxiscalError, DataFormatError
 
 __all__ = ["parse_tidy", "number", "length_factor"]
@@ -41,9 +39,13 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         if not stripped:
             continue
         if stripped.startswith("#"):
-            meta.update(_comment(stripped[1:], meta_keys))
+            for key, value in _comment(stripped[1:], meta_keys).items():
+                if meta.get(key, value) != value:
+                    raise DataFormatError(f"{key}={value} contradicts {key}={meta[key]} declared "
+                                          "above", source, lineno)
+                meta[key] = value
             continue
-        cells = [c.strip() for c in next(_csv.reader(io.StringIO(stripped)))]
+        cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
         if header is None:
             header = [c.lower() for c in cells]
             missing = [c for c in columns if c not in header]

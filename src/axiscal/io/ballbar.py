@@ -92,7 +92,7 @@ def parse_ballbar(text: str, radius_mm: float | None = None, source: str = "<tex
         if "radius_mm" not in meta:
             raise DataFormatError("no radius: declare '# radius_mm=150' or give it as an option",
                                   source)
-        radius_mm = number(meta["radius_mm"], "radius_mm", source, 0)
+        radius_mm = number(meta["radius_mm"], "radius_mm", source, None)
     if not radius_mm > 0:
         raise DataFormatError(f"radius_mm={radius_mm!r}: must be positive", source)
     fd = length_factor(meta.get("deviation_unit", "um"), "deviation_unit", source)
@@ -100,12 +100,22 @@ def parse_ballbar(text: str, radius_mm: float | None = None, source: str = "<tex
     if len(plane) != 2 or plane[0] == plane[1] or any(c not in "XYZ" for c in plane):
         raise DataFormatError(f"plane={plane!r}: must be two of X, Y, Z such as XY", source)
     by: dict[str, list[tuple[float, float]]] = {}
+    seen: dict[tuple[str, float], int] = {}
     for n, r in rows:
         d = r["direction"].lower()
         if d not in ("ccw", "cw"):
             raise DataFormatError(f"direction {r['direction']!r} must be ccw or cw", source, n)
-        by.setdefault(d, []).append((np.radians(number(r["angle"], "angle", source, n)),
-                                     number(r["deviation"], "deviation", source, n) * fd))
+        angle = number(r["angle"], "angle", source, n)
+        if (d, angle) in seen:
+            raise DataFormatError(f"angle {angle:g} deg of the {d} run is given twice (first on "
+                                  f"line {seen[d, angle]})", source, n)
+        seen[d, angle] = n
+        dev = number(r["deviation"], "deviation", source, n) * fd
+        if not abs(dev) < radius_mm * 1e-3:
+            raise DataFormatError(f"deviation {r['deviation']} {meta.get('deviation_unit', 'um')} "
+                                  f"is not smaller than the radius {radius_mm:g} mm; a ballbar "
+                                  "reading minus the nominal radius is", source, n)
+        by.setdefault(d, []).append((np.radians(angle), dev))
     runs = []
     for d, pairs in by.items():
         a = np.array(pairs)
@@ -149,16 +159,23 @@ def parse_diagonal(text: str, source: str = "<text>") -> DiagonalData:
     for key in ("length_x_mm", "length_y_mm"):
         if key not in meta:
             raise DataFormatError(f"no {key}: declare it in the leading comment", source)
-        lengths.append(number(meta[key], key, source, 0) * 1e-3)
+        lengths.append(number(meta[key], key, source, None) * 1e-3)
+        if not lengths[-1] > 0:
+            raise DataFormatError(f"{key}={meta[key]}: a travel must be positive", source)
     fp = length_factor(meta.get("position_unit", "mm"), "position_unit", source)
     fe = length_factor(meta.get("error_unit", "um"), "error_unit", source)
     data: dict[str, list[tuple[float, float]]] = {"D1": [], "D2": []}
+    nominal = float(np.hypot(*lengths))
     for n, r in rows:
         key = r["diagonal"].upper()
         if key not in data:
             raise DataFormatError(f"diagonal {r['diagonal']!r} must be D1 or D2", source, n)
-        data[key].append((number(r["position"], "position", source, n) * fp,
-                          number(r["error"], "error", source, n) * fe))
+        position = number(r["position"], "position", source, n) * fp
+        if not -1e-6 <= position <= nominal + 1e-6:   # 1 µm for rounding in the file
+            raise DataFormatError(f"position {r['position']} {meta.get('position_unit', 'mm')} lies "
+                                  f"off the diagonal, 0 to {nominal * 1e3:g} mm from its start",
+                                  source, n)
+        data[key].append((position, number(r["error"], "error", source, n) * fe))
     for key, pairs in data.items():
         if len({p for p, _ in pairs}) < 2:
             raise DataFormatError(f"{key} has {len(pairs)} reading(s); need two positions or more",

@@ -13,19 +13,18 @@ metadata as ``key=value`` pairs::
     0,+,1,0.8
     0,-,1,-1.2
 
-Units given as options override the file; without either, a linear test in mm/µm is assumed
-only if the header says so: missing units are an error (a rotary file read as millimetres would
-give numbers that look right and are not).
+Units given as options stand in for units the file does not declare; an option that disagrees
+with the file's declaration is refused, and missing units are an error (a rotary file read as
+millimetres, or µm read as mm, would give numbers that look right and are not).
 """
 
 from __future__ import annotations
 
-import csv as _csv
 import io
 import shlex
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import agreed_unit, check_run_number, csv_cells, finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 
@@ -76,22 +75,29 @@ def parse_positioning_csv(
         if not s:
             continue
         if s.startswith("#"):
-            if not data_lines:
-                header_meta.update(_parse_comment(s[1:], source, lineno))
+            for key, value in _parse_comment(s[1:], source, lineno).items():
+                if header_meta.get(key, value) != value:   # two files pasted together?
+                    raise DataFormatError(f"{key}={value} contradicts {key}={header_meta[key]} "
+                                          "declared above", source, lineno)
+                if not data_lines:
+                    header_meta[key] = value
             continue
         data_lines.append((lineno, line))
     if not data_lines:
         raise DataFormatError("no header and no readings (empty file?)", source)
 
-    tu = target_unit or header_meta.pop("target_unit", None)
-    du = deviation_unit or header_meta.pop("deviation_unit", None)
-    header_meta.pop("target_unit", None)
-    header_meta.pop("deviation_unit", None)
-    kind_text = axis_kind or header_meta.pop("axis_kind", None)
-    header_meta.pop("axis_kind", None)
+    tu = agreed_unit(target_unit, header_meta.pop("target_unit", None), "target_unit", source)
+    du = agreed_unit(deviation_unit, header_meta.pop("deviation_unit", None), "deviation_unit",
+                     source)
+    declared_kind = header_meta.pop("axis_kind", None)
+    if (axis_kind and declared_kind
+            and AxisKind.parse(axis_kind) is not AxisKind.parse(declared_kind)):
+        raise DataFormatError(f"the file declares axis_kind={declared_kind} but the option gives "
+                              f"{axis_kind}", source)
+    kind_text = axis_kind or declared_kind
 
     header_lineno, header_line = data_lines[0]
-    columns = [c.strip().lower() for c in next(_csv.reader([header_line]))]
+    columns = [c.strip().lower() for c in csv_cells(header_line, source, header_lineno)]
     value_col = "deviation" if "deviation" in columns else "actual" if "actual" in columns else None
     needed = ["target", "direction", "run"]
     if value_col is None or any(c not in columns for c in needed):
@@ -118,29 +124,8 @@ def parse_positioning_csv(
     kind = AxisKind.parse(kind_text) if kind_text else (
         AxisKind.LINEAR if units.dimension(tu) == "length" else AxisKind.ROTARY
     )
-    idx = {c: columns.index(c) for c in needed + [value_col]}
     to_dev = units.convert(1.0, tu, du) if value_col == "actual" else None
-
-    records = []
-    for lineno, line in data_lines[1:]:
-        row = next(_csv.reader([line]))
-        if len(row) < len(columns):
-            raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}", source, lineno)
-        target = finite_number(row[idx["target"]], "target", source, lineno)
-        try:
-            direction = _direction(row[idx["direction"]])
-        except InputError as exc:
-            raise DataFormatError(str(exc), source, lineno) from None
-        run_f = finite_number(row[idx["run"]], "run", source, lineno)
-        if run_f != int(run_f) or run_f < 1:
-            raise DataFormatError(f"run {row[idx['run']].strip()!r} is not a whole number >= 1",
-                                  source, lineno)
-        raw = row[idx[value_col]].strip()
-        if raw == "" or raw.lower() in {"nan", "na", "missing"}:
-            continue  # a missing reading: counted by the dataset as NaN
-        value = finite_number(raw, value_col, source, lineno)
-        dev = (value - target) * to_dev if to_dev is not None else value
-        records.append((target, direction, int(run_f), dev))
+    records = _records(data_lines[1:], columns, value_col, to_dev, source)
     if not records:
         raise DataFormatError("the header is there but no readings follow", source)
     meta = Metadata(**{k: v for k, v in header_meta.items() if k in _META_KEYS})
@@ -150,6 +135,31 @@ def parse_positioning_csv(
         raise
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
+
+
+def _records(lines, columns: list[str], value_col: str, to_dev: float | None, source: str):
+    """``(target, direction, run, deviation)`` of every reading line; missing readings left out."""
+    idx = {c: columns.index(c) for c in ("target", "direction", "run", value_col)}
+    records = []
+    for lineno, line in lines:
+        row = csv_cells(line, source, lineno)
+        if len(row) < len(columns):
+            raise DataFormatError(f"{len(row)} fields where the header has {len(columns)}",
+                                  source, lineno)
+        target = finite_number(row[idx["target"]], "target", source, lineno)
+        try:
+            direction = _direction(row[idx["direction"]])
+        except InputError as exc:
+            raise DataFormatError(str(exc), source, lineno) from None
+        run = check_run_number(finite_number(row[idx["run"]], "run", source, lineno),
+                               len(lines), source, lineno, row[idx["run"]])
+        raw = row[idx[value_col]].strip()
+        if raw == "" or raw.lower() in {"nan", "na", "missing"}:
+            continue  # a missing reading: counted by the dataset as NaN
+        value = finite_number(raw, value_col, source, lineno)
+        records.append((target, direction, run,
+                        (value - target) * to_dev if to_dev is not None else value))
+    return records
 
 
 def format_positioning_csv(ds: PositioningDataset) -> str:

@@ -26,7 +26,7 @@ import math
 import re
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import agreed_unit, check_run_number, finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
 
@@ -102,7 +102,7 @@ def parse_ecmc(
     if not ref["FWD"] and not ref["BWD"]:
         raise DataFormatError("no REF_DATA_FWD[i,j]= or REF_DATA_BWD[i,j]= lines", source)
 
-    unit_text = target_unit or scalars.get("UNIT") or "mm"
+    unit_text = agreed_unit(target_unit, scalars.get("UNIT"), "UNIT", source) or "mm"
     tu = units.canonical(unit_text)
     dim = units.dimension(tu)
     du = units.canonical(deviation_unit) if deviation_unit else ("um" if dim == "length" else "arcsec")
@@ -119,6 +119,7 @@ def parse_ecmc(
     _check_declared(scalars, "POSITIONS", len(ids), source)
     cycles = max((j for d in ref.values() for (_i, j) in d), default=0)
     _check_declared(scalars, "CYCLES", cycles, source)
+    check_run_number(cycles, sum(len(d) for d in ref.values()), source, what="cycle")
 
     records = []
     for dname, sign in (("FWD", "+"), ("BWD", "-")):

@@ -51,6 +51,8 @@ def parse_positioning_json(text: str, source: str = "<text>") -> PositioningData
                if k not in d]
     if missing:
         raise DataFormatError(f"missing key(s): {', '.join(missing)}", source)
+    if not isinstance(d.get("metadata", {}), (dict, type(None))):
+        raise DataFormatError(f"'metadata' must be a JSON object, not {d['metadata']!r}", source)
     try:
         targets = _array(d["targets"], "targets")
         up = _array(d["up"], "up", rows=len(targets))

@@ -31,6 +31,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from axiscal._parse import check_run_number
 from axiscal.errors import ConfigError, DataFormatError
 from axiscal.instruments.five_dof import Detector, FiveDofSystem, Mounting
 from axiscal.io._files import read_text
@@ -109,6 +110,9 @@ def parse_motion_config(text: str, source: str = "<config>") -> MotionConfig:
     )
     if cfg["drift_window"] % 2 == 0:
         raise ConfigError(f"{source}: [test] drift_window = {cfg['drift_window']} must be odd")
+    if cfg["samples"] - 1 > cfg["dwell"]:
+        raise ConfigError(f"{source}: [test] samples = {cfg['samples']} readings 1 s apart do not "
+                          f"fit in dwell_s = {cfg['dwell']:g} s at each stop")
     machine.done()
     test.done()
     cfg.update(axis=_axis(t.sub("axis"), cfg["axis_name"]), system=_system(t),
@@ -190,10 +194,11 @@ def _harmonics(t: "_Table", unit: float, key: str = "harmonics") -> HarmonicSeri
     out = []
     for row in rows:
         if (not isinstance(row, list) or len(row) != 3
-                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in row)
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                           and math.isfinite(v) for v in row)
                 or int(row[0]) != row[0] or row[0] < 1):
             raise ConfigError(f"{t.where(key)}: entry {row!r} must be [order (whole, >= 1), "
-                              "amplitude, phase_deg]")
+                              "amplitude, phase_deg], finite numbers")
         out.append(Harmonic(float(row[1]) * unit, TWO_PI / int(row[0]), math.radians(row[2])))
     return HarmonicSeries(tuple(out)) if out else ZERO
 
@@ -247,8 +252,9 @@ class _Table:
         if v is None:
             return None
         if (not isinstance(v, list) or len(v) != n
-                or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
-            raise ConfigError(f"{self.where(key)} = {v!r} must be a list of {n} numbers")
+                or not all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                           and math.isfinite(x) for x in v)):
+            raise ConfigError(f"{self.where(key)} = {v!r} must be a list of {n} finite numbers")
         return [float(x) for x in v]
 
     def pair(self, key, default_si, unit):
@@ -321,9 +327,8 @@ def _header(cells, source, line):
 def _assemble(rows, header, title, source) -> MotionErrorData:
     runs: dict[int, list] = {}
     for line, r in rows:
-        if r["run"] != int(r["run"]) or r["run"] < 1:
-            raise DataFormatError(f"run {r['run']:g} must be a whole number >= 1", source, line)
-        runs.setdefault(int(r["run"]), []).append((line, r))
+        run = check_run_number(r["run"], len(rows), source, line)
+        runs.setdefault(run, []).append((line, r))
     first = None
     out = {k: [] for k in COLUMNS if k in header}
     for n, lst in sorted(runs.items()):

@@ -141,7 +141,7 @@ def axis_from_config(cfg: dict[str, Any]):
     errors = tuple(_num(cfg, "sensors", k, sen, 0.0) for k in (
         "temperature_error", "pressure_error", "humidity_error", "material_error"))
     switch = ReferenceSwitch(position=_num(cfg, "switch", "position_mm", sw, 100.0) * 1e-3,
-                             repeatability=_num(cfg, "switch", "repeatability_um", sw, 0.0) * 1e-6,
+                             repeatability=_repeatability(cfg, "switch", sw) * 1e-6,
                              active_above=_direction(cfg, "switch", sw) > 0)
     return ScaleAxis(laser=comp.laser, compensator=comp, switch=switch,
                      controller=_controller(cfg, comp.output), air=history,
@@ -159,14 +159,18 @@ def homing_from_config(cfg: dict[str, Any], axis) -> dict[str, Any]:
         "start": _num(cfg, "homing", "start_mm", h, default_start) * 1e-3,
         "homing_speed": _num(cfg, "homing", "speed_mm_per_min", h, 300.0) / 60e3,
     }
+    _within_reach(cfg, "homing", "start_mm", kwargs["start"], axis.switch.position)
     if "seed" in h:
-        kwargs["rng"] = np.random.default_rng(_int(cfg, "homing", "seed", h, 0))
+        kwargs["rng"] = np.random.default_rng(_seed(cfg, "homing", h))
     if "power_up_phase" in h:
-        kwargs["power_up_phase"] = _int(cfg, "homing", "power_up_phase", h, 0)
+        kwargs["power_up_phase"] = _phase(cfg, "homing", "power_up_phase", h,
+                                          axis.output.counts_per_period)
     moves = []
     for mv in cfg.get("move", []):
         if "target_mm" not in mv:
             raise ConfigError(f"{cfg['_source']}: a [[move]] needs target_mm")
+        _within_reach(cfg, "move", "target_mm", _num(cfg, "move", "target_mm", mv, 0.0) * 1e-3,
+                      axis.switch.position)
         moves.append(Move(target=_num(cfg, "move", "target_mm", mv, 0.0) * 1e-3,
                           speed=_num(cfg, "move", "speed_mm_per_min", mv, 6000.0) / 60e3,
                           acceleration=_num(cfg, "move", "acceleration", mv, 1.0)))
@@ -186,20 +190,27 @@ def twin_axis_from_config(cfg: dict[str, Any]):
     d = _direction(cfg, "gantry", g)
 
     def counts(key, default_mm):
-        return int(round(_num(cfg, "gantry", key, g, default_mm) * 1e-3 / q))
+        mm = _num(cfg, "gantry", key, g, default_mm)
+        if abs(mm) > MAX_POSITION_MM:   # beyond any machine (and beyond a float of counts)
+            raise ConfigError(f"{cfg['_source']}: [gantry] {key} = {mm:g} mm lies beyond "
+                              f"±{MAX_POSITION_MM:g} mm")
+        return int(round(mm * 1e-3 / q))
 
     s1 = counts("switch_1_mm", 100.0)
     s2 = counts("switch_2_mm", 100.0)
+    starts = []
+    for i, s in ((1, s1), (2, s2)):
+        starts.append(counts(f"start_{i}_mm", (s - d * 512) * q * 1e3))
+        _within_reach(cfg, "gantry", f"start_{i}_mm", starts[-1] * q, s * q)
     gantry = TwinAxis(output=out, controller=_controller(cfg, out), switch_1=s1, switch_2=s2,
-                      start_1=counts("start_1_mm", (s1 - d * 512) * q * 1e3),
-                      start_2=counts("start_2_mm", (s2 - d * 512) * q * 1e3), direction=d)
-    rng = np.random.default_rng(_int(cfg, "gantry", "seed", g, 0)) if "seed" in g else None
-    sigma = _num(cfg, "gantry", "switch_repeatability_um", g, 0.0) * 1e-6 / q
+                      start_1=starts[0], start_2=starts[1], direction=d)
+    rng = np.random.default_rng(_seed(cfg, "gantry", g)) if "seed" in g else None
+    sigma = _repeatability(cfg, "gantry", g, "switch_repeatability_um") * 1e-6 / q
     run: dict[str, Any] = {}
     for i in (1, 2):
         key = f"power_up_phase_{i}"
         if key in g:
-            run[key] = _int(cfg, "gantry", key, g, 0)
+            run[key] = _phase(cfg, "gantry", key, g, out.counts_per_period)
         elif rng is not None:
             run[key] = int(rng.integers(out.counts_per_period))
         if rng is not None and sigma > 0:
@@ -232,6 +243,45 @@ def _int(cfg, section, key, table, default) -> int:
     if isinstance(v, bool) or not isinstance(v, int):
         raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {v!r} must be a whole number")
     return int(v)
+
+
+#: Longest distance the simulation follows from the switch: it samples every 1/8 period (about
+#: 10 nm), so 5 m is already some hundred megabytes.
+MAX_REACH_MM = 5000.0
+#: Largest machine coordinate taken: 1 km.
+MAX_POSITION_MM = 1e6
+#: Largest switch repeatability taken as one (a reference switch repeats within micrometres).
+MAX_REPEATABILITY_UM = 1000.0
+
+
+def _seed(cfg, section, table) -> int:
+    v = _int(cfg, section, "seed", table, 0)
+    if v < 0:
+        raise ConfigError(f"{cfg['_source']}: [{section}] seed = {v} must be >= 0")
+    return v
+
+
+def _phase(cfg, section, key, table, counts_per_period: int) -> int:
+    v = _int(cfg, section, key, table, 0)
+    if not 0 <= v < counts_per_period:
+        raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {v} counts must lie in 0 to "
+                          f"{counts_per_period - 1} (one output period)")
+    return v
+
+
+def _repeatability(cfg, section, table, key="repeatability_um") -> float:
+    v = _num(cfg, section, key, table, 0.0)
+    if not 0 <= v <= MAX_REPEATABILITY_UM:
+        raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {v:g} µm must lie in 0 to "
+                          f"{MAX_REPEATABILITY_UM:g} µm")
+    return v
+
+
+def _within_reach(cfg, section, key, position_m: float, switch_m: float) -> None:
+    if abs(position_m - switch_m) * 1e3 > MAX_REACH_MM:
+        raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {position_m * 1e3:g} mm is more "
+                          f"than {MAX_REACH_MM:g} mm from the switch at {switch_m * 1e3:g} mm; the "
+                          "simulation follows every count and stops there")
 
 
 def _direction(cfg, section, table) -> int:

@@ -48,7 +48,8 @@ from axiscal.machines.linear import LinearAxis
 from axiscal.machines.rotary import TWO_PI, ErrorMotion, RotaryAxis
 from axiscal.units import ARCSEC, DEG, MM, UM
 
-__all__ = ["refuse_unknown_keys", "axis_from_config", "linear_axis_from_config", "rotary_axis_from_config", "load_toml"]
+__all__ = ["refuse_unknown_keys", "axis_from_config", "linear_axis_from_config",
+           "rotary_axis_from_config", "load_toml", "check_test_types"]
 
 _LINEAR_KEYS = {"name", "kind", "travel_mm", "scale_error_ppm", "bend_um", "backlash_um",
                 "repeatability_um", "thermal_ppm_per_hour", "periodic", "irregular"}
@@ -71,8 +72,62 @@ def load_toml(path) -> dict[str, Any]:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
 
 
+#: The value type of each ``[test]`` key a positioning plan reads (see
+#: :func:`axiscal.procedures.positioning.plan_from_config`); the plan refuses unknown keys.
+_TEST_TYPES = {
+    "runs": "count", "n_targets": "count", "seed": "seed", "cycle": "text",
+    "bidirectional": "bool", "overrun": "number", "dwell_s": "number", "length_mm": "number",
+    "start_mm": "number", "irregularity": "number", "travel_deg": "number", "start_deg": "number",
+    "step_deg": "number", "measurement_sigma": "number", "speed_deg_s": "number",
+}
+
+
+#: Bounds beyond which a plan would only exhaust memory (the command line uses the same).
+MAX_TEST = {"runs": 100, "n_targets": 10_000, "length_mm": 1e6, "travel_deg": 36_000.0}
+
+
+def check_test_types(test: Any) -> None:
+    """Refuse a ``[test]`` value of the wrong TOML type before the plan converts it.
+
+    ``runs = "five"`` would end in ``int()``'s ValueError, ``runs = 2.7`` would silently become 2
+    and ``bidirectional = "no"`` would be true; each is named here instead, and so are counts and
+    travels beyond :data:`MAX_TEST` (a billion targets is a typing slip that exhausts memory).
+
+    Examples
+    --------
+    >>> check_test_types({"runs": 5, "step_deg": 45.0, "bidirectional": True})
+    >>> check_test_types({"runs": 2.7})
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.ConfigError: [test] runs = 2.7 must be a whole number >= 1
+    """
+    if not isinstance(test, dict):
+        raise ConfigError(f"[test] must be a table, got {test!r}")
+    for key, v in test.items():
+        kind = _TEST_TYPES.get(key)
+        is_int = isinstance(v, int) and not isinstance(v, bool)
+        if kind == "count" and not (is_int and v >= 1):
+            raise ConfigError(f"[test] {key} = {v!r} must be a whole number >= 1")
+        if kind == "seed" and not (is_int and v >= 0):
+            raise ConfigError(f"[test] {key} = {v!r} must be a whole number >= 0")
+        if kind == "number":
+            _num(test, key, None, "[test] ")
+        if kind == "text" and not isinstance(v, str):
+            raise ConfigError(f"[test] {key} = {v!r} must be text")
+        if kind == "bool" and not isinstance(v, bool):
+            raise ConfigError(f"[test] {key} = {v!r} must be true or false")
+        if key in MAX_TEST and abs(v) > MAX_TEST[key]:
+            raise ConfigError(f"[test] {key} = {v!r} is more than {MAX_TEST[key]:g}")
+    step, travel = test.get("step_deg"), test.get("travel_deg", 360.0)
+    if step is not None and step > 0 and travel / step > MAX_TEST["n_targets"]:
+        raise ConfigError(f"[test] step_deg = {step!r} over {travel!r} deg gives more than "
+                          f"{MAX_TEST['n_targets']} targets")
+
+
 def axis_from_config(table: dict[str, Any]) -> LinearAxis | RotaryAxis:
     """Build a simulated axis from an ``[axis]`` table (``kind`` decides which)."""
+    if not isinstance(table, dict):
+        raise ConfigError(f"[axis] must be a table, got {table!r}")
     kind = str(table.get("kind", "")).lower()
     if kind == "linear":
         return linear_axis_from_config(table)
@@ -109,11 +164,11 @@ def linear_axis_from_config(t: dict[str, Any]) -> LinearAxis:
     irr = t.get("irregular")
     if irr:
         refuse_unknown_keys("[axis] irregular", irr, {"rms_um", "seed"})
-        error = error + random_profile(_num(irr, "rms_um", None) * UM, length, range(3, 60),
-                                       np.random.default_rng(int(irr.get("seed", 0))))
+        error = error + random_profile(_nonnegative(irr, "rms_um") * UM, length, range(3, 60),
+                                       np.random.default_rng(_seed(irr, "[axis] irregular")))
     try:
         return LinearAxis(
-            name=str(t.get("name", "X")),
+            name=_name(t, "X"),
             travel=(lo * MM, hi * MM),
             error=error,
             backlash=_num(t, "backlash_um", 0.0) * UM,
@@ -140,10 +195,10 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
     irr = t.get("irregular")
     if irr:
         refuse_unknown_keys("[axis] irregular", irr, {"rms_arcsec", "seed", "orders"})
-        lo, hi = _pair(irr.get("orders", [5, 40]), "irregular.orders")
+        lo, hi = _orders_range(irr.get("orders", [5, 40]))
         positioning = positioning + random_profile(
-            _num(irr, "rms_arcsec", None) * ARCSEC, TWO_PI, range(int(lo), int(hi) + 1),
-            np.random.default_rng(int(irr.get("seed", 0))))
+            _nonnegative(irr, "rms_arcsec") * ARCSEC, TWO_PI, range(lo, hi + 1),
+            np.random.default_rng(_seed(irr, "[axis] irregular")))
     travel = None
     if "travel_deg" in t:
         lo, hi = _pair(t["travel_deg"], "travel_deg")
@@ -156,7 +211,7 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
             motions[name] = _error_motion(em[name], unit, k, f"[axis.error_motions.{name}]")
     try:
         return RotaryAxis(
-            name=str(t.get("name", "C")),
+            name=_name(t, "C"),
             positioning=positioning,
             backlash=_num(t, "backlash_arcsec", 0.0) * ARCSEC,
             repeatability_sigma=_num(t, "repeatability_arcsec", 0.0) * ARCSEC,
@@ -188,7 +243,7 @@ def _orders(items, unit: str, k: float, where: str) -> HarmonicSeries:
             raise ConfigError(f"{where}[{i}] must be a table")
         refuse_unknown_keys(f"{where}[{i}]", h, {"order", f"amplitude_{unit}", "phase_deg"})
         order = h.get("order")
-        if not isinstance(order, int) or order < 1:
+        if isinstance(order, bool) or not isinstance(order, int) or order < 1:
             raise ConfigError(f"{where}[{i}] order = {order!r} must be a whole number >= 1 per turn")
         out.append(Harmonic(_num(h, f"amplitude_{unit}", None) * k, TWO_PI / order,
                             _num(h, "phase_deg", 0.0) * DEG))
@@ -205,21 +260,57 @@ def refuse_unknown_keys(where: str, t: Any, allowed: set[str]) -> None:
                           f"{', '.join(sorted(allowed))}")
 
 
-def _num(t: dict[str, Any], key: str, default: float | None) -> float:
+def _num(t: dict[str, Any], key: str, default: float | None, where: str = "") -> float:
     if key not in t:
         if default is None:
             raise ConfigError(f"missing key {key!r}")
         return default
     v = t[key]
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ConfigError(f"{key} = {v!r} must be a finite number")
+        raise ConfigError(f"{where}{key} = {v!r} must be a finite number")
     return float(v)
+
+
+def _nonnegative(t: dict[str, Any], key: str) -> float:
+    """A required number >= 0 (an rms or a standard deviation)."""
+    v = _num(t, key, None)
+    if v < 0:
+        raise ConfigError(f"{key} = {t[key]!r} must be >= 0 (it is a root mean square)")
+    return v
+
+
+def _seed(t: dict[str, Any], where: str) -> int:
+    """A random seed: a whole number >= 0 (numpy refuses negative seeds)."""
+    v = t.get("seed", 0)
+    if isinstance(v, bool) or not isinstance(v, int) or v < 0:
+        raise ConfigError(f"{where} seed = {v!r} must be a whole number >= 0")
+    return v
+
+
+def _name(t: dict[str, Any], default: str) -> str:
+    v = t.get("name", default)
+    if not isinstance(v, str) or not v.strip():
+        raise ConfigError(f"[axis] name = {v!r} must be the axis name as text, e.g. \"{default}\"")
+    return v
+
+
+#: Highest order of a rotary axis's irregular profile: one harmonic per 0.1 degree.
+MAX_IRREGULAR_ORDER = 3600
+
+
+def _orders_range(v: Any) -> tuple[int, int]:
+    lo, hi = _pair(v, "irregular.orders")
+    if lo != int(lo) or hi != int(hi) or lo < 1 or hi > MAX_IRREGULAR_ORDER:
+        raise ConfigError(f"irregular.orders = {v!r} must be whole orders per turn, 1 <= low < "
+                          f"high <= {MAX_IRREGULAR_ORDER}")
+    return int(lo), int(hi)
 
 
 def _pair(v: Any, key: str) -> tuple[float, float]:
     if (not isinstance(v, list) or len(v) != 2
-            or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
-        raise ConfigError(f"{key} = {v!r} must be a pair of numbers [low, high]")
+            or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+                       for x in v)):
+        raise ConfigError(f"{key} = {v!r} must be a pair of finite numbers [low, high]")
     lo, hi = float(v[0]), float(v[1])
     if not hi > lo:
         raise ConfigError(f"{key} = {v!r}: the second number must be larger than the first")

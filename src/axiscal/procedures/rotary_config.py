@@ -87,7 +87,7 @@ from axiscal.datasets import AxisKind, Metadata
 from axiscal.errors import ConfigError, InputError
 from axiscal.instruments.laser import SimulatedAngularInterferometer
 from axiscal.instruments.rotary_calibrator import SimulatedRotaryCalibrator
-from axiscal.machines.config import refuse_unknown_keys
+from axiscal.machines.config import check_test_types, refuse_unknown_keys
 from axiscal.machines.error_functions import Harmonic, HarmonicSeries
 from axiscal.machines.rotary import RotaryAxis
 from axiscal.procedures.positioning import TestPlan
@@ -154,13 +154,17 @@ def rotary_config_from_dict(config: dict[str, Any]) -> RotaryCalibrationConfig:
     if not isinstance(config, dict):
         raise ConfigError("the configuration must be a TOML table")
     refuse_unknown_keys("top level", config, _TABLES)
-    seed = _int(config, "seed", 1, "top level")
-    axis_t = dict(config.get("axis", {}) or {})
+    seed = _int(config, "seed", 1, "top level", lo=0)
+    if "axis" not in config:
+        raise ConfigError("the configuration has no [axis] table: say what is calibrated (an empty "
+                          "file would simulate a perfect axis)")
+    axis_t = dict(_table(config, "axis"))
     axis_t.setdefault("kind", "rotary")
     if str(axis_t["kind"]).lower() != "rotary":
         raise ConfigError(f"[axis] kind = {axis_t['kind']!r}; a rotary calibration needs 'rotary'")
     axis = axis_from_config(axis_t)
-    test = dict(config.get("test", {}) or {})
+    test = dict(_table(config, "test"))
+    check_test_types(test)
     speed = _num(test.pop("speed_deg_s", 10.0), "[test] speed_deg_s", positive=True)
     plan = plan_from_config(test, AxisKind.ROTARY, axis.name)
     meta_t = config.get("meta", {}) or {}
@@ -211,8 +215,8 @@ def _calibrator(t: dict[str, Any]) -> SimulatedRotaryCalibrator:
     kw = _convert("[calibrator]", t, _CALIB, extra)
     kw["heads_used"] = _int(t, "read_heads", 2, "[calibrator]")
     kw["error_map"] = _bool(t.get("error_map", True), "[calibrator] error_map")
-    kw["map_points"] = _int(t, "map_points", 720, "[calibrator]")
-    rng = np.random.default_rng(_int(t, "seed", 11, "[calibrator]"))
+    kw["map_points"] = _int(t, "map_points", 720, "[calibrator]", lo=2)
+    rng = np.random.default_rng(_int(t, "seed", 11, "[calibrator]", lo=0))
     cal = _make("[calibrator]", SimulatedRotaryCalibrator.xr20_like, dict(rng=rng, **kw))
     servo = _num(t.get("servo_arcsec", 0.5), "[calibrator] servo_arcsec") * ARCSEC
     return _make("[calibrator]", lambda **k: replace(cal, **k), dict(servo_sigma=servo))
@@ -234,7 +238,7 @@ def _offaxis(t: dict[str, Any]) -> OffAxisSetup:
     kw["profile_moving_optic"] = str(t.get("yaw_profile_moving_optic", "interferometer"))
     kw["profile_direction_sign"] = _int(t, "yaw_profile_direction_sign", 1, "[offaxis]")
     sign = t.get("yaw_sign", "auto")
-    if sign != "auto" and sign not in (1, -1):
+    if sign != "auto" and (isinstance(sign, bool) or sign not in (1, -1)):
         raise ConfigError(f"[offaxis] yaw_sign = {sign!r} must be \"auto\", 1 or -1")
     kw["stated_sign"] = None if sign == "auto" else int(sign)
     letter = str(t.get("linear_axis", "Y"))
@@ -247,13 +251,36 @@ def _offaxis(t: dict[str, Any]) -> OffAxisSetup:
     return _make("[offaxis]", OffAxisSetup, kw)
 
 
+def _table(config: dict[str, Any], name: str) -> dict[str, Any]:
+    t = config.get(name, {})
+    if not isinstance(t, dict):
+        raise ConfigError(f"[{name}] must be a table, got {t!r}")
+    return t
+
+
 def _build(where: str, cls, t: dict[str, Any], table: dict[str, tuple[str, float]]):
     return _make(where, cls, _convert(where, t, table, set()))
 
 
+#: Keys that are a noise, an rms or an error size (>= 0) or a distance or speed (> 0).
+_NONNEGATIVE = {"dial_noise_mm", "shutter_noise_mm", "centring_noise_mm", "noise_arcsec",
+                "resolution_arcsec", "graduation_error_rms_arcsec", "bearing_wander_um",
+                "eccentricity_um", "map_uncertainty_arcsec", "alignment_noise_mm",
+                "profile_noise_arcsec"}
+_POSITIVE = {"tir_radius_mm", "laser_distance_m", "spacing_mm", "nominal_spacing_mm",
+             "radius_mm", "interferometer_distance_mm", "feed_mm_min"}
+
+
 def _convert(where: str, t: Any, table: dict[str, tuple[str, float]], extra: set[str]) -> dict:
     refuse_unknown_keys(where, t, set(table) | extra)
-    return {name: _num(t[key], f"{where} {key}") * k for key, (name, k) in table.items() if key in t}
+    out = {}
+    for key, (name, k) in table.items():
+        if key in t:
+            v = _num(t[key], f"{where} {key}", positive=key in _POSITIVE)
+            if key in _NONNEGATIVE and v < 0:
+                raise ConfigError(f"{where} {key} = {t[key]!r} must be >= 0")
+            out[name] = v * k
+    return out
 
 
 def _make(where: str, fn, kw: dict):
@@ -274,10 +301,11 @@ def _num(v: Any, where: str, positive: bool = False) -> float:
     return float(v)
 
 
-def _int(t: dict, key: str, default: int, where: str) -> int:
+def _int(t: dict, key: str, default: int, where: str, lo: int | None = None) -> int:
     v = t.get(key, default)
-    if isinstance(v, bool) or not isinstance(v, int):
-        raise ConfigError(f"{where} {key} = {v!r} must be a whole number")
+    if isinstance(v, bool) or not isinstance(v, int) or (lo is not None and v < lo):
+        raise ConfigError(f"{where} {key} = {v!r} must be a whole number"
+                          + (f" >= {lo}" if lo is not None else ""))
     return v
 
 
