@@ -56,3 +56,11 @@ def test_directions_and_metadata():
     ds = PositioningDataset.from_arrays("rotary", [0, 90], [[1, 2], [3, 4]])
     assert "rotary axis, unidirectional" in str(ds)
     assert ds.with_metadata(machine="TT").metadata.machine == "TT"
+
+
+def test_absurd_magnitudes_are_refused_before_they_overflow():
+    """Review finding: deviations near 1e308 made ISO 230-2 statistics overflow to inf."""
+    with pytest.raises(InputError, match="beyond"):
+        PositioningDataset.from_arrays("linear", [0, 1], [[1e300, 2], [3, 4]])
+    with pytest.raises(InputError, match="targets hold a value beyond"):
+        PositioningDataset.from_arrays("linear", [0, 1e200], [[1, 2], [3, 4]])

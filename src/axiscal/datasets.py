@@ -246,9 +246,13 @@ class PositioningDataset:
         m = targets.size
         up = _as_float_array("up", self.up, ndim=2, rows=m)
         down = _as_float_array("down", self.down, ndim=2, rows=m)
-        for name, arr in (("up", up), ("down", down)):
+        for name, arr in (("targets", targets), ("up", up), ("down", down)):
             if np.any(np.isinf(arr)):
-                raise InputError(f"deviations ({name}) contain infinity")
+                raise InputError(f"{name} contain infinity")
+            if np.nanmax(np.abs(arr), initial=0.0) > _MAX_MAGNITUDE:
+                # squares and sums of such values overflow: no measurement is within decades of it
+                raise InputError(f"{name} hold a value beyond ±{_MAX_MAGNITUDE:g}; check the file's "
+                                 "units and columns")
         if up.shape[1] == 0 and down.shape[1] == 0:
             raise InputError("no runs at all: both directions are empty")
         for name, arr in (("up", up), ("down", down)):
@@ -416,6 +420,10 @@ class PositioningDataset:
 
 
 # -- helpers ------------------------------------------------------------------------------
+#: Largest magnitude accepted for a target or a deviation (any unit); beyond it statistics overflow.
+_MAX_MAGNITUDE = 1e100
+
+
 def _as_float_array(name: str, value, ndim: int, rows: int | None = None) -> np.ndarray:
     try:
         arr = np.array(value, dtype=float)

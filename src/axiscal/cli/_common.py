@@ -22,10 +22,23 @@ __all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report
 
 
 def console():
-    """A rich console on stdout (imported on first use)."""
+    """A rich console on stdout (imported on first use).
+
+    Piped or redirected output has no terminal width; rich would fall back to 80 columns and cut
+    numbers with an ellipsis ("121.6…"), which in a calibration table is a wrong number. So a
+    non-terminal gets ``COLUMNS`` if set, else 160 columns.
+    """
+    import os
+
     from rich.console import Console
 
-    return Console(highlight=False)
+    width = None
+    if not sys.stdout.isatty():
+        try:
+            width = int(os.environ.get("COLUMNS", "") or 160)
+        except ValueError:
+            width = 160
+    return Console(highlight=False, width=width)
 
 
 def jsonable(obj: Any) -> Any:

@@ -71,10 +71,10 @@ def _rotary_calibration(out: Path):
 
 
 def _write_index(out: Path, pages) -> None:
-    from axiscal.report.html import Report
+    from axiscal.report.html import Report, unit_label
 
     rep = Report("axiscal demonstration", subtitle="Simulated ISO 230-2 positioning tests, evaluated and compared with the truth")
-    rows = [[label, r.A, r.E, r.R, r.B, r.deviation_unit] for label, _, r in pages]
+    rows = [[label, r.A, r.E, r.R, r.B, unit_label(r.deviation_unit)] for label, _, r in pages]
     rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
     rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
                                   for label, href, _ in pages) + "</ul>")

@@ -121,7 +121,7 @@ def simulate(
 
         motion_report(f"Five motion errors — {cfg.machine or config.name}", result=result,
                       runs=[measured], truth=[run.truth], crosstalk=ct, resolutions=res,
-                      metadata={"Configuration": str(config), "Axis": cfg.axis_name,
+                      metadata={"Configuration": config.name, "Axis": cfg.axis_name,
                                 "Drift compensation": not no_compensation},
                       notes=[_MOUNTING_NOTE]).write(report)
     diff = measured - run.truth

@@ -420,7 +420,9 @@ def plan_from_config(test: dict, kind: AxisKind, axis_name: str = "") -> TestPla
     ``cycle``, ``bidirectional``, ``overrun`` (mm or deg), ``dwell_s``.
     """
     from axiscal.errors import ConfigError
+    from axiscal.machines.config import check_test_types
 
+    check_test_types(test)
     common = {"runs", "cycle", "bidirectional", "overrun", "dwell_s", "n_targets"}
     own = ({"length_mm", "start_mm", "irregularity", "seed"} if kind is AxisKind.LINEAR
            else {"travel_deg", "start_deg", "step_deg"})
@@ -464,8 +466,14 @@ def simulate_from_config(config: dict, seed: int = 1) -> SimulatedTest:
         raise ConfigError("the configuration has no [axis] table")
     axis = axis_from_config(config["axis"])
     kind = AxisKind.LINEAR if axis.__class__.__name__ == "LinearAxis" else AxisKind.ROTARY
-    test = dict(config.get("test", {}))
+    from axiscal.machines.config import check_test_types
+
+    test = config.get("test", {})
+    check_test_types(test)
+    test = dict(test)
     sigma = float(test.pop("measurement_sigma", 0.0))
+    if sigma < 0:
+        raise ConfigError(f"[test] measurement_sigma = {sigma!r} must be zero or positive")
     plan = plan_from_config(test, kind, axis.name)
     try:
         meta = Metadata(**{k: str(v) for k, v in config.get("meta", {}).items()}, axis=axis.name)

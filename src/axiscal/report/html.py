@@ -139,7 +139,7 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
             "Expansion coefficient [1/K]": env.expansion_coefficient,
         },
     )
-    u = _unit_label(result.deviation_unit)
+    u = unit_label(result.deviation_unit)
     rep.add_heading("Result")
     params = result.parameters()
     rows = [[_PARAM_LABEL[k], v, _PARAM_MEANING[k]] for k, v in params.items()]
@@ -158,9 +158,9 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
     rep.add_warnings(result.warnings)
     rep.add_figure(iso230_2_figure(result, dataset),
                    f"Mean deviation per direction with ±2s bands and every run's readings "
-                   f"({u} against target in {_unit_label(result.target_unit)}).")
+                   f"({u} against target in {unit_label(result.target_unit)}).")
     rep.add_heading("Per target")
-    headers = [f"Target [{_unit_label(result.target_unit)}]", "n↑",
+    headers = [f"Target [{unit_label(result.target_unit)}]", "n↑",
                *(f"{h} [{u}]" for h in ("x̄↑", "s↑")), "n↓",
                *(f"{h} [{u}]" for h in ("x̄↓", "s↓", "x̄", "B_i", "R↑_i", "R↓_i", "R_i"))]
     rows = [[target_label(r["target"]), r["n_up"], r["mean_up"], r["s_up"], r["n_down"], r["mean_down"],
@@ -201,7 +201,8 @@ def target_label(value: float) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def _unit_label(unit: str) -> str:
+def unit_label(unit: str) -> str:
+    """How a unit is written for people: µm for um, ° for deg, otherwise as it is."""
     return {"um": "µm", "deg": "°"}.get(unit, unit)
 
 

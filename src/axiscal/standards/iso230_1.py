@@ -565,6 +565,12 @@ def _xy(positions, deviations) -> tuple[np.ndarray, np.ndarray]:
         raise InsufficientRunsError(
             f"{x.size} reading(s) at {np.unique(x).size} distinct position(s); a reference line "
             "needs at least 2 distinct positions")
+    span = float(np.ptp(x))
+    if span < 1e-100 or span <= 1e-12 * float(np.abs(x).max()):
+        # the slope of any line through the data would overflow or be pure rounding noise
+        raise InputError(
+            f"positions span only {span:.3g} (largest |position| {float(np.abs(x).max()):.3g}); "
+            "too narrow to fit a reference line")
     return x, y
 
 
