@@ -121,3 +121,21 @@ def test_huge_numbers_are_refused_by_the_reader(name):
     assert lines[i].endswith("1e308")
     with pytest.raises(DataFormatError, match="out of range"):
         controller(name).parse("\n".join(lines) + "\n")
+
+
+def test_linuxcnc_parse_refuses_an_unknown_file_type():
+    """Was read silently as type 1."""
+    text = controller("linuxcnc").write(_table()).text
+    with pytest.raises(ValueError, match="file_type = 2"):
+        controller("linuxcnc").parse(text, file_type=2)
+
+
+@pytest.mark.parametrize("extra", ["Y", "BACKLASH  Y"])
+def test_heidenhain_extra_column_is_refused_not_ignored(extra):
+    """A fourth column not named BACKLASH (or a fifth) was read as BACKLASH or dropped."""
+    lines = controller("heidenhain").write(_table(False)).text.splitlines()
+    n_extra = len(extra.split())
+    lines[1] += "  " + extra
+    lines[2:-1] = [x + "  +0.0" * n_extra for x in lines[2:-1]]
+    with pytest.raises(DataFormatError, match="has columns this reader would drop"):
+        controller("heidenhain").parse("\n".join(lines) + "\n")
