@@ -229,11 +229,18 @@ def refractive_index(
     else:
         pv = np.asarray(water_vapour_pressure(t, humidity, dew_point=dew_point,
                                               vapour_pressure=vapour_pressure))
-    xv = np.asarray(enhancement_factor(p, t)) * pv / p
-    _refuse("water_mole_fraction", xv, xv >= 1, "",
+    with np.errstate(over="ignore", invalid="ignore"):   # refused below if it overflows
+        xv = np.asarray(enhancement_factor(p, t)) * pv / p
+    _refuse("water_mole_fraction", xv, ~(xv < 1), "",
             "is not below 1: the water vapour pressure reaches the air pressure (no air is left)")
     _check_validity(name, check, water_mole_fraction=xv)
-    return _FUNCTIONS[name](lam, t, p, pv, x_co2)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        n = _FUNCTIONS[name](lam, t, p, pv, x_co2)
+    if not np.all(np.isfinite(n)):
+        raise InputError(f"the {EQUATIONS[name]} equation gives no finite refractive index at "
+                         "these inputs (temperature, pressure or wavelength far outside its "
+                         "validity)")
+    return n
 
 
 def air_wavelength(temperature=20.0, pressure=101325.0, humidity=None, **kwargs):
