@@ -246,9 +246,7 @@ WRITTEN = {name: controller(name).write(_table(name), **({"detection_unit": 0.00
            for name in CONTROLLERS}
 
 
-# fanuc is left out: its parse() raises KeyError 3626 on a bidirectional file whose parameter 3626
-# line is missing (reported; compensation/controllers is outside this review's files).
-@pytest.mark.parametrize("name", sorted(set(CONTROLLERS) - {"fanuc"}))
+@pytest.mark.parametrize("name", sorted(CONTROLLERS))
 @SETTINGS
 @given(data=st.data())
 def test_controller_parsers_on_damaged_files(name, data):

@@ -14,13 +14,15 @@ Either way the result has what :func:`~axiscal.compensation.tables.table_from_re
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from axiscal import units
 from axiscal.datasets import AxisKind
-from axiscal.errors import DataFormatError
+from axiscal.errors import DataFormatError, InputError, UnitError
 
 __all__ = ["MeanDeviations", "load_mean_deviations", "parse_result_json"]
 
@@ -70,7 +72,15 @@ def load_mean_deviations(path, full_turn: str = "separate"):
 
 
 def parse_result_json(d: dict, source: str = "<json>") -> MeanDeviations:
-    """The mean deviations of an ``axiscal iso230-2 --json`` object."""
+    """The mean deviations of an ``axiscal iso230-2 --json`` object.
+
+    Raises
+    ------
+    DataFormatError
+        A key is missing, a target is not a finite number, a mean deviation is infinite or not a
+        number (``null`` marks a direction not measured), targets do not increase, or a unit is
+        unknown or not of the axis kind's dimension (length for linear, angle for rotary).
+    """
     missing = [k for k in ("axis_kind", "target_unit", "unit", "targets") if k not in d]
     if missing:
         raise DataFormatError(f"result JSON is missing {', '.join(missing)}", source)
@@ -78,12 +88,42 @@ def parse_result_json(d: dict, source: str = "<json>") -> MeanDeviations:
     if not isinstance(rows, list) or len(rows) < 2 or not all(isinstance(r, dict) for r in rows):
         raise DataFormatError("'targets' must be a list of at least 2 objects", source)
     try:
-        t = np.array([float(r["target"]) for r in rows])
-        up = np.array([np.nan if r.get("mean_up") is None else float(r["mean_up"]) for r in rows])
-        down = np.array([np.nan if r.get("mean_down") is None else float(r["mean_down"]) for r in rows])
         kind = AxisKind.parse(d["axis_kind"])
-    except (KeyError, TypeError, ValueError) as exc:
-        raise DataFormatError(f"bad target row: {exc}", source) from None
+        t = np.array([_number(r, "target", i, source) for i, r in enumerate(rows)])
+        up = np.array([_number(r, "mean_up", i, source, True) for i, r in enumerate(rows)])
+        down = np.array([_number(r, "mean_down", i, source, True) for i, r in enumerate(rows)])
+    except KeyError as exc:
+        raise DataFormatError(f"a target row has no {exc}", source) from None
+    except InputError as exc:
+        raise DataFormatError(str(exc), source) from None
     if np.any(np.diff(t) <= 0):
         raise DataFormatError("targets must increase strictly", source)
-    return MeanDeviations(kind, str(d["target_unit"]), str(d["unit"]), t, up, down)
+    tu, du = (_unit(d, key, kind, source) for key in ("target_unit", "unit"))
+    return MeanDeviations(kind, tu, du, t, up, down)
+
+
+def _number(row: dict, key: str, i: int, source: str, optional: bool = False) -> float:
+    """A finite number of a target row (``None`` -> NaN where ``optional``)."""
+    v = row.get(key) if optional else row[key]
+    if v is None and optional:
+        return float("nan")
+    try:
+        f = float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else math.nan
+    except OverflowError:          # a JSON integer of 400 digits
+        f = math.inf
+    if not math.isfinite(f):
+        rule = "a finite number" + (" or null (direction not measured)" if optional else "")
+        raise DataFormatError(f"targets[{i}].{key} = {v!r:.40} must be {rule}", source)
+    return f
+
+
+def _unit(d: dict, key: str, kind: AxisKind, source: str) -> str:
+    """A known unit of the axis kind's dimension, in its canonical name."""
+    try:
+        u = units.canonical(d[key])
+    except UnitError as exc:
+        raise DataFormatError(f"{key}: {exc}", source) from None
+    if units.dimension(u) != kind.dimension:
+        raise DataFormatError(f"{key} = {d[key]!r} is not a {kind.dimension} unit, as a "
+                              f"{kind.value} axis needs", source)
+    return u

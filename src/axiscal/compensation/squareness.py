@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from axiscal.compensation.tables import check_point_count
 from axiscal.errors import InputError
 from axiscal.standards.iso230_1 import Squareness
 
@@ -97,6 +98,7 @@ class CrossAxisCompensation:
         if not step > 0 or not stop > start:
             raise InputError(f"table from {start!r} to {stop!r} by {step!r} m: need stop > start "
                              "and a positive step")
+        check_point_count((stop - start) / step + 1, step, f"{start:g} … {stop:g} m")
         n = int(np.floor((stop - start) / step + 1e-9)) + 1
         positions = start + step * np.arange(n)
         return positions, self.correction(positions)

@@ -42,10 +42,15 @@ import numpy as np
 from axiscal.datasets import AxisKind
 from axiscal.errors import InputError
 
-__all__ = ["CompensationTable", "table_from_result", "table_from_deviations", "Extrapolation"]
+__all__ = ["CompensationTable", "table_from_result", "table_from_deviations", "Extrapolation",
+           "MAX_TABLE_POINTS", "check_point_count"]
 
 Extrapolation = Literal["hold", "linear"]
 FULL_TURN = 360.0
+#: Most points a table may have. Controller tables hold at most some thousands (Fanuc 1024
+#: point numbers, Heidenhain and LinuxCNC 256, Siemens MD38000 a few thousand); a count beyond
+#: this is a mistyped spacing, refused before any array is allocated.
+MAX_TABLE_POINTS = 100_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -371,12 +376,25 @@ def _linear_points(t, spacing, start, end):
     hi = float(t[-1]) if end is None else float(end)
     if not hi > lo:
         raise InputError(f"table range {lo:g} … {hi:g} is empty; end must exceed start")
-    n = int(math.ceil((hi - lo) / spacing - 1e-9)) + 1
+    steps = (hi - lo) / spacing
+    check_point_count(steps + 1, spacing, f"{lo:g} … {hi:g}")
+    n = int(math.ceil(steps - 1e-9)) + 1
     return lo + spacing * np.arange(max(n, 2))
+
+
+def check_point_count(n: float, spacing: float, span: str) -> None:
+    """Refuse a table of more than :data:`MAX_TABLE_POINTS` points (or an infinite count)."""
+    if not n <= MAX_TABLE_POINTS:
+        count = ("infinitely many" if not math.isfinite(n) else f"{n:.0f}" if n < 1e12
+                 else f"{n:.3g}")
+        raise InputError(f"spacing = {spacing:g} over {span} gives {count} table points; at most "
+                         f"{MAX_TABLE_POINTS} are allowed (a controller table holds some thousands): "
+                         "use a larger spacing")
 
 
 def _modulo_points(t, du, dd, spacing, start):
     k = FULL_TURN / spacing
+    check_point_count(k + 1, spacing, "0 … 360 deg")
     if abs(k - round(k)) > 1e-9:
         raise InputError(f"spacing = {spacing:g} deg does not divide 360 deg into whole intervals, "
                          "as a table that closes on itself needs")

@@ -93,6 +93,8 @@ __all__ = [
     "edlen_1966",
 ]
 
+#: Absolute zero, −273.15 °C, as a positive number of kelvin below 0 °C.
+ABSOLUTE_ZERO_C = 273.15
 #: Vacuum wavelength of the stabilised HeNe laser line, metres (seed 002: "0.633 microns").
 HENE_VACUUM_WAVELENGTH = 632.991e-9
 
@@ -217,15 +219,28 @@ def refractive_index(
     lam = _finite("vacuum_wavelength", vacuum_wavelength)
     _refuse("vacuum_wavelength", lam, lam <= 0, "m", "must be positive")
     x_co2 = _finite("co2", co2)
+    _refuse("co2", x_co2, x_co2 < 0, "µmol/mol", "cannot be negative")
+    _refuse("temperature", t, t <= -ABSOLUTE_ZERO_C, "°C",
+            f"is not above absolute zero ({-ABSOLUTE_ZERO_C:g} °C)")
+    # Validity first (check="raise" names the range), then what no equation can compute at all.
+    _check_validity(name, check, vacuum_wavelength=lam, temperature=t, pressure=p, co2=x_co2)
     if humidity is None and dew_point is None and vapour_pressure is None:
         pv = np.zeros_like(t)
     else:
         pv = np.asarray(water_vapour_pressure(t, humidity, dew_point=dew_point,
                                               vapour_pressure=vapour_pressure))
-    xv = np.asarray(enhancement_factor(p, t)) * pv / p
-    _check_validity(name, check, vacuum_wavelength=lam, temperature=t, pressure=p, co2=x_co2,
-                    water_mole_fraction=xv)
-    return _FUNCTIONS[name](lam, t, p, pv, x_co2)
+    with np.errstate(over="ignore", invalid="ignore"):   # refused below if it overflows
+        xv = np.asarray(enhancement_factor(p, t)) * pv / p
+    _refuse("water_mole_fraction", xv, ~(xv < 1), "",
+            "is not below 1: the water vapour pressure reaches the air pressure (no air is left)")
+    _check_validity(name, check, water_mole_fraction=xv)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        n = _FUNCTIONS[name](lam, t, p, pv, x_co2)
+    if not np.all(np.isfinite(n)):
+        raise InputError(f"the {EQUATIONS[name]} equation gives no finite refractive index at "
+                         "these inputs (temperature, pressure or wavelength far outside its "
+                         "validity)")
+    return n
 
 
 def air_wavelength(temperature=20.0, pressure=101325.0, humidity=None, **kwargs):
@@ -407,7 +422,7 @@ def air_conditions(
     else:
         pv = float(water_vapour_pressure(temperature, humidity, dew_point=dew_point,
                                          vapour_pressure=vapour_pressure))
-    rh = float(relative_humidity(temperature, pv))
+    rh = 0.0 if pv == 0.0 else float(relative_humidity(temperature, pv))
     return AirResult(n=n, wavelength=float(vacuum_wavelength) / n,
                      vacuum_wavelength=float(vacuum_wavelength), equation=_equation(equation),
                      temperature=float(temperature), pressure=float(pressure),
@@ -502,8 +517,9 @@ def _equation(equation) -> str:
 
 
 def _check_validity(name: str, check: str, **values) -> None:
-    for param, (lo, hi, unit) in VALIDITY[name].items():
-        arr = np.asarray(values[param])
+    for param, value in values.items():
+        lo, hi, unit = VALIDITY[name][param]
+        arr = np.asarray(value)
         bad = (arr < lo) | (arr > hi)
         if not np.any(bad):
             continue

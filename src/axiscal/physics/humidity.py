@@ -46,9 +46,15 @@ __all__ = [
     "enhancement_factor",
     "relative_humidity",
     "dew_point",
+    "SATURATION_RANGE",
+    "check_saturation_range",
 ]
 
 _T0 = 273.15  # K at 0 °C
+#: Range where a saturation vapour pressure exists and the equations hold, °C: from 190 K, the low
+#: end of the sublimation curve of Wagner, Saul and Pruß (1994), to the critical point of water,
+#: 647.096 K (IAPWS-IF97 Region 4 ends there; above it there is no saturation).
+SATURATION_RANGE = (190.0 - _T0, 647.096 - _T0)
 #: IAPWS-IF97 Region 4 coefficients n1 ... n10 (NIST A-I calls them K1 ... K10).
 _IAPWS = (1.16705214528e3, -7.24213167032e5, -1.70738469401e1, 1.20208247025e4,
           -3.23255503223e6, 1.49151086135e1, -4.82326573616e3, 4.05113405421e5,
@@ -89,13 +95,14 @@ def saturation_vapour_pressure(temperature, over: Literal["auto", "water", "ice"
     >>> round(saturation_vapour_pressure(20.0), 2)
     2339.21
     """
-    t = np.asarray(temperature, dtype=float)
+    t = _finite("temperature", temperature)
+    check_saturation_range("temperature", t)
     if over == "water":
         out = _psv_water(t)
     elif over == "ice":
         out = _psv_ice(t)
     elif over == "auto":
-        out = np.where(t < 0.0, _psv_ice(np.minimum(t, 0.0)), _psv_water(t))
+        out = np.where(t < 0.0, _psv_ice(np.minimum(t, 0.0)), _psv_water(np.maximum(t, 0.0)))
     else:
         raise InputError(f"over = {over!r} is not 'auto', 'water' or 'ice'")
     return _out(out)
@@ -156,6 +163,7 @@ def water_vapour_pressure(temperature, humidity=None, *, dew_point=None, vapour_
         t_b, td_b = np.broadcast_arrays(t, td)
         _refuse("dew_point", td_b, td_b > t_b + 1e-9, "°C",
                 "cannot exceed the air temperature (the air would be supersaturated)")
+        check_saturation_range("dew_point", td)
         return _out(saturation_vapour_pressure(td, over="water"))
     pv = _finite("vapour_pressure", vapour_pressure)
     _refuse("vapour_pressure", pv, pv < 0, "Pa", "cannot be negative")
@@ -270,6 +278,21 @@ def dew_point(vapour_pressure):
     d = 2.0 * g / (-f - np.sqrt(f * f - 4.0 * e * g))
     big_t = 0.5 * (n[9] + d - np.sqrt((n[9] + d) ** 2 - 4.0 * (n[8] + n[9] * d)))
     return _out(big_t - _T0)
+
+
+def check_saturation_range(name: str, t) -> None:
+    """Refuse a temperature (°C) where water has no saturation vapour pressure to convert by.
+
+    Checked whatever the equation of the refractive index, and before anything is computed:
+    outside :data:`SATURATION_RANGE` the saturation equations give NaN or nonsense, so no
+    relative humidity, dew point or vapour-pressure ceiling can be evaluated there.
+    """
+    lo, hi = SATURATION_RANGE
+    t = np.asarray(t, dtype=float)
+    _refuse(name, t, (t < lo) | (t > hi), "°C",
+            f"is outside {lo:g} to {hi:g} °C, where water has a saturation vapour pressure "
+            "(190 K, Wagner et al. 1994, to the critical point, IAPWS-IF97): no humidity can "
+            "be converted there")
 
 
 # -- helpers --------------------------------------------------------------------------------

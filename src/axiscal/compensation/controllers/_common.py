@@ -9,7 +9,7 @@ import numpy as np
 
 from axiscal import units
 from axiscal._parse import finite_number
-from axiscal.errors import ControllerLimitError
+from axiscal.errors import ControllerLimitError, DataFormatError
 
 __all__ = ["ControllerFile", "check_points", "check_spacing", "check_travel", "check_modulo",
            "correction_factor", "parse_number", "decimals"]
@@ -61,8 +61,20 @@ def check_points(n: int, maximum: int, fmt: str, what: str = "points") -> None:
             "(use a larger --spacing or a shorter range)")
 
 
-def check_spacing(spacing: float, resolution: float, unit: str, fmt: str) -> int:
-    """Refuse a spacing that is not a whole number of ``resolution``; return that number."""
+def check_spacing(spacing: float, resolution: float, unit: str, fmt: str,
+                  name: str = "position_resolution") -> int:
+    """Refuse a spacing that is not a whole number of ``resolution``; return that number.
+
+    ``name`` is the writer's option that gave ``resolution``; a resolution that is not a
+    positive number is refused naming it.
+    """
+    try:
+        ok = math.isfinite(float(resolution)) and float(resolution) > 0
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise ControllerLimitError(f"{fmt}: {name} = {resolution!r} {unit} must be a positive "
+                                   "number (the controller's position unit)")
     k = spacing / resolution
     if not math.isfinite(k) or k < 1 or abs(k - round(k)) > 1e-6:
         raise ControllerLimitError(
@@ -102,9 +114,18 @@ def correction_factor(table, to_unit: str) -> float:
     return units.factor(table.correction_unit) / units.factor(to_unit)
 
 
+#: Largest magnitude a number in a controller file may have (mm, deg, µm or arcsec): far beyond
+#: any real table, small enough that the unit conversions cannot overflow.
+LARGEST_VALUE = 1e9
+
+
 def parse_number(token: str, source: str, line: int) -> float:
     """A float from a file, or a :class:`DataFormatError` naming the line."""
-    return finite_number(token, "value", source, line)
+    v = finite_number(token, "value", source, line)
+    if abs(v) > LARGEST_VALUE:
+        raise DataFormatError(f"value {v:g} is out of range (at most {LARGEST_VALUE:g} in "
+                              "magnitude)", source, line)
+    return v
 
 
 def decimals(position_unit: str) -> int:

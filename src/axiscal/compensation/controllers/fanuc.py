@@ -58,7 +58,7 @@ from axiscal.compensation.controllers._common import (
     ControllerFile, check_points, check_spacing, check_travel, correction_factor)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
-from axiscal.errors import ControllerLimitError, DataFormatError
+from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["NAME", "write", "parse", "VALUE_RANGE"]
 
@@ -66,7 +66,7 @@ NAME = "fanuc"
 VALUE_RANGE = (-128, 127)
 MAX_NUMBER = 1023
 
-_LINE = re.compile(r"^N0*(\d+)\s*(?:A(\d+)\s*)?P\s*([-+]?\d+)\s*;?$")
+_LINE = re.compile(r"^N0*(\d{1,9})\s*(?:A(\d{1,3})\s*)?P\s*([-+]?\d+)\s*;?$")
 
 
 def write(table: CompensationTable, travel=None, *, axis_number: int = 1, reference_number: int | None = None,
@@ -100,7 +100,8 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1, refere
     unit = correction_factor(table, table.position_unit) / detection_unit  # corr -> counts
     inc_up = _increments(table.up, unit, mag)
     params = [(3620, ref), (3621, first), (3622, last), (3623, mag),
-              (3624, check_spacing(table.spacing, detection_unit, table.position_unit, NAME))]
+              (3624, check_spacing(table.spacing, detection_unit, table.position_unit, NAME,
+                                  "detection_unit"))]
     data = list(zip(range(first, last + 1), inc_up))
     if table.modulo:
         params.append((3625, int(round(360.0 / detection_unit))))
@@ -135,28 +136,40 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1, refere
 
 def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "linear",
           axis: str = "", axis_number: int = 1, detection_unit: float = 0.001,
-          reference_position: float = 0.0, correction_unit: str | None = None) -> CompensationTable:
+          reference_position: float = 0.0, correction_unit: str | None = None,
+          max_number: int = MAX_NUMBER) -> CompensationTable:
     """Read parameters and data written by :func:`write` back into a table.
 
     The file does not say where the reference position is in machine coordinates nor the
-    detection unit: give them (``reference_position`` in mm or deg).
+    detection unit: give them (``reference_position`` in mm or deg). Point numbers must lie in
+    0 … ``max_number`` (as :func:`write` checks); a missing parameter or data line, a repeated
+    one, or parameters that describe no table raise :class:`DataFormatError` naming it.
     """
+    if not (math.isfinite(detection_unit) and detection_unit > 0):
+        raise InputError(f"{NAME}: detection_unit = {detection_unit!r} must be a positive number "
+                         "(mm or deg per count)")
     params, data = _read_lines(text, source, axis_number)
-    for p in (3620, 3621, 3622, 3624):
+    bidirectional = bool(params.get(3605, 0) % 2)
+    for p in (3620, 3621, 3622, 3624) + ((3626,) if bidirectional else ()):
         if p not in params:
-            raise DataFormatError(f"parameter {p} is missing", source)
+            raise DataFormatError(f"parameter {p} is missing" + (
+                " (3605#0 = 1 makes the table bidirectional; 3626 numbers its negative-direction "
+                "points)" if p == 3626 else ""), source)
     kind = AxisKind.parse(axis_kind)
     pu = "mm" if kind is AxisKind.LINEAR else "deg"
     cu = correction_unit or ("um" if kind is AxisKind.LINEAR else "arcsec")
     ref, first, last = params[3620], params[3621], params[3622]
     mag = params.get(3623, 1)
+    _check_read_params(params, first, last, ref, mag, max_number, source)
     spacing = params[3624] * detection_unit
     modulo = 3625 in params
     up = _absolute(data, first, last, ref, 0, mag, source)
-    bidirectional = bool(params.get(3605, 0) % 2)
     down = up
     if bidirectional:
         nf = params[3626]
+        if not 0 <= nf <= max_number - (last - first):
+            raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
+                                  f"{nf} … {nf + last - first} fall outside 0 … {max_number}", source)
         down = _absolute(data, nf, nf + last - first, nf + ref - first, params.get(3627, 0), mag,
                          source)
     t = CompensationTable(axis, kind, pu, cu, reference_position - (ref - first) * spacing,
@@ -169,7 +182,7 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
 
 # -- helpers ---------------------------------------------------------------------------------
 def _prepare(table, travel, detection_unit, magnification):
-    check_spacing(table.spacing, detection_unit, table.position_unit, NAME)
+    check_spacing(table.spacing, detection_unit, table.position_unit, NAME, "detection_unit")
     check_travel(table, travel, NAME)
     if table.modulo and table.reference_index != 0:
         raise ControllerLimitError(f"{NAME}: a rotary table must start at its reference position "
@@ -214,6 +227,21 @@ def _check_numbers(data, max_number):
                                    f"0 … {max_number}; choose another reference_number")
 
 
+def _check_read_params(params, first, last, ref, mag, max_number, source):
+    """Refuse parameters that do not describe a table (before any array is built from them)."""
+    if not 0 <= first < last <= max_number:
+        raise DataFormatError(f"parameters 3621 = {first} and 3622 = {last} must satisfy "
+                              f"0 <= 3621 < 3622 <= {max_number}", source)
+    if not first <= ref <= last:
+        raise DataFormatError(f"parameter 3620 = {ref} (reference point) lies outside the points "
+                              f"{first} … {last} of 3621 … 3622", source)
+    if not 1 <= mag <= 100:
+        raise DataFormatError(f"parameter 3623 = {mag} (magnification); allowed 1 … 100", source)
+    if params[3624] <= 0:
+        raise DataFormatError(f"parameter 3624 = {params[3624]} (interval between points) must "
+                              "be a positive number of detection units", source)
+
+
 def _read_lines(text, source, axis_number):
     params: dict[int, int] = {}
     data: dict[int, int] = {}
@@ -226,9 +254,21 @@ def _read_lines(text, source, axis_number):
             raise DataFormatError(f"not a parameter or data line: {raw[:60]!r}", source, n)
         num, ax, val = int(m.group(1)), m.group(2), m.group(3)
         if num >= 10000:
-            data[num - 10000] = int(val)
+            target, key = data, num - 10000
         elif ax is None or int(ax) == axis_number:
-            params[num] = int(val, 2) if num == 3605 else int(val)
+            target, key = params, num
+            if num == 3605 and not re.fullmatch(r"[01]{1,8}", val):
+                raise DataFormatError(f"parameter 3605 = {val!r} is not a bit pattern (8 digits "
+                                      "0 or 1)", source, n)
+        else:
+            continue
+        if len(val.lstrip("+-").lstrip("0")) > 9:
+            raise DataFormatError(f"value {val[:20]} of N{num} is out of range (at most "
+                                  "9 digits)", source, n)
+        if key in target:
+            what = f"pitch error data N{num}" if target is data else f"parameter {num}"
+            raise DataFormatError(f"{what} is given twice", source, n)
+        target[key] = int(val, 2) if target is params and num == 3605 else int(val)
     return params, data
 
 

@@ -124,6 +124,10 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
     header = rows[1][1].split() if len(rows) > 2 else []
     if len(header) < 3 or header[0].upper() != "NR" or header[1].upper() != "AXISPOS":
         raise DataFormatError("header must be 'NR AXISPOS <axis> [BACKLASH]'", source, rows[1][0] if len(rows) > 1 else 1)
+    if len(header) > 4 or (len(header) == 4 and header[3].upper() != "BACKLASH"):
+        raise DataFormatError(f"header {' '.join(header)!r} has columns this reader would drop; "
+                              "a .COM table holds NR, AXISPOS, one axis and optionally BACKLASH",
+                              source, rows[1][0])
     ax = header[2]
     data = []
     for n, r in rows[2:-1]:

@@ -32,7 +32,7 @@ from axiscal.compensation.controllers._common import (
     ControllerFile, check_points, check_travel, correction_factor, decimals, parse_number)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
-from axiscal.errors import ControllerLimitError, DataFormatError
+from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["NAME", "write", "parse", "MAX_POINTS"]
 
@@ -74,6 +74,8 @@ def parse(text: str, source: str = "<text>", file_type: int = 1,
 
     Unlike LinuxCNC, which silently stops at the first bad line, this parser refuses it.
     """
+    if file_type not in (0, 1):
+        raise InputError(f"{NAME}: file_type = {file_type!r}; COMP_FILE_TYPE is 0 or 1")
     rows = []
     for n, raw in enumerate(text.splitlines(), 1):
         if not raw.strip():

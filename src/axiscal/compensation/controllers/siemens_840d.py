@@ -64,8 +64,8 @@ NAME = "siemens-840d"
 #: Default MD38000 limit (not confirmed; the machine's MD38000 value is the real limit).
 MAX_POINTS = 5000
 
-_VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d+)\s*,\s*(\d+)\s*,\s*([A-Za-z0-9_]+)\s*\]\s*=\s*(\S+)")
-_PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d+)\s*,\s*([A-Za-z0-9_]+)\s*\]"
+_VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]\s*=\s*(\S+)")
+_PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]"
                     r"\s*=\s*(\S+)")
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
 
@@ -157,10 +157,12 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
             continue
         m = _VALUE.match(line)
         if m:
+            _once(values, int(m.group(2)), f"$AA_ENC_COMP point {int(m.group(2))}", source, n)
             values[int(m.group(2))] = parse_number(m.group(4).split(";")[0], source, n)
             continue
         m = _PARAM.match(line)
         if m:
+            _once(params, m.group(1), f"$AA_ENC_COMP_{m.group(1)}", source, n)
             params[m.group(1)] = parse_number(m.group(4).split(";")[0], source, n)
             continue
         raise DataFormatError(f"not a $AA_ENC_COMP line: {raw[:60]!r}", source, n)
@@ -190,6 +192,12 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
     return t if backlash is None else _with_backlash(t, backlash / correction_factor(t, pu))
 
 
+def _once(seen: dict, key, what: str, source: str, line: int) -> None:
+    """Refuse a value given twice (a second axis or a repeated line would overwrite silently)."""
+    if key in seen:
+        raise DataFormatError(f"{what} is given twice", source, line)
+
+
 def _with_backlash(table: CompensationTable, md32450: float) -> CompensationTable:
     """Mean table plus a backlash value (correction unit) -> up/down tables (B̄ = −MD32450)."""
     half = 0.5 * md32450
@@ -213,8 +221,8 @@ def _fmt(v: float, nd: int = 9) -> str:
 
 
 # -- cross-axis (sag / angularity) compensation: the CEC table -------------------------------
-_CEC_VALUE = re.compile(r"^\$AN_CEC\[\s*(\d+)\s*,\s*(\d+)\s*\]\s*=\s*(\S+)")
-_CEC_PARAM = re.compile(r"^\$AN_CEC_([A-Z_]+)\[\s*(\d+)\s*\]\s*=\s*(\S+)")
+_CEC_VALUE = re.compile(r"^\$AN_CEC\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*\]\s*=\s*(\S+)")
+_CEC_PARAM = re.compile(r"^\$AN_CEC_([A-Z_]+)\[\s*(\d{1,9})\s*\]\s*=\s*(\S+)")
 
 
 def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str = "AX1",
