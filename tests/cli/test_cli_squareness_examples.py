@@ -7,7 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 from axiscal.cli import app
-from axiscal.procedures.squareness_examples import example_files
+from axiscal.io.squareness_examples import example_files
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 runner = CliRunner()

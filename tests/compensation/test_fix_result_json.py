@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from axiscal.compensation.inputs import load_mean_deviations, parse_result_json
+from axiscal.io.results import load_mean_deviations, parse_result_json
 from axiscal.errors import DataFormatError
 
 BASE = {"axis_kind": "linear", "target_unit": "mm", "unit": "um",

@@ -98,7 +98,7 @@ def compensate(
     if source is None:
         raise InputError("give a data file or ISO 230-2 result (or --verify CONFIG.toml, --read FILE)")
     from axiscal.compensation.controllers import controller as get_controller
-    from axiscal.compensation.inputs import load_mean_deviations
+    from axiscal.io.results import load_mean_deviations
     from axiscal.compensation.tables import table_from_result
 
     mod = get_controller(controller or "csv")
@@ -115,7 +115,7 @@ def compensate(
 # -- the three actions -----------------------------------------------------------------------
 def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=None) -> None:
     from axiscal.compensation.loop import run_compensation_loop
-    from axiscal.machines.config import load_toml
+    from axiscal.io._files import load_toml
 
     over = {}
     if controller is not None:   # another controller: the configuration's options do not apply
@@ -146,7 +146,7 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     import numpy as np
 
     from axiscal.compensation.controllers import controller as get_controller
-    from axiscal.compensation.inputs import load_mean_deviations
+    from axiscal.io.results import load_mean_deviations
     from axiscal.io import read_text
 
     mod = get_controller(controller)

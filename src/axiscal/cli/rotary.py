@@ -40,7 +40,7 @@ def simulate(
     report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
 ) -> None:
     """Simulate a complete rotary-axis calibration and compare it with the truth."""
-    from axiscal.machines.config import load_toml
+    from axiscal.io._files import load_toml
     from axiscal.procedures.rotary_config import run_rotary_config
 
     if report is not None:

@@ -29,7 +29,7 @@ def simulate(
     data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv or .json)."),
 ) -> None:
     """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it."""
-    from axiscal.machines.config import load_toml
+    from axiscal.io._files import load_toml
     from axiscal.procedures.positioning import simulate_from_config
 
     if plot is not None:

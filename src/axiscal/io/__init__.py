@@ -10,12 +10,12 @@ from pathlib import Path
 from axiscal.io._files import read_text
 from axiscal.errors import DataFormatError
 
-__all__ = ["read_positioning", "read_text"]
+__all__ = ["read_positioning", "parse_positioning", "read_text"]
 
 
 def read_positioning(path, target_unit: str | None = None, deviation_unit: str | None = None,
                      axis_kind: str | None = None):
-    """Read a positioning test from a CSV, JSON or EPICS ecmc file.
+    """Read a positioning test from a CSV, JSON or EPICS ecmc file (see :func:`parse_positioning`).
 
     Parameters
     ----------
@@ -25,15 +25,20 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
     axis_kind : {"linear", "rotary"}, optional
         Overrides the kind a CSV file would be given from its units.
     """
+    return parse_positioning(read_text(path), str(path), target_unit, deviation_unit, axis_kind)
+
+
+def parse_positioning(text: str, source: str = "<text>", target_unit: str | None = None,
+                      deviation_unit: str | None = None, axis_kind: str | None = None):
+    """Parse positioning data already read, choosing the format by ``source``'s extension and content.
+
+    JSON (``.json`` or text starting with ``{``), EPICS ecmc (``TGT_DATA[`` keys) or tidy CSV.
+    """
     from axiscal.io import csv as _csv
     from axiscal.io import ecmc as _ecmc
     from axiscal.io import json as _json
 
-    text = read_text(path)
-    suffix = Path(path).suffix.lower()
-    source = str(path)
-    stripped = text.lstrip()
-    if suffix == ".json" or stripped.startswith("{"):
+    if Path(source).suffix.lower() == ".json" or text.lstrip().startswith("{"):
         if target_unit or deviation_unit:
             raise DataFormatError("a JSON dataset carries its own units; drop the unit options",
                                   source)

@@ -6,9 +6,9 @@ import os
 import tempfile
 from pathlib import Path
 
-from axiscal.errors import DataFormatError, InputError, MissingFileError
+from axiscal.errors import ConfigError, DataFormatError, InputError, MissingFileError
 
-__all__ = ["read_text", "write_text_atomic", "write_bytes_atomic"]
+__all__ = ["read_text", "load_toml", "write_text_atomic", "write_bytes_atomic"]
 
 #: Refuse to read text files larger than this (a positioning file is kilobytes).
 MAX_TEXT_BYTES = 256 * 1024 * 1024
@@ -55,6 +55,17 @@ def _read_regular_file(p: Path) -> bytes:
     if p.stat().st_size > MAX_TEXT_BYTES:
         raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
     return p.read_bytes()
+
+
+def load_toml(path) -> dict:
+    """Read a TOML configuration; a syntax error becomes a :class:`ConfigError` naming the file."""
+    import tomllib
+
+    text = read_text(path)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
 
 
 def write_bytes_atomic(path, data: bytes) -> Path:

@@ -42,14 +42,14 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.errors import ConfigError
+from axiscal.errors import ConfigError, InputError
 from axiscal.machines.error_functions import ZERO, Harmonic, HarmonicSeries, random_profile
 from axiscal.machines.linear import LinearAxis
 from axiscal.machines.rotary import TWO_PI, ErrorMotion, RotaryAxis
 from axiscal.units import ARCSEC, DEG, MM, UM
 
 __all__ = ["refuse_unknown_keys", "axis_from_config", "linear_axis_from_config",
-           "rotary_axis_from_config", "load_toml", "check_test_types"]
+           "rotary_axis_from_config", "check_test_types"]
 
 _LINEAR_KEYS = {"name", "kind", "travel_mm", "scale_error_ppm", "bend_um", "backlash_um",
                 "repeatability_um", "thermal_ppm_per_hour", "periodic", "irregular"}
@@ -57,19 +57,6 @@ _ROTARY_KEYS = {"name", "kind", "travel_deg", "backlash_arcsec", "repeatability_
                 "drift_arcsec_per_hour", "harmonics", "irregular", "error_motions"}
 _MOTIONS = {"radial_x": ("um", UM), "radial_y": ("um", UM), "axial": ("um", UM),
             "tilt_x": ("arcsec", ARCSEC), "tilt_y": ("arcsec", ARCSEC)}
-
-
-def load_toml(path) -> dict[str, Any]:
-    """Read a TOML file; a syntax error becomes a :class:`ConfigError` with the file name."""
-    import tomllib
-
-    from axiscal.io._files import read_text
-
-    text = read_text(path)
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
 
 
 #: The value type of each ``[test]`` key a positioning plan reads (see
@@ -177,7 +164,7 @@ def linear_axis_from_config(t: dict[str, Any]) -> LinearAxis:
         )
     except ConfigError:
         raise
-    except Exception as exc:  # an InputError from the axis: say it is the config
+    except InputError as exc:  # the axis's own validation: say it is the config
         raise ConfigError(f"[axis]: {exc}") from None
 
 
@@ -221,7 +208,7 @@ def rotary_axis_from_config(t: dict[str, Any]) -> RotaryAxis:
         )
     except ConfigError:
         raise
-    except Exception as exc:
+    except InputError as exc:
         raise ConfigError(f"[axis]: {exc}") from None
 
 

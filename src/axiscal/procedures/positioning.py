@@ -487,21 +487,25 @@ def simulate_from_config(config: dict, seed: int = 1) -> SimulatedTest:
 
 
 def _truth(plan: TestPlan, axis, deviation_unit: str):
-    """Systematic deviations at the targets and the ISO 230-2 figures they imply (no noise)."""
+    """Systematic deviations at the targets and the ISO 230-2 figures they imply (no noise).
+
+    The figures come from :func:`axiscal.standards.iso230_2.evaluate` itself, applied to the
+    noise-free deviations (two identical runs, so every s is 0): E, E↑, E↓, M, B and B̄ are then
+    exactly what the injected errors imply. ``R_expected`` is ISO 230-2 eq. 12 with s = σ:
+    4σ + |B_i| at its largest.
+    """
+    from axiscal.standards.iso230_2 import evaluate
+
     x = plan.targets * units.factor(plan.target_unit)
     k = 1.0 / units.factor(deviation_unit)
     sys_fn = axis.systematic_deviation if hasattr(axis, "systematic_deviation") else axis.systematic_error
     up = np.asarray(sys_fn(x, 1)) * k
     down = np.asarray(sys_fn(x, -1)) * k if plan.bidirectional else np.full(x.size, np.nan)
+    down_runs = np.column_stack([down, down]) if plan.bidirectional else np.empty((x.size, 0))
+    ideal = evaluate(PositioningDataset(plan.axis_kind, plan.targets, np.column_stack([up, up]),
+                                        down_runs, plan.target_unit, deviation_unit))
     sigma = axis.repeatability_sigma * k
-    e_up = float(up.max() - up.min())
-    if plan.bidirectional:
-        both = np.concatenate([up, down])
-        b = up - down
-        truth = dict(E=float(both.max() - both.min()), E_up=e_up,
-                     E_down=float(down.max() - down.min()), M=float(np.ptp(0.5 * (up + down))),
-                     B=float(np.max(np.abs(b))), B_mean=float(np.mean(b)),
-                     R_expected=float(4 * sigma + np.max(np.abs(b))))
-    else:
-        truth = dict(E_up=e_up, R_expected=float(4 * sigma))
+    names = ("E", "E_up", "E_down", "M", "B", "B_mean") if plan.bidirectional else ("E_up",)
+    truth = {name: getattr(ideal, name) for name in names}
+    truth["R_expected"] = float(4 * sigma + (ideal.B or 0.0))
     return up, down, truth

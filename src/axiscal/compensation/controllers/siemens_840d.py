@@ -56,7 +56,7 @@ from axiscal.compensation.controllers._common import (
     decimals, parse_number)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
-from axiscal.errors import ControllerLimitError, DataFormatError
+from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["NAME", "write", "parse", "MAX_POINTS"]
 
@@ -185,7 +185,7 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
                               modulo=modulo)
     except ControllerLimitError:
         raise
-    except Exception as exc:
+    except InputError as exc:  # the table's own validation of what the file declared
         raise DataFormatError(str(exc), source) from None
     t = replace(t, up=np.round(-dev / correction_factor(t, pu), 6) + 0.0,
                 down=np.round(-dev / correction_factor(t, pu), 6) + 0.0)

@@ -56,7 +56,7 @@ def load_mean_deviations(path, full_turn: str = "separate"):
     axis : str
         The axis name the data file's metadata gives ("" for a result JSON, which has none).
     """
-    from axiscal.io import read_positioning, read_text
+    from axiscal.io import parse_positioning, read_text
     from axiscal.standards.iso230_2 import evaluate
 
     text = read_text(path)
@@ -67,7 +67,7 @@ def load_mean_deviations(path, full_turn: str = "separate"):
             raise DataFormatError(f"not valid JSON: {exc.msg}", str(path), exc.lineno) from None
         if isinstance(d, dict) and "format" not in d and "targets" in d:
             return parse_result_json(d, str(path)), ""
-    ds = read_positioning(path)
+    ds = parse_positioning(text, str(path))
     return evaluate(ds, full_turn=full_turn), ds.metadata.axis  # type: ignore[arg-type]
 
 
