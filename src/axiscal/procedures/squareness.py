@@ -304,12 +304,19 @@ def evaluate_diagonal(readings: DiagonalReadings) -> DiagonalResult:
                                float(readings.errors_d2[-1]))
 
 
+#: Angle before a ballbar sample at which its velocity (backlash side) is taken, radians.
+_APPROACH = 1e-7
+
+
 def measure_ballbar(machine: XYPlaneMachine, test: BallbarTest, *,
                     rng: np.random.Generator | None = None, noise: float = 0.0
                     ) -> tuple[CircularRun, CircularRun]:
     """Ballbar readings, counter-clockwise then clockwise (seed 004 a, ISO 230-4).
 
-    The centre pivot sits where the machine puts the tool when commanded to the centre.
+    The centre pivot sits where the machine puts the tool when commanded to the centre. Each
+    axis carries the backlash of the side it last moved on: the velocity is taken a hair before
+    the sample along the direction of travel, so a sample exactly on a reversal point (0°, 90°,
+    180°, 270°) keeps the approach side's backlash in both directions (issue 21).
     """
     phi = test.angles()
     xc, yc = test.centre
@@ -317,7 +324,8 @@ def measure_ballbar(machine: XYPlaneMachine, test: BallbarTest, *,
     px, py = xc + test.radius * np.cos(phi), yc + test.radius * np.sin(phi)
     runs = []
     for direction, sense in (("ccw", 1.0), ("cw", -1.0)):
-        ax, ay = machine.actual(px, py, vx=-sense * np.sin(phi), vy=sense * np.cos(phi))
+        before = phi - sense * _APPROACH   # approach side: velocity just before the sample
+        ax, ay = machine.actual(px, py, vx=-sense * np.sin(before), vy=sense * np.cos(before))
         dr = np.hypot(ax - cx, ay - cy) - test.radius
         runs.append(CircularRun(phi, _add_noise(dr, rng, noise), direction))
     return runs[0], runs[1]

@@ -241,8 +241,7 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
         q, m, bx, by_, rms, h = _diagnose_both(by["ccw"], by["cw"], arc)
     else:
         (d, run), = by.items()
-        s = 1.0 if d == "ccw" else -1.0
-        cols = np.column_stack([_harmonics(run.angles), s * _backlash_basis(run.angles)])
+        cols = np.column_stack([_harmonics(run.angles), _backlash_basis(run.angles, d)])
         c, rms = _lstsq(cols, run.deviations)
         q, m, bx, by_, h = float(c[4]), float(c[3]), None, None, None
         warnings.append(f"one direction ({d}) only: backlash is not separated from squareness; "
@@ -258,14 +257,22 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
 # --- helpers -------------------------------------------------------------------------------------
 
 def _diagnose_both(ccw_run: CircularRun, cw_run: CircularRun, arc: float):
-    """Squareness and scale terms from the mean, backlash from the half difference."""
+    """Squareness, scale mismatch and backlash from one least-squares fit of both runs.
+
+    Rows: the CCW then the CW run on common angles. Columns: the common harmonics
+    ``[1, cos φ, sin φ, cos 2φ, sin 2φ]``, a centre and radius shift between the runs
+    (``±[1, cos φ, sin φ]/2``) and the backlash basis of each run's direction. Away from the
+    reversal points this is the fit of the mean (squareness, scale) and of the half difference
+    (backlash); at a sample exactly on a reversal point both runs carry the approach side's
+    backlash (:func:`_backlash_basis`), which the mean/half-difference split would lose.
+    """
     phi, ccw, cw = _common(ccw_run, cw_run, arc)
-    mean, half = 0.5 * (ccw + cw), 0.5 * (ccw - cw)
-    c_mean, rms1 = _lstsq(_harmonics(phi), mean)
-    c_half, rms2 = _lstsq(np.column_stack([_harmonics(phi)[:, :3], _backlash_basis(phi)]), half)
-    # (ccw - cw)/2 = b_x B_x + b_y B_y + centre and radius shifts between the runs
-    return (float(c_mean[4]), float(c_mean[3]), float(c_half[3]), float(c_half[4]),
-            math.hypot(rms1, rms2), _hysteresis(phi, ccw, cw))
+    h = _harmonics(phi)
+    shift = 0.5 * h[:, :3]
+    cols = np.vstack([np.column_stack([h, shift, _backlash_basis(phi, "ccw")]),
+                      np.column_stack([h, -shift, _backlash_basis(phi, "cw")])])
+    c, rms = _lstsq(cols, np.concatenate([ccw, cw]))
+    return (float(c[4]), float(c[3]), float(c[8]), float(c[9]), rms, _hysteresis(phi, ccw, cw))
 
 
 def _harmonics(phi: np.ndarray) -> np.ndarray:
@@ -273,11 +280,26 @@ def _harmonics(phi: np.ndarray) -> np.ndarray:
                             np.sin(2 * phi)])
 
 
-def _backlash_basis(phi: np.ndarray) -> np.ndarray:
-    """Δr per unit reversal value of X and Y in a CCW run, columns B_x, B_y (the CW run has the
-    opposite sign): δx = (b_x/2) sign(v_x) with v_x = -sin φ gives -(b_x/2) sign(sin φ) cos φ."""
-    return np.column_stack([-0.5 * np.sign(np.sin(phi)) * np.cos(phi),
-                            0.5 * np.sign(np.cos(phi)) * np.sin(phi)])
+#: |sin φ| (|cos φ|) below this: the sample sits on the reversal point of X (Y), radians.
+REVERSAL_TOL = 1e-9
+
+
+def _backlash_basis(phi: np.ndarray, direction: str = "ccw") -> np.ndarray:
+    """Δr per unit reversal value of X and Y in a run, columns B_x, B_y.
+
+    The axis sits on the side of its last motion (lost motion, ``LinearAxis``):
+    ``δx = (b_x/2) s_x`` with ``s_x`` the sign of X's velocity, ``v_x = -sin φ`` CCW and
+    ``+sin φ`` CW, so ``B_x = -(1/2) sign(sin φ) cos φ`` CCW and the opposite CW. On a reversal
+    point itself (φ = 0° or 180° for X, 90° or 270° for Y, within :data:`REVERSAL_TOL`) the
+    velocity is zero but the axis still carries the backlash of the side it approached from,
+    the same in both directions: X at +R was reached moving +X, so ``s_x = sign(cos φ)`` and
+    ``B_x = +1/2`` (ISO 230-4:2005 Annex, reversal at the quadrant points; issue 21).
+    """
+    sense = 1.0 if direction == "ccw" else -1.0
+    s, c = np.sin(phi), np.cos(phi)
+    sx = np.where(np.abs(s) < REVERSAL_TOL, np.sign(c), -sense * np.sign(s))
+    sy = np.where(np.abs(c) < REVERSAL_TOL, np.sign(s), sense * np.sign(c))
+    return np.column_stack([0.5 * sx * c, 0.5 * sy * s])
 
 
 def _lstsq(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
