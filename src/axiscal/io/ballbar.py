@@ -3,7 +3,8 @@
 Ballbar format
 --------------
 One reading per line, header ``angle,direction,deviation``; the leading comment gives the
-nominal radius and may give the units (defaults: degrees and µm) and the plane::
+nominal radius and may give the units (defaults: degrees and µm), the plane and the contouring
+feed (``feed_mm_per_min=``, needed for servo mismatch in ms)::
 
     # radius_mm=150 deviation_unit=um plane=XY
     angle,direction,deviation
@@ -37,7 +38,8 @@ from axiscal.standards.iso230_4 import CircularRun
 __all__ = ["BallbarData", "DiagonalData", "parse_ballbar", "read_ballbar", "parse_diagonal",
            "read_diagonal", "format_ballbar"]
 
-_KEYS = {"radius_mm", "radius", "radius_unit", "deviation_unit", "plane", "machine", "date"}
+_KEYS = {"radius_mm", "radius", "radius_unit", "deviation_unit", "plane", "machine", "date",
+         "feed_mm_per_min"}
 _DKEYS = {"length_x_mm", "length_y_mm", "position_unit", "error_unit", "plane", "machine"}
 
 
@@ -49,6 +51,7 @@ class BallbarData:
     runs: tuple[CircularRun, ...]
     axes: tuple[str, str] = ("X", "Y")
     source: str = "<text>"
+    feed: float | None = None    # contouring feed, m/s (``# feed_mm_per_min=1000``)
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,13 +126,20 @@ def parse_ballbar(text: str, radius_mm: float | None = None, source: str = "<tex
             runs.append(CircularRun(a[:, 0], a[:, 1], d))
         except ValueError as exc:
             raise DataFormatError(f"{d} run: {exc}", source) from None
-    return BallbarData(radius_mm * 1e-3, tuple(runs), (plane[0], plane[1]), source)
+    feed = None
+    if "feed_mm_per_min" in meta:
+        feed = number(meta["feed_mm_per_min"], "feed_mm_per_min", source, None) / 6e4
+        if not feed > 0:
+            raise DataFormatError(f"feed_mm_per_min={meta['feed_mm_per_min']}: must be positive",
+                                  source)
+    return BallbarData(radius_mm * 1e-3, tuple(runs), (plane[0], plane[1]), source, feed)
 
 
 def format_ballbar(data: BallbarData) -> str:
     """The CSV text of ``data`` (degrees, µm)."""
-    lines = [f"# radius_mm={data.radius * 1e3:.9g} deviation_unit=um plane={''.join(data.axes)}",
-             "angle,direction,deviation"]
+    feed = "" if data.feed is None else f" feed_mm_per_min={data.feed * 6e4:.9g}"
+    lines = [f"# radius_mm={data.radius * 1e3:.9g} deviation_unit=um plane={''.join(data.axes)}"
+             + feed, "angle,direction,deviation"]
     for run in data.runs:
         lines += [f"{np.degrees(a):.9g},{run.direction},{d * 1e6:.9g}"
                   for a, d in zip(run.angles, run.deviations)]

@@ -1,0 +1,133 @@
+"""``axiscal ballbar analyze|simulate|volumetric``: the circular-test diagnosis.
+
+JSON output (``--json``), stable keys:
+
+* ``ballbar analyze``: ``file``, ``plane``, every term with its unit in the key
+  (``squareness_um_per_m``, ``scale_mismatch_um_per_m``, ``servo_mismatch_ms`` (null without a
+  feed), ``servo_term_um``, ``backlash_x_um``, ``backlash_y_um``, ``lateral_play_x_um``,
+  ``lateral_play_y_um``, ``straightness_x_um``, ``straightness_y_um``, ``reversal_spike_x_um``,
+  ``reversal_spike_x_decay_mm`` (and y), ``cyclic_x_um``, ``cyclic_x_pitch_mm`` (and y),
+  ``stick_slip_um``, ``vibration_um``, ``vibration_hz``), ``residual_rms_um``,
+  ``residual_ptp_um``, ``feed_mm_per_min``, ``iso230_4`` (the ``squareness circular`` object),
+  ``ranking`` (``term``, ``value``, ``unit``, ``effect_um``, ``share_percent``, ``advice``, largest
+  effect first), ``warnings``. ``x``/``y`` are the plane's first and second axis.
+* ``ballbar volumetric``: ``planes`` (per file: ``plane``, ``squareness_um_per_m``,
+  ``scale_mismatch_um_per_m``, ``backlash_x_um``, ``backlash_y_um``), ``squareness_um_per_m``
+  (object by plane), ``scale_mismatch_um_per_m`` (object by plane).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, plot_path, print_json, report_path
+
+__all__ = ["register"]
+
+ballbar_app = typer.Typer(
+    help="Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "
+    "machine squareness, Method 4: every separable machine error, ranked, with advice.",
+    no_args_is_help=True,
+)
+
+
+def analyze(
+    file: Path = typer.Argument(..., help="Ballbar CSV (angle,direction,deviation; "
+                                "'# radius_mm=150 feed_mm_per_min=1000 plane=XY')."),
+    plane: Optional[str] = typer.Option(None, "--plane", help="XY, YZ or ZX (overrides the file)."),
+    feed: Optional[float] = typer.Option(None, "--feed", help="Feed, mm/min (overrides the file)."),
+    json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, module docs)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Polar plot and diagnostic bar chart "
+                                        "(PNG/SVG/PDF)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="HTML report."),
+) -> None:
+    """Diagnose a CW + CCW circular test: each error, its share of the circularity, advice.
+
+    Example: axiscal ballbar analyze examples/squareness_ballbar_150mm.csv --feed 1000
+    """
+    from axiscal.errors import InputError
+    from axiscal.io.ballbar import read_ballbar
+    from axiscal.standards.ballbar_diagnosis import diagnose
+
+    if plot is not None:
+        plot_path(plot)
+    if report is not None:
+        report_path(report)
+    if feed is not None and not feed > 0:
+        raise InputError(f"--feed {feed:g}: must be a positive feed in mm/min")
+    data = read_ballbar(file)
+    axes = data.axes
+    if plane is not None:
+        p = plane.upper()
+        if p not in ("XY", "YZ", "ZX"):
+            raise InputError(f"--plane {plane!r}: choose XY, YZ or ZX")
+        axes = (p[0], p[1])
+    f = feed / 6e4 if feed is not None else data.feed
+    result = diagnose(data.runs, data.radius, feed=f, axes=axes)
+    if plot is not None:
+        from axiscal.report.ballbar_plots import save_diagnosis_plot
+
+        save_diagnosis_plot(data.runs, result, plot, title=f"Ballbar {''.join(axes)} — {file.name}")
+    if report is not None:
+        from axiscal.report.ballbar_plots import write_diagnosis_report
+
+        write_diagnosis_report(report, data.runs, result, title=f"Ballbar diagnosis {file.name}")
+    if json_out:
+        print_json({"file": str(file), "plane": "".join(axes), **result.as_dict()})
+        return
+    typer.echo(str(result))
+    for path in (plot, report):
+        if path is not None:
+            note(f"wrote {path}")
+
+
+def volumetric(
+    files: list[Path] = typer.Argument(..., help="Ballbar CSV of each plane (XY, YZ, ZX)."),
+    json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, module docs)."),
+) -> None:
+    """Volumetric summary of three planes: the three squareness values and scale mismatches.
+
+    Example: axiscal ballbar volumetric xy.csv yz.csv zx.csv
+    """
+    from axiscal.errors import InputError
+    from axiscal.io.ballbar import read_ballbar
+    from axiscal.standards.ballbar_diagnosis import diagnose
+
+    rows = []
+    for file in files:
+        data = read_ballbar(file)
+        v = diagnose(data.runs, data.radius, feed=data.feed, axes=data.axes).values
+        rows.append({"plane": "".join(data.axes), "file": str(file),
+                     "squareness_um_per_m": v["squareness_um_per_m"],
+                     "scale_mismatch_um_per_m": v["scale_mismatch_um_per_m"],
+                     "backlash_x_um": v["backlash_x_um"], "backlash_y_um": v["backlash_y_um"]})
+    planes = [r["plane"] for r in rows]
+    if len(set(planes)) != len(planes):
+        raise InputError(f"planes {', '.join(planes)}: give each plane once (plane= in the file)")
+    out = {"planes": rows,
+           "squareness_um_per_m": {r["plane"]: r["squareness_um_per_m"] for r in rows},
+           "scale_mismatch_um_per_m": {r["plane"]: r["scale_mismatch_um_per_m"] for r in rows}}
+    if json_out:
+        print_json(out)
+        return
+    typer.echo("volumetric summary (ISO 230-4:2005 circular tests in each plane)")
+    for r in rows:
+        typer.echo(f"  {r['plane']}: squareness {r['squareness_um_per_m']:+8.2f} µm/m, scale "
+                   f"mismatch {r['scale_mismatch_um_per_m']:+8.2f} µm/m, backlash "
+                   f"{r['backlash_x_um']:+.2f} / {r['backlash_y_um']:+.2f} µm")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``ballbar`` group to the application."""
+    ballbar_app.command("analyze")(analyze)
+    ballbar_app.command("volumetric")(volumetric)
+    try:
+        from axiscal.cli.ballbar_simulate import simulate
+    except ImportError:  # pragma: no cover - the simulator lands in a later commit
+        pass
+    else:
+        ballbar_app.command("simulate")(simulate)
+    app.add_typer(ballbar_app, name="ballbar")

@@ -1,0 +1,116 @@
+"""Ballbar diagnosis figures: the polar plot a service engineer knows and the diagnostic bars.
+
+Polar plot: both directions magnified about the nominal circle, the tolerance band (the larger
+ISO 230-4:2005 circular deviation G, centred on the nominal circle), feed-direction arrows and the
+start point of each run. Bar chart: each diagnosed term's effect on the radial deviation, ranked.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.report.squareness_plots import _nice, _pyplot, _save
+
+__all__ = ["diagnosis_figure", "save_diagnosis_plot", "write_diagnosis_report"]
+
+_COLOURS = {"ccw": "tab:blue", "cw": "tab:red"}
+
+
+def diagnosis_figure(runs, diagnosis, title: str = "Ballbar diagnosis"):
+    """Polar plot (left) and ranked diagnostic bar chart (right)."""
+    plt = _pyplot()
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(15, 7.4), gridspec_kw={"width_ratios": [1, 1.1]})
+    _polar(ax, runs, diagnosis)
+    _bars(bx, diagnosis)
+    fig.suptitle(title, fontsize=13)
+    fig.tight_layout()
+    return fig
+
+
+def save_diagnosis_plot(runs, diagnosis, path, title: str = "Ballbar diagnosis") -> Path:
+    """Write :func:`diagnosis_figure` to ``path``."""
+    return _save(diagnosis_figure(runs, diagnosis, title), path)
+
+
+def write_diagnosis_report(path, runs, diagnosis, title: str = "Ballbar diagnosis") -> Path:
+    """An HTML report: summary, the figure, the ranked table with advice, warnings."""
+    from axiscal.report.html import Report
+
+    c = diagnosis.circular
+    rep = Report(title, "ISO 230-4:2005 circular test; diagnosis after Renishaw, Calibration of "
+                 "machine squareness, Method 4",
+                 {"radius": f"{c.radius * 1e3:g} mm", "arc": f"{c.arc_deg:.0f}°",
+                  "feed": "—" if diagnosis.feed is None else f"{diagnosis.feed * 6e4:g} mm/min"})
+    rep.add_figure(diagnosis_figure(runs, diagnosis, title))
+    rep.add_table(["rank", "term", "value", "unit", "effect µm", "share %", "advice"],
+                  [(i, t.key, t.value, t.unit, t.ptp * 1e6, t.share * 100, t.advice)
+                   for i, t in enumerate(diagnosis.terms, 1)], caption="Ranked diagnosis")
+    rep.add_key_values({"G ccw µm": _um(c.G_ccw), "G cw µm": _um(c.G_cw), "H µm": _um(c.H),
+                        "residual rms µm": diagnosis.residual_rms * 1e6},
+                       caption="ISO 230-4:2005 §3 values")
+    rep.add_warnings(diagnosis.warnings)
+    return rep.write(path)
+
+
+def _um(v):
+    return None if v is None else v * 1e6
+
+
+def _polar(ax, runs, d) -> None:
+    c = d.circular
+    devs = np.concatenate([r.deviations for r in runs])
+    g = max(v for v in (c.G_ccw, c.G_cw, 1e-9) if v is not None)
+    ring = _nice(max(float(np.max(np.abs(devs))), g / 2, 1e-9))
+    base, k = 1.0, 0.45 / ring
+    t = np.linspace(0, 2 * np.pi, 361)
+    for v, style in ((-ring, ":"), (0.0, "-"), (ring, ":")):
+        ax.plot((base + k * v) * np.cos(t), (base + k * v) * np.sin(t), color="0.6", ls=style,
+                lw=0.8)
+    inner, outer = base - k * g / 2, base + k * g / 2
+    ax.fill(np.r_[outer * np.cos(t), inner * np.cos(t[::-1])],
+            np.r_[outer * np.sin(t), inner * np.sin(t[::-1])], color="tab:green", alpha=0.12,
+            label=f"band G = {g * 1e6:.2f} µm")
+    for r in runs:
+        col = _COLOURS[r.direction]
+        a, dv = r.angles, r.deviations            # in measuring order
+        x, y = (base + k * dv) * np.cos(a), (base + k * dv) * np.sin(a)
+        ax.plot(x, y, color=col, lw=1.3, label=r.direction.upper())
+        ax.plot(x[0], y[0], "o", color=col, ms=7, mfc="white", mew=2)
+        sense = 1.0 if r.direction == "ccw" else -1.0
+        for i in np.linspace(0, a.size - 2, 5)[1:-1].astype(int):
+            rr = base + k * dv[i] + (0.08 if sense > 0 else -0.08)
+            p0 = np.array([rr * np.cos(a[i]), rr * np.sin(a[i])])
+            tang = sense * np.array([-np.sin(a[i]), np.cos(a[i])]) * 0.15
+            ax.annotate("", p0 + tang, p0, arrowprops=dict(arrowstyle="->", color=col, lw=1.5))
+    ax.set_aspect("equal")
+    ax.set_xlim(-1.7, 1.7)
+    ax.set_ylim(-1.7, 1.7)
+    ax.axhline(0, color="0.85", lw=0.6)
+    ax.axvline(0, color="0.85", lw=0.6)
+    a0, a1 = c.squareness.axes
+    ax.set_xlabel(f"+{a0} →   ({ring * 1e6:.3g} µm per dotted ring; ○ start point)")
+    ax.set_ylabel(f"+{a1} →")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.legend(loc="upper right", fontsize=9)
+    ax.set_title(f"R = {c.radius * 1e3:g} mm, {c.arc_deg:.0f}°, G ccw {_fmt(c.G_ccw)}, "
+                 f"G cw {_fmt(c.G_cw)}, H {_fmt(c.H)}", fontsize=10)
+
+
+def _bars(ax, d) -> None:
+    terms = [t for t in d.terms][:12][::-1]
+    y = np.arange(len(terms))
+    eff = [t.ptp * 1e6 for t in terms]
+    ax.barh(y, eff, color=["0.5" if t.key == "residual" else "tab:orange" for t in terms])
+    ax.set_yticks(y, [f"{t.key}  ({t.value:+.2f} {t.unit})" for t in terms], fontsize=9)
+    for yi, t in zip(y, terms):
+        ax.text(t.ptp * 1e6, yi, f" {t.share * 100:.0f} %", va="center", fontsize=8)
+    ax.set_xlabel("effect on the radial deviation, peak-to-valley [µm] (share of G)")
+    ax.set_title("Diagnosis, largest first")
+    ax.grid(axis="x", alpha=0.3)
+
+
+def _fmt(v):
+    return "—" if v is None else f"{v * 1e6:.2f} µm"

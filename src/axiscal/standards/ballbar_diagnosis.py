@@ -1,0 +1,402 @@
+"""Ballbar diagnosis: every machine error a circular test separates, with its share and advice.
+
+The clockwise and counter-clockwise runs of a circular test (ISO 230-4:2005) are fitted together
+by linear least squares on a model of the radial deviation ``Δr(φ)`` (φ counter-clockwise from the
+first axis, ``s = +1`` CCW, ``-1`` CW, ``v`` the feed, ``R`` the radius). Each term's first-order
+effect on ``Δr = δx cos φ + δy sin φ`` (Renishaw, Calibration of machine squareness, Method 4,
+"isolate the squareness error from ... backlash, servo, scale mismatch, cyclic, straightness
+errors"; seed 004):
+
+====================  ========================================  =====================================
+term                  machine error                             ``Δr(φ)`` column
+====================  ========================================  =====================================
+centre, radius        —                                         ``1, cos φ, sin φ`` (+ ± shift/2)
+scale mismatch        ``δx = e_x x, δy = e_y y``                ``(R/2)(e_x - e_y) cos 2φ``
+squareness θ          ``δx = -θ y``                             ``-(θR/2) sin 2φ``
+servo mismatch Δτ     ``δx = -τ_x ẋ``, ``δy = -τ_y ẏ``            ``s (v Δτ / 2) sin 2φ``, Δτ = τ_x-τ_y
+backlash b_x, b_y     ``δx = (b_x/2) sign v_x`` (approach side)  ``(1/2) s_x cos φ``, ``(1/2) s_y sin φ``
+lateral play l_x      ``δy = (l_x/2) sign v_x``                  ``(1/2) s_x sin φ``; l_y alike
+straightness c_x      ``δy = c_x (x/R)²`` (bow over ±R)          ``c_x cos²φ sin φ``; c_y alike
+reversal spike h, d   ``δx = h e^{-u/d} sign x`` after reversal  ``h |cos φ| e^{-Rα/d}``, α since reversal
+cyclic error A, p     ``δx = A sin(2π x/p + ϑ)``                 ``cos φ · [sin, cos](2π R cos φ / p)``
+====================  ========================================  =====================================
+
+``s_x = -s·sign(sin φ)`` is the sign of X's velocity (approach side on the reversal point itself,
+:func:`axiscal.standards.iso230_4._backlash_basis`). The non-linear parameters (decay length ``d``,
+pitch ``p``) are chosen by a grid search on the fit residual. Stick-slip is the peak-to-valley of
+the residual near the reversal points (axis velocity under 10 % of the feed) beyond that of the
+rest of the path; vibration is the largest line of the residual's amplitude spectrum against time
+(feed known). The residual after every modelled term is reported so a user sees what the model
+does not explain. ISO 230-4 G, H, F come from :func:`~axiscal.standards.iso230_4.evaluate_circular`.
+
+Servo mismatch: an axis whose position loop has gain ``K`` follows ``τ = 1/K`` behind its command
+(first-order loop, steady state); with ``ẋ = -s v sin φ``, ``ẏ = s v cos φ`` the radial effect
+is ``s v (τ_x - τ_y) sin φ cos φ``, which changes sign with the direction (squareness does not).
+
+References
+----------
+ISO 230-4:2005 §3 and Annex A (interpretation of circular test plots). Renishaw (M.A.V. Chapman),
+Calibration of machine squareness, Method 4 (seed 004).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from axiscal.errors import InputError
+from axiscal.standards.iso230_4 import (REVERSAL_TOL, CircularResult, CircularRun,
+                                        _backlash_basis, _common, _harmonics, arc_coverage,
+                                        evaluate_circular)
+
+__all__ = ["BallbarDiagnosis", "DiagnosisTerm", "diagnose", "ADVICE"]
+
+#: What a service engineer does about each term (ISO 230-4:2005 Annex A; ballbar practice).
+ADVICE = {
+    "squareness": "re-square the axes (gib/column alignment) or enter a squareness compensation",
+    "scale_mismatch": "check the scale/pitch compensation of both axes against a laser "
+                      "(ISO 230-2) and the machine temperature",
+    "servo_mismatch": "match the position-loop gains (kv) of the two axes in the controller",
+    "backlash_x": "adjust the X ball-screw preload/nut or enter backlash compensation",
+    "backlash_y": "adjust the Y ball-screw preload/nut or enter backlash compensation",
+    "lateral_play_x": "check the X guideways and gibs for play",
+    "lateral_play_y": "check the Y guideways and gibs for play",
+    "straightness_x": "check X guideway straightness (levelling, wear)",
+    "straightness_y": "check Y guideway straightness (levelling, wear)",
+    "reversal_spike_x": "tune the X reversal (friction) compensation or check X lubrication",
+    "reversal_spike_y": "tune the Y reversal (friction) compensation or check Y lubrication",
+    "cyclic_x": "check the X ball screw/encoder for pitch-periodic error",
+    "cyclic_y": "check the Y ball screw/encoder for pitch-periodic error",
+    "stick_slip": "check way lubrication and friction near reversals",
+    "vibration": "look for a source at the reported frequency (spindle, fan, loop tuning)",
+    "residual": "errors the model does not explain: inspect the polar plot",
+}
+
+_DECAYS = np.geomspace(0.05e-3, 5e-3, 9)      # candidate spike decay lengths, m
+
+
+@dataclass(frozen=True)
+class DiagnosisTerm:
+    """One diagnosed term: value (in ``unit``), its peak-to-valley on Δr (m) and share of G."""
+
+    key: str
+    value: float
+    unit: str
+    ptp: float
+    share: float
+    advice: str
+
+
+@dataclass(frozen=True)
+class BallbarDiagnosis:
+    """The diagnosis of a circular test (module docstring); lengths in m, ratios in m/m.
+
+    Attributes
+    ----------
+    circular : CircularResult
+        ISO 230-4 G, H, F and the basic squareness diagnosis.
+    values : dict
+        Every term in its JSON unit, keys carrying the unit (``squareness_um_per_m`` ...).
+    terms : tuple of DiagnosisTerm
+        Ranked, largest effect on the circularity first.
+    residual_rms, residual_ptp : float, m
+        What the model leaves.
+    warnings : tuple of str
+    """
+
+    circular: CircularResult
+    values: dict
+    terms: tuple[DiagnosisTerm, ...]
+    residual_rms: float
+    residual_ptp: float
+    feed: float | None
+    warnings: tuple[str, ...] = field(default=())
+
+    def as_dict(self) -> dict:
+        """JSON numbers: µm, µm/m, ms, Hz, mm; the ranking with shares in %."""
+        d = dict(self.values)
+        d.update({"residual_rms_um": self.residual_rms * 1e6,
+                  "residual_ptp_um": self.residual_ptp * 1e6,
+                  "feed_mm_per_min": None if self.feed is None else self.feed * 6e4,
+                  "iso230_4": self.circular.as_dict(),
+                  "ranking": [{"term": t.key, "value": t.value, "unit": t.unit,
+                               "effect_um": t.ptp * 1e6, "share_percent": t.share * 100,
+                               "advice": t.advice} for t in self.terms],
+                  "warnings": list(self.warnings)})
+        return d
+
+    def __str__(self) -> str:
+        c = self.circular
+        lines = [f"ballbar diagnosis R = {c.radius * 1e3:g} mm over {c.arc_deg:.0f}°"
+                 + ("" if self.feed is None else f", feed {self.feed * 6e4:g} mm/min"),
+                 f"  ISO 230-4:2005 §3: G ccw {_um(c.G_ccw)}, G cw {_um(c.G_cw)}, "
+                 f"H {_um(c.H)}, F max {_um(c.F_max)}, F min {_um(c.F_min)}",
+                 "  rank  term                 value            effect   share  advice"]
+        for i, t in enumerate(self.terms, 1):
+            lines.append(f"  {i:>4}  {t.key:<19} {t.value:>+9.3f} {t.unit:<6} "
+                         f"{t.ptp * 1e6:>7.3f} µm {t.share * 100:>5.0f} %  {t.advice}")
+        lines.append(f"  residual after the model: {self.residual_rms * 1e6:.3f} µm rms, "
+                     f"{self.residual_ptp * 1e6:.3f} µm peak-to-valley")
+        lines += [f"  warning: {w}" for w in self.warnings]
+        return "\n".join(lines)
+
+
+def diagnose(runs, radius: float, *, feed: float | None = None,
+             axes: tuple[str, str] = ("X", "Y")) -> BallbarDiagnosis:
+    """Diagnose a circular test from its CCW and CW runs.
+
+    Parameters
+    ----------
+    runs : sequence of CircularRun
+        One CCW and one CW run (full circle or an arc of at least 220°).
+    radius : float, m
+    feed : float or None, m/s
+        Contouring feed; servo mismatch (ms) and vibration (Hz) need it.
+    axes : (str, str)
+        The plane's axes (keys keep ``x`` and ``y`` for the first and second axis).
+
+    Returns
+    -------
+    BallbarDiagnosis
+
+    Raises
+    ------
+    InputError
+        Not one run of each direction, an arc under 220°, a bad radius or feed.
+
+    Examples
+    --------
+    >>> phi = np.radians(np.arange(0, 360, 0.5))
+    >>> dr = -(20e-6 * 0.1 / 2) * np.sin(2 * phi)         # 20 µm/m squareness, R = 100 mm
+    >>> d = diagnose([CircularRun(phi, dr, "ccw"), CircularRun(phi, dr, "cw")], 0.1)
+    >>> round(d.values["squareness_um_per_m"], 6), d.terms[0].key
+    (20.0, 'squareness')
+    """
+    runs = list(runs)
+    if len(runs) != 2 or {r.direction for r in runs} != {"ccw", "cw"}:
+        raise InputError("the diagnosis needs one CCW and one CW run")
+    if feed is not None and not (math.isfinite(feed) and feed > 0):
+        raise InputError(f"feed={feed!r} m/s: must be positive")
+    circ = evaluate_circular(runs, radius, axes=axes)
+    by = {r.direction: r for r in runs}
+    phi, ccw, cw = _common(by["ccw"], by["cw"], circ.arc_deg)
+    y = np.concatenate([ccw, cw])
+    fit = _fit(phi, y, radius)
+    return _assemble(circ, phi, y, fit, radius, feed)
+
+
+# --- the fit -------------------------------------------------------------------------------------
+
+_LINEAR = ("centre_r", "centre_x", "centre_y", "scale", "square", "shift_r", "shift_x",
+           "shift_y", "servo", "backlash_x", "backlash_y", "lateral_x", "lateral_y",
+           "straight_x", "straight_y", "spike_x", "spike_y")
+
+
+def _columns(phi: np.ndarray, radius: float) -> np.ndarray:
+    """Design matrix of both runs (CCW rows then CW rows): the 15 fixed columns of _LINEAR, then
+    the X spike column for each of _DECAYS, then the Y spike column for each."""
+    blocks = []
+    for sense, direction in ((1.0, "ccw"), (-1.0, "cw")):
+        h = _harmonics(phi)
+        b = _backlash_basis(phi, direction)
+        c, s = np.cos(phi), np.sin(phi)
+        sx, sy = _axis_signs(phi, sense)
+        ax = np.mod(sense * phi, np.pi)                 # travel angle since the X reversal
+        ay = np.mod(sense * (phi - np.pi / 2), np.pi)   # ... since the Y reversal
+        blocks.append(np.column_stack([
+            h, sense * 0.5 * h[:, :3], sense * 0.5 * h[:, 4], b, 0.5 * sx * s, 0.5 * sy * c,
+            c * c * s, s * s * c,
+            np.abs(c)[:, None] * np.exp(-radius * ax[:, None] / _DECAYS[None, :]),
+            np.abs(s)[:, None] * np.exp(-radius * ay[:, None] / _DECAYS[None, :])]))
+    return np.vstack(blocks)
+
+
+def _axis_signs(phi: np.ndarray, sense: float) -> tuple[np.ndarray, np.ndarray]:
+    """Signs of the X and Y velocities, approach side on a reversal point (as the backlash)."""
+    s, c = np.sin(phi), np.cos(phi)
+    sx = np.where(np.abs(s) < REVERSAL_TOL, np.sign(c), -sense * np.sign(s))
+    sy = np.where(np.abs(c) < REVERSAL_TOL, np.sign(s), sense * np.sign(c))
+    return sx, sy
+
+
+@dataclass(frozen=True)
+class _Fit:
+    coef: dict
+    decay: tuple[float, float]
+    cyclic: dict
+    model: dict          # term -> its Δr contribution on the stacked rows
+    residual: np.ndarray
+    observable: dict
+
+
+def _fit(phi, y, radius) -> _Fit:
+    """Linear terms by least squares, the spike decays by a coordinate search on the normal
+    equations of all candidate columns (one product, then 15+2 column systems per candidate)."""
+    m = _columns(phi, radius)
+    nf, nd = 15, _DECAYS.size
+    gram, rhs = m.T @ m, m.T @ y
+    yy = float(y @ y)
+    pick = [nf + nd // 2, nf + nd + nd // 2]
+    for axis in (0, 1, 0, 1):
+        best = None
+        for j in range(nd):
+            idx = list(range(nf)) + pick
+            idx[nf + axis] = nf + axis * nd + j
+            c = np.linalg.lstsq(gram[np.ix_(idx, idx)], rhs[idx], rcond=None)[0]
+            sse = yy - float(c @ rhs[idx])
+            if best is None or sse < best[0] - 1e-18 * yy:
+                best = (sse, idx[nf:])
+        pick = best[1]
+    a = m[:, list(range(nf)) + pick]
+    decay = (float(_DECAYS[pick[0] - nf]), float(_DECAYS[pick[1] - nf - nd]))
+    c, _ = _solve(a, y)
+    cyc_cols, cyclic = _cyclic(phi, y - a @ c, radius)
+    full = np.column_stack([a, cyc_cols])
+    c, _ = _solve(full, y)
+    model = {k: full[:, i] * c[i] for i, k in enumerate(_LINEAR)}
+    model["cyclic_x"] = full[:, -4:-2] @ c[-4:-2]
+    model["cyclic_y"] = full[:, -2:] @ c[-2:]
+    cyclic["x_amp"] = float(math.hypot(*c[-4:-2]))
+    cyclic["y_amp"] = float(math.hypot(*c[-2:]))
+    norms = np.linalg.norm(full, axis=0) / math.sqrt(len(y))
+    observable = {k: bool(norms[i] > 1e-3) for i, k in enumerate(_LINEAR)}
+    return _Fit(dict(zip(_LINEAR, map(float, c))), decay, cyclic, model, y - full @ c,
+                observable)
+
+
+def _solve(a, y):
+    """Least squares by QR (the design is well conditioned; lstsq's SVD is slower)."""
+    q, r = np.linalg.qr(a)
+    c = np.linalg.lstsq(r, q.T @ y, rcond=None)[0]
+    return c, float(np.sqrt(np.mean((y - a @ c) ** 2)))
+
+
+def _cyclic(phi, res, radius):
+    """Pitch of each axis's cyclic error: grid search of the projections of the mean residual of
+    the two runs (a cyclic error of position is the same in both directions)."""
+    n = phi.size
+    mean = 0.5 * (res[:n] + res[n:])
+    dphi = 2 * np.pi / max(n, 8)
+    pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 48)
+    cols, out = [], {}
+    for name, w in (("x", np.cos(phi)), ("y", np.sin(phi))):
+        power, sn, cs = _cyclic_power(pitches, w, mean, radius)
+        i = int(np.argmax(power))           # then a finer grid between the neighbours
+        fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 24)
+        power, sn, cs = _cyclic_power(fine, w, mean, radius)
+        i = int(np.argmax(power))
+        out[f"{name}_pitch"] = float(fine[i])
+        cols += [np.tile(sn[i], 2), np.tile(cs[i], 2)]
+    return np.column_stack(cols), out
+
+
+def _cyclic_power(pitches, w, mean, radius):
+    arg = (2 * np.pi * radius / pitches)[:, None] * w[None, :]
+    sn, cs = w * np.sin(arg), w * np.cos(arg)
+    power = (sn @ mean) ** 2 / np.einsum("ij,ij->i", sn, sn) + \
+        (cs @ mean) ** 2 / np.einsum("ij,ij->i", cs, cs)
+    return power, sn, cs
+
+
+# --- the result ----------------------------------------------------------------------------------
+
+def _assemble(circ, phi, y, fit: _Fit, radius, feed) -> BallbarDiagnosis:
+    c, warnings = fit.coef, []
+    v = {"squareness_um_per_m": -2 * c["square"] / radius * 1e6,
+         "scale_mismatch_um_per_m": 2 * c["scale"] / radius * 1e6,
+         "backlash_x_um": c["backlash_x"] * 1e6, "backlash_y_um": c["backlash_y"] * 1e6,
+         "lateral_play_x_um": c["lateral_x"] * 1e6, "lateral_play_y_um": c["lateral_y"] * 1e6,
+         "straightness_x_um": c["straight_x"] * 1e6, "straightness_y_um": c["straight_y"] * 1e6,
+         "reversal_spike_x_um": c["spike_x"] * 1e6, "reversal_spike_y_um": c["spike_y"] * 1e6,
+         "reversal_spike_x_decay_mm": fit.decay[0] * 1e3,
+         "reversal_spike_y_decay_mm": fit.decay[1] * 1e3,
+         "cyclic_x_um": fit.cyclic["x_amp"] * 1e6, "cyclic_x_pitch_mm": fit.cyclic["x_pitch"] * 1e3,
+         "cyclic_y_um": fit.cyclic["y_amp"] * 1e6, "cyclic_y_pitch_mm": fit.cyclic["y_pitch"] * 1e3,
+         "servo_mismatch_ms": None, "servo_term_um": c["servo"] * 1e6}
+    if feed is not None:
+        v["servo_mismatch_ms"] = c["servo"] / feed * 1e3   # column s sin 2φ / 2: coef v Δτ
+    else:
+        warnings.append("no feed given: servo mismatch stays in µm (servo_term_um), not ms, "
+                        "and vibration has no frequency")
+    for k in ("spike_x", "spike_y", "backlash_x", "backlash_y"):
+        if not fit.observable[k]:
+            warnings.append(f"{k}: its reversal point lies outside the arc; not observable")
+    stick, vib = _stick_slip(phi, fit.residual), _vibration(phi, fit.residual, radius, feed)
+    v.update({"stick_slip_um": stick * 1e6, "vibration_um": vib[1] * 1e6,
+              "vibration_hz": vib[0]})
+    terms = _rank(fit, circ, v, stick, vib[1])
+    res = fit.residual
+    return BallbarDiagnosis(circ, v, terms, float(np.sqrt(np.mean(res**2))), float(np.ptp(res)),
+                            feed, tuple(warnings) + circ.warnings)
+
+
+_TERMS = (  # ranking key, model parts, value key, unit
+    ("squareness", ("square",), "squareness_um_per_m", "µm/m"),
+    ("scale_mismatch", ("scale",), "scale_mismatch_um_per_m", "µm/m"),
+    ("servo_mismatch", ("servo",), "servo_mismatch_ms", "ms"),
+    ("backlash_x", ("backlash_x",), "backlash_x_um", "µm"),
+    ("backlash_y", ("backlash_y",), "backlash_y_um", "µm"),
+    ("lateral_play_x", ("lateral_x",), "lateral_play_x_um", "µm"),
+    ("lateral_play_y", ("lateral_y",), "lateral_play_y_um", "µm"),
+    ("straightness_x", ("straight_x",), "straightness_x_um", "µm"),
+    ("straightness_y", ("straight_y",), "straightness_y_um", "µm"),
+    ("reversal_spike_x", ("spike_x",), "reversal_spike_x_um", "µm"),
+    ("reversal_spike_y", ("spike_y",), "reversal_spike_y_um", "µm"),
+    ("cyclic_x", ("cyclic_x",), "cyclic_x_um", "µm"),
+    ("cyclic_y", ("cyclic_y",), "cyclic_y_um", "µm"),
+)
+
+
+def _rank(fit, circ, v, stick, vib_amp) -> tuple[DiagnosisTerm, ...]:
+    g = max(x for x in (circ.G_ccw, circ.G_cw, 1e-12) if x is not None)
+    out = []
+    for key, parts, vkey, unit in _TERMS:
+        ptp = float(np.ptp(sum(fit.model[p] for p in parts)))
+        value = v[vkey]
+        if value is None:
+            value, unit = v["servo_term_um"], "µm"
+        out.append(DiagnosisTerm(key, float(value), unit, ptp, ptp / g, ADVICE[key]))
+    out.append(DiagnosisTerm("stick_slip", stick * 1e6, "µm", stick, stick / g,
+                             ADVICE["stick_slip"]))
+    out.append(DiagnosisTerm("vibration", vib_amp * 1e6, "µm", 2 * vib_amp, 2 * vib_amp / g,
+                             ADVICE["vibration"]))
+    rp = float(np.ptp(fit.residual))
+    out.append(DiagnosisTerm("residual", rp * 1e6, "µm", rp, rp / g, ADVICE["residual"]))
+    return tuple(sorted(out, key=lambda t: -t.ptp))
+
+
+def _stick_slip(phi, res) -> float:
+    """Residual peak-to-valley near reversals (|sin| or |cos| < 0.1) beyond the rest's."""
+    p2 = np.concatenate([phi, phi])
+    near = (np.abs(np.sin(p2)) < 0.1) | (np.abs(np.cos(p2)) < 0.1)
+    if near.sum() < 2 or (~near).sum() < 2:
+        return 0.0
+    return float(max(0.0, np.ptp(res[near]) - np.ptp(res[~near])))
+
+
+def _vibration(phi, res, radius, feed) -> tuple[float | None, float]:
+    """Largest line of the residual's amplitude spectrum (CCW run, uniform angle grid)."""
+    n = phi.size
+    r = res[:n] - res[:n].mean()
+    if n < 16:
+        return None, 0.0
+    spec = 2 * np.abs(np.fft.rfft(r)) / n
+    spec[:5] = 0.0                                  # harmonics up to 4/rev are modelled terms
+    i = int(np.argmax(spec))
+    span = abs(phi[-1] - phi[0]) * n / max(n - 1, 1) * radius   # path length of the run, m
+    hz = None if feed is None else float(i * feed / span)
+    return hz, float(spec[i])
+
+
+def _um(v):
+    return "—" if v is None else f"{v * 1e6:.3f} µm"
+
+
+def arc_of(runs) -> float:
+    """Smallest angular coverage of the runs, degrees (helper for callers)."""
+    return min(arc_coverage(r.angles) for r in runs)
+
+
+_ = CircularRun  # re-exported type of the runs

@@ -1,0 +1,57 @@
+"""``axiscal ballbar analyze|volumetric`` through typer's CliRunner."""
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from axiscal.cli import app
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "squareness_ballbar_150mm.csv"
+runner = CliRunner()
+
+
+def _json(*args):
+    res = runner.invoke(app, [*map(str, args), "--json"])
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def test_analyze_agrees_with_squareness_circular():
+    """The example file (simulated: squareness 12 µm/m, scale mismatch 12 µm/m, backlash 6/-3 µm,
+    noise 0.1 µm): the diagnosis agrees with squareness circular within 0.1 µm/m / 0.1 µm."""
+    d = _json("ballbar", "analyze", EXAMPLE, "--feed", 1000)
+    s = _json("squareness", "circular", EXAMPLE)
+    assert d["squareness_um_per_m"] == pytest.approx(s["squareness"]["um_per_m"], abs=0.1)
+    assert d["scale_mismatch_um_per_m"] == pytest.approx(s["scale_mismatch_um_per_m"], abs=0.1)
+    assert d["backlash_x_um"] == pytest.approx(6.0, abs=0.3)
+    assert d["backlash_y_um"] == pytest.approx(-3.0, abs=0.3)
+    assert d["feed_mm_per_min"] == 1000
+    assert d["ranking"][0]["term"] == "backlash_x"
+    assert d["iso230_4"]["G_ccw_um"] == pytest.approx(s["G_ccw_um"])
+
+
+def test_analyze_plot_and_report(tmp_path):
+    png, html = tmp_path / "d.png", tmp_path / "d.html"
+    res = runner.invoke(app, ["ballbar", "analyze", str(EXAMPLE), "--plot", str(png),
+                              "--report", str(html)])
+    assert res.exit_code == 0, res.output
+    assert "backlash_x" in res.stdout and "residual" in res.stdout
+    assert png.stat().st_size > 10_000 and "Ranked diagnosis" in html.read_text()
+
+
+def test_bad_input_one_line(tmp_path):
+    f = tmp_path / "one.csv"
+    f.write_text("# radius_mm=100\nangle,direction,deviation\n"
+                 + "\n".join(f"{a},ccw,0" for a in range(0, 360, 10)))
+    res = runner.invoke(app, ["ballbar", "analyze", str(f)])
+    assert res.exit_code == 2
+    assert res.stderr.strip().count("\n") == 0 and "one CCW and one CW" in res.stderr
+    res = runner.invoke(app, ["ballbar", "analyze", str(EXAMPLE), "--plane", "XZ"])
+    assert res.exit_code == 2 and "--plane" in res.stderr
+
+
+def test_volumetric_refuses_a_plane_twice():
+    res = runner.invoke(app, ["ballbar", "volumetric", str(EXAMPLE), str(EXAMPLE)])
+    assert res.exit_code == 2 and "each plane once" in res.stderr
