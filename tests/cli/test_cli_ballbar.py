@@ -55,3 +55,25 @@ def test_bad_input_one_line(tmp_path):
 def test_volumetric_refuses_a_plane_twice():
     res = runner.invoke(app, ["ballbar", "volumetric", str(EXAMPLE), str(EXAMPLE)])
     assert res.exit_code == 2 and "each plane once" in res.stderr
+
+
+def test_simulate_then_analyze(tmp_path):
+    """The example config (Kv 30 and 33 /s: servo mismatch 1/30 - 1/33 s = 3.03 ms; squareness
+    20 µm/m; backlash 5 / -4 µm; noise 0.1 µm) round-trips through the file format."""
+    cfg = Path(__file__).resolve().parents[2] / "examples" / "ballbar_sim.toml"
+    out = tmp_path / "t.csv"
+    res = runner.invoke(app, ["ballbar", "simulate", str(cfg), "--out", str(out), "--seed", "2"])
+    assert res.exit_code == 0, res.output
+    d = _json("ballbar", "analyze", out)
+    assert d["servo_mismatch_ms"] == pytest.approx(1e3 * (1 / 30 - 1 / 33), abs=0.02)
+    assert d["squareness_um_per_m"] == pytest.approx(20.0, abs=0.3)
+    assert d["backlash_x_um"] == pytest.approx(5.0, abs=0.15)
+    assert d["backlash_y_um"] == pytest.approx(-4.0, abs=0.1)
+    assert d["feed_mm_per_min"] == pytest.approx(1000)
+
+
+def test_simulate_refuses_unknown_key(tmp_path):
+    cfg = tmp_path / "c.toml"
+    cfg.write_text("[machine]\nsquarenes_um_per_m = 3\n")
+    res = runner.invoke(app, ["ballbar", "simulate", str(cfg)])
+    assert res.exit_code == 2 and "unknown key" in res.stderr

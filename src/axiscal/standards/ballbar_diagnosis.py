@@ -267,9 +267,8 @@ def _fit(phi, y, radius) -> _Fit:
 
 
 def _solve(a, y):
-    """Least squares by QR (the design is well conditioned; lstsq's SVD is slower)."""
-    q, r = np.linalg.qr(a)
-    c = np.linalg.lstsq(r, q.T @ y, rcond=None)[0]
+    """Least squares by the normal equations (columns of order one, well conditioned)."""
+    c = np.linalg.lstsq(a.T @ a, a.T @ y, rcond=None)[0]
     return c, float(np.sqrt(np.mean((y - a @ c) ** 2)))
 
 
@@ -279,12 +278,12 @@ def _cyclic(phi, res, radius):
     n = phi.size
     mean = 0.5 * (res[:n] + res[n:])
     dphi = 2 * np.pi / max(n, 8)
-    pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 48)
+    pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 40)
     cols, out = [], {}
     for name, w in (("x", np.cos(phi)), ("y", np.sin(phi))):
         power, sn, cs = _cyclic_power(pitches, w, mean, radius)
         i = int(np.argmax(power))           # then a finer grid between the neighbours
-        fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 24)
+        fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 12)
         power, sn, cs = _cyclic_power(fine, w, mean, radius)
         i = int(np.argmax(power))
         out[f"{name}_pitch"] = float(fine[i])

@@ -310,8 +310,6 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
 
 def _circular_deviation(run: CircularRun) -> float:
     """Minimum-zone G: min over (a, b) of max - min of Δr - a cos φ - b sin φ (an LP)."""
-    from scipy.optimize import linprog
-
     cos, sin = np.cos(run.angles), np.sin(run.angles)
     # start from the least-squares centre: the LP then solves for a small correction on data of
     # unit spread, whatever the radius offset (a constant moves both envelope circles alike)
@@ -322,18 +320,36 @@ def _circular_deviation(run: CircularRun) -> float:
     if not scale > 0:
         return 0.0
     dn = d / scale
-    ones, zeros = np.ones_like(d), np.zeros_like(d)
-    # variables a, b, u, l: minimise u - l with l <= dn - a cos - b sin <= u
-    a_ub = np.vstack([np.column_stack([-cos, -sin, -ones, zeros]),
-                      np.column_stack([cos, sin, zeros, ones])])
-    b_ub = np.concatenate([-dn, dn])
-    res = linprog([0, 0, 1, -1], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * 4,
-                  method="highs")
-    if not res.success:  # pragma: no cover - a bounded LP with a feasible start always solves
-        return _circular_deviation_lsc(run)
-    a, b = res.x[0] * scale, res.x[1] * scale
+    # constraint generation: the LP on the extreme readings, then add any reading outside the
+    # zone found and solve again; the zone of the subset enclosing every reading is the exact one
+    k = min(d.size, 200)
+    order = np.argsort(dn)
+    active = np.zeros(d.size, bool)
+    active[order[:k]] = active[order[-k:]] = True
+    while True:
+        x = _zone_lp(cos[active], sin[active], dn[active])
+        if x is None:  # pragma: no cover - a bounded LP with a feasible start always solves
+            return _circular_deviation_lsc(run)
+        r = dn - x[0] * cos - x[1] * sin
+        out = (r > x[2] + 1e-12) | (r < x[3] - 1e-12)
+        if not out[~active].any():
+            break
+        active |= out
+    a, b = x[0] * scale, x[1] * scale
     r = d - a * cos - b * sin
     return float(r.max() - r.min())
+
+
+def _zone_lp(cos, sin, dn):
+    """Variables a, b, u, l: minimise u - l with l <= dn - a cos - b sin <= u (HiGHS)."""
+    from scipy.optimize import linprog
+
+    ones, zeros = np.ones_like(dn), np.zeros_like(dn)
+    a_ub = np.vstack([np.column_stack([-cos, -sin, -ones, zeros]),
+                      np.column_stack([cos, sin, zeros, ones])])
+    res = linprog([0, 0, 1, -1], A_ub=a_ub, b_ub=np.concatenate([-dn, dn]),
+                  bounds=[(None, None)] * 4, method="highs")
+    return res.x if res.success else None
 
 
 def _circular_deviation_lsc(run: CircularRun) -> float:
