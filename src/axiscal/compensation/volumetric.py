@@ -247,6 +247,10 @@ class VerifyResult:
                      f"{self.spindle_tilt * 1e6:.2f} µm/m")
         lines.append(f"left by tables (two-axis Abbe products, model): "
                      f"{self.residual_predicted * 1e6:.2f} µm")
+        if self.residual_predicted > 0.5 * self.rows[0][2] > 0:
+            lines.append("what remains is mostly what single-axis tables cannot remove: the "
+                         "controller's volumetric compensation (a 3-D error map) or a mechanical "
+                         "correction of the largest angular errors would")
         return "\n".join(lines)
 
 
