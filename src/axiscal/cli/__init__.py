@@ -42,6 +42,7 @@ COMMANDS: dict[str, str] = {
     "rotary": "axiscal.cli.rotary",
     "air": "axiscal.cli.air",
     "scale": "axiscal.cli.scale",
+    "serve": "axiscal.cli.serve",
     "volumetric": "axiscal.cli.volumetric",
 }
 
