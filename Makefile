@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 OUT    ?= demo-output
 
-.PHONY: setup demo test bench shots clean
+.PHONY: setup sysdeps demo test bench shots clean
 
 setup: $(STAMP)
 
@@ -18,10 +18,18 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	$(VENV)/bin/axiscal demo --out $(OUT)
 
-test: $(STAMP)
+# Debian packages the tests use: PostgreSQL, so the history tests run on a real throw-away server
+# (tools/pgtest.py starts one per test process in a temporary folder and removes it).
+APT := $(if $(filter 0,$(shell id -u)),,sudo) env DEBIAN_FRONTEND=noninteractive apt-get
+sysdeps:
+	@if ! ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1; then \
+	  echo "installing Debian's postgresql (history tests)"; \
+	  $(APT) update -qq && $(APT) install -y -qq postgresql >/dev/null; fi
+
+test: $(STAMP) sysdeps
 	$(PY) -m pytest -n 2 -q
 
-bench: $(STAMP)
+bench: $(STAMP) sysdeps
 	$(PY) benchmarks/run.py
 
 # Render the demo report to PNG with headless Chromium (installed from Debian if missing),

@@ -43,6 +43,7 @@ COMMANDS: dict[str, str] = {
     "air": "axiscal.cli.air",
     "scale": "axiscal.cli.scale",
     "serve": "axiscal.cli.serve",
+    "history": "axiscal.cli.history",
     "volumetric": "axiscal.cli.volumetric",
 }
 

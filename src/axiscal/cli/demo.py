@@ -22,6 +22,7 @@ DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rota
 def demo(
     out: Path = typer.Option(Path("axiscal-demo"), "--out", help="Folder for plots, reports and data (created)."),
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
+    db: str = typer.Option(None, "--db", help="History database for the demo's tests (default: history.sqlite in --out)."),
 ) -> None:
     """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported."""
     import tomllib
@@ -49,7 +50,51 @@ def demo(
         pages.append((label, f"{name}_report.html", sim.result))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)
+    _history(out, db or f"sqlite:///{(out / 'history.sqlite').resolve()}", seed)
     note(f"\nopen {out / 'index.html'} for the reports")
+
+
+def _history(out: Path, db: str, seed: int) -> None:
+    """Store the demo's tests and a compensation loop (before/after) in the history; list and
+    compare them."""
+    import tomllib
+    from dataclasses import replace
+    from importlib import resources
+
+    from axiscal.compensation.loop import run_compensation_loop
+    from axiscal.io._files import write_text_atomic
+    from axiscal.io.csv import format_positioning_csv
+    from axiscal.store import open_store
+    from axiscal.store.analysis import compare_tests
+
+    store = open_store(db)
+    for name in ("linear", "rotary"):
+        p = out / f"{name}_data.csv"
+        store.add(p.read_bytes(), p.name)
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_compensation.toml")
+                        .read_text("utf-8"))
+    loop = run_compensation_loop(cfg, seed=seed)
+    ids = []
+    for label, ds in (("before", loop.before_data), ("after", loop.after_data)):
+        ds = replace(ds, metadata=replace(ds.metadata, machine=cfg["meta"]["machine"],
+                                          axis=cfg["axis"]["name"],
+                                          notes=f"compensation loop: {label}"))
+        p = out / f"compensation_{label}_data.csv"
+        write_text_atomic(p, format_positioning_csv(ds))
+        tables = ((loop.controller_file.controller, loop.controller_file.filename,
+                   loop.controller_file.text),) if label == "before" else ()
+        ids.append(store.add(p.read_bytes(), p.name, note=f"compensation loop: {label}",
+                             tables=tables).id)
+    typer.echo(f"\ncalibration history ({db}):")
+    for t in store.tests():
+        key = "E" if "E" in t.parameters else next(iter(t.parameters))
+        v, u = t.parameters[key]
+        typer.echo(f"  test {t.id:>3}  {t.machine} {t.axis}  {t.kind}  {key} = {v:.3f} {u}  "
+                   f"{t.filename}")
+    c = compare_tests(store.get(ids[0]), store.get(ids[1]))
+    typer.echo(f"\nthe linear axis before and after compensation (axiscal history compare "
+               f"{ids[0]} {ids[1]} --db {db}):")
+    typer.echo(str(c))
 
 
 def _rotary_calibration(out: Path):

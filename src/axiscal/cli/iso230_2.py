@@ -33,6 +33,9 @@ def iso230_2(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if one is exceeded)."),
+    history: bool = typer.Option(False, "--history", help="Also store the test in the calibration history (see 'axiscal history')."),
+    machine: Optional[str] = typer.Option(None, "--machine", help="With --history: the machine's name, if the file does not give it."),
+    db: Optional[str] = typer.Option(None, "--db", help="With --history: the database URL (default: AXISCAL_DB, else the user's SQLite file)."),
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target)."""
     from axiscal.io import read_positioning
@@ -67,6 +70,10 @@ def iso230_2(
     for p, what in ((plot, "plot"), (report, "report")):
         if p is not None:
             note(f"wrote {what} {p}")
+    if history:
+        from axiscal.cli.history import store_run
+
+        store_run(file, db, machine=machine)
     if any(v.passed is False for v in verdicts):
         raise typer.Exit(1)
 
