@@ -61,6 +61,8 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     app.state.upload_limit = int(upload_limit)
     app.state.db_url = db_url
     app.state.templates = Jinja2Templates(directory=str(HERE / "templates"))
+    app.state.templates.env.globals.update(zip=zip, query=query)
+    app.state.templates.env.filters["unit"] = lambda u: {"um": "µm", "um/m": "µm/m"}.get(u, u)
     app.mount("/static", StaticFiles(directory=str(HERE / "static")), name="static")
 
     @app.middleware("http")
@@ -73,7 +75,7 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
                 return RedirectResponse(f"/login?next={quote(request.url.path)}", 303)
             return render_error(request, "log in first", 401)
         response = await call_next(request)
-        if session.get("new_anon"):
+        if session and session.get("new_anon"):
             response.set_cookie(ANON, session["anon"], httponly=True, samesite="strict")
         response.headers.setdefault("X-Content-Type-Options", "nosniff")
         response.headers.setdefault("X-Frame-Options", "DENY")

@@ -175,7 +175,8 @@ def is_loopback(host: str) -> bool:
         return False
 
 
-def check_upload(filename: str, content_type: str, size: int) -> str:
+def check_upload(filename: str, content_type: str, size: int,
+                 limit: int = MAX_UPLOAD_BYTES) -> str:
     """The upload's suffix if acceptable; else an :class:`InputError` naming the problem."""
     name = Path(filename or "").name
     suffix = Path(name).suffix.lower()
@@ -186,9 +187,9 @@ def check_upload(filename: str, content_type: str, size: int) -> str:
     if base not in UPLOAD_TYPES:
         raise InputError(f"file {name!r} was sent as {base!r}; a data file is text "
                          "(CSV, JSON) or an instrument's binary record")
-    if size > MAX_UPLOAD_BYTES:
-        raise InputError(f"file {name!r} is {size / 2**20:.1f} MiB; the workbench takes at most "
-                         f"{MAX_UPLOAD_BYTES // 2**20} MiB")
+    if size > limit:
+        raise InputError(f"file {name!r} is larger than the workbench takes: at most "
+                         f"{limit / 2**20:.3g} MiB")
     if size == 0:
         raise InputError(f"file {name!r} is empty")
     return suffix
