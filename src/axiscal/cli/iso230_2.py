@@ -3,7 +3,8 @@
 JSON output (``--json``), stable: top-level keys ``A``, ``A_up``, ``A_down``, ``E``, ``E_up``,
 ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``, ``B_mean`` (numbers in ``unit``, or null where
 a unidirectional test makes them not apply), ``unit``, ``target_unit``, ``axis_kind``,
-``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``targets`` (one object per target:
+``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``machine``, ``axis`` (as the file
+names them, "" if not), ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
 ``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
 ``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
@@ -64,7 +65,8 @@ def iso230_2(
 
         write_positioning_report(report, ds, result, verdicts=verdicts)
     if json_out:
-        print_json(result_json(result, verdicts))
+        print_json({**result_json(result, verdicts), "machine": ds.metadata.machine,
+                    "axis": ds.metadata.axis})
     else:
         render_result(result, ds, title=str(file), verdicts=verdicts)
     for p, what in ((plot, "plot"), (report, "report")):
