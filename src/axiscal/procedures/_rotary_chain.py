@@ -120,8 +120,8 @@ class Rig:
                 f"laser signal lost during move {st.seq} of the plan ({st.kind} move of run "
                 f"{st.run}, {math.degrees(ends[k]):g}° to {st.position:g}°): the reflector turns "
                 f"{math.degrees(worst):+.1f}° from the beams (limit "
-                f"±{math.degrees(self.laser.max_angle):g}°); a real laser loses the whole run. "
-                "Counter-rotate the calibrator to keep the reflector facing the laser, or reduce "
+                f"±{math.degrees(self.laser.max_angle):g}°); a real laser loses the whole run: "
+                "counter-rotate the calibrator to keep the reflector facing the laser, or reduce "
                 "the travel or the overrun")
 
     def align(self, rng: np.random.Generator) -> None:
