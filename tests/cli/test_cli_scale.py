@@ -31,8 +31,10 @@ def test_scale_home_json():
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["homed"] is True
-    assert [e["counts_beyond_switch"] for e in d["events"]] == [0, 256, 320, 384]
-    assert d["tracking"]["max_count_error"] < 1.0
+    assert [e["nominal_counts"] for e in d["events"]] == [0, 256, 320, 384]
+    assert d["events"][2]["uncertainty_counts"] == pytest.approx(0.633 / 0.078125, rel=1e-3)
+    assert d["tracking"]["max_pulse_error"] < 1.0
+    assert d["tracking"]["count_uncertainty"] == pytest.approx(8.10, abs=0.01)
     assert d["alarms"] == []
     for key in ("virtual_counts", "home_position_mm", "compensation_ppm", "laser_count_rate_hz"):
         assert key in d
