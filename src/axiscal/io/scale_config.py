@@ -214,6 +214,9 @@ def twin_axis_from_config(cfg: dict[str, Any]):
 
     comp = compensator_from_config(cfg)
     out = comp.output
+    if cfg.get("compensator", {}).get("rephase_periods", 1) != 1:
+        raise ConfigError(f"{cfg['_source']}: [compensator] rephase_periods is for single-axis "
+                          "referencing; the gantry model rephases over one period (remove it)")
     g = cfg.get("gantry", {})
     q = out.count_size
     d = _direction(cfg, "gantry", g)
