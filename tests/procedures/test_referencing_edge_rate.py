@@ -140,3 +140,14 @@ def test_tracking_error_is_against_the_true_part_position():
     assert t["max_count_error"] <= t["count_uncertainty"] + 1.0
     assert t["max_count_error"] > 1.0               # the laser count shows: not the pulse error
     assert t["max_pulse_error"] < 1.0
+
+
+def test_no_spreading_helps_when_the_real_motion_exceeds_the_limit():
+    """rephase_periods_for refuses by name a homing speed whose real signal (speed / period,
+    plus 2 counts in N for whole counts) already reaches the limit: 2 m/s is 100 kHz at 20 µm."""
+    from axiscal.errors import InputError
+    from axiscal.instruments.compensator import rephase_periods_for
+
+    with pytest.raises(InputError, match="100.00 kHz.*home slower"):
+        rephase_periods_for(2.0, SineOutput(PERIOD, N), 100e3)
+    assert rephase_periods_for(0.005, SineOutput(PERIOD, N), 100e3) == 1

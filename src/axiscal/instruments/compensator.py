@@ -409,7 +409,8 @@ def rephase_periods_for(speed: float, output: SineOutput, max_frequency: float) 
     f = output.signal_frequency(speed) * (n + 2) / n
     if not f < max_frequency:
         raise InputError(f"homing at {abs(speed) * 60e3:g} mm/min drives the outputs at "
-                         f"{f / 1e3:.2f} kHz, at or above the controller's "
+                         f"{output.signal_frequency(speed) / 1e3:.2f} kHz (up to {f / 1e3:.2f} "
+                         f"kHz over a period, whole counts), not below the controller's "
                          f"{max_frequency / 1e3:g} kHz before any rephasing: home slower")
     k = int(np.ceil((n - 1) * f / (n * (max_frequency - f))))
     return max(1, k)
