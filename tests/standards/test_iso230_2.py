@@ -242,7 +242,8 @@ def test_result_str_and_table_are_readable():
 
 def _no_scatter_full_turn(closure_arcsec):
     """Readings with no scatter, formed as a real capture forms them: the actual angle in
-    degrees (target + 0.01″ + a 0.05″ once-per-turn error + closure at 360°) minus the target, × 3600.
+    degrees (target + 0.01″ + a 0.05″ once-per-turn error + closure at 360°) minus the target,
+    × 3600.
     At 360° one unit in the last place of the angle is 5.7e-14° = 2e-10″ (IEEE 754 binary64),
     so the difference of the means at 0° and 360° is float rounding, not a closure."""
     targets = np.arange(0, 361, 45.0)

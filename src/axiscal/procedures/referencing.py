@@ -11,8 +11,8 @@
 and reports the events A (switch), B (reference pulse starts), Z (home) and C (pulse ends): where
 each happened, measured from the simulated motion (the true position of the part referred to
 20 °C, in output counts beyond the switch, to within one laser count: the compensator's count
-changes only when the laser's does), beside the design value. After the homing move the axis can make
-further moves (``moves``) under changing air, for the truth tests of the compensation.
+changes only when the laser's does), beside the design value. After the homing move the axis can
+make further moves (``moves``) under changing air, for the truth tests of the compensation.
 
 The axis moves at constant real speed while homing (the servo is not modelled; the controller
 sees (N + v)/N times that speed during stage 2). Positions are sampled uniformly in distance, at
@@ -348,7 +348,8 @@ class ReferencingRun:
             "   position [mm]   time [s]",
         ]
         for e in self.events:
-            meas = f"{e.counts_beyond_switch:8.1f} ± {e.uncertainty_counts:.1f}  ({e.nominal_counts})"
+            meas = (f"{e.counts_beyond_switch:8.1f} ± {e.uncertainty_counts:.1f}  "
+                    f"({e.nominal_counts})")
             lines.append(f"  {e.name:<5}  {meas:>52}  {e.controller_count:>16d}"
                          f"  {e.position * 1e3:>14.6f}  {e.time:>9.7f}")
         if self.homed:

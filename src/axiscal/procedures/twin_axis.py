@@ -20,8 +20,9 @@ controller count on the commanded value. The skew the controller sees before syn
 (s0 the real skew X1 - X2 before homing, d the homing direction): the homing adds d (v2 - v1),
 never more than ±(N - 1) counts, the seed's ±256 for N = 256. In length that is just under one
 signal period whatever N: (N − 1)·period/N (255 × 78.125 nm = 19.92 µm, 127 × 156.25 nm =
-19.84 µm at 20 µm); fewer counts per period reduce the skew in counts, not in micrometres. A compensator rephases at the first
-hit of its own switch, whether its axis is master or slave at the time.
+19.84 µm at 20 µm); fewer counts per period reduce the skew in counts, not in micrometres. A
+compensator rephases at the first hit of its own switch, whether its axis is master or slave at
+the time.
 
 Examples
 --------
