@@ -78,8 +78,9 @@ def budget(
 ) -> None:
     """Misalignment error for α, β, ω, and the alignment a wanted accuracy needs.
 
-    From Renishaw, Interferometric calibration of rotary axes: equation 1 and the Figure 22
-    table (a model fitted to it), whichever is the more cautious.
+    Uses eq. 1 or Figure 22 (a model fitted to it), whichever is more cautious.
+
+    Source: Renishaw, Interferometric calibration of rotary axes.
 
     Example: axiscal rotary budget --alpha 0.62 --beta 1.23 --omega 2.26 --accuracy 1
     """
