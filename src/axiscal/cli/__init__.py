@@ -42,6 +42,7 @@ COMMANDS: dict[str, str] = {
     "rotary": "axiscal.cli.rotary",
     "air": "axiscal.cli.air",
     "scale": "axiscal.cli.scale",
+    "config": "axiscal.cli.config",
 }
 
 

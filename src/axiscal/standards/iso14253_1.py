@@ -31,7 +31,7 @@ from enum import Enum
 
 from axiscal.errors import InputError
 
-__all__ = ["Outcome", "Rule", "Decision", "decide", "overall", "RULE_TEXT"]
+__all__ = ["Outcome", "Rule", "Decision", "decide", "decide_all", "overall", "RULE_TEXT"]
 
 
 class Outcome(str, Enum):
@@ -175,6 +175,38 @@ def overall(decisions) -> Outcome | None:
     if Outcome.NONCONFORMS in outcomes:
         return Outcome.NONCONFORMS
     return Outcome.CONFORMS if all(o is Outcome.CONFORMS for o in outcomes) else Outcome.ZONE
+
+
+def decide_all(values, budget, tolerances, rule: Rule | str = Rule.ISO_14253_1,
+               signed=("B_mean",)) -> tuple[Decision, ...]:
+    """Decide every toleranced parameter of a result.
+
+    Parameters
+    ----------
+    values : mapping of str to float or None
+        Parameter values (e.g. ``Iso230_2Result.parameters()``).
+    budget : UncertaintyBudget or mapping with ``U(name)``
+        Supplies U per parameter (a parameter it does not cover is refused).
+    tolerances : mapping of str to float
+        Upper limit per parameter (one-sided, as ISO 230-2 acceptance tests state them).
+    rule : Rule or str
+    signed : sequence of str
+        Parameters whose magnitude is toleranced (the signed mean reversal B̄).
+    """
+    for name in tolerances:
+        if name not in values:
+            raise InputError(f"tolerance for {name!r}: not a parameter of this result; use one of "
+                             f"{', '.join(values)}")
+    out = []
+    for name in (n for n in values if n in tolerances):     # in the result's order
+        tol = tolerances[name]
+        U = budget.U(name)
+        if U is None:
+            raise InputError(f"tolerance for {name!r}: the uncertainty budget does not cover it")
+        v = values[name]
+        out.append(decide(name, None if v is None else (abs(v) if name in signed else v), U,
+                          float(tol), None, rule))
+    return tuple(out)
 
 
 def _rule(rule: Rule | str) -> Rule:

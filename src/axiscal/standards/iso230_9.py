@@ -58,7 +58,7 @@ Seed 000: Renishaw, "Interferometric calibration of rotary axes", eq. 1.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from typing import Any, Mapping
 
 import numpy as np
@@ -67,7 +67,7 @@ from axiscal.errors import InputError
 
 __all__ = ["Contributor", "UncertaintyBudget", "LinearInputs", "RotaryInputs", "combine",
            "linear_budget", "rotary_budget", "chain_budget", "monte_carlo_linear", "MonteCarlo",
-           "COVERAGE_FACTOR", "DISTANCE_PARAMETERS", "SCATTER_PARAMETERS"]
+           "positioning_budget", "COVERAGE_FACTOR", "DISTANCE_PARAMETERS", "SCATTER_PARAMETERS"]
 
 #: Coverage factor of the expanded uncertainty (ISO/TR 230-9 and ISO 230-2 Annex A: k = 2).
 COVERAGE_FACTOR = 2.0
@@ -552,3 +552,39 @@ def monte_carlo_linear(travel_mm: float, inputs: LinearInputs, rng: np.random.Ge
             u[p] = sd
             half[p] = float(hi - lo) / 2
     return MonteCarlo(n, u, {p: k * v for p, v in u.items()}, half)
+
+
+def positioning_budget(dataset, result, table: Mapping[str, Any] | None = None,
+                       k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
+    """The Annex A budget of an evaluated ISO 230-2 test, linear or rotary.
+
+    Parameters
+    ----------
+    dataset : PositioningDataset
+        Its environment supplies α and the material temperature where ``table`` does not.
+    result : Iso230_2Result
+        Supplies the travel (first to last target) and the deviation unit.
+    table : mapping, optional
+        The ``[uncertainty]`` table of the configuration (keys of :class:`LinearInputs` or
+        :class:`RotaryInputs`); absent keys take the documented defaults.
+    k : float
+
+    Returns
+    -------
+    UncertaintyBudget
+    """
+    table = dict(table or {})
+    if dataset.axis_kind.value == "rotary":
+        return rotary_budget(RotaryInputs.from_mapping(table), result.deviation_unit, k)
+    from axiscal.units import convert
+
+    travel = float(convert(float(np.ptp(result.targets)), result.target_unit, "mm"))
+    env = dataset.metadata.environment
+    notes = []
+    if "material_temperature" not in table and not env.material_temperature:
+        notes.append("material temperature not stated: 20 °C assumed, so the uncertainty of α "
+                     "contributes nothing; state it in the data file or [uncertainty]")
+    if "expansion_coefficient" not in table and env.expansion_coefficient is None:
+        notes.append("expansion coefficient not stated: 11.5 µm/(m·K) (steel) assumed")
+    b = linear_budget(travel, LinearInputs.from_mapping(table, dataset), result.deviation_unit, k)
+    return replace(b, notes=b.notes + tuple(notes))
