@@ -31,8 +31,11 @@ def figure_svg(fig) -> str:
     """Render a matplotlib figure as an inline ``<svg>`` string and close the figure."""
     import matplotlib.pyplot as plt
 
+    import matplotlib
+
     buf = io.StringIO()
-    fig.savefig(buf, format="svg", bbox_inches="tight", metadata={"Date": None})
+    with matplotlib.rc_context({"svg.hashsalt": "axiscal"}):   # same figure, same SVG ids
+        fig.savefig(buf, format="svg", bbox_inches="tight", metadata={"Date": None})
     plt.close(fig)
     svg = buf.getvalue()
     start = svg.find("<svg")
