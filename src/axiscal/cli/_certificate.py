@@ -51,3 +51,17 @@ def info_for(cfg: dict, job: Path | None, dataset_bytes: bytes, paper: str | Non
     where = job if job is not None and cfg.get("company", {}).get("logo") else config_path()
     return certificate_info(cfg, number=number, issued=today.isoformat(),
                             logo=logo_data_uri(cfg, where))
+
+
+def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, tolerances=None,
+                      rule: str | None = None, paper: str | None = None, job: Path | None = None):
+    """Budget, decisions and certificate of one positioning test, written to ``path``
+    (.html or .pdf); returns the decisions."""
+    from axiscal.report.certificate import positioning_certificate
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    budget = positioning_budget(dataset, result, cfg.get("uncertainty"))
+    decisions, _, rule_text = decisions_for(result.parameters(), budget, tolerances or {}, cfg, rule)
+    info = info_for(cfg, job, data_bytes, paper)
+    positioning_certificate(dataset, result, budget, info, decisions, rule_text).write(path)
+    return decisions

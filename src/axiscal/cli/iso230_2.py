@@ -70,17 +70,16 @@ def iso230_2(
     cfg = load_config(job)
     check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})   # names and values
     budget = positioning_budget(ds, result, cfg.get("uncertainty"))
-    verdicts, _, rule_text = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
+    verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
     if plot is not None:
         from axiscal.report.plots import save_iso230_2_plot
 
         save_iso230_2_plot(result, ds, plot)
     if report is not None:
-        from axiscal.cli._certificate import info_for
-        from axiscal.report.certificate import positioning_certificate
+        from axiscal.cli._certificate import write_certificate
 
-        info = info_for(cfg, job, Path(file).read_bytes(), paper)
-        positioning_certificate(ds, result, budget, info, verdicts, rule_text).write(report)
+        write_certificate(report, ds, result, cfg, Path(file).read_bytes(), tolerances, rule,
+                          paper, job)
     if json_out:
         print_json(result_json(result, verdicts, budget))
     else:

@@ -192,12 +192,16 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
         f"{'bidirectional' if result.bidirectional else 'unidirectional'}, {result.n_runs} runs, "
         f"{result.targets.size} targets {target_label(result.targets[0])}…"
         f"{target_label(result.targets[-1])} {tu}")
-    mat = ", ".join(f"{t:g}" for t in env.material_temperature)
+    mat = ", ".join(f"{t:g}" for t in env.material_temperature) or NOT_STATED
     alpha = env.expansion_coefficient
+    alpha = NOT_STATED if alpha is None else f"{alpha * 1e6:g}"
+    if dataset.axis_kind.value == "rotary":     # angles do not expand
+        alpha = NOT_STATED if env.expansion_coefficient is None else alpha
+        alpha = "not applicable (rotary axis)" if alpha == NOT_STATED else alpha
     return {"Date of test": date, "Location of the measuring line": cond.get("measuring_line") or NOT_STATED,
             "Air temperature [°C]": NOT_STATED if env.air_temperature is None else f"{env.air_temperature:g}",
-            "Material temperature [°C]": mat or NOT_STATED,
-            "Expansion coefficient [µm/(m·K)]": NOT_STATED if alpha is None else f"{alpha * 1e6:g}",
+            "Material temperature [°C]": mat,
+            "Expansion coefficient [µm/(m·K)]": alpha,
             "Air pressure [Pa]": None if env.pressure is None else f"{env.pressure:g}",
             "Humidity [%RH]": None if env.humidity is None else f"{env.humidity:g}",
             "Feed": cond.get("feed") or NOT_STATED, "Dwell": cond.get("dwell") or NOT_STATED,
