@@ -125,3 +125,36 @@ def test_certificate_is_a_pure_function(linear):
     strip = lambda h: re.sub(r"on \d{4}-\d\d-\d\d \d\d:\d\d UTC", "", h)   # noqa: E731
     assert strip(_certificate(ds, result, {"E": 15})[0].html()) == \
         strip(_certificate(ds, result, {"E": 15})[0].html())
+
+
+def test_rotary_certificate_pdf(tmp_path):
+    """The rotary positioning test (demo turntable): U in arcsec from the calibrator and
+    Renishaw eq. 1, verdicts, page numbers, page fill."""
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_rotary.toml").read_text())
+    sim = simulate_from_config(cfg, seed=1)
+    rep, budget = _certificate(sim.dataset, sim.result, {"E": 12, "R": 6}, uncertainty={})
+    assert budget.unit == "arcsec" and 0.5 < budget.U("E") < 2.0
+    pdf = rep.write(tmp_path / "rotary.pdf")
+    texts = pdf_text(pdf)
+    assert all(f"page {i} of {len(texts)}" in t for i, t in enumerate(texts, 1))
+    text = "\n".join(texts)
+    assert "Overall verdict: CONFORMS" in text and f"{budget.U('E'):.2f}" in text
+    assert "not applicable (rotary axis)" in text and "Renishaw" in text
+    fractions = [used_fraction(p) for p in render_pages(pdf, "certificate_rotary_A4")]
+    assert all(f >= 0.5 for f in fractions[:-1]), fractions
+
+
+def test_simulation_report_pdf_is_marked_on_every_page(tmp_path):
+    """A simulation report (truth shown) says so on every printed page."""
+    from axiscal.cli.simulate import add_truth_section
+    from axiscal.report.html import positioning_report
+
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_linear.toml").read_text())
+    sim = simulate_from_config(cfg, seed=1)
+    rep = positioning_report(sim.dataset, sim.result)
+    rep.simulation = True
+    add_truth_section(rep, sim)
+    pdf = rep.write(tmp_path / "sim.pdf")
+    texts = pdf_text(pdf)
+    assert all("SIMULATION REPORT" in t for t in texts) and "truth" in "\n".join(texts)
+    render_pages(pdf, "simulation_report_linear_A4")

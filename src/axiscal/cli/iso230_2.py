@@ -216,6 +216,8 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
         con.print(a)
     for w in result.warnings:
         con.print(f"[yellow]warning:[/yellow] {w}")
+    for n in (budget.notes if budget is not None else ()):
+        con.print(f"[yellow]uncertainty:[/yellow] {escape(n)}")
 
 
 def register(app: typer.Typer) -> None:
