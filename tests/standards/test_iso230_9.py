@@ -7,9 +7,9 @@ import pytest
 
 from axiscal.errors import InputError
 from axiscal.standards.iso230_9 import (
-    Contributor, LinearInputs, RotaryInputs, chain_budget, combine, linear_budget,
-    monte_carlo_linear, rotary_budget,
+    Contributor, LinearInputs, RotaryInputs, chain_budget, combine, linear_budget, rotary_budget,
 )
+from axiscal.standards.iso230_9_montecarlo import monte_carlo_linear
 
 #: A hand-worked case: 1000 mm travel, laser 0.5 ppm (k = 2), 1 nm resolution, beam 0.5 mm off,
 #: steel α = 11.5 µm/(m·K) ± 10 %, machine at 21 °C, sensor ± 0.1 K, position ± 0.2 K, E_VE 1 µm.
@@ -149,3 +149,17 @@ def test_unknown_config_key_refused():
         linear_budget(0.0)
     with pytest.raises(InputError):
         Contributor("x", "y", -1.0, "normal", "", "")
+
+
+def test_e_ve_from_a_drift_check():
+    """E_VE is the range of a still set-up's readings (ISO 230-2:2014 Annex A); it flows into
+    U(R) as a rectangular ±E_VE/2."""
+    from axiscal.standards.iso230_9 import environmental_variation
+
+    drift = 0.3 * np.sin(np.linspace(0, 3, 200)) + 0.1
+    e_ve = environmental_variation(drift)
+    assert e_ve == pytest.approx(drift.max() - drift.min(), rel=1e-12)
+    b = linear_budget(500.0, LinearInputs(e_ve=e_ve, e_ve_source="drift check", resolution=0.0))
+    assert b.U("R") == pytest.approx(2 * e_ve / (2 * math.sqrt(3)), rel=1e-12)
+    with pytest.raises(InputError):
+        environmental_variation([1.0])

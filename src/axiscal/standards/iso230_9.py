@@ -38,7 +38,7 @@ Builders
 
 :func:`combine` forms u_c by the law of propagation of uncertainty (GUM, JCGM 100:2008, eq. 10)
 with GTC (GUM Tree Calculator) when it is installed, and in plain arithmetic otherwise;
-:func:`monte_carlo_linear` propagates the distributions of the *input quantities* (laser error,
+:func:`~axiscal.standards.iso230_9_montecarlo.monte_carlo_linear` propagates the distributions of the *input quantities* (laser error,
 cosine error from a misalignment angle, the product α·ΔT ...) through the measurement model by
 Monte Carlo (JCGM 101:2008, GUM Supplement 1) as an independent check of the linear budget.
 
@@ -66,8 +66,8 @@ import numpy as np
 from axiscal.errors import InputError
 
 __all__ = ["Contributor", "UncertaintyBudget", "LinearInputs", "RotaryInputs", "combine",
-           "linear_budget", "rotary_budget", "chain_budget", "monte_carlo_linear", "MonteCarlo",
-           "positioning_budget", "COVERAGE_FACTOR", "DISTANCE_PARAMETERS", "SCATTER_PARAMETERS"]
+           "linear_budget", "rotary_budget", "chain_budget", "positioning_budget",
+           "environmental_variation", "COVERAGE_FACTOR", "DISTANCE_PARAMETERS", "SCATTER_PARAMETERS"]
 
 #: Coverage factor of the expanded uncertainty (ISO/TR 230-9 and ISO 230-2 Annex A: k = 2).
 COVERAGE_FACTOR = 2.0
@@ -288,6 +288,31 @@ class LinearInputs:
         return cls(**kw)
 
 
+def environmental_variation(readings) -> float:
+    """E_VE from a drift check: the range of the readings of a still set-up over the test's time.
+
+    Parameters
+    ----------
+    readings : array_like, deviation unit
+        Laser readings with the machine at rest (target and reflector fixed), taken over at least
+        the duration of the positioning test.
+
+    Returns
+    -------
+    float, deviation unit
+        max − min (ISO 230-2:2014 Annex A, environmental variation error E_VE).
+
+    Examples
+    --------
+    >>> environmental_variation([0.1, 0.4, -0.2, 0.3])
+    0.6
+    """
+    r = np.asarray(readings, dtype=float).ravel()
+    if r.size < 2 or not np.all(np.isfinite(r)):
+        raise InputError(f"drift check: {r.size} readings; E_VE needs at least 2 finite readings")
+    return round(float(r.max() - r.min()), 12)
+
+
 def linear_budget(travel_mm: float, inputs: LinearInputs = LinearInputs(), unit: str = "um",
                   k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
     """ISO 230-2:2014 Annex A budget of a linear positioning test.
@@ -475,85 +500,6 @@ def chain_budget(error_budget, unit: str = "arcsec", k: float = COVERAGE_FACTOR)
     return combine(out, unit, k, _ALL)
 
 
-@dataclass(frozen=True)
-class MonteCarlo:
-    """Result of the Monte Carlo check (JCGM 101:2008), per parameter, deviation unit.
-
-    Attributes
-    ----------
-    trials : int
-    u : mapping of str to float
-        Standard deviation of the simulated error of each parameter.
-    expanded : mapping of str to float
-        k·u, comparable with the budget's U.
-    interval95 : mapping of str to float
-        Half-width of the probabilistically symmetric 95 % coverage interval.
-    """
-
-    trials: int
-    u: Mapping[str, float]
-    expanded: Mapping[str, float]
-    interval95: Mapping[str, float] = field(default_factory=dict)
-
-
-def monte_carlo_linear(travel_mm: float, inputs: LinearInputs, rng: np.random.Generator,
-                       trials: int = 200_000, unit: str = "um",
-                       k: float = COVERAGE_FACTOR) -> MonteCarlo:
-    """Propagate the input distributions through the measurement model by Monte Carlo.
-
-    The model is written from the physics, not from the budget: the error of a distance over
-    the travel L is
-
-        δ = L·ε_laser − L·θ²/2 + L·[(α + δα)(ΔT + δT + δT_pos) − α·ΔT] + reading + drift
-
-    with ε_laser ~ N(0, a/k_cal), θ ~ U(−d/L, d/L) (the cosine error is quadratic in the angle,
-    not rectangular), δα ~ U(±a_α), δT ~ U(±a_T), δT_pos ~ U(±a_P), reading ~ U(±r/2), drift ~
-    U(±E_VE/2); ΔT = T − 20 °C enters with its sign, so the product term is kept whole. For R
-    and B only the reading and the drift act.
-
-    Parameters
-    ----------
-    travel_mm : float, mm
-    inputs : LinearInputs
-    rng : numpy.random.Generator
-    trials : int
-    unit : str
-    k : float
-
-    Returns
-    -------
-    MonteCarlo
-    """
-    i = inputs
-    n = int(trials)
-    if n < 1000:
-        raise InputError(f"Monte Carlo trials = {trials!r}: use at least 1000 (GUM S1 §7.2)")
-    L = travel_mm * 1e3
-    a_alpha = (0.1 * i.expansion_coefficient if i.expansion_coefficient_halfwidth is None
-               else i.expansion_coefficient_halfwidth)
-    dT = i.material_temperature - 20.0
-    laser = rng.normal(0.0, i.laser_accuracy_ppm * 1e-6 / i.laser_accuracy_k, n) * L
-    theta = rng.uniform(-1.0, 1.0, n) * (i.beam_offset * 1e3 / L)
-    cosine = -L * theta**2 / 2
-    alpha = i.expansion_coefficient + rng.uniform(-a_alpha, a_alpha, n)
-    temp = dT + rng.uniform(-i.temperature_halfwidth, i.temperature_halfwidth, n) \
-        + rng.uniform(-i.sensor_position_halfwidth, i.sensor_position_halfwidth, n)
-    thermal = L * (alpha * temp - i.expansion_coefficient * dT)
-    reading = rng.uniform(-i.resolution / 2, i.resolution / 2, n)
-    drift = rng.uniform(-i.e_ve / 2, i.e_ve / 2, n)
-    to_unit = {"um": 1.0, "mm": 1e-3, "nm": 1e3}[unit]
-    dist = (laser + cosine + thermal + reading + drift) * to_unit
-    scat = (reading + drift) * to_unit
-    u, half = {}, {}
-    for names, sample in ((DISTANCE_PARAMETERS, dist), (SCATTER_PARAMETERS, scat)):
-        sd = float(np.std(sample, ddof=1))
-        lo, hi = np.quantile(sample, [0.025, 0.975])
-        for p in names:
-            u[p] = sd
-            half[p] = float(hi - lo) / 2
-    return MonteCarlo(n, u, {p: k * v for p, v in u.items()}, half)
-
-
 def positioning_budget(dataset, result, table: Mapping[str, Any] | None = None,
                        k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
     """The Annex A budget of an evaluated ISO 230-2 test, linear or rotary.
@@ -588,3 +534,4 @@ def positioning_budget(dataset, result, table: Mapping[str, Any] | None = None,
         notes.append("expansion coefficient not stated: 11.5 µm/(m·K) (steel) assumed")
     b = linear_budget(travel, LinearInputs.from_mapping(table, dataset), result.deviation_unit, k)
     return replace(b, notes=b.notes + tuple(notes))
+
