@@ -1,4 +1,4 @@
-"""``axiscal iso230-2 --report x.pdf --job`` and ``axiscal config``: the certificate from the CLI."""
+"""``axiscal iso230-2 --report x.pdf --job`` and ``axiscal config``: certificates from the CLI."""
 
 import json
 import sys
@@ -37,14 +37,28 @@ number_prefix = "PM-"
 e_ve = 0.8
 e_ve_source = "drift check"
 """
-LOGO = ('<svg xmlns="http://www.w3.org/2000/svg" width="40" height="40"><rect width="40" '
-        'height="40" fill="#0b5fa5"/></svg>')
+LOGO = (
+    '<svg xmlns="http://www.w3.org/2000/svg" width="40" height="40"><rect width="40" '
+    'height="40" fill="#0b5fa5"/></svg>'
+)
 
 
 def _data(tmp_path):
-    r = runner.invoke(app, ["simulate", str(Path(__file__).resolve().parents[2] / "src" / "axiscal"
-                                          / "data" / "demo_linear.toml"),
-                            "--data", str(tmp_path / "x.csv")])
+    r = runner.invoke(
+        app,
+        [
+            "simulate",
+            str(
+                Path(__file__).resolve().parents[2]
+                / "src"
+                / "axiscal"
+                / "data"
+                / "demo_linear.toml"
+            ),
+            "--data",
+            str(tmp_path / "x.csv"),
+        ],
+    )
     assert r.exit_code == 0, r.output
     return tmp_path / "x.csv"
 
@@ -56,8 +70,21 @@ def test_pdf_certificate_from_the_command_line(tmp_path):
     (tmp_path / "job.toml").write_text(JOB)
     env = {"AXISCAL_CONFIG": str(tmp_path / "config.toml")}
     pdf = tmp_path / "cert.pdf"
-    r = runner.invoke(app, ["iso230-2", str(data), "--job", str(tmp_path / "job.toml"),
-                            "--report", str(pdf), "--paper", "Letter", "--json"], env=env)
+    r = runner.invoke(
+        app,
+        [
+            "iso230-2",
+            str(data),
+            "--job",
+            str(tmp_path / "job.toml"),
+            "--report",
+            str(pdf),
+            "--paper",
+            "Letter",
+            "--json",
+        ],
+        env=env,
+    )
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["accepted"] is True and d["decision_rule"] == "iso14253-1"
@@ -77,18 +104,31 @@ def test_zone_exits_1_and_simple_rule_is_selectable(tmp_path):
     r = runner.invoke(app, ["iso230-2", str(data), "--tolerance", "E=12.5", "--json"], env=env)
     assert r.exit_code == 1
     assert json.loads(r.stdout)["acceptance"][0]["outcome"] == "uncertainty zone"
-    r = runner.invoke(app, ["iso230-2", str(data), "--tolerance", "E=12.5", "--rule", "simple"], env=env)
+    r = runner.invoke(
+        app, ["iso230-2", str(data), "--tolerance", "E=12.5", "--rule", "simple"], env=env
+    )
     assert r.exit_code == 0 and "simple decision rule" in r.stdout
-    r = runner.invoke(app, ["iso230-2", str(data), "--rule", "guess", "--tolerance", "E=1"], env=env)
+    r = runner.invoke(
+        app, ["iso230-2", str(data), "--rule", "guess", "--tolerance", "E=1"], env=env
+    )
     assert r.exit_code == 2 and "use iso14253-1 or simple" in r.stderr
 
 
 def test_bad_job_file_is_one_line(tmp_path):
     data = _data(tmp_path)
     (tmp_path / "job.toml").write_text("[machine]\nserial_number = 3\n")
-    r = runner.invoke(app, ["iso230-2", str(data), "--job", str(tmp_path / "job.toml"),
-                            "--report", str(tmp_path / "c.html")],
-                      env={"AXISCAL_CONFIG": str(tmp_path / "none.toml")})
+    r = runner.invoke(
+        app,
+        [
+            "iso230-2",
+            str(data),
+            "--job",
+            str(tmp_path / "job.toml"),
+            "--report",
+            str(tmp_path / "c.html"),
+        ],
+        env={"AXISCAL_CONFIG": str(tmp_path / "none.toml")},
+    )
     assert r.exit_code == 2 and "unknown key(s) serial_number" in r.stderr
     assert not (tmp_path / "c.html").exists()
 
@@ -100,6 +140,8 @@ def test_config_init_and_show(tmp_path):
     r = runner.invoke(app, ["config", "--init"], env=env)
     assert r.exit_code == 0 and (tmp_path / "sub" / "config.toml").exists()
     d = json.loads(runner.invoke(app, ["config", "--json"], env=env).stdout)
-    assert d["config"]["company"]["name"] and d["config"]["uncertainty"]["laser_accuracy_ppm"] == 0.5
+    assert (
+        d["config"]["company"]["name"] and d["config"]["uncertainty"]["laser_accuracy_ppm"] == 0.5
+    )
     r = runner.invoke(app, ["config", "--init"], env=env)
     assert r.exit_code == 2 and "exists" in r.stderr

@@ -10,9 +10,12 @@ from pathlib import Path
 
 import numpy as np
 
-ARTEFACTS = Path(os.environ.get("AXISCAL_ARTEFACTS",
-                                Path(__file__).resolve().parents[2] / "build" / "test-artefacts"))
-MM = 72 / 25.4   # points per millimetre
+ARTEFACTS = Path(
+    os.environ.get(
+        "AXISCAL_ARTEFACTS", Path(__file__).resolve().parents[2] / "build" / "test-artefacts"
+    )
+)
+MM = 72 / 25.4  # points per millimetre
 
 
 def pdf_text(path) -> list[str]:
@@ -25,8 +28,10 @@ def pdf_text(path) -> list[str]:
 def page_sizes_mm(path) -> list[tuple[float, float]]:
     from pypdf import PdfReader
 
-    return [(float(p.mediabox.width) / MM, float(p.mediabox.height) / MM)
-            for p in PdfReader(str(path)).pages]
+    return [
+        (float(p.mediabox.width) / MM, float(p.mediabox.height) / MM)
+        for p in PdfReader(str(path)).pages
+    ]
 
 
 def render_pages(path, name: str, dpi: int = 60) -> list[Path]:
@@ -46,6 +51,6 @@ def used_fraction(png: Path, top_mm: float = 16.0, bottom_mm: float = 15.0, dpi:
 
     img = np.asarray(Image.open(png).convert("L"), dtype=float)
     px = dpi / 25.4
-    body = img[int(top_mm * px): img.shape[0] - int(bottom_mm * px)]
+    body = img[int(top_mm * px) : img.shape[0] - int(bottom_mm * px)]
     rows = np.nonzero((body < 200).any(axis=1))[0]
     return 0.0 if rows.size == 0 else float(rows[-1] + 1) / body.shape[0]

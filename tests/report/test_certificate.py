@@ -20,11 +20,25 @@ CONFIG = {
     "company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "70565 Stuttgart"]},
     "operator": {"name": "J. Keller"},
     "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
-    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042", "location": "Hall 2"},
-    "conditions": {"measuring_line": "100 mm above the table centre", "feed": "2000 mm/min",
-                   "dwell": "4 s"},
-    "instrument": [{"name": "Laser interferometer", "serial": "L-1", "certificate": "C-77",
-                    "due": "2027-04-30"}],
+    "machine": {
+        "maker": "Example",
+        "model": "VMC-800",
+        "serial": "VMC8-0042",
+        "location": "Hall 2",
+    },
+    "conditions": {
+        "measuring_line": "100 mm above the table centre",
+        "feed": "2000 mm/min",
+        "dwell": "4 s",
+    },
+    "instrument": [
+        {
+            "name": "Laser interferometer",
+            "serial": "L-1",
+            "certificate": "C-77",
+            "due": "2027-04-30",
+        }
+    ],
     "certificate": {"approver": "Dr. M. Braun"},
 }
 
@@ -37,10 +51,15 @@ def linear():
 
 
 def _certificate(ds, result, tolerances, rule=Rule.ISO_14253_1, paper="A4", uncertainty=None):
-    budget = positioning_budget(ds, result, uncertainty or {"e_ve": 0.8, "e_ve_source": "drift check"})
+    budget = positioning_budget(
+        ds, result, uncertainty or {"e_ve": 0.8, "e_ve_source": "drift check"}
+    )
     decisions = decide_all(result.parameters(), budget, tolerances, rule)
-    info = certificate_info({**CONFIG, "certificate": {**CONFIG["certificate"], "paper": paper}},
-                            number="AXC-TEST-0001", issued="2026-11-23")
+    info = certificate_info(
+        {**CONFIG, "certificate": {**CONFIG["certificate"], "paper": paper}},
+        number="AXC-TEST-0001",
+        issued="2026-11-23",
+    )
     return positioning_certificate(ds, result, budget, info, decisions, RULE_TEXT[rule]), budget
 
 
@@ -81,13 +100,16 @@ def test_certificate_shows_no_truth_and_no_internal_references(linear, tmp_path)
         assert word not in html, word
 
 
-@pytest.mark.parametrize("tolerances, rule, headline, cell", [
-    ({"E": 12.5}, Rule.ISO_14253_1, "NOT PROVEN", "ZONE"),        # E = 11.92, U ≈ 2.4
-    ({"E": 12.5}, Rule.SIMPLE, "CONFORMS", "PASS"),
-    ({"E": 9.0}, Rule.ISO_14253_1, "DOES NOT CONFORM", "FAIL"),    # 11.92 − 2.4 > 9
-    ({"E": 11.0}, Rule.ISO_14253_1, "NOT PROVEN", "ZONE"),
-    ({"E": 11.0}, Rule.SIMPLE, "DOES NOT CONFORM", "FAIL"),
-])
+@pytest.mark.parametrize(
+    "tolerances, rule, headline, cell",
+    [
+        ({"E": 12.5}, Rule.ISO_14253_1, "NOT PROVEN", "ZONE"),  # E = 11.92, U ≈ 2.4
+        ({"E": 12.5}, Rule.SIMPLE, "CONFORMS", "PASS"),
+        ({"E": 9.0}, Rule.ISO_14253_1, "DOES NOT CONFORM", "FAIL"),  # 11.92 − 2.4 > 9
+        ({"E": 11.0}, Rule.ISO_14253_1, "NOT PROVEN", "ZONE"),
+        ({"E": 11.0}, Rule.SIMPLE, "DOES NOT CONFORM", "FAIL"),
+    ],
+)
 def test_verdict_and_rule_are_stated(linear, tolerances, rule, headline, cell):
     ds, result = linear
     html = _certificate(ds, result, tolerances, rule)[0].html()
@@ -101,10 +123,10 @@ def test_unknown_conditions_are_said_plainly(linear):
     written as not stated, never left out."""
     ds, result = linear
     html = _certificate(ds, result, {})[0].html()
-    assert "not stated in the data file" in html          # the demo data carries no date
+    assert "not stated in the data file" in html  # the demo data carries no date
     assert "Material temperature [°C]</td><td>not stated" in html
     assert "No tolerance given" in html
-    assert "20 °C assumed" in html                         # the budget says what it assumed
+    assert "20 °C assumed" in html  # the budget says what it assumed
 
 
 def test_certificate_info_refuses_unknown_keys():
@@ -122,9 +144,10 @@ def test_certificate_is_a_pure_function(linear):
     """Same inputs, same page (but for the generation time in the footer): a history store can
     regenerate it."""
     ds, result = linear
-    strip = lambda h: re.sub(r"on \d{4}-\d\d-\d\d \d\d:\d\d UTC", "", h)   # noqa: E731
-    assert strip(_certificate(ds, result, {"E": 15})[0].html()) == \
-        strip(_certificate(ds, result, {"E": 15})[0].html())
+    strip = lambda h: re.sub(r"on \d{4}-\d\d-\d\d \d\d:\d\d UTC", "", h)  # noqa: E731
+    assert strip(_certificate(ds, result, {"E": 15})[0].html()) == strip(
+        _certificate(ds, result, {"E": 15})[0].html()
+    )
 
 
 def test_rotary_certificate_pdf(tmp_path):

@@ -7,7 +7,13 @@ import pytest
 
 from axiscal.errors import InputError
 from axiscal.standards.iso230_9 import (
-    Contributor, LinearInputs, RotaryInputs, chain_budget, combine, linear_budget, rotary_budget,
+    Contributor,
+    LinearInputs,
+    RotaryInputs,
+    chain_budget,
+    combine,
+    linear_budget,
+    rotary_budget,
 )
 from axiscal.standards.iso230_9_montecarlo import monte_carlo_linear
 
@@ -40,11 +46,14 @@ def test_hand_worked_linear_case():
     assert b.k == 2.0 and "GTC" in b.method
 
 
-@pytest.mark.parametrize("inputs", [
-    HAND,
-    LinearInputs(laser_accuracy_ppm=2.0, beam_offset=2.0, e_ve=0.3, material_temperature=18.0),
-    LinearInputs(e_ve=4.0, material_temperature=23.5, expansion_coefficient_halfwidth=0.5e-6),
-])
+@pytest.mark.parametrize(
+    "inputs",
+    [
+        HAND,
+        LinearInputs(laser_accuracy_ppm=2.0, beam_offset=2.0, e_ve=0.3, material_temperature=18.0),
+        LinearInputs(e_ve=4.0, material_temperature=23.5, expansion_coefficient_halfwidth=0.5e-6),
+    ],
+)
 def test_monte_carlo_agrees_with_gum_budget(inputs):
     """GUM Supplement 1 (JCGM 101:2008 §8): the Monte Carlo propagation of the input
     distributions through the physical model (quadratic cosine error, α·ΔT product) agrees with
@@ -63,17 +72,20 @@ def test_monte_carlo_detects_a_wrong_budget():
     assert abs(mc.expanded["E"] - forgotten.U("E")) > 0.05 * b.U("E")
 
 
-@pytest.mark.parametrize("field, value, name, factor", [
-    ("laser_accuracy_ppm", 1.0, "u_DEVICE", 2.0),          # linear in the ppm
-    ("laser_accuracy_k", 1.0, "u_DEVICE", 2.0),            # inverse in k
-    ("resolution", 0.002, "u_RESOLUTION", 2.0),
-    ("beam_offset", 1.0, "u_MISALIGNMENT", 4.0),           # cosine error quadratic in the offset
-    ("expansion_coefficient_halfwidth", 2.3e-6, "u_E,MACHINE", 2.0),
-    ("material_temperature", 22.0, "u_E,MACHINE", 2.0),   # |T − 20| doubled
-    ("temperature_halfwidth", 0.2, "u_M,MACHINE", 2.0),
-    ("sensor_position_halfwidth", 0.4, "u_M,POSITION", 2.0),
-    ("e_ve", 2.0, "u_EVE", 2.0),
-])
+@pytest.mark.parametrize(
+    "field, value, name, factor",
+    [
+        ("laser_accuracy_ppm", 1.0, "u_DEVICE", 2.0),  # linear in the ppm
+        ("laser_accuracy_k", 1.0, "u_DEVICE", 2.0),  # inverse in k
+        ("resolution", 0.002, "u_RESOLUTION", 2.0),
+        ("beam_offset", 1.0, "u_MISALIGNMENT", 4.0),  # cosine error quadratic in the offset
+        ("expansion_coefficient_halfwidth", 2.3e-6, "u_E,MACHINE", 2.0),
+        ("material_temperature", 22.0, "u_E,MACHINE", 2.0),  # |T − 20| doubled
+        ("temperature_halfwidth", 0.2, "u_M,MACHINE", 2.0),
+        ("sensor_position_halfwidth", 0.4, "u_M,POSITION", 2.0),
+        ("e_ve", 2.0, "u_EVE", 2.0),
+    ],
+)
 def test_each_contributor_sensitivity(field, value, name, factor):
     """Changing one input changes its own contributor by the factor its model says, no other
     contributor, and U(E) by exactly √(Σu²) with the new term."""
@@ -84,7 +96,7 @@ def test_each_contributor_sensitivity(field, value, name, factor):
     u1 = {c.name: c.u for c in b1.contributors}
     for n in u0:
         assert u1[n] == pytest.approx(u0[n] * (factor if n == name else 1.0), rel=1e-12), n
-    expected = 2 * math.sqrt(sum(v**2 for v in u1.values()))   # every contributor acts on E
+    expected = 2 * math.sqrt(sum(v**2 for v in u1.values()))  # every contributor acts on E
     assert b1.U("E") == pytest.approx(expected, rel=1e-12)
     assert b1.U("E") > b0.U("E")
 
@@ -93,15 +105,17 @@ def test_scatter_parameters_ignore_length_errors():
     """R and B are formed at one target: the laser's ppm and the thermal terms do not act on them
     (ISO 230-2:2014 Annex A: repeatability and reversal carry E_VE and the reading)."""
     b0 = linear_budget(1000.0, LinearInputs(e_ve=1.0))
-    b1 = linear_budget(1000.0, LinearInputs(e_ve=1.0, laser_accuracy_ppm=5, beam_offset=3,
-                                            material_temperature=25))
+    b1 = linear_budget(
+        1000.0, LinearInputs(e_ve=1.0, laser_accuracy_ppm=5, beam_offset=3, material_temperature=25)
+    )
     assert b1.U("R") == b0.U("R") and b1.U("B") == b0.U("B")
     assert b1.U("E") > 2 * b0.U("E")
 
 
 def test_budget_in_mm_is_the_same_budget():
     assert linear_budget(500, HAND, unit="mm").U("E") == pytest.approx(
-        linear_budget(500, HAND).U("E") * 1e-3, rel=1e-12)
+        linear_budget(500, HAND).U("E") * 1e-3, rel=1e-12
+    )
 
 
 def test_gtc_and_plain_arithmetic_agree():
@@ -120,7 +134,7 @@ def test_rotary_budget_uses_equation_1():
     some = {c.name: c.u for c in rotary_budget(RotaryInputs(alpha=1.0)).contributors}
     assert zero["u_MISALIGNMENT"] == 0.0 < some["u_MISALIGNMENT"]
     b = rotary_budget(RotaryInputs(calibrator_accuracy=1.0, resolution=0.0, alpha=0.0, e_ve=0.0))
-    assert b.U("E") == pytest.approx(1.0, rel=1e-12)      # ±1 arcsec at k = 2 back at k = 2
+    assert b.U("E") == pytest.approx(1.0, rel=1e-12)  # ±1 arcsec at k = 2 back at k = 2
 
 
 def test_chain_budget_rectangular():
@@ -128,15 +142,27 @@ def test_chain_budget_rectangular():
     from axiscal.procedures.rotary_calibration import BudgetItem, ErrorBudget
     from axiscal.units import ARCSEC
 
-    eb = ErrorBudget((BudgetItem("misalignment", 0.3 * ARCSEC, "x"),
-                      BudgetItem("laser noise and resolution", 0.4 * ARCSEC, "y")))
+    eb = ErrorBudget(
+        (
+            BudgetItem("misalignment", 0.3 * ARCSEC, "x"),
+            BudgetItem("laser noise and resolution", 0.4 * ARCSEC, "y"),
+        )
+    )
     b = chain_budget(eb)
     assert b.U("E") == pytest.approx(2 * math.sqrt(0.09 + 0.16) / math.sqrt(3), rel=1e-9)
     assert b.U("R") == pytest.approx(2 * 0.4 / math.sqrt(3), rel=1e-9)
 
 
-@pytest.mark.parametrize("kw", [{"e_ve": -1}, {"resolution": float("nan")}, {"laser_accuracy_k": 0},
-                                {"e_ve_source": "guess"}, {"beam_offset": True}])
+@pytest.mark.parametrize(
+    "kw",
+    [
+        {"e_ve": -1},
+        {"resolution": float("nan")},
+        {"laser_accuracy_k": 0},
+        {"e_ve_source": "guess"},
+        {"beam_offset": True},
+    ],
+)
 def test_bad_inputs_refused(kw):
     with pytest.raises(InputError):
         LinearInputs(**kw)

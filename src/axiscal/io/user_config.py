@@ -43,7 +43,8 @@ serial = "..."
 certificate = "..."
 due = "YYYY-MM-DD"
 
-[uncertainty]                         # ISO 230-2:2014 Annex A inputs (see axiscal.standards.iso230_9)
+# ISO 230-2:2014 Annex A inputs (see axiscal.standards.iso230_9)
+[uncertainty]
 laser_accuracy_ppm = 0.5              # from the laser's calibration certificate, expanded ...
 laser_accuracy_k = 2.0                # ... with this coverage factor
 resolution = 0.001                    # µm
@@ -99,8 +100,12 @@ def logo_data_uri(config: dict[str, Any], where: Path | None = None) -> str:
     p = Path(str(name)).expanduser()
     if not p.is_absolute() and where is not None:
         p = where.parent / p
-    mime = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg",
-            ".svg": "image/svg+xml"}.get(p.suffix.lower())
+    mime = {
+        ".png": "image/png",
+        ".jpg": "image/jpeg",
+        ".jpeg": "image/jpeg",
+        ".svg": "image/svg+xml",
+    }.get(p.suffix.lower())
     if mime is None:
         raise ConfigError(f"[company] logo {p}: use a .png, .jpg or .svg file")
     try:

@@ -27,12 +27,15 @@ def html_to_pdf(html: str) -> bytes:
         import logging
 
         from weasyprint import HTML
-    except ImportError as exc:   # not installed
-        raise InputError("a PDF report needs WeasyPrint: pip install 'axiscal[report]' "
-                         f"({exc})") from None
-    except OSError as exc:       # installed, but Pango/HarfBuzz missing
-        raise InputError("WeasyPrint cannot load the system libraries it needs (Pango): on "
-                         f"Debian apt-get install libpango-1.0-0 libpangoft2-1.0-0 ({exc})") from None
+    except ImportError as exc:  # not installed
+        raise InputError(
+            "a PDF report needs WeasyPrint: pip install 'axiscal[report]' " f"({exc})"
+        ) from None
+    except OSError as exc:  # installed, but Pango/HarfBuzz missing
+        raise InputError(
+            "WeasyPrint cannot load the system libraries it needs (Pango): on "
+            f"Debian apt-get install libpango-1.0-0 libpangoft2-1.0-0 ({exc})"
+        ) from None
     logging.getLogger("weasyprint").setLevel(logging.ERROR)
     logging.getLogger("fontTools").setLevel(logging.ERROR)
     return HTML(string=html, base_url=".").write_pdf()

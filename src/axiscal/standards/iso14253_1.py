@@ -44,7 +44,9 @@ class Outcome(str, Enum):
     @property
     def short(self) -> str:
         """PASS, FAIL or ZONE, for a table cell."""
-        return {"conformance proven": "PASS", "non-conformance proven": "FAIL"}.get(self.value, "ZONE")
+        return {"conformance proven": "PASS", "non-conformance proven": "FAIL"}.get(
+            self.value, "ZONE"
+        )
 
 
 class Rule(str, Enum):
@@ -57,12 +59,12 @@ class Rule(str, Enum):
 #: How each rule is stated on a report.
 RULE_TEXT = {
     Rule.ISO_14253_1: "Decision rule ISO 14253-1:2017 §5: conformance is proven when the measured "
-                      "value plus and minus its expanded uncertainty U (k = 2) lies inside the "
-                      "tolerance, non-conformance when it lies wholly outside; otherwise the "
-                      "result is in the uncertainty zone and neither is proven.",
+    "value plus and minus its expanded uncertainty U (k = 2) lies inside the "
+    "tolerance, non-conformance when it lies wholly outside; otherwise the "
+    "result is in the uncertainty zone and neither is proven.",
     Rule.SIMPLE: "Decision rule: simple acceptance (ILAC-G8:2019 §4.2.1, no guard band): the "
-                 "measured value is compared with the tolerance, the measurement uncertainty "
-                 "is stated but not taken into account (risk shared by supplier and customer).",
+    "measured value is compared with the tolerance, the measurement uncertainty "
+    "is stated but not taken into account (risk shared by supplier and customer).",
 }
 
 
@@ -104,8 +106,14 @@ class Decision:
         return f"{self.parameter}: {v} ({lim}) {self.outcome.value if self.outcome else 'n/a'}"
 
 
-def decide(parameter: str, value: float | None, U: float, upper: float, lower: float | None = None,
-           rule: Rule | str = Rule.ISO_14253_1) -> Decision:
+def decide(
+    parameter: str,
+    value: float | None,
+    U: float,
+    upper: float,
+    lower: float | None = None,
+    rule: Rule | str = Rule.ISO_14253_1,
+) -> Decision:
     """Apply a decision rule to one parameter.
 
     Parameters
@@ -177,8 +185,9 @@ def overall(decisions) -> Outcome | None:
     return Outcome.CONFORMS if all(o is Outcome.CONFORMS for o in outcomes) else Outcome.ZONE
 
 
-def decide_all(values, budget, tolerances, rule: Rule | str = Rule.ISO_14253_1,
-               signed=("B_mean",)) -> tuple[Decision, ...]:
+def decide_all(
+    values, budget, tolerances, rule: Rule | str = Rule.ISO_14253_1, signed=("B_mean",)
+) -> tuple[Decision, ...]:
     """Decide every toleranced parameter of a result.
 
     Parameters
@@ -195,17 +204,27 @@ def decide_all(values, budget, tolerances, rule: Rule | str = Rule.ISO_14253_1,
     """
     for name in tolerances:
         if name not in values:
-            raise InputError(f"tolerance for {name!r}: not a parameter of this result; use one of "
-                             f"{', '.join(values)}")
+            raise InputError(
+                f"tolerance for {name!r}: not a parameter of this result; use one of "
+                f"{', '.join(values)}"
+            )
     out = []
-    for name in (n for n in values if n in tolerances):     # in the result's order
+    for name in (n for n in values if n in tolerances):  # in the result's order
         tol = tolerances[name]
         U = budget.U(name)
         if U is None:
             raise InputError(f"tolerance for {name!r}: the uncertainty budget does not cover it")
         v = values[name]
-        out.append(decide(name, None if v is None else (abs(v) if name in signed else v), U,
-                          float(tol), None, rule))
+        out.append(
+            decide(
+                name,
+                None if v is None else (abs(v) if name in signed else v),
+                U,
+                float(tol),
+                None,
+                rule,
+            )
+        )
     return tuple(out)
 
 

@@ -1,4 +1,4 @@
-"""Measurement uncertainty of machine-tool tests: ISO 230-2:2014 Annex A in the form of ISO/TR 230-9.
+"""Measurement uncertainty of machine-tool tests: ISO 230-2:2014 Annex A, ISO/TR 230-9 form.
 
 An :class:`UncertaintyBudget` is a list of :class:`Contributor` (each a standard uncertainty in the
 test's deviation unit, with its distribution, the clause it comes from and the parameters it acts
@@ -38,8 +38,9 @@ Builders
 
 :func:`combine` forms u_c by the law of propagation of uncertainty (GUM, JCGM 100:2008, eq. 10)
 with GTC (GUM Tree Calculator) when it is installed, and in plain arithmetic otherwise;
-:func:`~axiscal.standards.iso230_9_montecarlo.monte_carlo_linear` propagates the distributions of the *input quantities* (laser error,
-cosine error from a misalignment angle, the product α·ΔT ...) through the measurement model by
+:func:`~axiscal.standards.iso230_9_montecarlo.monte_carlo_linear` propagates the distributions
+of the *input quantities* (laser error, cosine error from a misalignment angle, the product
+α·ΔT ...) through the measurement model by
 Monte Carlo (JCGM 101:2008, GUM Supplement 1) as an independent check of the linear budget.
 
 Readings chosen where the standard leaves a choice (stated on every certificate): E_VE is taken
@@ -58,16 +59,28 @@ Seed 000: Renishaw, "Interferometric calibration of rotary axes", eq. 1.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, fields, replace
 from typing import Any, Mapping
 
 import numpy as np
 
 from axiscal.errors import InputError
 
-__all__ = ["Contributor", "UncertaintyBudget", "LinearInputs", "RotaryInputs", "combine",
-           "linear_budget", "rotary_budget", "chain_budget", "positioning_budget",
-           "environmental_variation", "COVERAGE_FACTOR", "DISTANCE_PARAMETERS", "SCATTER_PARAMETERS"]
+__all__ = [
+    "Contributor",
+    "UncertaintyBudget",
+    "LinearInputs",
+    "RotaryInputs",
+    "combine",
+    "linear_budget",
+    "rotary_budget",
+    "chain_budget",
+    "positioning_budget",
+    "environmental_variation",
+    "COVERAGE_FACTOR",
+    "DISTANCE_PARAMETERS",
+    "SCATTER_PARAMETERS",
+]
 
 #: Coverage factor of the expanded uncertainty (ISO/TR 230-9 and ISO 230-2 Annex A: k = 2).
 COVERAGE_FACTOR = 2.0
@@ -113,8 +126,10 @@ class Contributor:
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.u) and self.u >= 0):
-            raise InputError(f"uncertainty contributor {self.name}: u = {self.u!r} must be a "
-                             "finite number >= 0")
+            raise InputError(
+                f"uncertainty contributor {self.name}: u = {self.u!r} must be a "
+                "finite number >= 0"
+            )
 
 
 @dataclass(frozen=True)
@@ -156,14 +171,17 @@ class UncertaintyBudget:
 
     def __str__(self) -> str:
         lines = [f"uncertainty budget ({self.unit}, k = {self.k:g}):"]
-        lines += [f"  {c.name:<14} u = {c.u:8.4f}  {c.distribution:<11} {c.clause}"
-                  for c in self.contributors]
+        lines += [
+            f"  {c.name:<14} u = {c.u:8.4f}  {c.distribution:<11} {c.clause}"
+            for c in self.contributors
+        ]
         lines += [f"  U({p}) = {v:.4f}" for p, v in self.expanded.items()]
         return "\n".join(lines)
 
 
-def combine(contributors, unit: str, k: float = COVERAGE_FACTOR, parameters=None,
-            notes=()) -> UncertaintyBudget:
+def combine(
+    contributors, unit: str, k: float = COVERAGE_FACTOR, parameters=None, notes=()
+) -> UncertaintyBudget:
     """Combine contributors per parameter (GUM eq. 10, sensitivity 1, uncorrelated inputs).
 
     Parameters
@@ -195,8 +213,15 @@ def combine(contributors, unit: str, k: float = COVERAGE_FACTOR, parameters=None
         combined, method = _combine_gtc(contributors, names), "GTC (GUM Tree Calculator)"
     except ImportError:
         combined, method = _combine_plain(contributors, names), "plain arithmetic (GTC absent)"
-    return UncertaintyBudget(unit, float(k), contributors, combined,
-                             {p: k * u for p, u in combined.items()}, method, tuple(notes))
+    return UncertaintyBudget(
+        unit,
+        float(k),
+        contributors,
+        combined,
+        {p: k * u for p, u in combined.items()},
+        method,
+        tuple(notes),
+    )
 
 
 def _combine_gtc(contributors, names) -> dict[str, float]:
@@ -262,10 +287,15 @@ class LinearInputs:
             v = getattr(self, f.name)
             if f.name == "e_ve_source":
                 if v not in ("drift check", "declared"):
-                    raise InputError(f"uncertainty e_ve_source = {v!r}: use 'drift check' or "
-                                     "'declared'")
-            elif v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))
-                                    or not math.isfinite(v) or (v < 0 and f.name != "material_temperature")):
+                    raise InputError(
+                        f"uncertainty e_ve_source = {v!r}: use 'drift check' or " "'declared'"
+                    )
+            elif v is not None and (
+                isinstance(v, bool)
+                or not isinstance(v, (int, float))
+                or not math.isfinite(v)
+                or (v < 0 and f.name != "material_temperature")
+            ):
                 raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
         if self.laser_accuracy_k <= 0:
             raise InputError("uncertainty laser_accuracy_k must be > 0")
@@ -276,8 +306,10 @@ class LinearInputs:
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(d) - known)
         if unknown:
-            raise InputError(f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
-                             f"{', '.join(sorted(known))}")
+            raise InputError(
+                f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
+                f"{', '.join(sorted(known))}"
+            )
         kw = dict(d)
         if dataset is not None:
             env = dataset.metadata.environment
@@ -313,8 +345,12 @@ def environmental_variation(readings) -> float:
     return round(float(r.max() - r.min()), 12)
 
 
-def linear_budget(travel_mm: float, inputs: LinearInputs = LinearInputs(), unit: str = "um",
-                  k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
+def linear_budget(
+    travel_mm: float,
+    inputs: LinearInputs = LinearInputs(),
+    unit: str = "um",
+    k: float = COVERAGE_FACTOR,
+) -> UncertaintyBudget:
     """ISO 230-2:2014 Annex A budget of a linear positioning test.
 
     Parameters
@@ -344,38 +380,86 @@ def linear_budget(travel_mm: float, inputs: LinearInputs = LinearInputs(), unit:
         raise InputError(f"linear uncertainty budget in {unit!r}: use um or mm")
     L_um = travel_mm * 1e3
     i = inputs
-    a_alpha = (0.1 * i.expansion_coefficient if i.expansion_coefficient_halfwidth is None
-               else i.expansion_coefficient_halfwidth)
+    a_alpha = (
+        0.1 * i.expansion_coefficient
+        if i.expansion_coefficient_halfwidth is None
+        else i.expansion_coefficient_halfwidth
+    )
     dT = abs(i.material_temperature - 20.0)
     cos_e = (i.beam_offset * 1e3) ** 2 / (2 * L_um)
     d, s = DISTANCE_PARAMETERS, _ALL
     c = [
-        Contributor("u_DEVICE", "laser measurement accuracy",
-                    i.laser_accuracy_ppm * 1e-6 * L_um / i.laser_accuracy_k, "normal",
-                    f"{_ANNEX}, A.2 (measuring device)",
-                    f"{i.laser_accuracy_ppm:g} ppm (k = {i.laser_accuracy_k:g}) over {travel_mm:g} mm", d),
-        Contributor("u_RESOLUTION", "resolution of the reading", i.resolution / (2 * _SQ3),
-                    "rectangular", f"{_ANNEX}, A.2; ISO/TR 230-9 §5", f"resolution {i.resolution:g} µm", s),
-        Contributor("u_MISALIGNMENT", "cosine error of the beam alignment", cos_e / (2 * _SQ3),
-                    "rectangular", f"{_ANNEX}, A.3 (misalignment)",
-                    f"beam offset {i.beam_offset:g} mm over {travel_mm:g} mm: e = d²/2L = {cos_e:.3g} µm", d),
-        Contributor("u_E,MACHINE", "uncertainty of the expansion coefficient", a_alpha * L_um * dT / _SQ3,
-                    "rectangular", f"{_ANNEX}, A.4 (machine temperature compensation)",
-                    f"α ± {a_alpha * 1e6:.3g} µm/(m·K), |T − 20 °C| = {dT:.3g} K", d),
-        Contributor("u_M,MACHINE", "material temperature measurement",
-                    i.temperature_halfwidth * i.expansion_coefficient * L_um / _SQ3, "rectangular",
-                    f"{_ANNEX}, A.4 (machine temperature compensation)",
-                    f"sensor ± {i.temperature_halfwidth:g} K, α = {i.expansion_coefficient * 1e6:.3g} µm/(m·K)", d),
-        Contributor("u_M,POSITION", "material sensor position",
-                    i.sensor_position_halfwidth * i.expansion_coefficient * L_um / _SQ3, "rectangular",
-                    f"{_ANNEX}, A.4; ISO/TR 230-9 §6 (temperature)",
-                    f"sensor place vs scale ± {i.sensor_position_halfwidth:g} K", d),
-        Contributor("u_EVE", "environmental variation error", i.e_ve / (2 * _SQ3), "rectangular",
-                    f"{_ANNEX}, A.5 (environmental variation error E_VE)",
-                    f"E_VE = {i.e_ve:g} µm ({i.e_ve_source})", s),
+        Contributor(
+            "u_DEVICE",
+            "laser measurement accuracy",
+            i.laser_accuracy_ppm * 1e-6 * L_um / i.laser_accuracy_k,
+            "normal",
+            f"{_ANNEX}, A.2 (measuring device)",
+            f"{i.laser_accuracy_ppm:g} ppm (k = {i.laser_accuracy_k:g}) over {travel_mm:g} mm",
+            d,
+        ),
+        Contributor(
+            "u_RESOLUTION",
+            "resolution of the reading",
+            i.resolution / (2 * _SQ3),
+            "rectangular",
+            f"{_ANNEX}, A.2; ISO/TR 230-9 §5",
+            f"resolution {i.resolution:g} µm",
+            s,
+        ),
+        Contributor(
+            "u_MISALIGNMENT",
+            "cosine error of the beam alignment",
+            cos_e / (2 * _SQ3),
+            "rectangular",
+            f"{_ANNEX}, A.3 (misalignment)",
+            f"beam offset {i.beam_offset:g} mm over {travel_mm:g} mm: e = d²/2L = {cos_e:.3g} µm",
+            d,
+        ),
+        Contributor(
+            "u_E,MACHINE",
+            "uncertainty of the expansion coefficient",
+            a_alpha * L_um * dT / _SQ3,
+            "rectangular",
+            f"{_ANNEX}, A.4 (machine temperature compensation)",
+            f"α ± {a_alpha * 1e6:.3g} µm/(m·K), |T − 20 °C| = {dT:.3g} K",
+            d,
+        ),
+        Contributor(
+            "u_M,MACHINE",
+            "material temperature measurement",
+            i.temperature_halfwidth * i.expansion_coefficient * L_um / _SQ3,
+            "rectangular",
+            f"{_ANNEX}, A.4 (machine temperature compensation)",
+            f"sensor ± {i.temperature_halfwidth:g} K, "
+            f"α = {i.expansion_coefficient * 1e6:.3g} µm/(m·K)",
+            d,
+        ),
+        Contributor(
+            "u_M,POSITION",
+            "material sensor position",
+            i.sensor_position_halfwidth * i.expansion_coefficient * L_um / _SQ3,
+            "rectangular",
+            f"{_ANNEX}, A.4; ISO/TR 230-9 §6 (temperature)",
+            f"sensor place vs scale ± {i.sensor_position_halfwidth:g} K",
+            d,
+        ),
+        Contributor(
+            "u_EVE",
+            "environmental variation error",
+            i.e_ve / (2 * _SQ3),
+            "rectangular",
+            f"{_ANNEX}, A.5 (environmental variation error E_VE)",
+            f"E_VE = {i.e_ve:g} µm ({i.e_ve_source})",
+            s,
+        ),
     ]
-    c = [Contributor(x.name, x.quantity, x.u * to_unit, x.distribution, x.clause, x.basis,
-                     x.applies_to) for x in c]
+    c = [
+        Contributor(
+            x.name, x.quantity, x.u * to_unit, x.distribution, x.clause, x.basis, x.applies_to
+        )
+        for x in c
+    ]
     return combine(c, unit, k, _ALL, _notes(i))
 
 
@@ -419,8 +503,15 @@ class RotaryInputs:
             v = getattr(self, f.name)
             if f.name == "e_ve_source":
                 if v not in ("drift check", "declared"):
-                    raise InputError(f"uncertainty e_ve_source = {v!r}: use 'drift check' or 'declared'")
-            elif isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+                    raise InputError(
+                        f"uncertainty e_ve_source = {v!r}: use 'drift check' or 'declared'"
+                    )
+            elif (
+                isinstance(v, bool)
+                or not isinstance(v, (int, float))
+                or not math.isfinite(v)
+                or v < 0
+            ):
                 raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
         if self.calibrator_k <= 0:
             raise InputError("uncertainty calibrator_k must be > 0")
@@ -431,13 +522,16 @@ class RotaryInputs:
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(d) - known)
         if unknown:
-            raise InputError(f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
-                             f"{', '.join(sorted(known))}")
+            raise InputError(
+                f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
+                f"{', '.join(sorted(known))}"
+            )
         return cls(**d)
 
 
-def rotary_budget(inputs: RotaryInputs = RotaryInputs(), unit: str = "arcsec",
-                  k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
+def rotary_budget(
+    inputs: RotaryInputs = RotaryInputs(), unit: str = "arcsec", k: float = COVERAGE_FACTOR
+) -> UncertaintyBudget:
     """ISO 230-2 Annex A budget of a rotary positioning test (rotary calibrator).
 
     Examples
@@ -452,27 +546,59 @@ def rotary_budget(inputs: RotaryInputs = RotaryInputs(), unit: str = "arcsec",
     mis = half_range(i.alpha * 1e-3, i.beta * 1e-3, i.omega * 1e-3) / ARCSEC
     d, s = DISTANCE_PARAMETERS, _ALL
     c = [
-        Contributor("u_DEVICE", "rotary calibrator accuracy", i.calibrator_accuracy / i.calibrator_k,
-                    "normal", f"{_ANNEX}, A.2 (measuring device)",
-                    f"± {i.calibrator_accuracy:g} arcsec (k = {i.calibrator_k:g})", d),
-        Contributor("u_RESOLUTION", "resolution of the reading", i.resolution / (2 * _SQ3),
-                    "rectangular", f"{_ANNEX}, A.2; ISO/TR 230-9 §5", f"resolution {i.resolution:g} arcsec", s),
-        Contributor("u_MISALIGNMENT", "misalignment (Renishaw, Interferometric calibration of "
-                    "rotary axes, eq. 1)", mis / _SQ3, "rectangular", f"{_ANNEX}, A.3; Renishaw eq. 1",
-                    f"α = {i.alpha:g}, β = {i.beta:g}, ω = {i.omega:g} mrad: ± {mis:.3g} arcsec", d),
-        Contributor("u_EVE", "environmental variation error", i.e_ve / (2 * _SQ3), "rectangular",
-                    f"{_ANNEX}, A.5 (environmental variation error E_VE)",
-                    f"E_VE = {i.e_ve:g} arcsec ({i.e_ve_source})", s),
+        Contributor(
+            "u_DEVICE",
+            "rotary calibrator accuracy",
+            i.calibrator_accuracy / i.calibrator_k,
+            "normal",
+            f"{_ANNEX}, A.2 (measuring device)",
+            f"± {i.calibrator_accuracy:g} arcsec (k = {i.calibrator_k:g})",
+            d,
+        ),
+        Contributor(
+            "u_RESOLUTION",
+            "resolution of the reading",
+            i.resolution / (2 * _SQ3),
+            "rectangular",
+            f"{_ANNEX}, A.2; ISO/TR 230-9 §5",
+            f"resolution {i.resolution:g} arcsec",
+            s,
+        ),
+        Contributor(
+            "u_MISALIGNMENT",
+            "misalignment (Renishaw, Interferometric calibration of " "rotary axes, eq. 1)",
+            mis / _SQ3,
+            "rectangular",
+            f"{_ANNEX}, A.3; Renishaw eq. 1",
+            f"α = {i.alpha:g}, β = {i.beta:g}, ω = {i.omega:g} mrad: ± {mis:.3g} arcsec",
+            d,
+        ),
+        Contributor(
+            "u_EVE",
+            "environmental variation error",
+            i.e_ve / (2 * _SQ3),
+            "rectangular",
+            f"{_ANNEX}, A.5 (environmental variation error E_VE)",
+            f"E_VE = {i.e_ve:g} arcsec ({i.e_ve_source})",
+            s,
+        ),
     ]
     f = convert(1.0, "arcsec", unit)
-    c = [Contributor(x.name, x.quantity, x.u * f, x.distribution, x.clause, x.basis, x.applies_to)
-         for x in c]
-    notes = [f"E_VE = {i.e_ve:g} arcsec declared, not measured by a drift check"] \
-        if i.e_ve_source == "declared" else []
+    c = [
+        Contributor(x.name, x.quantity, x.u * f, x.distribution, x.clause, x.basis, x.applies_to)
+        for x in c
+    ]
+    notes = (
+        [f"E_VE = {i.e_ve:g} arcsec declared, not measured by a drift check"]
+        if i.e_ve_source == "declared"
+        else []
+    )
     return combine(c, unit, k, _ALL, notes)
 
 
-def chain_budget(error_budget, unit: str = "arcsec", k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
+def chain_budget(
+    error_budget, unit: str = "arcsec", k: float = COVERAGE_FACTOR
+) -> UncertaintyBudget:
     """A rotary calibration's error budget (± bounds, radians) in GUM form.
 
     Parameters
@@ -494,14 +620,23 @@ def chain_budget(error_budget, unit: str = "arcsec", k: float = COVERAGE_FACTOR)
     out = []
     for item in error_budget.items:
         scatter = "noise" in item.name
-        out.append(Contributor(item.name, item.name, item.value * f / _SQ3, "rectangular",
-                               "ISO/TR 230-9 §5 (rectangular ± bound)", item.source,
-                               _ALL if scatter else DISTANCE_PARAMETERS))
+        out.append(
+            Contributor(
+                item.name,
+                item.name,
+                item.value * f / _SQ3,
+                "rectangular",
+                "ISO/TR 230-9 §5 (rectangular ± bound)",
+                item.source,
+                _ALL if scatter else DISTANCE_PARAMETERS,
+            )
+        )
     return combine(out, unit, k, _ALL)
 
 
-def positioning_budget(dataset, result, table: Mapping[str, Any] | None = None,
-                       k: float = COVERAGE_FACTOR) -> UncertaintyBudget:
+def positioning_budget(
+    dataset, result, table: Mapping[str, Any] | None = None, k: float = COVERAGE_FACTOR
+) -> UncertaintyBudget:
     """The Annex A budget of an evaluated ISO 230-2 test, linear or rotary.
 
     Parameters
@@ -528,10 +663,11 @@ def positioning_budget(dataset, result, table: Mapping[str, Any] | None = None,
     env = dataset.metadata.environment
     notes = []
     if "material_temperature" not in table and not env.material_temperature:
-        notes.append("material temperature not stated: 20 °C assumed, so the uncertainty of α "
-                     "contributes nothing; state it in the data file or [uncertainty]")
+        notes.append(
+            "material temperature not stated: 20 °C assumed, so the uncertainty of α "
+            "contributes nothing; state it in the data file or [uncertainty]"
+        )
     if "expansion_coefficient" not in table and env.expansion_coefficient is None:
         notes.append("expansion coefficient not stated: 11.5 µm/(m·K) (steel) assumed")
     b = linear_budget(travel, LinearInputs.from_mapping(table, dataset), result.deviation_unit, k)
     return replace(b, notes=b.notes + tuple(notes))
-

@@ -14,8 +14,12 @@ from typing import Mapping
 import numpy as np
 
 from axiscal.errors import InputError
-from axiscal.standards.iso230_9 import (COVERAGE_FACTOR, DISTANCE_PARAMETERS, SCATTER_PARAMETERS,
-                                        LinearInputs)
+from axiscal.standards.iso230_9 import (
+    COVERAGE_FACTOR,
+    DISTANCE_PARAMETERS,
+    SCATTER_PARAMETERS,
+    LinearInputs,
+)
 
 __all__ = ["MonteCarlo", "monte_carlo_linear"]
 
@@ -41,9 +45,14 @@ class MonteCarlo:
     interval95: Mapping[str, float] = field(default_factory=dict)
 
 
-def monte_carlo_linear(travel_mm: float, inputs: LinearInputs, rng: np.random.Generator,
-                       trials: int = 200_000, unit: str = "um",
-                       k: float = COVERAGE_FACTOR) -> MonteCarlo:
+def monte_carlo_linear(
+    travel_mm: float,
+    inputs: LinearInputs,
+    rng: np.random.Generator,
+    trials: int = 200_000,
+    unit: str = "um",
+    k: float = COVERAGE_FACTOR,
+) -> MonteCarlo:
     """Propagate the input distributions through the measurement model by Monte Carlo.
 
     The model is written from the physics, not from the budget: the error of a distance over
@@ -74,15 +83,21 @@ def monte_carlo_linear(travel_mm: float, inputs: LinearInputs, rng: np.random.Ge
     if n < 1000:
         raise InputError(f"Monte Carlo trials = {trials!r}: use at least 1000 (GUM S1 §7.2)")
     L = travel_mm * 1e3
-    a_alpha = (0.1 * i.expansion_coefficient if i.expansion_coefficient_halfwidth is None
-               else i.expansion_coefficient_halfwidth)
+    a_alpha = (
+        0.1 * i.expansion_coefficient
+        if i.expansion_coefficient_halfwidth is None
+        else i.expansion_coefficient_halfwidth
+    )
     dT = i.material_temperature - 20.0
     laser = rng.normal(0.0, i.laser_accuracy_ppm * 1e-6 / i.laser_accuracy_k, n) * L
     theta = rng.uniform(-1.0, 1.0, n) * (i.beam_offset * 1e3 / L)
     cosine = -L * theta**2 / 2
     alpha = i.expansion_coefficient + rng.uniform(-a_alpha, a_alpha, n)
-    temp = dT + rng.uniform(-i.temperature_halfwidth, i.temperature_halfwidth, n) \
+    temp = (
+        dT
+        + rng.uniform(-i.temperature_halfwidth, i.temperature_halfwidth, n)
         + rng.uniform(-i.sensor_position_halfwidth, i.sensor_position_halfwidth, n)
+    )
     thermal = L * (alpha * temp - i.expansion_coefficient * dT)
     reading = rng.uniform(-i.resolution / 2, i.resolution / 2, n)
     drift = rng.uniform(-i.e_ve / 2, i.e_ve / 2, n)
