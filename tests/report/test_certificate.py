@@ -181,3 +181,12 @@ def test_simulation_report_pdf_is_marked_on_every_page(tmp_path):
     texts = pdf_text(pdf)
     assert all("SIMULATION REPORT" in t for t in texts) and "truth" in "\n".join(texts)
     render_pages(pdf, "simulation_report_linear_A4")
+
+
+def test_targets_are_right_aligned_like_the_other_numbers(linear):
+    """The per-target table's first column holds numbers: right-aligned (the issue's layout rule),
+    while the label column of the metadata tables stays left beside its values."""
+    css = _certificate(*linear, {})[0].html()
+    assert "table.targets td:first-child, table.targets th:first-child { text-align: right; }" in css
+    assert "table.kv td { text-align: left; }" in css
+    assert 'class="targets"' in css
