@@ -4,6 +4,7 @@ import json
 import sys
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from axiscal.cli import app
@@ -145,3 +146,26 @@ def test_config_init_and_show(tmp_path):
     )
     r = runner.invoke(app, ["config", "--init"], env=env)
     assert r.exit_code == 2 and "exists" in r.stderr
+
+
+def test_squareness_commands_state_their_uncertainty(tmp_path):
+    """biaxial, diagonal and circular carry U (k = 2) by their method's budget; the user
+    configuration's [squareness_uncertainty] inputs act on it."""
+    ex = Path(__file__).resolve().parents[2] / "examples"
+    env = {"AXISCAL_CONFIG": str(tmp_path / "none.toml")}
+    cases = [["biaxial", str(ex / "squareness_L180_x.csv"), str(ex / "squareness_L180_y.csv"),
+              "--orientation", "180"],
+             ["diagonal", "--file", str(ex / "squareness_diagonal_600x800.csv")],
+             ["circular", str(ex / "squareness_ballbar_150mm.csv")]]
+    for args in cases:
+        r = runner.invoke(app, ["squareness", *args, "--json"], env=env)
+        assert r.exit_code == 0, r.output
+        d = json.loads(r.stdout)
+        assert d["U_um_per_m"] > 0 and all(c["clause"] for c in d["uncertainty"])
+    (tmp_path / "c.toml").write_text("[squareness_uncertainty]\ntransducer_accuracy = 1.0\n")
+    r = runner.invoke(app, ["squareness", *cases[2], "--json"],
+                      env={"AXISCAL_CONFIG": str(tmp_path / "c.toml")})
+    assert json.loads(r.stdout)["U_um_per_m"] == pytest.approx(2 * d["U_um_per_m"], rel=1e-9)
+    (tmp_path / "c.toml").write_text("[squareness_uncertainty]\nprobe = 1.0\n")
+    r = runner.invoke(app, ["squareness", *cases[2]], env={"AXISCAL_CONFIG": str(tmp_path / "c.toml")})
+    assert r.exit_code == 2 and "squareness_uncertainty" in r.stderr

@@ -47,6 +47,7 @@ _SECTIONS = {
     "instrument": {"name", "serial", "certificate", "due"},
     "uncertainty": None,  # checked by the budget's own inputs
     "tolerance": None,  # NAME = value, checked against the standard's parameters
+    "squareness_uncertainty": None,  # read by the squareness commands
 }
 
 

@@ -42,7 +42,13 @@ from typing import Mapping
 from axiscal.errors import InputError
 from axiscal.standards.iso230_9 import COVERAGE_FACTOR, Contributor, UncertaintyBudget, combine
 
-__all__ = ["squareness_budget", "five_dof_budget", "SQUARENESS_METHODS", "FIVE_DOF_CHANNELS"]
+__all__ = [
+    "squareness_budget",
+    "five_dof_budget",
+    "slope_uncertainty",
+    "SQUARENESS_METHODS",
+    "FIVE_DOF_CHANNELS",
+]
 
 SQUARENESS_METHODS = ("optics", "square", "reversal", "ballbar", "diagonal")
 FIVE_DOF_CHANNELS = ("ez", "ey", "ex", "dy", "dz")
@@ -390,3 +396,35 @@ def five_dof_budget(
             )
         out[ch] = combine(c, unit, k, p)
     return out
+
+
+def slope_uncertainty(positions, deviations) -> float:
+    """Standard uncertainty of a least-squares slope from its residuals, µm/m.
+
+    Parameters
+    ----------
+    positions : array_like, m
+    deviations : array_like, m
+
+    Returns
+    -------
+    float, µm/m
+        ``s_res / √Σ(x − x̄)²`` with ``s_res² = Σ r² / (n − 2)`` (ISO 230-1:2012 §3.4.8 least-
+        squares reference line; the standard uncertainty of a regression slope, GUM H.3).
+
+    Examples
+    --------
+    >>> round(slope_uncertainty([0, 0.1, 0.2, 0.3], [0, 1e-6, 0, 1e-6]), 3)  # √(0.8e-12/2/0.05)
+    2.828
+    """
+    import numpy as np
+
+    x, y = np.asarray(positions, float), np.asarray(deviations, float)
+    if x.size < 3 or x.size != y.size:
+        raise InputError(f"slope uncertainty: {x.size} points; a residual needs at least 3")
+    sxx = float(np.sum((x - x.mean()) ** 2))
+    if sxx <= 0:
+        raise InputError("slope uncertainty: all positions are the same")
+    slope, icpt = np.polyfit(x, y, 1)
+    res = y - (slope * x + icpt)
+    return float(math.sqrt(float(np.sum(res**2)) / (x.size - 2) / sxx) * 1e6)
