@@ -19,6 +19,10 @@ JSON output (``--json``), stable keys:
   ``backlash_x_um``, ``backlash_y_um``, ``G_ccw_um``, ``G_cw_um`` (minimum zone), ``G_lsc_ccw_um``,
   ``G_lsc_cw_um`` (least-squares centre), ``H_um``, ``F_max_um``,
   ``F_min_um``, ``arc_deg``, ``fit_rms_um``, ``warnings``.
+* ``squareness biaxial``, ``diagonal`` and ``circular`` also: ``U_um_per_m`` (expanded
+  uncertainty, k = 2, ISO/TR 230-9 form, see ``axiscal.standards.iso230_9_geometry``) and
+  ``uncertainty`` (list of ``name``, ``u_um_per_m``, ``clause``); inputs not measured take the
+  documented defaults or the user configuration's ``[squareness_uncertainty]`` table.
 * ``squareness simulate``: ``machine``, ``scope``, ``truth_um_per_m``, ``convention``,
   ``results`` (``method``, ``group``, ``centre_mm``, ``size_mm``, ``um_per_m``, ``arcsec``,
   ``iso_um_per_m``), ``averages`` (``name``, ``centre_mm``, ``um_per_m``).
