@@ -9,7 +9,22 @@ OUT    ?= demo-output
 
 setup: $(STAMP)
 
-$(STAMP): pyproject.toml
+# Debian packages: WeasyPrint (PDF certificates) needs Pango and HarfBuzz, the tests render PDF
+# pages with pdftoppm (poppler-utils), the history tests run on a real throw-away PostgreSQL
+# (tools/pgtest.py starts one per test process in a temporary folder), and the workbench's
+# browser tests drive Chromium with its driver (Selenium). Installed when missing.
+DEBS := libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core poppler-utils \
+        postgresql chromium chromium-driver
+APT := $(if $(filter 0,$(shell id -u)),,sudo) env DEBIAN_FRONTEND=noninteractive apt-get
+sysdeps:
+	@command -v dpkg >/dev/null || { echo "not Debian: install $(DEBS) yourself"; exit 0; }; \
+	missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  $(APT) update -qq && $(APT) install -y -qq $$missing >/dev/null; \
+	fi
+
+$(STAMP): pyproject.toml | sysdeps
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e ".[dev]"
@@ -17,16 +32,6 @@ $(STAMP): pyproject.toml
 
 demo: $(STAMP)
 	$(VENV)/bin/axiscal demo --out $(OUT)
-
-# Debian packages the tests use: PostgreSQL, so the history tests run on a real throw-away server
-# (tools/pgtest.py starts one per test process in a temporary folder and removes it), and
-# Chromium with its driver for the workbench's browser tests (Selenium).
-APT := $(if $(filter 0,$(shell id -u)),,sudo) env DEBIAN_FRONTEND=noninteractive apt-get
-sysdeps:
-	@if ! ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || ! [ -x /usr/bin/chromium ] \
-	    || ! [ -x /usr/bin/chromedriver ]; then \
-	  echo "installing Debian's postgresql, chromium and chromium-driver (tests)"; \
-	  $(APT) update -qq && $(APT) install -y -qq postgresql chromium chromium-driver >/dev/null; fi
 
 test: $(STAMP) sysdeps
 	$(PY) -m pytest -n 2 -q

@@ -48,6 +48,7 @@ COMMANDS: dict[str, str] = {
     "serve": "axiscal.cli.serve",
     "history": "axiscal.cli.history",
     "volumetric": "axiscal.cli.volumetric",
+    "config": "axiscal.cli.config",
 }
 
 

@@ -5,7 +5,8 @@ turn, then a complete rotary-axis calibration of the turntable with the angular 
 the counter-rotating reference calibrator (set-up checks, optics self-calibration, capture,
 evaluation, error budget). Configurations are in ``axiscal/data/``. It prints every result beside
 the truth the simulation knew and writes plots, HTML reports, the simulated data and an index page
-into ``--out``.
+into ``--out``, and a PDF calibration certificate of the linear and of the rotary test (what a
+customer receives: the measurement, its uncertainty and the ISO 14253-1 verdicts, no truth).
 """
 
 from __future__ import annotations
@@ -17,6 +18,14 @@ import typer
 from axiscal.cli._common import note, out_path
 
 DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn (ideal reference)"))
+#: What the demonstration certificates carry besides the user configuration (axiscal config).
+DEMO_JOB = {
+    "customer": {"name": "Demonstration customer (simulated readings)"},
+    "conditions": {"measuring_line": "along the axis through the table centre (simulated)",
+                   "feed": "not applicable (simulation)", "dwell": "not applicable (simulation)"},
+}
+DEMO_TOLERANCES = {"linear": {"A": 20.0, "E": 15.0, "R": 8.0, "B": 5.0},
+                   "rotary": {"A": 14.0, "E": 12.0, "R": 6.0, "B": 4.0}}
 
 
 def demo(
@@ -47,6 +56,7 @@ def demo(
         render_simulation(sim)
         write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
                       out / f"{name}_data.csv")
+        _certificate(out / f"{name}_certificate.pdf", sim, name)
         pages.append((label, f"{name}_report.html", sim.result))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)
@@ -97,6 +107,23 @@ def _history(out: Path, db: str, seed: int) -> None:
     typer.echo(str(c))
 
 
+def _certificate(path: Path, sim, name: str) -> None:
+    """The customer certificate (PDF) of a demonstration test; skipped, said, without WeasyPrint."""
+    import importlib.util
+
+    from axiscal.cli._certificate import load_config, write_certificate
+    from axiscal.io.user_config import merge
+
+    if importlib.util.find_spec("weasyprint") is None:
+        note(f"no {path.name}: a PDF needs WeasyPrint (pip install 'axiscal[report]')")
+        return
+    cfg = merge(load_config(None), DEMO_JOB)
+    out_path(path, "certificate")
+    data = (path.parent / f"{name}_data.csv").read_bytes()
+    write_certificate(path, sim.dataset, sim.result, cfg, data, DEMO_TOLERANCES[name])
+    note(f"wrote certificate {path}")
+
+
 def _rotary_calibration(out: Path):
     """The full rotary calibration chain on the embedded turntable configuration."""
     import tomllib
@@ -122,7 +149,10 @@ def _write_index(out: Path, pages) -> None:
     rows = [[label, r.A, r.E, r.R, r.B, unit_label(r.deviation_unit)] for label, _, r in pages]
     rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
     rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
-                                  for label, href, _ in pages) + "</ul>")
+                                  for label, href, _ in pages)
+                 + "".join(f'<li><a href="{n}_certificate.pdf">{n} test: calibration certificate '
+                           "(PDF)</a></li>" for n, _, _ in DEMOS if (out / f"{n}_certificate.pdf").exists())
+                 + "</ul>")
     rep.write(out / "index.html")
     note(f"wrote {out / 'index.html'}")
 

@@ -47,7 +47,7 @@ _BOUNDS = ("the error of each reading against the axis's true angle up to a cons
 def simulate(
     config: Path = typer.Argument(..., help="Rotary calibration configuration (TOML); see examples/rotary_*.toml."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint)."),
 ) -> None:
     """Simulate a complete rotary-axis calibration and compare it with the truth."""
     from axiscal.io._files import load_toml
