@@ -38,8 +38,6 @@ def iso230_2(
     full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
-    tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if one is exceeded)."),
     history: bool = typer.Option(False, "--history", help="Also store the test in the calibration history (see 'axiscal history')."),
     machine: Optional[str] = typer.Option(None, "--machine", help="With --history: the machine's name, if the file does not give it."),
     db: Optional[str] = typer.Option(None, "--db", help="With --history: the database URL (default: AXISCAL_DB, else the user's SQLite file)."),
