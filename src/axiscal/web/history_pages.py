@@ -48,11 +48,13 @@ def add_routes(app: FastAPI) -> None:
         t = store(request).get(test_id)
         ev = t.evaluate_again()
         plot = positioning_plot(ev) if ev.kind == "iso230-2" else None
+        budget, decisions = _uncertainty(ev) if ev.kind == "iso230-2" else (None, {})
         from axiscal.compensation.controllers import CONTROLLERS
 
         return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
                       f"{t.summary.axis}", t=t, ev=ev, plot=plot,
                       targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
+                      budget=budget, decisions=decisions,
                       controllers=sorted(CONTROLLERS), others=[
                           o for o in store(request).tests(machine=t.summary.machine,
                                                           axis=t.summary.axis,
@@ -86,6 +88,26 @@ def add_routes(app: FastAPI) -> None:
 
         html = positioning_report(ev.dataset, ev.evaluation).html()
         return download(html, f"test_{test_id}_report.html", "text/html")
+
+    @app.get("/tests/{test_id}/certificate.pdf")
+    def certificate(request: Request, test_id: int, paper: str = "A4"):
+        t = store(request).get(test_id)
+        ev = t.evaluate_again()
+        if ev.kind != "iso230-2":
+            raise InputError(f"a {ev.kind} test has no certificate here; download its JSON")
+        if paper not in ("A4", "Letter"):
+            raise InputError(f"paper {paper!r}: A4 or Letter")
+        import tempfile
+        from pathlib import Path
+
+        from axiscal.cli._certificate import load_config, write_certificate
+
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "certificate.pdf"
+            write_certificate(path, ev.dataset, ev.evaluation, load_config(None), t.raw,
+                              paper=paper)
+            pdf = path.read_bytes()
+        return download(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
 
     @app.post("/tests/{test_id}/compensation")
     async def compensation(request: Request, test_id: int):
@@ -251,3 +273,15 @@ def _missing(message: str):
     from axiscal.store import NotFoundError
 
     return NotFoundError(message)
+
+
+def _uncertainty(ev):
+    """The ISO 230-2 Annex A budget of a stored test and, if the user configuration names
+    tolerances, the ISO 14253-1 decisions (by parameter)."""
+    from axiscal.cli._certificate import decisions_for, load_config
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    cfg = load_config(None)
+    budget = positioning_budget(ev.dataset, ev.evaluation, cfg.get("uncertainty"))
+    decisions, _, _ = decisions_for(ev.evaluation.parameters(), budget, {}, cfg, None)
+    return budget, {d.parameter: d for d in decisions}
