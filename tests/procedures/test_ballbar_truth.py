@@ -9,7 +9,8 @@ Method 4: partial arcs down to 220°):
 * squareness 0.3 µm/m (360°), 1.0 µm/m (220°); scale mismatch 0.3 / 0.8 µm/m;
 * backlash 0.1 µm; lateral play 0.1 µm; servo mismatch 0.02 ms (from the loop gains alone);
 * crosstalk quantified: a servo mismatch moves the scale mismatch by the first-order loop's
-  amplitude loss ``-ω² (τ_x² - τ_y²) / 2`` (ω = v/R; -6.75 µm/m for 30/s, 40/s) — checked to 0.3 µm/m; a reversal gap
+  amplitude loss ``-ω² (τ_x² - τ_y²) / 2`` (ω = v/R; -6.75 µm/m for 30/s, 40/s) — checked
+  to 0.3 µm/m; a reversal gap
   (spike) moves the backlash by < 0.15 µm; an X cyclic error of 1 µm moves squareness by up to
   6 µm/m on a 220° arc (stated, not hidden: the partial arc cannot tell them apart).
 """
@@ -59,7 +60,8 @@ def test_each_geometric_error_alone(name, geom, want, arc):
 @pytest.mark.parametrize("arc", [360.0, 220.0])
 def test_servo_mismatch_from_loop_gains(arc):
     """K_x = 30/s, K_y = 40/s: Δτ = 1/30 - 1/40 s = 8.333 ms, from the dynamics; scale mismatch
-    moves by -ω² (τ_x² - τ_y²)/2 (first-order loop gain 1 - (ωτ)²/2) — the loops' amplitude loss — within 0.3 µm/m."""
+    moves by -ω² (τ_x² - τ_y²)/2 (first-order loop gain 1 - (ωτ)²/2), the loops' amplitude
+    loss, within 0.3 µm/m."""
     v = _diag(arc, **{"kv_x": 30.0, "kv_y": 40.0})
     assert v["servo_mismatch_ms"] == pytest.approx(1e3 * (1 / 30 - 1 / 40), abs=0.02)
     w = FEED / R

@@ -3,7 +3,8 @@ noise and sample rate.
 
 The bar's transducer is zeroed on a calibrator of reference length ``L_ref``; the length it reports
 is ``L_ref + Δ`` with Δ the transducer travel. A calibration error ``e_cal`` (the calibrator's
-length minus its stated value) makes the bar read ``d + e_cal`` for a true centre distance ``d``. The bar body expands by ``α ΔT L`` with its
+length minus its stated value) makes the bar read ``d + e_cal`` for a true centre distance
+``d``. The bar body expands by ``α ΔT L`` with its
 temperature ``ΔT`` above 20 °C (ISO 1:2016 reference temperature), which shortens the readings by
 that much if not compensated. Readings come at the sample rate with Gaussian noise (a simulation
 takes a numpy Generator).

@@ -7,19 +7,16 @@ effect on ``Δr = δx cos φ + δy sin φ`` (Renishaw, Calibration of machine sq
 "isolate the squareness error from ... backlash, servo, scale mismatch, cyclic, straightness
 errors"; seed 004):
 
-====================  ========================================  =====================================
-term                  machine error                             ``Δr(φ)`` column
-====================  ========================================  =====================================
-centre, radius        —                                         ``1, cos φ, sin φ`` (+ ± shift/2)
-scale mismatch        ``δx = e_x x, δy = e_y y``                ``(R/2)(e_x - e_y) cos 2φ``
-squareness θ          ``δx = -θ y``                             ``-(θR/2) sin 2φ``
-servo mismatch Δτ     ``δx = -τ_x ẋ``, ``δy = -τ_y ẏ``            ``s (v Δτ / 2) sin 2φ``, Δτ = τ_x-τ_y
-backlash b_x, b_y     ``δx = (b_x/2) sign v_x`` (approach side)  ``(1/2) s_x cos φ``, ``(1/2) s_y sin φ``
-lateral play l_x      ``δy = (l_x/2) sign v_x``                  ``(1/2) s_x sin φ``; l_y alike
-straightness c_x      ``δy = c_x (x/R)²`` (bow over ±R)          ``c_x cos²φ sin φ``; c_y alike
-reversal spike h, d   ``δx = h e^{-u/d} sign x`` after reversal  ``h |cos φ| e^{-Rα/d}``, α since reversal
-cyclic error A, p     ``δx = A sin(2π x/p + ϑ)``                 ``cos φ · [sin, cos](2π R cos φ / p)``
-====================  ========================================  =====================================
+* centre and radius: ``1, cos φ, sin φ`` (and ``±`` half of them: a shift between the runs);
+* scale mismatch ``δx = e_x x, δy = e_y y``: ``(R/2)(e_x - e_y) cos 2φ``;
+* squareness ``δx = -θ y``: ``-(θR/2) sin 2φ``;
+* servo mismatch ``δx = -τ_x ẋ, δy = -τ_y ẏ``: ``s (v Δτ / 2) sin 2φ`` with ``Δτ = τ_x - τ_y``;
+* backlash ``δx = (b_x/2) sign v_x`` (approach side): ``(1/2) s_x cos φ``, ``(1/2) s_y sin φ``;
+* lateral play ``δy = (l_x/2) sign v_x``: ``(1/2) s_x sin φ``; ``l_y`` alike;
+* straightness ``δy = c_x (x/R)²`` (a bow over ±R): ``c_x cos²φ sin φ``; ``c_y`` alike;
+* reversal spike ``δx = h e^{-u/d}`` after a reversal: ``h |cos φ| e^{-Rα/d}``, α the travel
+  angle since the reversal;
+* cyclic error ``δx = A sin(2π x/p + ϑ)``: ``cos φ · [sin, cos](2π R cos φ / p)``.
 
 ``s_x = -s·sign(sin φ)`` is the sign of X's velocity (approach side on the reversal point itself,
 :func:`axiscal.standards.iso230_4._backlash_basis`). The non-linear parameters (decay length ``d``,
@@ -48,7 +45,7 @@ import numpy as np
 
 from axiscal.errors import InputError
 from axiscal.standards.iso230_4 import (REVERSAL_TOL, CircularResult, CircularRun,
-                                        _backlash_basis, _common, _harmonics, arc_coverage,
+                                        _backlash_basis, _common, _harmonics,
                                         evaluate_circular)
 
 __all__ = ["BallbarDiagnosis", "DiagnosisTerm", "diagnose", "ADVICE"]
@@ -391,11 +388,3 @@ def _vibration(phi, res, radius, feed) -> tuple[float | None, float]:
 
 def _um(v):
     return "—" if v is None else f"{v * 1e6:.3f} µm"
-
-
-def arc_of(runs) -> float:
-    """Smallest angular coverage of the runs, degrees (helper for callers)."""
-    return min(arc_coverage(r.angles) for r in runs)
-
-
-_ = CircularRun  # re-exported type of the runs
