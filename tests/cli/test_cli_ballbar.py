@@ -77,3 +77,20 @@ def test_simulate_refuses_unknown_key(tmp_path):
     cfg.write_text("[machine]\nsquarenes_um_per_m = 3\n")
     res = runner.invoke(app, ["ballbar", "simulate", str(cfg)])
     assert res.exit_code == 2 and "unknown key" in res.stderr
+
+
+def test_volumetric_three_planes(tmp_path):
+    """Three simulated planes (squareness 10, -5, 20 µm/m; noise 0.1 µm): the summary gives each
+    within 0.3 µm/m, keyed by plane."""
+    files = []
+    for plane, sq in (("XY", 10.0), ("YZ", -5.0), ("ZX", 20.0)):
+        cfg = tmp_path / f"{plane}.toml"
+        cfg.write_text(f"[machine]\nsquareness_um_per_m = {sq}\n[ballbar]\nnoise_um = 0.1\n"
+                       f"sample_rate_hz = 100\n[test]\nplane = \"{plane}\"\n")
+        out = tmp_path / f"{plane}.csv"
+        res = runner.invoke(app, ["ballbar", "simulate", str(cfg), "--out", str(out)])
+        assert res.exit_code == 0, res.output
+        files.append(out)
+    d = _json("ballbar", "volumetric", *files)
+    for plane, sq in (("XY", 10.0), ("YZ", -5.0), ("ZX", 20.0)):
+        assert d["squareness_um_per_m"][plane] == pytest.approx(sq, abs=0.3)
