@@ -275,12 +275,12 @@ def _cyclic(phi, res, radius):
     n = phi.size
     mean = 0.5 * (res[:n] + res[n:])
     dphi = 2 * np.pi / max(n, 8)
-    pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 40)
+    pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 48)
     cols, out = [], {}
     for name, w in (("x", np.cos(phi)), ("y", np.sin(phi))):
         power, sn, cs = _cyclic_power(pitches, w, mean, radius)
         i = int(np.argmax(power))           # then a finer grid between the neighbours
-        fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 12)
+        fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 24)
         power, sn, cs = _cyclic_power(fine, w, mean, radius)
         i = int(np.argmax(power))
         out[f"{name}_pitch"] = float(fine[i])
