@@ -86,3 +86,15 @@ def test_unidirectional_and_single_run_are_refused_naming_the_rule():
     one = PositioningDataset.from_arrays("linear", [0, 100], [[1], [2]], [[0], [1]])
     with pytest.raises(InsufficientRunsError):
         evaluate(one)
+
+
+@given(datasets())
+@settings(max_examples=40, deadline=None)
+def test_reversal_agrees_with_iso230_2_and_repeatability_is_never_smaller(ds):
+    """JIS B 0182 term 342 and ISO 230-2:2014 eq. 5-6 define the same reversal value (shared code);
+    the JIS repeatability (3s/6s) is at least the ISO one (2s/4s) term by term."""
+    from axiscal.standards import iso230_2
+
+    iso, jis = iso230_2.evaluate(ds), evaluate(ds)
+    assert jis.B == pytest.approx(iso.B, rel=1e-12, abs=1e-12)
+    assert jis.R >= iso.R - 1e-9

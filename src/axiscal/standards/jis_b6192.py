@@ -55,9 +55,9 @@ __all__ = ["JisB6192Result", "evaluate", "PARAMETERS"]
 
 #: name -> (description, clause) of the axis parameters this module forms.
 PARAMETERS = {
-    "R": ("bidirectional repeatability of positioning, max over targets of "
-          "max[3s↑ + 3s↓ + |B_i|; 6s↑; 6s↓]", "JIS B 0182-1993 term 346"),
-    "B": ("reversal value, max over targets of |x̄↑ - x̄↓|", "JIS B 0182-1993 term 342"),
+    "R": ("bidirectional repeatability, max[3s↑ + 3s↓ + |B_i|; 6s↑; 6s↓]",
+          "JIS B 0182-1993 term 346"),
+    "B": ("reversal value, max |B_i|, B_i = x̄↑ − x̄↓", "JIS B 0182-1993 term 342"),
 }
 
 

@@ -120,7 +120,7 @@ STANDARDS: dict[str, Standard] = {s.key: s for s in (
     Standard("iso230-2:1997", "ISO 230-2:1997", _NONE),
     Standard("iso230-2:1988", "ISO 230-2:1988", _NONE),
     Standard("gb-t17421.2", "GB/T 17421.2", _NONE + " (nor which ISO 230-2 edition it adopts)"),
-    Standard("jis-b6192", "JIS B 6192 (JIS B 0182-1993 terms 342, 346)",
+    Standard("jis-b6192", "JIS B 6192 / B 0182",
              "JIS B 0182-1993 terms 342, 346", _jis_b6192),
     Standard("vdi3441", "VDI/DGQ 3441", _NONE),
     Standard("asme-b5.54", "ASME B5.54", _NONE),
