@@ -54,12 +54,26 @@ def test_evaluate_all_gives_a_result_or_a_reason_for_each():
 
 
 def test_tolerances_work_for_any_standard():
-    jis = evaluate("jis-b6192", hand_dataset())       # R = 12, B = 3 (test_jis_b6192)
-    v = check_tolerances(jis, {"R": 10, "B": 3})
+    """JIS (R = 12, B = 3, test_jis_b6192): simple acceptance, U not estimated; ISO 230-2:2014:
+    ISO 14253-1 with the ISO 230-9 budget, the same decisions as the iso230-2 path."""
+    import math
+
+    from axiscal.standards import iso230_9
+    from axiscal.standards.iso14253_1 import decide_all
+
+    ds = hand_dataset()
+    jis = evaluate("jis-b6192", ds)
+    v = check_tolerances("jis-b6192", ds, jis, {"R": 10, "B": 3})
     assert [(x.parameter, x.passed) for x in v] == [("R", False), ("B", True)]
-    iso = evaluate("iso230-2:2014", hand_dataset())   # B_mean = 5/3 judged by magnitude
-    assert check_tolerances(iso, {"B_mean": 1.7})[0].passed is True
+    assert all(math.isnan(x.U) and x.rule.value == "simple" for x in v)
+    with pytest.raises(InputError, match="--rule simple"):
+        check_tolerances("jis-b6192", ds, jis, {"R": 10}, rule="iso14253-1")
+    iso = evaluate("iso230-2:2014", ds)
+    got = check_tolerances("iso230-2:2014", ds, iso, {"E": 9, "B_mean": 1.7})
+    r = iso230_2.evaluate(ds)
+    assert got == decide_all(r.parameters(), iso230_9.positioning_budget(ds, r),
+                             {"E": 9, "B_mean": 1.7})
     with pytest.raises(InputError, match="not a JIS"):
-        check_tolerances(jis, {"A": 1})
+        check_tolerances("jis-b6192", ds, jis, {"A": 1})
     with pytest.raises(InputError, match=">= 0"):
-        check_tolerances(jis, {"R": -1})
+        check_tolerances("jis-b6192", ds, jis, {"R": -1})

@@ -3,10 +3,10 @@
 JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one object per standard:
 ``standard`` (key), ``title``, ``evaluated`` (bool), ``parameters`` (name -> ``value``, ``unit``,
 ``description``; empty if not evaluated), ``warnings`` (list of text), ``reason`` (why it was not
-evaluated, else null)). With ``--tolerance``: ``acceptance`` and ``accepted`` as in
-``axiscal iso230-2``.
+evaluated, else null)). With ``--tolerance``: ``acceptance``, ``decision_rule`` and ``accepted``
+as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
 
-Exit codes: 0 evaluated (and every tolerance met), 1 a tolerance was exceeded, 2 a user error
+Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user error
 (including a single ``--standard`` whose definitions were not publicly available to axiscal).
 """
 
@@ -33,7 +33,8 @@ def evaluate(
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (with --standard iso230-2:2014)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report (with --standard iso230-2:2014)."),
-    tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if exceeded)."),
+    tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
+    rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
 ) -> None:
     """Evaluate a positioning test by a named standard, or by all of them side by side.
 
@@ -62,7 +63,7 @@ def evaluate(
         results = ps.evaluate_all(ds)
     else:
         results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
-    verdicts = ps.check_tolerances(results[0][1], tolerances) if tolerances else ()
+    verdicts = ps.check_tolerances(key, ds, results[0][1], tolerances, rule) if tolerances else ()
     if plot is not None or report is not None:
         _iso_outputs(ds, plot, report, verdicts)
     if json_out:
@@ -76,7 +77,7 @@ def evaluate(
     for p, what in ((plot, "plot"), (report, "report")):
         if p is not None:
             note(f"wrote {what} {p}")
-    if any(v.passed is False for v in verdicts):
+    if any(v.passed is not True for v in verdicts if v.value is not None):
         raise typer.Exit(1)
 
 
@@ -139,10 +140,12 @@ def _render(results, ds, title, verdicts) -> None:
         if std.available:
             con.print(f"not evaluated: {escape(reason)}")
     if verdicts:
+        con.print(f"acceptance ({verdicts[0].rule.value} decision rule):")
         for v in verdicts:
-            state = {True: "[green]PASS[/green]", False: "[bold red]FAIL[/bold red]",
-                     None: "n/a"}[v.passed]
-            con.print(f"{escape(v.parameter)}: {v.value:.2f} (tolerance {v.tolerance:g}) {state}")
+            state = "n/a" if v.outcome is None else v.outcome.value
+            u = "U not estimated" if math.isnan(v.U) else f"U = {v.U:.2f}"
+            value = "n/a" if v.value is None else f"{v.value:.2f}"
+            con.print(f"  {escape(v.parameter)}: {value} ({u}), tolerance {v.upper:g}: {state}")
     for std, res in results:
         if not isinstance(res, str):
             for w in res.warnings:

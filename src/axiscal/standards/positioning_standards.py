@@ -164,29 +164,55 @@ def evaluate_all(dataset: PositioningDataset) -> tuple[tuple[Standard, StandardR
     return tuple(out)
 
 
-def check_tolerances(result: StandardResult, tolerances: dict[str, float]):
-    """Compare a result's parameters with acceptance tolerances (plain comparison, no guard band).
+def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResult,
+                     tolerances: dict[str, float], rule: str | None = None):
+    """Decide acceptance tolerances of any standard's parameters (ISO 14253-1:2017 decisions).
 
-    Same rule as :func:`axiscal.standards.iso230_2.check_tolerances` (value <= tolerance; a signed
-    mean such as ``B_mean`` by its magnitude), for any standard's parameter names.
+    Parameters
+    ----------
+    key : str
+        Registry key of ``result``.
+    dataset : PositioningDataset
+        The test ``result`` was evaluated from (for the uncertainty budget).
+    result : StandardResult
+    tolerances : dict of str to float
+        Upper limit per parameter name of that standard, in the deviation unit.
+    rule : {"iso14253-1", "simple"}, optional
+        For ``iso230-2:2014`` the default is ISO 14253-1 with U from the ISO 230-9 budget of
+        :func:`axiscal.standards.iso230_9.positioning_budget`. No published budget gives U for the
+        other standards' parameters, so for them the rule is simple acceptance (ILAC-G8 §4.2.1)
+        and U is reported as not estimated (NaN); asking for ``iso14253-1`` there is refused.
 
     Returns
     -------
-    tuple of :class:`axiscal.standards.iso230_2.Verdict`, in the standard's parameter order.
+    tuple of :class:`axiscal.standards.iso14253_1.Decision`, in the standard's parameter order.
     """
-    from axiscal.standards.iso230_2 import Verdict
+    from dataclasses import replace
 
-    params = result.parameters()
+    from axiscal.standards import iso230_2, iso230_9
+    from axiscal.standards.iso14253_1 import Rule, _rule, decide_all
+
+    values = {name: v for name, (v, _u, _d) in result.parameters().items()}
     for name, tol in tolerances.items():
-        if name not in params:
+        if name not in values:
             raise InputError(f"tolerance for {name!r}: not a {result.title} parameter; use one "
-                             f"of {', '.join(params)}")
+                             f"of {', '.join(values)}")
         if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
             raise InputError(f"tolerance {name} = {tol!r} must be a number >= 0")
-    out = []
-    for name, (v, _unit, _desc) in params.items():
-        if name in tolerances:
-            tol = float(tolerances[name])
-            passed = None if v is None else bool((abs(v) if name == "B_mean" else v) <= tol)
-            out.append(Verdict(name, v, tol, passed))
-    return tuple(out)
+    if key == "iso230-2:2014":
+        budget = iso230_9.positioning_budget(dataset, iso230_2.evaluate(dataset))
+        return decide_all(values, budget, tolerances, _rule(rule or "iso14253-1"))
+    r = _rule(rule or "simple")
+    if r is not Rule.SIMPLE:
+        raise InputError(f"{result.title}: the ISO 14253-1 rule needs the expanded uncertainty of "
+                         "each parameter, and ISO 230-9 gives it for ISO 230-2:2014 parameters "
+                         "only; use --rule simple")
+    decisions = decide_all(values, _NotEstimated(), tolerances, r)
+    return tuple(replace(d, U=math.nan) for d in decisions)
+
+
+class _NotEstimated:
+    """A budget for simple acceptance: U is not taken into account (and not estimated)."""
+
+    def U(self, name: str) -> float:  # noqa: N802 - the budget interface
+        return 0.0
