@@ -1,4 +1,4 @@
-"""Registry of positioning standards: one result shape, refusals that say why, generic tolerances."""
+"""Registry of positioning standards: one result shape, refusals that say why, tolerances."""
 
 import pytest
 

@@ -1,4 +1,4 @@
-"""``axiscal evaluate FILE --standard KEY|all``: one positioning test by the standard a contract names.
+"""``axiscal evaluate FILE --standard KEY|all``: a positioning test by the standard a contract names.
 
 JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one object per standard:
 ``standard`` (key), ``title``, ``evaluated`` (bool), ``parameters`` (name -> ``value``, ``unit``,
@@ -6,8 +6,8 @@ JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one 
 evaluated, else null)). With ``--tolerance``: ``acceptance``, ``decision_rule`` and ``accepted``
 as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
 
-Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user error
-(including a single ``--standard`` whose definitions were not publicly available to axiscal).
+Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
+error (including a single ``--standard`` whose definitions were not publicly available to axiscal).
 """
 
 from __future__ import annotations
@@ -98,7 +98,8 @@ def _iso_outputs(ds, plot, report, verdicts) -> None:
 def _entry_json(std, res) -> dict:
     evaluated = not isinstance(res, str)
     params = {} if not evaluated else {
-        name: {"value": v, "unit": u, "description": d} for name, (v, u, d) in res.parameters().items()}
+        name: {"value": v, "unit": u, "description": d}
+        for name, (v, u, d) in res.parameters().items()}
     return {"standard": std.key, "title": std.title, "evaluated": evaluated, "parameters": params,
             "warnings": list(res.warnings) if evaluated else [],
             "reason": None if evaluated else res}

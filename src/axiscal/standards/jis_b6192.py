@@ -13,7 +13,7 @@ term   definition (JIS B 0182-1993, clause 3 (3))                    equation he
 342    reversal value at a position (反転差): the mean unidirectional  B_i = x̄_i↑ - x̄_i↓
        positioning deviation in the positive direction minus that
        in the negative direction
-346    bidirectional repeatability of positioning at a target        R_i = max[3 s_i↑ + 3 s_i↓ + |B_i|;
+346    bidirectional repeatability of positioning at a target        R_i = max[3s_i↑ + 3s_i↓ + |B_i|;
        (両方向繰返し位置決め精度): the largest of (1) three times the        6 s_i↑; 6 s_i↓]
        positive-direction standard-deviation estimate plus three
        times the negative one plus the absolute reversal value,
