@@ -43,7 +43,7 @@ def _file(k: int) -> bytes:
 def _client(base, stop, lat, errors, uploaded, seed):
     import httpx
 
-    c = httpx.Client(base_url=base, timeout=60)
+    c = httpx.Client(base_url=base, timeout=60, follow_redirects=True)
     token = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     k = 0
     while not stop.is_set():
