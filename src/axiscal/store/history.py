@@ -8,8 +8,8 @@ PostgreSQL through psycopg 3 for a shop or a fleet (``postgresql+psycopg://user@
 Every change is one transaction: a file that fails to read or evaluate leaves nothing, a killed
 process leaves the database as it was before the interrupted test (SQLite's WAL journal,
 PostgreSQL's MVCC), and an import can be run again (files already stored are recognised by
-their SHA-256 and skipped). Two processes may add at once: SQLite waits for the write lock
-(``BEGIN IMMEDIATE`` with a 30 s busy timeout), PostgreSQL's unique index on the hash lets one
+their SHA-256 and skipped). Two processes may add at once: SQLite writers wait for the write lock
+(``BEGIN IMMEDIATE`` with a 30 s busy timeout; readers never wait in WAL mode), PostgreSQL's unique index on the hash lets one
 of two identical files in.
 """
 
@@ -158,7 +158,7 @@ class Store:
         a_name = _name(axis or ev.axis, "axis", filename).upper()
         when, known = _date(date or ev.date)
         now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None)
-        with self._guard("store"), self._session() as s:
+        with self._guard("store"), self._session(write=True) as s:
             try:
                 ax = self._axis(s, m_name, a_name, ev.axis_kind, now)
                 t = Test(axis=ax, kind=ev.kind, tested_at=when, date_known=known, stored_at=now,
@@ -186,7 +186,7 @@ class Store:
         from axiscal.store.models import Table, Test
 
         now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None)
-        with self._guard("store"), self._session() as s:
+        with self._guard("store"), self._session(write=True) as s:
             t = s.get(Test, test_id)
             if t is None:
                 raise NotFoundError(f"no test {test_id} in the history")
@@ -223,14 +223,15 @@ class Store:
 
     def tests(self, machine: str | None = None, axis: str | None = None,
               kind: str | None = None, since: dt.datetime | None = None,
-              limit: int | None = None) -> list[TestSummary]:
-        """Tests, newest first, filtered."""
+              limit: int | None = None, offset: int = 0) -> list[TestSummary]:
+        """Tests, newest first, filtered (``limit`` and ``offset`` page through them)."""
         from sqlalchemy import select
-        from sqlalchemy.orm import selectinload
 
-        from axiscal.store.models import Axis, Machine, Test
+        from axiscal.store.models import Axis, Machine, Parameter, Test
 
-        q = (select(Test).join(Axis).join(Machine).options(selectinload(Test.parameters))
+        q = (select(Test.id, Machine.name, Axis.name, Test.kind, Test.tested_at,
+                    Test.date_known, Test.filename, Test.note)
+             .join(Axis, Test.axis_id == Axis.id).join(Machine, Axis.machine_id == Machine.id)
              .order_by(Test.tested_at.desc(), Test.id.desc()))
         if machine:
             q = q.where(Machine.name == machine)
@@ -242,8 +243,21 @@ class Store:
             q = q.where(Test.tested_at >= since)
         if limit:
             q = q.limit(limit)
-        with self._guard("read"), self._session() as s:
-            return [_summary(t) for t in s.scalars(q).unique()]
+        if offset:
+            q = q.offset(offset)
+        with self._guard("read"), self._session() as s:      # plain rows: fast for thousands
+            rows = s.execute(q).all()
+            params: dict[int, dict] = {r[0]: {} for r in rows}
+            ids = list(params)
+            for k in range(0, len(ids), 900):                 # SQLite's bound-parameter limit
+                chunk = ids[k:k + 900]
+                for tid, name, value, unit in s.execute(
+                        select(Parameter.test_id, Parameter.name, Parameter.value,
+                               Parameter.unit).where(Parameter.test_id.in_(chunk))
+                        .order_by(Parameter.id)):
+                    params[tid][name] = (value, unit)
+        return [TestSummary(i, m, a, k, t, bool(dk), f, params[i], n or "")
+                for i, m, a, k, t, dk, f, n in rows]
 
     def get(self, test_id: int) -> StoredTest:
         """One stored test, all of it."""
@@ -279,10 +293,11 @@ class Store:
         self.engine.dispose()
 
     # -- internals -----------------------------------------------------------------------
-    def _session(self):
+    def _session(self, write: bool = False):
         from sqlalchemy.orm import Session
 
-        return Session(self.engine, expire_on_commit=False)
+        engine = self.engine.execution_options(axiscal_write=True) if write else self.engine
+        return Session(engine, expire_on_commit=False)
 
     def _guard(self, what: str):
         return _Guard(self.url, what)
@@ -393,7 +408,10 @@ def _sqlite_connect(dbapi_conn, _record) -> None:
 
 
 def _sqlite_begin(conn) -> None:
-    conn.exec_driver_sql("BEGIN IMMEDIATE")
+    """Writers take the write lock at once (no deadlock between two upgrading readers); readers
+    begin a deferred transaction, so in WAL mode they never wait for each other or a writer."""
+    write = conn.get_execution_options().get("axiscal_write", False)
+    conn.exec_driver_sql("BEGIN IMMEDIATE" if write else "BEGIN")
 
 
 def _name(value: str, what: str, filename: str) -> str:
