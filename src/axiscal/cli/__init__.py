@@ -32,6 +32,7 @@ EXIT_USER_ERROR = 2
 #: (or when help lists them), so start-up cost does not grow with the number of commands.
 COMMANDS: dict[str, str] = {
     "iso230-2": "axiscal.cli.iso230_2",
+    "evaluate": "axiscal.cli.evaluate",
     "plan": "axiscal.cli.plan",
     "simulate": "axiscal.cli.simulate",
     "demo": "axiscal.cli.demo",

@@ -278,22 +278,16 @@ def simulate_raw_test(plan, axis, rng: np.random.Generator, environment, *,
     """
     from axiscal.physics.air import refractive_index
 
+    from axiscal.procedures.positioning import execute_plan
+
     f = units.factor(plan.target_unit, "length")
-    steps = plan.steps()
     datum = float(plan.targets[0])
     times, targets, dirs, runs, readings = [], [], [], [], []
     up = np.full((plan.targets.size, plan.runs), np.nan)
     down = np.full((plan.targets.size, plan.runs if plan.bidirectional else 0), np.nan)
-    t, here = 0.0, float(steps[0].position)
     n0 = None
-    for s in steps:
-        t += abs(s.position - here) / feed
-        here = s.position
-        if s.kind != "measure":
-            continue
-        t += plan.dwell
-        d = 1 if s.direction == "+" else -1
-        actual = float(axis.move(s.position * f, d, rng, time=t))       # m, at 20 °C
+    t = 0.0
+    for t, s, d, actual in execute_plan(plan, axis, rng, feed, f):      # actual: m, at 20 °C
         dev = actual - s.position * f
         (up if d > 0 else down)[s.target_index, s.run - 1] = dev / units.UM
         air, p, h, tm = environment(t)

@@ -367,6 +367,20 @@ def simulate_positioning_test(
     axis.check_in_travel(np.array([s.position for s in steps]) * to_si)
     up = np.full((plan.targets.size, plan.runs), np.nan)
     down = np.full((plan.targets.size, plan.runs if plan.bidirectional else 0), np.nan)
+    for t, s, d, actual in execute_plan(plan, axis, rng, feed, to_si):
+        dev = (actual - s.position * to_si) * dev_per_si
+        if measurement_sigma > 0:
+            dev += rng.normal(0.0, measurement_sigma)
+        (up if d > 0 else down)[s.target_index, s.run - 1] = dev
+    meta = metadata or Metadata(axis=plan.axis or getattr(axis, "name", ""))
+    return PositioningDataset(kind, plan.targets, up, down, plan.target_unit, du, meta)
+
+
+def execute_plan(plan: TestPlan, axis, rng: np.random.Generator, feed: float, to_si: float):
+    """Run ``plan`` on a simulated axis: yields ``(time s, step, direction ±1, actual SI)`` at
+    each measurement, time advancing by each move at ``feed`` (plan units per second) and the
+    dwell."""
+    steps = plan.steps()
     t, here = 0.0, float(steps[0].position)
     for s in steps:
         t += abs(s.position - here) / feed
@@ -375,13 +389,7 @@ def simulate_positioning_test(
             continue
         t += plan.dwell
         d = 1 if s.direction == "+" else -1
-        actual = axis.move(s.position * to_si, d, rng, time=t)
-        dev = (float(actual) - s.position * to_si) * dev_per_si
-        if measurement_sigma > 0:
-            dev += rng.normal(0.0, measurement_sigma)
-        (up if d > 0 else down)[s.target_index, s.run - 1] = dev
-    meta = metadata or Metadata(axis=plan.axis or getattr(axis, "name", ""))
-    return PositioningDataset(kind, plan.targets, up, down, plan.target_unit, du, meta)
+        yield t, s, d, float(axis.move(s.position * to_si, d, rng, time=t))
 
 
 # -- configuration-driven simulation and the truth it knows ----------------------------------

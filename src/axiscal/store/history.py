@@ -223,8 +223,8 @@ class Store:
 
     def tests(self, machine: str | None = None, axis: str | None = None,
               kind: str | None = None, since: dt.datetime | None = None,
-              limit: int | None = None) -> list[TestSummary]:
-        """Tests, newest first, filtered."""
+              limit: int | None = None, offset: int = 0) -> list[TestSummary]:
+        """Tests, newest first, filtered (``limit`` and ``offset`` page through them)."""
         from sqlalchemy import select
 
         from axiscal.store.models import Axis, Machine, Parameter, Test
@@ -243,6 +243,8 @@ class Store:
             q = q.where(Test.tested_at >= since)
         if limit:
             q = q.limit(limit)
+        if offset:
+            q = q.offset(offset)
         with self._guard("read"), self._session() as s:      # plain rows: fast for thousands
             rows = s.execute(q).all()
             params: dict[int, dict] = {r[0]: {} for r in rows}

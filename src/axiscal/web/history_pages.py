@@ -17,6 +17,8 @@ from axiscal.web.app import checked_form, download, query, render, require_engin
 __all__ = ["add_routes", "positioning_plot", "trend_plot"]
 
 _KEY = ("E", "A", "R", "B", "squareness", "straightness")
+#: Tests shown on one page of a machine's history (newest first).
+PAGE = 100
 _COLORS = {"up": "#1f77b4", "down": "#d62728", "bi": "#2ca02c", "line": "#555"}
 
 
@@ -34,14 +36,19 @@ def add_routes(app: FastAPI) -> None:
         return render(request, "machines.html", "Machines", machines=store(request).machines())
 
     @app.get("/machines/{name}", response_class=HTMLResponse)
-    def machine(request: Request, name: str, axis: str = "", kind: str = ""):
-        tests = store(request).tests(machine=name, axis=axis or None, kind=kind or None)
-        if not tests and not axis and not kind:
+    def machine(request: Request, name: str, axis: str = "", kind: str = "", page: int = 1):
+        st = store(request)
+        m = next((x for x in st.machines() if x.name == name), None)
+        if m is None:
             raise _missing(f"no machine {name!r} in the history")
-        axes = sorted({t.axis for t in tests})
-        rows = [(t, _key(t)) for t in tests]
-        return render(request, "machine.html", f"{name}", name=name, rows=rows, axes=axes,
-                      axis=axis, query=query)
+        page = max(1, page)
+        tests = st.tests(machine=name, axis=axis or None, kind=kind or None,
+                         limit=PAGE + 1, offset=(page - 1) * PAGE)
+        more = len(tests) > PAGE
+        rows = [(t, _key(t)) for t in tests[:PAGE]]
+        return render(request, "machine.html", f"{name}", name=name, rows=rows,
+                      axes=list(m.axes), axis=axis, page=page, more=more, total=m.tests,
+                      query=query)
 
     @app.get("/tests/{test_id}", response_class=HTMLResponse)
     def test_page(request: Request, test_id: int):
@@ -58,7 +65,7 @@ def add_routes(app: FastAPI) -> None:
                       controllers=sorted(CONTROLLERS), others=[
                           o for o in store(request).tests(machine=t.summary.machine,
                                                           axis=t.summary.axis,
-                                                          kind=t.summary.kind)
+                                                          kind=t.summary.kind, limit=11)
                           if o.id != test_id])
 
     @app.get("/tests/{test_id}/raw")

@@ -1,0 +1,158 @@
+"""``axiscal evaluate FILE --standard KEY|all``: a positioning test by the standard a contract names.
+
+JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one object per standard:
+``standard`` (key), ``title``, ``evaluated`` (bool), ``parameters`` (name -> ``value``, ``unit``,
+``description``; empty if not evaluated), ``warnings`` (list of text), ``reason`` (why it was not
+evaluated, else null)). With ``--tolerance``: ``acceptance``, ``decision_rule`` and ``accepted``
+as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
+
+Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
+error (including a single ``--standard`` whose definitions were not publicly available to axiscal).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from axiscal.cli._common import note, plot_path, print_json, report_path
+
+__all__ = ["register"]
+
+_KEYS = "iso230-2:2014|iso230-2:2006|iso230-2:1997|iso230-2:1988|gb-t17421.2|jis-b6192|vdi3441|" \
+        "asme-b5.54|bs3800|nmtba|all"
+
+
+def evaluate(
+    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON or EPICS ecmc file."),
+    standard: str = typer.Option(..., "--standard", "-s", help=f"{_KEYS}. Standards whose definitions were not publicly available are listed with the reason and not evaluated."),
+    target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a file that does not declare it: mm or deg."),
+    deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec."),
+    json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (with --standard iso230-2:2014)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report (with --standard iso230-2:2014)."),
+    tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
+    rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
+) -> None:
+    """Evaluate a positioning test by a named standard, or by all of them side by side.
+
+    Example: axiscal evaluate x.csv --standard all
+    """
+    from axiscal.cli.iso230_2 import parse_tolerances, verdicts_json
+    from axiscal.errors import InputError
+    from axiscal.io import read_positioning
+    from axiscal.standards import positioning_standards as ps
+
+    key = standard.strip().lower()
+    tolerances = parse_tolerances(tolerance)
+    if key == "all" and tolerances:
+        raise InputError("--tolerance needs one --standard (parameter names differ between "
+                         "standards)")
+    if (plot is not None or report is not None) and key != "iso230-2:2014":
+        raise InputError("--plot and --report are drawn for --standard iso230-2:2014 (the per-"
+                         "target figures every standard starts from)")
+    if key != "all" and key not in ps.STANDARDS:
+        raise InputError(f"--standard {standard}: use one of {_KEYS.replace('|', ', ')}")
+    for p, check in ((plot, plot_path), (report, report_path)):
+        if p is not None:
+            check(p)
+    ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
+    if key == "all":
+        results = ps.evaluate_all(ds)
+    else:
+        results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
+    verdicts = ps.check_tolerances(key, ds, results[0][1], tolerances, rule) if tolerances else ()
+    if plot is not None or report is not None:
+        _iso_outputs(ds, plot, report, verdicts)
+    if json_out:
+        d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
+             "standards": [_entry_json(std, res) for std, res in results]}
+        if verdicts:
+            d.update(verdicts_json(verdicts))
+        print_json(d)
+    else:
+        _render(results, ds, str(file), verdicts)
+    for p, what in ((plot, "plot"), (report, "report")):
+        if p is not None:
+            note(f"wrote {what} {p}")
+    if any(v.passed is not True for v in verdicts if v.value is not None):
+        raise typer.Exit(1)
+
+
+def _iso_outputs(ds, plot, report, verdicts) -> None:
+    from axiscal.standards.iso230_2 import evaluate as iso_evaluate
+
+    result = iso_evaluate(ds)
+    if plot is not None:
+        from axiscal.report.plots import save_iso230_2_plot
+
+        save_iso230_2_plot(result, ds, plot)
+    if report is not None:
+        from axiscal.report.html import write_positioning_report
+
+        write_positioning_report(report, ds, result, verdicts=verdicts)
+
+
+def _entry_json(std, res) -> dict:
+    evaluated = not isinstance(res, str)
+    params = {} if not evaluated else {
+        name: {"value": v, "unit": u, "description": d}
+        for name, (v, u, d) in res.parameters().items()}
+    return {"standard": std.key, "title": std.title, "evaluated": evaluated, "parameters": params,
+            "warnings": list(res.warnings) if evaluated else [],
+            "reason": None if evaluated else res}
+
+
+def _render(results, ds, title, verdicts) -> None:
+    import math
+
+    from rich.markup import escape
+    from rich.table import Table
+
+    from axiscal.cli._common import console
+
+    con = console()
+    sym = {"um": "µm"}.get(ds.deviation_unit, ds.deviation_unit)
+    heading = f"Positioning test {title} by standard"
+    t = Table(title=escape(heading), title_justify="left")
+    for c, j in (("standard", "left"), ("parameter", "left"), (f"value [{sym}]", "right"),
+                 ("meaning (clause)", "left")):
+        t.add_column(escape(c), justify=j)
+    skipped = []
+    for std, res in results:
+        if isinstance(res, str):
+            skipped.append((std, res))
+            continue
+        first = True
+        for name, (v, _u, desc) in res.parameters().items():
+            value = "—" if v is None or math.isnan(v) else f"{v:.2f}"
+            shown = name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
+            t.add_row(escape(std.title) if first else "", shown, value, escape(desc))
+            first = False
+        t.add_section()
+    con.print(t)
+    unpublished = [std.title for std, _ in skipped if not std.available]
+    if unpublished:
+        con.print("not evaluated, no public text of their definitions was available to axiscal "
+                  f"(docs/standards.md): {escape(', '.join(unpublished))}")
+    for std, reason in skipped:
+        if std.available:
+            con.print(f"not evaluated: {escape(reason)}")
+    if verdicts:
+        con.print(f"acceptance ({verdicts[0].rule.value} decision rule):")
+        for v in verdicts:
+            state = "n/a" if v.outcome is None else v.outcome.value
+            u = "U not estimated" if math.isnan(v.U) else f"U = {v.U:.2f}"
+            value = "n/a" if v.value is None else f"{v.value:.2f}"
+            con.print(f"  {escape(v.parameter)}: {value} ({u}), tolerance {v.upper:g}: {state}")
+    for std, res in results:
+        if not isinstance(res, str):
+            for w in res.warnings:
+                con.print(f"[yellow]warning ({escape(std.title)}):[/yellow] {escape(w)}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``evaluate`` command to the application."""
+    app.command("evaluate")(evaluate)

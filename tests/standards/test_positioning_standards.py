@@ -1,0 +1,79 @@
+"""Registry of positioning standards: one result shape, refusals that say why, tolerances."""
+
+import pytest
+
+from axiscal.errors import InputError
+from axiscal.standards import iso230_2, jis_b6192
+from axiscal.standards.positioning_standards import (
+    STANDARDS,
+    NotAvailableError,
+    check_tolerances,
+    evaluate,
+    evaluate_all,
+)
+from tests.standards.test_iso230_2 import hand_dataset
+
+ISSUE_KEYS = {"vdi3441", "asme-b5.54", "jis-b6192", "gb-t17421.2", "bs3800", "nmtba",
+              "iso230-2:1988", "iso230-2:1997", "iso230-2:2006", "iso230-2:2014"}
+
+
+def test_every_standard_of_the_issue_is_registered():
+    assert set(STANDARDS) == ISSUE_KEYS
+
+
+def test_iso_2014_entry_is_the_iso230_2_module():
+    ds = hand_dataset()
+    r = evaluate("iso230-2:2014", ds)
+    ref = iso230_2.evaluate(ds).parameters()
+    assert {k: v[0] for k, v in r.parameters().items()} == ref
+    assert all(v[1] == "um" for v in r.parameters().values())
+
+
+def test_jis_entry_is_the_jis_module():
+    ds = hand_dataset()
+    r = evaluate("jis-b6192", ds)
+    assert r.parameters() == jis_b6192.evaluate(ds).parameters()
+
+
+@pytest.mark.parametrize("key", sorted(k for k, s in STANDARDS.items() if not s.available))
+def test_standards_without_public_definitions_are_refused_by_name(key):
+    with pytest.raises(NotAvailableError, match="no public text"):
+        evaluate(key, hand_dataset())
+
+
+def test_unknown_standard_lists_the_known_ones():
+    with pytest.raises(InputError, match="vdi3441"):
+        evaluate("din-1234", hand_dataset())
+
+
+def test_evaluate_all_gives_a_result_or_a_reason_for_each():
+    out = evaluate_all(hand_dataset())
+    assert [s.key for s, _ in out] == list(STANDARDS)
+    for std, res in out:
+        assert isinstance(res, str) != std.available
+
+
+def test_tolerances_work_for_any_standard():
+    """JIS (R = 12, B = 3, test_jis_b6192): simple acceptance, U not estimated; ISO 230-2:2014:
+    ISO 14253-1 with the ISO 230-9 budget, the same decisions as the iso230-2 path."""
+    import math
+
+    from axiscal.standards import iso230_9
+    from axiscal.standards.iso14253_1 import decide_all
+
+    ds = hand_dataset()
+    jis = evaluate("jis-b6192", ds)
+    v = check_tolerances("jis-b6192", ds, jis, {"R": 10, "B": 3})
+    assert [(x.parameter, x.passed) for x in v] == [("R", False), ("B", True)]
+    assert all(math.isnan(x.U) and x.rule.value == "simple" for x in v)
+    with pytest.raises(InputError, match="--rule simple"):
+        check_tolerances("jis-b6192", ds, jis, {"R": 10}, rule="iso14253-1")
+    iso = evaluate("iso230-2:2014", ds)
+    got = check_tolerances("iso230-2:2014", ds, iso, {"E": 9, "B_mean": 1.7})
+    r = iso230_2.evaluate(ds)
+    assert got == decide_all(r.parameters(), iso230_9.positioning_budget(ds, r),
+                             {"E": 9, "B_mean": 1.7})
+    with pytest.raises(InputError, match="not a JIS"):
+        check_tolerances("jis-b6192", ds, jis, {"A": 1})
+    with pytest.raises(InputError, match=">= 0"):
+        check_tolerances("jis-b6192", ds, jis, {"R": -1})
