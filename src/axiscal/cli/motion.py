@@ -162,10 +162,18 @@ def stability(
     from axiscal.procedures.motion_errors import stability_test
     from axiscal.report.motion_report import STABILITY_SEED
 
+    from axiscal._schema import check_option
+    from axiscal.errors import InputError
+
+    check_option("--duration-min", duration_min, "min", lo=0, lo_open=True, hi=MAX_DURATION_MIN)
+    check_option("--interval-s", interval_s, "s", lo=0, lo_open=True, hi=3600)
     paths = _check_outputs(report=report)
     cfg = _config(config)
     duration = cfg.duration if duration_min is None else 60 * duration_min
     interval = cfg.interval if interval_s is None else interval_s
+    if duration / interval > MAX_READINGS:
+        raise InputError(f"{duration / 60:g} min every {interval:g} s is {duration / interval:.3g} "
+                         f"readings; at most {MAX_READINGS:g} are simulated (lengthen --interval-s)")
     run = stability_test(cfg.system, np.random.default_rng(cfg.seed), duration, interval, cfg.drift,
                          cfg.drift_window)
     std = {k: float(np.std(v)) for k, v in _five(run.measured).items()}
@@ -260,6 +268,10 @@ def analyze(
     else:
         typer.echo(str(result))
     _wrote(paths)
+
+
+#: Longest stability run (one week) and most readings simulated (each holds five channels).
+MAX_DURATION_MIN, MAX_READINGS = 10_080, 1_000_000
 
 
 def _config(path):

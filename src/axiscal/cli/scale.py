@@ -102,7 +102,7 @@ def gantry(
     from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
                                               worst_case_runs)
 
-    cfg = read_scale_config(config)
+    cfg = read_scale_config(config, gantry=True)
     g, run_kwargs, sigma = twin_axis_from_config(cfg)
     run = simulate_twin_homing(g, **run_kwargs)
     worst = worst_case_runs(g)

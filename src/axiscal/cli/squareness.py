@@ -156,7 +156,13 @@ def diagonal(
     from axiscal.errors import InputError
     from axiscal.standards.iso230_6 import diagonal_squareness, diagonal_squareness_multipoint
 
+    from axiscal._schema import check_option
+
     given = {"--x-length": x_length, "--y-length": y_length, "--d1": d1, "--d2": d2}
+    for name in ("--x-length", "--y-length"):
+        check_option(name, given[name], "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
+    for name in ("--d1", "--d2"):   # a diagonal's length error: within a tenth of the travel
+        check_option(name, given[name], "µm", lo=-MAX_ERROR_UM, hi=MAX_ERROR_UM)
     if file is not None:
         from axiscal.io.ballbar import read_diagonal
 
@@ -186,6 +192,10 @@ def diagonal(
         typer.echo(str(r))
 
 
+#: Longest travel or ballbar radius taken (100 m) and largest diagonal length error (1 m).
+MAX_LENGTH_MM, MAX_ERROR_UM = 100_000.0, 1e6
+
+
 def circular(
     file: Path = typer.Argument(..., help="Ballbar CSV (angle,direction,deviation; see io.ballbar)."),
     radius: Optional[float] = typer.Option(None, "--radius", help="Nominal radius, mm (overrides the file)."),
@@ -197,6 +207,9 @@ def circular(
     from axiscal.io.ballbar import read_ballbar
     from axiscal.standards.iso230_4 import evaluate_circular
 
+    from axiscal._schema import check_option
+
+    check_option("--radius", radius, "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
     if plot is not None:
         plot_path(plot)
     data = read_ballbar(file, radius_mm=radius)

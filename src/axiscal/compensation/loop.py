@@ -129,8 +129,19 @@ class CompensationLoopResult:
         return "\n".join(lines)
 
 
+#: The tables of a compensation-loop configuration.
+_TABLES = {"axis", "test", "meta", "compensation"}
+
+
 def loop_settings(config: dict) -> dict:
-    """Validate the ``[compensation]`` table and fill defaults."""
+    """Validate the ``[compensation]`` table (and the names of all tables) and fill defaults."""
+    from axiscal.machines.config import refuse_unknown_keys
+
+    unknown_tables = sorted(set(config) - _TABLES)
+    if unknown_tables:
+        raise ConfigError(f"unknown table [{unknown_tables[0]}]; known: "
+                          f"{', '.join(sorted(_TABLES))}")
+    refuse_unknown_keys("[compensation]", config.get("compensation", {}), _KEYS)
     c = dict(config.get("compensation", {}))
     unknown = sorted(set(c) - _KEYS)
     if unknown:
