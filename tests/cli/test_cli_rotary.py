@@ -69,7 +69,7 @@ def test_budget_json():
 def test_budget_text():
     res = runner.invoke(app, ["rotary", "budget", "--alpha", "1", "--beta", "1"])
     assert res.exit_code == 0, res.output
-    assert "Seed 000 Figure 22" in res.output and "peak |E|" in res.output
+    assert "Renishaw white paper, Figure 22" in res.output and "peak |E|" in res.output
 
 
 def _one_line_error(res):

@@ -11,7 +11,7 @@ Three uses:
 * ``axiscal compensate --read TABLE --controller NAME [DATA_OR_RESULT]`` reads a table back and,
   with a data file or result, compares it with the deviations it should correct.
 * ``axiscal compensate --squareness 40 --axes XZ --aligned Z --start -200 --end 200 --spacing 50
-  --controller siemens-840d`` writes the cross-axis table of seed 004 Appendix II (corrections on
+  --controller siemens-840d`` writes the cross-axis table of Chapman, Calibration of machine squareness Appendix II (corrections on
   the axis aligned to the spindle, driven by the other axis).
 
 Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``. Format options
@@ -69,9 +69,9 @@ def compensate(
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
-    squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (seed 004 sign: angle between + axes minus 90°)."),
+    squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (Chapman, Calibration of machine squareness sign: angle between + axes minus 90°)."),
     axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
-    aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (seed 004 Appendix II)."),
+    aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (Chapman, Calibration of machine squareness Appendix II)."),
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation, a whole number >= 0 (with --verify)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),

@@ -14,7 +14,7 @@ evaluation) and compares it with the truth. ``--json`` keys (stable): ``axis``, 
 ``yaw_removed_arcsec``, ``program_lines``, or null) and ``warnings``.
 
 ``axiscal rotary budget --alpha A --beta B [--omega W] [--accuracy X] [--json]`` answers "how
-well must I align for this accuracy?" from seed 000 equation 1. ``--json`` keys (stable):
+well must I align for this accuracy?" from Renishaw, Interferometric calibration of rotary axes equation 1. ``--json`` keys (stable):
 ``alpha_mrad``, ``beta_mrad``, ``omega_mrad``, ``terms_arcsec`` (``quadratic``, ``alpha_beta``,
 ``alpha_omega``: amplitudes), ``peak_arcsec``, ``half_range_arcsec``, ``base_arcsec``,
 ``expected_accuracy_arcsec``, ``accuracy_arcsec`` and ``max_alpha_mrad`` (null without
@@ -66,7 +66,7 @@ def budget(
     base: float = typer.Option(0.8, "--base", help="Accuracy of the system at perfect alignment, arcsec."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
 ) -> None:
-    """Error of seed 000 equation 1 for α, β, ω, and the alignment a wanted accuracy needs."""
+    """Error of Renishaw, Interferometric calibration of rotary axes equation 1 for α, β, ω, and the alignment a wanted accuracy needs."""
     data = _budget_data(alpha, beta, omega, accuracy, base)
     if json_out:
         print_json(data)
@@ -76,7 +76,7 @@ def budget(
     from axiscal.cli._common import console
 
     con = console()
-    con.print(f"α = {alpha:g} mrad, β = {beta:g} mrad, ω = {omega:g} mrad (seed 000 eq. 1)")
+    con.print(f"α = {alpha:g} mrad, β = {beta:g} mrad, ω = {omega:g} mrad (Renishaw, Interferometric calibration of rotary axes eq. 1)")
     for k, v in data["terms_arcsec"].items():
         con.print(f"  term {k:<12} ±{v:.3f} arcsec")
     con.print(f"  peak |E| over a turn   {data['peak_arcsec']:.3f} arcsec (half range "
@@ -92,7 +92,7 @@ def budget(
                   f"(TIR < {2 * 50 * ma * 1e-3:.3f} mm at 50 mm, before the calibrator's own 0.44 mrad)")
     tab = data["table"]
     for title, rows in (("Model: base + eq. 1 peak [± arcsec]", tab["accuracy_arcsec"]),
-                        ("Seed 000 Figure 22 [± arcsec]", tab["seed_figure22_arcsec"])):
+                        ("Renishaw white paper, Figure 22 [± arcsec]", tab["seed_figure22_arcsec"])):
         t = Table(title=title, title_justify="left")
         t.add_column("β \\ α [mrad]")
         for a in tab["alpha_mrad"]:
@@ -165,7 +165,7 @@ def render_rotary(result, title: str) -> None:
 def register(app: typer.Typer) -> None:
     """Add the ``rotary`` command group (``simulate``, ``budget``)."""
     group = typer.Typer(help="Rotary-axis calibration with an angular interferometer and a "
-                             "counter-rotating reference calibrator (seed 000).",
+                             "counter-rotating reference calibrator (Renishaw, Interferometric calibration of rotary axes).",
                         no_args_is_help=True)
     group.command("simulate")(simulate)
     group.command("budget")(budget)

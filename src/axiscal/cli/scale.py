@@ -1,4 +1,4 @@
-"""``axiscal scale``: the laser scale with an environmental compensator (seed 002).
+"""``axiscal scale``: the laser scale with an environmental compensator (Renishaw, Laser scale axis referencing).
 
 ``scale home CONFIG.toml [--plot FILE] [--json]``
     Referencing of one axis. JSON keys: ``homed``, ``counts_per_period``, ``count_size_nm``,
@@ -35,7 +35,7 @@ __all__ = ["register", "scale_app"]
 scale_app = typer.Typer(
     name="scale",
     help="Laser scale with an environmental compensator: referencing, gantry homing, "
-    "compensation factor (seed 002).",
+    "compensation factor (Renishaw, Laser scale axis referencing).",
     no_args_is_help=True,
 )
 

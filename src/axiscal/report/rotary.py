@@ -49,7 +49,7 @@ def rotary_error_figure(r):
     s = r.true_setup
     e = misalignment_terms(np.radians(dense), s.alpha, s.beam_tilt, s.reflector_twist, s.eta).total
     ax.plot(dense, (e - e.mean()) / ARCSEC, "--", color="#7f8c8d", lw=1.1,
-            label="seed 000 eq. 1 for the true α, β, ω")
+            label="Renishaw, Interferometric calibration of rotary axes eq. 1 for the true α, β, ω")
     ax.axhline(0, color="#888", lw=0.6)
     ax.set_xlabel("Target position [°]")
     ax.set_ylabel("Measurement error [arcsec]")
@@ -118,7 +118,7 @@ def rotary_report(r, title: str | None = None) -> Report:
                    "knew (dashed).")
     rep.add_figure(rotary_error_figure(r), "Measurement error per target (measured minus true "
                    "mean deviation, less their common mean) against the ± worst-case budget band, "
-                   "with the misalignment error seed 000 eq. 1 predicts for the true α, β, ω (less "
+                   "with the misalignment error Renishaw, Interferometric calibration of rotary axes eq. 1 predicts for the true α, β, ω (less "
                    "its mean over the travel).")
     _per_target(rep, r)
     _setup_section(rep, r)
@@ -148,7 +148,7 @@ def _per_target(rep: Report, r) -> None:
 
 def _setup_section(rep: Report, r) -> None:
     rep.add_heading("Set-up")
-    rep.add_key_values(dict(r.setup.as_rows()), caption="Set-up checks (seed 000 thresholds)")
+    rep.add_key_values(dict(r.setup.as_rows()), caption="Set-up checks (Renishaw, Interferometric calibration of rotary axes thresholds)")
     s = r.true_setup
     items = {"α (true)": f"{s.alpha * 1e3:.3f} mrad at η = {np.degrees(s.eta):.1f}°",
              "β (true)": f"{s.beam_tilt * 1e3:.3f} mrad",
