@@ -192,7 +192,7 @@ def _toml_with(like: str, tmp: Path, line_no: int, value: str, n: int) -> str | 
 
 def _check(name: str, args: list[str], r: dict, tmp: Path, outputs: list[Path],
            must_fail: bool) -> None:
-    said = f"axiscal {' '.join(args)}\n--- stderr:\n{r['stderr']}"
+    said = f"axiscal {name} {' '.join(args)}\n--- stderr:\n{r['stderr']}"
     assert r["traceback"] is None, f"traceback from {said}\n{r['traceback']}"
     assert r["exit"] in (0, 1, 2), f"exit {r['exit']} from {said}"
     assert "Warning:" not in r["stderr"] and "warnings.warn" not in r["stderr"], said

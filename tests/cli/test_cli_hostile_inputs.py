@@ -129,3 +129,12 @@ def test_output_files_get_the_umask_mode_and_keep_it(tmp_path):
         assert p.stat().st_mode & 0o777 == 0o640 and p.read_text() == "y"
     finally:
         os.umask(old)
+
+
+def test_compensate_verify_test_value_of_wrong_type(tmp_path):
+    """Found by the fuzz harness: measurement_sigma = "text" ended in float()'s ValueError."""
+    text = (EXAMPLES / "compensation_linear.toml").read_text().replace(
+        "[test]", '[test]\nmeasurement_sigma = "text"', 1)
+    p = tmp_path / "c.toml"
+    p.write_text(text)
+    _one_line_error(["compensate", "--verify", p], "measurement_sigma")

@@ -195,6 +195,9 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
         raise ConfigError("the configuration has no [axis] table")
     axis = axis_from_config(config["axis"])
     kind = AxisKind.LINEAR if hasattr(axis, "systematic_deviation") else AxisKind.ROTARY
+    from axiscal.machines.config import check_test_types
+
+    check_test_types(config.get("test", {}))   # a value of the wrong type, named
     test = dict(config.get("test", {}))
     msigma = float(test.pop("measurement_sigma", 0.0))
     plan = plan_from_config(test, kind, axis.name)
