@@ -133,8 +133,10 @@ def test_output_files_get_the_umask_mode_and_keep_it(tmp_path):
 
 def test_compensate_verify_test_value_of_wrong_type(tmp_path):
     """Found by the fuzz harness: measurement_sigma = "text" ended in float()'s ValueError."""
-    text = (EXAMPLES / "compensation_linear.toml").read_text().replace(
-        "[test]", '[test]\nmeasurement_sigma = "text"', 1)
+    lines = (EXAMPLES / "compensation_linear.toml").read_text().splitlines()
+    text = "\n".join('measurement_sigma = "text"' if ln.startswith("measurement_sigma") else ln
+                     for ln in lines)
+    assert 'measurement_sigma = "text"' in text
     p = tmp_path / "c.toml"
     p.write_text(text)
     _one_line_error(["compensate", "--verify", p], "measurement_sigma")
