@@ -57,3 +57,21 @@ def test_no_internal_document_names_in_any_help():
         r = CliRunner().invoke(app, [*path, "--help"], env={"COLUMNS": "200"})
         assert r.exit_code == 0, path
         assert "seed 00" not in r.output.lower(), (path, r.output)
+
+
+def test_an_option_name_means_one_thing():
+    """--alpha is the misalignment α of Renishaw's eq. 1 (rotary budget) and nowhere an expansion
+    coefficient (scale compensate: --expansion-coefficient); --reference is a reference line
+    (straightness, biaxial) and nowhere a home position (compensate: --home)."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    def options(*path):
+        r = CliRunner().invoke(app, [*path, "--help"], env={"COLUMNS": "250"})
+        return r.output
+
+    assert "--expansion-coefficient" in options("scale", "compensate")
+    assert "--alpha" not in options("scale", "compensate")
+    assert "--home" in options("compensate") and "--reference" not in options("compensate")
+    assert "--reference" in options("straightness") and "--alpha" in options("rotary", "budget")

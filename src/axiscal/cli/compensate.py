@@ -62,7 +62,7 @@ def compensate(
     start: Optional[float] = typer.Option(None, "--start", help="First table point, mm or deg (default: first target)."),
     end: Optional[float] = typer.Option(None, "--end", help="Last table point at or beyond this, mm or deg (default: last target)."),
     extrapolation: str = typer.Option("hold", "--extrapolation", help="Beyond the measured targets: 'hold' the end value or continue 'linear'."),
-    reference: Optional[float] = typer.Option(None, "--reference", help="Reference (home) position, mm or deg (default: the table start)."),
+    reference: Optional[float] = typer.Option(None, "--home", help="Home (reference) position, mm or deg (default: the table start)."),
     travel: Optional[List[float]] = typer.Option(None, "--travel", help="Axis travel low and high, mm or deg (give twice); the table must lie inside."),
     axis: str = typer.Option("", "--axis", help="Axis name written in the table (X, C ...)."),
     option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001."),

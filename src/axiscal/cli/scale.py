@@ -136,7 +136,7 @@ def compensate(
                                  help="ciddor, edlen or birch-downs."),
     material: Optional[str] = typer.Option(None, "--material",
                                            help="Work-piece material (steel, aluminium ...)."),
-    alpha: Optional[float] = typer.Option(None, "--alpha",
+    alpha: Optional[float] = typer.Option(None, "--expansion-coefficient",
                                           help="Work-piece expansion coefficient, 1/K."),
     material_temperature: List[float] = typer.Option(
         [], "--material-temperature", help="Work-piece sensor, °C (repeat for several; averaged)."),
@@ -152,7 +152,7 @@ def compensate(
     from axiscal.physics.thermal import material as lookup, mean_temperature
 
     if material is not None and alpha is not None:
-        raise InputError("give --material or --alpha, not both")
+        raise InputError("give --material or --expansion-coefficient, not both")
     a = alpha if alpha is not None else (lookup(material).alpha if material else 0.0)
     t_mat = mean_temperature(material_temperature) if material_temperature else 20.0
     comp = Compensator(output=SineOutput(period * 1e-6, counts_per_period), equation=equation,
