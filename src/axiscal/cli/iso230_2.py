@@ -170,6 +170,9 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=()) -
     for name, v in result.parameters().items():
         p.add_row(name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"),
                   f(v), meanings[name])
+    for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
+        if v is not None:   # a full turn keeps 0° and 360° as two targets
+            p.add_row(f"closure{arrow}", f(v), "360° minus 0° mean deviation (full turn)")
     con.print(p)
     if verdicts:
         a = Table(title="Acceptance", title_justify="left")
