@@ -5,11 +5,26 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 OUT    ?= demo-output
 
-.PHONY: setup demo test bench shots clean
+.PHONY: setup sysdeps demo test bench shots clean
 
 setup: $(STAMP)
 
-$(STAMP): pyproject.toml
+# Debian packages: WeasyPrint (PDF certificates) needs Pango and HarfBuzz, the tests render PDF
+# pages with pdftoppm (poppler-utils), the history tests run on a real throw-away PostgreSQL
+# (tools/pgtest.py starts one per test process in a temporary folder), and the workbench's
+# browser tests drive Chromium with its driver (Selenium). Installed when missing.
+DEBS := libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core poppler-utils \
+        postgresql chromium chromium-driver
+APT := $(if $(filter 0,$(shell id -u)),,sudo) env DEBIAN_FRONTEND=noninteractive apt-get
+sysdeps:
+	@command -v dpkg >/dev/null || { echo "not Debian: install $(DEBS) yourself"; exit 0; }; \
+	missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  $(APT) update -qq && $(APT) install -y -qq $$missing >/dev/null; \
+	fi
+
+$(STAMP): pyproject.toml | sysdeps
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e ".[dev]"
@@ -18,16 +33,15 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	$(VENV)/bin/axiscal demo --out $(OUT)
 
-test: $(STAMP)
+test: $(STAMP) sysdeps
 	$(PY) -m pytest -n 2 -q
 
-bench: $(STAMP)
+bench: $(STAMP) sysdeps
 	$(PY) benchmarks/run.py
 
 # Render the demo report to PNG with headless Chromium (installed from Debian if missing),
 # so a person can look at what a customer would see.
-shots: demo
-	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium)
+shots: demo sysdeps
 	$(PY) tools/screenshot.py $(OUT)
 
 clean:

@@ -40,7 +40,7 @@ from typing import Any
 
 from axiscal.errors import ConfigError, InputError
 
-__all__ = ["SchemaError", "Num", "Text", "Flag", "Schema", "check_option", "show", "MAX_MAGNITUDE"]
+__all__ = ["SchemaError", "Free", "Num", "Text", "Flag", "Schema", "check_option", "show", "MAX_MAGNITUDE"]
 
 #: No length, angle, time, temperature or rate a machine-tool set-up has comes near this; a value
 #: beyond it is a typing slip (and squaring it overflows a float).
@@ -127,6 +127,17 @@ class Flag:
     def check(self, v: Any, name: str) -> bool:
         if not isinstance(v, bool):
             raise _Bad(f"{name} = {show(v)} must be true or false")
+        return v
+
+
+@dataclass(frozen=True)
+class Free:
+    """A key whose value the reader checks itself (one of several types, e.g. 3 or "auto")."""
+
+    default: Any = None
+    required: bool = False
+
+    def check(self, v: Any, name: str) -> Any:
         return v
 
 

@@ -53,7 +53,7 @@ def _refused(work, args, *words):
 
 @pytest.mark.parametrize("args, words", [
     (["iso230-2", "d.csv", "--report", "r.png"], ["report file r.png", ".html"]),
-    (["simulate", LINEAR_TOML, "--report", "r.pdf"], ["report file r.pdf"]),
+    (["simulate", LINEAR_TOML, "--report", "r.docx"], ["report file r.docx", ".pdf"]),
     (["simulate", LINEAR_TOML, "--data", "d.png"], ["data file d.png", ".csv or .json"]),
     (["rotary", "simulate", ROTARY_TOML, "--report", "r.png"], ["report file r.png"]),
     (["plan", "linear", "--length", "800", "--csv", "plan.pdf"], ["plan CSV file plan.pdf"]),

@@ -125,6 +125,11 @@ def test_demo_writes_reports(tmp_path):
                  "rotary_data.csv"):
         assert (out / name).stat().st_size > 0, name
     assert "Measured beside the simulation's truth" in r.stdout
+    from pypdf import PdfReader
+
+    for name in ("linear", "rotary"):     # the customer certificates (make demo)
+        text = "\n".join(p.extract_text() for p in PdfReader(out / f"{name}_certificate.pdf").pages)
+        assert "Overall verdict" in text and "page 1 of" in text and "truth" not in text
 
 
 def test_tolerances_give_verdicts_and_exit_code(good, tmp_path):

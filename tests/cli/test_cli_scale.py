@@ -31,8 +31,10 @@ def test_scale_home_json():
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["homed"] is True
-    assert [e["counts_beyond_switch"] for e in d["events"]] == [0, 256, 320, 384]
-    assert d["tracking"]["max_count_error"] < 1.0
+    assert [e["nominal_counts"] for e in d["events"]] == [0, 256, 320, 384]
+    assert d["events"][2]["uncertainty_counts"] == pytest.approx(0.633 / 0.078125, rel=1e-3)
+    assert d["tracking"]["max_pulse_error"] < 1.0
+    assert d["tracking"]["count_uncertainty"] == pytest.approx(8.10, abs=0.01)
     assert d["alarms"] == []
     for key in ("virtual_counts", "home_position_mm", "compensation_ppm", "laser_count_rate_hz"):
         assert key in d
@@ -90,6 +92,31 @@ def test_config_errors_are_clean(tmp_path):
     with pytest.raises(ConfigError, match="direction"):
         from axiscal.io.scale_config import axis_from_config
         axis_from_config(parse_scale_config("[switch]\ndirection = 'up-ish'\n"))
+
+
+def test_rephase_periods_in_the_configuration(tmp_path):
+    """Issue 20: homing at 114000 mm/min with power-up phase 0 raises the input-frequency alarm;
+    rephase_periods = "auto" spreads the virtual movement and it does not; bad values and a
+    value the gantry cannot honour are one clean line."""
+    text = (EXAMPLES / "scale_single.toml").read_text().replace(
+        "speed_mm_per_min = 300\n", "speed_mm_per_min = 114000\npower_up_phase = 0\n", 1)
+    fast = tmp_path / "fast.toml"
+    fast.write_text(text)
+    d = json.loads(runner.invoke(app, ["scale", "home", str(fast), "--json"]).stdout)
+    assert len(d["alarms"]) == 1 and "input frequency" in d["alarms"][0]
+    assert d["peak_input_frequency_khz"] > 170 and d["rephase_periods"] == 1
+    fast.write_text(text.replace("co2 = 450", 'co2 = 450\nrephase_periods = "auto"'))
+    d = json.loads(runner.invoke(app, ["scale", "home", str(fast), "--json"]).stdout)
+    assert d["alarms"] == [] and d["rephase_periods"] > 1
+    assert d["peak_input_frequency_khz"] < 100
+    fast.write_text(text.replace("co2 = 450", "co2 = 450\nrephase_periods = 0"))
+    r = runner.invoke(app, ["scale", "home", str(fast)])
+    assert r.exit_code == 2 and "rephase_periods" in r.output and "Traceback" not in r.output
+    gantry = tmp_path / "g.toml"
+    gantry.write_text((EXAMPLES / "scale_gantry.toml").read_text().replace(
+        "counts_per_period = 256", "counts_per_period = 256\nrephase_periods = 2", 1))
+    r = runner.invoke(app, ["scale", "gantry", str(gantry)])
+    assert r.exit_code == 2 and "rephase_periods" in r.output
 
 
 def test_examples_parse():

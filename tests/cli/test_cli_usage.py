@@ -104,4 +104,4 @@ def test_help_is_accurate():
     r = runner.invoke(app, ["scale", "gantry", "--help"], env={"COLUMNS": "200"})
     assert "TOML with a gantry table" in r.stdout
     r = runner.invoke(app, ["iso230-2", "--help"], env={"COLUMNS": "200"})
-    assert "HTML report (.html)" in r.stdout
+    assert "HTML (.html) or PDF (.pdf" in r.stdout

@@ -273,7 +273,12 @@ def _without(text, prefix):
 
 
 def _replace(text, prefix, line):
-    return "\n".join(line if x.startswith(prefix) else x for x in text.splitlines()) + "\n"
+    """``line`` in place of the line starting with ``prefix`` (inserted after the first line if
+    the file has none: axiscal's tapes carry no N3605, a bit parameter set by hand)."""
+    lines = text.splitlines()
+    if not any(x.startswith(prefix) for x in lines):
+        lines.insert(1, prefix)
+    return "\n".join(line if x.startswith(prefix) else x for x in lines) + "\n"
 
 
 def test_fanuc_bidirectional_file_without_3626_names_the_parameter():

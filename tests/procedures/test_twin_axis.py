@@ -73,6 +73,20 @@ def test_extremes_reach_n_minus_1_and_reduce_with_the_output_resolution():
                       * q20, rel=0.01)
 
 
+def test_homing_skew_in_length_is_bounded_by_one_signal_period():
+    """Issue 20: fewer counts per period at a fixed 20 µm period lower the worst skew in counts
+    but not in length: 255 × 78.125 nm = 19.92 µm, 127 × 156.25 nm = 19.84 µm,
+    63 × 312.5 nm = 19.69 µm, all just under the period. The output says so."""
+    for n in (256, 128, 64):
+        g = _gantry(n=n, period=20e-6)
+        a, b = worst_case_runs(g)
+        worst = max(abs(a.skew_check.skew), abs(b.skew_check.skew)) * g.output.count_size
+        assert worst == pytest.approx((n - 1) / n * 20e-6, rel=1e-12)
+        assert worst < 20e-6
+        assert a.to_dict()["homing_skew_bound_um"] == pytest.approx(worst * 1e6, rel=1e-12)
+        assert "bounded by one signal period" in str(a)
+
+
 @pytest.mark.parametrize("limit", [0, 50, 255, 256, 300])
 def test_alarm_fires_exactly_when_the_skew_exceeds_the_limit(limit):
     g = _gantry(limit=limit)

@@ -238,3 +238,29 @@ def test_result_str_and_table_are_readable():
     assert "A      = 8 um" in text and "B_mean = 1.667 um" in text
     rows = r.target_table()
     assert rows[1]["mean_bi"] == pytest.approx(3.5) and rows[0]["n_up"] == 3
+
+
+def _no_scatter_full_turn(closure_arcsec):
+    """Readings with no scatter, formed as a real capture forms them: the actual angle in
+    degrees (target + 0.01″ + a 0.05″ once-per-turn error + closure at 360°) minus the target,
+    × 3600.
+    At 360° one unit in the last place of the angle is 5.7e-14° = 2e-10″ (IEEE 754 binary64),
+    so the difference of the means at 0° and 360° is float rounding, not a closure."""
+    targets = np.arange(0, 361, 45.0)
+    err_deg = 0.05 / 3600 * np.sin(np.radians(targets)) + 0.01 / 3600
+    err_deg[-1] += closure_arcsec / 3600
+    actual = targets + err_deg
+    dev = (actual - targets) * 3600.0
+    up = np.repeat(dev[:, None], 5, axis=1)
+    return PositioningDataset.from_arrays("rotary", targets, up, up - 1.0)
+
+
+def test_no_scatter_gives_no_false_closure_warning():
+    """Issue 21: with no scatter 3 standard errors = 0, and the rounding of the angle at 360°
+    (~1e-10″) alone must not warn; a closure of 0.01″ with no scatter is real and still warns."""
+    clean = evaluate(_no_scatter_full_turn(0.0))
+    assert 0 < abs(clean.closure_up) < 1e-8          # the rounding the data carry
+    assert not any("closure" in w for w in clean.warnings)
+    real = evaluate(_no_scatter_full_turn(0.01))
+    assert real.closure_up == pytest.approx(0.01, abs=1e-8)
+    assert any("closure in direction +" in w for w in real.warnings)

@@ -42,6 +42,13 @@ COMMANDS: dict[str, str] = {
     "rotary": "axiscal.cli.rotary",
     "air": "axiscal.cli.air",
     "scale": "axiscal.cli.scale",
+    "compensate-environment": "axiscal.cli.measured",
+    "capture": "axiscal.cli.measured",
+    "formats": "axiscal.cli.measured",
+    "serve": "axiscal.cli.serve",
+    "history": "axiscal.cli.history",
+    "volumetric": "axiscal.cli.volumetric",
+    "config": "axiscal.cli.config",
 }
 
 

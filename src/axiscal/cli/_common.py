@@ -109,8 +109,22 @@ def typed_path(path: Path, what: str, suffixes: tuple[str, ...]) -> Path:
 
 
 def report_path(path: Path) -> Path:
-    """Check an HTML report file before any work: writable folder and a .html or .htm name."""
-    return typed_path(path, "report", (".html", ".htm"))
+    """Check a report file before any work: writable folder and a .html, .htm or .pdf name.
+
+    A PDF needs WeasyPrint (the ``report`` extra); that is checked here too, before any work.
+    """
+    p = typed_path(path, "report", (".html", ".htm", ".pdf"))
+    if p.suffix.lower() == ".pdf":
+        try:
+            import importlib.util
+
+            missing = importlib.util.find_spec("weasyprint") is None
+        except (ImportError, ValueError):
+            missing = True
+        if missing:
+            raise InputError(f"report {p.name}: a PDF needs WeasyPrint; pip install "
+                             "'axiscal[report]' or write a .html report")
+    return p
 
 
 def note(message: str) -> None:

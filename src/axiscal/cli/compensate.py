@@ -20,11 +20,12 @@ Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``.
 
 JSON (``--json``), stable keys. The *table data* keys: ``n_points``, ``spacing``, ``start``,
 ``end``, ``position_unit``, ``correction_unit``, ``reference_index``, ``reference_position``,
-``largest_correction``, ``backlash``, ``bidirectional``, ``modulo`` and ``table`` (the table
+``largest_correction``, ``backlash``, ``bidirectional``, ``modulo``, ``equidistant`` (false
+for a table at irregular positions, LinuxCNC only) and ``table`` (the table
 itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, ``start``, ``end``,
 ``n_points``, ``position_unit``, ``correction_unit``, ``reference_index``,
 ``reference_position``, ``resolution``, ``extrapolation``, ``bidirectional``, ``modulo``,
-``backlash``, ``largest``). Table: ``controller``, ``file`` (path written or null),
+``backlash``, ``largest``, ``equidistant``). Table: ``controller``, ``file`` (path written or null),
 ``extra_files`` (names), ``enable`` (list), ``notes`` (list) and the table data keys. Verify:
 ``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``,
 ``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
@@ -32,7 +33,8 @@ itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, `
 ``spacing_residual``, ``sigma``, ``between_targets_E``, ``truth_before``, ``truth_after`` (E,
 E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``. Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
-``controller`` and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
+``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
+(``utf-8`` or ``windows-1252``) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
 ``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
 given.
 
@@ -91,7 +93,7 @@ def compensate(
     if verify is not None:
         return _verify(verify, seed, controller, spacing, opts, out, json_out, plot)
     if read is not None:
-        return _read(read, controller or "csv", source, opts, json_out)
+        return _read(read, controller, source, opts, json_out)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
                            resolution, travel, opts, out, json_out)
@@ -149,10 +151,24 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     from axiscal.io.results import load_mean_deviations
     from axiscal.io import read_text
 
+    from axiscal.compensation.controllers import detect
+    from axiscal.errors import InputError
+    from axiscal.io._files import read_controller_text
+
+    text, encoding = read_controller_text(path)
+    found = detect(text)
+    if controller is None:
+        if found is None:
+            raise InputError(f"{path}: the controller format cannot be told from the content; "
+                             "give --controller")
+        controller = found
+    elif found is not None and found != get_controller(controller).NAME:
+        raise InputError(f"{path} looks like a {found} file, not {controller}: drop "
+                         f"--controller or give --controller {found}")
     mod = get_controller(controller)
     opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
-    table = mod.parse(read_text(path), source=str(path), **opts)
-    d = dict(controller=mod.NAME, **_table_json(table))
+    table = mod.parse(text, source=str(path), **opts)
+    d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table))
     rows = []
     if source is not None:
         res, _ = load_mean_deviations(source)
@@ -165,7 +181,7 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     if json_out:
         print_json(d)
         return
-    typer.echo(str(table))
+    typer.echo(f"{mod.NAME} file ({encoding}): {table}")
     if rows:
         u = table.correction_unit
         typer.echo(f"compared with {source} (mean bidirectional deviation + correction):")
@@ -384,7 +400,7 @@ def _table_json(t) -> dict:
                 position_unit=t.position_unit, correction_unit=t.correction_unit,
                 reference_index=t.reference_index, reference_position=t.reference_position,
                 largest_correction=t.largest, backlash=t.backlash, bidirectional=t.bidirectional,
-                modulo=t.modulo, table=t.to_dict())
+                modulo=t.modulo, equidistant=t.equidistant, table=t.to_dict())
 
 
 def _render_table(cf, out, json_out) -> None:

@@ -5,7 +5,8 @@ turn, then a complete rotary-axis calibration of the turntable with the angular 
 the counter-rotating reference calibrator (set-up checks, optics self-calibration, capture,
 evaluation, error budget). Configurations are in ``axiscal/data/``. It prints every result beside
 the truth the simulation knew and writes plots, HTML reports, the simulated data and an index page
-into ``--out``.
+into ``--out``, and a PDF calibration certificate of the linear and of the rotary test (what a
+customer receives: the measurement, its uncertainty and the ISO 14253-1 verdicts, no truth).
 """
 
 from __future__ import annotations
@@ -17,11 +18,20 @@ import typer
 from axiscal.cli._common import note, out_path
 
 DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn (ideal reference)"))
+#: What the demonstration certificates carry besides the user configuration (axiscal config).
+DEMO_JOB = {
+    "customer": {"name": "Demonstration customer (simulated readings)"},
+    "conditions": {"measuring_line": "along the axis through the table centre (simulated)",
+                   "feed": "not applicable (simulation)", "dwell": "not applicable (simulation)"},
+}
+DEMO_TOLERANCES = {"linear": {"A": 20.0, "E": 15.0, "R": 8.0, "B": 5.0},
+                   "rotary": {"A": 14.0, "E": 12.0, "R": 6.0, "B": 4.0}}
 
 
 def demo(
     out: Path = typer.Option(Path("axiscal-demo"), "--out", help="Folder for plots, reports and data (created)."),
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
+    db: str = typer.Option(None, "--db", help="History database for the demo's tests (default: history.sqlite in --out)."),
 ) -> None:
     """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported."""
     import tomllib
@@ -46,10 +56,72 @@ def demo(
         render_simulation(sim)
         write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
                       out / f"{name}_data.csv")
+        _certificate(out / f"{name}_certificate.pdf", sim, name)
         pages.append((label, f"{name}_report.html", sim.result))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)
+    _history(out, db or f"sqlite:///{(out / 'history.sqlite').resolve()}", seed)
     note(f"\nopen {out / 'index.html'} for the reports")
+
+
+def _history(out: Path, db: str, seed: int) -> None:
+    """Store the demo's tests and a compensation loop (before/after) in the history; list and
+    compare them."""
+    import tomllib
+    from dataclasses import replace
+    from importlib import resources
+
+    from axiscal.compensation.loop import run_compensation_loop
+    from axiscal.io._files import write_text_atomic
+    from axiscal.io.csv import format_positioning_csv
+    from axiscal.store import open_store
+    from axiscal.store.analysis import compare_tests
+
+    store = open_store(db)
+    for name in ("linear", "rotary"):
+        p = out / f"{name}_data.csv"
+        store.add(p.read_bytes(), p.name)
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_compensation.toml")
+                        .read_text("utf-8"))
+    loop = run_compensation_loop(cfg, seed=seed)
+    ids = []
+    for label, ds in (("before", loop.before_data), ("after", loop.after_data)):
+        ds = replace(ds, metadata=replace(ds.metadata, machine=cfg["meta"]["machine"],
+                                          axis=cfg["axis"]["name"],
+                                          notes=f"compensation loop: {label}"))
+        p = out / f"compensation_{label}_data.csv"
+        write_text_atomic(p, format_positioning_csv(ds))
+        tables = ((loop.controller_file.controller, loop.controller_file.filename,
+                   loop.controller_file.text),) if label == "before" else ()
+        ids.append(store.add(p.read_bytes(), p.name, note=f"compensation loop: {label}",
+                             tables=tables).id)
+    typer.echo(f"\ncalibration history ({db}):")
+    for t in store.tests():
+        key = "E" if "E" in t.parameters else next(iter(t.parameters))
+        v, u = t.parameters[key]
+        typer.echo(f"  test {t.id:>3}  {t.machine} {t.axis}  {t.kind}  {key} = {v:.3f} {u}  "
+                   f"{t.filename}")
+    c = compare_tests(store.get(ids[0]), store.get(ids[1]))
+    typer.echo(f"\nthe linear axis before and after compensation (axiscal history compare "
+               f"{ids[0]} {ids[1]} --db {db}):")
+    typer.echo(str(c))
+
+
+def _certificate(path: Path, sim, name: str) -> None:
+    """The customer certificate (PDF) of a demonstration test; skipped, said, without WeasyPrint."""
+    import importlib.util
+
+    from axiscal.cli._certificate import load_config, write_certificate
+    from axiscal.io.user_config import merge
+
+    if importlib.util.find_spec("weasyprint") is None:
+        note(f"no {path.name}: a PDF needs WeasyPrint (pip install 'axiscal[report]')")
+        return
+    cfg = merge(load_config(None), DEMO_JOB)
+    out_path(path, "certificate")
+    data = (path.parent / f"{name}_data.csv").read_bytes()
+    write_certificate(path, sim.dataset, sim.result, cfg, data, DEMO_TOLERANCES[name])
+    note(f"wrote certificate {path}")
 
 
 def _rotary_calibration(out: Path):
@@ -77,7 +149,10 @@ def _write_index(out: Path, pages) -> None:
     rows = [[label, r.A, r.E, r.R, r.B, unit_label(r.deviation_unit)] for label, _, r in pages]
     rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
     rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
-                                  for label, href, _ in pages) + "</ul>")
+                                  for label, href, _ in pages)
+                 + "".join(f'<li><a href="{n}_certificate.pdf">{n} test: calibration certificate '
+                           "(PDF)</a></li>" for n, _, _ in DEMOS if (out / f"{n}_certificate.pdf").exists())
+                 + "</ul>")
     rep.write(out / "index.html")
     note(f"wrote {out / 'index.html'}")
 

@@ -3,13 +3,19 @@
 JSON output (``--json``), stable: top-level keys ``A``, ``A_up``, ``A_down``, ``E``, ``E_up``,
 ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``, ``B_mean`` (numbers in ``unit``, or null where
 a unidirectional test makes them not apply), ``unit``, ``target_unit``, ``axis_kind``,
-``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``targets`` (one object per target:
+``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``machine``, ``axis`` (as the file
+names them, "" if not), ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
 ``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
 ``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
-``tolerance``, ``passed``) and ``accepted`` (true, false, or null if nothing applied).
+``tolerance``, ``U``, ``outcome`` — ``conformance proven``, ``non-conformance proven`` or
+``uncertainty zone`` —, ``passed`` true/false/null for the zone), ``decision_rule`` and ``accepted``
+(true when conformance is proven for every parameter, false when non-conformance is proven for
+one, null otherwise). Always: ``uncertainty`` (U at k = 2 per parameter, ISO 230-2:2014 Annex A,
+in ``unit``).
 
-Exit codes: 0 evaluated (and every tolerance met), 1 a tolerance was exceeded, 2 a user error.
+Exit codes: 0 evaluated (and conformance proven for every tolerance), 1 a tolerance not proven
+met (non-conformance or uncertainty zone; with ``--rule simple``: exceeded), 2 a user error.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ from typing import List, Optional
 
 import typer
 
+from axiscal.cli._certificate import JOB, PAPER, RULE
 from axiscal.cli._common import note, plot_path, print_json, report_path
 
 __all__ = ["register", "result_json", "render_result"]
@@ -31,10 +38,20 @@ def iso230_2(
     full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained HTML report (.html)."),
-    tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if one is exceeded)."),
+    history: bool = typer.Option(False, "--history", help="Also store the test in the calibration history (see 'axiscal history')."),
+    machine: Optional[str] = typer.Option(None, "--machine", help="With --history: the machine's name, if the file does not give it."),
+    db: Optional[str] = typer.Option(None, "--db", help="With --history: the database URL (default: AXISCAL_DB, else the user's SQLite file)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the calibration certificate: self-contained HTML (.html) or PDF (.pdf, WeasyPrint)."),
+    tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if conformance is not proven)."),
+    job: Optional[Path] = JOB,
+    rule: Optional[str] = RULE,
+    paper: Optional[str] = PAPER,
 ) -> None:
-    """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target)."""
+    """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target),
+    with its uncertainty (ISO 230-2 Annex A) and, with tolerances, ISO 14253-1 decisions.
+
+    Example: axiscal iso230-2 x_axis.csv --tolerance E=10 --report certificate.pdf
+    """
     from axiscal.io import read_positioning
     from axiscal.standards.iso230_2 import check_tolerances, evaluate
 
@@ -51,23 +68,35 @@ def iso230_2(
         raise InputError(f"--full-turn {full_turn} pools 0 and 360 deg of a rotary test; {file} "
                          f"is a {ds.axis_kind.value} axis")
     result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
-    verdicts = check_tolerances(result, tolerances) if tolerances else ()
+    from axiscal.cli._certificate import decisions_for, load_config
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    cfg = load_config(job)
+    check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})   # names and values
+    budget = positioning_budget(ds, result, cfg.get("uncertainty"))
+    verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
     if plot is not None:
         from axiscal.report.plots import save_iso230_2_plot
 
         save_iso230_2_plot(result, ds, plot)
     if report is not None:
-        from axiscal.report.html import write_positioning_report
+        from axiscal.cli._certificate import write_certificate
 
-        write_positioning_report(report, ds, result, verdicts=verdicts)
+        write_certificate(report, ds, result, cfg, Path(file).read_bytes(), tolerances, rule,
+                          paper, job)
     if json_out:
-        print_json(result_json(result, verdicts))
+        print_json({**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
+                    "axis": ds.metadata.axis})
     else:
-        render_result(result, ds, title=str(file), verdicts=verdicts)
+        render_result(result, ds, title=str(file), verdicts=verdicts, budget=budget)
     for p, what in ((plot, "plot"), (report, "report")):
         if p is not None:
             note(f"wrote {what} {p}")
-    if any(v.passed is False for v in verdicts):
+    if history:
+        from axiscal.cli.history import store_run
+
+        store_run(file, db, machine=machine)
+    if any(v.passed is not True for v in verdicts if v.value is not None):
         raise typer.Exit(1)
 
 
@@ -90,13 +119,19 @@ def parse_tolerances(items: List[str]) -> dict:
 
 
 def verdicts_json(verdicts) -> dict:
-    """The acceptance part of the JSON output."""
-    states = [v.passed for v in verdicts if v.passed is not None]
-    return {"acceptance": [v.__dict__ for v in verdicts],
-            "accepted": None if not states else all(states)}
+    """The acceptance part of the JSON output (ISO 14253-1 decisions)."""
+    from axiscal.standards.iso14253_1 import overall
+
+    out = overall(verdicts)
+    return {"acceptance": [{"parameter": v.parameter, "value": v.value, "tolerance": v.upper,
+                            "U": v.U, "outcome": v.outcome.value if v.outcome else None,
+                            "passed": v.passed} for v in verdicts],
+            "decision_rule": verdicts[0].rule.value if verdicts else None,
+            "accepted": None if out is None else {"conformance proven": True,
+                                                  "non-conformance proven": False}.get(out.value)}
 
 
-def result_json(result, verdicts=()) -> dict:
+def result_json(result, verdicts=(), budget=None) -> dict:
     """The stable JSON object of an ISO 230-2 result (see the module docstring)."""
     d = dict(result.parameters())
     d.update(
@@ -110,12 +145,15 @@ def result_json(result, verdicts=()) -> dict:
         targets=result.target_table(),
         warnings=list(result.warnings),
     )
+    if budget is not None:
+        d["uncertainty"] = {p: budget.U(p) for p in result.parameters()
+                            if result.parameters()[p] is not None}
     if verdicts:
         d.update(verdicts_json(verdicts))
     return d
 
 
-def render_result(result, ds=None, title: str = "", console=None, verdicts=()) -> None:
+def render_result(result, ds=None, title: str = "", console=None, verdicts=(), budget=None) -> None:
     """Print the per-target table and the axis parameters as rich tables."""
     import math
 
@@ -158,6 +196,8 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=()) -
     p = Table(title=escape(f"Axis parameters [{sym}]"), title_justify="left")
     p.add_column("parameter")
     p.add_column("value", justify="right")
+    if budget is not None:
+        p.add_column("U (k=2)", justify="right")
     p.add_column("meaning")
     meanings = {
         "A": "bidirectional accuracy of positioning", "A_up": "unidirectional accuracy ↑",
@@ -168,22 +208,29 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=()) -
         "B": "reversal value (max |B_i|)", "B_mean": "mean reversal value (signed, B_i = x̄↑ − x̄↓)",
     }
     for name, v in result.parameters().items():
+        extra = [] if budget is None else ["—" if v is None else f(budget.U(name))]
         p.add_row(name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"),
-                  f(v), meanings[name])
+                  f(v), *extra, meanings[name])
     for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
         if v is not None:   # a full turn keeps 0° and 360° as two targets
-            p.add_row(f"closure{arrow}", f(v), "360° minus 0° mean deviation (full turn)")
+            p.add_row(f"closure{arrow}", f(v), *(["—"] if budget is not None else []),
+                      "360° minus 0° mean deviation (full turn)")
     con.print(p)
     if verdicts:
-        a = Table(title="Acceptance", title_justify="left")
-        for c in ("parameter", "measured", "tolerance", "verdict"):
+        a = Table(title=escape(f"Acceptance ({verdicts[0].rule.value} decision rule)"),
+                  title_justify="left")
+        for c in ("parameter", "measured", "U", "tolerance", "verdict"):
             a.add_column(c, justify="left" if c in ("parameter", "verdict") else "right")
         for v in verdicts:
-            state = {True: "[green]PASS[/green]", False: "[bold red]FAIL[/bold red]", None: "n/a"}[v.passed]
-            a.add_row(v.parameter, f(v.value), f"{v.tolerance:g}", state)
+            state = {"PASS": "[green]PASS[/green]", "FAIL": "[bold red]FAIL[/bold red]",
+                     "ZONE": "[yellow]ZONE[/yellow]"}[v.outcome.short] if v.outcome else "n/a"
+            text = f"{state} {v.outcome.value}" if v.outcome else state
+            a.add_row(v.parameter, f(v.value), f(v.U), f"{v.upper:g}", text)
         con.print(a)
     for w in result.warnings:
         con.print(f"[yellow]warning:[/yellow] {w}")
+    for n in (budget.notes if budget is not None else ()):
+        con.print(f"[yellow]uncertainty:[/yellow] {escape(n)}")
 
 
 def register(app: typer.Typer) -> None:

@@ -43,7 +43,7 @@ _MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' cross
                   "crosstalk table), which ISO 230-7 removes as the fundamental.")
 _KEYS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um", "dz": "dz_um"}
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs).")
-_REPORT = typer.Option(None, "--report", help="Write a self-contained HTML report (.html).")
+_REPORT = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint).")
 
 
 def _five(errors, i=None) -> dict:

@@ -3,15 +3,21 @@
 ``scale home CONFIG.toml [--plot FILE] [--json]``
     Referencing of one axis. JSON keys: ``homed``, ``counts_per_period``, ``count_size_nm``,
     ``period_um``, ``direction``, ``virtual_counts``, ``power_up_phase``, ``switch_trip_mm``,
-    ``home_position_mm``, ``events`` (``name``, ``counts_beyond_switch``, ``controller_count``,
-    ``position_mm``, ``time_s``), ``alarms``, ``compensation_ppm``, ``laser_count_rate_hz``,
+    ``home_position_mm``, ``rephase_periods``, ``events`` (``name``, ``counts_beyond_switch``:
+    measured from the simulated motion of the part at 20 °C, ``nominal_counts``: the design
+    value, ``uncertainty_counts``: one laser count, ``controller_count``, ``position_mm``,
+    ``time_s``), ``alarms``, ``peak_input_frequency_khz`` (over one signal period, from the
+    output edges), ``compensation_ppm``, ``laser_count_rate_hz``,
     ``controller_max_speed_m_per_s`` and, when the configuration has moves, ``tracking``
-    (``max_count_error``, ``max_part_error_um``, ``end_controller_mm``, ``end_true_mm``,
-    ``end_part_mm``, ``end_uncompensated_mm``).
+    (``max_count_error`` and ``max_part_error_um``: controller against the true part position,
+    ``max_pulse_error``: against the compensator's exact product, ``count_uncertainty``: one
+    laser count in output counts, ``end_controller_mm``, ``end_true_mm``, ``end_part_mm``,
+    ``end_uncompensated_mm``).
 ``scale gantry CONFIG.toml [--json]``
     Twin-axis homing. JSON keys: those of the run (``counts_per_period``, ``count_size_nm``,
     ``virtual_1``, ``virtual_2``, ``homing_skew_min``, ``homing_skew_max``, ``skew_before_sync``,
-    ``skew_limit``, ``alarm``, ``deskew_move``, ``skew_after_sync``, ``offset``), plus
+    ``skew_limit``, ``alarm``, ``deskew_move``, ``skew_after_sync``, ``offset``,
+    ``homing_skew_bound_um``: (N − 1) counts, just under one signal period), plus
     ``required_skew_limit`` (counts), ``switch_sigma_counts`` and ``worst_case`` (the two
     extreme phase combinations: ``virtual_1``, ``virtual_2``, ``skew_before_sync``, ``alarm``).
 ``scale compensate [options] [--json]``
@@ -82,9 +88,11 @@ def home(
                    "at that speed")
         if "tracking" in d:
             t = d["tracking"]
-            typer.echo(f"  after homing: controller vs exact compensated position within "
-                       f"{t['max_count_error']:.3f} counts; vs the part at 20 °C within "
-                       f"{t['max_part_error_um']:.3f} µm; at the end the controller reads "
+            typer.echo(f"  after homing: controller vs the true part position at 20 °C within "
+                       f"{t['max_count_error']:.2f} counts ({t['max_part_error_um']:.3f} µm; "
+                       f"one laser count is {t['count_uncertainty']:.2f} counts); vs the "
+                       f"compensator's exact product within {t['max_pulse_error']:.3f} counts; "
+                       f"at the end the controller reads "
                        f"{t['end_controller_mm']:.6f} mm, an uncompensated scale "
                        f"{t['end_uncompensated_mm']:.6f} mm (part {t['end_part_mm']:.6f} mm)")
     if plot is not None:

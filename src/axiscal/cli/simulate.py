@@ -25,7 +25,7 @@ def simulate(
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result and the truth as JSON."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot with the truth (PNG, SVG or PDF by extension)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report (.html)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a simulation report (.html, or .pdf with WeasyPrint)."),
     data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv or .json)."),
 ) -> None:
     """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it."""
@@ -63,6 +63,7 @@ def write_outputs(sim, plot=None, report=None, data=None) -> None:
         from axiscal.report.html import positioning_report
 
         rep = positioning_report(sim.dataset, sim.result)
+        rep.simulation = True
         add_truth_section(rep, sim)
         rep.write(report)
         note(f"wrote report {report}")

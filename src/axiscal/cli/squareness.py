@@ -19,6 +19,10 @@ JSON output (``--json``), stable keys:
   ``backlash_x_um``, ``backlash_y_um``, ``G_ccw_um``, ``G_cw_um`` (minimum zone), ``G_lsc_ccw_um``,
   ``G_lsc_cw_um`` (least-squares centre), ``H_um``, ``F_max_um``,
   ``F_min_um``, ``arc_deg``, ``fit_rms_um``, ``warnings``.
+* ``squareness biaxial``, ``diagonal`` and ``circular`` also: ``U_um_per_m`` (expanded
+  uncertainty, k = 2, ISO/TR 230-9 form, see ``axiscal.standards.iso230_9_geometry``) and
+  ``uncertainty`` (list of ``name``, ``u_um_per_m``, ``clause``); inputs not measured take the
+  documented defaults or the user configuration's ``[squareness_uncertainty]`` table.
 * ``squareness simulate``: ``machine``, ``scope``, ``truth_um_per_m``, ``convention``,
   ``results`` (``method``, ``group``, ``centre_mm``, ``size_mm``, ``um_per_m``, ``arcsec``,
   ``iso_um_per_m``), ``averages`` (``name``, ``centre_mm``, ``um_per_m``).
@@ -103,6 +107,7 @@ def biaxial(
     prism_error: float = typer.Option(0.0, "--prism-error", help="Angle error of the optical or mechanical square in orientation 0, arcsec (its angle minus 90°)."),
     reference: str = typer.Option("least_squares", "--reference", help=_REF_HELP),
     datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
+    square: str = typer.Option("optics", "--square", help="Reference square for the uncertainty budget: optics (straightness optics + optical square), square (mechanical square and probe) or reversal (square reversed)."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, Chapman, Calibration of machine squareness Methods 1-3)."""
@@ -120,8 +125,18 @@ def biaxial(
     r = squareness_from_trajectories(one.positions, one.deviations, two.positions,
                                      two.deviations, axes=axes, method=_reference(reference),  # type: ignore[arg-type]
                                      datum=datum, reference_excess=correction)
+    import numpy as np
+
+    from axiscal.standards.iso230_9_geometry import slope_uncertainty
+
+    if square not in ("optics", "square", "reversal"):
+        raise InputError(f"--square {square!r}: use optics, square or reversal")
+    budget = _budget(square, length_x=float(np.ptp(one.positions)),
+                     length_y=float(np.ptp(two.positions)),
+                     slope_fit_x=slope_uncertainty(one.positions, one.deviations),
+                     slope_fit_y=slope_uncertainty(two.positions, two.deviations))
     if json_out:
-        print_json({"squareness": r.squareness.as_dict(), "config": config.upper(),
+        print_json({**_budget_json(budget), "squareness": r.squareness.as_dict(), "config": config.upper(),
                     "orientation": orientation, "reference": _reference(reference),
                     "prism_error_arcsec": prism_error, "correction_um_per_m": correction * 1e6,
                     "slope_first_um_per_m": r.slope_first * 1e6,
@@ -130,6 +145,32 @@ def biaxial(
                     "straightness_second_um": r.second.deviation * 1e6})
     else:
         typer.echo(f"bi-axial {config.upper()} {orientation}°: {r}")
+        typer.echo(_budget_line(budget))
+
+
+def _budget(method: str, **measured):
+    """The squareness budget with the user configuration's inputs under the measured ones."""
+    from axiscal.io.user_config import load_user_config
+    from axiscal.standards.iso230_9_geometry import squareness_budget
+
+    cfg = dict(load_user_config().get("squareness_uncertainty", {}))
+    try:
+        return squareness_budget(method, **{**cfg, **measured})
+    except TypeError as exc:     # an unknown key in the configuration
+        from axiscal.errors import ConfigError
+
+        raise ConfigError(f"[squareness_uncertainty]: {exc}") from None
+
+
+def _budget_json(b) -> dict:
+    return {"U_um_per_m": b.U("squareness"),
+            "uncertainty": [{"name": c.name, "u_um_per_m": c.u, "clause": c.clause}
+                            for c in b.contributors]}
+
+
+def _budget_line(b) -> str:
+    names = ", ".join(c.name for c in b.contributors)
+    return f"U (k = 2) = {b.U('squareness'):.2f} µm/m ({names}; ISO/TR 230-9)"
 
 
 def _check_crossed(one, two, axes) -> None:
@@ -180,9 +221,11 @@ def diagonal(
                              "errors, or --file")
         r = diagonal_squareness(x_length * 1e-3, y_length * 1e-3, d1 * 1e-6, d2 * 1e-6,  # type: ignore[operator]
                                 datum=datum)
+    budget = _budget("diagonal", length_x=r.length_x, length_y=r.length_y,
+                     diagonal_d1=r.error_d1 * 1e6, diagonal_d2=r.error_d2 * 1e6)
     if json_out:
         um = (lambda v: None if v is None else v * 1e6)
-        print_json({"squareness": r.squareness.as_dict(), "length_x_mm": r.length_x * 1e3,
+        print_json({**_budget_json(budget), "squareness": r.squareness.as_dict(), "length_x_mm": r.length_x * 1e3,
                     "length_y_mm": r.length_y * 1e3, "nominal_mm": r.nominal * 1e3,
                     "error_d1_um": r.error_d1 * 1e6, "error_d2_um": r.error_d2 * 1e6,
                     "slope_d1_um_per_m": um(r.slope_d1), "slope_d2_um_per_m": um(r.slope_d2),
@@ -190,6 +233,7 @@ def diagonal(
                                "D2": "along +X +Y, from corner (-X, -Y)"}})
     else:
         typer.echo(str(r))
+        typer.echo(_budget_line(budget))
 
 
 #: Longest travel or ballbar radius taken (100 m) and largest diagonal length error (1 m).
@@ -218,11 +262,13 @@ def circular(
         from axiscal.report.squareness_plots import save_ballbar_plot
 
         save_ballbar_plot(data.runs, r, plot, title=f"Ballbar test {file.name}")
+    budget = _budget("ballbar", ballbar_radius=data.radius)
     if json_out:
         d = r.as_dict()
-        print_json(d)
+        print_json({**d, **_budget_json(budget)})
     else:
         typer.echo(str(r))
+        typer.echo(_budget_line(budget))
     if plot is not None:
         note(f"wrote plot {plot}")
 

@@ -82,6 +82,8 @@ class CompensationLoopResult:
         interval), not only at the targets: what the table leaves where nobody measured.
     sign : float
         +1 as the convention says; −1 for the wrong-sign demonstration.
+    before_data, after_data : PositioningDataset
+        The readings of the two tests (what a history keeps).
     """
 
     before: object
@@ -96,6 +98,8 @@ class CompensationLoopResult:
     budget_E: float
     between_targets_E: float
     sign: float = 1.0
+    before_data: object = None
+    after_data: object = None
 
     @property
     def unit(self) -> str:
@@ -232,7 +236,7 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
     between = _truth(replace(plan, targets=dense), comp, du)["E"]
     return CompensationLoopResult(before, after, applied, cf, _truth(plan, axis, du),
                                   _truth(plan, comp, du), residual, sigma, plan.runs, budget,
-                                  between, sign)
+                                  between, sign, ds0, ds1)
 
 
 # -- helpers ---------------------------------------------------------------------------------

@@ -106,8 +106,11 @@ class CompensationTable:
     resolution: float = 0.0
     reference_index: int = 0
     extrapolation: str = "hold"
+    nodes: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        if self.nodes is not None:
+            self._irregular()
         up = np.array(self.up, dtype=float, ndmin=1)
         down = np.array(self.down, dtype=float, ndmin=1)
         if up.ndim != 1 or up.shape != down.shape:
@@ -130,7 +133,24 @@ class CompensationTable:
         object.__setattr__(self, "up", up)
         object.__setattr__(self, "down", down)
 
+    def _irregular(self) -> None:
+        """Explicit, strictly increasing positions (a LinuxCNC file may hold any)."""
+        x = np.array(self.nodes, dtype=float, ndmin=1)
+        if x.ndim != 1 or x.size != np.size(self.up) or not np.isfinite(x).all():
+            raise InputError(f"{x.size} positions for {np.size(self.up)} corrections")
+        if np.any(np.diff(x) <= 0):
+            raise InputError("compensation positions must increase strictly")
+        x.flags.writeable = False
+        object.__setattr__(self, "nodes", x)
+        object.__setattr__(self, "start", float(x[0]))
+        object.__setattr__(self, "spacing", float(np.diff(x).min()))
+
     # -- geometry ------------------------------------------------------------------------
+    @property
+    def equidistant(self) -> bool:
+        """True unless the table holds explicit irregular positions (:attr:`nodes`)."""
+        return self.nodes is None
+
     @property
     def n_points(self) -> int:
         """Number of compensation points."""
@@ -139,17 +159,19 @@ class CompensationTable:
     @property
     def positions(self) -> np.ndarray:
         """Point positions, ``position_unit``."""
+        if self.nodes is not None:
+            return self.nodes
         return self.start + self.spacing * np.arange(self.n_points)
 
     @property
     def end(self) -> float:
         """Position of the last point, ``position_unit``."""
-        return float(self.start + self.spacing * (self.n_points - 1))
+        return float(self.positions[-1])
 
     @property
     def reference_position(self) -> float:
         """Position of the reference point, ``position_unit``."""
-        return float(self.start + self.spacing * self.reference_index)
+        return float(self.positions[self.reference_index])
 
     # -- derived values ------------------------------------------------------------------
     @property
@@ -208,7 +230,12 @@ class CompensationTable:
 
     def with_reference(self, position: float) -> "CompensationTable":
         """The table with its reference point at the point nearest ``position``."""
-        k = int(round((position - self.start) / self.spacing))
+        if self.nodes is not None:
+            k = int(np.argmin(np.abs(self.nodes - position)))
+            if not self.nodes[0] - 1e-9 <= position <= self.nodes[-1] + 1e-9:
+                k = -1
+        else:
+            k = int(round((position - self.start) / self.spacing))
         if not 0 <= k < self.n_points:
             raise InputError(f"reference position {position:g} {self.position_unit} lies outside "
                              f"the table {self.start:g} … {self.end:g} {self.position_unit}")
@@ -229,6 +256,7 @@ class CompensationTable:
             "modulo": self.modulo, "resolution": self.resolution,
             "reference_index": self.reference_index, "reference_position": self.reference_position,
             "extrapolation": self.extrapolation, "largest": self.largest, "backlash": self.backlash,
+            "equidistant": self.equidistant,
             "positions": self.positions.tolist(), "up": self.up.tolist(), "down": self.down.tolist(),
         }
 
@@ -237,8 +265,10 @@ class CompensationTable:
         kind = "bidirectional (+/− tables)" if self.bidirectional else "unidirectional"
         return (
             f"Compensation table, axis {self.axis} ({self.axis_kind.value}), {kind}"
-            f"{', modulo 360 deg' if self.modulo else ''}: {self.n_points} points every "
-            f"{self.spacing:g} {pu} from {self.start:g} to {self.end:g} {pu}; reference point "
+            f"{', modulo 360 deg' if self.modulo else ''}: {self.n_points} points "
+            f"{'every ' + format(self.spacing, 'g') if self.equidistant else 'at irregular positions'}"
+            f" {pu if self.equidistant else ''} from {self.start:g} to {self.end:g} {pu}; "
+            f"reference point "
             f"{self.reference_index} at {self.reference_position:g} {pu}; largest correction "
             f"{self.largest:.4g} {cu}; mean reversal {self.backlash:+.4g} {cu}; "
             f"correction = −deviation"
@@ -247,7 +277,7 @@ class CompensationTable:
 
 def table_from_result(
     result,
-    spacing: float,
+    spacing: float | None,
     *,
     start: float | None = None,
     end: float | None = None,
@@ -264,8 +294,9 @@ def table_from_result(
     ----------
     result : Iso230_2Result
         Its ``targets`` (``target_unit``) and ``mean_up``/``mean_down`` (``deviation_unit``).
-    spacing : float, ``result.target_unit``
-        Distance between the controller's points.
+    spacing : float or None, ``result.target_unit``
+        Distance between the controller's points; None puts the points at the measured targets
+        (irregular: only LinuxCNC's file takes that).
     start, end : float, optional, ``result.target_unit``
         Range of the table; default the first and last target (0 and 360° for a modulo
         table). The table ends at the first point at or beyond ``end``.
@@ -326,7 +357,7 @@ def table_from_deviations(
     deviation_up,
     deviation_down=None,
     *,
-    spacing: float,
+    spacing: float | None,
     start: float | None = None,
     end: float | None = None,
     resolution: float = 0.0,
@@ -352,6 +383,15 @@ def table_from_deviations(
         raise InputError("a mean deviation is missing (NaN); every target needs one to build a table")
     if extrapolation not in ("hold", "linear"):
         raise InputError(f"extrapolation = {extrapolation!r}; use 'hold' or 'linear'")
+    if spacing is None:                        # the points at the targets themselves
+        if np.any(np.diff(t) <= 0):
+            raise InputError("targets must increase strictly to be table points")
+        table = CompensationTable(
+            axis=axis, axis_kind=AxisKind.parse(axis_kind), position_unit=position_unit,
+            correction_unit=correction_unit, start=float(t[0]), spacing=1.0, up=-du, down=-dd,
+            bidirectional=deviation_down is not None, extrapolation="hold", nodes=t)
+        table = table.with_reference(t[0] if reference is None else reference)
+        return table.rounded(resolution) if resolution else table
     if not (math.isfinite(spacing) and spacing > 0):
         raise InputError(f"spacing = {spacing!r} must be a positive number")
     if modulo:

@@ -77,6 +77,7 @@ __all__ = [
     "synthesise",
     "reference_window",
     "reference_virtual",
+    "rephase_periods_for",
 ]
 
 #: Periods of the synthesised sine/cosine outputs the compensator offers (seed 002), metres.
@@ -160,6 +161,10 @@ class Compensator:
         CO2 content assumed (the compensator has no CO2 sensor).
     bits : int
         Fractional bits of the factor.
+    rephase_periods : int
+        k: signal periods of real motion over which the rephasing spreads its virtual movement
+        (1 in seed 002; more keeps the controller's input frequency within its limit at high
+        homing speed, :func:`rephase_periods_for`).
     """
 
     laser: LaserHead = field(default_factory=LaserHead)
@@ -169,8 +174,12 @@ class Compensator:
     update_interval: float = 1.0
     co2: float = 450.0
     bits: int = FACTOR_BITS
+    rephase_periods: int = 1
 
     def __post_init__(self) -> None:
+        k = self.rephase_periods
+        if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= 1024:
+            raise InputError(f"rephase_periods = {k!r} must be a whole number from 1 to 1024")
         if not np.isfinite(self.expansion_coefficient) or abs(self.expansion_coefficient) > 1e-4:
             raise InputError(f"expansion_coefficient = {self.expansion_coefficient!r} 1/K must "
                              "lie within ±1e-4")
@@ -363,6 +372,48 @@ def compensation_summary(compensator: "Compensator", temperature: float = 20.0,
         raw_error=length * (n * g - 1.0), weather_error=length * (n / n_std - 1.0),
         material_error=length * (g - 1.0), count_size_in=comp.input_count_size,
         count_size_out=comp.output.count_size)
+
+
+def rephase_periods_for(speed: float, output: SineOutput, max_frequency: float) -> int:
+    """Fewest signal periods k over which to spread the rephasing so the controller's limit holds.
+
+    Parameters
+    ----------
+    speed : float, m/s
+        Homing speed (of the compensated count, i.e. the part at 20 °C).
+    output : SineOutput
+    max_frequency : float, Hz
+        The controller's input limit.
+
+    Returns
+    -------
+    int
+        The smallest k >= 1 with ``f (kN + N − 1)/(kN) · (N + 2)/N <= max_frequency``,
+        f = speed / period.
+
+    Notes
+    -----
+    Seed 002 Figure 4: in stage 2 the compensator adds v (0 to N − 1) virtual counts to N counts
+    of real motion, so the controller sees up to (2N − 1)/N times the real frequency, for
+    N counts. Spreading v over kN real counts lowers the factor to (kN + N − 1)/(kN); it cannot
+    help once the real motion alone exceeds the limit. The counts reach the controller whole
+    (pulse multiplication and the virtual spread each round to a count), so over one period the
+    rate can exceed its mean by 2 counts in N: the factor (N + 2)/N is that margin.
+
+    Examples
+    --------
+    >>> rephase_periods_for(1.9, SineOutput(), 100e3)   # 95 kHz real: 1.9x would be 180 kHz
+    23
+    """
+    n = output.counts_per_period
+    f = output.signal_frequency(speed) * (n + 2) / n
+    if not f < max_frequency:
+        raise InputError(f"homing at {abs(speed) * 60e3:g} mm/min drives the outputs at "
+                         f"{output.signal_frequency(speed) / 1e3:.2f} kHz (up to {f / 1e3:.2f} "
+                         f"kHz over a period, whole counts), not below the controller's "
+                         f"{max_frequency / 1e3:g} kHz before any rephasing: home slower")
+    k = int(np.ceil((n - 1) * f / (n * (max_frequency - f))))
+    return max(1, k)
 
 
 def factor_to_integer(ratio: float, bits: int = FACTOR_BITS) -> int:

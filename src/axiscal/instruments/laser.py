@@ -150,12 +150,19 @@ class SimulatedAngularInterferometer:
         return (-0.5 * self.spacing * np.einsum("ij,ij->i", u, b1 + b2)
                 + np.einsum("ij,ij->i", rel, b2 - b1))
 
-    def check_signal(self, u, interferometer_yaw=0.0) -> None:
-        """Raise :class:`SignalLossError` where the reflector faces the beams beyond max_angle."""
+    def turn(self, u, interferometer_yaw=0.0) -> np.ndarray:
+        """The reflector's turn from facing the beams, radians, for reflector directions ``u``.
+
+        The centre-line's component along the beam is the sine of the turn (seed 000: beyond
+        about ±10° the returned beams are lost).
+        """
         b1, _ = self.beams(interferometer_yaw)
         u = np.atleast_2d(np.asarray(u, dtype=float))
-        # the reflector's turn from facing the laser: the centre-line's component along the beam
-        turn = np.arcsin(np.clip(-np.einsum("ij,ij->i", u, b1), -1.0, 1.0))
+        return np.arcsin(np.clip(-np.einsum("ij,ij->i", u, b1), -1.0, 1.0))
+
+    def check_signal(self, u, interferometer_yaw=0.0) -> None:
+        """Raise :class:`SignalLossError` where the reflector faces the beams beyond max_angle."""
+        turn = self.turn(u, interferometer_yaw)
         bad = np.abs(turn) > self.max_angle
         if np.any(bad):
             worst = float(turn[np.argmax(np.abs(turn))])

@@ -76,7 +76,7 @@ class RephaseResult:
 
 
 def rephase(output_counts, switch, counts_per_period: int = 256, direction: int = 1,
-            power_up_phase: int = 0) -> RephaseResult:
+            power_up_phase: int = 0, stage2_periods: int = 1) -> RephaseResult:
     """Rephase the synthesised signals at the reference switch (seed 002, Figure 4).
 
     Parameters
@@ -92,6 +92,12 @@ def rephase(output_counts, switch, counts_per_period: int = 256, direction: int 
     power_up_phase : int
         Phase of the synthesised outputs at power-up, in counts (0 to N-1): the controller
         count is ``m = o + power_up_phase`` before the switch.
+    stage2_periods : int
+        k: the virtual movement is spread over k·N counts of real motion (1 in the seed). With
+        k > 1 the controller sees at most (kN + N − 1)/(kN) times the real count rate during
+        stage 2 instead of nearly twice it, and B, Z, C lie (k − 1)·N counts further on (a fixed
+        setting, so the home stays repeatable): see
+        :func:`axiscal.instruments.compensator.rephase_periods_for`.
 
     Returns
     -------
@@ -123,6 +129,10 @@ def rephase(output_counts, switch, counts_per_period: int = 256, direction: int 
     if n < 8 or n % 8:
         raise InputError(f"counts_per_period = {n} must be a multiple of 8")
     d = _direction(direction)
+    k2 = int(stage2_periods)
+    if k2 < 1:
+        raise InputError(f"stage2_periods = {stage2_periods!r} must be a whole number >= 1")
+    span = k2 * n
     phi = int(power_up_phase) % n
     m = o + phi
     ref = np.zeros(o.shape, dtype=bool)
@@ -134,11 +144,11 @@ def rephase(output_counts, switch, counts_per_period: int = 256, direction: int 
     v = reference_virtual(m_a, n, d)
     u = d * o[ka:]
     u_a = d * o_a
-    progress = np.clip(u - u_a, 0, n)
-    done = np.maximum.accumulate(u) >= u_a + n
-    extra = np.where(done, v, (v * progress) // n)
+    progress = np.clip(u - u_a, 0, span)
+    done = np.maximum.accumulate(u) >= u_a + span
+    extra = np.where(done, v, (v * progress) // span)
     m[ka:] = o[ka:] + phi + d * extra
-    m_b = m_a + d * (n + v)
+    m_b = m_a + d * (span + v)
     m_z = m_b + d * (n // 4)
     m_c = m_b + d * (n // 2)
     lo, hi = reference_window(m_b, n, d)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from axiscal.errors import ConfigError, DataFormatError, InputError, MissingFileError
 
-__all__ = ["read_text", "load_toml", "write_text_atomic", "write_bytes_atomic"]
+__all__ = ["read_text", "read_controller_text", "read_bytes", "load_toml", "write_text_atomic", "write_bytes_atomic"]
 
 #: Refuse to read text files larger than this (a positioning file is kilobytes).
 MAX_TEXT_BYTES = 256 * 1024 * 1024
@@ -29,6 +29,34 @@ def read_text(path) -> str:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise DataFormatError(_not_utf8(data, exc.start), str(p)) from None
+
+
+def read_controller_text(path) -> tuple[str, str]:
+    """A controller file's text and its encoding: UTF-8, else Windows-1252.
+
+    Controller files come from Windows tools; a comment with ``µ`` in Windows-1252 is common
+    (a Siemens ``.INI`` edited on the machine's PC). The numbers are ASCII either way.
+    """
+    data = read_bytes(path)
+    try:
+        return data.decode("utf-8-sig"), "utf-8"
+    except UnicodeDecodeError:
+        if b"\x00" in data[:4096]:
+            raise DataFormatError("not a text file (it holds NUL bytes)", str(path)) from None
+        return data.decode("cp1252", errors="replace"), "windows-1252"
+
+
+def read_bytes(path) -> bytes:
+    """Read a regular file's bytes; errors name the file and the problem."""
+    p = Path(path)
+    try:
+        return _read_regular_file(p)
+    except MissingFileError:
+        raise
+    except PermissionError:
+        raise MissingFileError(p, "permission denied") from None
+    except OSError as exc:
+        raise MissingFileError(p, exc.strerror or str(exc)) from None
 
 
 def _not_utf8(data: bytes, start: int) -> str:

@@ -54,7 +54,7 @@ def load_mean_deviations(path, full_turn: str = "separate"):
     -------
     result : MeanDeviations or Iso230_2Result
     axis : str
-        The axis name the data file's metadata gives ("" for a result JSON, which has none).
+        The axis name the data file's metadata or the result JSON's ``axis`` gives ("" if none).
     """
     from axiscal.io import parse_positioning, read_text
     from axiscal.standards.iso230_2 import evaluate
@@ -66,7 +66,8 @@ def load_mean_deviations(path, full_turn: str = "separate"):
         except json.JSONDecodeError as exc:
             raise DataFormatError(f"not valid JSON: {exc.msg}", str(path), exc.lineno) from None
         if isinstance(d, dict) and "format" not in d and "targets" in d:
-            return parse_result_json(d, str(path)), ""
+            axis = d.get("axis", "")
+            return parse_result_json(d, str(path)), axis if isinstance(axis, str) else ""
     ds = parse_positioning(text, str(path))
     return evaluate(ds, full_turn=full_turn), ds.metadata.axis  # type: ignore[arg-type]
 

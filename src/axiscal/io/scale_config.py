@@ -12,6 +12,10 @@ keys (a misspelt key never silently falls back to a default); :func:`axis_from_c
     ``period_um`` (20), ``counts_per_period`` (256), ``equation`` ("ciddor"), ``material``
     (a name from :data:`axiscal.physics.thermal.MATERIALS`, or "none") or
     ``expansion_coefficient`` (1/K), ``update_interval_s`` (1), ``co2`` (450 µmol/mol).
+``[compensator] rephase_periods``
+    Signal periods of real motion over which the rephasing spreads its virtual movement: 1 (the
+    default, as Renishaw's application note describes), a whole number, or ``"auto"``: the
+    fewest that keep the controller's inputs within their limit at the homing speed.
 ``[air]``
     The true conditions: ``temperature`` (°C), ``pressure`` (Pa), ``humidity`` (%RH),
     ``material_temperature`` (°C) and their rates per second ``temperature_rate``,
@@ -41,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from axiscal._schema import Num, Schema, Text
+from axiscal._schema import Free, Num, Schema, Text
 from axiscal.errors import ConfigError
 from axiscal.io._files import read_text
 
@@ -67,7 +71,8 @@ SCHEMA = Schema({
                     "equation": Text(("ciddor", "edlen", "birch-downs")), "material": Text(),
                     "expansion_coefficient": Num("1/K", -1e-3, 1e-3),
                     "update_interval_s": Num("s", 0, 3600, lo_open=True),
-                    "co2": Num("µmol/mol", 0, 100_000)},
+                    "co2": Num("µmol/mol", 0, 100_000),
+                    "rephase_periods": Free()},   # a whole number or "auto": read below
     "air": {"temperature": Num("°C", -50, 100), "pressure": Num("Pa", 1000, 200_000),
             "humidity": Num("%RH", 0, 100), "material_temperature": Num("°C", -50, 200),
             "temperature_rate": Num("K/s", -1, 1), "pressure_rate": Num("Pa/s", -1000, 1000),
@@ -157,9 +162,34 @@ def axis_from_config(cfg: dict[str, Any]):
     switch = ReferenceSwitch(position=_num(cfg, "switch", "position_mm", sw, 100.0) * 1e-3,
                              repeatability=_repeatability(cfg, "switch", sw) * 1e-6,
                              active_above=_direction(cfg, "switch", sw) > 0)
+    controller = _controller(cfg, comp.output)
+    comp = _rephase_periods(cfg, comp, controller)
     return ScaleAxis(laser=comp.laser, compensator=comp, switch=switch,
-                     controller=_controller(cfg, comp.output), air=history,
+                     controller=controller, air=history,
                      sensor_error=errors)  # type: ignore[arg-type]
+
+
+def _rephase_periods(cfg, comp, controller):
+    """Apply ``[compensator] rephase_periods`` (a whole number or "auto")."""
+    from dataclasses import replace
+
+    from axiscal.errors import InputError
+    from axiscal.instruments.compensator import rephase_periods_for
+
+    value = cfg.get("compensator", {}).get("rephase_periods", 1)
+    if isinstance(value, str) and value.strip().lower() == "auto":
+        speed = _num(cfg, "homing", "speed_mm_per_min", cfg.get("homing", {}), 300.0) / 60e3
+        try:
+            k = rephase_periods_for(speed, comp.output, controller.max_input_frequency)
+        except InputError as exc:
+            raise ConfigError(f"{cfg['_source']}: [compensator] rephase_periods = \"auto\": "
+                              f"{exc}") from None
+    else:
+        k = _int(cfg, "compensator", "rephase_periods", cfg.get("compensator", {}), 1)
+    try:
+        return replace(comp, rephase_periods=k)
+    except InputError as exc:
+        raise ConfigError(f"{cfg['_source']}: [compensator] {exc}") from None
 
 
 def homing_from_config(cfg: dict[str, Any], axis) -> dict[str, Any]:
@@ -199,6 +229,9 @@ def twin_axis_from_config(cfg: dict[str, Any]):
 
     comp = compensator_from_config(cfg)
     out = comp.output
+    if cfg.get("compensator", {}).get("rephase_periods", 1) != 1:
+        raise ConfigError(f"{cfg['_source']}: [compensator] rephase_periods is for single-axis "
+                          "referencing; the gantry model rephases over one period (remove it)")
     g = cfg.get("gantry", {})
     q = out.count_size
     d = _direction(cfg, "gantry", g)

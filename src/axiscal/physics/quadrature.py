@@ -14,7 +14,11 @@
 * The Heydemann correction (:func:`heydemann_fit`, :func:`heydemann_correct`) fits that ellipse and
   maps it back to a circle (Heydemann 1981), removing most of the SDE.
 
-All functions are vectorised NumPy; none loops over samples in Python.
+All functions are vectorised NumPy; none loops over samples in Python. For large records the
+sine/cosine interpolation uses compiled kernels when numba is installed (the ``fast`` extra,
+:mod:`axiscal.physics._sincos_numba`, loaded lazily on the first large array): a branch-free
+rational arctangent fused with the period count, about 3x a copy of the array against 20x or
+more with ``numpy.arctan2`` (scalar libm); the NumPy path stays the fallback and the reference.
 
 References
 ----------
@@ -48,6 +52,9 @@ __all__ = [
 ]
 
 TWO_PI = 2.0 * math.pi
+#: Smallest record for which :func:`interpolate_sincos` uses the numba kernels when available.
+ACCELERATE_MIN_SAMPLES = 1 << 16
+_ACCEL: object = None   # None: not tried yet; False: numba unavailable; else the kernel module
 # (phase now - phase before) mod 4 -> count step; 2 is illegal (both signals changed).
 _STEP = np.array([0, 1, 0, -1], dtype=np.int64)
 _BLOCK = 1 << 15
@@ -207,7 +214,8 @@ class Interpolation:
                 f"{end:.4f} periods, {self.n_tracking_warnings} tracking warning(s)")
 
 
-def interpolate_sincos(sin, cos, initial_period: int = 0) -> Interpolation:
+def interpolate_sincos(sin, cos, initial_period: int = 0, *,
+                       accelerate: bool | None = None) -> Interpolation:
     """Position in signal periods from sampled sine and cosine, by arctangent and unwrapping.
 
     Parameters
@@ -215,6 +223,11 @@ def interpolate_sincos(sin, cos, initial_period: int = 0) -> Interpolation:
     sin, cos : array_like, shape (n,), any consistent unit (volts)
     initial_period : int
         Whole periods assigned to the first sample.
+    accelerate : bool, optional
+        None (default): the numba kernels for records of at least
+        :data:`ACCELERATE_MIN_SAMPLES` samples when numba is installed, else NumPy. False: NumPy
+        always. True: the kernels, :class:`~axiscal.errors.InputError` if numba is missing. Both
+        give the same periods and phases within 5e-16 rad.
 
     Returns
     -------
@@ -245,6 +258,14 @@ def interpolate_sincos(sin, cos, initial_period: int = 0) -> Interpolation:
     if n == 0:
         empty = np.zeros(0, np.int64)
         return Interpolation(_frozen(position), _frozen(phase), _frozen(empty))
+    kernels = _kernels(n, accelerate)
+    if kernels is not None:
+        s, c = np.ascontiguousarray(s), np.ascontiguousarray(c)
+        bad = kernels.interpolate(s, c, int(initial_period), phase, position)
+        if bad < 0:                            # a NaN or an infinity: say where
+            _refuse_non_finite(s, c)
+        w = kernels.warnings(phase, bad) if bad else np.zeros(0, np.int64)
+        return Interpolation(_frozen(position), _frozen(phase), _frozen(w))
     _refuse_non_finite(s, c)
     np.arctan2(s[:1], c[:1], out=phase[:1])
     position[0] = phase[0] / TWO_PI + initial_period
@@ -508,6 +529,25 @@ def heydemann_correct(sin, cos, fit: HeydemannCorrection) -> tuple[np.ndarray, n
     s = (np.asarray(sin, dtype=float) - fit.offset_sin) / fit.amplitude_sin
     s = (s - c * math.sin(fit.phase_error)) / math.cos(fit.phase_error)
     return s, c
+
+
+def _kernels(n: int, accelerate: bool | None):
+    """The numba kernel module to use for ``n`` samples, or None for the NumPy path."""
+    global _ACCEL
+    if accelerate is False or (accelerate is None and n < ACCELERATE_MIN_SAMPLES):
+        return None
+    if _ACCEL is None:
+        import importlib
+
+        try:
+            _ACCEL = importlib.import_module("axiscal.physics._sincos_numba")
+        except ImportError:
+            _ACCEL = False
+    if _ACCEL is False:
+        if accelerate:
+            raise InputError("accelerate=True needs numba (pip install 'axiscal[fast]')")
+        return None
+    return _ACCEL
 
 
 def _refuse_non_finite(s: np.ndarray, c: np.ndarray) -> None:

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
+from axiscal.errors import SignalLossError
 from axiscal.physics.interferometry import optics_self_calibration
 from axiscal.physics.misalignment import reflector_pose
 from axiscal.procedures.rotary_offaxis import (
@@ -29,6 +30,8 @@ from axiscal.procedures.rotary_offaxis import (
 from axiscal.units import ARCSEC, DEG
 
 TWO_PI = 2.0 * math.pi
+#: Largest step, radians, at which :meth:`Rig.check_moves` follows a move for loss of signal.
+MOVE_CHECK_STEP = 0.25 * DEG
 
 
 def read_setup(setup, rng: np.random.Generator, offaxis=None):
@@ -70,20 +73,56 @@ class Rig:
             self.offset = tuple(setup.lateral_offset)
 
     # -- geometry ---------------------------------------------------------------------
-    def path(self, theta, phi, y=None) -> np.ndarray:
-        """Path difference (m) for actual axis and shaft angles; raises on loss of signal."""
+    def _pose(self, theta, phi, y):
+        """Reflector direction and centre, interferometer position and yaw for a state."""
         s = self.setup
         u, c = reflector_pose(theta, phi, s.alpha, s.eta, s.reflector_twist, s.reflector_height,
                               self.offset)
         if self.off is None:
-            interferometer, yaw = np.array([1.0, 0.0, 0.0]), 0.0
-        else:
-            yy = np.atleast_1d(np.asarray(y, dtype=float))
-            interferometer = np.stack([np.full_like(yy, self.off.interferometer_distance), yy,
-                                       np.zeros_like(yy)], -1)
-            yaw = self.off.beam_yaw + self.off.linear_yaw(yy)
+            return u, c, np.array([1.0, 0.0, 0.0]), 0.0
+        yy = np.atleast_1d(np.asarray(y, dtype=float))
+        interferometer = np.stack([np.full_like(yy, self.off.interferometer_distance), yy,
+                                   np.zeros_like(yy)], -1)
+        return u, c, interferometer, self.off.beam_yaw + self.off.linear_yaw(yy)
+
+    def path(self, theta, phi, y=None) -> np.ndarray:
+        """Path difference (m) for actual axis and shaft angles; raises on loss of signal."""
+        u, c, interferometer, yaw = self._pose(theta, phi, y)
         self.laser.check_signal(u, yaw)
         return self.laser.path_difference(u, c, interferometer, yaw)
+
+    def check_moves(self, plan, datum: Datum) -> None:
+        """Raise SignalLossError if the reflector leaves the laser's limit during any move.
+
+        Every move of the plan (from the datum at 0°, overrun and approach moves included) is
+        followed in steps of at most :data:`MOVE_CHECK_STEP`, not only its end: seed 000 "only
+        suitable ... over a range of about ±10°" holds all along the path, and a real laser
+        loses the whole run when the beams are lost mid-move. With counter-rotation the
+        calibrator is driven opposite to the axis during the move (seed 000: "as the axis under
+        test is rotated ... the XR20 is driven in the opposite direction"). Commanded angles
+        are used: the axis's errors (arcseconds) do not matter against a 10° limit.
+        """
+        steps = plan.steps()
+        ends = np.concatenate(([0.0], [st.position for st in steps])) * DEG
+        n = np.maximum(2, np.ceil(np.abs(np.diff(ends)) / MOVE_CHECK_STEP).astype(int) + 1)
+        move = np.repeat(np.arange(len(steps)), n)
+        frac = np.concatenate([np.linspace(0.0, 1.0, k) for k in n])
+        cmd = ends[move] + frac * (ends[move + 1] - ends[move])
+        phi = datum.phi - cmd if self.setup.counter_rotation else np.full_like(cmd, datum.phi)
+        u, _, _, yaw = self._pose(datum.theta + cmd, phi, self.linear_position(cmd))
+        turn = self.laser.turn(u, yaw)
+        bad = np.flatnonzero(np.abs(turn) > self.laser.max_angle)
+        if bad.size:
+            k = int(move[bad[0]])
+            st = steps[k]
+            worst = turn[move == k][np.argmax(np.abs(turn[move == k]))]
+            raise SignalLossError(
+                f"laser signal lost during move {st.seq} of the plan ({st.kind} move of run "
+                f"{st.run}, {math.degrees(ends[k]):g}° to {st.position:g}°): the reflector turns "
+                f"{math.degrees(worst):+.1f}° from the beams (limit "
+                f"±{math.degrees(self.laser.max_angle):g}°); a real laser loses the whole run: "
+                "counter-rotate the calibrator to keep the reflector facing the laser, or reduce "
+                "the travel or the overrun")
 
     def align(self, rng: np.random.Generator) -> None:
         """Off axis: the operator's three-point alignment (beam centred at three angles)."""
@@ -129,6 +168,7 @@ class Rig:
         """Execute the plan; return (RotaryCapture, OffAxisRecord or None)."""
         from axiscal.procedures.rotary_calibration import RotaryCapture
 
+        self.check_moves(plan, datum)
         steps = plan.steps()
         pos = np.array([s.position for s in steps])
         is_meas = np.array([s.kind == "measure" for s in steps])

@@ -8,9 +8,11 @@
          rephasing at the switch, synthesised sine/cosine and reference mark (count m)
       -> controller: arctangent decoding, frequency monitor, home latch at Z
 
-and reports the events A (switch), B (reference pulse starts), Z (home) and C (pulse ends), in
-output counts beyond the switch and as positions. After the homing move the axis can make
-further moves (``moves``) under changing air, for the truth tests of the compensation.
+and reports the events A (switch), B (reference pulse starts), Z (home) and C (pulse ends): where
+each happened, measured from the simulated motion (the true position of the part referred to
+20 °C, in output counts beyond the switch, to within one laser count: the compensator's count
+changes only when the laser's does), beside the design value. After the homing move the axis can
+make further moves (``moves``) under changing air, for the truth tests of the compensation.
 
 The axis moves at constant real speed while homing (the servo is not modelled; the controller
 sees (N + v)/N times that speed during stage 2). Positions are sampled uniformly in distance, at
@@ -145,8 +147,14 @@ class HomingEvent:
         ``"A"`` switch hit, ``"B"`` reference pulse starts, ``"Z"`` home, ``"C"`` pulse ends.
     index : int
         First sample at or after the event.
-    counts_beyond_switch : int
-        Real output counts of motion from A (0, N, 5N/4, 3N/2: 0, 256, 320, 384 for N = 256).
+    counts_beyond_switch : float
+        Measured: the true motion of the part (referred to 20 °C) from the switch trip point to
+        the event's sample, in output counts. Uncertain by one laser count
+        (``uncertainty_counts``) plus the sample spacing.
+    nominal_counts : int
+        The design value: 0, kN, kN + N/4, kN + N/2 (0, 256, 320, 384 for N = 256, k = 1).
+    uncertainty_counts : float
+        One laser count in output counts (8.1 for 0.633 µm and 78.125 nm).
     controller_count : int
         The controller-side count m at the event (includes the virtual movement).
     position : float, metres
@@ -156,7 +164,9 @@ class HomingEvent:
 
     name: str
     index: int
-    counts_beyond_switch: int
+    counts_beyond_switch: float
+    nominal_counts: int
+    uncertainty_counts: float
     controller_count: int
     position: float
     time: float
@@ -248,11 +258,34 @@ class ReferencingRun:
         return [Fraction(int(c) * int(p), den) - o_z
                 for c, p in zip(self.laser_counts[index].tolist(), self.factor[index].tolist())]
 
+    @property
+    def peak_input_frequency(self) -> float | None:
+        """Highest signal frequency over one signal period, from the output edges, Hz (None if
+        the record holds less than a period of motion): the true peak, not a gated average."""
+        f = self.axis.controller.edge_frequency(self.controller_side, self.time)
+        return float(np.nanmax(f)) if np.isfinite(f).any() else None
+
+    @property
+    def stage2_counts(self) -> int:
+        """Real output counts over which the virtual movement is spread: k·N."""
+        return self.axis.compensator.rephase_periods * self.axis.output.counts_per_period
+
+    @property
+    def laser_count_in_output_counts(self) -> float:
+        """One laser count (λ_vac/k of optical path in air) in output counts, at the start."""
+        return float(self.axis.laser.uncompensated_position(1) / self.n[0]
+                     / self.axis.output.count_size)
+
     def tracking(self) -> dict[str, float]:
-        """After homing, how the controller's position compares with the compensated position
-        (``max_count_error``, counts) and with the true position of the part referred to 20 °C
-        (``max_part_error_um``; both taken from the home sample, so it includes up to one laser
-        count of quantisation, the dead-path error and the lag of the sensors)."""
+        """After homing, the controller's position against the truth of the simulation.
+
+        ``max_count_error`` (counts) and ``max_part_error_um``: the controller's position from
+        home against the true position of the part referred to 20 °C, from the home sample (its
+        true position) on. They hold the quantisation of one laser count
+        (``count_uncertainty``, output counts), the dead-path error and the sensors' lag.
+        ``max_pulse_error`` (counts): the controller against the compensator's own exact product
+        ``c P / 2^B`` (the exactness of the pulse multiplication, not an accuracy).
+        """
         kz = self.event("Z").index
         k = slice(kz, None)
         q = self.axis.output.count_size
@@ -264,9 +297,12 @@ class ReferencingRun:
             np.asarray(tmat) - REFERENCE_TEMPERATURE)
         part = (self.position[k] - self.position[kz]) / growth
         raw = self.axis.laser.uncompensated_position(self.laser_counts[k] - self.laser_counts[kz])
+        err = (p - p[0]) - part / q
         return {
-            "max_count_error": float(np.max(np.abs(p - exact))),
-            "max_part_error_um": float(np.max(np.abs((p - p[0]) * q - part)) * 1e6),
+            "max_count_error": float(np.max(np.abs(err))),
+            "max_part_error_um": float(np.max(np.abs(err)) * q * 1e6),
+            "max_pulse_error": float(np.max(np.abs(p - exact))),
+            "count_uncertainty": self.laser_count_in_output_counts,
             "end_controller_mm": float(p[-1] * q * 1e3),
             "end_true_mm": float((self.position[-1] - self.position[kz]) * 1e3),
             "end_part_mm": float(part[-1] * 1e3),
@@ -286,13 +322,18 @@ class ReferencingRun:
             "power_up_phase": self.power_up_phase,
             "switch_trip_mm": self.switch_trip * 1e3,
             "home_position_mm": self.home_position * 1e3 if self.homed else None,
+            "rephase_periods": self.axis.compensator.rephase_periods,
             "events": [
-                {"name": e.name, "counts_beyond_switch": e.counts_beyond_switch,
+                {"name": e.name, "counts_beyond_switch": round(e.counts_beyond_switch, 3),
+                 "nominal_counts": e.nominal_counts,
+                 "uncertainty_counts": round(e.uncertainty_counts, 3),
                  "controller_count": e.controller_count, "position_mm": e.position * 1e3,
                  "time_s": e.time}
                 for e in self.events
             ],
             "alarms": [str(a) for a in self.alarms],
+            "peak_input_frequency_khz": None if (f := self.peak_input_frequency) is None
+            else f / 1e3,
         }
 
     def __str__(self) -> str:
@@ -303,15 +344,23 @@ class ReferencingRun:
             f"{'+' if self.axis.direction > 0 else '-'}",
             f"  switch tripped at {self.switch_trip * 1e3:.6f} mm; virtual movement "
             f"{self.virtual} counts in stage 2",
-            "  event  counts beyond switch  controller count   position [mm]   time [s]",
+            "  event  counts beyond switch (measured ± 1 laser count, design)  controller count"
+            "   position [mm]   time [s]",
         ]
         for e in self.events:
-            lines.append(f"  {e.name:<5}  {e.counts_beyond_switch:>20d}  {e.controller_count:>16d}"
-                         f"  {e.position * 1e3:>14.6f}  {e.time:>9.4f}")
+            meas = (f"{e.counts_beyond_switch:8.1f} ± {e.uncertainty_counts:.1f}  "
+                    f"({e.nominal_counts})")
+            lines.append(f"  {e.name:<5}  {meas:>52}  {e.controller_count:>16d}"
+                         f"  {e.position * 1e3:>14.6f}  {e.time:>9.7f}")
         if self.homed:
             lines.append(f"  home (Z) at {self.home_position * 1e3:.6f} mm")
         else:
             lines.append("  NOT HOMED")
+        f = self.peak_input_frequency
+        if f is not None:
+            lines.append(f"  peak input frequency {f / 1e3:.2f} kHz over one signal period "
+                         f"(controller limit {self.axis.controller.max_input_frequency / 1e3:g} "
+                         f"kHz; stage 2 spread over {self.stage2_counts} counts)")
         lines += [f"  {a}" for a in self.alarms]
         return "\n".join(lines)
 
@@ -351,7 +400,8 @@ def simulate_referencing(
     power_up_position : float, metres, optional
         Where the laser was powered up (default: ``start``).
     overtravel_counts : int, optional
-        How far the homing move runs beyond the switch, output counts (default 2N, past C).
+        How far the homing move runs beyond the switch, output counts (default (k + 1)·N, past
+        C; k = the compensator's ``rephase_periods``).
     max_step_counts : float
         Sample spacing of the homing move in output counts.
     move_step_counts : float, optional
@@ -371,7 +421,8 @@ def simulate_referencing(
                          f"switch at {trip * 1e3:g} mm in the homing direction")
     if not homing_speed > 0:
         raise InputError(f"homing speed {homing_speed!r} m/s must be positive")
-    over = 2 * n_per if overtravel_counts is None else int(overtravel_counts)
+    k2 = axis.compensator.rephase_periods
+    over = (k2 + 1) * n_per if overtravel_counts is None else int(overtravel_counts)
     # enough real motion for `over` output counts, whatever the air and the work-piece
     end = trip + d * over * q * 1.001 * _max_growth(axis)
     x, t = _homing_path(start, end, homing_speed, max_step_counts * q)
@@ -399,13 +450,15 @@ def simulate_referencing(
                                               np.clip(hum + e[2], 0, 100), tmat + e[3])
     o = multiply(counts, factor, axis.compensator.bits)
     sw = axis.switch.state(x, trip)
-    rep = rephase(o, sw, n_per, d, phi)
+    rep = rephase(o, sw, n_per, d, phi, axis.compensator.rephase_periods)
     sine, cosine = synthesise(rep.m, n_per)
     decoded = axis.controller.decode(sine, cosine)
     # the frequency monitor measures the signal itself (the compensator-side count)
     alarms = axis.controller.frequency_alarms(rep.m, t) + _step_alarms(rep.m, n_per)
     latch = axis.controller.find_home(decoded, rep.reference, d)
-    events = _events(rep, latch, decoded, o, x, t, out)
+    part = _part_counts(axis, x, t, trip)
+    events = _events(rep, latch, decoded, part, x, t, out, axis.compensator.rephase_periods,
+                     axis.laser.uncompensated_position(1) / float(n_true[0]) / q)
     return ReferencingRun(
         axis=axis, events=tuple(events), virtual=rep.virtual, switch_trip=trip,
         home_count=None if latch is None else latch.count, alarms=tuple(alarms), time=t,
@@ -421,34 +474,44 @@ def _max_growth(axis: ScaleAxis) -> float:
     return (1.0 + 1e-3) * (1.0 + alpha * 200.0)
 
 
-def _events(rep, latch, decoded, o, x, t, out: SineOutput) -> list[HomingEvent]:
-    """A, B, Z, C with their exact counts; position and time of the first sample reaching each."""
+def _part_counts(axis: ScaleAxis, x, t, trip: float) -> np.ndarray:
+    """True motion of the part from the switch trip point, referred to 20 °C, output counts."""
+    _, _, _, tmat = axis.air.at(t)
+    growth = 1.0 + axis.compensator.expansion_coefficient * (
+        np.asarray(tmat) - REFERENCE_TEMPERATURE)
+    return axis.direction * (x - trip) / growth / axis.output.count_size
+
+
+def _events(rep, latch, decoded, part, x, t, out: SineOutput, periods: int,
+            laser_count: float) -> list[HomingEvent]:
+    """A, B, Z, C: where each happened (``part`` at its first sample), beside the design value.
+
+    ``part`` is the true motion of the part beyond the switch in output counts; ``laser_count``
+    one laser count in output counts, the uncertainty of every event's position.
+    """
     if rep.index_a is None:
         return []
-    d = rep.direction
     ka = rep.index_a
+    n2 = periods * out.counts_per_period
 
-    def ev(name, k, beyond, m_exact):
-        return HomingEvent(name, int(k), int(beyond), int(m_exact), float(x[k]), float(t[k]))
+    def ev(name, k, nominal, m_exact):
+        return HomingEvent(name, int(k), float(part[k]), int(nominal), float(laser_count),
+                           int(m_exact), float(x[k]), float(t[k]))
 
     events = [ev("A", ka, 0, rep.m[ka])]
     if rep.reference.any():
-        events.append(ev("B", int(np.argmax(rep.reference)), out.stage2_counts, rep.m_b))
+        events.append(ev("B", int(np.argmax(rep.reference)), n2, rep.m_b))
     if latch is not None:
-        # the compensator-side count at Z (the latched controller count less the decoder's
-        # offset, a multiple of N), and the real output count at Z: the controller count less the
-        # controller-minus-real offset at the latch sample, which holds the power-up phase and
-        # the virtual movement
+        # the compensator-side count at Z: the latched controller count less the decoder's
+        # offset, a multiple of N
         k = latch.index
         m_z = latch.count - (int(decoded[k]) - int(rep.m[k]))
-        beyond = d * (latch.count - (int(decoded[k]) - int(o[k])) - rep.count_a)
-        events.append(ev("Z", k, beyond, m_z))
+        events.append(ev("Z", k, n2 + out.counts_per_period // 4, m_z))
     if rep.reference.any():
         m = rep.m[ka:]
-        past_c = np.flatnonzero(d * m >= d * rep.m_c)
+        past_c = np.flatnonzero(rep.direction * m >= rep.direction * rep.m_c)
         if past_c.size:
-            events.append(ev("C", ka + int(past_c[0]), out.stage2_counts + out.pulse_counts,
-                             rep.m_c))
+            events.append(ev("C", ka + int(past_c[0]), n2 + out.pulse_counts, rep.m_c))
     return events
 
 

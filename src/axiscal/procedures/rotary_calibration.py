@@ -522,14 +522,14 @@ def error_budget(check: SetupCheck, laser: SimulatedAngularInterferometer, captu
     items = [
         BudgetItem("misalignment, eq. 1 at the set-up bounds",
                    peak_error(check.alpha_bound, check.beta_bound, check.omega_bound),
-                   "seed 000 eq. 1 with α, β from the set-up check, ω = 2.5 mrad"),
-        BudgetItem("encoder sub-divisional error", SDE_LIMIT, "seed 000: kept below ±0.25 arcsec"),
+                   "Renishaw, Interferometric calibration of rotary axes, eq. 1 with α, β from the set-up check, ω = 2.5 mrad"),
+        BudgetItem("encoder sub-divisional error", SDE_LIMIT, "Renishaw, Interferometric calibration of rotary axes: kept below ±0.25 arcsec"),
         BudgetItem("graduation error after the error map", MAP_RESIDUAL,
-                   "assumed (seed 000: 'largely eliminated by error mapping')"),
+                   "assumed (Renishaw, Interferometric calibration of rotary axes: 'largely eliminated by error mapping')"),
         BudgetItem("non-parallel beams × lateral motion", nonparallel_beam_error(lateral, nu, 30e-3),
-                   "seed 000: 0.5 arcsec per mm at 15 arcsec non-parallelism"),
+                   "Renishaw, Interferometric calibration of rotary axes: 0.5 arcsec per mm at 15 arcsec non-parallelism"),
         BudgetItem("periscope temperature", PERISCOPE_SENSITIVITY * abs(setup.periscope_drift) * span,
-                   "seed 000: 13.8 µrad/°C × the drift over the test"),
+                   "Renishaw, Interferometric calibration of rotary axes: 13.8 µrad/°C × the drift over the test"),
         BudgetItem("retro-reflector spacing (K)", k_rel * capture.max_laser_angle,
                    "relative K error × largest laser angle" + (
                        " (after self-calibration)" if optics else " (0.1 mm in 30 mm, uncalibrated)")),
@@ -538,7 +538,7 @@ def error_budget(check: SetupCheck, laser: SimulatedAngularInterferometer, captu
     ]
     if offaxis is not None:
         items.append(BudgetItem("off-axis separation change", OFFAXIS_EXTRA_ERROR,
-                                "seed 000: add ±0.5 arcsec off axis"))
+                                "Renishaw, Interferometric calibration of rotary axes: add ±0.5 arcsec off axis"))
     return ErrorBudget(tuple(items))
 
 

@@ -18,8 +18,11 @@ controller count on the commanded value. The skew the controller sees before syn
     p1 - p2 = s0 + (switch_2 - switch_1) + d (v2 - v1)
 
 (s0 the real skew X1 - X2 before homing, d the homing direction): the homing adds d (v2 - v1),
-never more than ±(N - 1) counts, the seed's ±256 for N = 256. A compensator rephases at the first
-hit of its own switch, whether its axis is master or slave at the time.
+never more than ±(N - 1) counts, the seed's ±256 for N = 256. In length that is just under one
+signal period whatever N: (N − 1)·period/N (255 × 78.125 nm = 19.92 µm, 127 × 156.25 nm =
+19.84 µm at 20 µm); fewer counts per period reduce the skew in counts, not in micrometres. A
+compensator rephases at the first hit of its own switch, whether its axis is master or slave at
+the time.
 
 Examples
 --------
@@ -153,6 +156,8 @@ class TwinHomingResult:
             "skew_after_sync": self.skew_after,
             "offset": int(self.gantry.controller.offset),
             "required_skew_limit": required_skew_limit(self.gantry),
+            "homing_skew_bound_um": (self.gantry.output.counts_per_period - 1)
+            * self.gantry.output.count_size * 1e6,
         }
 
     def __str__(self) -> str:
@@ -175,6 +180,10 @@ class TwinHomingResult:
                          f"{self.skew_after} (offset parameter)")
         lines.append(f"  skew limit this configuration needs, switch scatter aside: at least "
                      f"{required_skew_limit(g)} counts")
+        n = g.output.counts_per_period
+        lines.append(f"  the homing skew d(v2 - v1) is bounded by one signal period: ±{n - 1} "
+                     f"counts = ±{(n - 1) * q:.2f} µm of the {g.output.period * 1e6:g} µm period; "
+                     "fewer counts per period lower it in counts, not in µm")
         return "\n".join(lines)
 
 

@@ -31,8 +31,11 @@ def figure_svg(fig) -> str:
     """Render a matplotlib figure as an inline ``<svg>`` string and close the figure."""
     import matplotlib.pyplot as plt
 
+    import matplotlib
+
     buf = io.StringIO()
-    fig.savefig(buf, format="svg", bbox_inches="tight", metadata={"Date": None})
+    with matplotlib.rc_context({"svg.hashsalt": "axiscal"}):   # same figure, same SVG ids
+        fig.savefig(buf, format="svg", bbox_inches="tight", metadata={"Date": None})
     plt.close(fig)
     svg = buf.getvalue()
     start = svg.find("<svg")
@@ -49,11 +52,23 @@ class Report:
     subtitle : str, optional
     metadata : dict, optional
         Shown as a key/value table under the title (machine, axis, operator, date ...).
+    reference : str, optional
+        Report number, repeated in every printed page's margin.
+    letterhead : str, optional
+        Trusted HTML above the title (company name, logo, address of a certificate).
+    paper : str
+        ``A4`` or ``Letter``: the printed page size (PDF).
+    simulation : bool
+        Marks every page as a simulation report (simulation truth may appear only there).
     """
 
     title: str
     subtitle: str = ""
     metadata: dict[str, Any] = field(default_factory=dict)
+    reference: str = ""
+    letterhead: str = ""
+    paper: str = "A4"
+    simulation: bool = False
     _parts: list[str] = field(default_factory=list)
 
     def add_heading(self, text: str, level: int = 2) -> None:
@@ -104,12 +119,23 @@ class Report:
             subtitle=self.subtitle,
             metadata={k: _meta(v) for k, v in self.metadata.items() if v not in (None, "", [])},
             body="\n".join(self._parts),
+            reference=self.reference,
+            letterhead=self.letterhead,
+            paper={"letter": "Letter"}.get(self.paper.lower(), "A4"),
+            simulation=self.simulation,
             version=__version__,
             generated=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         )
 
     def write(self, path) -> Path:
-        """Write the page atomically (no half-written report is left on error)."""
+        """Write the page atomically (no half-written report is left on error).
+
+        A ``.pdf`` name writes the same page as a PDF through WeasyPrint (:mod:`axiscal.report.pdf`).
+        """
+        if Path(path).suffix.lower() == ".pdf":
+            from axiscal.report.pdf import write_pdf
+
+            return write_pdf(self.html(), path)
         from axiscal.io._files import write_text_atomic
 
         return write_text_atomic(path, self.html())

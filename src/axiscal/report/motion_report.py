@@ -63,7 +63,9 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
     """
     from axiscal.report import motion_plots as mp
 
-    rep = Report(title, subtitle="Five motion errors of a rotary axis measured at once (Optics Express 2018, Five-DOF motion errors of a rotary axis); "
+    rep = Report(title, subtitle="Five motion errors of a rotary axis measured at once "
+                 "(Method for simultaneous measurement of five DOF motion errors of a rotary axis "
+                 "using a single-mode fiber-coupled laser, Optics Express 2018); "
                  "error motion by ISO 230-7", metadata=metadata or {})
     for n in notes:
         rep.add_text(n)
@@ -72,7 +74,7 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
         rep.add_key_values({"εz, εy [arcsec]": resolutions.angular / ARCSEC,
                             "εx [arcsec]": resolutions.tilt_x / ARCSEC,
                             "δy, δz [µm]": resolutions.displacement / UM},
-                           caption="r_PSD/(2 f1), r_QD/(2h), r_QD/2 (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1-6, section 3)")
+                           caption="r_PSD/(2 f1), r_QD/(2h), r_QD/2 (Optics Express 2018, five-DOF rotary axis, eqs. 1-6, §3)")
     if runs:
         rep.add_heading("Five errors against angle")
         rep.add_figure(mp.five_errors_figure(runs, truth[:1] if truth else None),
@@ -85,7 +87,7 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
         _iso_section(rep, result)
     if repeatability:
         rep.add_heading("Repeatability")
-        rep.add_table(["Error", "± deviation", "published (Optics Express 2018 §3.3)", "unit"],
+        rep.add_table(["Error", "± deviation", "Optics Express 2018 §3.3", "unit"],
                       [[_NAMES[c], v / _unit(c)[0], REPEATABILITY_SEED[c], _unit(c)[1]]
                        for c, v in repeatability.items()], digits=2,
                       caption="Largest half-range across the runs at one angle.")
@@ -126,10 +128,10 @@ def _stability_section(rep, run):
         k, u = _unit(ch)
         rows.append([_NAMES[ch], float(np.std(getattr(run.measured, ch))) / k,
                      float(np.std(getattr(run.uncompensated, ch))) / k, STABILITY_SEED[ch], u])
-    rep.add_table(["Error", "σ compensated", "σ without compensation", "published (Optics Express 2018 §3.2)", "unit"], rows,
+    rep.add_table(["Error", "σ compensated", "σ without compensation", "Optics Express 2018 §3.2", "unit"], rows,
                   caption=f"{run.time.size} readings over {minutes:.0f} min.", digits=3)
     rep.add_figure(stability_figure(run), "The still set-up, with and without the common-path drift "
-                   "compensation (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 7-9).")
+                   "compensation (Optics Express 2018, eqs. 7-9).")
 
 
 def _crosstalk_section(rep, ct):

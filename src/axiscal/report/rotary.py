@@ -49,7 +49,7 @@ def rotary_error_figure(r):
     s = r.true_setup
     e = misalignment_terms(np.radians(dense), s.alpha, s.beam_tilt, s.reflector_twist, s.eta).total
     ax.plot(dense, (e - e.mean()) / ARCSEC, "--", color="#7f8c8d", lw=1.1,
-            label="Renishaw, Interferometric calibration of rotary axes eq. 1 for the true α, β, ω")
+            label="Renishaw eq. 1 for the true α, β, ω")
     ax.axhline(0, color="#888", lw=0.6)
     ax.set_xlabel("Target position [°]")
     ax.set_ylabel("Measurement error [arcsec]")
@@ -92,7 +92,7 @@ def rotary_report(r, title: str | None = None) -> Report:
                           "(simulated), evaluated by ISO 230-2:2014",
                  metadata={"Machine": md.machine, "Axis": md.axis, "Operator": md.operator,
                            "Date": md.date, "Instrument": md.instrument, "Notes": md.notes,
-                           "Plan": str(r.plan)})
+                           "Plan": str(r.plan)}, simulation=True)
     rep.add_heading("Result beside the truth")
     verdict = "within" if summary["within_budget"] else "OUTSIDE"
     rep.add_text(
@@ -118,7 +118,7 @@ def rotary_report(r, title: str | None = None) -> Report:
                    "knew (dashed).")
     rep.add_figure(rotary_error_figure(r), "Measurement error per target (measured minus true "
                    "mean deviation, less their common mean) against the ± worst-case budget band, "
-                   "with the misalignment error Renishaw, Interferometric calibration of rotary axes eq. 1 predicts for the true α, β, ω (less "
+                   "with the misalignment error eq. 1 of Renishaw, Interferometric calibration of rotary axes, predicts for the true α, β, ω (less "
                    "its mean over the travel).")
     _per_target(rep, r)
     _setup_section(rep, r)
@@ -148,7 +148,7 @@ def _per_target(rep: Report, r) -> None:
 
 def _setup_section(rep: Report, r) -> None:
     rep.add_heading("Set-up")
-    rep.add_key_values(dict(r.setup.as_rows()), caption="Set-up checks (Renishaw, Interferometric calibration of rotary axes thresholds)")
+    rep.add_key_values(dict(r.setup.as_rows()), caption="Set-up checks (thresholds of Renishaw, Interferometric calibration of rotary axes)")
     s = r.true_setup
     items = {"α (true)": f"{s.alpha * 1e3:.3f} mrad at η = {np.degrees(s.eta):.1f}°",
              "β (true)": f"{s.beam_tilt * 1e3:.3f} mrad",
@@ -168,6 +168,18 @@ def _budget_section(rep: Report, r) -> None:
     rows.append(["worst case (sum)", r.budget.worst_case / ARCSEC, ""])
     rows.append(["root sum of squares", r.budget.rss / ARCSEC, ""])
     rep.add_table(["Contribution", "± arcsec", "Source"], rows, digits=3, css_class="params")
+    from axiscal.standards.iso230_9 import chain_budget
+
+    gum = chain_budget(r.budget)
+    rows = [[c.name, c.u, c.distribution] for c in gum.contributors]
+    rep.add_table(["Contribution", "u [arcsec]", "Distribution"], rows, digits=3,
+                  caption="The same budget in GUM form (ISO/TR 230-9): each ± bound a rectangular "
+                          f"distribution, u = a/√3, combined with {gum.method}.", css_class="params")
+    res = r.result.parameters()
+    rows = [[k, res[k], gum.U(k)] for k in ("A", "E", "M", "R", "B") if res.get(k) is not None]
+    rep.add_table(["Parameter", "Value [arcsec]", "U (k = 2) [arcsec]"], rows, digits=2,
+                  caption="Expanded uncertainty of the ISO 230-2 parameters from this budget; "
+                          "R and B carry the reading noise only.")
 
 
 def _offaxis_section(rep: Report, r) -> None:

@@ -74,12 +74,12 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
         axes[0].annotate(name, (k, 1.0), xycoords=("data", "axes fraction"),
                          xytext=(0, 3), textcoords="offset points", ha="center", fontsize=10,
                          fontweight="bold")
-    stages = [("Stage 1", lo, 0.0), ("Stage 2", 0.0, float(out.stage2_counts)),
-              ("Stage 3", float(out.stage2_counts), hi)]
+    stages = [("Stage 1", lo, 0.0), ("Stage 2", 0.0, float(run.stage2_counts)),
+              ("Stage 3", float(run.stage2_counts), hi)]
     for label, s0, s1 in stages:
         axes[2].axvspan(s0, s1, color={"Stage 2": "0.85"}.get(label, "1.0"), zorder=-1)
         axes[2].text((s0 + s1) / 2, 1.12, label, ha="center", fontsize=9)
-    axes[2].text(out.stage2_counts / 2, -1.17, f"+{run.virtual} virtual counts", ha="center",
+    axes[2].text(run.stage2_counts / 2, -1.17, f"+{run.virtual} virtual counts", ha="center",
                  fontsize=8, color="0.3")
     axes[3].set_xlim(lo, hi)
     sec = axes[3].secondary_xaxis(
@@ -87,8 +87,10 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
                              lambda m: m / (out.count_size * 1e6)))
     sec.spines["bottom"].set_position(("outward", 38))
     sec.set_xlabel("µm beyond the switch")
-    beyond = {e.name: e.counts_beyond_switch for e in run.events}
-    z = f"Z {beyond['Z']} output counts beyond the switch" if "Z" in beyond else "no home found"
+    ev = {e.name: e for e in run.events}
+    z = (f"Z measured {ev['Z'].counts_beyond_switch:.1f} ± {ev['Z'].uncertainty_counts:.1f} "
+         f"output counts beyond the switch, design {ev['Z'].nominal_counts}") if "Z" in ev \
+        else "no home found"
     fig.suptitle(f"Single-axis referencing with a compensated laser scale ({z})", fontsize=11)
     fig.tight_layout()
     return fig

@@ -33,46 +33,75 @@ def band_widths(upper, lower, slopes: np.ndarray) -> np.ndarray:
 
 
 def hull_chains(x: np.ndarray, y: np.ndarray):
-    """Upper and lower convex chains, each sorted by x (distinct x, extreme y at ties)."""
+    """Upper and lower convex chains, each sorted by x (distinct x, extreme y at ties).
+
+    Readings in position order go straight to Qhull. Unsorted readings are not sorted whole:
+    Qhull runs on them as they are and only its candidates (the hull's vertices and the two end
+    columns) are sorted, a few dozen points instead of all. When Qhull refuses (exactly
+    collinear or constant readings) every point is sorted and the chains are pruned by
+    vectorised passes (:func:`_monotone_chain`).
+    """
     if np.all(x[1:] > x[:-1]):  # the usual case: readings in increasing position order
         xs, ys = x, y
+        cand = _qhull_candidates(xs, ys, as_mask=True) if xs.size > 64 else None
     else:
+        idx = _qhull_candidates(x, y, as_mask=False) if x.size > 64 else None
+        if idx is not None:
+            x, y = x[idx], y[idx]
         order = np.lexsort((y, x))
         xs, ys = x[order], y[order]
+        cand = None
     keep_hi = np.r_[xs[1:] != xs[:-1], True]  # highest y at each x
     keep_lo = np.r_[True, xs[1:] != xs[:-1]]  # lowest y at each x
-    if xs.size > 64:
-        cand = _qhull_candidates(xs, ys)
-        if cand is not None:
-            keep_hi &= cand
-            keep_lo &= cand
+    if cand is not None:
+        keep_hi &= cand
+        keep_lo &= cand
     upper = _monotone_chain(xs[keep_hi], ys[keep_hi], upper=True)
     lower = _monotone_chain(xs[keep_lo], ys[keep_lo], upper=False)
     return upper, lower
 
 
-def _qhull_candidates(xs: np.ndarray, ys: np.ndarray):
-    """Mask of hull vertices found by Qhull on scaled coordinates (None if Qhull refuses)."""
+def _qhull_candidates(xs: np.ndarray, ys: np.ndarray, as_mask: bool):
+    """Hull vertices found by Qhull on scaled coordinates, plus every point of the two end
+    columns (so each chain starts and ends at the extreme positions): a boolean mask
+    (``as_mask``) or their indices; None if Qhull refuses."""
     from scipy.spatial import ConvexHull, QhullError
 
-    sx, sy = np.ptp(xs), np.ptp(ys)
-    if sy == 0:
+    lo, hi = float(xs.min()), float(xs.max())
+    sx, sy = hi - lo, float(np.ptp(ys))
+    if sy == 0 or sx == 0:
         return None
-    pts = np.column_stack(((xs - xs[0]) / sx, (ys - ys.min()) / sy))
+    pts = np.empty((xs.size, 2))
+    np.subtract(xs, lo, out=pts[:, 0])
+    pts[:, 0] /= sx
+    np.subtract(ys, ys.min(), out=pts[:, 1])
+    pts[:, 1] /= sy
     try:
         hull = ConvexHull(pts)
     except (QhullError, ValueError):
         return None
-    mask = np.zeros(xs.size, dtype=bool)
+    mask = (xs == lo) | (xs == hi)
     mask[hull.vertices] = True
-    # keep the end columns whole so each chain starts and ends at the extreme positions
-    mask |= (xs == xs[0]) | (xs == xs[-1])
-    return mask
+    return mask if as_mask else np.flatnonzero(mask)
 
 
 def _monotone_chain(xs: np.ndarray, ys: np.ndarray, upper: bool):
-    """Andrew's monotone chain on x-sorted points with distinct x (exact cross products)."""
+    """Andrew's monotone chain on x-sorted points with distinct x (exact cross products).
+
+    Vectorised passes first drop, all at once, every point that is not strictly convex against
+    its present neighbours (such a point lies on or inside the segment of two other points, so it
+    is no vertex whatever else is dropped); a pass over the few points left finishes the chain.
+    """
     sign = -1.0 if upper else 1.0
+    for _ in range(64):
+        if xs.size < 3:
+            break
+        cross = ((xs[1:-1] - xs[:-2]) * (ys[2:] - ys[:-2])
+                 - (ys[1:-1] - ys[:-2]) * (xs[2:] - xs[:-2]))
+        keep = np.r_[True, sign * cross > 0, True]
+        if keep.all():
+            break
+        xs, ys = xs[keep], ys[keep]
     hx: list[float] = []
     hy: list[float] = []
     for px, py in zip(xs.tolist(), ys.tolist()):
@@ -85,4 +114,3 @@ def _monotone_chain(xs: np.ndarray, ys: np.ndarray, upper: bool):
         hx.append(px)
         hy.append(py)
     return np.array(hx), np.array(hy)
-

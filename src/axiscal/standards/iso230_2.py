@@ -374,8 +374,9 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
 
     closure_up = closure_down = None
     if is_full_turn and full_turn == "separate":
+        span = float(np.max(np.abs(targets))) * _deg_to(unit) / _deg_to(dataset.target_unit)
         closure_up, closure_down = _closure(mean_up, s_up, n_up, mean_down, s_down, n_down,
-                                            unit, warn)
+                                            unit, warn, span)
 
     return Iso230_2Result(
         axis_kind=dataset.axis_kind,
@@ -452,8 +453,15 @@ def _distinct_positions(ds: PositioningDataset, targets: np.ndarray) -> int:
     return int(targets.size)
 
 
-def _closure(mean_up, s_up, n_up, mean_down, s_down, n_down, unit, warn):
-    """Difference of the means at 360° and 0°; warn if larger than 2 standard errors allow."""
+def _closure(mean_up, s_up, n_up, mean_down, s_down, n_down, unit, warn, span):
+    """Difference of the means at 360° and 0°; warn if larger than 3 standard errors allow.
+
+    With no scatter at all the standard error is 0 and any difference would warn, however it
+    arose. A deviation is a reading minus a target of magnitude ``span`` (360° = 1 296 000″,
+    in the deviation's unit): binary64 arithmetic (IEEE 754, ε = 2.2e-16) leaves it uncertain by
+    a few ulps of that magnitude, 2e-10″ per ulp at 360°. Differences within 64 ε times
+    (span + largest mean), 1.8e-8″ at 360°, are float rounding, not a closure.
+    """
     out = []
     for name, mean, s, n in (("+", mean_up, s_up, n_up), ("-", mean_down, s_down, n_down)):
         if np.isnan(mean[0]):
@@ -461,8 +469,8 @@ def _closure(mean_up, s_up, n_up, mean_down, s_down, n_down, unit, warn):
             continue
         c = float(mean[-1] - mean[0])
         se = math.sqrt(s[0] ** 2 / n[0] + s[-1] ** 2 / n[-1])
-        # floor for rounding: with no scatter (se = 0) sin(2π) ≠ 0 alone gives |c| ~ 1e-16
-        rounding = 1e-9 * float(np.max(np.abs(mean)))
+        # floor for float rounding (see the docstring): with no scatter se = 0
+        rounding = 64 * np.finfo(float).eps * (span + float(np.nanmax(np.abs(mean))))
         if abs(c) > 3 * se and abs(c) > rounding:
             warn.append(
                 f"closure in direction {name}: the mean deviation at 360° differs from 0° by "

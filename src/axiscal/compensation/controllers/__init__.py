@@ -25,7 +25,7 @@ import importlib
 from axiscal.compensation.controllers._common import ControllerFile
 from axiscal.errors import InputError
 
-__all__ = ["CONTROLLERS", "controller", "ControllerFile", "check_options"]
+__all__ = ["CONTROLLERS", "controller", "ControllerFile", "check_options", "detect"]
 
 #: Controller name -> module name.
 CONTROLLERS = {
@@ -57,3 +57,31 @@ def check_options(function, options: dict, what: str) -> dict:
         raise InputError(f"{what}: unknown option(s) {', '.join(unknown)}; allowed: "
                          f"{', '.join(allowed) or 'none'}")
     return options
+
+
+def detect(text: str) -> str | None:
+    """The controller whose file ``text`` is, from its content (None if it cannot be told).
+
+    Siemens files begin ``%_N_AX_EEC_INI`` (or ``%_N_NC_CEC_INI``), Heidenhain tables
+    ``BEGIN <name>.COM``, Fanuc tapes hold ``N3620``…``N3624`` parameter lines, an axiscal CSV
+    its ``position_<unit>`` header, and a LinuxCNC file is nothing but lines of three numbers.
+    """
+    import re
+
+    body = text.lstrip("\ufeff \t\r\n")
+    if body.startswith(("%_N_AX_EEC_INI", "%_N_NC_CEC_INI")) or "$AA_ENC_COMP[" in body:
+        return "siemens-840d"
+    if re.match(r"BEGIN\s+\S+\.COM\b", body, re.IGNORECASE):
+        return "heidenhain"
+    if re.search(r"^N0*362[0-4]\s*(A\d+)?\s*P", body, re.MULTILINE):
+        return "fanuc"
+    if re.search(r"^position_\w+,correction_up_", body, re.MULTILINE):
+        return "csv"
+    lines = [ln.split() for ln in body.splitlines() if ln.strip()]
+    if len(lines) >= 2 and all(len(c) >= 3 for c in lines):
+        try:
+            [float(x) for c in lines for x in c[:3]]
+            return "linuxcnc"
+        except ValueError:
+            return None
+    return None

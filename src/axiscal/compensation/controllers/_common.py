@@ -9,7 +9,7 @@ import numpy as np
 
 from axiscal import units
 from axiscal._parse import finite_number
-from axiscal.errors import ControllerLimitError, DataFormatError
+from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["ControllerFile", "check_points", "check_spacing", "check_travel", "check_modulo",
            "correction_factor", "parse_number", "decimals"]
@@ -131,3 +131,26 @@ def parse_number(token: str, source: str, line: int) -> float:
 def decimals(position_unit: str) -> int:
     """Decimals written for a correction in ``position_unit``: 1 nm in mm, 1e-9 deg (4 µarcsec)."""
     return 6 if position_unit == "mm" else 9
+
+
+#: Length units a controller file may be written in: name -> mm per file unit.
+FILE_UNITS = {"mm": 1.0, "inch": 25.4}
+
+
+def file_unit(unit: str, table, fmt: str) -> float:
+    """mm per unit of the file (``mm`` or ``inch``; a rotary table is always in degrees)."""
+    u = {"in": "inch", "inches": "inch", "millimetre": "mm"}.get(str(unit).lower(), str(unit).lower())
+    if u not in FILE_UNITS:
+        raise InputError(f"{fmt}: unit {unit!r}; the file is in mm or inch")
+    if u == "inch" and table is not None and table.position_unit != "mm":
+        raise ControllerLimitError(f"{fmt}: an inch file holds a linear axis (the table is in "
+                                   f"{table.position_unit})")
+    return FILE_UNITS[u]
+
+
+def require_equidistant(table, fmt: str) -> None:
+    """Refuse a table with irregular positions for a format whose points are equidistant."""
+    if not table.equidistant:
+        raise ControllerLimitError(f"{fmt}: the table has irregular positions (at the measured "
+                                   "targets); this controller takes equidistant points: give a "
+                                   "spacing")

@@ -76,14 +76,15 @@ def parse(text: str, source: str = "<text>") -> CompensationTable:
         raise DataFormatError(f"{len(rows)} row(s); a table needs at least 2", source)
     arr = np.array(rows)
     steps = np.diff(arr[:, 0])
-    if steps[0] <= 0 or np.any(np.abs(steps - steps[0]) > 1e-6 * max(1.0, abs(steps[0]))):
-        raise DataFormatError("positions must be equidistant and increasing", source)
+    if np.any(steps <= 0):
+        raise DataFormatError("positions must increase strictly", source)
+    regular = not np.any(np.abs(steps - steps[0]) > 1e-6 * max(1.0, abs(steps[0])))
     try:
         return CompensationTable(
             "" if meta["axis"] == "-" else meta["axis"], meta["axis_kind"], meta["position_unit"],
             meta["correction_unit"], float(arr[0, 0]), float(steps[0]), arr[:, 1], arr[:, 2],
             bidirectional=meta["bidirectional"] == "true", modulo=meta["modulo"] == "true",
             resolution=float(meta["resolution"]), reference_index=int(meta["reference_index"]),
-            extrapolation=meta["extrapolation"])
+            extrapolation=meta["extrapolation"], nodes=None if regular else arr[:, 0])
     except (ValueError, TypeError) as exc:
         raise DataFormatError(f"bad header value: {exc}", source) from None

@@ -55,7 +55,8 @@ from dataclasses import replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, check_points, check_spacing, check_travel, correction_factor)
+    ControllerFile, check_points, check_spacing, check_travel, correction_factor,
+    require_equidistant)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -91,6 +92,7 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1, refere
     max_number : int
         Highest point number the control has (1023 for 16i/18i/0i).
     """
+    require_equidistant(table, NAME)
     table, mag = _prepare(table, travel, detection_unit, magnification)
     r = table.reference_index
     ref = (r if not table.modulo else 0) if reference_number is None else int(reference_number)
@@ -117,19 +119,27 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1, refere
     a = int(axis_number)
     lines = ["%", f"(AXISCAL PITCH ERROR COMPENSATION AXIS {table.axis or '-'}, CORRECTION = "
              f"-DEVIATION, 1 COUNT = {detection_unit:g} {table.position_unit.upper()})"]
-    if table.bidirectional:
-        lines.append(f"N3605A{a}P00000001")
+    if table.bidirectional:      # a bit parameter: the tape would overwrite all eight bits
+        lines.append(f"(SET 3605#0 = 1 FOR AXIS {a} BY HAND, KEEPING BITS 1-7)")
     lines += [f"N{p}A{a}P{v}" for p, v in params]
     lines += [f"N{10000 + k}P{v}" for k, v in data]
     lines.append("%")
     enable = [f"parameters {', '.join(str(p) for p, _ in params)} as written (axis {a})",
-              "3605#0 = 1 (bidirectional pitch error compensation)" if table.bidirectional
-              else "3605#0 = 0 (one table for both directions)",
+              "set bit 0 of parameter 3605 to 1 (bidirectional pitch error compensation) on "
+              "the parameter screen, keeping its other seven bits as the machine has them: a "
+              "tape line N3605 would overwrite the whole byte" if table.bidirectional
+              else "parameter 3605 bit 0 must be 0 (one table for both directions); leave its "
+              "other bits as they are",
               "power the control off and on, then return to the reference position (G28)"]
     step = mag * detection_unit / correction_factor(table, table.position_unit)
     notes = (f"magnification 3623 = {mag}; point {ref} is the reference position "
              f"{table.reference_position:g} {table.position_unit}",
              f"corrections rounded to one count x magnification = {step:g} {table.correction_unit}")
+    if table.axis_kind is AxisKind.ROTARY and step >= 1.0:
+        notes += (f"a detection unit of {detection_unit:g}° limits the compensation: corrections "
+                  f"move in steps of {step:g} {table.correction_unit}, so errors smaller than "
+                  "that are not removed (a 0.0001° detection unit, where the machine has it, "
+                  "does better)",)
     return ControllerFile(NAME, "\n".join(lines) + "\n", f"PITCH_{table.axis or 'AXIS'}.TXT",
                           table, tuple(enable), notes=notes)
 
@@ -149,7 +159,11 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
         raise InputError(f"{NAME}: detection_unit = {detection_unit!r} must be a positive number "
                          "(mm or deg per count)")
     params, data = _read_lines(text, source, axis_number)
-    bidirectional = bool(params.get(3605, 0) % 2)
+    if not axis:                  # the axis name axiscal's tape comment carries
+        m = re.search(r"\(AXISCAL PITCH ERROR COMPENSATION AXIS (\S+?),", text)
+        axis = "" if m is None or m.group(1) == "-" else m.group(1)
+    # 3605#0 is set by hand (not on the tape): 3626 or 3627 mark a bidirectional table too
+    bidirectional = bool(params.get(3605, 0) % 2) or 3626 in params or 3627 in params
     for p in (3620, 3621, 3622, 3624) + ((3626,) if bidirectional else ()):
         if p not in params:
             raise DataFormatError(f"parameter {p} is missing" + (

@@ -17,7 +17,9 @@ Written here (the usual TNC table layout, ``BEGIN`` line, a header row, ``[END]`
     ...
     [END]
 
-Values in mm (deg for a rotary axis). Sign: the value is the correction (added to the nominal
+Values in mm (deg for a rotary axis), or inch for an inch machine (``BEGIN X.COM INCH``, written
+with ``unit="inch"``; read back in mm, and a unit the caller names that contradicts the file's
+is refused). Sign: the value is the correction (added to the nominal
 position): correction = −deviation. BACKLASH (bidirectional tables only) is written as the
 *additional* correction for the negative direction, ``down − up``. Neither the sign nor the
 meaning of BACKLASH was confirmed against a Heidenhain source beyond the sentence quoted above.
@@ -36,7 +38,7 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
-    decimals, parse_number)
+    decimals, file_unit, parse_number, require_equidistant)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError
@@ -51,7 +53,7 @@ _BEGIN = re.compile(r"^BEGIN\s+(\S+?)(?:\.COM)?\s+(MM|INCH)?\s*$", re.IGNORECASE
 
 def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS,
           position_resolution: float = 0.0001, power_of_two: bool = False,
-          driving_axis: str | None = None) -> ControllerFile:
+          driving_axis: str | None = None, unit: str = "mm") -> ControllerFile:
     """Write ``table`` as ``<AXIS>.COM`` with its ``.CMA`` assignment (in ``extra_files``).
 
     Parameters
@@ -68,7 +70,11 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
         For a cross-axis table ``table.axis = F(driving_axis)``: AXISPOS holds positions of the
         driving axis and the ``.CMA`` enters the table in the driving axis's column (MANUALplus
         620: "[axis in column from *.com] = F(axis in column from *.cma ...)").
+    unit : {"mm", "inch"}
+        Unit of the file (``BEGIN <name>.COM INCH``) for a linear axis.
     """
+    require_equidistant(table, NAME)
+    mm = file_unit(unit, table, NAME)
     check_points(table.n_points, max_points, NAME)
     check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
     if power_of_two:
@@ -80,26 +86,29 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
     check_travel(table, travel, NAME)
     check_modulo(table, NAME)
     ax = (table.axis or "X").upper()
-    k = correction_factor(table, table.position_unit)
-    nd = decimals(table.position_unit)
+    word = "INCH" if mm != 1.0 else "MM"
+    k = correction_factor(table, table.position_unit if mm == 1.0 else "in")
+    nd = decimals(table.position_unit) + (1 if mm != 1.0 else 0)
     up = np.round(table.up * k, nd)
     extra = np.round((table.down - table.up) * k, nd)
     head = ["NR", "AXISPOS", ax] + (["BACKLASH"] if table.bidirectional else [])
-    lines = [f"BEGIN {ax}.COM MM",
+    lines = [f"BEGIN {ax}.COM {word}",
              "  ".join(f"{h:<12}" for h in head).rstrip()]
-    for i, (p, v, b) in enumerate(zip(table.positions, up, extra)):
-        row = [str(i), f"{p:+.4f}", f"{v:+.{nd}f}"]
+    for i, (p, v, b) in enumerate(zip(table.positions / mm, up, extra)):
+        row = [str(i), f"{p:+.{4 if mm == 1.0 else 5}f}", f"{v:+.{nd}f}"]
         if table.bidirectional:
             row.append(f"{b:+.{nd}f}")
         lines.append("  ".join(f"{c:<12}" for c in row).rstrip())
     lines.append("[END]")
     drv = (driving_axis or ax).upper()
     name = f"{ax}.COM" if drv == ax else f"{ax}{drv}.COM"
-    lines[0] = f"BEGIN {name} MM"
+    lines[0] = f"BEGIN {name} {word}"
     enable = [f"copy {name} and {drv}.CMA to the control (PLC partition / TNC:\\)",
               f"in {drv}.CMA the line with {name} in column {drv} is marked active (*)",
               "activate nonlinear axis error compensation in the machine parameters "
               "(MP730 on TNC 4xx; CfgAxisComp on newer controls: not confirmed)"]
+    if mm != 1.0:
+        enable.append("the table is in inch (BEGIN … INCH): the control must run in inch")
     return ControllerFile(NAME, "\n".join(lines) + "\n", name, _as_written(table, up, extra, k),
                           tuple(enable), extra_files={f"{drv}.CMA": write_cma({drv: name})})
 
@@ -113,12 +122,22 @@ def write_cma(assignments: dict[str, str]) -> str:
 
 
 def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "linear",
-          correction_unit: str | None = None) -> CompensationTable:
-    """Read a ``.COM`` table written by :func:`write` (equidistant AXISPOS required)."""
+          correction_unit: str | None = None, unit: str | None = None) -> CompensationTable:
+    """Read a ``.COM`` table (equidistant AXISPOS required) into a table in mm (or deg).
+
+    The file's ``BEGIN … MM|INCH`` gives its unit; ``unit``, if given, must agree with it.
+    """
     rows = [r.strip() for r in text.splitlines()]
     rows = [(n, r) for n, r in enumerate(rows, 1) if r]
-    if not rows or not _BEGIN.match(rows[0][1]):
+    begin = _BEGIN.match(rows[0][1]) if rows else None
+    if not begin:
         raise DataFormatError("a .COM table starts with 'BEGIN <name>.COM MM'", source, 1)
+    declared = (begin.group(2) or "MM").lower()
+    declared = "inch" if declared == "inch" else "mm"
+    if unit is not None and file_unit(unit, None, NAME) != file_unit(declared, None, NAME):
+        raise DataFormatError(f"the table says {declared.upper()} (BEGIN line), not {unit}",
+                              source, rows[0][0])
+    mm = file_unit(declared, None, NAME)
     if rows[-1][1].upper() != "[END]":
         raise DataFormatError("a .COM table ends with [END]", source, rows[-1][0])
     header = rows[1][1].split() if len(rows) > 2 else []
@@ -138,16 +157,21 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
     if len(data) < 2:
         raise DataFormatError(f"{len(data)} compensation point(s); a table needs at least 2", source)
     arr = np.array(data)
+    if mm != 1.0:
+        if AxisKind.parse(axis_kind) is not AxisKind.LINEAR:
+            raise DataFormatError("an INCH table holds a linear axis", source)
+        arr = arr * mm                                     # inch -> mm, positions and values
     pos = arr[:, 0]
     steps = np.diff(pos)
-    if np.any(np.abs(steps - steps[0]) > 1e-6 * max(1.0, abs(steps[0]))) or steps[0] <= 0:
+    tol = 1e-6 * max(1.0, abs(steps[0])) if mm == 1.0 else 2e-4 * mm   # inch rounding in mm
+    if np.any(np.abs(steps - steps[0]) > tol) or steps[0] <= 0:
         raise DataFormatError("AXISPOS must be equidistant and increasing", source)
     kind = AxisKind.parse(axis_kind)
     pu = "mm" if kind is AxisKind.LINEAR else "deg"
     cu = correction_unit or ("um" if kind is AxisKind.LINEAR else "arcsec")
     modulo = kind is AxisKind.ROTARY and abs(pos[-1] - pos[0] - 360.0) < 1e-6
     bidi = arr.shape[1] == 3
-    t = CompensationTable(ax, kind, pu, cu, float(pos[0]), float(steps[0]), arr[:, 1],
+    t = CompensationTable(ax, kind, pu, cu, float(pos[0]), float(steps.mean()), arr[:, 1],
                           arr[:, 1] + (arr[:, 2] if bidi else 0.0), bidirectional=bidi,
                           modulo=modulo)
     k = correction_factor(t, pu)

@@ -39,6 +39,13 @@ of several thousand points, the default 5000 here is not confirmed; the 808D all
 spacing a whole number of ``position_resolution`` (0.001 mm or deg by default); modulo tables
 run 0…360° and close on themselves; the range lies inside the axis travel when given.
 
+**Several axes.** A control's EEC file commonly holds the tables of several machine axes, each
+line naming its axis (``$AA_ENC_COMP[0,i,AX1]``, ``[0,i,X1]``): :func:`parse_axes` reads every
+axis, :func:`parse` one (``machine_axis=``, needed when the file holds more than one), and
+:func:`write_axes` writes several into one file. Comments may be in Windows-1252 (a ``µ`` in a
+comment, from a Windows tool): the callers decode the file (:func:`axiscal.io._files.
+read_controller_text`); the numbers are ASCII.
+
 **Ends** (``zero_ends=True``): outside MIN…MAX the controller keeps applying the end values
 (not confirmed against the manual); ``zero_ends`` forces the first and last values to zero so
 the table fades out instead, at the cost of the correction in the last interval.
@@ -53,12 +60,12 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
-    decimals, parse_number)
+    decimals, parse_number, require_equidistant)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
-__all__ = ["NAME", "write", "parse", "MAX_POINTS"]
+__all__ = ["NAME", "write", "write_axes", "parse", "parse_axes", "MAX_POINTS"]
 
 NAME = "siemens-840d"
 #: Default MD38000 limit (not confirmed; the machine's MD38000 value is the real limit).
@@ -68,6 +75,7 @@ _VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*,\s*([A-Za-
 _PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]"
                     r"\s*=\s*(\S+)")
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
+_NAME = re.compile(r"^;\s*axiscal: axis (\S+),")
 
 
 def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
@@ -97,6 +105,36 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
     ControllerFile
     """
     _check(table, travel, max_points, position_resolution)
+    body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends)
+    text = "\n".join(["%_N_AX_EEC_INI", "CHANDATA(1)", *body, "M17"]) + "\n"
+    return ControllerFile(NAME, text, "AX_EEC.INI", written, tuple(enable), notes=tuple(notes))
+
+
+def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
+    """One ``%_N_AX_EEC_INI`` file with a table per machine axis (``{"AX1": table, ...}``).
+
+    ``travel`` may be a dict by machine axis; ``options`` as :func:`write`.
+    """
+    if not tables:
+        raise InputError(f"{NAME}: no table to write")
+    body, enable, notes = [], [], []
+    mp = options.pop("max_points", MAX_POINTS)
+    res = options.pop("position_resolution", 0.001)
+    for ax, table in tables.items():
+        tr = travel.get(ax) if isinstance(travel, dict) else travel
+        _check(table, tr, mp, res)
+        b, e, _, n = _axis_block(table, ax, options.get("zero_at_reference", True),
+                                 options.get("zero_ends", False))
+        body += b
+        enable += e
+        notes += n
+    text = "\n".join(["%_N_AX_EEC_INI", "CHANDATA(1)", *body, "M17"]) + "\n"
+    first = next(iter(tables.values()))
+    return ControllerFile(NAME, text, "AX_EEC.INI", first, tuple(enable), notes=tuple(notes))
+
+
+def _axis_block(table, machine_axis, zero_at_reference, zero_ends):
+    """The lines of one axis's table, its enabling steps, the table as written, notes."""
     notes = []
     if zero_at_reference and table.mean[table.reference_index] != 0:
         notes.append(f"table shifted by {-table.mean[table.reference_index]:+.4g} "
@@ -111,8 +149,7 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
         mean[[0, -1]] = 0.0
     values = np.round(-mean * k, nd) + 0.0      # file value = deviation = −correction
     ax = machine_axis
-    lines = ["%_N_AX_EEC_INI", "CHANDATA(1)",
-             f"; axiscal: axis {table.axis or '-'}, {table.n_points} points, values = deviation "
+    lines = [f"; axiscal: axis {table.axis or '-'}, {table.n_points} points, values = deviation "
              f"(-correction) in {table.position_unit}"]
     lines += [f"$AA_ENC_COMP[0,{i},{ax}]={_fmt(v)}" for i, v in enumerate(values)]
     lines += [f"$AA_ENC_COMP_STEP[0,{ax}]={_fmt(table.spacing)}",
@@ -128,49 +165,91 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
         lines.append(f"; MD32450 $MA_BACKLASH[0,{ax}]={_fmt(b)}")
         enable.append(f"MD32450 $MA_BACKLASH[0,{ax}] = {_fmt(b)} {table.position_unit} "
                       "(mean reversal; the table holds the mean of both directions)")
-    lines.append("M17")
     as_file = np.round(-values / k, 6) + 0.0          # what the file holds, back in the table's unit
     written = replace(table, up=as_file, down=as_file, bidirectional=False)
     if table.bidirectional:
         written = _with_backlash(written, b / k)
-    return ControllerFile(NAME, "\n".join(lines) + "\n", "AX_EEC.INI", written, tuple(enable),
-                          notes=tuple(notes))
+    return lines, enable, written, notes
 
 
 def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" = None,
-          axis: str = "", correction_unit: str | None = None) -> CompensationTable:
-    """Read a ``%_N_AX_EEC_INI`` file back into a table (corrections = −file values).
+          axis: str = "", correction_unit: str | None = None,
+          machine_axis: str | None = None) -> CompensationTable:
+    """Read one axis of a ``%_N_AX_EEC_INI`` file back into a table (corrections = −file values).
 
+    ``machine_axis`` chooses the axis of a file holding several (it must then be given).
     ``axis_kind`` defaults to rotary if the table is modulo, else linear. Corrections come back
     in ``correction_unit`` (default µm or arcsec). A ``; MD32450`` comment written by
-    :func:`write` makes the table bidirectional again (mean ± backlash/2).
+    :func:`write` makes the table bidirectional again (mean ± backlash/2); a ``; axiscal: axis X``
+    comment gives the axis name back.
     """
-    values: dict[int, float] = {}
-    params: dict[str, float] = {}
-    backlash = None
+    tables = parse_axes(text, source, axis_kind=axis_kind, correction_unit=correction_unit)
+    if machine_axis is None:
+        if len(tables) > 1:
+            raise DataFormatError(f"the file holds the tables of {len(tables)} machine axes "
+                                  f"({', '.join(tables)}): choose one with machine_axis=",
+                                  source)
+        machine_axis = next(iter(tables))
+    key = next((k for k in tables if k.upper() == str(machine_axis).upper()), None)
+    if key is None:
+        raise DataFormatError(f"no table for machine axis {machine_axis!r}; the file holds "
+                              f"{', '.join(tables)}", source)
+    t = tables[key]
+    return replace(t, axis=axis) if axis else t
+
+
+def parse_axes(text: str, source: str = "<text>", axis_kind=None,
+               correction_unit: str | None = None) -> dict:
+    """Every machine axis's table of a ``%_N_AX_EEC_INI`` file, by machine axis name."""
+    values: dict[str, dict[int, float]] = {}
+    params: dict[str, dict[str, float]] = {}
+    backlash: dict[str, float] = {}
+    names: dict[str, str] = {}
+    pending_name = ""
     for n, raw in enumerate(text.splitlines(), 1):
         line = raw.strip()
         m = _BACKLASH.search(line)
         if m:
-            backlash = parse_number(m.group(1), source, n)
+            ax = re.search(r"\[\s*\d+\s*,\s*([A-Za-z0-9_]+)\s*\]", line)
+            backlash[ax.group(1) if ax else ""] = parse_number(m.group(1), source, n)
+        m = _NAME.match(line)
+        if m:
+            pending_name = "" if m.group(1) == "-" else m.group(1)
         if not line or line.startswith((";", "%", "CHANDATA", "M17", "M30")):
             continue
         m = _VALUE.match(line)
         if m:
-            _once(values, int(m.group(2)), f"$AA_ENC_COMP point {int(m.group(2))}", source, n)
-            values[int(m.group(2))] = parse_number(m.group(4).split(";")[0], source, n)
+            ax, i = m.group(3), int(m.group(2))
+            _once(values.setdefault(ax, {}), i, f"{ax}: $AA_ENC_COMP point {i}", source, n)
+            values[ax][i] = parse_number(m.group(4).split(";")[0], source, n)
+            if pending_name and ax not in names:
+                names[ax] = pending_name
             continue
         m = _PARAM.match(line)
         if m:
-            _once(params, m.group(1), f"$AA_ENC_COMP_{m.group(1)}", source, n)
-            params[m.group(1)] = parse_number(m.group(4).split(";")[0], source, n)
+            ax = m.group(3)
+            _once(params.setdefault(ax, {}), m.group(1), f"{ax}: $AA_ENC_COMP_{m.group(1)}",
+                  source, n)
+            params[ax][m.group(1)] = parse_number(m.group(4).split(";")[0], source, n)
             continue
         raise DataFormatError(f"not a $AA_ENC_COMP line: {raw[:60]!r}", source, n)
+    if not values:
+        raise DataFormatError("no $AA_ENC_COMP values: not an EEC table", source)
+    out = {}
+    for ax in values:
+        b = backlash.get(ax, backlash.get("") if len(values) == 1 else None)
+        out[ax] = _one_axis(values[ax], params.get(ax, {}), b, ax, names.get(ax, ""), axis_kind,
+                            correction_unit, source)
+    return out
+
+
+def _one_axis(values, params, backlash, machine_axis, name, axis_kind, correction_unit, source):
     for key in ("STEP", "MIN", "MAX"):
         if key not in params:
-            raise DataFormatError(f"$AA_ENC_COMP_{key} is missing", source)
-    if not values or sorted(values) != list(range(len(values))):
-        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps", source)
+            raise DataFormatError(f"$AA_ENC_COMP_{key} of {machine_axis} is missing", source)
+    if sorted(values) != list(range(len(values))):
+        raise DataFormatError(f"interpolation points of {machine_axis} must be numbered 0, 1, 2 "
+                              "… without gaps", source)
     modulo = bool(params.get("IS_MODULO", 0))
     kind = AxisKind.parse(axis_kind or ("rotary" if modulo else "linear"))
     pu = "mm" if kind is AxisKind.LINEAR else "deg"
@@ -178,11 +257,11 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
     dev = np.array([values[i] for i in range(len(values))])
     span = (len(dev) - 1) * params["STEP"]
     if abs(params["MIN"] + span - params["MAX"]) > 1e-6 * max(1.0, abs(span)):
-        raise DataFormatError(f"MIN {params['MIN']:g} + {len(dev) - 1} x STEP {params['STEP']:g} "
-                              f"does not reach MAX {params['MAX']:g}", source)
+        raise DataFormatError(f"{machine_axis}: MIN {params['MIN']:g} + {len(dev) - 1} x STEP "
+                              f"{params['STEP']:g} does not reach MAX {params['MAX']:g}", source)
     try:
-        t = CompensationTable(axis, kind, pu, cu, params["MIN"], params["STEP"], dev, dev,
-                              modulo=modulo)
+        t = CompensationTable(name or machine_axis, kind, pu, cu, params["MIN"], params["STEP"],
+                              dev, dev, modulo=modulo)
     except ControllerLimitError:
         raise
     except InputError as exc:  # the table's own validation of what the file declared
@@ -206,6 +285,7 @@ def _with_backlash(table: CompensationTable, md32450: float) -> CompensationTabl
 
 
 def _check(table, travel, max_points, position_resolution) -> None:
+    require_equidistant(table, NAME)
     check_points(table.n_points, max_points, NAME, "points (MD38000)")
     check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
     check_travel(table, travel, NAME)

@@ -1,0 +1,340 @@
+"""``axiscal history ...``: the calibration history of every machine, axis and test.
+
+Commands: ``add FILE`` (evaluate and store; a file stored before is recognised), ``machines``,
+``list`` (filters ``--machine --axis --kind --since``), ``show ID`` (the stored test evaluated
+again from its stored bytes, with ``--plot``/``--report``), ``compare ID1 ID2``, ``trend
+--machine M --axis A --parameter P [--tolerance T]``, ``export ARCHIVE.zip`` and ``import
+ARCHIVE.zip``. Every command takes ``--db URL`` (default ``AXISCAL_DB``, else SQLite in the
+user's data folder) and ``--json``.
+
+JSON output (``--json``), stable keys:
+
+* ``add``: ``id``, ``duplicate``, ``kind``, ``machine``, ``axis``.
+* ``machines``: list of ``name``, ``axes``, ``tests``, ``last``.
+* ``list``: list of ``id``, ``machine``, ``axis``, ``kind``, ``date``, ``date_known``,
+  ``file``, ``parameters`` (name -> ``{"value", "unit"}``).
+* ``show``: ``id``, ``machine``, ``axis``, ``kind``, ``date``, ``file``, ``sha256``,
+  ``stored_with`` (axiscal version), ``parameters``, ``result`` (the evaluation), ``tables``.
+* ``compare``: ``first``, ``second``, ``parameters`` (list of ``name``, ``first``, ``second``,
+  ``change``, ``unit``), ``targets``, ``difference``, ``target_unit``, ``unit``.
+* ``trend``: ``parameter``, ``unit``, ``points`` (``date``, ``value``, ``test``), ``model``,
+  ``drift_per_year``, ``u_drift_per_year``, ``level``, ``tolerance``, ``crossing``,
+  ``u_crossing_days``, ``recalibrate_by``.
+* ``export``/``import``: ``archive``, ``tests`` / ``added``, ``duplicates``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, plot_path, print_json, report_path
+
+__all__ = ["register", "store_run"]
+
+app = typer.Typer(help="Calibration history: every machine, axis, test, result and table kept, "
+                  "compared and trended (SQLite by default, PostgreSQL with --db).",
+                  no_args_is_help=True)
+
+_DB = typer.Option(None, "--db", help="Database URL (default: AXISCAL_DB, else SQLite in the "
+                   "user's data folder), e.g. postgresql+psycopg://user@host/axiscal.")
+_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
+
+
+def _store(db):
+    from axiscal.store import open_store
+
+    return open_store(db)
+
+
+@app.command("add")
+def add(
+    file: Path = typer.Argument(..., help="A data file axiscal evaluates (positioning, "
+                                "straightness, ballbar, diagonal or five-error CSV, JSON)."),
+    machine: Optional[str] = typer.Option(None, "--machine", help="Machine name (default: the "
+                                          "file's)."),
+    axis: Optional[str] = typer.Option(None, "--axis", help="Axis name (default: the file's)."),
+    kind: Optional[str] = typer.Option(None, "--kind", help="iso230-2, straightness, ballbar, "
+                                       "diagonal or motion (default: from the content)."),
+    instrument: str = typer.Option("", "--instrument", help="Instrument and its serial."),
+    note_: str = typer.Option("", "--note", help="A note kept with the test."),
+    date: Optional[str] = typer.Option(None, "--date", help="Test date YYYY-MM-DD (default: the "
+                                       "file's, else today, marked as unknown)."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """Evaluate a test file and store it in the history.
+
+    Example: axiscal history add demo-output/linear_data.csv --machine VMC-800 --axis X
+    """
+    from axiscal.io._files import read_bytes
+
+    raw = read_bytes(file)
+    r = _store(db).add(raw, file.name, machine=machine, axis=axis, kind=kind,
+                       instrument=instrument, note=note_, date=date)
+    if json_out:
+        print_json({"id": r.id, "duplicate": r.duplicate, "kind": r.kind, "machine": r.machine,
+                    "axis": r.axis})
+    elif r.duplicate:
+        typer.echo(f"already stored as test {r.id} ({r.machine} {r.axis}, {r.kind}): "
+                   "same file content")
+    else:
+        typer.echo(f"stored as test {r.id}: {r.machine} {r.axis}, {r.kind}")
+
+
+def store_run(file: Path, db, machine=None, axis=None) -> None:
+    """The ``--history`` step of an evaluating command: store the file just evaluated."""
+    from axiscal.io._files import read_bytes
+
+    r = _store(db).add(read_bytes(file), file.name, machine=machine, axis=axis)
+    note(f"history: {'already stored as' if r.duplicate else 'stored as'} test {r.id} "
+         f"({r.machine} {r.axis})")
+
+
+@app.command("machines")
+def machines(db: Optional[str] = _DB, json_out: bool = _JSON) -> None:
+    """Every machine with its axes and tests.
+
+    Example: axiscal history machines
+    """
+    rows = _store(db).machines()
+    if json_out:
+        print_json([{"name": m.name, "axes": list(m.axes), "tests": m.tests,
+                     "last": m.last.isoformat() if m.last else None} for m in rows])
+        return
+    if not rows:
+        typer.echo("the history is empty (axiscal history add FILE --machine NAME --axis X)")
+    for m in rows:
+        last = f"{m.last:%Y-%m-%d}" if m.last else "—"
+        typer.echo(f"{m.name:<24} axes {' '.join(m.axes) or '—':<12} {m.tests:>5} tests, "
+                   f"last {last}")
+
+
+@app.command("list")
+def list_(
+    machine: Optional[str] = typer.Option(None, "--machine", help="Only this machine."),
+    axis: Optional[str] = typer.Option(None, "--axis", help="Only this axis."),
+    kind: Optional[str] = typer.Option(None, "--kind", help="Only this kind of test."),
+    since: Optional[str] = typer.Option(None, "--since", help="Only tests on or after "
+                                        "YYYY-MM-DD."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """Stored tests, newest first.
+
+    Example: axiscal history list --machine VMC-800 --axis X
+    """
+    from axiscal.store.history import _date
+
+    when = _date(since)[0] if since else None
+    rows = _store(db).tests(machine=machine, axis=axis, kind=kind, since=when)
+    if json_out:
+        print_json([_row(t) for t in rows])
+        return
+    if not rows:
+        typer.echo("no stored test matches")
+    for t in rows:
+        key = next((k for k in ("E", "squareness", "straightness") if k in t.parameters), None)
+        main = f"{key} {t.parameters[key][0]:.3f} {t.parameters[key][1]}" if key else ""
+        date = f"{t.tested_at:%Y-%m-%d}" + ("" if t.date_known else "?")
+        typer.echo(f"{t.id:>6}  {date:<11} {t.machine:<20} {t.axis:<4} {t.kind:<13} {main:<22} "
+                   f"{t.filename}")
+
+
+@app.command("show")
+def show(
+    test_id: int = typer.Argument(..., help="Test id (from 'history list')."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the test's plot again "
+                                        "(.png, .svg, .pdf)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write its HTML report again "
+                                          "(.html)."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """A stored test, evaluated again from its stored bytes (same numbers as the first time).
+
+    Example: axiscal history show 1 --report again.html
+    """
+    plot = plot_path(plot) if plot else None
+    report = report_path(report) if report else None
+    t = _store(db).get(test_id)
+    ev = t.evaluate_again()
+    if plot or report:
+        _figures(ev, plot, report, t)
+    if json_out:
+        s = t.summary
+        print_json({"id": s.id, "machine": s.machine, "axis": s.axis, "kind": s.kind,
+                    "date": s.tested_at.isoformat(), "date_known": s.date_known,
+                    "file": s.filename, "sha256": t.sha256, "stored_with": t.axiscal_version,
+                    "parameters": {k: {"value": v, "unit": u} for k, (v, u) in
+                                   ev.parameters.items()},
+                    "result": ev.result,
+                    "tables": [{"controller": c, "file": f} for c, f, _ in t.tables]})
+        return
+    s = t.summary
+    typer.echo(f"test {s.id}: {s.machine} {s.axis}, {s.kind}, {s.tested_at:%Y-%m-%d}"
+               f"{'' if s.date_known else ' (date not in the file: the day it was stored)'}, "
+               f"file {s.filename} (sha256 {t.sha256[:12]}…), stored with axiscal "
+               f"{t.axiscal_version}")
+    if ev.kind == "iso230-2":
+        from axiscal.cli.iso230_2 import render_result
+
+        render_result(ev.evaluation, ev.dataset)
+    else:
+        typer.echo(str(ev.evaluation))
+    for c, f, _ in t.tables:
+        typer.echo(f"compensation table: {c} {f}")
+
+
+@app.command("compare")
+def compare(
+    first: int = typer.Argument(..., help="Test id (before)."),
+    second: int = typer.Argument(..., help="Test id (after)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Per-target difference plot "
+                                        "(.png, .svg, .pdf)."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """Two tests of one axis side by side: every parameter, its change, the difference per target.
+
+    Example: axiscal history compare 1 2 --plot change.png
+    """
+    from axiscal.store.analysis import compare_tests
+
+    plot = plot_path(plot) if plot else None
+    store = _store(db)
+    c = compare_tests(store.get(first), store.get(second))
+    if plot:
+        from axiscal.report.history_plots import comparison_figure
+
+        comparison_figure(c).savefig(plot, dpi=110)
+        note(f"wrote plot {plot}")
+    if json_out:
+        print_json(c.as_dict())
+    else:
+        typer.echo(str(c))
+
+
+@app.command("trend")
+def trend(
+    machine: str = typer.Option(..., "--machine", help="Machine name."),
+    axis: str = typer.Option(..., "--axis", help="Axis name."),
+    parameter: str = typer.Option("E", "--parameter", help="Parameter (E, A, R, B, M, "
+                                  "squareness, straightness ...)."),
+    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Tolerance to predict "
+                                              "the crossing of, in the parameter's unit."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Trend plot (.png, .svg, .pdf)."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """A parameter over time with its fitted drift, and when it will reach a tolerance.
+
+    Example: axiscal history trend --machine VMC-800 --axis X --parameter E --tolerance 15
+    """
+    from axiscal.store import trend as fit
+
+    plot = plot_path(plot) if plot else None
+    tr = fit(_store(db), machine, axis, parameter, tolerance)
+    if plot:
+        from axiscal.report.history_plots import trend_figure
+
+        trend_figure(tr, f"{machine} {axis.upper()}").savefig(plot, dpi=110)
+        note(f"wrote plot {plot}")
+    if json_out:
+        print_json(tr.as_dict())
+    else:
+        typer.echo(f"{machine} {axis.upper()}: {tr}")
+
+
+@app.command("export")
+def export(
+    archive: Path = typer.Argument(..., help="Archive to write (.zip)."),
+    machine: Optional[str] = typer.Option(None, "--machine", help="Only this machine."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """Write the history (or one machine's) as a portable archive: JSON lines + raw files.
+
+    Example: axiscal history export vmc800.zip --machine VMC-800
+    """
+    from axiscal.cli._common import typed_path
+    from axiscal.store.archive import export_history
+
+    typed_path(archive, "archive", (".zip",))
+    n = export_history(_store(db), archive, machine)
+    if json_out:
+        print_json({"archive": str(archive), "tests": n})
+    else:
+        typer.echo(f"wrote {n} tests to {archive}")
+
+
+@app.command("import")
+def import_(
+    archive: Path = typer.Argument(..., help="Archive written by 'history export' (.zip)."),
+    db: Optional[str] = _DB,
+    json_out: bool = _JSON,
+) -> None:
+    """Store every test of an archive (tests already stored are recognised and skipped).
+
+    Example: axiscal history import vmc800.zip --db sqlite:///customer.sqlite
+    """
+    from axiscal.errors import MissingFileError
+    from axiscal.store.archive import import_history
+
+    if not archive.is_file():
+        raise MissingFileError(archive)
+    store = _store(db)
+    if json_out:
+        added, dup = import_history(store, archive)
+        print_json({"archive": str(archive), "added": added, "duplicates": dup})
+        return
+    from rich.progress import Progress
+
+    with Progress(transient=True) as bar:
+        task = bar.add_task("importing", total=None)
+        added, dup = import_history(store, archive,
+                                    lambda i, n: bar.update(task, completed=i, total=n))
+    typer.echo(f"imported {added} tests from {archive} ({dup} already stored)")
+
+
+def _row(t) -> dict:
+    return {"id": t.id, "machine": t.machine, "axis": t.axis, "kind": t.kind,
+            "date": t.tested_at.isoformat(), "date_known": t.date_known, "file": t.filename,
+            "parameters": {k: {"value": v, "unit": u} for k, (v, u) in t.parameters.items()}}
+
+
+def _figures(ev, plot, report, stored) -> None:
+    """The plot and report of a stored test, made again from its readings."""
+    from axiscal.errors import InputError
+
+    if ev.kind == "iso230-2":
+        if plot:
+            from axiscal.report.plots import save_iso230_2_plot
+
+            save_iso230_2_plot(ev.evaluation, ev.dataset, plot)
+        if report:
+            from axiscal.report.html import write_positioning_report
+
+            write_positioning_report(report, ev.dataset, ev.evaluation)
+    elif ev.kind == "ballbar" and plot and not report:
+        from axiscal.report.squareness_plots import save_ballbar_plot
+
+        save_ballbar_plot(ev.dataset.runs, ev.evaluation, plot,
+                          title=f"Ballbar test {stored.summary.filename}")
+    elif ev.kind == "straightness" and plot and not report:
+        from axiscal.report.squareness_plots import save_straightness_plot
+
+        save_straightness_plot(ev.dataset, ev.evaluation, plot)
+    else:
+        raise InputError(f"a {ev.kind} test has no {'report' if report else 'plot'} here; "
+                         "use --json")
+    for p, what in ((plot, "plot"), (report, "report")):
+        if p:
+            note(f"wrote {what} {p}")
+
+
+def register(root: typer.Typer) -> None:
+    """Add the ``history`` command group to the application."""
+    root.add_typer(app, name="history")

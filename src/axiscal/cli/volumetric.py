@@ -1,0 +1,282 @@
+"""``axiscal volumetric ...``: the 21 geometric errors of a three-axis machine, mapped,
+compensated and verified on the body diagonals.
+
+Commands: ``simulate [--out DIR]`` (a simulated machine with all 21 errors, measured by the
+simulated laser tests; ``--out`` writes the measured files and a configuration), ``map CONFIG``
+(the volumetric error field, its figures and the body diagonals), ``compensate CONFIG
+--controller C`` (positioning and cross-axis tables; ``--verify`` re-measures a simulated
+machine with them applied). The configuration format is in :mod:`axiscal.io.volumetric`.
+
+JSON output (``--json``), stable keys, units in the key names:
+
+* ``map``: ``machine``, ``chain``, ``tool_offset_mm``, ``largest_um``, ``largest_at_mm``,
+  ``range_um`` (``X``, ``Y``, ``Z``), ``grid_points``, ``diagonals`` (list of ``name``,
+  ``start_mm``, ``end_mm``, ``range_um``), ``missing`` (error motions taken as zero); for a
+  simulated configuration also ``truth`` (``largest_um``, ``range_um``) and
+  ``mapped_minus_true_um`` (largest |mapped − true| over the grid).
+* ``compensate``: ``controller``, ``receiving``, ``files`` (names written), ``left_by_tables_um``;
+  with ``--verify`` also ``verify``: ``figures`` (name -> ``before_um``, ``after_um``,
+  ``reduction``), ``spindle_tilt_um_per_m``, ``left_by_tables_um``.
+* ``simulate``: ``seed``, ``chain``, ``squareness_um_per_m`` (true ``xy``, ``yz``, ``zx``),
+  ``measured_squareness_um_per_m``, ``largest_um`` (true), ``mapped_minus_true_um``, ``config``
+  (the written configuration, or null).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, plot_path, print_json, report_path
+
+__all__ = ["register"]
+
+app = typer.Typer(help="Volumetric accuracy of a three-axis machine: the 21 geometric errors "
+                  "(ISO 230-1) mapped by the rigid-body model (ISO/TR 16907), compensated by "
+                  "tables, verified on the body diagonals (ISO 230-6). Format: README, "
+                  "'Volumetric configuration'.", no_args_is_help=True)
+
+_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
+_TRUE_SQUARENESS = (25.0, -15.0, 30.0)
+
+
+@app.command("simulate")
+def simulate(
+    out: Optional[Path] = typer.Option(None, "--out", help="Folder for the measured files and "
+                                       "volumetric.toml (created if missing)."),
+    seed: int = typer.Option(1, "--seed", min=0, help="Random seed of the machine and the "
+                             "measurement noise."),
+    chain: str = typer.Option("X Y | Z", "--chain", help="Kinematic chain, work-piece side | "
+                              "tool side, e.g. 'X Y | Z' or '| X Y Z'."),
+    points: int = typer.Option(21, "--points", min=2, max=1000, help="Targets per axis."),
+    as_json: bool = _JSON,
+):
+    """A simulated machine with all 21 errors, measured by the simulated laser tests.
+
+    Example: axiscal volumetric simulate --out vol && axiscal volumetric map vol/volumetric.toml
+    """
+    import numpy as np
+
+    from axiscal.machines.three_axis import simulated_machine
+    from axiscal.procedures.volumetric import MeasurementNoise, measure_tests, true_field
+    from axiscal.standards.volumetric import KinematicChain, map_volume
+
+    KinematicChain.parse(chain)
+    if out is not None:
+        _folder(out)
+    rng = np.random.default_rng(seed)
+    machine = simulated_machine(rng, chain=chain, squareness_um_per_m=_TRUE_SQUARENESS)
+    errors, tests = measure_tests(machine, rng, points=points, tool_offset=(0, 0, -0.1))
+    exact = measure_tests(machine, np.random.default_rng(0), points=points,
+                          tool_offset=(0, 0, -0.1), noise=MeasurementNoise(0, 0, 0, 0))[0]
+    mapped = map_volume(errors, 11)
+    truth = map_volume(errors, 11, field=true_field(machine, tool_offset=(0, 0, -0.1)))
+    cfg = None
+    if out is not None:
+        from axiscal.io.volumetric import write_simulation
+
+        cfg = write_simulation(out, machine, errors, tests, seed, _TRUE_SQUARENESS, points)
+    diff = float(np.abs(mapped.error - truth.error).max())
+    if as_json:
+        print_json({"seed": seed, "chain": str(machine.chain),
+                    "squareness_um_per_m": {k: v * 1e6 for k, v in exact.squareness.items()},
+                    "measured_squareness_um_per_m": {k: v * 1e6 for k, v in
+                                                     errors.squareness.items()},
+                    "largest_um": truth.largest * 1e6, "mapped_minus_true_um": diff * 1e6,
+                    "config": str(cfg) if cfg else None})
+        return
+    typer.echo(f"{machine.name}, chain {machine.chain}, seed {seed}: 21 errors measured "
+               f"({points} targets per axis)")
+    sq = ", ".join(f"{k.upper()} {v * 1e6:+.2f} (true {exact.squareness[k] * 1e6:+.2f})"
+                   for k, v in errors.squareness.items())
+    typer.echo(f"  squareness measured µm/m: {sq}")
+    typer.echo(f"  true volumetric error: {truth}")
+    typer.echo(f"  mapped from the measured errors: {mapped}")
+    typer.echo(f"  largest |mapped − true| over the 11³ grid: {diff * 1e6:.3f} µm")
+    if cfg:
+        typer.echo(f"  wrote {cfg} and the 21 measured files beside it")
+
+
+@app.command("map")
+def map_(
+    config: Path = typer.Argument(..., help="Volumetric configuration (TOML)."),
+    grid: int = typer.Option(11, "--grid", min=2, max=200, help="Grid points per axis."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the 3-D grid and slices "
+                                        "(.png, .svg, .pdf)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report (.html)."),
+    as_json: bool = _JSON,
+):
+    """The volumetric error at every point of the working volume, and the body diagonals.
+
+    Example: axiscal volumetric map vol/volumetric.toml --plot vol.png --report vol.html
+    """
+    import numpy as np
+
+    from axiscal.io.volumetric import read_volumetric_config
+    from axiscal.standards.volumetric import body_diagonals, map_volume
+
+    plot = plot_path(plot) if plot else None
+    report = report_path(report) if report else None
+    cfg = read_volumetric_config(config)
+    e = cfg.errors
+    vmap = map_volume(e, grid, tool_offset=cfg.tool_offset)
+    diags = body_diagonals(e, tool_offset=cfg.tool_offset)
+    truth = _truth_map(cfg, grid) if cfg.simulation else None
+    out = {"machine": cfg.name, "chain": str(e.chain),
+           "tool_offset_mm": [v * 1e3 for v in cfg.tool_offset], **vmap.summary(),
+           "diagonals": [{"name": d.name, "start_mm": d.start * 1e3, "end_mm": d.end * 1e3,
+                          "range_um": d.range * 1e6} for d in diags],
+           "missing": list(e.missing)}
+    if truth is not None:
+        out["truth"] = {"largest_um": truth.largest * 1e6,
+                        "range_um": {a: v * 1e6 for a, v in truth.ranges.items()}}
+        out["mapped_minus_true_um"] = float(np.abs(vmap.error - truth.error).max()) * 1e6
+    if plot:
+        from axiscal.report.volumetric_plots import volumetric_figure
+
+        volumetric_figure(vmap, f"Volumetric error map — {cfg.name}").savefig(plot, dpi=110)
+    if report:
+        from axiscal.report.volumetric_plots import volumetric_report
+
+        volumetric_report(vmap, diags, e, name=cfg.name, truth=truth).write(report)
+    if as_json:
+        print_json(out)
+        return
+    typer.echo(f"volumetric map of {cfg.name} (chain {e.chain}), {grid}³ grid, tool offset "
+               f"{', '.join(f'{v * 1e3:g}' for v in cfg.tool_offset)} mm")
+    typer.echo(f"  {vmap}")
+    for d in diags:
+        typer.echo(f"  body diagonal {d.name}: range {d.range * 1e6:.2f} µm")
+    if e.missing:
+        note(f"not measured, taken as zero: {', '.join(e.missing)}")
+    if truth is not None:
+        typer.echo(f"  simulation truth: {truth}; largest |mapped − true| "
+                   f"{out['mapped_minus_true_um']:.3f} µm")
+
+
+@app.command("compensate")
+def compensate(
+    config: Path = typer.Argument(..., help="Volumetric configuration (TOML)."),
+    controller: str = typer.Option(..., "--controller", help="siemens-840d, heidenhain or csv."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Folder for the tables (created if "
+                                       "missing)."),
+    receiving: list[str] = typer.Option([], "--receiving", help="Axis receiving a squareness "
+                                        "correction, e.g. zx=Z (repeatable; default xy=Y yz=Z "
+                                        "zx=Z: the axis aligned to the spindle)."),
+    spacing: float = typer.Option(20.0, "--spacing", min=0.001, max=10000.0,
+                                  help="Table spacing, mm."),
+    verify: bool = typer.Option(False, "--verify", help="Apply the tables to the simulated "
+                                "machine and re-measure (a simulated configuration only)."),
+    as_json: bool = _JSON,
+):
+    """Positioning and cross-axis tables that remove what tables can, in the order of the
+    squareness paper's Appendix II.
+
+    Example: axiscal volumetric compensate vol/volumetric.toml --controller siemens-840d --verify
+    """
+    import numpy as np
+
+    from axiscal.compensation.volumetric import volumetric_tables, write_tables
+    from axiscal.errors import InputError
+    from axiscal.io.volumetric import read_volumetric_config
+
+    rec = {}
+    for item in receiving:
+        if "=" not in item:
+            raise InputError(f"--receiving {item!r}: write PAIR=AXIS, e.g. zx=Z")
+        k, v = item.split("=", 1)
+        rec[k.strip().lower()] = v.strip()
+    if out is not None:
+        _folder(out)
+    cfg = read_volumetric_config(config)
+    if verify and not cfg.simulation:
+        raise InputError(f"{config}: --verify needs a simulated machine (a configuration "
+                         "written by 'axiscal volumetric simulate --out')")
+    c = cfg.compensation
+    rec = {**c.get("receiving", {}), **rec}
+    tables = volumetric_tables(cfg.errors, tool_offset=cfg.tool_offset, receiving=rec,
+                               spacing=float(c.get("spacing_mm", spacing)),
+                               resolution=float(c.get("resolution_um", 0.1)))
+    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in cfg.errors.travel.items()}
+    files = write_tables(tables, controller, travel_mm)
+    result = None
+    if verify:
+        from axiscal.compensation.volumetric import verify as run_verify
+
+        machine, _ = _simulated(cfg)
+        result = run_verify(machine, cfg.errors, tables, controller,
+                            np.random.default_rng(int(cfg.simulation.get("seed", 1)) + 1))
+    written = _write_files(files, out) if out is not None else []
+    if as_json:
+        d = {"controller": controller, "receiving": tables.receiving, "files": written,
+             "left_by_tables_um": tables.uncompensable * 1e6}
+        if result is not None:
+            d["verify"] = result.to_dict()
+        print_json(d)
+        return
+    typer.echo(f"{controller} volumetric compensation of {cfg.name}: "
+               f"{len(files)} tables (3 positioning, {len(files) - 3} cross-axis)")
+    typer.echo(str(tables))
+    for n in tables.notes:
+        note(n)
+    if written:
+        typer.echo(f"wrote {', '.join(written)} in {out}")
+    if result is not None:
+        typer.echo(str(result))
+
+
+def _truth_map(cfg, grid):
+    from axiscal.procedures.volumetric import true_field
+    from axiscal.standards.volumetric import map_volume
+
+    machine, _ = _simulated(cfg)
+    return map_volume(cfg.errors, grid, tool_offset=cfg.tool_offset,
+                      field=true_field(machine, cfg.errors.reference, cfg.tool_offset,
+                                       cfg.errors.measured_tool_offset))
+
+
+def _simulated(cfg):
+    """The simulated machine a configuration was measured on (regenerated from its seed)."""
+    import numpy as np
+
+    from axiscal.errors import ConfigError
+    from axiscal.machines.three_axis import simulated_machine
+
+    seed = cfg.simulation.get("seed", 1)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ConfigError(f"{cfg.path}: [simulation] seed = {seed!r}: a whole number >= 0")
+    sq = cfg.simulation.get("squareness_um_per_m", list(_TRUE_SQUARENESS))
+    travel = tuple((lo * 1e3, hi * 1e3) for lo, hi in (cfg.errors.travel[a] for a in "XYZ"))
+    rng = np.random.default_rng(seed)
+    return simulated_machine(rng, chain=str(cfg.errors.chain), travel_mm=travel,
+                             squareness_um_per_m=tuple(sq)), rng
+
+
+def _folder(out: Path) -> None:
+    from axiscal.errors import InputError
+
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create folder {out}: {exc.strerror or exc}") from None
+
+
+def _write_files(files, out: Path) -> list[str]:
+    from axiscal.io._files import write_text_atomic
+
+    names = []
+    for f in files:
+        write_text_atomic(out / f.filename, f.text)
+        names.append(f.filename)
+        for name, text in f.extra_files.items():
+            extra = name if name not in names else f"{Path(f.filename).stem}_{name}"
+            write_text_atomic(out / extra, text)
+            names.append(extra)
+    return names
+
+
+def register(root: typer.Typer) -> None:
+    """Add the ``volumetric`` command group to the application."""
+    root.add_typer(app, name="volumetric")

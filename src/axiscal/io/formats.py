@@ -1,0 +1,85 @@
+"""Every file format axiscal reads and writes (``axiscal formats``).
+
+One entry a format: its name, whether axiscal reads and/or writes it, its extensions, an example
+file a user can open (a file of the repository or a command that writes one), and where it is
+described (a module docstring, or the public source of a foreign format).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+__all__ = ["FileFormat", "FORMATS"]
+
+
+@dataclass(frozen=True)
+class FileFormat:
+    """One format."""
+
+    name: str
+    read: bool
+    write: bool
+    extensions: tuple
+    example: str
+    described_in: str
+
+    def as_dict(self) -> dict:
+        d = asdict(self)
+        d["extensions"] = list(self.extensions)
+        return d
+
+
+FORMATS: tuple[FileFormat, ...] = (
+    FileFormat("Tidy positioning CSV (ISO 230-2 readings)", True, True, (".csv",),
+               "demo-output/linear_data.csv (make demo)", "axiscal.io.csv; README 'File formats'"),
+    FileFormat("axiscal positioning JSON", True, True, (".json",),
+               "axiscal simulate src/axiscal/data/demo_linear.toml --data x.json",
+               "axiscal.io.json"),
+    FileFormat("EPICS ecmc ISO 230-2 file", True, True, (".txt", ".ecmc"),
+               "tests/io (built to the ecmc description)", "axiscal.io.ecmc"),
+    FileFormat("Raw laser readings (uncompensated, with times)", True, False, (".csv",),
+               "axiscal.io.measured docstring", "axiscal.io.measured"),
+    FileFormat("Environment log (air, pressure, humidity, material sensors)", True, False,
+               (".csv", ".json"), "axiscal.io.measured docstring", "axiscal.io.measured"),
+    FileFormat("Continuous record (time, reading[, commanded])", True, False, (".csv",),
+               "axiscal.io.measured docstring", "axiscal.io.measured"),
+    FileFormat("Renishaw XL-80 dynamic capture", True, False, (".rtx",),
+               "tests/io/test_rtx.py builds one to the public description",
+               "axiscal.io.rtx (T. Pani, rtx2csv, github.com/TanmayPani/rtx2csv)"),
+    FileFormat("Test plan", True, True, (".csv",),
+               "axiscal plan linear --length 800 --csv plan.csv", "axiscal.io.measured"),
+    FileFormat("Straightness trajectory", True, True, (".csv",),
+               "examples/squareness_L180_x.csv", "axiscal.io.straightness"),
+    FileFormat("Ballbar trace", True, True, (".csv",), "examples/squareness_ballbar_150mm.csv",
+               "axiscal.io.ballbar"),
+    FileFormat("Multi-point diagonal test", True, True, (".csv",),
+               "examples/squareness_diagonal_600x800.csv", "axiscal.io.ballbar"),
+    FileFormat("Five motion errors of a rotary axis", True, True, (".csv",),
+               "axiscal motion simulate examples/motion_indexing_table.toml --csv m.csv",
+               "axiscal.io.motion"),
+    FileFormat("Machine, instrument and test configurations", True, False, (".toml",),
+               "examples/*.toml, src/axiscal/data/*.toml", "README 'File formats'"),
+    FileFormat("Volumetric machine configuration", True, True, (".toml",),
+               "axiscal volumetric simulate --out vol", "axiscal.io.volumetric"),
+    FileFormat("ISO 230-2 result JSON (for compensation)", True, True, (".json",),
+               "axiscal iso230-2 FILE --json > r.json", "axiscal.io.results"),
+    FileFormat("Siemens 840D compensation (%_N_AX_EEC_INI, %_N_NC_CEC_INI)", True, True,
+               (".ini",), "axiscal compensate demo-output/linear_data.csv --controller "
+               "siemens-840d --spacing 10 --out x.ini", "axiscal.compensation.controllers"),
+    FileFormat("Fanuc pitch error parameters", True, True, (".txt",),
+               "axiscal compensate ... --controller fanuc", "axiscal.compensation.controllers"),
+    FileFormat("Heidenhain .COM and .CMA", True, True, (".com", ".cma"),
+               "axiscal compensate ... --controller heidenhain",
+               "axiscal.compensation.controllers"),
+    FileFormat("LinuxCNC compensation file", True, True, (".txt", ".dat"),
+               "axiscal compensate ... --controller linuxcnc",
+               "axiscal.compensation.controllers"),
+    FileFormat("Compensation table CSV", True, True, (".csv",),
+               "axiscal compensate ... --controller csv", "axiscal.compensation.controllers"),
+    FileFormat("Calibration history archive", True, True, (".zip",),
+               "axiscal history export h.zip", "axiscal.store.archive"),
+    FileFormat("HTML report", False, True, (".html",), "demo-output/linear_report.html",
+               "axiscal.report.html"),
+    FileFormat("Plot", False, True, (".png", ".svg", ".pdf"), "demo-output/linear_iso230-2.png",
+               "axiscal.report"),
+)

@@ -1,0 +1,318 @@
+"""Files of a real measurement: raw laser readings, an environment log, a test plan, a record.
+
+Raw laser readings (CSV)
+------------------------
+One reading per line, as the laser gave it before any compensation, with its time::
+
+    # reading_unit=mm target_unit=mm machine="VMC 800" axis=X dead_path_mm=120 index=1
+    time_s,target,direction,run,reading
+    12.0,0,+,1,0.000000
+    17.5,100,+,1,100.027089
+
+``reading`` is the displacement from the laser's datum (zeroed at the first target unless
+``datum`` says otherwise) computed with the vacuum wavelength (``index=1``, the default) or with a
+fixed index (``index=1.000271``); ``dead_path_mm`` the distance between the interferometer and the
+reflector at the datum.
+
+Environment log (CSV or JSON)
+-----------------------------
+::
+
+    # expansion_coefficient_ppm=11.5
+    time_s,air_temperature_c,pressure_pa,humidity_pct,material_temperature_c,material_temperature_c
+    0,20.10,101320,45.0,20.40,20.52
+    60,20.14,101318,45.2,20.41,20.55
+
+Any number of ``material_temperature_c`` columns (one per sensor, averaged); JSON holds the same
+as ``{"expansion_coefficient_ppm": ..., "samples": [{"time_s": ..., "air_temperature_c": ...,
+"material_temperature_c": [...]}, ...]}``.
+
+Test plan (CSV)
+---------------
+What ``axiscal plan ... --csv`` writes: ``seq,kind,position,direction,run,target_index,dwell_s``.
+
+Continuous record (CSV)
+-----------------------
+``time_s,reading_mm[,commanded_mm]`` (or ``reading_deg`` for a rotary axis); a Renishaw ``.rtx``
+dynamic capture is read by :mod:`axiscal.io.rtx`.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from axiscal import units
+from axiscal._parse import csv_cells, finite_number
+from axiscal.errors import DataFormatError
+from axiscal.procedures.environment import EnvironmentLog, RawReadings
+
+__all__ = ["RawReadings", "EnvironmentLog", "PlanRows", "Record", "parse_raw_readings",
+           "read_raw_readings", "parse_environment_log", "read_environment_log",
+           "parse_plan_csv", "read_plan_csv", "parse_record_csv", "read_record"]
+
+
+@dataclass(frozen=True, eq=False)
+class PlanRows:
+    """A test plan as exported (measure and overrun moves, in order)."""
+
+    kind: np.ndarray
+    position: np.ndarray
+    direction: np.ndarray
+    run: np.ndarray
+    target_index: np.ndarray
+    dwell: np.ndarray
+    target_unit: str
+    axis: str
+    axis_kind: str
+    source: str = "<text>"
+
+    @property
+    def targets(self) -> np.ndarray:
+        """The distinct targets, ordered by index."""
+        m = self.kind == "measure"
+        idx = self.target_index[m]
+        out = np.empty(int(idx.max()) + 1)
+        out[idx] = self.position[m]
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """A continuous record: readings at a constant (or given) sample rate."""
+
+    times: np.ndarray            # s
+    readings: np.ndarray         # m (linear) or rad (rotary)
+    kind: str                    # "linear" or "rotary"
+    commanded: np.ndarray | None = None
+    sample_rate: float = 0.0
+    header: dict = field(default_factory=dict)
+    unit: str = "mm"
+    source: str = "<text>"
+
+
+def read_raw_readings(path) -> RawReadings:
+    """Read a raw readings CSV (module docstring)."""
+    from axiscal.io._files import read_text
+
+    return parse_raw_readings(read_text(path), str(path))
+
+
+def parse_raw_readings(text: str, source: str = "<text>") -> RawReadings:
+    """Parse raw laser readings; errors name the line."""
+    from axiscal.io._tidy import parse_tidy
+
+    keys = {"reading_unit", "target_unit", "machine", "axis", "dead_path_mm", "index", "datum",
+            "operator", "date", "instrument"}
+    meta, rows = parse_tidy(text, ("time_s", "target", "direction", "run", "reading"), keys,
+                            source)
+    ru, tu = meta.get("reading_unit", "mm"), meta.get("target_unit", "mm")
+    try:
+        fr = units.factor(ru, "length")
+        units.factor(tu, "length")
+    except Exception as exc:       # noqa: BLE001 - unit errors are AxiscalErrors
+        raise DataFormatError(str(exc), source) from None
+    t = np.array([finite_number(r["time_s"], "time_s", source, n) for n, r in rows])
+    tg = np.array([finite_number(r["target"], "target", source, n) for n, r in rows])
+    d = np.array([_direction(r["direction"], source, n) for n, r in rows])
+    run = np.array([int(finite_number(r["run"], "run", source, n)) for n, r in rows])
+    x = np.array([finite_number(r["reading"], "reading", source, n) for n, r in rows]) * fr
+    if np.any(np.diff(t) < 0):
+        i = int(np.argmax(np.diff(t) < 0))
+        raise DataFormatError(f"time_s goes back from {t[i]:g} to {t[i + 1]:g} s",
+                              source, rows[i + 1][0])
+    dead = _meta_number(meta, "dead_path_mm", 0.0, 0.0, 1e5, source) * 1e-3
+    index = _meta_number(meta, "index", 1.0, 0.99, 1.01, source)
+    datum = _meta_number(meta, "datum", float(tg[0]), -1e9, 1e9, source)
+    return RawReadings(t, tg, d, run, x, tu, dead, index, datum, meta, source)
+
+
+def read_environment_log(path) -> EnvironmentLog:
+    """Read an environment log (CSV, or JSON by extension or content)."""
+    from axiscal.io._files import read_text
+
+    return parse_environment_log(read_text(path), str(path))
+
+
+def parse_environment_log(text: str, source: str = "<text>") -> EnvironmentLog:
+    """Parse an environment log (module docstring)."""
+    if text.lstrip().startswith("{"):
+        return _environment_json(text, source)
+    lines = [(n, ln.strip()) for n, ln in enumerate(text.splitlines(), 1) if ln.strip()]
+    alpha = None
+    header, rows = None, []
+    for n, ln in lines:
+        if ln.startswith("#"):
+            for tok in ln[1:].split():
+                if tok.startswith("expansion_coefficient_ppm="):
+                    alpha = finite_number(tok.split("=", 1)[1], "expansion_coefficient_ppm",
+                                          source, n) * 1e-6
+            continue
+        cells = [c.strip().lower() for c in csv_cells(ln, source, n)]
+        if header is None:
+            header = cells
+            need = ("time_s", "air_temperature_c", "pressure_pa", "humidity_pct")
+            missing = [c for c in need if c not in header]
+            if missing:
+                raise DataFormatError(f"environment log header lacks {', '.join(missing)}",
+                                      source, n)
+            continue
+        if len(cells) != len(header):
+            raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
+                                  source, n)
+        rows.append((n, [finite_number(c, header[i], source, n) for i, c in enumerate(cells)]))
+    if header is None or not rows:
+        raise DataFormatError("no samples: expected a header time_s,air_temperature_c,"
+                              "pressure_pa,humidity_pct[,material_temperature_c...]", source)
+    a = np.array([r for _, r in rows])
+    col = {c: i for i, c in enumerate(header)}
+    mats = [i for i, c in enumerate(header) if c.startswith("material_temperature")]
+    return _log(a[:, col["time_s"]], a[:, col["air_temperature_c"]], a[:, col["pressure_pa"]],
+                a[:, col["humidity_pct"]], a[:, mats] if mats else np.zeros((len(rows), 0)),
+                alpha, source, [n for n, _ in rows])
+
+
+def read_plan_csv(path) -> PlanRows:
+    """Read a plan exported by ``axiscal plan ... --csv``."""
+    from axiscal.io._files import read_text
+
+    return parse_plan_csv(read_text(path), str(path))
+
+
+def parse_plan_csv(text: str, source: str = "<text>") -> PlanRows:
+    """Parse a plan CSV (``seq,kind,position,direction,run,target_index,dwell_s``)."""
+    from axiscal.io._tidy import parse_tidy
+
+    meta, rows = parse_tidy(text, ("seq", "kind", "position", "direction", "run",
+                                   "target_index", "dwell_s"),
+                            {"axis", "axis_kind", "target_unit", "runs", "cycle",
+                             "bidirectional", "overrun"}, source)
+    kind = np.array([r["kind"].strip().lower() for _, r in rows])
+    bad = [n for (n, _), k in zip(rows, kind) if k not in ("measure", "overrun")]
+    if bad:
+        raise DataFormatError("kind must be measure or overrun", source, bad[0])
+    pos = np.array([finite_number(r["position"], "position", source, n) for n, r in rows])
+    d = np.array([_direction(r["direction"], source, n) for n, r in rows])
+    run = np.array([int(finite_number(r["run"], "run", source, n)) for n, r in rows])
+    ti = np.array([int(finite_number(r["target_index"], "target_index", source, n))
+                   if k == "measure" else -1 for (n, r), k in zip(rows, kind)])
+    dw = np.array([finite_number(r["dwell_s"], "dwell_s", source, n) for n, r in rows])
+    if not np.any(kind == "measure"):
+        raise DataFormatError("the plan has no measure step", source)
+    tu = meta.get("target_unit", "mm")
+    ak = meta.get("axis_kind", "rotary" if tu in ("deg", "°") else "linear")
+    return PlanRows(kind, pos, d, run, ti, dw, tu, meta.get("axis", ""), ak, source)
+
+
+def read_record(path, unit: str | None = None) -> Record:
+    """Read a continuous record: ``.rtx`` (:mod:`axiscal.io.rtx`) or CSV."""
+    from pathlib import Path
+
+    if Path(path).suffix.lower() == ".rtx":
+        from axiscal.io.rtx import read_rtx
+
+        return read_rtx(path, unit=unit)
+    from axiscal.io._files import read_text
+
+    return parse_record_csv(read_text(path), str(path))
+
+
+def parse_record_csv(text: str, source: str = "<text>") -> Record:
+    """Parse ``time_s,reading_mm[,commanded_mm]`` (or ``_deg``) with NumPy (fast for long
+    records); errors name the line."""
+    import io
+
+    lines = text.splitlines()
+    start = next((i for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip()
+                  .startswith("#")), None)
+    if start is None:
+        raise DataFormatError("no data: expected a header time_s,reading_mm", source)
+    header = [c.strip().lower() for c in lines[start].split(",")]
+    unit_col = next((c for c in header if c.startswith("reading_")), None)
+    if "time_s" not in header or unit_col is None:
+        raise DataFormatError(f"header {lines[start]!r}: expected time_s,reading_mm"
+                              "[,commanded_mm] (or reading_deg)", source, start + 1)
+    unit = unit_col.split("_", 1)[1]
+    try:
+        factor = units.factor(unit)
+    except Exception as exc:       # noqa: BLE001
+        raise DataFormatError(f"{unit_col}: {exc}", source, start + 1) from None
+    try:
+        a = np.loadtxt(io.StringIO("\n".join(lines[start + 1:])), delimiter=",", ndmin=2,
+                       comments="#")
+    except ValueError as exc:
+        raise DataFormatError(f"not a number in the record ({exc})", source) from None
+    if a.shape[0] < 2 or a.shape[1] != len(header):
+        raise DataFormatError(f"{a.shape[0]} rows of {a.shape[1]} columns; expected at least "
+                              f"2 rows of {len(header)}", source)
+    if not np.isfinite(a).all():
+        raise DataFormatError("the record holds a NaN or infinite value", source)
+    t = a[:, header.index("time_s")]
+    if np.any(np.diff(t) <= 0):
+        i = int(np.argmax(np.diff(t) <= 0))
+        raise DataFormatError(f"time_s must increase: {t[i]:g} then {t[i + 1]:g}",
+                              source, start + 3 + i)
+    cmd = next((c for c in header if c.startswith("commanded_")), None)
+    kind = "rotary" if units.dimension(unit) == "angle" else "linear"
+    return Record(t, a[:, header.index(unit_col)] * factor, kind,
+                  None if cmd is None else a[:, header.index(cmd)] * factor,
+                  float((t.size - 1) / (t[-1] - t[0])), {}, unit, source)
+
+
+# -- helpers ---------------------------------------------------------------------------------
+def _direction(text: str, source: str, n: int) -> str:
+    t = text.strip().lower()
+    if t in ("+", "up", "fwd", "forward", "positive"):
+        return "+"
+    if t in ("-", "down", "bwd", "backward", "negative"):
+        return "-"
+    raise DataFormatError(f"direction {text!r}: use + or -", source, n)
+
+
+def _meta_number(meta, key, default, lo, hi, source) -> float:
+    if key not in meta:
+        return default
+    v = finite_number(meta[key], key, source)
+    if not lo <= v <= hi:
+        raise DataFormatError(f"{key}={meta[key]}: outside {lo:g} … {hi:g}", source)
+    return v
+
+
+def _environment_json(text: str, source: str) -> EnvironmentLog:
+    try:
+        d = json.loads(text)
+        samples = d["samples"]
+        rows = [(s["time_s"], s["air_temperature_c"], s["pressure_pa"], s["humidity_pct"],
+                 s.get("material_temperature_c", [])) for s in samples]
+    except (ValueError, KeyError, TypeError) as exc:
+        raise DataFormatError(f"environment log JSON: {exc}", source) from None
+    if not rows:
+        raise DataFormatError("environment log JSON has no samples", source)
+    mats = [r[4] if isinstance(r[4], list) else [r[4]] for r in rows]
+    if len({len(m) for m in mats}) != 1:
+        raise DataFormatError("every sample needs the same number of material sensors", source)
+    try:
+        a = np.array([r[:4] for r in rows], dtype=float)
+        m = np.array(mats, dtype=float).reshape(len(rows), -1)
+    except (TypeError, ValueError) as exc:
+        raise DataFormatError(f"environment log JSON: {exc}", source) from None
+    alpha = d.get("expansion_coefficient_ppm")
+    return _log(a[:, 0], a[:, 1], a[:, 2], a[:, 3], m,
+                None if alpha is None else float(alpha) * 1e-6, source,
+                list(range(1, len(rows) + 1)))
+
+
+def _log(t, air, p, h, mat, alpha, source, lines) -> EnvironmentLog:
+    if not (np.isfinite(t).all() and np.isfinite(air).all() and np.isfinite(p).all()
+            and np.isfinite(h).all() and np.isfinite(mat).all()):
+        raise DataFormatError("the environment log holds a NaN or infinite value", source)
+    if np.any(np.diff(t) <= 0):
+        i = int(np.argmax(np.diff(t) <= 0))
+        raise DataFormatError(f"time_s must increase: {t[i]:g} then {t[i + 1]:g}", source,
+                              lines[i + 1])
+    if alpha is not None and not abs(alpha) <= 1e-4:
+        raise DataFormatError(f"expansion_coefficient_ppm = {alpha * 1e6:g}: at most 100 ppm/K",
+                              source)
+    return EnvironmentLog(t, air, p, h, mat, alpha, source)

@@ -1,0 +1,115 @@
+"""The user configuration: one place for company, operator, instruments and uncertainty defaults.
+
+The file is ``config.toml`` in the user's configuration folder (platformdirs:
+``~/.config/axiscal/config.toml`` on Linux), or the file named by ``AXISCAL_CONFIG``.
+``axiscal config --init`` writes a commented template there. A job file (``--job FILE.toml``
+on a command that writes a certificate) has the same tables and overrides the user file for one
+test: customer, machine, test conditions, tolerances, report number.
+"""
+
+from __future__ import annotations
+
+import base64
+import os
+from pathlib import Path
+from typing import Any
+
+from axiscal.errors import ConfigError
+
+__all__ = ["config_path", "load_user_config", "load_job", "merge", "logo_data_uri", "TEMPLATE"]
+
+TEMPLATE = """\
+# axiscal user configuration: what every certificate carries.
+# A job file (--job FILE.toml) with the same tables overrides these for one test.
+
+[company]
+name = "Your Calibration Company Ltd"
+address = ["1 Example Street", "Town, Postcode", "Country"]
+# logo = "/path/to/logo.png"          # PNG, JPEG or SVG
+# accreditation = "Accredited calibration laboratory no. ..."
+
+[operator]
+name = "A. Operator"
+
+[certificate]
+paper = "A4"                          # or "Letter"
+rule = "iso14253-1"                   # or "simple" (simple acceptance, stated on the certificate)
+number_prefix = "AXC-"
+# approver = "B. Approver"
+
+[[instrument]]
+name = "Laser interferometer"
+serial = "..."
+certificate = "..."
+due = "YYYY-MM-DD"
+
+# ISO 230-2:2014 Annex A inputs (see axiscal.standards.iso230_9)
+[uncertainty]
+laser_accuracy_ppm = 0.5              # from the laser's calibration certificate, expanded ...
+laser_accuracy_k = 2.0                # ... with this coverage factor
+resolution = 0.001                    # µm
+beam_offset = 0.5                     # mm, lateral beam offset over the travel
+temperature_halfwidth = 0.1           # K, material sensor accuracy
+sensor_position_halfwidth = 0.2       # K, sensor place vs scale
+# expansion_coefficient_halfwidth = 1e-6   # 1/K (default ±10 % of α)
+# e_ve = 1.0                          # µm, environmental variation error ...
+# e_ve_source = "drift check"         # ... measured ("drift check") or "declared"
+"""
+
+
+def config_path() -> Path:
+    """Where the user configuration lives (``AXISCAL_CONFIG`` overrides the platform folder)."""
+    env = os.environ.get("AXISCAL_CONFIG")
+    if env:
+        return Path(env)
+    import platformdirs
+
+    return platformdirs.user_config_path("axiscal") / "config.toml"
+
+
+def load_user_config(path: Path | None = None) -> dict[str, Any]:
+    """The user configuration as a dict; an absent file is an empty configuration."""
+    from axiscal.io._files import load_toml
+
+    p = Path(path) if path is not None else config_path()
+    if path is None and not p.exists():
+        return {}
+    return load_toml(p)
+
+
+def load_job(path) -> dict[str, Any]:
+    """A job file (same tables as the user configuration, for one test)."""
+    from axiscal.io._files import load_toml
+
+    return load_toml(path)
+
+
+def merge(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:
+    """``over`` on top of ``base``, table by table (a list such as ``[[instrument]]`` replaces)."""
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = merge(out[k], v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
+    return out
+
+
+def logo_data_uri(config: dict[str, Any], where: Path | None = None) -> str:
+    """The ``[company] logo`` file as a ``data:`` URI ('' if none); a missing file is an error."""
+    name = config.get("company", {}).get("logo")
+    if not name:
+        return ""
+    p = Path(str(name)).expanduser()
+    if not p.is_absolute() and where is not None:
+        p = where.parent / p
+    mime = {
+        ".png": "image/png",
+        ".jpg": "image/jpeg",
+        ".jpeg": "image/jpeg",
+        ".svg": "image/svg+xml",
+    }.get(p.suffix.lower())
+    if mime is None:
+        raise ConfigError(f"[company] logo {p}: use a .png, .jpg or .svg file")
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise ConfigError(f"[company] logo {p}: {exc.strerror or exc}") from None
+    return f"data:{mime};base64,{base64.b64encode(data).decode('ascii')}"

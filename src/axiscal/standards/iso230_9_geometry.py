@@ -1,0 +1,430 @@
+"""Uncertainty budgets (ISO/TR 230-9 form) of squareness tests and five-DOF motion-error readings.
+
+The same :class:`~axiscal.standards.iso230_9.UncertaintyBudget` as the positioning budgets, so the
+ISO 14253-1 decision rules apply to any parameter here too.
+
+Squareness (µm/m, one parameter ``squareness``), one budget per method of ISO 230-1:2012 §10.3 as
+M.A.V. Chapman (Renishaw), "Calibration of machine squareness" describes them:
+
+==================  ==========================================================================
+method              contributors (sensitivity in brackets)
+==================  ==========================================================================
+``optics``          straightness optics accuracy on each slope [1 each], optical square error
+                    [4.848 µm/m per arcsec], line-fit uncertainty of each slope [1], E_VE over
+                    the shorter length [1/L]
+``square``          granite/ceramic square error [1/L_sq], probe (indicator) accuracy over
+                    each travel [√2/L], line-fit of each slope [1], E_VE [1/L]
+``reversal``        as ``square`` without the square's error (it cancels in the reversal),
+                    plus the repositioning of the square between the two set-ups [1/L_sq]
+``ballbar``         transducer accuracy at 45° and 135° [√2/(2R)], ballbar calibration length
+                    error (acts on both diagonals alike: only its thermal change during the
+                    test, via E_VE [√2/(2R)])
+``diagonal``        diagonal length errors D1, D2 (laser ppm over D0 and E_VE) [D0/(2XY) each],
+                    diagonal length D0 [(D1 − D2)/(2XY)] (ISO 230-6:2002, squareness
+                    = D0 (D1 − D2)/(2XY))
+==================  ==========================================================================
+
+Five-DOF motion errors (Optics Express 2018, "Method for simultaneous measurement of five DOF
+motion errors of a rotary axis using a single-mode fiber-coupled laser", §3): per channel
+(εz, εy, εx in arcsec; δy, δz in µm) the detector resolution (rectangular, r/(2√3)), the
+detector calibration (relative scale error × the measured range, normal), the crosstalk the
+set-up leaves after removing once per turn (a ± bound, rectangular) and the residual drift after
+the common-path compensation (its standard deviation, normal).
+
+Each contributor's ``clause`` names the document and clause it comes from.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping
+
+from axiscal.errors import InputError
+from axiscal.standards.iso230_9 import COVERAGE_FACTOR, Contributor, UncertaintyBudget, combine
+
+__all__ = [
+    "squareness_budget",
+    "five_dof_budget",
+    "slope_uncertainty",
+    "SQUARENESS_METHODS",
+    "FIVE_DOF_CHANNELS",
+]
+
+SQUARENESS_METHODS = ("optics", "square", "reversal", "ballbar", "diagonal")
+FIVE_DOF_CHANNELS = ("ez", "ey", "ex", "dy", "dz")
+_SQ3 = math.sqrt(3.0)
+_ARCSEC_UM_M = math.pi / 648000 * 1e6  # 1 arcsec in µm/m
+_C = "M.A.V. Chapman, Calibration of machine squareness"
+_P = ("squareness",)
+
+
+def squareness_budget(
+    method: str,
+    *,
+    length_x: float = 0.8,
+    length_y: float = 0.8,
+    optics_accuracy: float = 0.5,
+    optics_k: float = 2.0,
+    square_error: float = 0.5,
+    square_length: float = 0.5,
+    probe_accuracy: float = 0.5,
+    slope_fit_x: float = 0.0,
+    slope_fit_y: float = 0.0,
+    e_ve: float = 0.0,
+    reposition: float = 0.5,
+    ballbar_radius: float = 0.15,
+    transducer_accuracy: float = 0.5,
+    laser_ppm: float = 0.5,
+    diagonal_d1: float = 0.0,
+    diagonal_d2: float = 0.0,
+    diagonal_length_u: float = 10.0,
+    k: float = COVERAGE_FACTOR,
+) -> UncertaintyBudget:
+    """Uncertainty of a squareness result by method (µm/m).
+
+    Parameters
+    ----------
+    method : str
+        One of :data:`SQUARENESS_METHODS`.
+    length_x, length_y : float, m
+        Travels measured (the test square's sides).
+    optics_accuracy : float, µm/m
+        Straightness optics slope accuracy (certificate, expanded with ``optics_k``); with
+        ``optics`` the optical square's error is ``square_error``,
+        in **arcsec** (certificate, k = 2).
+    square_error : float
+        ``square``: the mechanical square's error, µm over ``square_length`` (half-width);
+        ``optics``: the optical square's error, arcsec (expanded, k = 2).
+    square_length : float, m
+    probe_accuracy : float, µm
+        Indicator/probe accuracy (half-width).
+    slope_fit_x, slope_fit_y : float, µm/m
+        Standard uncertainty of each fitted slope (ISO 230-1 least-squares line).
+    e_ve : float, µm
+        Environmental variation error over the test (drift check), full range.
+    reposition : float, µm
+        ``reversal``: repeatability of placing the square again (half-width, over
+        ``square_length``).
+    ballbar_radius : float, m
+    transducer_accuracy : float, µm
+        Ballbar transducer accuracy (half-width).
+    laser_ppm : float, ppm
+        ``diagonal``: laser accuracy (expanded, k = 2).
+    diagonal_d1, diagonal_d2 : float, µm
+        ``diagonal``: measured length errors of the diagonals.
+    diagonal_length_u : float, µm
+        ``diagonal``: standard uncertainty of the diagonal length D0.
+    k : float
+
+    Returns
+    -------
+    UncertaintyBudget
+        Unit ``um/m``, parameter ``squareness``.
+
+    Examples
+    --------
+    >>> b = squareness_budget("diagonal", length_x=0.6, length_y=0.8, e_ve=0.0)
+    >>> round(b.U("squareness"), 3)          # D0 = 1 m: 2 × √2 × 0.25 µm × 1/(0.96) µm/m
+    0.737
+    """
+    if method not in SQUARENESS_METHODS:
+        raise InputError(
+            f"squareness method {method!r}: use one of {', '.join(SQUARENESS_METHODS)}"
+        )
+    for name, v in (
+        ("length_x", length_x),
+        ("length_y", length_y),
+        ("square_length", square_length),
+        ("ballbar_radius", ballbar_radius),
+    ):
+        if not (math.isfinite(v) and v > 0):
+            raise InputError(f"squareness budget: {name} = {v!r} m must be > 0")
+    L = min(length_x, length_y)
+    eve = Contributor(
+        "u_EVE",
+        "environmental variation over the test",
+        e_ve / (2 * _SQ3) / L,
+        "rectangular",
+        "ISO 230-2:2014 Annex A.5; ISO/TR 230-9",
+        f"E_VE = {e_ve:g} µm over {L:g} m",
+        _P,
+    )
+    fits = [
+        Contributor(
+            f"u_FIT,{a}",
+            f"line fit of the {a} slope",
+            u,
+            "normal",
+            "ISO 230-1:2012 §3.4.8 (least-squares reference line)",
+            f"{u:g} µm/m",
+            _P,
+        )
+        for a, u in (("X", slope_fit_x), ("Y", slope_fit_y))
+    ]
+    make = {
+        "optics": _optics,
+        "square": _square,
+        "reversal": _reversal,
+        "ballbar": _ballbar,
+        "diagonal": _diagonal,
+    }[method]
+    c = make(**locals())
+    return combine(c, "um/m", k, _P)
+
+
+def _optics(optics_accuracy, optics_k, square_error, fits, eve, **_):
+    return [
+        Contributor(
+            f"u_OPTICS,{a}",
+            f"straightness optics, {a} slope",
+            optics_accuracy / optics_k,
+            "normal",
+            f"{_C}, method 1; ISO 230-1:2012 §10.3.2",
+            f"± {optics_accuracy:g} µm/m (k = {optics_k:g})",
+            _P,
+        )
+        for a in ("X", "Y")
+    ] + [
+        Contributor(
+            "u_SQUARE",
+            "optical square error",
+            square_error / 2 * _ARCSEC_UM_M,
+            "normal",
+            f"{_C}, method 1 (optical square calibration)",
+            f"± {square_error:g} arcsec (k = 2)",
+            _P,
+        ),
+        *fits,
+        eve,
+    ]
+
+
+def _square(square_error, square_length, probe_accuracy, length_x, length_y, fits, eve, **_):
+    return [
+        Contributor(
+            "u_SQUARE",
+            "mechanical square error",
+            square_error / _SQ3 / square_length,
+            "rectangular",
+            f"{_C}, method 2; ISO 230-1:2012 §10.3.2",
+            f"± {square_error:g} µm over {square_length:g} m",
+            _P,
+        ),
+        _probe(probe_accuracy, length_x, length_y),
+        *fits,
+        eve,
+    ]
+
+
+def _reversal(reposition, square_length, probe_accuracy, length_x, length_y, fits, eve, **_):
+    return [
+        Contributor(
+            "u_REPOSITION",
+            "placing the square again for the reversal",
+            reposition / _SQ3 / square_length,
+            "rectangular",
+            f"{_C}, method 3 (reversal: the square's own error cancels)",
+            f"± {reposition:g} µm over {square_length:g} m",
+            _P,
+        ),
+        _probe(probe_accuracy, length_x, length_y),
+        *fits,
+        eve,
+    ]
+
+
+def _probe(probe_accuracy, length_x, length_y):
+    u = math.hypot(1 / length_x, 1 / length_y) * probe_accuracy / _SQ3
+    return Contributor(
+        "u_PROBE",
+        "probe (indicator) accuracy on both slopes",
+        u,
+        "rectangular",
+        "ISO 230-1:2012 §10.3.2; ISO/TR 230-9 §5",
+        f"± {probe_accuracy:g} µm",
+        _P,
+    )
+
+
+def _ballbar(transducer_accuracy, ballbar_radius, e_ve, **_):
+    s = math.sqrt(2) / (2 * ballbar_radius)
+    return [
+        Contributor(
+            "u_TRANSDUCER",
+            "ballbar transducer at 45° and 135°",
+            s * transducer_accuracy / _SQ3,
+            "rectangular",
+            f"{_C}, method 4; ISO 230-4:2005 (ballbar)",
+            f"± {transducer_accuracy:g} µm, R = {ballbar_radius:g} m",
+            _P,
+        ),
+        Contributor(
+            "u_CALIBRATION",
+            "ballbar calibration length change during the test",
+            s * e_ve / (2 * _SQ3),
+            "rectangular",
+            f"{_C}, method 4 (a constant length error cancels)",
+            f"E_VE = {e_ve:g} µm",
+            _P,
+        ),
+    ]
+
+
+def _diagonal(
+    length_x, length_y, laser_ppm, e_ve, diagonal_d1, diagonal_d2, diagonal_length_u, **_
+):
+    d0 = math.hypot(length_x, length_y)
+    s = d0 / (2 * length_x * length_y)  # ∂sq/∂D1 = −∂sq/∂D2, 1/m
+    u_d = math.hypot(laser_ppm * d0 / 2, e_ve / (2 * _SQ3))  # µm per diagonal
+    out = [
+        Contributor(
+            f"u_{n}",
+            f"length error of diagonal {n}",
+            s * u_d,
+            "normal",
+            "ISO 230-6:2002 §4 (squareness = D0 (D1 − D2)/(2XY))",
+            f"laser ± {laser_ppm:g} ppm (k = 2) over {d0:g} m, E_VE {e_ve:g} µm",
+            _P,
+        )
+        for n in ("D1", "D2")
+    ]
+    sd0 = abs(diagonal_d1 - diagonal_d2) / (2 * length_x * length_y) * 1e-6  # µm/m per µm
+    out.append(
+        Contributor(
+            "u_D0",
+            "diagonal length",
+            sd0 * diagonal_length_u,
+            "normal",
+            "ISO 230-6:2002 §4",
+            f"u(D0) = {diagonal_length_u:g} µm",
+            _P,
+        )
+    )
+    return out
+
+
+def five_dof_budget(
+    resolution: Mapping[str, float],
+    ranges: Mapping[str, float],
+    calibration: float = 0.01,
+    crosstalk: Mapping[str, float] | None = None,
+    drift: Mapping[str, float] | None = None,
+    k: float = COVERAGE_FACTOR,
+) -> dict[str, UncertaintyBudget]:
+    """Uncertainty of each of the five measured motion errors.
+
+    Parameters
+    ----------
+    resolution : mapping of channel to float, arcsec or µm
+        Detector resolution per channel (``ez``, ``ey``, ``ex``, ``dy``, ``dz``), e.g. from
+        :func:`axiscal.physics.five_dof.resolutions`.
+    ranges : mapping of channel to float, arcsec or µm
+        Peak-to-valley measured per channel (the calibration error scales with it).
+    calibration : float
+        Relative standard uncertainty of each detector's scale calibration (default 1 %).
+    crosstalk : mapping of channel to float, optional
+        Peak-to-valley left by the set-up's crosstalk after removing once per turn (as
+        :class:`~axiscal.procedures.motion_errors.Crosstalk` ``residual`` quantifies it), a ± half.
+    drift : mapping of channel to float, optional
+        Standard deviation of the drift-compensated reading of a still set-up (§3.2).
+    k : float
+
+    Returns
+    -------
+    dict of channel to UncertaintyBudget
+        Parameter name = channel; unit arcsec for angles, µm for displacements.
+
+    Examples
+    --------
+    >>> b = five_dof_budget({"ez": 0.26}, {"ez": 10.0}, calibration=0.01)
+    >>> round(b["ez"].U("ez"), 3)      # 2·√((0.26/(2√3))² + 0.1²)
+    0.25
+    """
+    crosstalk, drift = dict(crosstalk or {}), dict(drift or {})
+    if not (math.isfinite(calibration) and calibration >= 0):
+        raise InputError(f"five-DOF calibration = {calibration!r} must be >= 0")
+    out = {}
+    for ch, res in resolution.items():
+        if ch not in FIVE_DOF_CHANNELS:
+            raise InputError(f"five-DOF channel {ch!r}: use one of {', '.join(FIVE_DOF_CHANNELS)}")
+        unit = "arcsec" if ch.startswith("e") else "um"
+        p = (ch,)
+        sec = "Optics Express 2018 (five DOF of a rotary axis)"
+        c = [
+            Contributor(
+                "u_RESOLUTION",
+                "detector resolution",
+                res / (2 * _SQ3),
+                "rectangular",
+                f"{sec}, §3 (eqs. 1-6)",
+                f"{res:g} {unit}",
+                p,
+            ),
+            Contributor(
+                "u_CALIBRATION",
+                "detector scale calibration",
+                calibration * abs(ranges.get(ch, 0.0)),
+                "normal",
+                f"{sec}, §3; ISO/TR 230-9 §5",
+                f"{calibration * 100:g} % of {ranges.get(ch, 0.0):g} {unit}",
+                p,
+            ),
+        ]
+        if ch in crosstalk:
+            c.append(
+                Contributor(
+                    "u_CROSSTALK",
+                    "crosstalk of the mounting errors",
+                    crosstalk[ch] / 2 / _SQ3,
+                    "rectangular",
+                    f"{sec}, mounting errors (as simulated)",
+                    f"± {crosstalk[ch] / 2:g} {unit}",
+                    p,
+                )
+            )
+        if ch in drift:
+            c.append(
+                Contributor(
+                    "u_DRIFT",
+                    "residual drift after compensation",
+                    drift[ch],
+                    "normal",
+                    f"{sec}, §3.2 (eqs. 7-9)",
+                    f"σ = {drift[ch]:g} {unit}",
+                    p,
+                )
+            )
+        out[ch] = combine(c, unit, k, p)
+    return out
+
+
+def slope_uncertainty(positions, deviations) -> float:
+    """Standard uncertainty of a least-squares slope from its residuals, µm/m.
+
+    Parameters
+    ----------
+    positions : array_like, m
+    deviations : array_like, m
+
+    Returns
+    -------
+    float, µm/m
+        ``s_res / √Σ(x − x̄)²`` with ``s_res² = Σ r² / (n − 2)`` (ISO 230-1:2012 §3.4.8 least-
+        squares reference line; the standard uncertainty of a regression slope, GUM H.3).
+
+    Examples
+    --------
+    >>> round(slope_uncertainty([0, 0.1, 0.2, 0.3], [0, 1e-6, 0, 1e-6]), 3)  # √(0.8e-12/2/0.05)
+    2.828
+    """
+    import numpy as np
+
+    x, y = np.asarray(positions, float), np.asarray(deviations, float)
+    if x.size < 3 or x.size != y.size:
+        raise InputError(f"slope uncertainty: {x.size} points; a residual needs at least 3")
+    sxx = float(np.sum((x - x.mean()) ** 2))
+    if sxx <= 0:
+        raise InputError("slope uncertainty: all positions are the same")
+    slope, icpt = np.polyfit(x, y, 1)
+    res = y - (slope * x + icpt)
+    return float(math.sqrt(float(np.sum(res**2)) / (x.size - 2) / sxx) * 1e6)

@@ -1,0 +1,208 @@
+"""Comparing two stored tests and trending a parameter over time.
+
+Trend model
+-----------
+A straight line ``y(t) = a + b (t − t̄)`` (t in years) is fitted by ordinary least squares to
+the parameter's values, the uncertainty of each value taken as unknown and equal, so estimated
+from the residuals with ``n − 2`` degrees of freedom: ISO/TS 28037:2010, *Determination and use
+of straight-line calibration functions*, clause 6 (uncertainties associated with the y values
+only; here unknown and estimated). The drift is ``b`` with its standard uncertainty ``u(b)``.
+
+The date at which the line reaches a tolerance ``T`` is ``t* = t̄ + (T − a)/b``; its standard
+uncertainty follows from the law of propagation of uncertainty (JCGM 100:2008, GUM, eq. 13) with
+the covariance of ``a`` and ``b`` (zero after centring t, so
+``u²(t*) = u²(a)/b² + (T − a)² u²(b)/b⁴``). A recalibration interval a user can defend is the
+earlier end of ``t* ± k u(t*)`` with k = 2 (ILAC-G24:2007 / OIML D 10, "Guidelines for the
+determination of calibration intervals of measuring instruments": intervals from the
+instrument's drift history). With fewer than three tests there is no residual to estimate the
+scatter from, and no prediction is made.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.errors import InputError
+
+__all__ = ["Trend", "fit_trend", "Comparison", "compare_tests"]
+
+_YEAR = 365.25 * 86400.0
+
+
+@dataclass(frozen=True)
+class Trend:
+    """A parameter over time with its fitted drift (module docstring).
+
+    Attributes
+    ----------
+    dates : tuple of datetime
+    values : numpy.ndarray
+    unit : str
+    drift : float or None
+        ``b``, unit per year.
+    u_drift : float or None
+        Standard uncertainty of the drift.
+    level : float or None
+        Fitted value at the last test.
+    tolerance : float or None
+    crossing : datetime or None
+        When the line reaches the tolerance (None if it moves away or never gets there).
+    u_crossing_days : float or None
+        Standard uncertainty of ``crossing``, days.
+    recalibrate_by : datetime or None
+        ``crossing − 2 u``: the cautious recalibration date.
+    """
+
+    parameter: str
+    dates: tuple
+    values: np.ndarray
+    unit: str
+    drift: float | None
+    u_drift: float | None
+    level: float | None
+    tolerance: float | None
+    crossing: dt.datetime | None
+    u_crossing_days: float | None
+    recalibrate_by: dt.datetime | None
+    test_ids: tuple = ()
+
+    def as_dict(self) -> dict:
+        iso = (lambda d: d.isoformat() if d else None)
+        return {"parameter": self.parameter, "unit": self.unit,
+                "points": [{"date": d.isoformat(), "value": float(v), "test": i}
+                           for d, v, i in zip(self.dates, self.values, self.test_ids)],
+                "model": "least-squares straight line, ISO/TS 28037:2010 clause 6",
+                "drift_per_year": self.drift, "u_drift_per_year": self.u_drift,
+                "level": self.level, "tolerance": self.tolerance,
+                "crossing": iso(self.crossing), "u_crossing_days": self.u_crossing_days,
+                "recalibrate_by": iso(self.recalibrate_by)}
+
+    def __str__(self) -> str:
+        lines = [f"{self.parameter} over {len(self.values)} tests "
+                 f"({self.dates[0]:%Y-%m-%d} … {self.dates[-1]:%Y-%m-%d})"
+                 if self.dates else f"{self.parameter}: no tests"]
+        if self.drift is not None:
+            lines.append(f"  drift {self.drift:+.4g} ± {self.u_drift:.2g} {self.unit}/year "
+                         f"(standard uncertainty), level now {self.level:.4g} {self.unit}")
+        else:
+            lines.append("  no drift estimate: three tests at least are needed")
+        if self.tolerance is not None:
+            if self.crossing is not None:
+                lines.append(f"  reaches the tolerance {self.tolerance:g} {self.unit} on "
+                             f"{self.crossing:%Y-%m-%d} ± {self.u_crossing_days:.0f} days; "
+                             f"recalibrate by {self.recalibrate_by:%Y-%m-%d} (k = 2)")
+            else:
+                lines.append(f"  the fitted line does not reach {self.tolerance:g} {self.unit}")
+        return "\n".join(lines)
+
+
+def fit_trend(parameter: str, dates, values, unit: str, tolerance: float | None = None,
+              test_ids=()) -> Trend:
+    """Fit the drift of ``values`` (at ``dates``) and predict when it reaches ``tolerance``.
+
+    Examples
+    --------
+    Four yearly tests rising 1 µm a year from 5 µm, with ±0.1 µm scatter, against 10 µm:
+
+    >>> d = [dt.datetime(2020 + k, 1, 1) for k in range(4)]
+    >>> t = fit_trend("E", d, [5.0, 6.1, 6.9, 8.0], "um", tolerance=10)
+    >>> round(t.drift, 2), t.crossing.year
+    (0.98, 2025)
+    """
+    v = np.asarray(values, dtype=float)
+    dates = tuple(dates)
+    if len(dates) != v.size:
+        raise InputError("as many dates as values are needed")
+    if tolerance is not None and not math.isfinite(tolerance):
+        raise InputError(f"tolerance = {tolerance!r}: a finite number")
+    base = dict(parameter=parameter, dates=dates, values=v, unit=unit, tolerance=tolerance,
+                test_ids=tuple(test_ids))
+    if v.size < 3:
+        return Trend(drift=None, u_drift=None, level=None, crossing=None,
+                     u_crossing_days=None, recalibrate_by=None, **base)
+    t0 = dates[0]
+    t = np.array([(d - t0).total_seconds() / _YEAR for d in dates])
+    tm = t.mean()
+    x = t - tm
+    sxx = float((x ** 2).sum())
+    if sxx == 0:
+        return Trend(drift=None, u_drift=None, level=None, crossing=None,
+                     u_crossing_days=None, recalibrate_by=None, **base)
+    a = float(v.mean())
+    b = float((x * (v - a)).sum() / sxx)
+    res = v - (a + b * x)
+    s2 = float((res ** 2).sum() / (v.size - 2))
+    ua, ub = math.sqrt(s2 / v.size), math.sqrt(s2 / sxx)
+    level = a + b * x[-1]
+    crossing = u_days = cautious = None
+    if tolerance is not None and b != 0 and (tolerance - level) / b > 0:
+        tc = tm + (tolerance - a) / b                 # years after t0
+        u_tc = math.sqrt(ua ** 2 / b ** 2 + (tolerance - a) ** 2 * ub ** 2 / b ** 4)
+        if tc < 1000:
+            crossing = t0 + dt.timedelta(days=tc * 365.25)
+            u_days = u_tc * 365.25
+            cautious = t0 + dt.timedelta(days=max(t[-1], tc - 2 * u_tc) * 365.25)
+    return Trend(drift=b, u_drift=ub, level=level, crossing=crossing, u_crossing_days=u_days,
+                 recalibrate_by=cautious, **base)
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Two tests of one axis side by side: every parameter and the per-target difference."""
+
+    first: int
+    second: int
+    rows: tuple                   # (name, first, second, change, unit)
+    targets: np.ndarray | None    # common targets (ISO 230-2)
+    difference: np.ndarray | None  # second − first mean bidirectional deviation at them
+    target_unit: str = ""
+    unit: str = ""
+
+    def as_dict(self) -> dict:
+        return {"first": self.first, "second": self.second,
+                "parameters": [{"name": n, "first": a, "second": b, "change": c, "unit": u}
+                               for n, a, b, c, u in self.rows],
+                "targets": None if self.targets is None else self.targets.tolist(),
+                "difference": None if self.difference is None else self.difference.tolist(),
+                "target_unit": self.target_unit, "unit": self.unit}
+
+    def __str__(self) -> str:
+        lines = [f"{'parameter':<16}{'test ' + str(self.first):>14}{'test ' + str(self.second):>14}"
+                 f"{'change':>12}"]
+        for n, a, b, c, u in self.rows:
+            f = (lambda v: "—" if v is None else f"{v:.3f}")
+            lines.append(f"{n:<16}{f(a):>14}{f(b):>14}{f(c):>12} {u}")
+        return "\n".join(lines)
+
+
+def compare_tests(first, second) -> Comparison:
+    """Compare two :class:`~axiscal.store.history.StoredTest` of the same kind and axis."""
+    s1, s2 = first.summary, second.summary
+    if s1.kind != s2.kind:
+        raise InputError(f"test {s1.id} is {s1.kind}, test {s2.id} is {s2.kind}: compare tests "
+                         "of one kind")
+    if (s1.machine, s1.axis) != (s2.machine, s2.axis):
+        raise InputError(f"test {s1.id} is {s1.machine} {s1.axis}, test {s2.id} is "
+                         f"{s2.machine} {s2.axis}: compare two tests of one axis")
+    names = list(dict.fromkeys([*s1.parameters, *s2.parameters]))
+    rows = []
+    for n in names:
+        a = s1.parameters.get(n, (None, ""))
+        b = s2.parameters.get(n, (None, ""))
+        change = None if a[0] is None or b[0] is None else b[0] - a[0]
+        rows.append((n, a[0], b[0], change, a[1] or b[1]))
+    targets = diff = None
+    tu = unit = ""
+    if s1.kind == "iso230-2":
+        t1, t2 = np.asarray(first.result["targets"]), np.asarray(second.result["targets"])
+        m1 = np.asarray(first.result["mean_bi"], dtype=float)
+        m2 = np.asarray(second.result["mean_bi"], dtype=float)
+        common, i1, i2 = np.intersect1d(np.round(t1, 9), np.round(t2, 9), return_indices=True)
+        if common.size:
+            targets, diff = common, m2[i2] - m1[i1]
+        tu, unit = first.result.get("target_unit", ""), first.result.get("deviation_unit", "")
+    return Comparison(s1.id, s2.id, tuple(rows), targets, diff, tu, unit)

@@ -1,0 +1,107 @@
+"""The tables of the calibration history (SQLAlchemy 2 typed ORM).
+
+One machine has axes; one axis has tests; a test keeps the file exactly as it came (bytes and
+their SHA-256, which makes a second copy of the same file a duplicate), the dataset in axiscal's
+exact JSON where the kind has one, the full evaluation as JSON, its summary parameters as rows
+(what ``list`` and ``trend`` query), and the compensation tables written from it. Numbers are
+stored as 8-byte floats (SQLite REAL, PostgreSQL double precision): exact, no rounding through
+text. The schema is created and changed only by the Alembic migrations in
+``axiscal/store/migrations``.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+
+from sqlalchemy import (Double, ForeignKey, Index, LargeBinary, String, Text, UniqueConstraint)
+from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
+
+__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table"]
+
+
+class Base(DeclarativeBase):
+    """Declarative base of the history tables."""
+
+
+class Machine(Base):
+    """A machine, named as its owner names it (unique), with its identification."""
+
+    __tablename__ = "machine"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    name: Mapped[str] = mapped_column(String(200), unique=True)
+    maker: Mapped[str] = mapped_column(String(200), default="")
+    model: Mapped[str] = mapped_column(String(200), default="")
+    serial: Mapped[str] = mapped_column(String(200), default="")
+    location: Mapped[str] = mapped_column(String(200), default="")
+    created: Mapped[dt.datetime] = mapped_column()
+    axes: Mapped[list["Axis"]] = relationship(back_populates="machine",
+                                              cascade="all, delete-orphan")
+
+
+class Axis(Base):
+    """An axis of a machine (``X``, ``C`` ...); ``kind`` is linear or rotary."""
+
+    __tablename__ = "axis"
+    __table_args__ = (UniqueConstraint("machine_id", "name"),)
+    id: Mapped[int] = mapped_column(primary_key=True)
+    machine_id: Mapped[int] = mapped_column(ForeignKey("machine.id", ondelete="CASCADE"))
+    name: Mapped[str] = mapped_column(String(50))
+    kind: Mapped[str] = mapped_column(String(20), default="")
+    machine: Mapped[Machine] = relationship(back_populates="axes")
+    tests: Mapped[list["Test"]] = relationship(back_populates="axis",
+                                               cascade="all, delete-orphan")
+
+
+class Test(Base):
+    """One measurement of one axis, as it came, with its evaluation."""
+
+    __tablename__ = "test"
+    __table_args__ = (Index("ix_test_axis_date", "axis_id", "tested_at"),)
+    id: Mapped[int] = mapped_column(primary_key=True)
+    axis_id: Mapped[int] = mapped_column(ForeignKey("axis.id", ondelete="CASCADE"))
+    kind: Mapped[str] = mapped_column(String(40))
+    tested_at: Mapped[dt.datetime] = mapped_column()
+    date_known: Mapped[bool] = mapped_column(default=True)
+    stored_at: Mapped[dt.datetime] = mapped_column()
+    instrument: Mapped[str] = mapped_column(String(200), default="")
+    operator: Mapped[str] = mapped_column(String(200), default="")
+    note: Mapped[str] = mapped_column(Text, default="")
+    filename: Mapped[str] = mapped_column(String(300))
+    sha256: Mapped[str] = mapped_column(String(64), unique=True)
+    raw: Mapped[bytes] = mapped_column(LargeBinary)
+    dataset_json: Mapped[str] = mapped_column(Text, default="")
+    result_json: Mapped[str] = mapped_column(Text)
+    environment_json: Mapped[str] = mapped_column(Text, default="{}")
+    axiscal_version: Mapped[str] = mapped_column(String(40))
+    axis: Mapped[Axis] = relationship(back_populates="tests")
+    parameters: Mapped[list["Parameter"]] = relationship(back_populates="test",
+                                                         cascade="all, delete-orphan",
+                                                         order_by="Parameter.id")
+    tables: Mapped[list["Table"]] = relationship(back_populates="test",
+                                                 cascade="all, delete-orphan")
+
+
+class Parameter(Base):
+    """One summary parameter of a test's evaluation (``E``, ``R``, ``squareness``...)."""
+
+    __tablename__ = "parameter"
+    __table_args__ = (UniqueConstraint("test_id", "name"), Index("ix_parameter_name", "name"))
+    id: Mapped[int] = mapped_column(primary_key=True)
+    test_id: Mapped[int] = mapped_column(ForeignKey("test.id", ondelete="CASCADE"))
+    name: Mapped[str] = mapped_column(String(60))
+    value: Mapped[float] = mapped_column(Double)
+    unit: Mapped[str] = mapped_column(String(20))
+    test: Mapped[Test] = relationship(back_populates="parameters")
+
+
+class Table(Base):
+    """A compensation table written from a test (the controller's file, as written)."""
+
+    __tablename__ = "compensation_table"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    test_id: Mapped[int] = mapped_column(ForeignKey("test.id", ondelete="CASCADE"))
+    controller: Mapped[str] = mapped_column(String(40))
+    filename: Mapped[str] = mapped_column(String(300))
+    text: Mapped[str] = mapped_column(Text)
+    created: Mapped[dt.datetime] = mapped_column()
+    test: Mapped[Test] = relationship(back_populates="tables")

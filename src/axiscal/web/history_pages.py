@@ -1,0 +1,294 @@
+"""History pages: machines, a machine's tests, a test, compare, trend, upload, tables.
+
+Every page reads the calibration history through :mod:`axiscal.store` (the same calls as
+``axiscal history``); evaluations are the library's. Interactive plots are uPlot specs (JSON)
+that ``static/axiscal.js`` draws.
+"""
+
+from __future__ import annotations
+
+from fastapi import FastAPI, Request
+from fastapi.responses import HTMLResponse, RedirectResponse
+from starlette.concurrency import run_in_threadpool
+
+from axiscal.errors import InputError
+from axiscal.web.app import checked_form, download, query, render, require_engineer
+
+__all__ = ["add_routes", "positioning_plot", "trend_plot"]
+
+_KEY = ("E", "A", "R", "B", "squareness", "straightness")
+#: Tests shown on one page of a machine's history (newest first).
+PAGE = 100
+_COLORS = {"up": "#1f77b4", "down": "#d62728", "bi": "#2ca02c", "line": "#555"}
+
+
+def add_routes(app: FastAPI) -> None:
+    """Add the history routes to ``app`` (its ``state.store`` is opened here)."""
+    from axiscal.store import open_store
+
+    app.state.store = open_store(app.state.db_url)
+
+    def store(request: Request):
+        return request.app.state.store
+
+    @app.get("/", response_class=HTMLResponse)
+    def machines(request: Request):
+        return render(request, "machines.html", "Machines", machines=store(request).machines())
+
+    @app.get("/machines/{name}", response_class=HTMLResponse)
+    def machine(request: Request, name: str, axis: str = "", kind: str = "", page: int = 1):
+        st = store(request)
+        m = next((x for x in st.machines() if x.name == name), None)
+        if m is None:
+            raise _missing(f"no machine {name!r} in the history")
+        page = max(1, page)
+        tests = st.tests(machine=name, axis=axis or None, kind=kind or None,
+                         limit=PAGE + 1, offset=(page - 1) * PAGE)
+        more = len(tests) > PAGE
+        rows = [(t, _key(t)) for t in tests[:PAGE]]
+        return render(request, "machine.html", f"{name}", name=name, rows=rows,
+                      axes=list(m.axes), axis=axis, page=page, more=more, total=m.tests,
+                      query=query)
+
+    @app.get("/tests/{test_id}", response_class=HTMLResponse)
+    def test_page(request: Request, test_id: int):
+        t = store(request).get(test_id)
+        ev = t.evaluate_again()
+        plot = positioning_plot(ev) if ev.kind == "iso230-2" else None
+        budget, decisions = _uncertainty(ev) if ev.kind == "iso230-2" else (None, {})
+        from axiscal.compensation.controllers import CONTROLLERS
+
+        return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
+                      f"{t.summary.axis}", t=t, ev=ev, plot=plot,
+                      targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
+                      budget=budget, decisions=decisions,
+                      controllers=sorted(CONTROLLERS), others=[
+                          o for o in store(request).tests(machine=t.summary.machine,
+                                                          axis=t.summary.axis,
+                                                          kind=t.summary.kind, limit=11)
+                          if o.id != test_id])
+
+    @app.get("/tests/{test_id}/raw")
+    def raw(request: Request, test_id: int):
+        t = store(request).get(test_id)
+        return download(t.raw, t.summary.filename, "application/octet-stream")
+
+    @app.get("/tests/{test_id}/result.json")
+    def result_json(request: Request, test_id: int):
+        import json
+
+        t = store(request).get(test_id)
+        body = {"id": test_id, "machine": t.summary.machine, "axis": t.summary.axis,
+                "kind": t.summary.kind, "date": t.summary.tested_at.isoformat(),
+                "parameters": {k: {"value": v, "unit": u}
+                               for k, (v, u) in t.summary.parameters.items()},
+                "result": t.result}
+        return download(json.dumps(body, indent=2), f"test_{test_id}.json", "application/json")
+
+    @app.get("/tests/{test_id}/report.html")
+    def report(request: Request, test_id: int):
+        t = store(request).get(test_id)
+        ev = t.evaluate_again()
+        if ev.kind != "iso230-2":
+            raise InputError(f"a {ev.kind} test has no HTML report here; download its JSON")
+        from axiscal.report.html import positioning_report
+
+        html = positioning_report(ev.dataset, ev.evaluation).html()
+        return download(html, f"test_{test_id}_report.html", "text/html")
+
+    @app.get("/tests/{test_id}/certificate.pdf")
+    def certificate(request: Request, test_id: int, paper: str = "A4"):
+        t = store(request).get(test_id)
+        ev = t.evaluate_again()
+        if ev.kind != "iso230-2":
+            raise InputError(f"a {ev.kind} test has no certificate here; download its JSON")
+        if paper not in ("A4", "Letter"):
+            raise InputError(f"paper {paper!r}: A4 or Letter")
+        import tempfile
+        from pathlib import Path
+
+        from axiscal.cli._certificate import load_config, write_certificate
+
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "certificate.pdf"
+            write_certificate(path, ev.dataset, ev.evaluation, load_config(None), t.raw,
+                              paper=paper)
+            pdf = path.read_bytes()
+        return download(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
+
+    @app.post("/tests/{test_id}/compensation")
+    async def compensation(request: Request, test_id: int):
+        form = await checked_form(request)
+        require_engineer(request)
+        controller = str(form.get("controller", ""))
+        spacing = _positive(form.get("spacing"), "spacing")
+        f = await run_in_threadpool(_write_table, store(request), test_id, controller, spacing)
+        return download(f.text, f.filename, "text/plain")
+
+    @app.get("/compare", response_class=HTMLResponse)
+    def compare(request: Request, a: int, b: int):
+        from axiscal.store.analysis import compare_tests
+
+        s = store(request)
+        c = compare_tests(s.get(a), s.get(b))
+        plot = None
+        if c.targets is not None:
+            plot = {"title": f"change of x̄, test {b} − test {a}", "x_label":
+                    f"target [{c.target_unit}]", "y_label": f"change [{c.unit}]",
+                    "x": c.targets.tolist(), "series": [{"label": "change",
+                                                         "values": c.difference.tolist(),
+                                                         "color": _COLORS["up"]}]}
+        first = s.get(a).summary
+        return render(request, "compare.html", f"Compare tests {a} and {b}", c=c, plot=plot,
+                      machine=first.machine, axis=first.axis)
+
+    @app.get("/trend", response_class=HTMLResponse)
+    def trend_page(request: Request, machine: str, axis: str, parameter: str = "E",
+                   tolerance: str = ""):
+        from axiscal.store import trend
+
+        tol = _positive(tolerance, "tolerance") if tolerance else None
+        tr = trend(store(request), machine, axis, parameter, tol)
+        return render(request, "trend.html", f"Trend of {parameter}: {machine} {axis}", tr=tr,
+                      plot=trend_plot(tr), machine=machine, axis=axis, parameter=parameter,
+                      tolerance=tolerance)
+
+    @app.get("/upload", response_class=HTMLResponse)
+    def upload_form(request: Request):
+        require_engineer(request)
+        return render(request, "upload.html", "Upload a test", form={})
+
+    @app.post("/upload")
+    async def upload(request: Request):
+        form = await checked_form(request)
+        require_engineer(request)
+        fields = {k: str(form.get(k, "") or "").strip() for k in
+                  ("machine", "axis", "note", "date", "instrument")}
+        try:
+            f = form.get("file")
+            if f is None or not hasattr(f, "read"):
+                raise InputError("choose a data file to upload")
+            raw = await f.read(request.app.state.upload_limit + 1)
+            from axiscal.web.security import check_upload
+
+            check_upload(f.filename, f.content_type, len(raw), request.app.state.upload_limit)
+            r = await run_in_threadpool(
+                store(request).add, raw, f.filename, machine=fields["machine"] or None,
+                axis=fields["axis"] or None, note=fields["note"],
+                instrument=fields["instrument"], date=fields["date"] or None)
+        except InputError as exc:
+            return render(request, "upload.html", "Upload a test", 400, form=fields,
+                          error=str(exc))
+        except Exception as exc:                  # noqa: BLE001 - shown, never a traceback
+            from axiscal.errors import AxiscalError
+
+            if not isinstance(exc, AxiscalError):
+                raise
+            return render(request, "upload.html", "Upload a test", 400, form=fields,
+                          error=str(exc))
+        return RedirectResponse(f"/tests/{r.id}?stored={'again' if r.duplicate else 'new'}",
+                                303)
+
+
+def positioning_plot(ev) -> dict:
+    """uPlot spec of an ISO 230-2 test: x̄↑, x̄↓ and x̄ per target, every reading as points."""
+    r, ds = ev.evaluation, ev.dataset
+    unit = "µm" if r.deviation_unit == "um" else r.deviation_unit
+    series = [{"label": "x̄↑", "values": _list(r.mean_up), "color": _COLORS["up"]},
+              {"label": "x̄↓", "values": _list(r.mean_down), "color": _COLORS["down"]},
+              {"label": "x̄ (bidirectional)", "values": _list(r.mean_bi),
+               "color": _COLORS["bi"], "dash": True}]
+    return {"title": f"ISO 230-2:2014 positioning deviations, {ds.metadata.axis or ''} axis",
+            "x_label": f"target [{r.target_unit}]", "y_label": f"deviation [{unit}]",
+            "x": _list(r.targets), "series": series}
+
+
+def trend_plot(tr) -> dict:
+    """uPlot spec of a trend: the values and the fitted line (x in years since the first)."""
+    t0 = tr.dates[0]
+    years = [(d - t0).total_seconds() / (365.25 * 86400) for d in tr.dates]
+    series = [{"label": tr.parameter, "values": [float(v) for v in tr.values],
+               "color": _COLORS["up"], "points": True}]
+    if tr.drift is not None:
+        last = years[-1]
+        series.append({"label": "fitted drift", "values": [
+            tr.level + tr.drift * (y - last) for y in years], "color": _COLORS["line"],
+            "dash": True})
+    if tr.tolerance is not None:
+        series.append({"label": "tolerance", "values": [tr.tolerance] * len(years),
+                       "color": _COLORS["down"], "dash": True})
+    return {"title": f"{tr.parameter} over time", "x_label": f"years since {t0:%Y-%m-%d}",
+            "y_label": f"{tr.parameter} [{'µm' if tr.unit == 'um' else tr.unit}]", "x": years,
+            "series": series}
+
+
+def _write_table(store, test_id: int, controller: str, spacing: float):
+    from axiscal.compensation.controllers import controller as controller_module
+    from axiscal.compensation.tables import table_from_result
+
+    t = store.get(test_id)
+    ev = t.evaluate_again()
+    if ev.kind != "iso230-2":
+        raise InputError(f"a {ev.kind} test gives no compensation table here")
+    mod = controller_module(controller)
+    table = table_from_result(ev.evaluation, spacing, axis=t.summary.axis,
+                              bidirectional=ev.evaluation.bidirectional)
+    f = mod.write(table)
+    store.add_table(test_id, mod.NAME, f.filename, f.text)
+    return f
+
+
+def _target_rows(ev) -> list:
+    r = ev.evaluation
+    return [(float(t), _f(u), _f(d), _f(b), _f(rev), _f(ri)) for t, u, d, b, rev, ri in
+            zip(r.targets, r.mean_up, r.mean_down, r.mean_bi, r.reversal, r.R_i)]
+
+
+def _key(t):
+    for k in _KEY:
+        if k in t.parameters:
+            return k, t.parameters[k]
+    return None
+
+
+def _list(a) -> list:
+    import math
+
+    return [None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
+            for v in a]
+
+
+def _f(v):
+    import math
+
+    return None if v is None or math.isnan(float(v)) else float(v)
+
+
+def _positive(text, what: str) -> float:
+    import math
+
+    try:
+        v = float(str(text).replace(",", "."))
+    except (TypeError, ValueError):
+        raise InputError(f"{what} = {text!r}: give a positive number") from None
+    if not math.isfinite(v) or not 0 < v <= 1e6:
+        raise InputError(f"{what} = {text}: give a positive number up to 1e6")
+    return v
+
+
+def _missing(message: str):
+    from axiscal.store import NotFoundError
+
+    return NotFoundError(message)
+
+
+def _uncertainty(ev):
+    """The ISO 230-2 Annex A budget of a stored test and, if the user configuration names
+    tolerances, the ISO 14253-1 decisions (by parameter)."""
+    from axiscal.cli._certificate import decisions_for, load_config
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    cfg = load_config(None)
+    budget = positioning_budget(ev.dataset, ev.evaluation, cfg.get("uncertainty"))
+    decisions, _, _ = decisions_for(ev.evaluation.parameters(), budget, {}, cfg, None)
+    return budget, {d.parameter: d for d in decisions}

@@ -1,0 +1,95 @@
+"""The workbench's pages: plan a test (no database needed), and the history pages."""
+
+from __future__ import annotations
+
+from fastapi import FastAPI, Request
+from fastapi.responses import HTMLResponse
+
+from axiscal.errors import InputError
+from axiscal.web.app import checked_form, download, login_routes, query, render
+
+__all__ = ["add_routes", "plan_from_form"]
+
+_PLAN_FIELDS = ("kind", "travel", "targets", "step", "runs")
+
+
+def add_routes(app: FastAPI) -> None:
+    """Every route of the workbench."""
+    login_routes(app)
+    from axiscal.web import history_pages
+
+    history_pages.add_routes(app)
+
+    @app.get("/plan", response_class=HTMLResponse)
+    async def plan_page(request: Request):
+        form = {"travel": "", "targets": "", "step": "", "runs": "5"}
+        return render(request, "plan.html", "Plan a test", form=form)
+
+    @app.post("/plan", response_class=HTMLResponse)
+    async def plan_make(request: Request):
+        form = await checked_form(request)
+        values = {k: str(form.get(k, "")).strip() for k in _PLAN_FIELDS}
+        try:
+            plan = plan_from_form(values)
+        except InputError as exc:
+            return render(request, "plan.html", "Plan a test", 400, form=values, error=str(exc))
+        return render(request, "plan.html", "Plan a test", form=values,
+                      plan=_describe(plan), query=query(**values))
+
+    @app.get("/plan.csv")
+    async def plan_csv(request: Request, kind: str = "linear", travel: str = "",
+                       targets: str = "", step: str = "", runs: str = "5"):
+        plan = plan_from_form({"kind": kind, "travel": travel, "targets": targets,
+                               "step": step, "runs": runs})
+        return download(plan.to_csv(), f"plan_{kind}_{travel}.csv", "text/csv")
+
+
+def plan_from_form(values: dict):
+    """An ISO 230-2 plan from the form's text fields (the same bounds as ``axiscal plan``)."""
+    from axiscal.cli.plan import MAX_LENGTH_MM, MAX_RUNS, MAX_TARGETS, MAX_TRAVEL_DEG
+    from axiscal.procedures.positioning import plan_linear, plan_rotary
+
+    kind = values.get("kind", "linear")
+    if kind not in ("linear", "rotary"):
+        raise InputError(f"axis kind {kind!r}: linear or rotary")
+    limit = MAX_LENGTH_MM if kind == "linear" else MAX_TRAVEL_DEG
+    travel = _number(values.get("travel"), "length or travel", 0.0, limit, required=True)
+    runs = int(_number(values.get("runs") or "5", "runs", 1, MAX_RUNS, whole=True))
+    if kind == "linear":
+        n = values.get("targets")
+        n = int(_number(n, "targets", 2, MAX_TARGETS, whole=True)) if n else None
+        return plan_linear(travel, n_targets=n, runs=runs)
+    step = values.get("step")
+    step = _number(step, "step", 1e-6, 360.0) if step else None
+    if step and travel / step > MAX_TARGETS:
+        raise InputError(f"a step of {step:g} deg over {travel:g} deg gives more than "
+                         f"{MAX_TARGETS} targets")
+    return plan_rotary(travel, step=step, runs=runs)
+
+
+def _number(text, what: str, low: float, high: float, required: bool = False,
+            whole: bool = False) -> float:
+    import math
+
+    if text in (None, ""):
+        if required:
+            raise InputError(f"{what}: give a number")
+        return low
+    try:
+        v = float(str(text).replace(",", "."))
+    except ValueError:
+        raise InputError(f"{what} = {text!r}: not a number") from None
+    if not math.isfinite(v) or not low <= v <= high or (whole and v != int(v)):
+        kind = "a whole number" if whole else "a number"
+        raise InputError(f"{what} = {text}: give {kind} from {low:g} to {high:g}")
+    if v <= 0 and what == "length or travel":
+        raise InputError(f"{what} = {text}: must be positive")
+    return v
+
+
+def _describe(plan) -> str:
+    t = plan.targets
+    shown = ", ".join(f"{v:g}" for v in t[:12]) + (" …" if t.size > 12 else "")
+    return (f"{t.size} targets [{shown}] {plan.target_unit}; {plan.runs} runs, "
+            f"{'bidirectional' if plan.bidirectional else 'unidirectional'}, {plan.cycle} cycle; "
+            f"{plan.n_measurements} readings")

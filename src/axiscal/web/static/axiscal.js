@@ -1,0 +1,47 @@
+// axiscal workbench: interactive plots (uPlot, vendored) and the CSRF header for htmx requests.
+// Every element with class "uplot-chart" names a <script type="application/json"> holding
+// {"title", "x_label", "y_label", "x": [...], "series": [{"label", "values", "color", "dash", "points"}]}.
+(function () {
+  "use strict";
+
+  function chart(el) {
+    var spec = JSON.parse(document.getElementById(el.dataset.source).textContent);
+    var series = [{ label: spec.x_label }];
+    var data = [spec.x];
+    spec.series.forEach(function (s) {
+      series.push({
+        label: s.label,
+        stroke: s.color || "#1f77b4",
+        width: s.points ? 0 : 1.5,
+        dash: s.dash ? [6, 4] : undefined,
+        points: { show: !!s.points, size: 5, fill: s.color },
+        spanGaps: true,
+        value: function (u, v) { return v == null ? "—" : v.toFixed(3); }
+      });
+      data.push(s.values);
+    });
+    var width = Math.max(320, Math.min(el.clientWidth || 900, 1100));
+    new uPlot({
+      title: spec.title,
+      width: width,
+      height: 380,
+      series: series,
+      scales: { x: { time: false } },
+      axes: [{ label: spec.x_label }, { label: spec.y_label }],
+      cursor: { drag: { x: true, y: true } }
+    }, data, el);
+  }
+
+  function init(root) {
+    (root || document).querySelectorAll(".uplot-chart").forEach(function (el) {
+      if (!el.dataset.drawn) { el.dataset.drawn = "1"; chart(el); }
+    });
+  }
+
+  document.addEventListener("DOMContentLoaded", function () { init(document); });
+  document.addEventListener("htmx:afterSwap", function (e) { init(e.target); });
+  document.addEventListener("htmx:configRequest", function (e) {
+    var meta = document.querySelector('meta[name="csrf-token"]');
+    if (meta) { e.detail.headers["X-CSRF-Token"] = meta.content; }
+  });
+})();

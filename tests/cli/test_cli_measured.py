@@ -1,0 +1,104 @@
+"""``axiscal compensate-environment``, ``capture`` and ``formats`` (issue 12)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from axiscal.cli import app
+from axiscal.io.rtx import format_rtx
+from axiscal.machines.config import axis_from_config
+from axiscal.procedures.environment import simulate_raw_test
+from axiscal.procedures.positioning import plan_linear
+from axiscal.procedures.record_simulation import RecordSettings, simulate_record
+from axiscal.io.measured import parse_plan_csv
+from axiscal.standards.iso230_2 import evaluate
+
+runner = CliRunner()
+AXIS = {"name": "X", "kind": "linear", "travel_mm": [-10, 810], "scale_error_ppm": 5.0,
+        "backlash_um": 2.0, "repeatability_um": 0.2}
+
+
+def _write_raw(tmp_path):
+    plan = plan_linear(800, runs=3, dwell=2.0)
+    raw, log, truth = simulate_raw_test(
+        plan, axis_from_config(AXIS), np.random.default_rng(5),
+        lambda t: (20.0 + t / 300, 101325.0, 45.0, 20.3 + t / 600), dead_path=0.15)
+    lines = ["# reading_unit=mm target_unit=mm machine=VMC-800 axis=X dead_path_mm=150",
+             "time_s,target,direction,run,reading"]
+    lines += [f"{t:.3f},{g:g},{d},{r},{x * 1e3:.9f}" for t, g, d, r, x in
+              zip(raw.times, raw.targets, raw.directions, raw.runs, raw.readings)]
+    (tmp_path / "raw.csv").write_text("\n".join(lines) + "\n")
+    env = ["# expansion_coefficient_ppm=11.5",
+           "time_s,air_temperature_c,pressure_pa,humidity_pct,material_temperature_c,"
+           "material_temperature_c"]
+    env += [f"{t:g},{a:.4f},{p:.1f},{h:.2f},{m[0]:.4f},{m[1]:.4f}" for t, a, p, h, m in
+            zip(log.times, log.air_temperature, log.pressure, log.humidity,
+                log.material_temperature)]
+    (tmp_path / "env.csv").write_text("\n".join(env) + "\n")
+    return truth
+
+
+def test_compensate_environment_from_files(tmp_path):
+    truth = _write_raw(tmp_path)
+    r = runner.invoke(app, ["compensate-environment", str(tmp_path / "raw.csv"), "--environment",
+                            str(tmp_path / "env.csv"), "--out", str(tmp_path / "d.csv"),
+                            "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert "Ciddor (1996)" in d["applied"] and d["readings"] == 30
+    r = runner.invoke(app, ["iso230-2", str(tmp_path / "d.csv"), "--json"])
+    got = json.loads(r.stdout)
+    assert got["E"] == pytest.approx(evaluate(truth).E, abs=0.05)    # 4-decimal log, 1e-9 mm
+
+
+@pytest.mark.parametrize("mutate, words", [
+    (lambda env: env.replace("time_s,air", "time,air"), "lacks time_s"),
+    (lambda env: "\n".join(env.splitlines()[:4]) + "\n", "outside the environment log"),
+    (lambda env: env.replace(",20.0000,", ",200.0000,", 1), "validity"),
+])
+def test_bad_environment_logs_are_one_line_and_write_nothing(tmp_path, mutate, words):
+    _write_raw(tmp_path)
+    env = tmp_path / "env.csv"
+    env.write_text(mutate(env.read_text()))
+    r = runner.invoke(app, ["compensate-environment", str(tmp_path / "raw.csv"),
+                            "--environment", str(env), "--out", str(tmp_path / "d.csv")])
+    assert r.exit_code == 2 and words in r.stderr, r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "d.csv").exists()
+
+
+def test_capture_an_rtx_record(tmp_path):
+    r = runner.invoke(app, ["plan", "linear", "--length", "800", "--runs", "2", "--dwell", "2",
+                            "--csv", str(tmp_path / "plan.csv")])
+    assert r.exit_code == 0, r.output
+    plan = parse_plan_csv((tmp_path / "plan.csv").read_text())
+    t, x, truth = simulate_record(plan, axis_from_config(AXIS), np.random.default_rng(6),
+                                  RecordSettings(sample_rate=1000.0))
+    (tmp_path / "run.rtx").write_bytes(format_rtx(x * 1e6, 1000.0, Axis="X"))
+    r = runner.invoke(app, ["capture", str(tmp_path / "run.rtx"), "--plan",
+                            str(tmp_path / "plan.csv"), "--out", str(tmp_path / "d.csv"),
+                            "--window", "0.5", "--plot", str(tmp_path / "dyn.png"), "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["measurements"] == plan.targets.size * 4
+    e = json.loads(runner.invoke(app, ["iso230-2", str(tmp_path / "d.csv"), "--json"]).stdout)
+    assert e["E"] == pytest.approx(evaluate(truth).E, abs=0.05)
+    assert (tmp_path / "dyn.png").stat().st_size > 20_000
+    short = tmp_path / "short.rtx"
+    short.write_bytes((tmp_path / "run.rtx").read_bytes()[:-100])
+    r = runner.invoke(app, ["capture", str(short), "--plan", str(tmp_path / "plan.csv"),
+                            "--out", str(tmp_path / "e.csv")])
+    assert r.exit_code == 2 and "truncated" in r.stderr and not (tmp_path / "e.csv").exists()
+
+
+def test_formats_lists_every_format():
+    r = runner.invoke(app, ["formats", "--json"])
+    assert r.exit_code == 0
+    names = [f["name"] for f in json.loads(r.stdout)]
+    assert any("dynamic capture" in n for n in names) and any("Environment log" in n
+                                                             for n in names)
+    assert len(names) >= 20

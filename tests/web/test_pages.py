@@ -1,0 +1,44 @@
+"""Workbench pages with the calibration certificate's numbers (issues 14 and 15)."""
+
+from __future__ import annotations
+
+import io
+import re
+
+import numpy as np
+from fastapi.testclient import TestClient
+
+from axiscal.datasets import Metadata, PositioningDataset
+from axiscal.io.csv import format_positioning_csv
+from axiscal.standards.iso230_2 import evaluate
+from axiscal.standards.iso230_9 import positioning_budget
+from axiscal.web.app import create_app
+
+
+def _file() -> bytes:
+    rng = np.random.default_rng(9)
+    t = np.linspace(0, 800, 9)
+    up = rng.normal(1.0, 0.5, (9, 5)) + t[:, None] * 0.01
+    return format_positioning_csv(PositioningDataset(
+        "linear", t, up, up - 2.0, "mm", "um",
+        Metadata(machine="VMC-800", axis="X", date="2026-03-01"))).encode()
+
+
+def test_test_page_shows_U_and_the_pdf_certificate_downloads(tmp_path, monkeypatch):
+    monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "none.toml"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"))
+    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    r = c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", _file(), "text/csv")})
+    assert r.status_code == 200 and "/tests/1" in str(r.url)
+    from axiscal.io import parse_positioning
+
+    ds = parse_positioning(_file().decode(), "x.csv")
+    u_e = positioning_budget(ds, evaluate(ds)).U("E")
+    assert "U (k = 2)" in r.text and f"{u_e:.3f}" in r.text
+    pdf = c.get("/tests/1/certificate.pdf")
+    assert pdf.status_code == 200 and pdf.content.startswith(b"%PDF")
+    from pypdf import PdfReader
+
+    text = "".join(p.extract_text() for p in PdfReader(io.BytesIO(pdf.content)).pages)
+    assert "page 1 of" in text and "VMC-800" in text
+    assert c.get("/tests/1/certificate.pdf?paper=Legal").status_code == 400
