@@ -31,3 +31,47 @@ def test_version():
     result = runner.invoke(app, ["--version"])
     assert result.exit_code == 0
     assert result.output.strip() == f"axiscal {__version__}"
+
+
+def test_no_internal_document_names_in_any_help():
+    """User-facing text cites documents by their real title, never an internal file name
+    ("seed 003"); every command is reached by walking the app's groups."""
+    import typer
+    from typer._click import core
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    def walk(cmd, path, ctx):
+        if hasattr(cmd, "list_commands"):
+            sub = core.Context(cmd, info_name=path[-1] if path else "axiscal", parent=ctx)
+            yield path
+            for name in cmd.list_commands(sub):
+                yield from walk(cmd.get_command(sub, name), path + [name], sub)
+        else:
+            yield path
+
+    paths = list(walk(typer.main.get_command(app), [], None))
+    assert len(paths) > 15
+    for path in paths:
+        r = CliRunner().invoke(app, [*path, "--help"], env={"COLUMNS": "200"})
+        assert r.exit_code == 0, path
+        assert "seed 00" not in r.output.lower(), (path, r.output)
+
+
+def test_an_option_name_means_one_thing():
+    """--alpha is the misalignment α of Renishaw's eq. 1 (rotary budget) and nowhere an expansion
+    coefficient (scale compensate: --expansion-coefficient); --reference is a reference line
+    (straightness, biaxial) and nowhere a home position (compensate: --home)."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    def options(*path):
+        r = CliRunner().invoke(app, [*path, "--help"], env={"COLUMNS": "250"})
+        return r.output
+
+    assert "--expansion-coefficient" in options("scale", "compensate")
+    assert "--alpha" not in options("scale", "compensate")
+    assert "--home" in options("compensate") and "--reference" not in options("compensate")
+    assert "--reference" in options("straightness") and "--alpha" in options("rotary", "budget")

@@ -13,8 +13,15 @@ from axiscal.errors import DataFormatError
 __all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit"]
 
 
-def finite_number(text: str, what: str, source: str | None = None, line: int | None = None) -> float:
-    """A finite float from ``text``, or a :class:`DataFormatError` naming ``what`` and the line.
+#: Largest magnitude a measured value may have, in any unit (a deviation of 1e308 is a typing
+#: slip; beyond this, statistics overflow to infinity and print as nonsense).
+MAX_MAGNITUDE = 1e100
+
+
+def finite_number(text: str, what: str, source: str | None = None, line: int | None = None,
+                  limit: float = MAX_MAGNITUDE) -> float:
+    """A finite float within ±``limit`` from ``text``, or a :class:`DataFormatError` naming
+    ``what`` and the line.
 
     Examples
     --------
@@ -32,6 +39,9 @@ def finite_number(text: str, what: str, source: str | None = None, line: int | N
         raise DataFormatError(f"{what} {stripped!r} is not a number", source, line) from None
     if not math.isfinite(v):
         raise DataFormatError(f"{what} {stripped!r} is not a finite number", source, line)
+    if abs(v) > limit:
+        raise DataFormatError(f"{what} {stripped} is out of range (beyond ±{limit:g})", source,
+                              line)
     return v
 
 

@@ -152,3 +152,26 @@ def test_plot_extension_is_checked_before_any_work(good, tmp_path):
     r = runner.invoke(app, ["iso230-2", str(good), "--plot", str(tmp_path / "p.gif")])
     assert r.exit_code == 2 and "use a .png, .svg or .pdf extension" in r.stderr
     assert not (tmp_path / "p.gif").exists()
+
+
+def test_rotary_closure_in_the_terminal_table_and_the_report(tmp_path):
+    """The README says the 0°/360° closure is reported: it must be in the parameters table and
+    the HTML report, not only in --json. Injected: the 360° readings are 2 arcsec above 0°'s."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    rows = ["target,direction,run,deviation"]
+    for run in range(1, 4):
+        for t in range(0, 361, 45):
+            for d in ("+", "-"):
+                rows.append(f"{t},{d},{run},{(2.0 if t == 360 else 0.0) + 0.01 * run:.3f}")
+    f = tmp_path / "c.csv"
+    f.write_text("# target_unit=deg deviation_unit=arcsec axis=C\n" + "\n".join(rows) + "\n")
+    r = CliRunner().invoke(app, ["iso230-2", str(f), "--report", str(tmp_path / "r.html")],
+                           env={"COLUMNS": "160"})
+    assert r.exit_code == 0, r.output
+    line = next(ln for ln in r.stdout.splitlines() if "closure↑" in ln)
+    assert "2.00" in line and "360°" in line
+    html = (tmp_path / "r.html").read_text()
+    assert "Closure ↑" in html and "Closure ↓" in html

@@ -82,7 +82,7 @@ def test_config_errors_are_clean(tmp_path):
     assert r.exit_code == 2 and "unknown key" in r.output and "Traceback" not in r.output
     r = runner.invoke(app, ["scale", "home", str(tmp_path / "missing.toml")])
     assert r.exit_code == 2
-    with pytest.raises(ConfigError, match="unknown section"):
+    with pytest.raises(ConfigError, match="unknown table"):
         parse_scale_config("[lazer]\n")
     with pytest.raises(ConfigError, match="TOML"):
         parse_scale_config("[laser\n")

@@ -19,6 +19,8 @@ from axiscal.procedures.positioning import (
 from axiscal.datasets import AxisKind
 from axiscal.standards.iso230_2 import evaluate
 from axiscal.units import ARCSEC, UM
+from axiscal.errors import ConfigError
+from axiscal.procedures.positioning import simulate_from_config
 
 
 def test_linear_plan_meets_the_standard_and_is_irregular():
@@ -166,3 +168,22 @@ def test_demo_configurations_recover_their_truth():
         sim = simulate_from_config(cfg, seed=7)
         assert abs(sim.result.E - sim.truth["E"]) < 1.5
         assert abs(sim.result.B_mean - sim.truth["B_mean"]) < 0.5
+
+
+# -- Wrong TOML types in a positioning [test] table are named, never coerced (review finding). ----------
+
+AXIS = {"kind": "linear", "travel_mm": [0, 800]}
+
+
+@pytest.mark.parametrize("test, message", [
+    ({"length_mm": 800, "runs": "five"}, "runs = 'five' must be a whole number"),
+    ({"length_mm": 800, "runs": 2.7}, "runs = 2.7 must be a whole number"),
+    ({"length_mm": 800, "bidirectional": "no"}, "bidirectional = 'no' must be true or false"),
+    ({"length_mm": "800"}, "length_mm"),
+    ({"length_mm": 800, "dwell_s": []}, "dwell_s"),
+    ({"length_mm": 800, "measurement_sigma": "x"}, "measurement_sigma"),
+    ({"length_mm": 800, "measurement_sigma": -0.1}, "measurement_sigma = -0.1 must be zero or positive"),
+])
+def test_wrong_types_are_named(test, message):
+    with pytest.raises(ConfigError, match=message):
+        simulate_from_config({"axis": AXIS, "test": test})

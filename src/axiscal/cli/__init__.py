@@ -72,8 +72,22 @@ class AxiscalGroup(typer.core.TyperGroup):
             _usage_error(exc)
 
     def invoke(self, ctx):  # noqa: D401 - click API
+        import warnings
+
         try:
-            return super().invoke(ctx)
+            with warnings.catch_warnings():
+                # a numpy overflow or invalid value means an absurd input got past a check:
+                # stop with one line instead of printing warning text and a nonsense result
+                warnings.simplefilter("error", RuntimeWarning)
+                return super().invoke(ctx)
+        except RuntimeWarning as exc:
+            typer.echo(f"axiscal: error: a value is too large to compute with ({exc}); check the "
+                       "input for a number of absurd magnitude", err=True)
+            raise typer.Exit(EXIT_USER_ERROR) from None
+        except MemoryError:
+            typer.echo("axiscal: error: out of memory; a count, duration or size in the input is "
+                       "far larger than a calibration needs", err=True)
+            raise typer.Exit(EXIT_USER_ERROR) from None
         except AxiscalError as exc:
             typer.echo(f"axiscal: error: {exc}", err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None

@@ -11,7 +11,7 @@ Three uses:
 * ``axiscal compensate --read TABLE --controller NAME [DATA_OR_RESULT]`` reads a table back and,
   with a data file or result, compares it with the deviations it should correct.
 * ``axiscal compensate --squareness 40 --axes XZ --aligned Z --start -200 --end 200 --spacing 50
-  --controller siemens-840d`` writes the cross-axis table of seed 004 Appendix II (corrections on
+  --controller siemens-840d`` writes the cross-axis table of Chapman, Calibration of machine squareness Appendix II (corrections on
   the axis aligned to the spindle, driven by the other axis).
 
 Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``. Format options
@@ -64,16 +64,16 @@ def compensate(
     start: Optional[float] = typer.Option(None, "--start", help="First table point, mm or deg (default: first target)."),
     end: Optional[float] = typer.Option(None, "--end", help="Last table point at or beyond this, mm or deg (default: last target)."),
     extrapolation: str = typer.Option("hold", "--extrapolation", help="Beyond the measured targets: 'hold' the end value or continue 'linear'."),
-    reference: Optional[float] = typer.Option(None, "--reference", help="Reference (home) position, mm or deg (default: the table start)."),
+    reference: Optional[float] = typer.Option(None, "--home", help="Home (reference) position, mm or deg (default: the table start)."),
     travel: Optional[List[float]] = typer.Option(None, "--travel", help="Axis travel low and high, mm or deg (give twice); the table must lie inside."),
     axis: str = typer.Option("", "--axis", help="Axis name written in the table (X, C ...)."),
     option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
-    squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (seed 004 sign: angle between + axes minus 90°)."),
+    squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (Chapman, Calibration of machine squareness sign: angle between + axes minus 90°)."),
     axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
-    aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (seed 004 Appendix II)."),
+    aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (Chapman, Calibration of machine squareness Appendix II)."),
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation, a whole number >= 0 (with --verify)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),

@@ -211,6 +211,10 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
         extra = [] if budget is None else ["—" if v is None else f(budget.U(name))]
         p.add_row(name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"),
                   f(v), *extra, meanings[name])
+    for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
+        if v is not None:   # a full turn keeps 0° and 360° as two targets
+            p.add_row(f"closure{arrow}", f(v), *(["—"] if budget is not None else []),
+                      "360° minus 0° mean deviation (full turn)")
     con.print(p)
     if verdicts:
         a = Table(title=escape(f"Acceptance ({verdicts[0].rule.value} decision rule)"),

@@ -1,4 +1,4 @@
-"""``axiscal motion ...``: five motion errors of a rotary axis (seed 003) and ISO 230-7.
+"""``axiscal motion ...``: five motion errors of a rotary axis (Optics Express 2018, Five-DOF motion errors of a rotary axis) and ISO 230-7.
 
 Commands: ``simulate CONFIG`` (one indexing test on the simulation, measured beside the truth),
 ``stability [CONFIG]`` (60 min every 10 s), ``repeatability CONFIG`` (three runs), ``analyze FILE``
@@ -35,7 +35,7 @@ from axiscal.cli._common import note, print_json, report_path, typed_path
 
 __all__ = ["register", "iso_json"]
 
-app = typer.Typer(help="Five motion errors of a rotary axis at once (seed 003) and ISO 230-7 "
+app = typer.Typer(help="Five motion errors of a rotary axis at once (Optics Express 2018, Five-DOF motion errors of a rotary axis) and ISO 230-7 "
                   "error motion evaluation.", no_args_is_help=True)
 
 _MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' crosstalk: an eccentric or "
@@ -93,7 +93,7 @@ def simulate(
     csv: Optional[Path] = typer.Option(None, "--csv", help="Write the measured errors as a data file "
                                        "(.csv) that 'axiscal motion analyze' reads."),
     no_compensation: bool = typer.Option(False, "--no-compensation", help="Show the errors without "
-                                         "the beam-drift compensation (seed 003 eqs. 1-6 only)."),
+                                         "the beam-drift compensation (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1-6 only)."),
 ) -> None:
     """Simulate one indexing test (steps of step_deg, 30° by default; reference counter-rotating)."""
     import numpy as np
@@ -150,22 +150,30 @@ def simulate(
 
 @app.command("stability")
 def stability(
-    config: Optional[Path] = typer.Argument(None, help="Configuration TOML (default: the seed 003 set-up)."),
+    config: Optional[Path] = typer.Argument(None, help="Configuration TOML (default: the set-up of Optics Express 2018)."),
     duration_min: Optional[float] = typer.Option(None, "--duration-min", help="Duration in minutes (default: the configuration's stability_duration_min, 60)."),
     interval_s: Optional[float] = typer.Option(None, "--interval-s", help="Sampling interval in seconds (default: the configuration's stability_interval_s, 10)."),
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
 ) -> None:
-    """Run the stability experiment of seed 003 §3.2 on the simulation (still set-up)."""
+    """Run the stability experiment of Optics Express 2018, Five-DOF motion errors of a rotary axis §3.2 on the simulation (still set-up)."""
     import numpy as np
 
     from axiscal.procedures.motion_errors import stability_test
     from axiscal.report.motion_report import STABILITY_SEED
 
+    from axiscal._schema import check_option
+    from axiscal.errors import InputError
+
+    check_option("--duration-min", duration_min, "min", lo=0, lo_open=True, hi=MAX_DURATION_MIN)
+    check_option("--interval-s", interval_s, "s", lo=0, lo_open=True, hi=3600)
     paths = _check_outputs(report=report)
     cfg = _config(config)
     duration = cfg.duration if duration_min is None else 60 * duration_min
     interval = cfg.interval if interval_s is None else interval_s
+    if duration / interval > MAX_READINGS:
+        raise InputError(f"{duration / 60:g} min every {interval:g} s is {duration / interval:.3g} "
+                         f"readings; at most {MAX_READINGS:g} are simulated (lengthen --interval-s)")
     run = stability_test(cfg.system, np.random.default_rng(cfg.seed), duration, interval, cfg.drift,
                          cfg.drift_window)
     std = {k: float(np.std(v)) for k, v in _five(run.measured).items()}
@@ -181,7 +189,7 @@ def stability(
                     "std": std, "std_uncompensated": raw, "seed_std": seed})
     else:
         typer.echo(f"stability: {run.time.size} readings over {duration / 60:g} min, every {interval:g} s")
-        typer.echo(f"{'error':<10}{'σ':>10}{'σ uncomp.':>12}{'seed 003':>10}")
+        typer.echo(f"{'error':<10}{'σ':>10}{'σ uncomp.':>12}{'published':>11}")
         for k in _KEYS.values():
             typer.echo(f"{k:<10}{std[k]:10.3f}{raw[k]:12.3f}{seed[k]:10.2f}")
     _wrote(paths)
@@ -195,7 +203,7 @@ def repeatability(
     report: Optional[Path] = _REPORT,
     csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file (.csv) for 'analyze'."),
 ) -> None:
-    """Run the indexing test several times (seed 003 §3.3) and report the ± repeatability."""
+    """Run the indexing test several times (Optics Express 2018, Five-DOF motion errors of a rotary axis §3.3) and report the ± repeatability."""
     import numpy as np
 
     from axiscal.io.motion import format_motion_errors, read_motion_config
@@ -230,7 +238,7 @@ def repeatability(
     else:
         typer.echo(f"repeatability over {n} runs (± largest half-range at one angle):")
         for c, k in _KEYS.items():
-            typer.echo(f"  {k:<10} ±{_five_dict(rep)[k]:.2f}   (seed 003: ±{REPEATABILITY_SEED[c]})")
+            typer.echo(f"  {k:<10} ±{_five_dict(rep)[k]:.2f}   (published: ±{REPEATABILITY_SEED[c]})")
         typer.echo(str(result))
     _wrote(paths)
 
@@ -260,6 +268,10 @@ def analyze(
     else:
         typer.echo(str(result))
     _wrote(paths)
+
+
+#: Longest stability run (one week) and most readings simulated (each holds five channels).
+MAX_DURATION_MIN, MAX_READINGS = 10_080, 1_000_000
 
 
 def _config(path):

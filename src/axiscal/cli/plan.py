@@ -58,7 +58,7 @@ def plan_rotary_cmd(
     runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
     cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
     unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
-    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (seed 001: 5)."),
+    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (Yüksel et al., Position accuracy and repeatability calibration of turn tables: 5)."),
     dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
     axis: str = typer.Option("C", "--axis", help="Axis name."),
     csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),

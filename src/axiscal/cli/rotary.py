@@ -14,7 +14,7 @@ evaluation) and compares it with the truth. ``--json`` keys (stable): ``axis``, 
 ``yaw_removed_arcsec``, ``program_lines``, or null) and ``warnings``.
 
 ``axiscal rotary budget --alpha A --beta B [--omega W] [--accuracy X] [--json]`` answers "how
-well must I align for this accuracy?" from seed 000 equation 1 and its Figure 22 table, taking
+well must I align for this accuracy?" from Renishaw, Interferometric calibration of rotary axes, equation 1 and its Figure 22 table, taking
 the more cautious (:func:`axiscal.physics.misalignment.expected_accuracy`). ``--json`` keys
 (stable): ``alpha_mrad``, ``beta_mrad``, ``omega_mrad``, ``terms_arcsec`` (``quadratic``,
 ``alpha_beta``, ``alpha_omega``: amplitudes), ``peak_arcsec``, ``half_range_arcsec``,
@@ -199,7 +199,8 @@ def render_rotary(result, title: str) -> None:
 def register(app: typer.Typer) -> None:
     """Add the ``rotary`` command group (``simulate``, ``budget``)."""
     group = typer.Typer(help="Rotary-axis calibration with an angular interferometer and a "
-                             "counter-rotating reference calibrator (seed 000).",
+                             "counter-rotating reference calibrator (Renishaw, Interferometric "
+                             "calibration of rotary axes).",
                         no_args_is_help=True)
     group.command("simulate")(simulate)
     group.command("budget")(budget)

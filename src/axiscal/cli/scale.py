@@ -1,4 +1,4 @@
-"""``axiscal scale``: the laser scale with an environmental compensator (seed 002).
+"""``axiscal scale``: the laser scale with an environmental compensator (Renishaw, Laser scale axis referencing).
 
 ``scale home CONFIG.toml [--plot FILE] [--json]``
     Referencing of one axis. JSON keys: ``homed``, ``counts_per_period``, ``count_size_nm``,
@@ -41,7 +41,7 @@ __all__ = ["register", "scale_app"]
 scale_app = typer.Typer(
     name="scale",
     help="Laser scale with an environmental compensator: referencing, gantry homing, "
-    "compensation factor (seed 002).",
+    "compensation factor (Renishaw, Laser scale axis referencing).",
     no_args_is_help=True,
 )
 
@@ -110,7 +110,7 @@ def gantry(
     from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
                                               worst_case_runs)
 
-    cfg = read_scale_config(config)
+    cfg = read_scale_config(config, gantry=True)
     g, run_kwargs, sigma = twin_axis_from_config(cfg)
     run = simulate_twin_homing(g, **run_kwargs)
     worst = worst_case_runs(g)
@@ -144,7 +144,7 @@ def compensate(
                                  help="ciddor, edlen or birch-downs."),
     material: Optional[str] = typer.Option(None, "--material",
                                            help="Work-piece material (steel, aluminium ...)."),
-    alpha: Optional[float] = typer.Option(None, "--alpha",
+    alpha: Optional[float] = typer.Option(None, "--expansion-coefficient",
                                           help="Work-piece expansion coefficient, 1/K."),
     material_temperature: List[float] = typer.Option(
         [], "--material-temperature", help="Work-piece sensor, °C (repeat for several; averaged)."),
@@ -160,7 +160,7 @@ def compensate(
     from axiscal.physics.thermal import material as lookup, mean_temperature
 
     if material is not None and alpha is not None:
-        raise InputError("give --material or --alpha, not both")
+        raise InputError("give --material or --expansion-coefficient, not both")
     a = alpha if alpha is not None else (lookup(material).alpha if material else 0.0)
     t_mat = mean_temperature(material_temperature) if material_temperature else 20.0
     comp = Compensator(output=SineOutput(period * 1e-6, counts_per_period), equation=equation,

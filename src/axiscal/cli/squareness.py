@@ -1,6 +1,6 @@
 """``axiscal straightness FILE`` and ``axiscal squareness biaxial|diagonal|circular|simulate``.
 
-Every squareness result states its sign convention and carries both (seed 004 Note 1).
+Every squareness result states its sign convention and carries both (Chapman, Calibration of machine squareness Note 1).
 
 JSON output (``--json``), stable keys:
 
@@ -45,8 +45,8 @@ _JSON_HELP = "Print the result as JSON (stable keys, see the module docs)."
 _DATUM_HELP = "Datum axis of the ISO 230-1 sign (default the first axis)."
 
 squareness_app = typer.Typer(
-    help="Squareness between two linear axes by ISO 230-1, -4 and -6; every result gives the seed "
-    "004 sign (positive when the angle exceeds 90°) and the ISO 230-1 datum/referred-axis sign.",
+    help="Squareness between two linear axes by ISO 230-1, -4 and -6; every result gives the sign of "
+    "Chapman, Calibration of machine squareness (positive when the angle exceeds 90°) and the ISO 230-1 datum/referred-axis sign.",
     no_args_is_help=True,
 )
 
@@ -102,7 +102,7 @@ def straightness(
 def biaxial(
     xfile: Path = typer.Argument(..., help="Trajectory of the first axis (deviations along the second), straightness CSV."),
     yfile: Path = typer.Argument(..., help="Trajectory of the second axis (deviations along the first), straightness CSV."),
-    config: str = typer.Option("L", "--config", help="Set-up: L, T or + (seed 004 Methods 1-3)."),
+    config: str = typer.Option("L", "--config", help="Set-up: L, T or + (Chapman, Calibration of machine squareness Methods 1-3)."),
     orientation: int = typer.Option(0, "--orientation", help="Equipment orientation, degrees clockwise: 0, 90, 180 or 270."),
     prism_error: float = typer.Option(0.0, "--prism-error", help="Angle error of the optical or mechanical square in orientation 0, arcsec (its angle minus 90°)."),
     reference: str = typer.Option("least_squares", "--reference", help=_REF_HELP),
@@ -110,7 +110,7 @@ def biaxial(
     square: str = typer.Option("optics", "--square", help="Reference square for the uncertainty budget: optics (straightness optics + optical square), square (mechanical square and probe) or reversal (square reversed)."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
-    """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, seed 004 Methods 1-3)."""
+    """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, Chapman, Calibration of machine squareness Methods 1-3)."""
     from axiscal.errors import InputError
     from axiscal.io.straightness import read_straightness
     from axiscal.standards.iso230_1 import correct_reference_angle, squareness_from_trajectories
@@ -193,11 +193,17 @@ def diagonal(
     datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
-    """Squareness = D0 (D1 − D2) / (2XY) from two diagonals (ISO 230-6, seed 004 Method 5)."""
+    """Squareness = D0 (D1 − D2) / (2XY) from two diagonals (ISO 230-6, Chapman, Calibration of machine squareness Method 5)."""
     from axiscal.errors import InputError
     from axiscal.standards.iso230_6 import diagonal_squareness, diagonal_squareness_multipoint
 
+    from axiscal._schema import check_option
+
     given = {"--x-length": x_length, "--y-length": y_length, "--d1": d1, "--d2": d2}
+    for name in ("--x-length", "--y-length"):
+        check_option(name, given[name], "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
+    for name in ("--d1", "--d2"):   # a diagonal's length error: within a tenth of the travel
+        check_option(name, given[name], "µm", lo=-MAX_ERROR_UM, hi=MAX_ERROR_UM)
     if file is not None:
         from axiscal.io.ballbar import read_diagonal
 
@@ -230,6 +236,10 @@ def diagonal(
         typer.echo(_budget_line(budget))
 
 
+#: Longest travel or ballbar radius taken (100 m) and largest diagonal length error (1 m).
+MAX_LENGTH_MM, MAX_ERROR_UM = 100_000.0, 1e6
+
+
 def circular(
     file: Path = typer.Argument(..., help="Ballbar CSV (angle,direction,deviation; see io.ballbar)."),
     radius: Optional[float] = typer.Option(None, "--radius", help="Nominal radius, mm (overrides the file)."),
@@ -241,6 +251,9 @@ def circular(
     from axiscal.io.ballbar import read_ballbar
     from axiscal.standards.iso230_4 import evaluate_circular
 
+    from axiscal._schema import check_option
+
+    check_option("--radius", radius, "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
     if plot is not None:
         plot_path(plot)
     data = read_ballbar(file, radius_mm=radius)
@@ -261,12 +274,12 @@ def circular(
 
 
 def simulate(
-    machine: int = typer.Option(1, "--machine", help="Seed 004 machine 1 to 7."),
+    machine: int = typer.Option(1, "--machine", help="Machine 1 to 7 of Chapman, Calibration of machine squareness."),
     scope: str = typer.Option("global", "--scope", help="global (full travel) or local (five 1/4-travel locations)."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the distorted plane with every test and its result (PNG/SVG/PDF)."),
 ) -> None:
-    """Every squareness method on a simulated seed 004 machine (Figures 14-26)."""
+    """Every squareness method on a simulated machine of Chapman, Calibration of machine squareness (Figures 14-26)."""
     from axiscal.machines.xy_plane import seed004_machine
     from axiscal.procedures.squareness_study import compare_methods
 

@@ -133,8 +133,19 @@ class CompensationLoopResult:
         return "\n".join(lines)
 
 
+#: The tables of a compensation-loop configuration.
+_TABLES = {"axis", "test", "meta", "compensation"}
+
+
 def loop_settings(config: dict) -> dict:
-    """Validate the ``[compensation]`` table and fill defaults."""
+    """Validate the ``[compensation]`` table (and the names of all tables) and fill defaults."""
+    from axiscal.machines.config import refuse_unknown_keys
+
+    unknown_tables = sorted(set(config) - _TABLES)
+    if unknown_tables:
+        raise ConfigError(f"unknown table [{unknown_tables[0]}]; known: "
+                          f"{', '.join(sorted(_TABLES))}")
+    refuse_unknown_keys("[compensation]", config.get("compensation", {}), _KEYS)
     c = dict(config.get("compensation", {}))
     unknown = sorted(set(c) - _KEYS)
     if unknown:
@@ -188,6 +199,9 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
         raise ConfigError("the configuration has no [axis] table")
     axis = axis_from_config(config["axis"])
     kind = AxisKind.LINEAR if hasattr(axis, "systematic_deviation") else AxisKind.ROTARY
+    from axiscal.machines.config import check_test_types
+
+    check_test_types(config.get("test", {}))   # a value of the wrong type, named
     test = dict(config.get("test", {}))
     msigma = float(test.pop("measurement_sigma", 0.0))
     plan = plan_from_config(test, kind, axis.name)

@@ -106,6 +106,9 @@ def write_bytes_atomic(path, data: bytes) -> Path:
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
+            # mkstemp gives 0600; a report or table must get the mode a plain write gives (the
+            # umask's), and overwriting keeps the old file's mode
+            os.fchmod(fh.fileno(), _mode_for(p))
         os.replace(tmp, p)
     except BaseException as exc:
         try:
@@ -116,6 +119,16 @@ def write_bytes_atomic(path, data: bytes) -> Path:
             raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
         raise
     return p
+
+
+def _mode_for(p: Path) -> int:
+    """The permission bits of ``p`` if it exists, else 0666 less the process's umask."""
+    try:
+        return p.stat().st_mode & 0o7777
+    except OSError:
+        mask = os.umask(0)
+        os.umask(mask)
+        return 0o666 & ~mask
 
 
 def write_text_atomic(path, text: str) -> Path:

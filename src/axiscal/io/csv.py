@@ -21,6 +21,7 @@ millimetres, or µm read as mm, would give numbers that look right and are not).
 from __future__ import annotations
 
 import io
+import math
 import shlex
 
 from axiscal import units
@@ -151,7 +152,8 @@ def _records(lines, columns: list[str], value_col: str, to_dev: float | None, so
             direction = _direction(row[idx["direction"]])
         except InputError as exc:
             raise DataFormatError(str(exc), source, lineno) from None
-        run = check_run_number(finite_number(row[idx["run"]], "run", source, lineno),
+        run = check_run_number(finite_number(row[idx["run"]], "run", source, lineno,
+                                                 limit=math.inf),
                                len(lines), source, lineno, row[idx["run"]])
         raw = row[idx[value_col]].strip()
         if raw == "" or raw.lower() in {"nan", "na", "missing"}:

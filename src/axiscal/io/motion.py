@@ -31,7 +31,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from axiscal._parse import check_run_number
+from axiscal._parse import MAX_MAGNITUDE, check_run_number, finite_number
 from axiscal.errors import ConfigError, DataFormatError
 from axiscal.instruments.five_dof import Detector, FiveDofSystem, Mounting
 from axiscal.io._files import read_text
@@ -82,7 +82,12 @@ class MotionConfig:
 
 def read_motion_config(path) -> MotionConfig:
     """Read a TOML configuration (see :func:`parse_motion_config`)."""
-    return parse_motion_config(read_text(path), str(path))
+    text = read_text(path)
+    if not text.strip() or all(not ln.strip() or ln.lstrip().startswith("#")
+                               for ln in text.splitlines()):
+        raise ConfigError(f"{path}: the file is empty; give at least an [axis] or [test] table "
+                          "(see examples/motion_indexing_table.toml)")
+    return parse_motion_config(text, str(path))
 
 
 def parse_motion_config(text: str, source: str = "<config>") -> MotionConfig:
@@ -196,11 +201,16 @@ def _harmonics(t: "_Table", unit: float, key: str = "harmonics") -> HarmonicSeri
         if (not isinstance(row, list) or len(row) != 3
                 or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
                            and math.isfinite(v) for v in row)
-                or int(row[0]) != row[0] or row[0] < 1):
-            raise ConfigError(f"{t.where(key)}: entry {row!r} must be [order (whole, >= 1), "
-                              "amplitude, phase_deg], finite numbers")
+                or int(row[0]) != row[0] or not 1 <= row[0] <= MAX_ORDER
+                or abs(row[1]) > MAX_AMPLITUDE or abs(row[2]) > 36_000):
+            raise ConfigError(f"{t.where(key)}: entry {row!r} must be [order (whole, 1 to "
+                              f"{MAX_ORDER}), amplitude (within ±{MAX_AMPLITUDE:g}), phase_deg]")
         out.append(Harmonic(float(row[1]) * unit, TWO_PI / int(row[0]), math.radians(row[2])))
     return HarmonicSeries(tuple(out)) if out else ZERO
+
+
+#: Highest harmonic order per turn and largest amplitude (arcsec or µm) taken in a configuration.
+MAX_ORDER, MAX_AMPLITUDE = 3600, 1e6
 
 
 class _Table:
@@ -221,13 +231,13 @@ class _Table:
     def sub(self, key):
         return _Table(self.get(key, {}), self.source, f"{self.path}.{key}".strip("."))
 
-    def num(self, key, default, lo=None):
-        v = self.get(key, default)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise ConfigError(f"{self.where(key)} = {v!r} must be a number")
-        if lo is not None and v < lo:
-            raise ConfigError(f"{self.where(key)} = {v!r} must be >= {lo:g}")
-        return float(v)
+    def num(self, key, default, lo=None, hi=None):
+        from axiscal._schema import Num, SchemaError
+
+        try:
+            return Num("", lo, hi).check(self.get(key, default), self.where(key))
+        except SchemaError as exc:
+            raise ConfigError(str(exc)) from None
 
     def int(self, key, default, lo=1):
         v = self.get(key, default)
@@ -302,12 +312,8 @@ def parse_motion_errors(text: str, source: str = "<text>") -> MotionErrorData:
             continue
         if len(cells) != len(header):
             raise DataFormatError(f"{len(cells)} values where the header has {len(header)}", source, i)
-        try:
-            vals = [float(c) for c in cells]
-        except ValueError:
-            raise DataFormatError(f"not a number in {cells!r}", source, i) from None
-        if not all(math.isfinite(v) for v in vals):
-            raise DataFormatError("NaN or infinite value", source, i)
+        vals = [finite_number(c, name, source, i, limit=math.inf if name == "run" else MAX_MAGNITUDE)
+                for c, name in zip(cells, header)]
         rows.append((i, dict(zip(header, vals))))
     if header is None or not rows:
         raise DataFormatError("no header and data rows", source)

@@ -41,63 +41,78 @@ keys (a misspelt key never silently falls back to a default); :func:`axis_from_c
 
 from __future__ import annotations
 
-import tomllib
 from typing import Any
 
 import numpy as np
 
+from axiscal._schema import Free, Num, Schema, Text
 from axiscal.errors import ConfigError
 from axiscal.io._files import read_text
 
 __all__ = ["parse_scale_config", "read_scale_config", "axis_from_config",
            "homing_from_config", "twin_axis_from_config", "compensator_from_config"]
 
-_SCHEMA: dict[str, set[str]] = {
-    "laser": {"vacuum_wavelength_nm", "counts_per_wavelength", "dead_path_mm"},
-    "compensator": {"period_um", "counts_per_period", "equation", "material",
-                    "expansion_coefficient", "update_interval_s", "co2", "rephase_periods"},
-    "air": {"temperature", "pressure", "humidity", "material_temperature", "temperature_rate",
-            "pressure_rate", "humidity_rate", "material_rate"},
-    "sensors": {"temperature_error", "pressure_error", "humidity_error", "material_error"},
-    "switch": {"position_mm", "repeatability_um", "direction"},
-    "controller": {"max_input_frequency_khz", "frequency_gate_us", "skew_limit_counts",
-                   "offset_counts"},
-    "homing": {"start_mm", "speed_mm_per_min", "seed", "power_up_phase"},
-    "move": {"target_mm", "speed_mm_per_min", "acceleration"},
-    "gantry": {"switch_1_mm", "switch_2_mm", "start_1_mm", "start_2_mm",
-               "switch_repeatability_um", "direction", "seed", "power_up_phase_1",
-               "power_up_phase_2"},
-}
+#: Largest output counts per period taken: the simulation samples every count of the homing
+#: (a billion counts per period would need 60 GiB; a gantry with millions never finishes).
+MAX_COUNTS_PER_PERIOD = 4096
+_MM = Num("mm", -1e6, 1e6)          # a machine coordinate: within 1 km
+_SPEED = Num("mm/min", 0, 1e6, lo_open=True)
+_DIRECTION = Text(("+", "-", "+1", "-1", "1", "positive", "negative"))
+_SEED = Num("", 0, 2**63 - 1, integer=True)
+_PHASE = Num("counts", 0, MAX_COUNTS_PER_PERIOD, integer=True)
+
+#: Every table and key of a laser-scale configuration, with the unit written and its bounds.
+SCHEMA = Schema({
+    "laser": {"vacuum_wavelength_nm": Num("nm", 200, 2000),
+              "counts_per_wavelength": Num("", 1, 64, integer=True),
+              "dead_path_mm": Num("mm", 0, 100_000)},
+    "compensator": {"period_um": Num("µm", 0, 1000, lo_open=True),
+                    "counts_per_period": Num("", 1, MAX_COUNTS_PER_PERIOD, integer=True),
+                    "equation": Text(("ciddor", "edlen", "birch-downs")), "material": Text(),
+                    "expansion_coefficient": Num("1/K", -1e-3, 1e-3),
+                    "update_interval_s": Num("s", 0, 3600, lo_open=True),
+                    "co2": Num("µmol/mol", 0, 100_000),
+                    "rephase_periods": Free()},   # a whole number or "auto": read below
+    "air": {"temperature": Num("°C", -50, 100), "pressure": Num("Pa", 1000, 200_000),
+            "humidity": Num("%RH", 0, 100), "material_temperature": Num("°C", -50, 200),
+            "temperature_rate": Num("K/s", -1, 1), "pressure_rate": Num("Pa/s", -1000, 1000),
+            "humidity_rate": Num("%RH/s", -10, 10), "material_rate": Num("K/s", -1, 1)},
+    "sensors": {"temperature_error": Num("K", -10, 10), "pressure_error": Num("Pa", -10_000, 10_000),
+                "humidity_error": Num("%RH", -100, 100), "material_error": Num("K", -10, 10)},
+    "switch": {"position_mm": _MM, "repeatability_um": Num("µm", 0, 1000),
+               "direction": _DIRECTION},
+    "controller": {"max_input_frequency_khz": Num("kHz", 0, 1e6, lo_open=True),
+                   "frequency_gate_us": Num("µs", 0, 1e6, lo_open=True),
+                   "skew_limit_counts": Num("counts", 0, 10**9, integer=True),
+                   "offset_counts": Num("counts", -10**9, 10**9, integer=True)},
+    "homing": {"start_mm": _MM, "speed_mm_per_min": _SPEED, "seed": _SEED,
+               "power_up_phase": _PHASE},
+    "move": {"target_mm": Num("mm", -1e6, 1e6, required=True), "speed_mm_per_min": _SPEED,
+             "acceleration": Num("m/s²", 0, 1000, lo_open=True)},
+    "gantry": {"switch_1_mm": _MM, "switch_2_mm": _MM, "start_1_mm": _MM, "start_2_mm": _MM,
+               "switch_repeatability_um": Num("µm", 0, 1000), "direction": _DIRECTION,
+               "seed": _SEED, "power_up_phase_1": _PHASE, "power_up_phase_2": _PHASE},
+}, arrays=("move",), example="examples/scale_single.toml")
+_SCHEMA = {name: set(keys) for name, keys in SCHEMA.tables.items()}
+#: The twin-axis command needs its [gantry] table.
+GANTRY_SCHEMA = Schema(SCHEMA.tables, required=("gantry",), arrays=("move",),
+                       example="examples/scale_gantry.toml")
 
 
-def parse_scale_config(text: str, source: str = "<text>") -> dict[str, Any]:
-    """Parse TOML text into sections, refusing unknown sections and keys."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{source}: not valid TOML: {exc}") from None
-    for name, value in data.items():
-        if name not in _SCHEMA:
-            raise ConfigError(f"{source}: unknown section [{name}]; known: "
-                              f"{', '.join(sorted(_SCHEMA))}")
-        tables = value if isinstance(value, list) else [value]
-        if name == "move" and not isinstance(value, list):
-            raise ConfigError(f"{source}: moves are written [[move]] (an array of tables)")
-        for table in tables:
-            if not isinstance(table, dict):
-                raise ConfigError(f"{source}: [{name}] must be a table")
-            unknown = sorted(set(table) - _SCHEMA[name])
-            if unknown:
-                raise ConfigError(f"{source}: unknown key(s) in [{name}]: {', '.join(unknown)}; "
-                                  f"known: {', '.join(sorted(_SCHEMA[name]))}")
-    data.setdefault("move", [])
+def parse_scale_config(text: str, source: str = "<text>", schema: Schema = SCHEMA) -> dict[str, Any]:
+    """Parse TOML text into sections: unknown tables and keys, values of the wrong type or beyond
+    a physical set-up, and an empty file are refused by name (:class:`axiscal._schema.Schema`)."""
+    data = schema.parse(text, source)
+    data = {name: ([{k: v for k, v in t.items() if v is not None} for t in value]
+                   if isinstance(value, list) else {k: v for k, v in value.items() if v is not None})
+            for name, value in data.items()}
     data["_source"] = source
     return data
 
 
-def read_scale_config(path) -> dict[str, Any]:
-    """Read a laser-scale configuration file (TOML)."""
-    return parse_scale_config(read_text(path), source=str(path))
+def read_scale_config(path, gantry: bool = False) -> dict[str, Any]:
+    """Read a laser-scale configuration file (TOML); ``gantry`` requires the [gantry] table."""
+    return parse_scale_config(read_text(path), str(path), GANTRY_SCHEMA if gantry else SCHEMA)
 
 
 def compensator_from_config(cfg: dict[str, Any]):

@@ -280,6 +280,11 @@ def _results(rep: Report, result, budget, decisions, rule_text: str) -> None:
             f"<td>{'—' if U is None else f'{U:.2f}'}</td><td>{tol}</td><td>{verdict}</td>"
             f"<td>{_esc(_PARAM_MEANING[name])}</td></tr>"
         )
+    for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
+        if v is not None:   # a full turn: 0° and 360° stay two targets; their difference
+            rows.append(f"<tr><td>Closure {arrow}</td><td>{_cell(v, 2)}</td><td>—</td><td></td>"
+                        "<td></td><td>Mean deviation at 360° minus that at 0° (full turn: the "
+                        "two stay separate targets)</td></tr>")
     rep.add_heading("Results")
     rep.add_html(
         f'<table class="results"><thead><tr><th>Parameter</th><th>Value [{u}]</th>'

@@ -169,6 +169,10 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
     rep.add_heading("Result")
     params = result.parameters()
     rows = [[_PARAM_LABEL[k], v, _PARAM_MEANING[k]] for k, v in params.items()]
+    for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
+        if v is not None:   # a full turn: 0° and 360° stay two targets; their difference
+            rows.append([f"Closure {arrow}", v, "Mean deviation at 360° minus that at 0° "
+                         "(full turn; the turntable paper of Yüksel et al., Table 3)"])
     rep.add_table(["Parameter", f"Value [{u}]", "Meaning (ISO 230-2:2014)"], rows, digits=2,
                   css_class="params")
     if verdicts:

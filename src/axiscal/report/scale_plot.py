@@ -1,4 +1,4 @@
-"""Plot of a laser-scale referencing run against position, like Figure 4 of seed 002.
+"""Plot of a laser-scale referencing run against position, like Figure 4 of Renishaw, Laser scale axis referencing.
 
 Panels, sharing the position axis (real output counts of motion beyond the switch, and µm):
 the laser head's digital A/B quadrature, the reference switch, the synthesised sine and cosine

@@ -1,5 +1,5 @@
 """Plots for squareness and straightness: the distorted XY plane with each test and its result
-(seed 004 Figures 13-26), the ballbar polar plot, and a straightness trace with its line.
+(Chapman, Calibration of machine squareness Figures 13-26), the ballbar polar plot, and a straightness trace with its line.
 
 Every ``save_*`` function writes atomically (PNG, SVG or PDF by extension); every ``*_figure``
 function returns the matplotlib figure for a report. Agg backend, no display needed.
@@ -226,7 +226,7 @@ def _draw_test(ax, machine, r, mag, first: bool) -> None:
 
 
 def _draw_ballbar_trace(ax, machine, r, style) -> None:
-    """The mean CCW/CW ballbar trace, auto-scaled to ±12 % of the radius (seed 004 Figure 13)."""
+    """The mean CCW/CW ballbar trace, auto-scaled to ±12 % of the radius (Chapman, Calibration of machine squareness Figure 13)."""
     from axiscal.procedures.squareness import BallbarTest, measure_ballbar
 
     rad = r.size[0] / 2

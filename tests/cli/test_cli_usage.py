@@ -44,7 +44,7 @@ def test_usage_errors_are_one_line(args, words):
     ["rotary", "budget", "--alpha", "1", "--beta", "1", "--base", "inf"],
     ["rotary", "budget", "--alpha", "1", "--beta", "1", "--accuracy", "inf"],
     ["squareness", "biaxial", "x.csv", "y.csv", "--prism-error", "nan"],
-    ["compensate", "x.csv", "--reference", "nan"],
+    ["compensate", "x.csv", "--home", "nan"],
     ["compensate", "x.csv", "--travel", "0", "--travel", "inf"],
     ["motion", "stability", "--duration-min", "inf"],
     ["scale", "compensate", "--material-temperature", "-inf"],

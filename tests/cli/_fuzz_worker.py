@@ -1,0 +1,36 @@
+"""Child process of the CLI fuzz harness (tests/cli/test_cli_fuzz.py).
+
+Reads one JSON list of arguments per line on stdin, runs ``axiscal ARGS`` in-process (typer's
+CliRunner) and writes one JSON line with the exit code, stdout, stderr and any traceback. The
+parent set a memory limit (RLIMIT_AS) on this process and times each answer, so a runaway
+allocation or a hang fails the test instead of the machine.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import traceback
+
+
+def main() -> None:
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    out = sys.stdout
+    out.write('"ready"\n')
+    out.flush()
+    for line in sys.stdin:
+        args = json.loads(line)
+        r = CliRunner().invoke(app, args)
+        tb = None
+        if r.exception is not None and not isinstance(r.exception, SystemExit):
+            tb = "".join(traceback.format_exception(*r.exc_info))
+        out.write(json.dumps({"exit": r.exit_code, "stdout": r.stdout[-2000:],
+                              "stderr": r.stderr[-4000:], "traceback": tb}) + "\n")
+        out.flush()
+
+
+if __name__ == "__main__":
+    main()
