@@ -43,7 +43,19 @@ def test_hand_worked_linear_case():
     assert b.U("E") == pytest.approx(3.342, abs=5e-4)
     assert b.U("R") == pytest.approx(0.5774, abs=5e-5)
     assert b.U("M") == b.U("A") == b.U("E")
-    assert b.k == 2.0 and "GTC" in b.method
+    assert b.k == 2.0 and "eq. 10" in b.method
+
+
+def test_gtc_and_the_direct_sum_agree():
+    """GTC's uncertain real numbers (an independent implementation of the GUM) give the same
+    combined uncertainty as the root sum of squares the budget uses, for every parameter."""
+    from axiscal.standards.iso230_9 import combine, linear_budget
+
+    b = linear_budget(1000.0, LinearInputs(), "um")
+    g = combine(b.contributors, "um", b.k, list(b.combined), engine="gtc")
+    assert "GTC" in g.method
+    for p, u in b.combined.items():
+        assert g.combined[p] == pytest.approx(u, rel=1e-12)
 
 
 @pytest.mark.parametrize(

@@ -180,9 +180,15 @@ class UncertaintyBudget:
 
 
 def combine(
-    contributors, unit: str, k: float = COVERAGE_FACTOR, parameters=None, notes=()
+    contributors, unit: str, k: float = COVERAGE_FACTOR, parameters=None, notes=(),
+    engine: str = "plain",
 ) -> UncertaintyBudget:
     """Combine contributors per parameter (GUM eq. 10, sensitivity 1, uncorrelated inputs).
+
+    ``engine="plain"`` evaluates eq. 10 directly (the root sum of squares, exact for this model
+    and free of start-up cost); ``engine="gtc"`` forms the same sum with GTC's uncertain real
+    numbers (GUM Tree Calculator), an independent implementation the tests compare with. GTC
+    costs over a second to import, which every ``iso230-2`` run would pay.
 
     Parameters
     ----------
@@ -209,10 +215,12 @@ def combine(
     if not (math.isfinite(k) and k > 0):
         raise InputError(f"coverage factor k = {k!r} must be a number > 0")
     names = parameters or list(dict.fromkeys(p for c in contributors for p in c.applies_to))
-    try:
+    if engine not in ("plain", "gtc"):
+        raise InputError(f"engine = {engine!r}; plain or gtc")
+    if engine == "gtc":
         combined, method = _combine_gtc(contributors, names), "GTC (GUM Tree Calculator)"
-    except ImportError:
-        combined, method = _combine_plain(contributors, names), "plain arithmetic (GTC absent)"
+    else:
+        combined, method = _combine_plain(contributors, names), "GUM eq. 10 (root sum of squares)"
     return UncertaintyBudget(
         unit,
         float(k),
