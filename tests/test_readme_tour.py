@@ -1,5 +1,5 @@
 """The README's tour runs as written: every ``$ axiscal ...`` line is run, in order, in a folder
-holding ``examples/`` and the outputs of ``axiscal demo --out demo-output`` (what ``make demo``
+holding ``examples/``, ``src/axiscal/data/`` (as at the repository's root) and the outputs of ``axiscal demo --out demo-output`` (what ``make demo``
 writes); each must end with exit 0 (or 1 where the README shows a failed tolerance), and the first
 output line the README shows under a command must be the real first line."""
 
@@ -48,6 +48,7 @@ def test_readme_tour_runs_as_written(tmp_path, monkeypatch):
     monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "config.toml"))
     monkeypatch.setenv("COLUMNS", "160")
     shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    shutil.copytree(ROOT / "src" / "axiscal" / "data", tmp_path / "src" / "axiscal" / "data")
     runner = CliRunner()
     r = runner.invoke(app, ["demo", "--out", "demo-output"])
     assert r.exit_code == 0, r.output
@@ -63,7 +64,8 @@ def test_readme_tour_runs_as_written(tmp_path, monkeypatch):
             if r.exit_code != 2 or _normal(shown) not in _normal(r.stderr):
                 failures.append(f"axiscal {command}: README shows {shown!r}; got {r.stderr!r}")
             continue
-        if r.exit_code not in (0, 1) or (r.exit_code == 1 and "FAIL" not in r.output):
+        failed_tolerance = "FAIL" in r.output or '"passed": false' in r.output
+        if r.exit_code not in (0, 1) or (r.exit_code == 1 and not failed_tolerance):
             failures.append(f"axiscal {command}: exit {r.exit_code}: {r.output.strip()[-300:]}")
             continue
         if shown is not None and not shown.startswith(("┏", "┃", "│", "[")):

@@ -236,6 +236,7 @@ def test_command_survives_hostile_input(name, tmp_path):
     numeric = _numeric(cmd)
     inputs = _file_inputs(cmd)
     kinds = _kinds(name)
+    toml_in_base = [a for a in base if a.endswith(".toml")]
     worker = Worker(tmp_path)
     counter = iter(range(10**6))
 
