@@ -248,6 +248,32 @@ def _combine_plain(contributors, names) -> dict[str, float]:
     return {p: math.sqrt(sum(c.u**2 for c in contributors if p in c.applies_to)) for p in names}
 
 
+def _check_inputs(inputs, signed: tuple, k: str) -> None:
+    """Every input a finite number >= 0 (``signed`` ones may be negative), ``e_ve_source``
+    one of its two words, and the coverage factor ``k`` positive."""
+    for f in fields(inputs):
+        v = getattr(inputs, f.name)
+        if f.name == "e_ve_source":
+            if v not in ("drift check", "declared"):
+                raise InputError(
+                    f"uncertainty e_ve_source = {v!r}: use 'drift check' or 'declared'")
+        elif v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))
+                                or not math.isfinite(v) or (v < 0 and f.name not in signed)):
+            raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
+    if getattr(inputs, k) <= 0:
+        raise InputError(f"uncertainty {k} must be > 0")
+
+
+def _known_keys(cls, d: Mapping[str, Any]) -> dict:
+    """``d`` as keyword arguments of ``cls``, an unknown key refused by name."""
+    known = {f.name for f in fields(cls)}
+    unknown = sorted(set(d) - known)
+    if unknown:
+        raise InputError(f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
+                         f"{', '.join(sorted(known))}")
+    return dict(d)
+
+
 @dataclass(frozen=True)
 class LinearInputs:
     """What a linear ISO 230-2 budget needs; each field settable in the test metadata or a config.
@@ -291,34 +317,12 @@ class LinearInputs:
     e_ve_source: str = "declared"
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if f.name == "e_ve_source":
-                if v not in ("drift check", "declared"):
-                    raise InputError(
-                        f"uncertainty e_ve_source = {v!r}: use 'drift check' or " "'declared'"
-                    )
-            elif v is not None and (
-                isinstance(v, bool)
-                or not isinstance(v, (int, float))
-                or not math.isfinite(v)
-                or (v < 0 and f.name != "material_temperature")
-            ):
-                raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
-        if self.laser_accuracy_k <= 0:
-            raise InputError("uncertainty laser_accuracy_k must be > 0")
+        _check_inputs(self, signed=("material_temperature",), k="laser_accuracy_k")
 
     @classmethod
     def from_mapping(cls, d: Mapping[str, Any], dataset=None) -> "LinearInputs":
         """From a config table (``[uncertainty]``), filling α and T from the dataset if absent."""
-        known = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - known)
-        if unknown:
-            raise InputError(
-                f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
-                f"{', '.join(sorted(known))}"
-            )
-        kw = dict(d)
+        kw = _known_keys(cls, d)
         if dataset is not None:
             env = dataset.metadata.environment
             if "expansion_coefficient" not in kw and env.expansion_coefficient is not None:
@@ -507,34 +511,13 @@ class RotaryInputs:
     e_ve_source: str = "declared"
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if f.name == "e_ve_source":
-                if v not in ("drift check", "declared"):
-                    raise InputError(
-                        f"uncertainty e_ve_source = {v!r}: use 'drift check' or 'declared'"
-                    )
-            elif (
-                isinstance(v, bool)
-                or not isinstance(v, (int, float))
-                or not math.isfinite(v)
-                or v < 0
-            ):
-                raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
-        if self.calibrator_k <= 0:
-            raise InputError("uncertainty calibrator_k must be > 0")
+        _check_inputs(self, signed=(), k="calibrator_k")
 
     @classmethod
     def from_mapping(cls, d: Mapping[str, Any]) -> "RotaryInputs":
         """From a config table (``[uncertainty]``)."""
-        known = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - known)
-        if unknown:
-            raise InputError(
-                f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
-                f"{', '.join(sorted(known))}"
-            )
-        return cls(**d)
+        return cls(**_known_keys(cls, d))
+
 
 
 def rotary_budget(
