@@ -75,3 +75,24 @@ def test_an_option_name_means_one_thing():
     assert "--alpha" not in options("scale", "compensate")
     assert "--home" in options("compensate") and "--reference" not in options("compensate")
     assert "--reference" in options("straightness") and "--alpha" in options("rotary", "budget")
+
+
+def test_every_command_help_has_a_runnable_example():
+    """Each command's help ends its description with one ``Example: axiscal <the command> …``
+    line a user can copy (issue 11)."""
+    from axiscal.cli import COMMANDS, _load_command
+
+    def leaves(cmd, path):
+        sub = getattr(cmd, "commands", None)
+        if sub:
+            for n, c in sub.items():
+                yield from leaves(c, path + [n])
+        else:
+            yield " ".join(path), cmd
+
+    missing = []
+    for name in sorted(COMMANDS):
+        for path, cmd in leaves(_load_command(name), [name]):
+            if f"Example: axiscal {path}" not in " ".join((cmd.help or "").split()):
+                missing.append(path)
+    assert not missing, f"no 'Example: axiscal …' in the help of {missing}"

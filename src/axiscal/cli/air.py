@@ -36,7 +36,10 @@ def air(
         False, "--allow-outside", help="Compute outside the equation's validity, with a warning."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
 ) -> None:
-    """Refractive index of air, wavelength in air and compensation factor (Ciddor, Edlén)."""
+    """Refractive index of air, wavelength in air and compensation factor (Ciddor, Edlén).
+
+    Example: axiscal air --temperature 20 --pressure 101325 --humidity 50
+    """
     from axiscal.physics.air import AirValidityWarning, air_conditions, sensitivities
 
     if humidity is None and dew_point is None and vapour_pressure is None:

@@ -78,7 +78,10 @@ def compensate(
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
 ) -> None:
-    """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring."""
+    """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring.
+
+    Example: axiscal compensate demo-output/linear_data.csv --controller siemens-840d --spacing 10 --out x.ini
+    """
     from axiscal.errors import InputError
 
     opts = _options(option or [])

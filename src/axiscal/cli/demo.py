@@ -33,7 +33,10 @@ def demo(
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation's random numbers (a whole number >= 0)."),
     db: str = typer.Option(None, "--db", help="History database for the demo's tests (default: history.sqlite in --out)."),
 ) -> None:
-    """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported."""
+    """Run the demonstration: linear and rotary positioning tests and a full rotary calibration, simulated, evaluated and reported.
+
+    Example: axiscal demo --out demo-output
+    """
     import tomllib
     from importlib import resources
 

@@ -95,7 +95,10 @@ def simulate(
     no_compensation: bool = typer.Option(False, "--no-compensation", help="Show the errors without "
                                          "the beam-drift compensation (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1-6 only)."),
 ) -> None:
-    """Simulate one indexing test (steps of step_deg, 30° by default; reference counter-rotating)."""
+    """Simulate one indexing test (steps of step_deg, 30° by default; reference counter-rotating).
+
+    Example: axiscal motion simulate examples/motion_indexing_table.toml --csv motion.csv
+    """
     import numpy as np
 
     from axiscal.io.motion import format_motion_errors, read_motion_config
@@ -156,7 +159,10 @@ def stability(
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
 ) -> None:
-    """Run the stability experiment of Optics Express 2018, Five-DOF motion errors of a rotary axis §3.2 on the simulation (still set-up)."""
+    """Run the stability experiment of Optics Express 2018, Five-DOF motion errors of a rotary axis §3.2 on the simulation (still set-up).
+
+    Example: axiscal motion stability --duration-min 10
+    """
     import numpy as np
 
     from axiscal.procedures.motion_errors import stability_test
@@ -203,7 +209,10 @@ def repeatability(
     report: Optional[Path] = _REPORT,
     csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file (.csv) for 'analyze'."),
 ) -> None:
-    """Run the indexing test several times (Optics Express 2018, Five-DOF motion errors of a rotary axis §3.3) and report the ± repeatability."""
+    """Run the indexing test several times (Optics Express 2018, Five-DOF motion errors of a rotary axis §3.3) and report the ± repeatability.
+
+    Example: axiscal motion repeatability examples/motion_indexing_table.toml
+    """
     import numpy as np
 
     from axiscal.io.motion import format_motion_errors, read_motion_config
@@ -249,7 +258,10 @@ def analyze(
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
 ) -> None:
-    """Evaluate measured five-error data by ISO 230-7 (error motion values, axis location)."""
+    """Evaluate measured five-error data by ISO 230-7 (error motion values, axis location).
+
+    Example: axiscal motion analyze motion.csv
+    """
     from axiscal.io.motion import read_motion_errors
     from axiscal.standards.iso230_7 import evaluate
 

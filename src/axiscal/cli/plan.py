@@ -40,7 +40,10 @@ def plan_linear_cmd(
     csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
-    """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2)."""
+    """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2).
+
+    Example: axiscal plan linear --length 800 --csv plan.csv
+    """
     from axiscal.procedures.positioning import plan_linear
 
     _check_csv(csv)
@@ -64,7 +67,10 @@ def plan_rotary_cmd(
     csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
     json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
 ) -> None:
-    """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included)."""
+    """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included).
+
+    Example: axiscal plan rotary --travel 360 --step 45
+    """
     from axiscal.errors import InputError
     from axiscal.procedures.positioning import plan_rotary
 

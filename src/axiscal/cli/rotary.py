@@ -49,7 +49,10 @@ def simulate(
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the module docs)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint)."),
 ) -> None:
-    """Simulate a complete rotary-axis calibration and compare it with the truth."""
+    """Simulate a complete rotary-axis calibration and compare it with the truth.
+
+    Example: axiscal rotary simulate examples/rotary_turntable.toml --report turntable.html
+    """
     from axiscal.io._files import load_toml
     from axiscal.procedures.rotary_config import run_rotary_config
 

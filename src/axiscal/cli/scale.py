@@ -53,7 +53,10 @@ def home(
                                         "plot (PNG, SVG or PDF by extension)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
 ) -> None:
-    """Simulate the referencing of one axis: events A, B, Z, C and the signals."""
+    """Simulate the referencing of one axis: events A, B, Z, C and the signals.
+
+    Example: axiscal scale home examples/scale_single.toml --plot home.png
+    """
     from axiscal.io.scale_config import axis_from_config, homing_from_config, read_scale_config
     from axiscal.procedures.referencing import simulate_referencing
 
@@ -105,7 +108,10 @@ def gantry(
                                   "table, see examples/scale_gantry.toml)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
 ) -> None:
-    """Simulate twin-axis (gantry) homing: skew, skew-limit alarm, deskew, limit needed."""
+    """Simulate twin-axis (gantry) homing: skew, skew-limit alarm, deskew, limit needed.
+
+    Example: axiscal scale gantry examples/scale_gantry.toml
+    """
     from axiscal.io.scale_config import read_scale_config, twin_axis_from_config
     from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
                                               worst_case_runs)
@@ -154,7 +160,10 @@ def compensate(
                                           help="Output counts per period."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
 ) -> None:
-    """The compensation factor for given conditions, and the error without compensation."""
+    """The compensation factor for given conditions, and the error without compensation.
+
+    Example: axiscal scale compensate -t 22 -p 100500 --humidity 40 --material steel --material-temperature 23
+    """
     from axiscal.errors import InputError
     from axiscal.instruments.compensator import Compensator, SineOutput, compensation_summary
     from axiscal.physics.thermal import material as lookup, mean_temperature

@@ -28,7 +28,10 @@ def simulate(
     report: Optional[Path] = typer.Option(None, "--report", help="Write a simulation report (.html, or .pdf with WeasyPrint)."),
     data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv or .json)."),
 ) -> None:
-    """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it."""
+    """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.
+
+    Example: axiscal simulate src/axiscal/data/demo_linear.toml --data x.csv
+    """
     from axiscal.io._files import load_toml
     from axiscal.procedures.positioning import simulate_from_config
 

@@ -66,7 +66,10 @@ def straightness(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write a plot of the readings and the line (PNG/SVG/PDF)."),
 ) -> None:
-    """Straightness deviation and slope of one trajectory (ISO 230-1 reference lines)."""
+    """Straightness deviation and slope of one trajectory (ISO 230-1 reference lines).
+
+    Example: axiscal straightness examples/squareness_L180_x.csv --reference minimum_zone
+    """
     from axiscal.io.straightness import read_straightness
     from axiscal.standards.iso230_1 import straightness as evaluate
 
@@ -110,7 +113,10 @@ def biaxial(
     square: str = typer.Option("optics", "--square", help="Reference square for the uncertainty budget: optics (straightness optics + optical square), square (mechanical square and probe) or reversal (square reversed)."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
-    """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, Chapman, Calibration of machine squareness Methods 1-3)."""
+    """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, Chapman, Calibration of machine squareness Methods 1-3).
+
+    Example: axiscal squareness biaxial examples/squareness_L180_x.csv examples/squareness_L180_y.csv --config L --orientation 180
+    """
     from axiscal.errors import InputError
     from axiscal.io.straightness import read_straightness
     from axiscal.standards.iso230_1 import correct_reference_angle, squareness_from_trajectories
@@ -193,7 +199,10 @@ def diagonal(
     datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
-    """Squareness = D0 (D1 − D2) / (2XY) from two diagonals (ISO 230-6, Chapman, Calibration of machine squareness Method 5)."""
+    """Squareness = D0 (D1 − D2) / (2XY) from two diagonals (ISO 230-6, Chapman, Calibration of machine squareness Method 5).
+
+    Example: axiscal squareness diagonal --file examples/squareness_diagonal_600x800.csv
+    """
     from axiscal.errors import InputError
     from axiscal.standards.iso230_6 import diagonal_squareness, diagonal_squareness_multipoint
 
@@ -247,7 +256,10 @@ def circular(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ballbar polar plot (PNG/SVG/PDF)."),
 ) -> None:
-    """Circular test by ISO 230-4: G, H, F, and squareness free of backlash and scale mismatch."""
+    """Circular test by ISO 230-4: G, H, F, and squareness free of backlash and scale mismatch.
+
+    Example: axiscal squareness circular examples/squareness_ballbar_150mm.csv --plot polar.png
+    """
     from axiscal.io.ballbar import read_ballbar
     from axiscal.standards.iso230_4 import evaluate_circular
 
@@ -279,7 +291,10 @@ def simulate(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the distorted plane with every test and its result (PNG/SVG/PDF)."),
 ) -> None:
-    """Every squareness method on a simulated machine of Chapman, Calibration of machine squareness (Figures 14-26)."""
+    """Every squareness method on a simulated machine of Chapman, Calibration of machine squareness (Figures 14-26).
+
+    Example: axiscal squareness simulate --machine 3 --scope global
+    """
     from axiscal.machines.xy_plane import seed004_machine
     from axiscal.procedures.squareness_study import compare_methods
 
