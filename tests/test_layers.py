@@ -10,7 +10,7 @@ from pathlib import Path
 
 import axiscal
 
-LAYER = {"errors": 1, "units": 1, "datasets": 1, "_parse": 1, "_schema": 1, "physics": 2, "standards": 3,
+LAYER = {"errors": 1, "units": 1, "datasets": 1, "_parse": 1, "_json": 1, "_schema": 1, "physics": 2, "standards": 3,
          "machines": 4, "instruments": 5, "procedures": 6, "compensation": 7, "io": 8,
          "report": 8, "store": 8, "data": 8, "cli": 9, "web": 9, "__main__": 9}
 ROOT = Path(axiscal.__file__).parent

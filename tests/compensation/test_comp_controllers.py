@@ -10,8 +10,6 @@ from axiscal.compensation.controllers import fanuc, heidenhain, linuxcnc, siemen
 from axiscal.compensation.tables import table_from_deviations
 from axiscal.errors import AxiscalError, ControllerLimitError, DataFormatError, InputError
 import re
-from axiscal.compensation.controllers import controller
-from axiscal.errors import ControllerLimitError, DataFormatError
 
 
 def _linear(bidirectional=True, resolution=1.0):

@@ -10,7 +10,7 @@ from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
 from axiscal.standards.iso230_2 import evaluate
 from axiscal.compensation.squareness import squareness_compensation
-from axiscal.compensation.tables import MAX_TABLE_POINTS, table_from_deviations
+from axiscal.compensation.tables import MAX_TABLE_POINTS
 from axiscal.standards.iso230_1 import Squareness
 
 

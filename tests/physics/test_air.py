@@ -21,8 +21,7 @@ import ref_index  # the test oracle: a dev dependency (pyproject.toml), never op
 from axiscal.physics.air import air_conditions, refractive_index
 from axiscal.physics.humidity import (SATURATION_RANGE, relative_humidity,
                                       saturation_vapour_pressure, water_vapour_pressure)
-import ref_index
-from axiscal.physics import air, air_equations, humidity
+from axiscal.physics import air_equations, humidity
 
 NIST_TOLERANCE = 1e-9  # issue 3: agreement with the NIST calculator to better than 1e-9 in n
 

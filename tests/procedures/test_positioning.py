@@ -19,8 +19,6 @@ from axiscal.procedures.positioning import (
 from axiscal.datasets import AxisKind
 from axiscal.standards.iso230_2 import evaluate
 from axiscal.units import ARCSEC, UM
-from axiscal.errors import ConfigError
-from axiscal.procedures.positioning import simulate_from_config
 
 
 def test_linear_plan_meets_the_standard_and_is_irregular():

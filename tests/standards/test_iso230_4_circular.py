@@ -9,7 +9,6 @@ from axiscal.errors import InputError
 from axiscal.machines.xy_plane import XYPlaneMachine
 from axiscal.procedures.squareness import BallbarTest, measure_ballbar
 from axiscal.standards.iso230_4 import CircularRun, arc_coverage, evaluate_circular
-from axiscal.standards.iso230_4 import CircularRun, evaluate_circular
 
 
 def _machine(**kw):

@@ -6,7 +6,6 @@ Nothing here imports rich or matplotlib at module import time.
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 import tempfile
@@ -15,6 +14,7 @@ from typing import Any
 
 import typer
 
+from axiscal._json import jsonable
 from axiscal.errors import InputError
 
 __all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report_path",
@@ -39,26 +39,6 @@ def console():
         except ValueError:
             width = 160
     return Console(highlight=False, width=width)
-
-
-def jsonable(obj: Any) -> Any:
-    """Convert numpy scalars/arrays, tuples and NaN to plain JSON data (NaN becomes null)."""
-    import numpy as np
-
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, (np.floating, float)):
-        v = float(obj)
-        return None if math.isnan(v) or math.isinf(v) else v
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj
 
 
 def print_json(obj: Any) -> None:

@@ -152,7 +152,6 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
 
     from axiscal.compensation.controllers import controller as get_controller
     from axiscal.io.results import load_mean_deviations
-    from axiscal.io import read_text
 
     from axiscal.compensation.controllers import detect
     from axiscal.errors import InputError

@@ -46,7 +46,7 @@ import numpy as np
 
 from axiscal import units
 from axiscal._parse import csv_cells, finite_number
-from axiscal.errors import DataFormatError
+from axiscal.errors import AxiscalError, DataFormatError
 from axiscal.procedures.environment import EnvironmentLog, RawReadings
 
 __all__ = ["RawReadings", "EnvironmentLog", "PlanRows", "Record", "parse_raw_readings",
@@ -112,7 +112,7 @@ def parse_raw_readings(text: str, source: str = "<text>") -> RawReadings:
     try:
         fr = units.factor(ru, "length")
         units.factor(tu, "length")
-    except Exception as exc:       # noqa: BLE001 - unit errors are AxiscalErrors
+    except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
     t = np.array([finite_number(r["time_s"], "time_s", source, n) for n, r in rows])
     tg = np.array([finite_number(r["target"], "target", source, n) for n, r in rows])
@@ -237,7 +237,7 @@ def parse_record_csv(text: str, source: str = "<text>") -> Record:
     unit = unit_col.split("_", 1)[1]
     try:
         factor = units.factor(unit)
-    except Exception as exc:       # noqa: BLE001
+    except AxiscalError as exc:
         raise DataFormatError(f"{unit_col}: {exc}", source, start + 1) from None
     try:
         a = np.loadtxt(io.StringIO("\n".join(lines[start + 1:])), delimiter=",", ndmin=2,

@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal import units
-from axiscal.errors import DataFormatError, MissingFileError
+from axiscal.errors import AxiscalError, DataFormatError, MissingFileError
 
 __all__ = ["read_rtx", "format_rtx", "parse_rtx_header"]
 
@@ -106,7 +106,7 @@ def read_rtx(path, unit: str | None = None):
     u = unit or "um"
     try:
         factor = units.factor(u)
-    except Exception as exc:       # noqa: BLE001 - unit errors are AxiscalErrors
+    except AxiscalError as exc:
         raise DataFormatError(f"--unit {u!r}: {exc}", src) from None
     raw = np.memmap(p, dtype="<f8", mode="r", offset=start, shape=(count,))
     values = np.multiply(raw, factor)          # SI; one pass over the mapped pages

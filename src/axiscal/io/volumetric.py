@@ -200,7 +200,6 @@ def write_simulation(out_dir, machine, errors: GeometricErrors, datasets: dict, 
 
 # -- helpers ---------------------------------------------------------------------------------
 def _function(name: str, spec, p: Path) -> ErrorFunction:
-    axis = name[-1]
     angular = name[1] in "ABC"
     if isinstance(spec, str):
         return _from_file(name, p.parent / spec, angular)

@@ -159,13 +159,11 @@ def capture_test(record, plan, *, window: float = 1.0, dwell: float | None = Non
         means = comp.displacement
         applied = f"environment compensated: {comp.applied}"
     rows = [r for _, r in assigned]
-    targets = plan.targets
     pos = zero + means / f
     dev = (pos - plan.position[rows]) * f / units.factor(dev_unit)
     ds = _dataset(plan, rows, dev, dev_unit, applied)
     vel, acc, settling = _dynamics(record.times, smooth, stops, assigned)
     spectrum = _spectrum(record.times, record.readings, stops)
-    del targets
     return CaptureResult(ds, tuple(stops), tuple(assigned), overruns, settling, spectrum,
                          smooth, vel, acc, w, d, float(record.sample_rate), applied)
 

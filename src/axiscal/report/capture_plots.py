@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from axiscal.units import ARCSEC
+
 __all__ = ["dynamic_figure", "save_dynamic_view"]
 
 _MAX_POINTS = 200_000
@@ -40,7 +42,7 @@ def dynamic_figure(record, result):
           title="Settling: from the end of the move to the stable band")
     a = ax[1, 1]
     f, amp = result.spectrum
-    su, un = (1e6, "µm") if lin else (1 / 4.84813681109536e-6, "arcsec")
+    su, un = (1e6, "µm") if lin else (1 / ARCSEC, "arcsec")
     if f.size:
         a.semilogy(f, np.maximum(amp * su, 1e-6), lw=0.8, color="tab:red")
     a.set(xlabel="frequency [Hz]", ylabel=f"amplitude [{un}]",

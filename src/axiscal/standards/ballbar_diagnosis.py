@@ -44,9 +44,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import InputError
-from axiscal.standards.iso230_4 import (REVERSAL_TOL, CircularResult, CircularRun,
-                                        _backlash_basis, _common, _harmonics,
-                                        evaluate_circular)
+from axiscal.standards.iso230_4 import (REVERSAL_TOL, CircularResult, _backlash_basis,
+                                        _common, _harmonics, evaluate_circular)
 
 __all__ = ["BallbarDiagnosis", "DiagnosisTerm", "diagnose", "ADVICE"]
 
@@ -165,6 +164,7 @@ def diagnose(runs, radius: float, *, feed: float | None = None,
 
     Examples
     --------
+    >>> from axiscal.standards.iso230_4 import CircularRun
     >>> phi = np.radians(np.arange(0, 360, 0.5))
     >>> dr = -(20e-6 * 0.1 / 2) * np.sin(2 * phi)         # 20 µm/m squareness, R = 100 mm
     >>> d = diagnose([CircularRun(phi, dr, "ccw"), CircularRun(phi, dr, "cw")], 0.1)

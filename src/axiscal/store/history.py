@@ -143,10 +143,9 @@ class Store:
 
         ``tables`` are (controller, filename, text) written from this test.
         """
-        from sqlalchemy import select
 
         from axiscal import __version__
-        from axiscal.store.kinds import jsonable
+        from axiscal._json import jsonable
         from axiscal.store.models import Parameter, Table, Test
 
         digest = hashlib.sha256(raw).hexdigest()
@@ -366,7 +365,7 @@ def _reason(exc) -> str:
     if "file is not a database" in low or "not a database" in low:
         return "the file is not an axiscal history database (SQLite says: file is not a database)"
     if "disk is full" in low or "database or disk is full" in low or "no space" in low:
-        return f"the disk is full; nothing of this {('write')} was kept"
+        return "the disk is full; nothing of this write was kept"
     if "unable to open database" in low:
         return "cannot open the database file (does its folder exist and is it writable?)"
     return text

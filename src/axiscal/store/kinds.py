@@ -16,8 +16,9 @@ import json
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
 
+from axiscal import units
+from axiscal._json import jsonable
 from axiscal.errors import DataFormatError, InputError
 
 __all__ = ["KINDS", "Evaluated", "detect_kind", "evaluate_file", "jsonable", "result_text"]
@@ -81,28 +82,6 @@ def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluat
     if k not in KINDS:
         raise InputError(f"kind {k!r}: one of {', '.join(KINDS)}")
     return _EVALUATORS[k](text, filename)
-
-
-def jsonable(obj):
-    """Plain JSON data of results (arrays to lists, NaN to None, dataclasses to dicts)."""
-    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        return {f.name: jsonable(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, (float, np.floating)):
-        v = float(obj)
-        return None if not math.isfinite(v) else v
-    if isinstance(obj, (np.integer,)):
-        return int(obj)
-    if isinstance(obj, (np.bool_,)):
-        return bool(obj)
-    if hasattr(obj, "value") and type(obj).__module__.startswith("axiscal"):
-        return obj.value                      # enums such as AxisKind
-    return obj
 
 
 def _positioning(text: str, filename: str) -> Evaluated:
@@ -185,7 +164,7 @@ def _motion(text: str, filename: str) -> Evaluated:
     r = evaluate(d)
     params = {}
     for m in r.motions:
-        scale, unit = (1e6, "um") if m.kind == "length" else (1 / 4.84813681109536e-6, "arcsec")
+        scale, unit = (1e6, "um") if m.kind == "length" else (1 / units.ARCSEC, "arcsec")
         key = m.name.replace(" ", "_")
         params[f"{key}_total"] = (m.total * scale, unit)
     res = {"title": d.title, "n_runs": r.n_runs,
