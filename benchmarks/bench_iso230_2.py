@@ -60,4 +60,55 @@ def run() -> list[dict]:
         evaluate(ds)
     dt = (time.perf_counter() - t0) / n
     rows.append(dict(name="evaluate() in process, 41 x 5 x 2", value=1.0 / dt, unit="evals/s"))
+    rows.extend(_large_csv_rows())
+    return rows
+
+
+_CHILD = """
+import resource, sys, time
+from axiscal.io import read_positioning
+base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t0 = time.perf_counter()
+if sys.argv[2] == "axiscal":
+    read_positioning(sys.argv[1])
+else:                      # the floor: the standard library's csv reader and float()
+    import csv
+    with open(sys.argv[1], newline="") as fh:
+        for row in csv.reader(fh):
+            if row and not row[0].startswith("#") and row[0] != "target":
+                float(row[0]); float(row[3])
+dt = time.perf_counter() - t0
+print(dt, (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base) * 1024)
+"""
+
+
+def _large_csv_rows() -> list[dict]:
+    """Streaming a large positioning CSV (issue 11): 1,000,050 readings, about 20 MB."""
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        f = Path(tmp) / "big.csv"
+        rng = np.random.default_rng(1)
+        m, runs = 20001, 25
+        t = np.linspace(0, 2000, m)
+        with open(f, "w") as fh:
+            fh.write("# target_unit=mm deviation_unit=um\ntarget,direction,run,deviation\n")
+            for r in range(1, runs + 1):
+                for d in "+-":
+                    fh.write("".join(f"{a:.4f},{d},{r},{b:.3f}\n"
+                                     for a, b in zip(t, rng.normal(0, 1, m))))
+        n = m * runs * 2
+        size = f.stat().st_size
+
+        def child(which):
+            out = subprocess.run([sys.executable, "-c", _CHILD, str(f), which], check=True,
+                                 capture_output=True, text=True).stdout.split()
+            return float(out[0]), float(out[1])
+
+        (dt, mem), (ref, _) = child("axiscal"), child("csv")
+        rows.append(dict(name=f"read a positioning CSV, {n} readings ({size / 1e6:.0f} MB)",
+                         value=n / dt, unit="readings/s",
+                         reference=f"csv.reader + float() of the same file {ref:.2f} s",
+                         ratio=dt / ref, aim="ratio < 2"))
+        rows.append(dict(name="  its peak memory above the interpreter's, per byte of file",
+                         value=mem / size, unit="x file", aim="< 3 (memory grows with the readings)"))
     return rows

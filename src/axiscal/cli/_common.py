@@ -9,6 +9,8 @@ import json
 import os
 import sys
 import tempfile
+import time
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -18,7 +20,7 @@ from axiscal._json import jsonable
 from axiscal.errors import InputError
 
 __all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report_path",
-           "typed_path", "note"]
+           "typed_path", "note", "progress_bar"]
 
 
 def console():
@@ -110,3 +112,43 @@ def report_path(path: Path) -> Path:
 def note(message: str) -> None:
     """A one-line note on stderr (so --json stdout stays clean)."""
     typer.echo(message, err=True)
+
+
+class _LazyBar:
+    """A progress callback ``(done, total)`` that shows a transient rich bar on stderr once the
+    work has taken longer than ``delay`` seconds, and only on a terminal (a pipe, a log file or
+    ``--json`` output stays clean)."""
+
+    def __init__(self, description: str, delay: float = 0.5):
+        self.description = description
+        self.delay = delay
+        self.start = time.monotonic()
+        self.bar = None
+        self.task = None
+
+    def __call__(self, done: float, total: float | None = None) -> None:
+        if self.bar is None:
+            if time.monotonic() - self.start < self.delay or not sys.stderr.isatty():
+                return
+            from rich.console import Console
+            from rich.progress import Progress
+
+            self.bar = Progress(console=Console(stderr=True), transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task(self.description, total=total)
+        self.bar.update(self.task, completed=done, total=total)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
+
+
+@contextmanager
+def progress_bar(description: str, delay: float = 0.5):
+    """Yield a ``(done, total)`` callback for long work; see :class:`_LazyBar`."""
+    bar = _LazyBar(description, delay)
+    try:
+        yield bar
+    finally:
+        bar.close()

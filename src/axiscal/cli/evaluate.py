@@ -17,7 +17,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, plot_path, print_json, report_path
+from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register"]
 
@@ -58,7 +58,9 @@ def evaluate(
     for p, check in ((plot, plot_path), (report, report_path)):
         if p is not None:
             check(p)
-    ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
+    with progress_bar(f"reading {file.name}") as bar:
+        ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
+                              progress=bar)
     if key == "all":
         results = ps.evaluate_all(ds)
     else:

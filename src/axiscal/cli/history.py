@@ -30,7 +30,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, plot_path, print_json, report_path
+from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register", "store_run"]
 
@@ -290,12 +290,8 @@ def import_(
         added, dup = import_history(store, archive)
         print_json({"archive": str(archive), "added": added, "duplicates": dup})
         return
-    from rich.progress import Progress
-
-    with Progress(transient=True) as bar:
-        task = bar.add_task("importing", total=None)
-        added, dup = import_history(store, archive,
-                                    lambda i, n: bar.update(task, completed=i, total=n))
+    with progress_bar(f"importing {archive.name}") as bar:
+        added, dup = import_history(store, archive, bar)
     typer.echo(f"imported {added} tests from {archive} ({dup} already stored)")
 
 

@@ -26,7 +26,7 @@ from typing import List, Optional
 import typer
 
 from axiscal.cli._certificate import JOB, PAPER, RULE
-from axiscal.cli._common import note, plot_path, print_json, report_path
+from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register", "result_json", "render_result"]
 
@@ -61,7 +61,9 @@ def iso230_2(
         plot_path(plot)
     if report is not None:
         report_path(report)
-    ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit)
+    with progress_bar(f"reading {file.name}") as bar:
+        ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
+                              progress=bar)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
 

@@ -13,8 +13,13 @@ from axiscal.errors import DataFormatError
 __all__ = ["read_positioning", "parse_positioning", "read_text"]
 
 
+#: A positioning file larger than this is streamed when it is a CSV (the other formats are read
+#: whole; they hold kilobytes).
+STREAM_ABOVE_BYTES = 1 << 20
+
+
 def read_positioning(path, target_unit: str | None = None, deviation_unit: str | None = None,
-                     axis_kind: str | None = None):
+                     axis_kind: str | None = None, progress=None):
     """Read a positioning test from a CSV, JSON or EPICS ecmc file (see :func:`parse_positioning`).
 
     Parameters
@@ -24,8 +29,33 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
         Units for CSV/ecmc files that do not declare them.
     axis_kind : {"linear", "rotary"}, optional
         Overrides the kind a CSV file would be given from its units.
+    progress : callable, optional
+        Called with ``(bytes read, file size)`` while a large CSV file is streamed.
+
+    A CSV file over :data:`STREAM_ABOVE_BYTES` is read a line at a time into compact arrays, so
+    memory grows with the readings, not with the file's text.
     """
+    from axiscal.io._files import open_regular_file
+
+    fh, size = open_regular_file(path)
+    with fh:
+        head = fh.read(STREAM_ABOVE_BYTES + 1)
+    if len(head) > STREAM_ABOVE_BYTES:
+        text = head.decode("utf-8", errors="replace")
+        if not _whole_file_format(text, str(path)):
+            from axiscal.io import csv as _csv
+
+            return _csv.read_positioning_csv(path, target_unit, deviation_unit, axis_kind,
+                                             progress=progress)
     return parse_positioning(read_text(path), str(path), target_unit, deviation_unit, axis_kind)
+
+
+def _whole_file_format(text: str, source: str) -> bool:
+    """True for a JSON or ecmc positioning file (told by the name or the content)."""
+    from axiscal.io import ecmc as _ecmc
+
+    return (Path(source).suffix.lower() == ".json" or text.lstrip().startswith("{")
+            or _ecmc.looks_like_ecmc(text))
 
 
 def parse_positioning(text: str, source: str = "<text>", target_unit: str | None = None,

@@ -59,27 +59,46 @@ def read_bytes(path) -> bytes:
         raise MissingFileError(p, exc.strerror or str(exc)) from None
 
 
-def _not_utf8(data: bytes, start: int) -> str:
+def _not_utf8(data: bytes, start: int, offset: int = 0) -> str:
     """Why the bytes are not UTF-8 text: a binary file, or text saved in another encoding.
 
     A CSV saved by a spreadsheet in Windows-1252 (``µm`` as the byte 0xB5) is the common case on
     the shop floor; saying "binary file" there sends the user looking in the wrong place.
     """
     head = data[:4096]
+    at = offset + start
     controls = sum(b < 32 and b not in (9, 10, 13) for b in head)
     if b"\x00" in head or controls > len(head) // 20:
-        return f"not UTF-8 text (byte {start}); is this a binary file?"
-    return (f"not UTF-8 text (byte {start} is 0x{data[start]:02X}); save the file as UTF-8 "
+        return f"not UTF-8 text (byte {at}); is this a binary file?"
+    return (f"not UTF-8 text (byte {at} is 0x{data[start]:02X}); save the file as UTF-8 "
             "(it looks like text in another encoding, such as Windows-1252)")
 
 
-def _read_regular_file(p: Path) -> bytes:
+def open_regular_file(path):
+    """A regular file opened for reading in binary, and its size; errors name the file."""
+    p = Path(path)
+    try:
+        _check_regular(p)
+        return open(p, "rb"), p.stat().st_size
+    except MissingFileError:
+        raise
+    except PermissionError:
+        raise MissingFileError(p, "permission denied") from None
+    except OSError as exc:
+        raise MissingFileError(p, exc.strerror or str(exc)) from None
+
+
+def _check_regular(p: Path) -> None:
     if not p.exists():
         raise MissingFileError(p)
     if p.is_dir():
         raise MissingFileError(p, "is a folder, not a file")
     if not p.is_file():   # a FIFO or a device would block or never end
         raise MissingFileError(p, "is not a regular file")
+
+
+def _read_regular_file(p: Path) -> bytes:
+    _check_regular(p)
     if p.stat().st_size > MAX_TEXT_BYTES:
         raise DataFormatError(f"file is larger than {MAX_TEXT_BYTES // 2**20} MiB", str(p))
     return p.read_bytes()
