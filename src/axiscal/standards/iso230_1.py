@@ -382,13 +382,16 @@ def minimum_zone_line(positions, deviations) -> ReferenceLine:
     x, y = _xy(positions, deviations)
     upper, lower = _hull_chains(x, y)
     slopes = np.concatenate([_edge_slopes(*upper), _edge_slopes(*lower)])
-    if slopes.size == 0:  # all readings on one line through two hull points
+    # an edge between two positions a subnormal apart has an infinite slope: never the minimum
+    slopes = slopes[np.isfinite(slopes)]
+    widths = _band_widths(upper, lower, slopes) if slopes.size else slopes
+    finite = np.isfinite(widths)
+    if not finite.any():  # all readings on one line through two hull points
         line = end_point_line(x, y)
         return ReferenceLine("minimum_zone", line.slope, line.intercept)
-    widths = _band_widths(upper, lower, slopes)
-    best = widths.min()
+    best = widths[finite].min()
     tol = 1e-12 * max(best, float(np.ptp(y)), 1e-300)
-    tied = slopes[widths <= best + tol]
+    tied = slopes[finite & (widths <= best + tol)]
     m = 0.5 * (float(tied.min()) + float(tied.max()))
     r = y - m * x
     return ReferenceLine("minimum_zone", m, 0.5 * (float(r.max()) + float(r.min())))
