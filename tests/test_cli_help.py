@@ -96,3 +96,28 @@ def test_every_command_help_has_a_runnable_example():
             if f"Example: axiscal {path}" not in " ".join((cmd.help or "").split()):
                 missing.append(path)
     assert not missing, f"no 'Example: axiscal …' in the help of {missing}"
+
+
+def test_no_message_cites_a_document_by_its_seed_file():
+    """Every string the program can show (not docstrings or comments) names documents by title:
+    a warning "the seed asks for < 0.04 mm" or an error "seed 004 defines machines 1 to 7" sent the
+    user to a file they do not have. A random-number seed ("--seed", "[simulation] seed") is fine."""
+    import ast
+    import re
+    from pathlib import Path
+
+    import axiscal
+
+    pattern = re.compile(r"seed 00\d|\bthe seed\b(?! by| of the)|\bseed's\b|\bseeds/")
+    found = []
+    for path in sorted(Path(axiscal.__file__).parent.rglob("*.py")):
+        tree = ast.parse(path.read_text())
+        docs = {id(n.body[0].value) for n in ast.walk(tree)
+                if isinstance(n, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+                and n.body and isinstance(n.body[0], ast.Expr)
+                and isinstance(n.body[0].value, ast.Constant)}
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Constant) and isinstance(node.value, str)
+                    and id(node) not in docs and pattern.search(node.value)):
+                found.append(f"{path.name}:{node.lineno}: {node.value[:80]!r}")
+    assert not found, "\n".join(found)

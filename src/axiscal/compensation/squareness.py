@@ -143,7 +143,7 @@ def squareness_compensation(squareness: Squareness, aligned_axis: str | None,
     if aligned_axis is None or str(aligned_axis).upper() not in squareness.axes:
         raise InputError(
             f"aligned_axis={aligned_axis!r}: name the axis of {'/'.join(squareness.axes)} that is "
-            "aligned to the spindle (seed 004 Appendix II: the squareness alone cannot tell, and "
+            "aligned to the spindle (Chapman, Calibration of machine squareness, Appendix II: the squareness alone cannot tell, and "
             "compensating the wrong axis tilts it off the spindle)")
     aligned = str(aligned_axis).upper()
     driving = squareness.axes[1] if aligned == squareness.axes[0] else squareness.axes[0]

@@ -337,7 +337,7 @@ def seed004_machine(number: int, *, x_yaw: bool | None = None,
     Machine 6: 750 × 250 mm, squareness +15.00 µm/m, X straightness quadratic 10 µm without associated yaw, Y straightness quadratic 5 µm without associated yaw
     """
     if number not in range(1, 8):
-        raise InputError(f"machine={number!r}: seed 004 defines machines 1 to 7")
+        raise InputError(f"machine={number!r}: Chapman, Calibration of machine squareness defines machines 1 to 7")
     lx, ly = (0.8, 0.8) if number <= 5 else (0.75, 0.25)
     sx, sy = SEED004_STRAIGHTNESS["x"], SEED004_STRAIGHTNESS["y"]
     xs = None if number == 1 else QuadraticBend(sx, lx)

@@ -80,6 +80,9 @@ REFLECTOR_TWIST_TOLERANCE = 2.5e-3
 CALIBRATION_STEP = 5.0 * DEG
 #: Seed 000: sub-divisional error "kept below ±0.25 arcseconds".
 SDE_LIMIT = 0.25 * ARCSEC
+#: The document the set-up thresholds come from, as warnings name it.
+_DOC = "Renishaw, Interferometric calibration of rotary axes"
+
 #: Residual of the graduation error after the factory map (our assumption; the seed gives none).
 MAP_RESIDUAL = 0.2 * ARCSEC
 
@@ -293,14 +296,14 @@ def setup_checks(tir: float, return_offset: float, centring: float, tir_radius: 
     warnings = []
     tir_max = TIR_LIMIT[0] / TIR_LIMIT[1] * tir_radius
     if tir >= tir_max:
-        warnings.append(f"TIR {tir / MM:.3f} mm at {tir_radius / MM:g} mm radius: the seed asks for "
+        warnings.append(f"TIR {tir / MM:.3f} mm at {tir_radius / MM:g} mm radius: {_DOC} asks for "
                         f"< {tir_max / MM:.3f} mm (0.04 mm at 50 mm)")
     ret_max = RETURN_BEAM_LIMIT[0] / RETURN_BEAM_LIMIT[1] * laser_distance
     if return_offset > ret_max:
-        warnings.append(f"returned beam {return_offset / MM:.2f} mm off at {laser_distance:g} m: the "
-                        f"seed asks for within {ret_max / MM:.2f} mm (1 mm at 1 m)")
+        warnings.append(f"returned beam {return_offset / MM:.2f} mm off at {laser_distance:g} m: "
+                        f"{_DOC} asks for within {ret_max / MM:.2f} mm (1 mm at 1 m)")
     if centring > CENTRING_LIMIT:
-        warnings.append(f"axes {centring / MM:.2f} mm apart: the seed asks for within ±0.5 mm "
+        warnings.append(f"axes {centring / MM:.2f} mm apart: {_DOC} asks for within ±0.5 mm "
                         "(0.25 arcsec with 15 arcsec beam non-parallelism)")
     return SetupCheck(tir, tir_radius, return_offset, laser_distance, centring, mount,
                       mount + CALIBRATOR_PERPENDICULARITY, laser, laser + TARGET_ALIGNMENT,

@@ -255,7 +255,7 @@ def yaw_subtraction_sign(profile: YawProfile, capture_moving_optic: MovingOptic 
             f"{capture_moving_optic} (laser direction {capture_direction_sign:+d}) and the yaw "
             f"profile the {profile.moving_optic} (laser direction {profile.direction_sign:+d}), "
             f"which needs sign {sign:+d}; subtracting with the wrong sign doubles the linear "
-            "axis's angular error (seed 000)")
+            "axis's angular error (Renishaw, Interferometric calibration of rotary axes, off-axis calibration)")
     return sign
 
 

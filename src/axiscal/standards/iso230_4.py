@@ -231,7 +231,7 @@ def evaluate_circular(runs, radius: float, *, axes: tuple[str, str] = ("X", "Y")
     arc = min(arc_coverage(r.angles) for r in runs)
     if arc < MIN_ARC_DEG - 1e-6:
         raise InputError(f"arc of {arc:.1f}°: squareness needs at least {MIN_ARC_DEG:.0f}° "
-                         "(seed 004, partial arcs down to 220°)")
+                         "(Chapman, Calibration of machine squareness, partial arcs down to 220°)")
     by = {r.direction: r for r in runs}
     warnings: list[str] = []
     g = {d: _circular_deviation(r) for d, r in by.items()}
