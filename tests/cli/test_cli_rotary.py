@@ -65,7 +65,7 @@ def test_budget_json():
     # eq. 1 alone allows 0.35 mrad; the fitted Figure 22 table is the more cautious here: 0.30
     assert 0.29 < d["max_alpha_mrad"] < 0.31
     assert d["accuracy_source"] == "figure22_model"
-    assert len(d["table"]["accuracy_arcsec"]) == 5 and len(d["table"]["seed_figure22_arcsec"][0]) == 6
+    assert len(d["table"]["accuracy_arcsec"]) == 5 and len(d["table"]["published_figure22_arcsec"][0]) == 6
 
 
 def test_budget_text():

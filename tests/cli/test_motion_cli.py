@@ -58,7 +58,7 @@ def test_stability_json_of_seed_order(tmp_path):
     rep = tmp_path / "stab.html"
     d = json.loads(_ok(["motion", "stability", "--json", "--report", str(rep)]).stdout)
     assert d["readings"] == 361
-    for k, seed in d["seed_std"].items():
+    for k, seed in d["published_std"].items():
         assert seed / 1.7 < d["std"][k] < seed * 1.7, k
     assert "Stability" in rep.read_text()
     short = _ok(["motion", "stability", EXAMPLE, "--duration-min", "5", "--interval-s", "10"])
@@ -69,7 +69,7 @@ def test_repeatability_json_and_files(tmp_path):
     csv, rep = tmp_path / "rep.csv", tmp_path / "rep.html"
     d = json.loads(_ok(["motion", "repeatability", EXAMPLE, "--json", "--csv", str(csv),
                         "--report", str(rep)]).stdout)
-    assert d["runs"] == 3 and set(d["repeatability"]) == set(d["seed_repeatability"])
+    assert d["runs"] == 3 and set(d["repeatability"]) == set(d["published_repeatability"])
     assert 0.5 < d["repeatability"]["ez_arcsec"] < 8
     assert d["iso230_7"]["motions"][0]["asynchronous"] is not None
     a = json.loads(_ok(["motion", "analyze", str(csv), "--json"]).stdout)

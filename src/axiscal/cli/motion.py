@@ -18,8 +18,8 @@ JSON output (``--json``), stable keys. Units are in the key names (``_arcsec``, 
   ``displacement_um``), ``crosstalk`` (``inputs``, ``outputs``, ``matrix``, ``spurious``,
   ``residual``), ``iso230_7``.
 * ``stability``: ``readings``, ``duration_min``, ``interval_s``, ``std`` and
-  ``std_uncompensated`` (five keys), ``seed_std`` (the seed's figures, five keys).
-* ``repeatability``: ``runs``, ``repeatability`` (± per channel, five keys), ``seed_repeatability``,
+  ``std_uncompensated`` (five keys), ``published_std`` (the paper's figures, five keys).
+* ``repeatability``: ``runs``, ``repeatability`` (± per channel, five keys), ``published_repeatability``,
   ``iso230_7``.
 * ``analyze``: ``file``, ``title``, ``iso230_7``.
 """
@@ -31,7 +31,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, print_json, report_path, typed_path
+from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
 
 __all__ = ["register", "iso_json"]
 
@@ -44,6 +44,8 @@ _MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' cross
 _KEYS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um", "dz": "dz_um"}
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs).")
 _REPORT = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint).")
+_PLOT = typer.Option(None, "--plot", help="Write the plot (PNG, SVG or PDF by extension).")
+_SEED = typer.Option(None, "--seed", min=0, max=2**63 - 1, help="Random seed of the simulation (default: the configuration's seed, 2018).")
 
 
 def _five(errors, i=None) -> dict:
@@ -94,6 +96,8 @@ def simulate(
                                        "(.csv) that 'axiscal motion analyze' reads."),
     no_compensation: bool = typer.Option(False, "--no-compensation", help="Show the errors without "
                                          "the beam-drift compensation (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1-6 only)."),
+    plot: Optional[Path] = _PLOT,
+    seed: Optional[int] = _SEED,
 ) -> None:
     """Simulate one indexing test (steps of step_deg, 30° by default; reference counter-rotating).
 
@@ -105,9 +109,9 @@ def simulate(
     from axiscal.procedures.motion_errors import crosstalk, indexing_test, to_motion_data
     from axiscal.standards.iso230_7 import evaluate
 
-    paths = _check_outputs(report=report, csv=csv)
+    paths = _check_outputs(report=report, csv=csv, plot=plot)
     cfg = read_motion_config(config)
-    run = indexing_test(cfg.axis, cfg.system, np.random.default_rng(cfg.seed), cfg.step_deg,
+    run = indexing_test(cfg.axis, cfg.system, np.random.default_rng(_seed(cfg, seed)), cfg.step_deg,
                         cfg.reference, cfg.drift, cfg.dwell, samples=cfg.samples)
     which = "uncompensated" if no_compensation else "measured"
     measured = getattr(run, which)
@@ -127,6 +131,12 @@ def simulate(
                       metadata={"Configuration": config.name, "Axis": cfg.axis_name,
                                 "Drift compensation": not no_compensation},
                       notes=[_MOUNTING_NOTE]).write(report)
+    if paths.get("plot"):
+        from axiscal.report.motion_plots import five_errors_figure, save_figure
+
+        save_figure(five_errors_figure([measured], [run.truth],
+                                       title=f"Five motion errors — {cfg.machine or config.name}"),
+                    plot)
     diff = measured - run.truth
     if json_out:
         from axiscal.procedures.motion_errors import INPUTS
@@ -158,6 +168,8 @@ def stability(
     interval_s: Optional[float] = typer.Option(None, "--interval-s", help="Sampling interval in seconds (default: the configuration's stability_interval_s, 10)."),
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
+    plot: Optional[Path] = _PLOT,
+    seed: Optional[int] = _SEED,
 ) -> None:
     """Run the stability experiment of Optics Express 2018, Five-DOF motion errors of a rotary axis §3.2 on the simulation (still set-up).
 
@@ -173,15 +185,19 @@ def stability(
 
     check_option("--duration-min", duration_min, "min", lo=0, lo_open=True, hi=MAX_DURATION_MIN)
     check_option("--interval-s", interval_s, "s", lo=0, lo_open=True, hi=3600)
-    paths = _check_outputs(report=report)
+    paths = _check_outputs(report=report, plot=plot)
     cfg = _config(config)
     duration = cfg.duration if duration_min is None else 60 * duration_min
     interval = cfg.interval if interval_s is None else interval_s
     if duration / interval > MAX_READINGS:
         raise InputError(f"{duration / 60:g} min every {interval:g} s is {duration / interval:.3g} "
                          f"readings; at most {MAX_READINGS:g} are simulated (lengthen --interval-s)")
-    run = stability_test(cfg.system, np.random.default_rng(cfg.seed), duration, interval, cfg.drift,
-                         cfg.drift_window)
+    run = stability_test(cfg.system, np.random.default_rng(_seed(cfg, seed)), duration, interval,
+                         cfg.drift, cfg.drift_window)
+    if paths.get("plot"):
+        from axiscal.report.motion_plots import save_figure, stability_figure
+
+        save_figure(stability_figure(run), plot)
     std = {k: float(np.std(v)) for k, v in _five(run.measured).items()}
     raw = {k: float(np.std(v)) for k, v in _five(run.uncompensated).items()}
     seed = {_KEYS[c]: v for c, v in STABILITY_SEED.items()}
@@ -192,7 +208,7 @@ def stability(
                       resolutions=cfg.system.resolutions()).write(report)
     if json_out:
         print_json({"readings": int(run.time.size), "duration_min": duration / 60, "interval_s": interval,
-                    "std": std, "std_uncompensated": raw, "seed_std": seed})
+                    "std": std, "std_uncompensated": raw, "published_std": seed})
     else:
         typer.echo(f"stability: {run.time.size} readings over {duration / 60:g} min, every {interval:g} s")
         typer.echo(f"{'error':<10}{'σ':>10}{'σ uncomp.':>12}{'published':>11}")
@@ -208,6 +224,8 @@ def repeatability(
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
     csv: Optional[Path] = typer.Option(None, "--csv", help="Write all runs as a data file (.csv) for 'analyze'."),
+    plot: Optional[Path] = _PLOT,
+    seed: Optional[int] = _SEED,
 ) -> None:
     """Run the indexing test several times (Optics Express 2018, Five-DOF motion errors of a rotary axis §3.3) and report the ± repeatability.
 
@@ -220,15 +238,21 @@ def repeatability(
     from axiscal.report.motion_report import REPEATABILITY_SEED
     from axiscal.standards.iso230_7 import evaluate, halfrange
 
-    paths = _check_outputs(report=report, csv=csv)
+    paths = _check_outputs(report=report, csv=csv, plot=plot)
     cfg = read_motion_config(config)
     n = cfg.runs if runs is None else runs
-    out = repeatability_test(cfg.axis, cfg.system, np.random.default_rng(cfg.seed), n,
+    out = repeatability_test(cfg.axis, cfg.system, np.random.default_rng(_seed(cfg, seed)), n,
                              step_deg=cfg.step_deg, reference=cfg.reference, drift=cfg.drift,
                              dwell=cfg.dwell, samples=cfg.samples)
     data = to_motion_data(out, title=cfg.machine)
     result = evaluate(data)
     rep = {c: halfrange(getattr(data, c)) for c in _KEYS}
+    if paths.get("plot"):
+        from axiscal.report.motion_plots import five_errors_figure, save_figure
+
+        save_figure(five_errors_figure([r.measured for r in out], [r.truth for r in out],
+                                       title=f"Repeatability, {n} runs — {cfg.machine or config.name}"),
+                    plot)
     if paths.get("csv"):
         from axiscal.io._files import write_text_atomic
 
@@ -242,7 +266,7 @@ def repeatability(
                       notes=[_MOUNTING_NOTE]).write(report)
     if json_out:
         print_json({"runs": n, "repeatability": _five_dict(rep),
-                    "seed_repeatability": {_KEYS[c]: v for c, v in REPEATABILITY_SEED.items()},
+                    "published_repeatability": {_KEYS[c]: v for c, v in REPEATABILITY_SEED.items()},
                     "iso230_7": iso_json(result)})
     else:
         typer.echo(f"repeatability over {n} runs (± largest half-range at one angle):")
@@ -257,6 +281,7 @@ def analyze(
     file: Path = typer.Argument(..., help="Five-error data file (CSV; format in the axiscal.io.motion docs)."),
     json_out: bool = _JSON,
     report: Optional[Path] = _REPORT,
+    plot: Optional[Path] = _PLOT,
 ) -> None:
     """Evaluate measured five-error data by ISO 230-7 (error motion values, axis location).
 
@@ -265,9 +290,14 @@ def analyze(
     from axiscal.io.motion import read_motion_errors
     from axiscal.standards.iso230_7 import evaluate
 
-    paths = _check_outputs(report=report)
+    paths = _check_outputs(report=report, plot=plot)
     data = read_motion_errors(file)
     result = evaluate(data)
+    if paths.get("plot"):
+        from axiscal.report.motion_plots import polar_figure, save_figure
+
+        save_figure(polar_figure(result, title=f"ISO 230-7 error motion — {data.title or file.name}"),
+                    plot)
     if paths.get("report"):
         from axiscal.instruments.five_dof import FiveErrors
         from axiscal.report.motion_report import motion_report
@@ -292,9 +322,16 @@ def _config(path):
     return parse_motion_config("") if path is None else read_motion_config(path)
 
 
-def _check_outputs(report=None, csv=None) -> dict:
-    """Check the output files before any work (folder exists, .html report, .csv data)."""
+def _seed(cfg, option: int | None) -> int:
+    """The simulation's random seed: ``--seed`` if given, else the configuration's."""
+    return cfg.seed if option is None else option
+
+
+def _check_outputs(report=None, csv=None, plot=None) -> dict:
+    """Check the output files before any work (folder exists, .html report, .csv data, plot)."""
     paths = {}
+    if plot is not None:
+        paths["plot"] = plot_path(plot)
     if report is not None:
         paths["report"] = report_path(report)
     if csv is not None:

@@ -46,12 +46,25 @@ scale_app = typer.Typer(
 )
 
 
+_SEED = typer.Option(None, "--seed", min=0, max=2**63 - 1, help="Random seed of the simulation "
+                     "(instead of the configuration's seed; without either, the switch has no "
+                     "random error and the power-up phase is the configuration's).")
+
+
+def _with_seed(cfg: dict, table: str, seed: int | None) -> dict:
+    """The configuration with ``[table] seed`` set from ``--seed`` (if given)."""
+    if seed is not None:
+        cfg.setdefault(table, {})["seed"] = seed
+    return cfg
+
+
 @scale_app.command("home")
 def home(
     config: Path = typer.Argument(..., help="Laser-scale configuration (TOML, see examples/)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the signals-against-position "
                                         "plot (PNG, SVG or PDF by extension)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
+    seed: Optional[int] = _SEED,
 ) -> None:
     """Simulate the referencing of one axis: events A, B, Z, C and the signals.
 
@@ -62,7 +75,7 @@ def home(
 
     if plot is not None:
         plot_path(plot)
-    cfg = read_scale_config(config)
+    cfg = _with_seed(read_scale_config(config), "homing", seed)
     axis = axis_from_config(cfg)
     kwargs = homing_from_config(cfg, axis)
     run = simulate_referencing(axis, **kwargs)
@@ -107,6 +120,7 @@ def gantry(
     config: Path = typer.Argument(..., help="Twin-axis configuration (TOML with a gantry "
                                   "table, see examples/scale_gantry.toml)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
+    seed: Optional[int] = _SEED,
 ) -> None:
     """Simulate twin-axis (gantry) homing: skew, skew-limit alarm, deskew, limit needed.
 
@@ -116,7 +130,7 @@ def gantry(
     from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
                                               worst_case_runs)
 
-    cfg = read_scale_config(config, gantry=True)
+    cfg = _with_seed(read_scale_config(config, gantry=True), "gantry", seed)
     g, run_kwargs, sigma = twin_axis_from_config(cfg)
     run = simulate_twin_homing(g, **run_kwargs)
     worst = worst_case_runs(g)

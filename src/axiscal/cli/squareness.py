@@ -290,6 +290,8 @@ def simulate(
     scope: str = typer.Option("global", "--scope", help="global (full travel) or local (five 1/4-travel locations)."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the distorted plane with every test and its result (PNG/SVG/PDF)."),
+    noise: float = typer.Option(0.0, "--noise", help="Random reading error of the instruments, µm (standard deviation); 0 gives the exact figures of the paper."),
+    seed: int = typer.Option(1, "--seed", min=0, max=2**63 - 1, help="Random seed of the reading error (with --noise)."),
 ) -> None:
     """Every squareness method on a simulated machine of Chapman, Calibration of machine squareness (Figures 14-26).
 
@@ -298,10 +300,15 @@ def simulate(
     from axiscal.machines.xy_plane import seed004_machine
     from axiscal.procedures.squareness_study import compare_methods
 
+    import numpy as np
+
+    from axiscal._schema import check_option
+
+    check_option("--noise", noise, "µm", lo=0, hi=1000)
     if plot is not None:
         plot_path(plot)
     m = seed004_machine(machine)
-    c = compare_methods(m, scope)
+    c = compare_methods(m, scope, np.random.default_rng(seed), noise * 1e-6)
     if plot is not None:
         from axiscal.report.squareness_plots import save_comparison_plot
 

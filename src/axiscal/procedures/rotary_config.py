@@ -185,13 +185,15 @@ def rotary_config_from_dict(config: dict[str, Any]) -> RotaryCalibrationConfig:
         offaxis=offaxis, speed=speed, seed=seed, metadata=meta)
 
 
-def run_rotary_config(config: dict[str, Any]):
-    """Build from a configuration and run :func:`simulate_rotary_calibration` with its seed."""
+def run_rotary_config(config: dict[str, Any], seed: int | None = None):
+    """Build from a configuration and run :func:`simulate_rotary_calibration` with its seed
+    (``seed``, if given, instead of the configuration's)."""
     from axiscal.procedures.rotary_calibration import simulate_rotary_calibration
 
     c = rotary_config_from_dict(config)
     return simulate_rotary_calibration(c.axis, c.plan, c.setup, c.laser, c.calibrator,
-                                       np.random.default_rng(c.seed), c.speed, c.offaxis, c.metadata)
+                                       np.random.default_rng(c.seed if seed is None else seed),
+                                       c.speed, c.offaxis, c.metadata)
 
 
 def _setup(t: dict[str, Any]) -> RotarySetup:

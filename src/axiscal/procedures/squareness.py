@@ -331,8 +331,12 @@ def measure_ballbar(machine: XYPlaneMachine, test: BallbarTest, *,
     return runs[0], runs[1]
 
 
-def run_test(machine: XYPlaneMachine, test) -> MethodResult:
+def run_test(machine: XYPlaneMachine, test, rng: np.random.Generator | None = None,
+             noise: float = 0.0) -> MethodResult:
     """Measure and evaluate one test on the machine; the result as a :class:`MethodResult`.
+
+    ``noise`` (metres, standard deviation) adds the instrument's random reading error, drawn
+    from ``rng``; without it the readings are the model's exact values.
 
     Examples
     --------
@@ -341,15 +345,16 @@ def run_test(machine: XYPlaneMachine, test) -> MethodResult:
     L 0       at (+0, +0) mm: -35.00 µm/m
     """
     if isinstance(test, BiaxialTest):
-        sq = evaluate_biaxial(measure_biaxial(machine, test),
+        sq = evaluate_biaxial(measure_biaxial(machine, test, rng=rng, noise=noise),
                               square_error=test.square_error).squareness
         y_line, x_line = biaxial_lines(test)
         return MethodResult(test.label, test.centre, test.size, sq, (x_line, y_line))
     if isinstance(test, DiagonalTest):
-        sq = evaluate_diagonal(measure_diagonal(machine, test)).squareness
+        sq = evaluate_diagonal(measure_diagonal(machine, test, rng=rng, noise=noise)).squareness
         return MethodResult(test.label, test.centre, test.size, sq, test.centre)
     if isinstance(test, BallbarTest):
-        res: CircularResult = evaluate_circular(measure_ballbar(machine, test), test.radius)
+        res: CircularResult = evaluate_circular(measure_ballbar(machine, test, rng=rng, noise=noise),
+                                                test.radius)
         d = 2 * test.radius
         return MethodResult(test.label, test.centre, (d, d), res.squareness, test.centre)
     raise InputError(f"test={test!r}: not a BiaxialTest, DiagonalTest or BallbarTest")

@@ -120,13 +120,17 @@ def tests_at(centre: tuple[float, float], size: tuple[float, float], radius: flo
     return tests
 
 
-def compare_methods(machine: XYPlaneMachine, scope: str = "global") -> MethodComparison:
+def compare_methods(machine: XYPlaneMachine, scope: str = "global",
+                    rng: np.random.Generator | None = None, noise: float = 0.0) -> MethodComparison:
     """Run every method on the machine (seed 004 Figures 14-26) and the recommended averages.
 
     Parameters
     ----------
     machine : XYPlaneMachine
     scope : {"global", "local"}
+    rng, noise : optional
+        The instruments' random reading error (standard deviation in metres) and its random
+        stream; without them every reading is the model's exact value.
 
     Returns
     -------
@@ -153,7 +157,7 @@ def compare_methods(machine: XYPlaneMachine, scope: str = "global") -> MethodCom
         tests = tests_at(centre, size, radius)
         if unequal:
             tests = tests[1:]  # one circle cannot cover the plane: ballbar rows below
-        here = {t.label: run_test(machine, t) for t in tests}
+        here = {t.label: run_test(machine, t, rng, noise) for t in tests}
         results.extend(here.values())
         for a, b in OPPOSITE_PAIRS:
             v = 0.5 * (here[a].squareness.um_per_m + here[b].squareness.um_per_m)
@@ -163,7 +167,7 @@ def compare_methods(machine: XYPlaneMachine, scope: str = "global") -> MethodCom
         count = int(np.floor(max(lx, ly) / (2 * radius) + 1e-9))
         for arrangement, n in (("adjacent", count), ("overlapping", count + 1)):
             group = f"{n} {arrangement} ballbar tests"
-            row = [replace(run_test(machine, t), group=group)
+            row = [replace(run_test(machine, t, rng, noise), group=group)
                    for t in ballbar_row(machine, radius, n, arrangement=arrangement)]
             results.extend(row)
             averages.append((group, (0.0, 0.0),
