@@ -40,7 +40,8 @@ from typing import Any
 
 from axiscal.errors import ConfigError, InputError
 
-__all__ = ["SchemaError", "Free", "Num", "Text", "Flag", "Schema", "check_option", "show", "MAX_MAGNITUDE"]
+__all__ = ["SchemaError", "Free", "Num", "Text", "Flag", "Schema", "check_option", "show", "MAX_MAGNITUDE",
+           "remember_document", "refuse_unknown", "document_sources"]
 
 #: No length, angle, time, temperature or rate a machine-tool set-up has comes near this; a value
 #: beyond it is a typing slip (and squaring it overflows a float).
@@ -285,3 +286,91 @@ def check_option(name: str, value, unit: str = "", lo: float | None = None,
     except _Bad as exc:
         raise InputError(str(exc).replace(f"= {show(value)}", f"= {show(shown)}", 1)) from None
     return value
+
+
+# -- unknown tables and keys in readers that do not declare a Schema -------------------------------
+#: The TOML documents read lately (the parsed dict, its file name and its text), newest last, so a
+#: reader handed only a table can still say where the table is: ``file:line``.
+_DOCUMENTS: list[tuple[dict, str, str]] = []
+
+
+def remember_document(doc: dict, source: str, text: str) -> dict:
+    """Note where ``doc`` (parsed from ``text``) came from; :func:`refuse_unknown` finds it."""
+    _DOCUMENTS.append((doc, source, text))
+    del _DOCUMENTS[:-8]
+    return doc
+
+
+def forget_documents() -> None:
+    """Start afresh (each command invocation reads its own files)."""
+    _DOCUMENTS.clear()
+
+
+def document_sources() -> list[str]:
+    """The files of the TOML documents read so far (each once, oldest first)."""
+    return list(dict.fromkeys(source for _, source, _ in _DOCUMENTS))
+
+
+def _path_to(node: Any, target: Any, path: tuple, same) -> tuple | None:
+    if same(node, target):
+        return path
+    if isinstance(node, dict):
+        for k, v in node.items():
+            if isinstance(v, (dict, list)):
+                found = _path_to(v, target, path + (k,), same)
+                if found is not None:
+                    return found
+    elif isinstance(node, list):
+        for v in node:
+            if isinstance(v, (dict, list)):
+                found = _path_to(v, target, path, same)
+                if found is not None:
+                    return found
+    return None
+
+
+def _locate(table: dict, key: str | None) -> tuple[str, str | None]:
+    """``(file:line or file or "", the table's dotted name or None)`` for a key of ``table``:
+    the document holding this very table, else one holding an equal table (a reader's copy)."""
+    for same in ((lambda a, b: a is b), (lambda a, b: isinstance(a, dict) and a == b)):
+        for doc, source, text in reversed(_DOCUMENTS):
+            path = _path_to(doc, table, (), same)
+            if path is not None:
+                name = ".".join(path)
+                lines = _Lines(text, source)
+                if not name and key is not None and isinstance(table.get(key), (dict, list)):
+                    return lines.where(key, None), None     # a table: its [header] line
+                return lines.where(name, key), name or None
+    return "", None
+
+
+def refuse_unknown(table: Any, known, where: str = "") -> None:
+    """Refuse a key of ``table`` outside ``known`` (or ``table`` not being a table) in the one
+    message style of :class:`Schema`: ``file:line: unknown key [axis] typo; known: a, b``, and
+    ``file:line: unknown table [foo]; known: ...`` for the top level of a document.
+
+    ``where`` names the table (``"[axis] periodic[1]"``) when it is not found in a document read
+    through :func:`axiscal.io._files.load_toml`; the top level is ``""``.
+    """
+    if not isinstance(table, dict):
+        raise ConfigError(f"{where or 'the configuration'} must be a table, got {show(table)}")
+    unknown = [k for k in table if k not in known]
+    if not unknown:
+        return
+    key = unknown[0]
+    loc, name = _locate(table, key)
+    if name is None and where not in ("", "top level") and not loc:
+        name = where.strip("[]") if where.startswith("[") and where.endswith("]") else None
+        label = f"[{name}]" if name else where
+    else:
+        label = f"[{name}]" if name else ""
+    value = table[key]
+    if label:
+        what = f"unknown key {label} {key}"
+    elif isinstance(value, dict) or (isinstance(value, list) and value
+                                     and all(isinstance(v, dict) for v in value)):
+        what = f"unknown table [{key}]"
+    else:
+        what = f"unknown key {key}"
+    message = f"{what}; known: {', '.join(sorted(known))}"
+    raise ConfigError(f"{loc}: {message}" if loc else message)

@@ -130,7 +130,7 @@ def test_bad_job_file_is_one_line(tmp_path):
         ],
         env={"AXISCAL_CONFIG": str(tmp_path / "none.toml")},
     )
-    assert r.exit_code == 2 and "unknown key(s) serial_number" in r.stderr
+    assert r.exit_code == 2 and "job.toml:2: unknown key [machine] serial_number" in r.stderr
     assert not (tmp_path / "c.html").exists()
 
 

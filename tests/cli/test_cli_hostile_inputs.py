@@ -140,3 +140,43 @@ def test_compensate_verify_test_value_of_wrong_type(tmp_path):
     p = tmp_path / "c.toml"
     p.write_text(text)
     _one_line_error(["compensate", "--verify", p], "measurement_sigma")
+
+
+_EX = Path(__file__).resolve().parents[2] / "examples"
+_DATA = Path(__file__).resolve().parents[2] / "src/axiscal/data"
+_CONFIGS = [
+    (["simulate"], _DATA / "demo_linear.toml", "test"),
+    (["compensate", "--verify"], _DATA / "demo_compensation.toml", "compensation"),
+    (["rotary", "simulate"], _EX / "rotary_turntable.toml", "setup"),
+    (["motion", "simulate"], _EX / "motion_indexing_table.toml", "test"),
+    (["scale", "home"], _EX / "scale_single.toml", "laser"),
+    (["scale", "gantry"], _EX / "scale_gantry.toml", "gantry"),
+    (["ballbar", "simulate"], _EX / "ballbar_sim.toml", "test"),
+]
+
+
+@pytest.mark.parametrize("command, example, table", _CONFIGS, ids=lambda v: str(v))
+@pytest.mark.parametrize("slip", ["table", "key"])
+def test_every_configuration_names_an_unknown_table_or_key_in_one_style(tmp_path, command,
+                                                                         example, table, slip):
+    """Issue 11: four wordings of the same mistake ("unknown key(s) x; allowed:", "top level:
+    unknown key(s)", "x: unknown key (known: ...)", "unknown section") and some without the file;
+    now every reader says ``FILE:LINE: unknown table [foo]`` or ``FILE:LINE: unknown key [t] k``."""
+    import re
+
+    text = example.read_text()
+    if slip == "table":
+        text += "\n[foo]\nx = 1\n"
+        want = r"unknown table \[foo\]"
+    else:
+        text = re.sub(rf"^\[{table}\]\s*$", f"[{table}]\ntypo_key = 1", text, count=1,
+                      flags=re.M)
+        want = rf"unknown key \[{table}\] typo_key"
+    f = tmp_path / "c.toml"
+    f.write_text(text)
+    extra = ["--out", str(tmp_path / "o.csv")] if command[0] == "ballbar" else []
+    r = runner.invoke(app, [*command, str(f), *extra])
+    assert r.exit_code == 2, r.output
+    line = text.splitlines().index("[foo]" if slip == "table" else "typo_key = 1") + 1
+    assert re.fullmatch(rf"axiscal: error: {re.escape(str(f))}:{line}: {want}; known: [\w, .]+\n",
+                        r.stderr), r.stderr

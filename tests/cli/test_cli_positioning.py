@@ -110,7 +110,7 @@ def test_simulate_json_and_data_round_trip(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("[axis]\nkind='linear'\nbacklash=3\n[test]\nlength_mm=100\n")
     r = runner.invoke(app, ["simulate", str(bad)])
-    assert r.exit_code == 2 and "unknown key(s) backlash" in r.stderr
+    assert r.exit_code == 2 and "bad.toml:3: unknown key [axis] backlash" in r.stderr
     bad.write_text("[axis\n")
     r = runner.invoke(app, ["simulate", str(bad)])
     assert r.exit_code == 2 and "not valid TOML" in r.stderr

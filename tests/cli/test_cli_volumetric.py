@@ -73,14 +73,14 @@ def test_config_with_inline_functions_and_a_missing_motion(tmp_path):
     ('[machine]\nchain = "X Y | Z"\n', "needs chain and travel_mm"),
     ('[machine]\nchain = "X Y Z"\ntravel_mm = { X = [0, 1], Y = [0, 1], Z = [0, 1] }\n', "'|'"),
     ('[machine]\nchain = "X Y | Z"\ntravel_mm = { X = [0, 1], Y = [0, 1], Z = [0, 1] }\n'
-     '[errors]\nEQX = "a.csv"\n', "unknown key(s) EQX"),
+     '[errors]\nEQX = "a.csv"\n', "unknown key [errors] EQX"),
     ('[machine]\nchain = "X Y | Z"\ntravel_mm = { X = [0, 1], Y = [0, 1], Z = [0, 1] }\n'
      '[errors]\nEXX = "nowhere.csv"\n', "nowhere.csv"),
     ('[machine]\nchain = "X Y | Z"\ntravel_mm = { X = [0, 1], Y = [0, 1], Z = [1, 0] }\n',
      "high must exceed low"),
     ('[machine]\nchain = "X Y | Z"\ntravel_mm = { X = [0, 1], Y = [0, 1], Z = [0, 1] }\n'
      '[squareness]\nxy = 1e308\n', "finite number"),
-    ('[machin]\n', "unknown key(s) machin"),
+    ('[machin]\n', "unknown table [machin]"),
 ])
 def test_bad_configurations_are_one_line(tmp_path, text, words):
     (tmp_path / "bad.toml").write_text(text)

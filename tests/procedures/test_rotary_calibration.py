@@ -194,7 +194,7 @@ def test_setup_checks_translate_readings_and_flag_thresholds():
 
 
 def test_config_errors_name_the_key():
-    with pytest.raises(ConfigError, match=r"\[setup\]: unknown key\(s\) tir_mm"):
+    with pytest.raises(ConfigError, match=r"unknown key \[setup\] tir_mm"):
         run_rotary_config(_config(setup={"tir_mm": 0.01}))
     with pytest.raises(ConfigError, match="spacing"):
         run_rotary_config(_config(laser={"spacing_mm": -1.0}))

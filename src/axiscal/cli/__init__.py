@@ -74,6 +74,9 @@ class AxiscalGroup(typer.core.TyperGroup):
     def invoke(self, ctx):  # noqa: D401 - click API
         import warnings
 
+        from axiscal._schema import forget_documents
+
+        forget_documents()
         try:
             with warnings.catch_warnings():
                 # a numpy overflow or invalid value means an absurd input got past a check:
@@ -89,13 +92,27 @@ class AxiscalGroup(typer.core.TyperGroup):
                        "far larger than a calibration needs", err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None
         except AxiscalError as exc:
-            typer.echo(f"axiscal: error: {exc}", err=True)
+            typer.echo(f"axiscal: error: {_with_source(exc)}", err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None
         except UsageError as exc:
             _usage_error(exc)
         except KeyboardInterrupt:  # pragma: no cover - interactive only
             typer.echo("axiscal: interrupted; nothing was written", err=True)
             raise typer.Exit(130) from None
+
+
+def _with_source(exc: AxiscalError) -> str:
+    """The message, with the configuration file named when a reader raised it from the table
+    alone (``[compensation] needs spacing``) and the command read exactly one such file."""
+    from axiscal._schema import document_sources
+    from axiscal.errors import ConfigError
+
+    message = str(exc)
+    if isinstance(exc, ConfigError):
+        sources = document_sources()
+        if len(sources) == 1 and not any(message.startswith(s) for s in sources):
+            return f"{sources[0]}: {message}"
+    return message
 
 
 def _usage_error(exc) -> None:

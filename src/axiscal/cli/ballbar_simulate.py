@@ -73,21 +73,16 @@ def simulate(
 
 
 def _load(path: Path) -> dict:
-    import tomllib
 
-    from axiscal.errors import DataFormatError, InputError
-    from axiscal.io._files import read_text
+    from axiscal.errors import InputError
 
-    try:
-        cfg = tomllib.loads(read_text(path))
-    except tomllib.TOMLDecodeError as exc:
-        raise DataFormatError(f"not valid TOML: {exc}", str(path)) from None
+    from axiscal._schema import refuse_unknown
+    from axiscal.io._files import load_toml
+
+    cfg = load_toml(path)
+    refuse_unknown(cfg, set(_SECTIONS))
     for sec, keys in cfg.items():
-        if sec not in _SECTIONS or not isinstance(keys, dict):
-            raise InputError(f"{path}: unknown section [{sec}]; use {', '.join(_SECTIONS)}")
-        bad = set(keys) - _SECTIONS[sec]
-        if bad:
-            raise InputError(f"{path}: unknown key(s) {', '.join(sorted(bad))} in [{sec}]")
+        refuse_unknown(keys, _SECTIONS[sec], f"[{sec}]")
         for k, v in keys.items():
             if k != "plane" and not isinstance(v, (int, float)):
                 raise InputError(f"{path}: [{sec}] {k} = {v!r} must be a number")

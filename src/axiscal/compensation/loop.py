@@ -139,18 +139,11 @@ _TABLES = {"axis", "test", "meta", "compensation"}
 
 def loop_settings(config: dict) -> dict:
     """Validate the ``[compensation]`` table (and the names of all tables) and fill defaults."""
-    from axiscal.machines.config import refuse_unknown_keys
+    from axiscal._schema import refuse_unknown
 
-    unknown_tables = sorted(set(config) - _TABLES)
-    if unknown_tables:
-        raise ConfigError(f"unknown table [{unknown_tables[0]}]; known: "
-                          f"{', '.join(sorted(_TABLES))}")
-    refuse_unknown_keys("[compensation]", config.get("compensation", {}), _KEYS)
+    refuse_unknown(config, _TABLES)
+    refuse_unknown(config.get("compensation", {}), _KEYS, "[compensation]")
     c = dict(config.get("compensation", {}))
-    unknown = sorted(set(c) - _KEYS)
-    if unknown:
-        raise ConfigError(f"[compensation]: unknown key(s) {', '.join(unknown)}; allowed: "
-                          f"{', '.join(sorted(_KEYS))}")
     if "spacing" not in c:
         raise ConfigError("[compensation] needs spacing (mm or deg between table points)")
     out = dict(controller=str(c.get("controller", "csv")), spacing=c["spacing"],
@@ -192,9 +185,9 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
     cfg = dict(config)
     cfg["compensation"] = {**config.get("compensation", {}), **overrides}
     s = loop_settings(cfg)
-    unknown = sorted(set(config) - {"axis", "test", "meta", "compensation"})
-    if unknown:
-        raise ConfigError(f"unknown table(s) {', '.join(unknown)}; allowed: axis, test, meta, compensation")
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(config, {"axis", "test", "meta", "compensation"})
     if "axis" not in config:
         raise ConfigError("the configuration has no [axis] table")
     axis = axis_from_config(config["axis"])

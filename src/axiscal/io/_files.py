@@ -108,11 +108,14 @@ def load_toml(path) -> dict:
     """Read a TOML configuration; a syntax error becomes a :class:`ConfigError` naming the file."""
     import tomllib
 
+    from axiscal._schema import remember_document
+
     text = read_text(path)
     try:
-        return tomllib.loads(text)
+        doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    return remember_document(doc, str(path), text)
 
 
 def write_bytes_atomic(path, data: bytes) -> Path:

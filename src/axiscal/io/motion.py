@@ -103,7 +103,9 @@ def parse_motion_config(text: str, source: str = "<config>") -> MotionConfig:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{source}: not valid TOML: {exc}") from None
-    t = _Table(doc, source)
+    from axiscal._schema import remember_document
+
+    t = _Table(remember_document(doc, source, text), source)
     machine = t.sub("machine")
     test = t.sub("test")
     cfg = dict(
@@ -274,7 +276,9 @@ class _Table:
     def done(self):
         extra = sorted(set(self.d) - self.used)
         if extra:
-            raise ConfigError(f"{self.where(extra[0])}: unknown key (known: {', '.join(sorted(self.used))})")
+            from axiscal._schema import refuse_unknown
+
+            refuse_unknown(self.d, self.used, f"[{self.path}]" if self.path else "")
 
 
 def read_motion_errors(path) -> MotionErrorData:

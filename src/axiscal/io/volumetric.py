@@ -97,10 +97,7 @@ def read_volumetric_config(path) -> VolumetricConfig:
                             "measured_tool_offset_mm")) * 1e-3
     tool = np.asarray(_triple(m.get("tool_offset_mm", list(tm * 1e3)), p, "tool_offset_mm")) * 1e-3
     errs = _table(cfg, "errors", p)
-    unknown = sorted(set(errs) - set(ERROR_NAMES))
-    if unknown:
-        raise ConfigError(f"{p}: [errors] has unknown key(s) {', '.join(unknown)}; the error "
-                          f"motions are {' '.join(ERROR_NAMES)}")
+    _known(errs, set(ERROR_NAMES), p, "[errors]")
     functions = {name: _function(name, spec, p) for name, spec in errs.items()}
     sq = _table(cfg, "squareness", p)
     _known(sq, set(PAIRS), p, "[squareness]")
@@ -311,7 +308,7 @@ def _table(cfg: dict, key: str, p: Path, required: bool = False) -> dict:
 
 
 def _known(d: dict, keys: set, p: Path, where: str) -> None:
-    unknown = sorted(set(d) - keys)
-    if unknown:
-        raise ConfigError(f"{p}: {where or 'top level'}: unknown key(s) {', '.join(unknown)}; "
-                          f"known: {', '.join(sorted(keys))}")
+    """Refuse an unknown key or table by name, with the file and line (one message style)."""
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(d, keys, where)

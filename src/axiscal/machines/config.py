@@ -238,13 +238,11 @@ def _orders(items, unit: str, k: float, where: str) -> HarmonicSeries:
 
 
 def refuse_unknown_keys(where: str, t: Any, allowed: set[str]) -> None:
-    """Raise :class:`ConfigError` if ``t`` is not a table or has keys outside ``allowed``."""
-    if not isinstance(t, dict):
-        raise ConfigError(f"{where} must be a table, got {t!r}")
-    unknown = sorted(set(t) - allowed)
-    if unknown:
-        raise ConfigError(f"{where}: unknown key(s) {', '.join(unknown)}; allowed: "
-                          f"{', '.join(sorted(allowed))}")
+    """Raise :class:`ConfigError` if ``t`` is not a table or has keys outside ``allowed``
+    (the message style of :func:`axiscal._schema.refuse_unknown`, with the file and line)."""
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(t, allowed, where)
 
 
 def _num(t: dict[str, Any], key: str, default: float | None, where: str = "") -> float:

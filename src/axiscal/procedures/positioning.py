@@ -420,12 +420,14 @@ class SimulatedTest:
     truth: dict
 
 
-def plan_from_config(test: dict, kind: AxisKind, axis_name: str = "") -> TestPlan:
+def plan_from_config(test: dict, kind: AxisKind, axis_name: str = "",
+                     other_keys: frozenset[str] = frozenset()) -> TestPlan:
     """Build a plan from a ``[test]`` table.
 
     Linear keys: ``length_mm``, ``start_mm``, ``n_targets``, ``irregularity``, ``seed``;
     rotary keys: ``travel_deg``, ``start_deg``, ``step_deg``, ``n_targets``; both: ``runs``,
-    ``cycle``, ``bidirectional``, ``overrun`` (mm or deg), ``dwell_s``.
+    ``cycle``, ``bidirectional``, ``overrun`` (mm or deg), ``dwell_s``. ``other_keys`` are
+    read by the caller (accepted here, not used).
     """
     from axiscal.errors import ConfigError
     from axiscal.machines.config import check_test_types
@@ -434,10 +436,9 @@ def plan_from_config(test: dict, kind: AxisKind, axis_name: str = "") -> TestPla
     common = {"runs", "cycle", "bidirectional", "overrun", "dwell_s", "n_targets"}
     own = ({"length_mm", "start_mm", "irregularity", "seed"} if kind is AxisKind.LINEAR
            else {"travel_deg", "start_deg", "step_deg"})
-    unknown = sorted(set(test) - common - own)
-    if unknown:
-        raise ConfigError(f"[test]: unknown key(s) {', '.join(unknown)}; allowed: "
-                          f"{', '.join(sorted(common | own))}")
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(test, common | own | other_keys, "[test]")
     kw = dict(runs=int(test.get("runs", 5)), cycle=test.get("cycle", "linear"),
               bidirectional=bool(test.get("bidirectional", True)),
               overrun=float(test.get("overrun", 5.0)), dwell=float(test.get("dwell_s", 4.0)),
@@ -467,9 +468,9 @@ def simulate_from_config(config: dict, seed: int = 1) -> SimulatedTest:
     from axiscal.machines.config import axis_from_config
     from axiscal.standards.iso230_2 import evaluate
 
-    unknown = sorted(set(config) - {"axis", "test", "meta"})
-    if unknown:
-        raise ConfigError(f"unknown table(s) {', '.join(unknown)}; allowed: axis, test, meta")
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(config, {"axis", "test", "meta"})
     if "axis" not in config:
         raise ConfigError("the configuration has no [axis] table")
     axis = axis_from_config(config["axis"])
@@ -478,11 +479,10 @@ def simulate_from_config(config: dict, seed: int = 1) -> SimulatedTest:
 
     test = config.get("test", {})
     check_test_types(test)
-    test = dict(test)
-    sigma = float(test.pop("measurement_sigma", 0.0))
+    sigma = float(test.get("measurement_sigma", 0.0))
     if sigma < 0:
         raise ConfigError(f"[test] measurement_sigma = {sigma!r} must be zero or positive")
-    plan = plan_from_config(test, kind, axis.name)
+    plan = plan_from_config(test, kind, axis.name, frozenset({"measurement_sigma"}))
     try:
         meta = Metadata(**{k: str(v) for k, v in config.get("meta", {}).items()}, axis=axis.name)
     except TypeError as exc:

@@ -99,20 +99,16 @@ def certificate_info(
     logo : str
         The company logo as a ``data:`` URI.
     """
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(config, set(_SECTIONS))
     for name, value in config.items():
-        if name not in _SECTIONS:
-            raise ConfigError(
-                f"configuration: unknown table [{name}]; known: " f"{', '.join(sorted(_SECTIONS))}"
-            )
         keys = _SECTIONS[name]
         for table in (value if isinstance(value, list) else [value]):
             if not isinstance(table, dict):
                 raise ConfigError(f"configuration: [{name}] must be a table")
-            if keys is not None and set(table) - keys:
-                raise ConfigError(
-                    f"configuration [{name}]: unknown key(s) "
-                    f"{', '.join(sorted(set(table) - keys))}; known: {', '.join(sorted(keys))}"
-                )
+            if keys is not None:
+                refuse_unknown(table, keys, f"[{name}]")
     cert = config.get("certificate", {})
     paper = str(cert.get("paper", "A4"))
     if paper.lower() not in ("a4", "letter"):

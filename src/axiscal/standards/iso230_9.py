@@ -266,11 +266,10 @@ def _check_inputs(inputs, signed: tuple, k: str) -> None:
 
 def _known_keys(cls, d: Mapping[str, Any]) -> dict:
     """``d`` as keyword arguments of ``cls``, an unknown key refused by name."""
-    known = {f.name for f in fields(cls)}
-    unknown = sorted(set(d) - known)
-    if unknown:
-        raise InputError(f"[uncertainty] has unknown key(s) {', '.join(unknown)}; known: "
-                         f"{', '.join(sorted(known))}")
+    from axiscal._schema import refuse_unknown
+
+    refuse_unknown(dict(d) if not isinstance(d, dict) else d, {f.name for f in fields(cls)},
+                   "[uncertainty]")
     return dict(d)
 
 
