@@ -14,7 +14,7 @@ from axiscal.machines.config import axis_from_config
 from axiscal.procedures.environment import simulate_raw_test
 from axiscal.procedures.positioning import plan_linear
 from axiscal.procedures.record_simulation import RecordSettings, simulate_record
-from axiscal.io.measured import parse_plan_csv
+from axiscal.io.measured import format_environment_log, format_raw_readings, parse_plan_csv
 from axiscal.standards.iso230_2 import evaluate
 
 runner = CliRunner()
@@ -27,18 +27,8 @@ def _write_raw(tmp_path):
     raw, log, truth = simulate_raw_test(
         plan, axis_from_config(AXIS), np.random.default_rng(5),
         lambda t: (20.0 + t / 300, 101325.0, 45.0, 20.3 + t / 600), dead_path=0.15)
-    lines = ["# reading_unit=mm target_unit=mm machine=VMC-800 axis=X dead_path_mm=150",
-             "time_s,target,direction,run,reading"]
-    lines += [f"{t:.3f},{g:g},{d},{r},{x * 1e3:.9f}" for t, g, d, r, x in
-              zip(raw.times, raw.targets, raw.directions, raw.runs, raw.readings)]
-    (tmp_path / "raw.csv").write_text("\n".join(lines) + "\n")
-    env = ["# expansion_coefficient_ppm=11.5",
-           "time_s,air_temperature_c,pressure_pa,humidity_pct,material_temperature_c,"
-           "material_temperature_c"]
-    env += [f"{t:g},{a:.4f},{p:.1f},{h:.2f},{m[0]:.4f},{m[1]:.4f}" for t, a, p, h, m in
-            zip(log.times, log.air_temperature, log.pressure, log.humidity,
-                log.material_temperature)]
-    (tmp_path / "env.csv").write_text("\n".join(env) + "\n")
+    (tmp_path / "raw.csv").write_text(format_raw_readings(raw, "machine=VMC-800 axis=X"))
+    (tmp_path / "env.csv").write_text(format_environment_log(log))
     return truth
 
 

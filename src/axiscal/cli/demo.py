@@ -63,6 +63,7 @@ def demo(
         pages.append((label, f"{name}_report.html", sim.result))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)
+    _measured_inputs(out, seed)
     _history(out, db or f"sqlite:///{(out / 'history.sqlite').resolve()}", seed)
     note(f"\nopen {out / 'index.html'} for the reports")
 
@@ -108,6 +109,62 @@ def _history(out: Path, db: str, seed: int) -> None:
     typer.echo(f"\nthe linear axis before and after compensation (axiscal history compare "
                f"{ids[0]} {ids[1]} --db {db}):")
     typer.echo(str(c))
+
+
+#: The job file the README's certificate example uses (one test's customer, machine, conditions and
+#: tolerances); ``make demo`` writes it as ``job.toml``.
+JOB_TOML = """\
+[customer]
+name = "Example Machining AG"
+[machine]
+maker = "Example"
+model = "VMC-800"
+serial = "VMC8-0042"
+location = "Hall 2, cell 5"
+[conditions]
+measuring_line = "X axis, 100 mm above the table centre"
+feed = "2000 mm/min"
+dwell = "4 s"
+[tolerance]
+E = 15
+R = 8
+"""
+
+#: The simulated axis behind the demo's raw readings and continuous record.
+_RAW_AXIS = {"name": "X", "kind": "linear", "travel_mm": [-10, 810], "scale_error_ppm": 5.0,
+             "backlash_um": 2.0, "repeatability_um": 0.2}
+
+
+def _measured_inputs(out: Path, seed: int) -> None:
+    """Inputs as a real job brings them, for the README's tour: a job file, raw laser readings
+    with the environment log of the test (``compensate-environment``), and a test plan with the
+    laser's continuous record of it (``capture``), simulated on an 800 mm axis."""
+    import numpy as np
+
+    from axiscal.io._files import write_bytes_atomic, write_text_atomic
+    from axiscal.io.measured import format_environment_log, format_raw_readings
+    from axiscal.io.rtx import format_rtx
+    from axiscal.machines.config import axis_from_config
+    from axiscal.procedures.environment import simulate_raw_test
+    from axiscal.procedures.positioning import plan_linear
+    from axiscal.procedures.record_simulation import RecordSettings, simulate_record
+
+    axis = axis_from_config(_RAW_AXIS)
+    write_text_atomic(out / "job.toml", JOB_TOML)
+    raw, log, _ = simulate_raw_test(
+        plan_linear(800, runs=3, dwell=2.0), axis, np.random.default_rng(seed + 4),
+        lambda t: (20.0 + t / 300, 101325.0, 45.0, 20.3 + t / 600), dead_path=0.15)
+    write_text_atomic(out / "raw.csv", format_raw_readings(raw, "machine=VMC-800 axis=X"))
+    write_text_atomic(out / "env.csv", format_environment_log(log))
+    plan = plan_linear(800, runs=5, dwell=2.0)
+    write_text_atomic(out / "plan.csv", plan.to_csv())
+    from axiscal.io.measured import parse_plan_csv
+
+    _, x, _ = simulate_record(parse_plan_csv(plan.to_csv()), axis, np.random.default_rng(seed + 5),
+                              RecordSettings(sample_rate=2000.0))
+    write_bytes_atomic(out / "run.rtx", format_rtx(x * 1e6, 2000.0, Axis="X"))
+    note(f"wrote {out / 'job.toml'}, raw.csv, env.csv, plan.csv and run.rtx (inputs for the "
+         "README's tour)")
 
 
 def _certificate(path: Path, sim, name: str) -> None:

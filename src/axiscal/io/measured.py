@@ -129,6 +129,29 @@ def parse_raw_readings(text: str, source: str = "<text>") -> RawReadings:
     return RawReadings(t, tg, d, run, x, tu, dead, index, datum, meta, source)
 
 
+def format_raw_readings(raw: RawReadings, header: str = "") -> str:
+    """Raw readings as the CSV :func:`parse_raw_readings` reads (readings in mm; ``header`` is
+    extra ``key=value`` metadata for the leading comment)."""
+    head = f"# reading_unit=mm target_unit={raw.target_unit} dead_path_mm={raw.dead_path * 1e3:g}"
+    lines = [head + (f" {header}" if header else ""), "time_s,target,direction,run,reading"]
+    lines += [f"{t:.3f},{g:g},{d},{r},{x * 1e3:.9f}" for t, g, d, r, x in
+              zip(raw.times, raw.targets, raw.directions, raw.runs, raw.readings)]
+    return "\n".join(lines) + "\n"
+
+
+def format_environment_log(log: EnvironmentLog) -> str:
+    """An environment log as the CSV :func:`parse_environment_log` reads (one column per
+    material sensor)."""
+    mat = np.asarray(log.material_temperature).reshape(len(log.times), -1)
+    head = ([f"# expansion_coefficient_ppm={log.expansion_coefficient * 1e6:g}"]
+            if log.expansion_coefficient is not None else [])
+    cols = "time_s,air_temperature_c,pressure_pa,humidity_pct" + ",material_temperature_c" * mat.shape[1]
+    rows = [",".join([f"{t:g}", f"{a:.4f}", f"{p:.1f}", f"{h:.2f}", *(f"{m:.4f}" for m in ms)])
+            for t, a, p, h, ms in zip(log.times, log.air_temperature, log.pressure,
+                                      log.humidity, mat)]
+    return "\n".join(head + [cols] + rows) + "\n"
+
+
 def read_environment_log(path) -> EnvironmentLog:
     """Read an environment log (CSV, or JSON by extension or content)."""
     from axiscal.io._files import read_text

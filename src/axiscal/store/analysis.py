@@ -88,9 +88,12 @@ class Trend:
         if self.drift is not None:
             lines.append(f"  drift {self.drift:+.4g} ± {self.u_drift:.2g} {self.unit}/year "
                          f"(standard uncertainty), level now {self.level:.4g} {self.unit}")
-        else:
+        elif len(self.values) < 3:
             lines.append("  no drift estimate: three tests at least are needed")
-        if self.tolerance is not None:
+        else:
+            lines.append("  no drift estimate: the tests were all taken at the same time; a "
+                         "drift needs tests on different dates")
+        if self.tolerance is not None and self.drift is not None:
             if self.crossing is not None:
                 lines.append(f"  reaches the tolerance {self.tolerance:g} {self.unit} on "
                              f"{self.crossing:%Y-%m-%d} ± {self.u_crossing_days:.0f} days; "
