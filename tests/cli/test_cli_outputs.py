@@ -220,3 +220,46 @@ def test_motion_analyze_plots_the_polar_error_motions(tmp_path):
     r = runner.invoke(app, ["motion", "analyze", str(data), "--plot", str(out)])
     assert r.exit_code == 0, r.output
     assert "<svg" in out.read_text()
+
+
+@pytest.mark.parametrize("args, title, simulation", [
+    (["straightness", str(ROOT / "examples/squareness_L180_x.csv")], "Straightness", False),
+    (["squareness", "circular", str(ROOT / "examples/squareness_ballbar_150mm.csv")],
+     "Circular test", False),
+    (["squareness", "simulate", "--machine", "3"], "Squareness by every method", True),
+    (["scale", "home", str(ROOT / "examples/scale_single.toml")], "Laser scale referencing",
+     True),
+    (["compensate", "--verify", str(LOOP_TOML)], "Compensation verified by re-measuring", True),
+])
+def test_report_of_a_result_holds_the_method_the_plot_and_every_figure(tmp_path, args, title,
+                                                                      simulation):
+    """The commands whose result is a few figures and a plot write a report too (issue 11)."""
+    import json
+
+    out = tmp_path / "r.html"
+    r = runner.invoke(app, [*args, "--report", str(out)])
+    assert r.exit_code == 0, r.output
+    page = out.read_text()
+    assert f"<h1>{title}" in page and "<svg" in page and "Results" in page
+    assert ("simulation report" in page.lower()) == simulation
+    # every number of the --json result is in the page's table
+    d = json.loads(runner.invoke(app, [*args, "--json"]).stdout)
+    first = next(v for v in d.values() if isinstance(v, float))
+    assert f"{first:.4f}"[:5] in page
+
+
+def test_history_compare_and_trend_write_reports(tmp_path, monkeypatch):
+    monkeypatch.setenv("AXISCAL_DB", f"sqlite:///{tmp_path / 'h.sqlite'}")
+    for i, shift in enumerate((0.0, 0.5, 1.0)):
+        f = tmp_path / f"t{i}.csv"
+        f.write_text(DATA.replace("axis=X", f"axis=X machine=M date=2026-0{i + 1}-01")
+                     .replace(",0.1,", f",{0.1 + shift},"))
+        assert runner.invoke(app, ["history", "add", str(f)]).exit_code == 0
+    r = runner.invoke(app, ["history", "compare", "1", "3", "--report", str(tmp_path / "c.html")])
+    assert r.exit_code == 0, r.output
+    assert "Tests 1 and 3 compared" in (tmp_path / "c.html").read_text()
+    r = runner.invoke(app, ["history", "trend", "--machine", "M", "--axis", "X", "--report",
+                            str(tmp_path / "t.html")])
+    assert r.exit_code == 0, r.output
+    page = (tmp_path / "t.html").read_text()
+    assert "E of M X over time" in page and "ISO/TS 28037" in page and "<svg" in page

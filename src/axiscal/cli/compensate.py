@@ -49,7 +49,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, plot_path, print_json
+from axiscal.cli._common import note, out_path, plot_path, print_json, report_path
 
 __all__ = ["register"]
 
@@ -76,6 +76,7 @@ def compensate(
     aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (Chapman, Calibration of machine squareness Appendix II)."),
     seed: int = typer.Option(1, "--seed", min=0, help="Seed of the simulation, a whole number >= 0 (with --verify)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="With --verify: write the loop as a simulation report (plot, before/after parameters, table): HTML or PDF."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
 ) -> None:
     """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring.
@@ -89,12 +90,14 @@ def compensate(
         out_path(out, "controller file")
     if plot is not None:
         plot_path(plot)
+    if report is not None:
+        report_path(report)
     if sum(x is not None for x in (verify, read)) > 1:
         raise InputError("give either --verify or --read, not both")
     _refuse_unused(ctx, "verify" if verify is not None else "read" if read is not None
                    else "squareness" if squareness is not None else "table")
     if verify is not None:
-        return _verify(verify, seed, controller, spacing, opts, out, json_out, plot)
+        return _verify(verify, seed, controller, spacing, opts, out, json_out, plot, report)
     if read is not None:
         return _read(read, controller, source, opts, json_out)
     if squareness is not None:
@@ -118,7 +121,8 @@ def compensate(
 
 
 # -- the three actions -----------------------------------------------------------------------
-def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=None) -> None:
+def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=None,
+            report=None) -> None:
     from axiscal.compensation.loop import run_compensation_loop
     from axiscal.io._files import load_toml
 
@@ -136,13 +140,25 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
 
         save_compensation_plot(r, plot)
         note(f"wrote plot {plot}")
+    d = dict(controller=r.controller_file.controller, before=r.before.parameters(),
+             after=r.after.parameters(), reduction=r.reduction, budget_E=r.budget_E,
+             spacing_residual=r.spacing_residual, sigma=r.sigma,
+             between_targets_E=r.between_targets_E, truth_before=r.truth_before,
+             truth_after=r.truth_after, unit=r.unit, n_points=r.table.n_points,
+             spacing=r.table.spacing, seed=seed, sign=r.sign)
+    if report is not None:
+        from axiscal.report.compensation_plots import compensation_figure
+        from axiscal.report.html import write_result_report
+
+        write_result_report(report, f"Compensation verified by re-measuring — {config.name}", d,
+                            figure=compensation_figure(r), simulation=True,
+                            method="The simulated axis measured by ISO 230-2:2014, a "
+                                   f"{r.controller_file.controller} table written from the mean "
+                                   "deviations, loaded into the simulated controller, and the "
+                                   "axis measured again the same way.")
+        note(f"wrote report {report}")
     if json_out:
-        print_json(dict(controller=r.controller_file.controller, before=r.before.parameters(),
-                        after=r.after.parameters(), reduction=r.reduction, budget_E=r.budget_E,
-                        spacing_residual=r.spacing_residual, sigma=r.sigma,
-                        between_targets_E=r.between_targets_E, truth_before=r.truth_before,
-                        truth_after=r.truth_after, unit=r.unit, n_points=r.table.n_points,
-                        spacing=r.table.spacing, seed=seed, sign=r.sign))
+        print_json(d)
         return
     _render_loop(r)
 
@@ -245,7 +261,7 @@ _USES = {
               "resolution", "start", "end", "extrapolation", "reference", "travel", "axis",
               "option", "out", "json_out"}),
     "verify": ("--verify", {"verify", "controller", "spacing", "option", "out", "seed", "plot",
-               "json_out"}),
+               "report", "json_out"}),
     "read": ("--read", {"read", "source", "controller", "option", "json_out"}),
     "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
                    "start", "end", "resolution", "travel", "option", "out", "json_out"}),

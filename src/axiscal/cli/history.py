@@ -196,6 +196,8 @@ def compare(
                                         "(.png, .svg, .pdf)."),
     db: Optional[str] = _DB,
     json_out: bool = _JSON,
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the comparison as a "
+                                          "report (plot and every parameter): HTML or PDF."),
 ) -> None:
     """Two tests of one axis side by side: every parameter, its change, the difference per target.
 
@@ -204,13 +206,25 @@ def compare(
     from axiscal.store.analysis import compare_tests
 
     plot = plot_path(plot) if plot else None
+    report = report_path(report) if report else None
     store = _store(db)
     c = compare_tests(store.get(first), store.get(second))
     if plot:
         from axiscal.report.history_plots import comparison_figure
+        from axiscal.report.plots import save_figure
 
-        comparison_figure(c).savefig(plot, dpi=110)
+        save_figure(comparison_figure(c), plot)
         note(f"wrote plot {plot}")
+    if report:
+        from axiscal.report.history_plots import comparison_figure
+        from axiscal.report.html import write_result_report
+
+        write_result_report(report, f"Tests {first} and {second} compared", c.as_dict(),
+                            figure=comparison_figure(c),
+                            method="Every parameter of the two tests (each evaluated by its "
+                                   "standard from the stored readings) and its change, and the "
+                                   "difference of the mean deviations per target.")
+        note(f"wrote report {report}")
     if json_out:
         print_json(c.as_dict())
     else:
@@ -228,6 +242,8 @@ def trend(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Trend plot (.png, .svg, .pdf)."),
     db: Optional[str] = _DB,
     json_out: bool = _JSON,
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the trend as a report "
+                                          "(plot, drift, predicted crossing): HTML or PDF."),
 ) -> None:
     """A parameter over time with its fitted drift, and when it will reach a tolerance.
 
@@ -236,12 +252,26 @@ def trend(
     from axiscal.store import trend as fit
 
     plot = plot_path(plot) if plot else None
+    report = report_path(report) if report else None
     tr = fit(_store(db), machine, axis, parameter, tolerance)
     if plot:
         from axiscal.report.history_plots import trend_figure
+        from axiscal.report.plots import save_figure
 
-        trend_figure(tr, f"{machine} {axis.upper()}").savefig(plot, dpi=110)
+        save_figure(trend_figure(tr, f"{machine} {axis.upper()}"), plot)
         note(f"wrote plot {plot}")
+    if report:
+        from axiscal.report.history_plots import trend_figure
+        from axiscal.report.html import write_result_report
+
+        write_result_report(report, f"{parameter} of {machine} {axis.upper()} over time",
+                            tr.as_dict(), figure=trend_figure(tr, f"{machine} {axis.upper()}"),
+                            method="Least-squares straight line through the stored values "
+                                   "(ISO/TS 28037:2010 clause 6); the date the line reaches the "
+                                   "tolerance with its uncertainty by the GUM's law of "
+                                   "propagation (JCGM 100:2008 §5.1.2), and a recalibration date "
+                                   "at k = 2.")
+        note(f"wrote report {report}")
     if json_out:
         print_json(tr.as_dict())
     else:

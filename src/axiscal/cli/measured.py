@@ -25,7 +25,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, plot_path, print_json, typed_path
+from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
 
 __all__ = ["register"]
 
@@ -108,6 +108,8 @@ def capture(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Dynamic view: position, "
                                         "velocity, acceleration, settling, spectrum (.png)."),
     json_out: bool = typer.Option(False, "--json", help="Print what was found as JSON."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a report of the capture "
+                                          "(the dynamic view and what was found): HTML or PDF."),
 ) -> None:
     """Take a positioning test from a continuous record with no trigger: stops found, matched.
 
@@ -121,6 +123,8 @@ def capture(
     typed_path(out, "positioning CSV", (".csv",))
     if plot is not None:
         plot_path(plot)
+    if report is not None:
+        report_path(report)
     rec = read_record(record, unit=unit)
     rows = read_plan_csv(plan)
     log = read_environment_log(environment) if environment else None
@@ -132,6 +136,18 @@ def capture(
         save_dynamic_view(rec, result, plot)
         note(f"wrote plot {plot}")
     d = result.summary()
+    if report is not None:
+        from axiscal.report.capture_plots import dynamic_figure
+        from axiscal.report.html import write_result_report
+
+        write_result_report(report, f"Capture of {record.name}", {"out": str(out), **d},
+                            figure=dynamic_figure(rec, result),
+                            method="Stops found in the continuous record (the reading within "
+                                   f"±{window:g} of its mean for the dwell), matched in order to "
+                                   f"the plan {plan.name} and averaged over their second half; "
+                                   "the positioning test they give is evaluated by ISO 230-2:2014 "
+                                   f"with 'axiscal iso230-2 {out}'.")
+        note(f"wrote report {report}")
     if json_out:
         print_json({"out": str(out), **d})
         return

@@ -34,7 +34,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, plot_path, print_json
+from axiscal.cli._common import note, plot_path, print_json, report_path
 
 __all__ = ["register", "scale_app"]
 
@@ -65,6 +65,8 @@ def home(
                                         "plot (PNG, SVG or PDF by extension)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
     seed: Optional[int] = _SEED,
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a simulation report "
+                                          "(signals plot and every figure): HTML or PDF."),
 ) -> None:
     """Simulate the referencing of one axis: events A, B, Z, C and the signals.
 
@@ -75,6 +77,8 @@ def home(
 
     if plot is not None:
         plot_path(plot)
+    if report is not None:
+        report_path(report)
     cfg = _with_seed(read_scale_config(config), "homing", seed)
     axis = axis_from_config(cfg)
     kwargs = homing_from_config(cfg, axis)
@@ -92,6 +96,16 @@ def home(
         from axiscal.report.scale_plot import save_referencing_plot
 
         save_referencing_plot(run, plot)
+    if report is not None:
+        from axiscal.report.html import write_result_report
+        from axiscal.report.scale_plot import referencing_figure
+
+        write_result_report(report, f"Laser scale referencing — {config.name}", d,
+                            figure=referencing_figure(run), simulation=True,
+                            method="Referencing of one axis through the environmental "
+                                   "compensator: switch, rephasing of the sine and cosine "
+                                   "outputs and the reference mark at events A, B, Z and C "
+                                   "(Renishaw, Laser scale axis referencing).")
     if json_out:
         print_json(d)
     else:
@@ -111,8 +125,9 @@ def home(
                        f"at the end the controller reads "
                        f"{t['end_controller_mm']:.6f} mm, an uncompensated scale "
                        f"{t['end_uncompensated_mm']:.6f} mm (part {t['end_part_mm']:.6f} mm)")
-    if plot is not None:
-        note(f"wrote plot {plot}")
+    for what, path in (("plot", plot), ("report", report)):
+        if path is not None:
+            note(f"wrote {what} {path}")
 
 
 @scale_app.command("gantry")

@@ -35,7 +35,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._common import note, plot_path, print_json
+from axiscal.cli._common import note, plot_path, print_json, report_path
 
 __all__ = ["register", "render_comparison"]
 
@@ -49,6 +49,23 @@ squareness_app = typer.Typer(
     "Chapman, Calibration of machine squareness (positive when the angle exceeds 90°) and the ISO 230-1 datum/referred-axis sign.",
     no_args_is_help=True,
 )
+
+
+_REPORT = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint).")
+
+
+def _outputs(plot, report) -> None:
+    """Check the plot and report files before any work."""
+    if plot is not None:
+        plot_path(plot)
+    if report is not None:
+        report_path(report)
+
+
+def _wrote(plot, report) -> None:
+    for what, path in (("plot", plot), ("report", report)):
+        if path is not None:
+            note(f"wrote {what} {path}")
 
 
 def _reference(value: str) -> str:
@@ -65,6 +82,7 @@ def straightness(
     reference: str = typer.Option("least_squares", "--reference", help=_REF_HELP),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write a plot of the readings and the line (PNG/SVG/PDF)."),
+    report: Optional[Path] = _REPORT,
 ) -> None:
     """Straightness deviation and slope of one trajectory (ISO 230-1 reference lines).
 
@@ -74,8 +92,7 @@ def straightness(
     from axiscal.standards.iso230_1 import straightness as evaluate
 
     method = _reference(reference)
-    if plot is not None:
-        plot_path(plot)
+    _outputs(plot, report)
     data = read_straightness(file)
     results = {m: evaluate(data.positions, data.deviations, m) for m in REFERENCES}  # type: ignore[arg-type]
     chosen = results[method]
@@ -83,14 +100,24 @@ def straightness(
         from axiscal.report.squareness_plots import save_straightness_plot
 
         save_straightness_plot(data, chosen, plot)
+    d = {"file": str(file), "axis": data.axis, "direction": data.direction,
+         "reference": method, "straightness_um": chosen.deviation * 1e6,
+         "slope_um_per_m": chosen.line.slope * 1e6,
+         "intercept_um": chosen.line.intercept * 1e6, "n": chosen.n,
+         "methods": {m: {"straightness_um": r.deviation * 1e6,
+                         "slope_um_per_m": r.line.slope * 1e6}
+                     for m, r in results.items()}}
+    if report is not None:
+        from axiscal.report.html import write_result_report
+        from axiscal.report.squareness_plots import straightness_figure
+
+        write_result_report(report, f"Straightness — {file.name}", d,
+                            figure=straightness_figure(data, chosen),
+                            method=f"Straightness deviation about the {method.replace('_', ' ')} "
+                                   "reference straight line, ISO 230-1:2012 §3.4.8 and §3.4.9; "
+                                   "every reference line's figures are in the table.")
     if json_out:
-        print_json({"file": str(file), "axis": data.axis, "direction": data.direction,
-                    "reference": method, "straightness_um": chosen.deviation * 1e6,
-                    "slope_um_per_m": chosen.line.slope * 1e6,
-                    "intercept_um": chosen.line.intercept * 1e6, "n": chosen.n,
-                    "methods": {m: {"straightness_um": r.deviation * 1e6,
-                                    "slope_um_per_m": r.line.slope * 1e6}
-                                for m, r in results.items()}})
+        print_json(d)
     else:
         what = f"{data.axis or '?'} axis, deviation along {data.direction or '?'}"
         typer.echo(f"straightness of {file} ({what}, {chosen.n} readings)")
@@ -98,8 +125,7 @@ def straightness(
             mark = "*" if m == method else " "
             typer.echo(f" {mark} {m:<14} straightness {r.deviation * 1e6:9.3f} µm   "
                        f"slope {r.line.slope * 1e6:+10.3f} µm/m")
-    if plot is not None:
-        note(f"wrote plot {plot}")
+    _wrote(plot, report)
 
 
 def biaxial(
@@ -255,6 +281,7 @@ def circular(
     datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ballbar polar plot (PNG/SVG/PDF)."),
+    report: Optional[Path] = _REPORT,
 ) -> None:
     """Circular test by ISO 230-4: G, H, F, and squareness free of backlash and scale mismatch.
 
@@ -266,8 +293,7 @@ def circular(
     from axiscal._schema import check_option
 
     check_option("--radius", radius, "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
-    if plot is not None:
-        plot_path(plot)
+    _outputs(plot, report)
     data = read_ballbar(file, radius_mm=radius)
     r = evaluate_circular(data.runs, data.radius, axes=data.axes, datum=datum)
     if plot is not None:
@@ -275,14 +301,23 @@ def circular(
 
         save_ballbar_plot(data.runs, r, plot, title=f"Ballbar test {file.name}")
     budget = _budget("ballbar", ballbar_radius=data.radius)
+    d = {**r.as_dict(), **_budget_json(budget)}
+    if report is not None:
+        from axiscal.report.html import write_result_report
+        from axiscal.report.squareness_plots import ballbar_figure
+
+        write_result_report(report, f"Circular test — {file.name}", d,
+                            figure=ballbar_figure(data.runs, r, title=f"Ballbar test {file.name}"),
+                            method="Circular deviation G, circular hysteresis H and radial "
+                                   "deviation F by ISO 230-4:2005; the squareness from the "
+                                   "fitted ellipse, free of backlash and scale mismatch "
+                                   "(Chapman, Calibration of machine squareness, Method 4).")
     if json_out:
-        d = r.as_dict()
-        print_json({**d, **_budget_json(budget)})
+        print_json(d)
     else:
         typer.echo(str(r))
         typer.echo(_budget_line(budget))
-    if plot is not None:
-        note(f"wrote plot {plot}")
+    _wrote(plot, report)
 
 
 def simulate(
@@ -292,6 +327,7 @@ def simulate(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the distorted plane with every test and its result (PNG/SVG/PDF)."),
     noise: float = typer.Option(0.0, "--noise", help="Random reading error of the instruments, µm (standard deviation); 0 gives the exact figures of the paper."),
     seed: int = typer.Option(1, "--seed", min=0, max=2**63 - 1, help="Random seed of the reading error (with --noise)."),
+    report: Optional[Path] = _REPORT,
 ) -> None:
     """Every squareness method on a simulated machine of Chapman, Calibration of machine squareness (Figures 14-26).
 
@@ -305,20 +341,27 @@ def simulate(
     from axiscal._schema import check_option
 
     check_option("--noise", noise, "µm", lo=0, hi=1000)
-    if plot is not None:
-        plot_path(plot)
+    _outputs(plot, report)
     m = seed004_machine(machine)
     c = compare_methods(m, scope, np.random.default_rng(seed), noise * 1e-6)
     if plot is not None:
         from axiscal.report.squareness_plots import save_comparison_plot
 
         save_comparison_plot(m, c, plot)
+    if report is not None:
+        from axiscal.report.html import write_result_report
+        from axiscal.report.squareness_plots import comparison_figure
+
+        write_result_report(report, f"Squareness by every method — {m}", c.as_dict(),
+                            figure=comparison_figure(m, c), simulation=True,
+                            method="Every squareness test of Chapman, Calibration of machine "
+                                   "squareness (Figures 14-26) on its simulated machine, with "
+                                   "the true squareness the simulation knew.")
     if json_out:
         print_json(c.as_dict())
     else:
         render_comparison(c)
-    if plot is not None:
-        note(f"wrote plot {plot}")
+    _wrote(plot, report)
 
 
 def render_comparison(c, console=None) -> None:

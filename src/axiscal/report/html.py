@@ -260,3 +260,47 @@ def _cell(v: Any, digits: int) -> str:
             return "—"
         return f"{f:.{digits}f}"
     return _esc(v)
+
+
+def result_rows(result: dict, prefix: str = "") -> list[list[Any]]:
+    """A command's JSON result as ``[name, value]`` rows: every number, text and flag, nested
+    names joined with a dot; a short list of numbers inline, a long one counted (``--json`` holds
+    it whole)."""
+    rows: list[list[Any]] = []
+    for key, value in result.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            rows.extend(result_rows(value, f"{name}."))
+        elif isinstance(value, (list, tuple)):
+            if len(value) <= 6 and all(isinstance(v, (int, float, str)) for v in value):
+                rows.append([name, ", ".join(_cell(v, 4) if isinstance(v, float) else str(v)
+                                             for v in value) or "—"])
+            elif len(value) <= 20 and all(isinstance(v, dict) for v in value):
+                for i, v in enumerate(value):
+                    rows.extend(result_rows(v, f"{name}[{i + 1}]."))
+            else:
+                rows.append([name, f"{len(value)} values (in --json)"])
+        elif value is not None:
+            rows.append([name, value])
+    return rows
+
+
+def write_result_report(path, title: str, result: dict, *, figure=None, caption: str = "",
+                        method: str = "", subtitle: str = "", notes=(), simulation: bool = False,
+                        metadata: dict | None = None) -> Path:
+    """A report of one command's result: the method (with its document and clause), the plot,
+    and every figure of the ``--json`` result as a table.
+
+    Used by the commands whose result is a handful of figures and one plot (straightness, the
+    squareness tests, scale referencing, capture, history comparisons and trends); ``simulation``
+    marks every page as a simulation report.
+    """
+    rep = Report(title, subtitle=subtitle, metadata=metadata or {}, simulation=simulation)
+    if method:
+        rep.add_text(method)
+    rep.add_warnings(notes)
+    if figure is not None:
+        rep.add_figure(figure, caption)
+    rep.add_heading("Results")
+    rep.add_table(["", ""], result_rows(result), digits=4, css_class="kv")
+    return rep.write(path)
