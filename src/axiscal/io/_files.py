@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 
 from axiscal.errors import ConfigError, DataFormatError, InputError, MissingFileError
@@ -17,14 +18,8 @@ MAX_TEXT_BYTES = 256 * 1024 * 1024
 def read_text(path) -> str:
     """Read a UTF-8 (or UTF-8 with BOM) text file; errors name the file and the problem."""
     p = Path(path)
-    try:
+    with _naming_errors(p):
         data = _read_regular_file(p)
-    except MissingFileError:
-        raise
-    except PermissionError:
-        raise MissingFileError(p, "permission denied") from None
-    except OSError as exc:   # a name too long, a loop of links, an I/O error ...
-        raise MissingFileError(p, exc.strerror or str(exc)) from None
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -49,13 +44,20 @@ def read_controller_text(path) -> tuple[str, str]:
 def read_bytes(path) -> bytes:
     """Read a regular file's bytes; errors name the file and the problem."""
     p = Path(path)
-    try:
+    with _naming_errors(p):
         return _read_regular_file(p)
+
+
+@contextmanager
+def _naming_errors(p: Path):
+    """An operating system's error on ``p`` as a :class:`MissingFileError` naming the file."""
+    try:
+        yield
     except MissingFileError:
         raise
     except PermissionError:
         raise MissingFileError(p, "permission denied") from None
-    except OSError as exc:
+    except OSError as exc:   # a name too long, a loop of links, an I/O error ...
         raise MissingFileError(p, exc.strerror or str(exc)) from None
 
 
@@ -77,15 +79,9 @@ def _not_utf8(data: bytes, start: int, offset: int = 0) -> str:
 def open_regular_file(path):
     """A regular file opened for reading in binary, and its size; errors name the file."""
     p = Path(path)
-    try:
+    with _naming_errors(p):
         _check_regular(p)
         return open(p, "rb"), p.stat().st_size
-    except MissingFileError:
-        raise
-    except PermissionError:
-        raise MissingFileError(p, "permission denied") from None
-    except OSError as exc:
-        raise MissingFileError(p, exc.strerror or str(exc)) from None
 
 
 def _check_regular(p: Path) -> None:

@@ -249,8 +249,9 @@ class _Readings:
     def add(self, lineno: int, line: str) -> None:
         self.count += 1
         parts = line.split(",")
+        reading = None
         if len(parts) == self.ncols and '"' not in line:
-            try:
+            try:   # the common line: plain cells, converted directly
                 t = float(parts[self.it])
                 v = float(parts[self.iv])
                 r = int(parts[self.ir])
@@ -259,22 +260,28 @@ class _Readings:
                 pass
             else:
                 if -MAX_MAGNITUDE <= t <= MAX_MAGNITUDE and -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE \
-                        and 1 <= r <= self.max_run:   # the common line, stored inline
-                    i = self.where.get(t)
-                    if i is None:
-                        i = self.where[t] = len(self.where)
-                    self.index.append(i)
-                    self.values.append((v - t) * self.to_dev if self.to_dev is not None else v)
-                    self.up.append(d)
-                    self.runs.append(r)
-                    return
-                if -MAX_MAGNITUDE <= t <= MAX_MAGNITUDE and -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE \
                         and r >= 1:
-                    self._store(lineno, parts[self.ir], t, d, r, v)
-                    return
-        self._add_checked(lineno, line)
+                    reading = (t, d, r, v, parts[self.ir])
+        if reading is None:
+            reading = self._checked(lineno, line)
+            if reading is None:
+                return   # a missing reading: counted by the dataset as NaN
+        t, d, r, v, run_text = reading
+        if r > self.max_run:
+            self.max_run, self.max_run_at = r, (lineno, run_text)
+        if r > 2147483647:   # beyond any file's readings: refused at the end (max_run keeps it)
+            r = 2147483647
+        i = self.where.get(t)
+        if i is None:
+            i = self.where[t] = len(self.where)
+        self.index.append(i)
+        self.values.append((v - t) * self.to_dev if self.to_dev is not None else v)
+        self.up.append(d)
+        self.runs.append(r)
 
-    def _add_checked(self, lineno: int, line: str) -> None:
+    def _checked(self, lineno: int, line: str):
+        """``(target, up, run, value, run as written)`` of a line the direct conversion did not
+        take, or ``None`` for a missing reading; a bad cell raises the one-line error."""
         source = self.source
         row = csv_cells(line, source, lineno)
         if len(row) < self.ncols:
@@ -293,21 +300,9 @@ class _Readings:
         if raw == "" or raw.lower() in {"nan", "na", "missing"}:
             if int(run_value) > self.max_run:
                 self.max_run, self.max_run_at = int(run_value), (lineno, run_text)
-            return  # a missing reading: counted by the dataset as NaN
+            return None
         value = finite_number(raw, self.value_col, source, lineno)
-        self._store(lineno, run_text, target, int(up), int(run_value), value)
-
-    def _store(self, lineno, run_text, t, d, r, v) -> None:
-        if r > self.max_run:
-            self.max_run, self.max_run_at = r, (lineno, run_text)
-        i = self.where.get(t)
-        if i is None:
-            i = self.where[t] = len(self.where)
-        self.index.append(i)
-        self.values.append((v - t) * self.to_dev if self.to_dev is not None else v)
-        self.up.append(d)
-        # a run beyond the readings is refused at the end (max_run keeps its real value)
-        self.runs.append(min(r, (1 << 31) - 1))
+        return target, int(up), int(run_value), value, run_text
 
     def dataset(self, kind, tu, du, meta) -> PositioningDataset:
         import numpy as np
