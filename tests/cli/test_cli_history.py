@@ -57,6 +57,13 @@ def test_add_list_show_compare_trend(tmp_path, files):
                          "--parameter", "E", "--tolerance", "40", "--db", db, "--json",
                          "--plot", str(tmp_path / "t.png")).stdout)
     assert len(tr["points"]) == 3 and tr["model"].startswith("least-squares")
+    # another standard's parameter has its own trend (JIS R: 3s, drifting with the up runs)
+    jis = json.loads(_run("history", "trend", "--machine", "VMC-800", "--axis", "X",
+                          "--parameter", "jis-b6192:R", "--db", db, "--json").stdout)
+    direct_jis = json.loads(_run("evaluate", str(files[2]), "--standard", "jis-b6192",
+                                 "--json").stdout)
+    assert jis["points"][-1]["value"] == direct_jis["standards"][0]["parameters"]["R"]["value"]
+    assert jis["points"][0]["value"] < jis["points"][-1]["value"]
     assert (tmp_path / "c.png").stat().st_size > 5000 and (tmp_path / "t.png").exists()
     r = _run("history", "show", str(ids[0]), "--db", db, "--report", str(tmp_path / "r.html"))
     assert "ISO 230-2:2014" in r.stdout and (tmp_path / "r.html").exists()

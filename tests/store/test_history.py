@@ -70,6 +70,13 @@ def test_round_trip_property(tmp_path, seed, n, runs):
     s = open_store(f"sqlite:///{tmp_path / f'h{seed}.sqlite'}")
     r = s.add(raw, "x.csv")
     direct = {k: v for k, v in _evaluated(raw).parameters().items() if v is not None}
+    # and every other standard axiscal evaluates, as KEY:NAME (issue 16: history for any standard)
+    from axiscal.io import parse_positioning
+    from axiscal.standards import positioning_standards as ps
+
+    jis = ps.evaluate("jis-b6192", parse_positioning(raw.decode(), "x.csv"))
+    direct.update({f"jis-b6192:{k}": v for k, (v, _, _) in jis.parameters().items()
+                   if v is not None})
     assert {k: v for k, (v, _) in s.get(r.id).evaluate_again().parameters.items()} == direct
     s.close()
 

@@ -235,7 +235,7 @@ def compare(
 def trend(
     machine: str = typer.Option(..., "--machine", help="Machine name."),
     axis: str = typer.Option(..., "--axis", help="Axis name."),
-    parameter: str = typer.Option("E", "--parameter", help="Parameter (E, A, R, B, M, "
+    parameter: str = typer.Option("E", "--parameter", help="Parameter (E, A, R, B, M, another standard's as KEY:NAME such as jis-b6192:R, "
                                   "squareness, straightness ...)."),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Tolerance to predict "
                                               "the crossing of, in the parameter's unit."),

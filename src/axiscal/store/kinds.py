@@ -95,11 +95,27 @@ def _positioning(text: str, filename: str) -> Evaluated:
     params = {n: (getattr(r, n), unit) for n in
               ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "B",
                "B_mean") if getattr(r, n) is not None and math.isfinite(getattr(r, n))}
+    params.update(_other_standards(ds))
     md = ds.metadata
     env = {k: v for k, v in dataclasses.asdict(md.environment).items() if v is not None}
     return Evaluated("iso230-2", ds.axis_kind.value, jsonable(r), params,
                      format_positioning_json(ds), md.machine, md.axis, md.date, md.operator,
                      md.instrument, jsonable(env), ds, r)
+
+
+def _other_standards(ds) -> dict:
+    """The parameters of every other positioning standard axiscal evaluates, named
+    ``KEY:NAME`` (``jis-b6192:R``), so compare and trend work for any standard a contract names."""
+    from axiscal.standards import positioning_standards as ps
+
+    out = {}
+    for std, res in ps.evaluate_all(ds):
+        if std.key == "iso230-2:2014" or isinstance(res, str):
+            continue
+        for name, (value, unit, _) in res.parameters().items():
+            if value is not None and math.isfinite(value):
+                out[f"{std.key}:{name}"] = (value, unit)
+    return out
 
 
 def _straightness(text: str, filename: str) -> Evaluated:
