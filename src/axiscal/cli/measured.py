@@ -59,6 +59,12 @@ def compensate_environment(
     max_gap: float = typer.Option(300.0, "--max-gap", min=1, max=86400, help="Longest gap in "
                                   "the log a reading may fall into, s."),
     json_out: bool = typer.Option(False, "--json", help="Print what was done as JSON."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Plot the air and material over "
+                                        "the test and the correction of each reading (.png, "
+                                        ".svg, .pdf)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a report of the "
+                                          "compensation (the plot and what was applied): HTML "
+                                          "or PDF."),
 ) -> None:
     """Compensate raw laser readings for the air (Ciddor) and refer the axis to 20 °C (ISO 1).
 
@@ -70,19 +76,42 @@ def compensate_environment(
     from axiscal.procedures.environment import compensate_raw_readings
 
     typed_path(out, "positioning CSV", (".csv",))
+    if plot is not None:
+        plot_path(plot)
+    if report is not None:
+        report_path(report)
     raw_data = read_raw_readings(raw)
     log = read_environment_log(environment) if environment else None
-    ds = compensate_raw_readings(
+    ds, detail = compensate_raw_readings(
         raw_data, log, equation=equation, normalise_material=not air_only, max_gap=max_gap,
-        air_temperature=air_temperature, pressure=pressure, humidity=humidity,
+        detail=True, air_temperature=air_temperature, pressure=pressure, humidity=humidity,
         material_temperature=material_temperature,
         expansion_coefficient=None if expansion_ppm is None else expansion_ppm * 1e-6)
     write_text_atomic(out, format_positioning_csv(ds))
+    env = ds.metadata.environment
+    d = {"out": str(out), "readings": int(raw_data.readings.size),
+         "applied": ds.metadata.notes, "air_temperature_c": env.air_temperature,
+         "material_temperature_c": env.mean_material_temperature}
+    if plot is not None or report is not None:
+        from axiscal.report.capture_plots import environment_figure
+
+        title = f"Environmental compensation of {raw.name}"
+        if plot is not None:
+            from axiscal.report.plots import save_figure
+
+            save_figure(environment_figure(detail, title), plot)
+            note(f"wrote plot {plot}")
+        if report is not None:
+            from axiscal.report.html import write_result_report
+
+            write_result_report(report, title, d, figure=environment_figure(detail, title),
+                                method="Each raw reading corrected for the refractive index of "
+                                       "the air at its time (the equation named below) and the "
+                                       "dead path, and the axis referred to 20 °C by ISO 1:2016 "
+                                       "with the material temperature at its time.")
+            note(f"wrote report {report}")
     if json_out:
-        env = ds.metadata.environment
-        print_json({"out": str(out), "readings": int(raw_data.readings.size),
-                    "applied": ds.metadata.notes, "air_temperature_c": env.air_temperature,
-                    "material_temperature_c": env.mean_material_temperature})
+        print_json(d)
         return
     typer.echo(ds.metadata.notes)
     typer.echo(f"wrote {raw_data.readings.size} compensated readings to {out} "

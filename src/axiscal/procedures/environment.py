@@ -195,13 +195,24 @@ def compensate_displacements(times, readings, *, conditions: Conditions, dead_pa
     return Compensated(length, n, "; ".join(words), c)
 
 
+@dataclass(frozen=True, eq=False)
+class ReadingCorrections:
+    """What the compensation did to each raw reading, in the readings' order (for plots)."""
+
+    times: np.ndarray               # s
+    raw_deviation_um: np.ndarray    # the raw reading minus the target
+    deviation_um: np.ndarray        # the compensated reading minus the target
+    conditions: Conditions
+
+
 def compensate_raw_readings(raw, log=None, *, equation: str = "ciddor",
                             normalise_material: bool = True, max_gap: float = MAX_GAP_S,
-                            **constants) -> PositioningDataset:
+                            detail: bool = False, **constants):
     """A positioning test from raw readings and an environment log (or constants).
 
     ``constants``: ``air_temperature`` (°C), ``pressure`` (Pa), ``humidity`` (%RH),
     ``material_temperature`` (°C), ``expansion_coefficient`` (1/K), each replacing the log's.
+    With ``detail`` the result is ``(dataset, ReadingCorrections)``.
     """
     cond = conditions_at(raw.times, log, max_gap=max_gap, **constants)
     out = compensate_displacements(raw.times, raw.readings, conditions=cond,
@@ -220,11 +231,15 @@ def compensate_raw_readings(raw, log=None, *, equation: str = "ciddor",
         pressure=float(np.mean(cond.pressure)), humidity=float(np.mean(cond.humidity)),
         expansion_coefficient=cond.expansion_coefficient)
     notes = f"compensated by axiscal from raw laser readings: {out.applied}"
-    return replace(ds, metadata=Metadata(machine=m.get("machine", ""), axis=m.get("axis", ""),
-                                         operator=m.get("operator", ""),
-                                         date=m.get("date", ""),
-                                         instrument=m.get("instrument", ""), notes=notes,
-                                         environment=env))
+    ds = replace(ds, metadata=Metadata(machine=m.get("machine", ""), axis=m.get("axis", ""),
+                                       operator=m.get("operator", ""),
+                                       date=m.get("date", ""),
+                                       instrument=m.get("instrument", ""), notes=notes,
+                                       environment=env))
+    if not detail:
+        return ds
+    raw_um = (raw.datum + raw.readings / f - raw.targets) * f / units.UM
+    return ds, ReadingCorrections(np.asarray(raw.times), raw_um, deviation_um, cond)
 
 
 def _dataset(targets, directions, runs, deviation, target_unit, source) -> PositioningDataset:

@@ -6,7 +6,7 @@ import numpy as np
 
 from axiscal.units import ARCSEC
 
-__all__ = ["dynamic_figure", "save_dynamic_view"]
+__all__ = ["dynamic_figure", "save_dynamic_view", "environment_figure"]
 
 _MAX_POINTS = 200_000
 
@@ -56,3 +56,41 @@ def dynamic_figure(record, result):
 def save_dynamic_view(record, result, path) -> None:
     """Write :func:`dynamic_figure` to ``path``."""
     dynamic_figure(record, result).savefig(path, dpi=100)
+
+
+def environment_figure(detail, title: str = "Environmental compensation"):
+    """Two panels against the time of the test: the air and material temperatures (pressure on
+    the right axis), and what the compensation changed at each reading (compensated minus raw
+    deviation, µm)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    c = detail.conditions
+    t = detail.times
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(10, 6.4), dpi=110, sharex=True)
+    a1.plot(t, c.air_temperature, color="#1f77b4", lw=1.4, label="air temperature")
+    if c.material_temperature is not None:
+        a1.plot(t, c.material_temperature, color="#8c564b", lw=1.4,
+                label="material temperature (mean of the sensors)")
+    a1.set_ylabel("temperature [°C]")
+    a1.grid(True, color="#e3e7ec", lw=0.7)
+    ap = a1.twinx()
+    ap.plot(t, np.asarray(c.pressure) / 100.0, color="#7f7f7f", lw=1.0, ls="--",
+            label="pressure")
+    ap.set_ylabel("pressure [hPa]")
+    lines = a1.get_legend_handles_labels()
+    more = ap.get_legend_handles_labels()
+    a1.legend(lines[0] + more[0], lines[1] + more[1], loc="upper left", fontsize=8.5,
+              frameon=False)
+    a1.set_title(title, loc="left", fontsize=10.5)
+    change = detail.deviation_um - detail.raw_deviation_um
+    a2.plot(t, change, "o", ms=3.5, color="#2ca02c")
+    a2.axhline(0, color="#888", lw=0.6)
+    a2.set_ylabel("compensated − raw [µm]")
+    a2.set_xlabel("time [s]")
+    a2.grid(True, color="#e3e7ec", lw=0.7)
+    a2.set_title("what the compensation changed at each reading", loc="left", fontsize=10.5)
+    fig.tight_layout()
+    return fig
