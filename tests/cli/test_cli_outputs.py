@@ -230,6 +230,11 @@ def test_motion_analyze_plots_the_polar_error_motions(tmp_path):
     (["scale", "home", str(ROOT / "examples/scale_single.toml")], "Laser scale referencing",
      True),
     (["compensate", "--verify", str(LOOP_TOML)], "Compensation verified by re-measuring", True),
+    (["squareness", "biaxial", str(ROOT / "examples/squareness_L180_x.csv"),
+      str(ROOT / "examples/squareness_L180_y.csv"), "--orientation", "180"],
+     "Squareness, bi-axial L 180°", False),
+    (["squareness", "diagonal", "--file", str(ROOT / "examples/squareness_diagonal_600x800.csv")],
+     "Squareness from two diagonals", False),
 ])
 def test_report_of_a_result_holds_the_method_the_plot_and_every_figure(tmp_path, args, title,
                                                                       simulation):

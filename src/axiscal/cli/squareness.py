@@ -138,6 +138,8 @@ def biaxial(
     datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
     square: str = typer.Option("optics", "--square", help="Reference square for the uncertainty budget: optics (straightness optics + optical square), square (mechanical square and probe) or reversal (square reversed)."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write both trajectories with their reference lines (PNG/SVG/PDF)."),
+    report: Optional[Path] = _REPORT,
 ) -> None:
     """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, Chapman, Calibration of machine squareness Methods 1-3).
 
@@ -150,6 +152,7 @@ def biaxial(
 
     if config.upper() not in ("L", "T", "+"):
         raise InputError(f"--config {config!r}: must be L, T or +")
+    _outputs(plot, report)
     one, two = read_straightness(xfile), read_straightness(yfile)
     axes = (one.axis or "X", two.axis or "Y")
     _check_crossed(one, two, axes)
@@ -167,17 +170,38 @@ def biaxial(
                      length_y=float(np.ptp(two.positions)),
                      slope_fit_x=slope_uncertainty(one.positions, one.deviations),
                      slope_fit_y=slope_uncertainty(two.positions, two.deviations))
+    d = {**_budget_json(budget), "squareness": r.squareness.as_dict(), "config": config.upper(),
+         "orientation": orientation, "reference": _reference(reference),
+         "prism_error_arcsec": prism_error, "correction_um_per_m": correction * 1e6,
+         "slope_first_um_per_m": r.slope_first * 1e6,
+         "slope_second_um_per_m": r.slope_second * 1e6,
+         "straightness_first_um": r.first.deviation * 1e6,
+         "straightness_second_um": r.second.deviation * 1e6}
+    if plot is not None or report is not None:
+        from axiscal.report.squareness_plots import biaxial_figure
+
+        title = f"Bi-axial {config.upper()} {orientation}°"
+        if plot is not None:
+            from axiscal.report.plots import save_figure
+
+            save_figure(biaxial_figure(one, two, r, title), plot)
+        if report is not None:
+            from axiscal.report.html import write_result_report
+
+            write_result_report(report, f"Squareness, bi-axial {config.upper()} {orientation}° — "
+                                f"{xfile.name}, {yfile.name}", d,
+                                figure=biaxial_figure(one, two, r, title),
+                                method="Squareness from the slopes of the reference straight "
+                                       "lines of two trajectories, ISO 230-1:2012 §3.6.7 "
+                                       "(Chapman, Calibration of machine squareness, Methods "
+                                       "1-3), with the reference square's angle error corrected "
+                                       "for its orientation; U by ISO/TR 230-9.")
     if json_out:
-        print_json({**_budget_json(budget), "squareness": r.squareness.as_dict(), "config": config.upper(),
-                    "orientation": orientation, "reference": _reference(reference),
-                    "prism_error_arcsec": prism_error, "correction_um_per_m": correction * 1e6,
-                    "slope_first_um_per_m": r.slope_first * 1e6,
-                    "slope_second_um_per_m": r.slope_second * 1e6,
-                    "straightness_first_um": r.first.deviation * 1e6,
-                    "straightness_second_um": r.second.deviation * 1e6})
+        print_json(d)
     else:
         typer.echo(f"bi-axial {config.upper()} {orientation}°: {r}")
         typer.echo(_budget_line(budget))
+    _wrote(plot, report)
 
 
 def _budget(method: str, **measured):
@@ -224,6 +248,8 @@ def diagonal(
     file: Optional[Path] = typer.Option(None, "--file", help="Multi-point diagonal CSV (diagonal,position,error) instead of the lengths."),
     datum: str = typer.Option("", "--datum", help=_DATUM_HELP),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="With --file: write the length errors along both diagonals (PNG/SVG/PDF)."),
+    report: Optional[Path] = _REPORT,
 ) -> None:
     """Squareness = D0 (D1 − D2) / (2XY) from two diagonals (ISO 230-6, Chapman, Calibration of machine squareness Method 5).
 
@@ -239,6 +265,11 @@ def diagonal(
         check_option(name, given[name], "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
     for name in ("--d1", "--d2"):   # a diagonal's length error: within a tenth of the travel
         check_option(name, given[name], "µm", lo=-MAX_ERROR_UM, hi=MAX_ERROR_UM)
+    if plot is not None and file is None:
+        raise InputError("--plot draws the errors along the diagonals of a --file; two lengths "
+                         "have no curve to draw")
+    _outputs(plot, report)
+    d = None
     if file is not None:
         from axiscal.io.ballbar import read_diagonal
 
@@ -258,17 +289,34 @@ def diagonal(
                                 datum=datum)
     budget = _budget("diagonal", length_x=r.length_x, length_y=r.length_y,
                      diagonal_d1=r.error_d1 * 1e6, diagonal_d2=r.error_d2 * 1e6)
+    um = (lambda v: None if v is None else v * 1e6)
+    out = {**_budget_json(budget), "squareness": r.squareness.as_dict(), "length_x_mm": r.length_x * 1e3,
+           "length_y_mm": r.length_y * 1e3, "nominal_mm": r.nominal * 1e3,
+           "error_d1_um": r.error_d1 * 1e6, "error_d2_um": r.error_d2 * 1e6,
+           "slope_d1_um_per_m": um(r.slope_d1), "slope_d2_um_per_m": um(r.slope_d2),
+           "labels": {"D1": "along -X +Y, from corner (+X, -Y)",
+                      "D2": "along +X +Y, from corner (-X, -Y)"}}
+    if plot is not None:
+        from axiscal.report.plots import save_figure
+        from axiscal.report.squareness_plots import diagonal_figure
+
+        save_figure(diagonal_figure(d, r), plot)
+    if report is not None:
+        from axiscal.report.html import write_result_report
+        from axiscal.report.squareness_plots import diagonal_figure
+
+        write_result_report(report, "Squareness from two diagonals"
+                            + (f" — {file.name}" if file is not None else ""), out,
+                            figure=diagonal_figure(d, r) if d is not None else None,
+                            method="Squareness = D0 (D1 − D2) / (2XY) from the length errors of "
+                                   "the two diagonals, ISO 230-6:2002 (Chapman, Calibration of "
+                                   "machine squareness, Method 5); U by ISO/TR 230-9.")
     if json_out:
-        um = (lambda v: None if v is None else v * 1e6)
-        print_json({**_budget_json(budget), "squareness": r.squareness.as_dict(), "length_x_mm": r.length_x * 1e3,
-                    "length_y_mm": r.length_y * 1e3, "nominal_mm": r.nominal * 1e3,
-                    "error_d1_um": r.error_d1 * 1e6, "error_d2_um": r.error_d2 * 1e6,
-                    "slope_d1_um_per_m": um(r.slope_d1), "slope_d2_um_per_m": um(r.slope_d2),
-                    "labels": {"D1": "along -X +Y, from corner (+X, -Y)",
-                               "D2": "along +X +Y, from corner (-X, -Y)"}})
+        print_json(out)
     else:
         typer.echo(str(r))
         typer.echo(_budget_line(budget))
+    _wrote(plot, report)
 
 
 #: Longest travel or ballbar radius taken (100 m) and largest diagonal length error (1 m).

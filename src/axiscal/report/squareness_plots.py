@@ -127,6 +127,46 @@ def straightness_figure(data, result):
     return fig
 
 
+def biaxial_figure(one, two, r, title: str = "Bi-axial squareness"):
+    """The two trajectories of a bi-axial test, each with its reference line, and the
+    squareness in the title (ISO 230-1 §3.6.7)."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
+    for ax, data, res in ((axes[0], one, r.first), (axes[1], two, r.second)):
+        x, y = data.positions * 1e3, data.deviations * 1e6
+        ax.plot(x, y, "o-", color="tab:red", ms=3, lw=1, label="readings")
+        ax.plot(x, res.line(data.positions) * 1e6, "--", color="tab:blue",
+                label=f"{res.line.method.replace('_', ' ')} line, slope "
+                      f"{res.line.slope * 1e6:+.2f} µm/m")
+        ax.set_xlabel(f"position along {data.axis or 'the axis'} [mm]")
+        ax.set_ylabel(f"deviation along {data.direction or 'the normal'} [µm]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    sq = r.squareness
+    fig.suptitle(f"{title}: squareness {sq.um_per_m:+.2f} µm/m ({sq.arcsec:+.2f}″), "
+                 f"{sq.angle_note}", fontsize=10.5)
+    fig.tight_layout()
+    return fig
+
+
+def diagonal_figure(d, r, title: str = "Diagonal squareness"):
+    """The length errors along the two diagonals of a multi-point diagonal test (ISO 230-6)."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(9, 4.4))
+    ax.plot(d.positions_d1 * 1e3, d.errors_d1 * 1e6, "o-", color="tab:red", ms=3,
+            label="D1 (along -X +Y, from corner +X -Y)")
+    ax.plot(d.positions_d2 * 1e3, d.errors_d2 * 1e6, "s-", color="tab:blue", ms=3,
+            label="D2 (along +X +Y, from corner -X -Y)")
+    ax.set_xlabel("position along the diagonal [mm]")
+    ax.set_ylabel("length error [µm]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    sq = r.squareness
+    ax.set_title(f"{title}: squareness {sq.um_per_m:+.2f} µm/m ({sq.arcsec:+.2f}″)")
+    fig.tight_layout()
+    return fig
+
+
 def save_straightness_plot(data, result, path) -> Path:
     """Write :func:`straightness_figure` to ``path``."""
     return _save(straightness_figure(data, result), path)
