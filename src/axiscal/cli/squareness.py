@@ -262,7 +262,7 @@ def diagonal(
 
     given = {"--x-length": x_length, "--y-length": y_length, "--d1": d1, "--d2": d2}
     for name in ("--x-length", "--y-length"):
-        check_option(name, given[name], "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
+        check_option(name, given[name], "mm", lo=1, hi=MAX_LENGTH_MM)   # a travel of at least 1 mm
     for name in ("--d1", "--d2"):   # a diagonal's length error: within a tenth of the travel
         check_option(name, given[name], "µm", lo=-MAX_ERROR_UM, hi=MAX_ERROR_UM)
     if plot is not None and file is None:
@@ -340,7 +340,7 @@ def circular(
 
     from axiscal._schema import check_option
 
-    check_option("--radius", radius, "mm", lo=0, lo_open=True, hi=MAX_LENGTH_MM)
+    check_option("--radius", radius, "mm", lo=1, hi=MAX_LENGTH_MM)   # a ballbar of at least 1 mm
     _outputs(plot, report)
     data = read_ballbar(file, radius_mm=radius)
     r = evaluate_circular(data.runs, data.radius, axes=data.axes, datum=datum)
