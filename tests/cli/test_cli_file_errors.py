@@ -69,7 +69,13 @@ CASES = [
      ["rate_urad_per_h", "2 finite numbers"]),
     # 10⁸ samples 1 s apart in a 30 s dwell: numpy ran out of memory
     ("motion simulate f.toml", _sub(MOTION, "samples = 10", "samples = 100000000"),
-     ["samples = 100000000 readings 1 s apart do not fit in dwell_s = 30 s"]),
+     ["[test] samples = 100000000 must be at most 1000"]),
+    # and 50 readings 1 s apart in the same 30 s dwell
+    ("motion simulate f.toml", _sub(MOTION, "samples = 10", "samples = 50"),
+     ["samples = 50 readings 1 s apart do not fit in dwell_s = 30 s"]),
+    # 2^32 + 1 runs: the simulation ran for ever (the command line's --runs stops at 100)
+    ("motion repeatability f.toml", _sub(MOTION, "runs = 3", "runs = 4294967297"),
+     ["[test] runs = 4294967297 must be at most 100"]),
     # positioning simulation: numpy refused the seed (traceback), or a string name became "5"
     ("simulate f.toml", _sub(LINEAR, "seed = 11", "seed = -1"), ["[axis] irregular seed = -1", ">= 0"]),
     ("simulate f.toml", _sub(LINEAR, "seed = 11", 'seed = "x"'), ["seed = 'x'"]),

@@ -116,12 +116,16 @@ class Worker:
     """A child Python with a memory limit that runs invocations one at a time."""
 
     def __init__(self, cwd: Path):
+        self.cwd = cwd
+        self._start()
+
+    def _start(self) -> None:
         def limit():
             resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
         env = dict(os.environ, PYTHONWARNINGS="default", COLUMNS="120")
         self.proc = subprocess.Popen([sys.executable, str(WORKER)], stdin=subprocess.PIPE,
-                                     stdout=subprocess.PIPE, text=True, cwd=cwd,
+                                     stdout=subprocess.PIPE, text=True, cwd=self.cwd,
                                      preexec_fn=limit, env=env)
         assert json.loads(self._line(TIME_LIMIT)) == "ready"
 
@@ -129,6 +133,7 @@ class Worker:
         ready, _, _ = select.select([self.proc.stdout], [], [], timeout)
         if not ready:
             self.proc.kill()
+            self.proc.wait()
             raise AssertionError(f"no answer within {timeout:g} s (a hang)")
         line = self.proc.stdout.readline()
         if not line:
@@ -137,13 +142,16 @@ class Worker:
         return line
 
     def run(self, args: list[str]) -> dict:
+        if self.proc.poll() is not None:   # killed by an earlier case (a hang or the memory
+            self._start()                  # limit, reported there): a fresh child for this one
         self.proc.stdin.write(json.dumps(args) + "\n")
         self.proc.stdin.flush()
         return json.loads(self._line(TIME_LIMIT))
 
     def close(self):
-        self.proc.stdin.close()
-        self.proc.wait(timeout=10)
+        if self.proc.poll() is None:
+            self.proc.stdin.close()
+            self.proc.wait(timeout=10)
 
 
 def _data_files(tmp: Path) -> None:

@@ -105,15 +105,19 @@ def parse_motion_config(text: str, source: str = "<config>") -> MotionConfig:
         raise ConfigError(f"{source}: not valid TOML: {exc}") from None
     from axiscal._schema import remember_document
 
-    t = _Table(remember_document(doc, source, text), source)
+    t = _Table(remember_document(doc, source, text), source, text=text)
     machine = t.sub("machine")
     test = t.sub("test")
     cfg = dict(
         machine=machine.text("name", ""), axis_name=machine.text("axis", "C"),
-        step_deg=test.num("step_deg", 30.0, lo=1e-3), dwell=test.num("dwell_s", 30.0, lo=0.0),
-        samples=test.int("samples", 10), runs=test.int("runs", 3, lo=2), seed=test.int("seed", 2018, lo=0),
-        duration=60 * test.num("stability_duration_min", 60.0, lo=1e-3),
-        interval=test.num("stability_interval_s", 10.0, lo=1e-3), drift_window=test.int("drift_window", 7),
+        # bounds: the command line's (--runs at most 100), and sizes a simulation can hold
+        step_deg=test.num("step_deg", 30.0, lo=0.1, hi=360.0),
+        dwell=test.num("dwell_s", 30.0, lo=0.0, hi=3600.0),
+        samples=test.int("samples", 10, hi=1000), runs=test.int("runs", 3, lo=2, hi=100),
+        seed=test.int("seed", 2018, lo=0, hi=2**63 - 1),
+        duration=60 * test.num("stability_duration_min", 60.0, lo=1e-3, hi=10_080.0),
+        interval=test.num("stability_interval_s", 10.0, lo=1e-3, hi=3600.0),
+        drift_window=test.int("drift_window", 7, hi=10_001),
     )
     if cfg["drift_window"] % 2 == 0:
         raise ConfigError(f"{source}: [test] drift_window = {cfg['drift_window']} must be odd")
@@ -218,20 +222,25 @@ MAX_ORDER, MAX_AMPLITUDE = 3600, 1e6
 class _Table:
     """A TOML table whose keys are taken one by one; ``done()`` refuses the rest by name."""
 
-    def __init__(self, d, source, path=""):
+    def __init__(self, d, source, path="", text=None):
         if not isinstance(d, dict):
             raise ConfigError(f"{source}: [{path}] must be a table")
-        self.d, self.source, self.path, self.used = d, source, path, set()
+        self.d, self.source, self.path, self.used, self.doc_text = d, source, path, set(), text
 
     def where(self, key):
-        return f"{self.source}: {'[' + self.path + '] ' if self.path else ''}{key}"
+        """``file:line: [table] key`` (the line found in the text, as every reader says it)."""
+        from axiscal._schema import _Lines
+
+        loc = (_Lines(self.doc_text, self.source).where(self.path, key) if self.doc_text
+               else self.source)
+        return f"{loc}: {'[' + self.path + '] ' if self.path else ''}{key}"
 
     def get(self, key, default):
         self.used.add(key)
         return self.d.get(key, default)
 
     def sub(self, key):
-        return _Table(self.get(key, {}), self.source, f"{self.path}.{key}".strip("."))
+        return _Table(self.get(key, {}), self.source, f"{self.path}.{key}".strip("."), self.doc_text)
 
     def num(self, key, default, lo=None, hi=None):
         from axiscal._schema import Num, SchemaError
@@ -241,10 +250,12 @@ class _Table:
         except SchemaError as exc:
             raise ConfigError(str(exc)) from None
 
-    def int(self, key, default, lo=1):
+    def int(self, key, default, lo=1, hi=None):
         v = self.get(key, default)
         if isinstance(v, bool) or not isinstance(v, int) or v < lo:
             raise ConfigError(f"{self.where(key)} = {v!r} must be a whole number >= {lo}")
+        if hi is not None and v > hi:
+            raise ConfigError(f"{self.where(key)} = {v!r} must be at most {hi}")
         return v
 
     def text(self, key, default):
