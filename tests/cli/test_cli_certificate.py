@@ -8,24 +8,15 @@ import pytest
 from typer.testing import CliRunner
 
 from axiscal.cli import app
+from axiscal.cli.demo import JOB_TOML
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "report"))
 from pdf_pages import pdf_text, render_pages  # noqa: E402
 
 runner = CliRunner()
 
-JOB = """
-[customer]
-name = "Example Machining AG"
-[machine]
-maker = "Example"
-model = "VMC-800"
-serial = "VMC8-0042"
-[conditions]
-feed = "2000 mm/min"
-[tolerance]
-E = 15
-"""
+# the job file the README shows and make demo writes (customer, machine, conditions, E and R)
+JOB = JOB_TOML
 USER = """
 [company]
 name = "Precision Metrology GmbH"
