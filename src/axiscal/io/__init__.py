@@ -54,7 +54,7 @@ def _whole_file_format(text: str, source: str) -> bool:
     """True for a JSON or ecmc positioning file (told by the name or the content)."""
     from axiscal.io import ecmc as _ecmc
 
-    return (Path(source).suffix.lower() == ".json" or text.lstrip().startswith("{")
+    return (Path(source).suffix.lower() == ".json" or text.lstrip("\ufeff \t\r\n").startswith("{")
             or _ecmc.looks_like_ecmc(text))
 
 
