@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -175,3 +176,31 @@ def test_rotary_closure_in_the_terminal_table_and_the_report(tmp_path):
     assert "2.00" in line and "360°" in line
     html = (tmp_path / "r.html").read_text()
     assert "Closure ↑" in html and "Closure ↓" in html
+
+
+def test_a_plan_of_more_readings_than_a_calibration_takes_is_refused(tmp_path):
+    """10,000 targets x 100 runs ran for minutes in `simulate` (each allowed alone): a plan holds
+    at most 20,000 readings a direction, said with both numbers."""
+    r = runner.invoke(app, ["plan", "linear", "--length", "800", "--targets", "10000",
+                            "--runs", "100"])
+    assert r.exit_code == 2
+    assert "10000 targets x 100 runs is 1000000 readings a direction" in r.stderr
+
+
+def test_a_long_per_target_table_shows_its_ends_and_says_what_is_left(tmp_path):
+    """A rich table of 10,000 rows took 40 s to draw: the terminal shows the first and last 50
+    targets and names the rest; --json keeps every target."""
+    from axiscal.datasets import PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 1000, 400)
+    f = tmp_path / "many.csv"
+    f.write_text(format_positioning_csv(PositioningDataset.from_arrays(
+        "linear", t, rng.normal(0, 1, (400, 2)), rng.normal(0, 1, (400, 2)))))
+    r = runner.invoke(app, ["iso230-2", str(f)], env={"COLUMNS": "160"})
+    assert r.exit_code == 0, r.output
+    assert "300 more" in r.stdout and "400 targets: the first and last 50 are shown" in r.stdout
+    assert f"{t[-1]:g}" in r.stdout and f"{t[200]:g} " not in r.stdout
+    d = json.loads(runner.invoke(app, ["iso230-2", str(f), "--json"]).stdout)
+    assert len(d["targets"]) == 400

@@ -155,6 +155,10 @@ def result_json(result, verdicts=(), budget=None) -> dict:
     return d
 
 
+#: Most per-target rows printed in the terminal (a table of 40,000 targets took minutes to draw).
+TABLE_ROWS = 100
+
+
 def render_result(result, ds=None, title: str = "", console=None, verdicts=(), budget=None) -> None:
     """Print the per-target table and the axis parameters as rich tables."""
     import math
@@ -187,12 +191,20 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
     keep = [c for c in keep if not (c[1].startswith("n_") and int(getattr(result, c[1]).max()) == 0)]
     for name, _ in keep:
         t.add_column(escape(name), justify="right")
-    for i, target in enumerate(result.targets):
-        cells = [f"{target:g}"]
+    m = len(result.targets)
+    shown = range(m) if m <= TABLE_ROWS else [*range(TABLE_ROWS // 2), *range(m - TABLE_ROWS // 2, m)]
+    for i in shown:
+        if m > TABLE_ROWS and i == m - TABLE_ROWS // 2:
+            t.add_row("⋮", *[""] * len(keep), end_section=False)
+            t.add_row(f"{m - TABLE_ROWS} more", *[""] * len(keep))
+        cells = [f"{result.targets[i]:g}"]
         for _, attr in keep:
             v = getattr(result, attr)[i]
             cells.append(str(int(v)) if attr.startswith("n_") else f(float(v)))
         t.add_row(*cells)
+    if m > TABLE_ROWS:
+        t.caption = (f"{m} targets: the first and last {TABLE_ROWS // 2} are shown; every target "
+                     "is in --json and --report")
     con.print(t)
 
     p = Table(title=escape(f"Axis parameters [{sym}]"), title_justify="left")
