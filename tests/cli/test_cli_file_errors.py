@@ -288,3 +288,13 @@ def test_rotary_test_table_that_would_exhaust_memory(tmp_path, old, new, words):
     assert r.exit_code == 2, r.output
     for w in words:
         assert w in r.stderr, r.stderr
+
+
+def test_motion_readings_are_bounded_together(tmp_path):
+    """Each allowed alone, a 0.1° step with 1000 samples a stop (and --runs 100) asked for tens of
+    millions of simulated readings: the product is bounded and named."""
+    f = tmp_path / "m.toml"
+    f.write_text(_sub(_sub(_sub(MOTION, "step_deg = 30", "step_deg = 0.1"), "samples = 10",
+                           "samples = 1000"), "dwell_s = 30", "dwell_s = 3600"))
+    r = runner.invoke(app, ["motion", "simulate", str(f)])
+    assert r.exit_code == 2 and "make 1.08e+07 readings; at most 1e+06" in r.stderr, r.stderr

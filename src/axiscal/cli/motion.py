@@ -241,6 +241,10 @@ def repeatability(
     paths = _check_outputs(report=report, csv=csv, plot=plot)
     cfg = read_motion_config(config)
     n = cfg.runs if runs is None else runs
+    if runs is not None:
+        from axiscal.io.motion import check_simulated_readings
+
+        check_simulated_readings(cfg.step_deg, cfg.samples, n, "--runs with the configuration's ")
     out = repeatability_test(cfg.axis, cfg.system, np.random.default_rng(_seed(cfg, seed)), n,
                              step_deg=cfg.step_deg, reference=cfg.reference, drift=cfg.drift,
                              dwell=cfg.dwell, samples=cfg.samples)

@@ -124,12 +124,27 @@ def parse_motion_config(text: str, source: str = "<config>") -> MotionConfig:
     if cfg["samples"] - 1 > cfg["dwell"]:
         raise ConfigError(f"{source}: [test] samples = {cfg['samples']} readings 1 s apart do not "
                           f"fit in dwell_s = {cfg['dwell']:g} s at each stop")
+    check_simulated_readings(cfg["step_deg"], cfg["samples"], cfg["runs"], f"{source}: [test] ")
     machine.done()
     test.done()
     cfg.update(axis=_axis(t.sub("axis"), cfg["axis_name"]), system=_system(t),
                reference=_reference(t.sub("reference")), drift=_drift(t.sub("drift")))
     t.done()
     return MotionConfig(**cfg)
+
+
+#: Most readings one simulated indexing or repeatability test may take (each holds five channels);
+#: the stability run has the same bound on the command line.
+MAX_SIMULATED_READINGS = 1_000_000
+
+
+def check_simulated_readings(step_deg: float, samples: int, runs: int, where: str = "") -> None:
+    """Refuse an indexing or repeatability test of more than :data:`MAX_SIMULATED_READINGS`."""
+    readings = round(360.0 / step_deg) * samples * runs
+    if readings > MAX_SIMULATED_READINGS:
+        raise ConfigError(f"{where}step_deg = {step_deg:g}, samples = {samples} and runs = {runs} "
+                          f"make {readings:.3g} readings; at most {MAX_SIMULATED_READINGS:g} are "
+                          "simulated (a larger step, fewer samples or fewer runs)")
 
 
 def _axis(t: "_Table", name: str) -> RotaryAxis:
