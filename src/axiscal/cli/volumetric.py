@@ -102,7 +102,7 @@ def simulate(
 @app.command("map")
 def map_(
     config: Path = typer.Argument(..., help="Volumetric configuration (TOML)."),
-    grid: int = typer.Option(11, "--grid", min=2, max=200, help="Grid points per axis."),
+    grid: int = typer.Option(11, "--grid", min=2, max=100, help="Grid points per axis (at most 100: 10^6 points, about 0.6 GB)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the 3-D grid and slices "
                                         "(.png, .svg, .pdf)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report (.html)."),
