@@ -44,14 +44,15 @@ def _schema():
                     "noise_um": Num("µm", 0, 100, default=0.0),
                     "sample_rate_hz": Num("Hz", 0, 1e5, lo_open=True, default=250.0)},
         "test": {"feed_mm_per_min": Num("mm/min", 0, 1e5, lo_open=True, default=1000.0),
-                 "arc_deg": Num("deg", 1, 720, default=360.0),
+                 "arc_deg": Num("deg", 0, 360, lo_open=True, default=360.0),
                  "start_deg": Num("deg", -360, 360, default=0.0),
                  "plane": Text(("XY", "YZ", "ZX", "XZ", "YX", "ZY"), default="XY")},
     }, example="examples/ballbar_sim.toml")
 
 
-#: Most samples per direction simulated (a 100 mm ballbar at 1000 mm/min and 250 Hz has 9,424).
-MAX_SAMPLES = 2_000_000
+#: Most samples per direction simulated (a 100 mm ballbar at 1000 mm/min and 250 Hz has 9,424):
+#: what ``ballbar analyze`` reads.
+from axiscal.io.ballbar import MAX_SAMPLES_PER_RUN as MAX_SAMPLES  # noqa: E402
 
 
 def simulate(
