@@ -247,15 +247,17 @@ def parse_record_csv(text: str, source: str = "<text>") -> Record:
     records); errors name the line."""
     import io
 
-    lines = text.splitlines()
-    start = next((i for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip()
-                  .startswith("#")), None)
-    if start is None:
+    header_line, start = None, 0   # the header and its 0-based line, found without splitting
+    for start, line in enumerate(io.StringIO(text, newline=None)):   # the record into lines
+        if line.strip() and not line.lstrip().startswith("#"):
+            header_line = line.rstrip("\r\n")
+            break
+    if header_line is None:
         raise DataFormatError("no data: expected a header time_s,reading_mm", source)
-    header = [c.strip().lower() for c in lines[start].split(",")]
+    header = [c.strip().lower() for c in header_line.split(",")]
     unit_col = next((c for c in header if c.startswith("reading_")), None)
     if "time_s" not in header or unit_col is None:
-        raise DataFormatError(f"header {lines[start]!r}: expected time_s,reading_mm"
+        raise DataFormatError(f"header {header_line!r}: expected time_s,reading_mm"
                               "[,commanded_mm] (or reading_deg)", source, start + 1)
     unit = unit_col.split("_", 1)[1]
     try:
@@ -263,8 +265,8 @@ def parse_record_csv(text: str, source: str = "<text>") -> Record:
     except AxiscalError as exc:
         raise DataFormatError(f"{unit_col}: {exc}", source, start + 1) from None
     try:
-        a = np.loadtxt(io.StringIO("\n".join(lines[start + 1:])), delimiter=",", ndmin=2,
-                       comments="#")
+        a = np.loadtxt(io.StringIO(text, newline=None), delimiter=",", ndmin=2, comments="#",
+                       skiprows=start + 1)
     except ValueError as exc:
         raise DataFormatError(f"not a number in the record ({exc})", source) from None
     if a.shape[0] < 2 or a.shape[1] != len(header):
