@@ -138,8 +138,22 @@ def parse_positioning_csv(
     >>> ds.axis_kind.value, ds.n_targets, ds.bidirectional
     ('rotary', 2, False)
     """
-    return _parse_lines(enumerate(text.splitlines(), start=1), target_unit, deviation_unit,
-                        axis_kind, source)
+    return _parse_lines(_numbered_lines(text), target_unit, deviation_unit, axis_kind, source)
+
+
+def _numbered_lines(text: str) -> Iterator[tuple[int, str]]:
+    """``enumerate(text.splitlines(), 1)`` without the list of every line (a text of millions
+    of readings would hold them all at once)."""
+    pos, n, lineno = 0, len(text), 0
+    while pos < n:
+        end = text.find("\n", pos)
+        if end < 0:
+            end = n
+        chunk = text[pos:end]
+        pos = end + 1
+        for piece in chunk.splitlines() or [""]:   # "\r", and a lone CR of an old Mac file
+            lineno += 1
+            yield lineno, piece
 
 
 def _parse_lines(lines: Iterable[tuple[int, str]], target_unit, deviation_unit, axis_kind,
