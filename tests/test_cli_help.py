@@ -120,4 +120,13 @@ def test_no_message_cites_a_document_by_its_seed_file():
             if (isinstance(node, ast.Constant) and isinstance(node.value, str)
                     and id(node) not in docs and pattern.search(node.value)):
                 found.append(f"{path.name}:{node.lineno}: {node.value[:80]!r}")
+    # and the files a user opens: examples, the embedded configurations, the docs and README
+    root = Path(axiscal.__file__).parents[2]
+    for path in [*sorted((root / "examples").iterdir()), *sorted((root / "docs").glob("*.md")),
+                 *sorted(Path(axiscal.__file__).parent.joinpath("data").glob("*.toml")),
+                 root / "README.md"]:
+        if path.suffix in (".toml", ".csv", ".md", ".json", ".txt"):
+            for n, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+                if pattern.search(line):
+                    found.append(f"{path.name}:{n}: {line[:80]!r}")
     assert not found, "\n".join(found)
