@@ -6,7 +6,7 @@ for rotary axes); the I/O and presentation layers convert.
 
 The positioning dataset follows ISO 230-2:2014 vocabulary: a target position :math:`P_i`
 (:math:`i = 1..m`), the run :math:`j = 1..n`, the direction of approach (↑ positive, ↓ negative)
-and the positioning deviation :math:`x_{ij} = P_{ij} - P_i` (actual minus target; seed 001 eq. 1).
+and the positioning deviation :math:`x_{ij} = P_{ij} - P_i` (actual minus target; Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 1).
 """
 
 from __future__ import annotations
@@ -197,7 +197,7 @@ class PositioningDataset:
     Notes
     -----
     Deviation is actual minus target, :math:`x_{ij} = P_{ij} - P_i` (ISO 230-2:2014 §3.1,
-    seed 001 eq. 1). Row ``i`` of ``up`` and ``down`` belongs to target ``targets[i]``.
+    Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 1). Row ``i`` of ``up`` and ``down`` belongs to target ``targets[i]``.
 
     Examples
     --------

@@ -11,7 +11,7 @@ moves to that set-point with its own errors, so the deviation from the commanded
 where ê is the deviation the table was built from (correction = −deviation). It has the same
 interface as the axis (``move``, ``check_in_travel``, ``systematic_deviation``, ``name``,
 ``repeatability_sigma``), so :func:`~axiscal.procedures.positioning.simulate_positioning_test`
-re-measures the compensated machine exactly as it measured the bare one (seed 001: "after all
+re-measures the compensated machine exactly as it measured the bare one (Yüksel et al., Position accuracy and repeatability calibration of turn tables: "after all
 corrections, all test procedure shall be repeated").
 
 ``sign = −1`` applies every correction with the wrong sign (as a controller that expects

@@ -1,4 +1,4 @@
-"""Squareness compensation as a controller's cross-axis table (seed 004 Appendix II).
+"""Squareness compensation as a controller's cross-axis table (Chapman, Calibration of machine squareness Appendix II).
 
 :func:`axiscal.compensation.squareness.squareness_compensation` decides, by Appendix II, which axis
 receives the corrections (the one aligned to the spindle) and the factor θ; this module turns that
@@ -19,13 +19,13 @@ into what a controller loads, reads it back, and applies it to the simulated XY 
   re-measure it unchanged).
 
 Sign convention: a correction is added to the compensated axis's command (as for positioning
-tables). With seed 004's θ (angle between +A and +B minus 90°) Appendix II's correction is
+tables). With Chapman, Calibration of machine squareness's θ (angle between +A and +B minus 90°) Appendix II's correction is
 ``+θ·p(driving)`` on the aligned axis whichever axis is aligned (proof in
 :mod:`axiscal.compensation.squareness`).
 
 References
 ----------
-Seed 004, Appendix II and Figures 30a-c.
+Chapman, Calibration of machine squareness, Appendix II and Figures 30a-c.
 """
 
 from __future__ import annotations

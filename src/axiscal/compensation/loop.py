@@ -1,8 +1,8 @@
-"""Measure, compensate, re-measure: the loop of seed 001's last paragraph on a simulated machine.
+"""Measure, compensate, re-measure: the loop of Yüksel et al., Position accuracy and repeatability calibration of turn tables's last paragraph on a simulated machine.
 
 "If results are not satisfying, a correction can be implemented electronically by the help of
 obtained deviations for each steps ... After all corrections, all test procedure shall be
-repeated." (seed 001). :func:`run_compensation_loop`:
+repeated." (Yüksel et al., Position accuracy and repeatability calibration of turn tables). :func:`run_compensation_loop`:
 
 1. runs the configured ISO 230-2 test on the simulated axis and evaluates it;
 2. builds a table (:func:`~axiscal.compensation.tables.table_from_result`), writes it in the

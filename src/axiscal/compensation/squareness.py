@@ -1,6 +1,6 @@
-"""Cross-axis compensation of a squareness error, by the advice of seed 004 Appendix II.
+"""Cross-axis compensation of a squareness error, by the advice of Chapman, Calibration of machine squareness Appendix II.
 
-A squareness measurement alone cannot tell which of the two axes is out of line (seed 004
+A squareness measurement alone cannot tell which of the two axes is out of line (Chapman, Calibration of machine squareness
 Figure 30a). The compensation must keep the axis that is aligned to the machine's other
 references — the spindle's axis of rotation, the table — where it is, and tilt the *other* axis's
 motion: the corrections are therefore applied **on the aligned axis, driven by the position of the
@@ -8,7 +8,7 @@ other axis** (Figure 30b: Z parallel to the spindle, δz corrections during X mo
 them on the other axis (Figure 30c) also makes the axes look square but tilts the aligned axis
 off the spindle.
 
-The correction, with θ the squareness in seed 004's convention (angle between the positive
+The correction, with θ the squareness in Chapman, Calibration of machine squareness's convention (angle between the positive
 directions minus 90°), is, for both choices of aligned axis::
 
     δ(aligned) = +θ · (p(driving) − p_ref)
@@ -23,7 +23,7 @@ compensating the remainder. Both are returned as advice with every result.
 
 References
 ----------
-Seed 004, Appendix II, Figures 30a-c.
+Chapman, Calibration of machine squareness, Appendix II, Figures 30a-c.
 """
 
 from __future__ import annotations
@@ -38,14 +38,14 @@ from axiscal.standards.iso230_1 import Squareness
 
 __all__ = ["CrossAxisCompensation", "squareness_compensation", "LARGE_SQUARENESS"]
 
-#: Above this |squareness| (rad, 50 µm/m) the advice is a mechanical adjustment first. Seed 004
+#: Above this |squareness| (rad, 50 µm/m) the advice is a mechanical adjustment first. Chapman, Calibration of machine squareness
 #: names no figure ("large XZ or YZ squareness errors"); 50 µm/m is this module's choice.
 LARGE_SQUARENESS = 50e-6
 
 
 @dataclass(frozen=True)
 class CrossAxisCompensation:
-    """How to compensate a squareness error (seed 004 Appendix II).
+    """How to compensate a squareness error (Chapman, Calibration of machine squareness Appendix II).
 
     Attributes
     ----------
@@ -115,7 +115,7 @@ class CrossAxisCompensation:
 def squareness_compensation(squareness: Squareness, aligned_axis: str | None,
                             reference_position: float = 0.0, *,
                             large: float = LARGE_SQUARENESS) -> CrossAxisCompensation:
-    """Which axis receives the squareness compensation, and by how much (seed 004 Appendix II).
+    """Which axis receives the squareness compensation, and by how much (Chapman, Calibration of machine squareness Appendix II).
 
     Parameters
     ----------

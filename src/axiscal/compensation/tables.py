@@ -1,13 +1,13 @@
 """Compensation tables: from ISO 230-2 mean deviations to corrections at equidistant points.
 
-Seed 001 ends: "a correction can be implemented electronically by the help of obtained deviations
+Yüksel et al., Position accuracy and repeatability calibration of turn tables ends: "a correction can be implemented electronically by the help of obtained deviations
 for each steps ... After all corrections, all test procedure shall be repeated." This module makes
 the first half of that sentence precise; :mod:`axiscal.compensation.loop` does the second.
 
 Conventions (the same for every controller; each writer converts to its own):
 
 * **Sign.** A table holds *corrections*: ``correction = −deviation``, where the deviation is
-  ISO 230-2's x = actual − target (seed 001 eq. 1). The controller adds the correction to the
+  ISO 230-2's x = actual − target (Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 1). The controller adds the correction to the
   commanded position, so an axis that overshoots by +3 µm is commanded 3 µm short.
 * **Points.** ``n`` equidistant points ``start + k·spacing`` (k = 0 … n−1), in the dataset's
   target unit (mm or deg); corrections in its deviation unit (µm or arcsec).
@@ -28,7 +28,7 @@ Conventions (the same for every controller; each writer converts to its own):
 
 References
 ----------
-Seed 001 (Yüksel et al.), eqs. (1)-(7) and the closing paragraph; ISO 230-2:2014 clause 3.
+Yüksel et al., Position accuracy and repeatability calibration of turn tables (Yüksel et al.), eqs. (1)-(7) and the closing paragraph; ISO 230-2:2014 clause 3.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""The environmental compensator of a laser scale (RCU10-like, seed 002).
+"""The environmental compensator of a laser scale (RCU10-like, Renishaw, Laser scale axis referencing).
 
-It sits between the laser head and the machine controller and does three things (seed 002,
+It sits between the laser head and the machine controller and does three things (Renishaw, Laser scale axis referencing,
 "Compensated laser scale system"):
 
 1. **Compensation by exact pulse multiplication and addition.** The laser's uncompensated count
@@ -16,7 +16,7 @@ It sits between the laser head and the machine controller and does three things 
    factor held to ``B = 32`` fractional bits); every output count is computed from the *total*
    laser count with integer arithmetic, so nothing is rounded twice and no error accumulates
    however long the move. When the sensors give a new factor, the output jumps to
-   ``floor(c P_new / 2^B)``: the difference is the "pulse addition" of the seed. The streaming
+   ``floor(c P_new / 2^B)``: the difference is the "pulse addition" of the paper. The streaming
    :class:`PulseMultiplier` does the same incrementally with a remainder accumulator
    (Bresenham) and gives identical counts.
 
@@ -80,7 +80,7 @@ __all__ = [
     "rephase_periods_for",
 ]
 
-#: Periods of the synthesised sine/cosine outputs the compensator offers (seed 002), metres.
+#: Periods of the synthesised sine/cosine outputs the compensator offers (Renishaw, Laser scale axis referencing), metres.
 OUTPUT_PERIODS = (20e-6, 25e-6, 40e-6, 50e-6, 100e-6)
 
 #: Fractional bits of the multiplication factor (P / 2**FACTOR_BITS).
@@ -148,7 +148,7 @@ class Compensator:
     Attributes
     ----------
     laser : LaserHead
-        The head whose counts arrive (count size λ_vac / k; 0.633 µm in seed 002).
+        The head whose counts arrive (count size λ_vac / k; 0.633 µm in Renishaw, Laser scale axis referencing).
     output : SineOutput
         Sine/cosine output format (period and counts per period).
     equation : {"ciddor", "birch-downs", "edlen"}
@@ -163,7 +163,7 @@ class Compensator:
         Fractional bits of the factor.
     rephase_periods : int
         k: signal periods of real motion over which the rephasing spreads its virtual movement
-        (1 in seed 002; more keeps the controller's input frequency within its limit at high
+        (1 in Renishaw, Laser scale axis referencing; more keeps the controller's input frequency within its limit at high
         homing speed, :func:`rephase_periods_for`).
     """
 
@@ -393,7 +393,7 @@ def rephase_periods_for(speed: float, output: SineOutput, max_frequency: float) 
 
     Notes
     -----
-    Seed 002 Figure 4: in stage 2 the compensator adds v (0 to N − 1) virtual counts to N counts
+    Renishaw, Laser scale axis referencing Figure 4: in stage 2 the compensator adds v (0 to N − 1) virtual counts to N counts
     of real motion, so the controller sees up to (2N − 1)/N times the real frequency, for
     N counts. Spreading v over kN real counts lowers the factor to (kN + N − 1)/(kN); it cannot
     help once the real motion alone exceeds the limit. The counts reach the controller whole
@@ -556,7 +556,7 @@ class CompensatorUnit(Protocol):
     """What an environmental compensator does in the chain (real unit or simulator).
 
     Its sensors give a new factor from time to time (``update_sensors``, returning the output
-    counts it adds or removes to re-scale the position: the "pulse addition" of seed 002), and it
+    counts it adds or removes to re-scale the position: the "pulse addition" of Renishaw, Laser scale axis referencing), and it
     turns laser count increments into output count increments (``feed``). The simulator
     :class:`SimulatedCompensatorUnit` implements it; :mod:`axiscal.procedures.referencing` calls the
     same arithmetic in vectorised form (:meth:`Compensator.factor_schedule` then

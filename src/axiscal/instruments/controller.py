@@ -1,6 +1,6 @@
 """A machine controller with low-bandwidth sine/cosine encoder inputs (Siemens 840D-like).
 
-What seed 002 needs of the controller:
+What Renishaw, Laser scale axis referencing needs of the controller:
 
 * **Inputs.** It reads the compensator's sine and cosine, interpolates them by the arctangent
   and counts whole periods (:meth:`Controller.decode`), N counts per period. Its inputs have a
@@ -111,7 +111,7 @@ class Controller:
     Attributes
     ----------
     counts_per_period : int
-        N: counts the controller makes of one sine/cosine period (256 in the seed).
+        N: counts the controller makes of one sine/cosine period (256 in the paper).
     count_size : float, metres
         Length of one count (period / N).
     max_input_frequency : float, Hz

@@ -1,4 +1,4 @@
-"""The five-DOF optical measuring system of seed 003 as geometry, and its reconstruction.
+"""The five-DOF optical measuring system of Optics Express 2018, Five-DOF motion errors of a rotary axis as geometry, and its reconstruction.
 
 Frames (all SI, right-handed, ISO 841 signs):
 
@@ -11,7 +11,7 @@ Frames (all SI, right-handed, ISO 841 signs):
   ``(0, +h/2, height)``, RR2's at ``(0, -h/2, height)``; BS1 (normal ``-X``) is on RR1's base.
 
 The target axis turns by θ + εz and carries the reference axis (mounted with an eccentricity and
-a tilt); the reference axis turns back by θref (seed 003 section 2.1). The sensitive unit's world
+a tilt); the reference axis turns back by θref (Optics Express 2018, Five-DOF motion errors of a rotary axis section 2.1). The sensitive unit's world
 pose is traced through the optics exactly (no small-angle step):
 
 * a corner cube maps the ray ``(p, u)`` to ``(2c − p, −u)`` (point inversion through its apex c);
@@ -19,7 +19,7 @@ pose is traced through the optics exactly (no small-angle step):
 * a lens of focal length f puts a beam of direction d at ``f · d_t / |d_x|`` in its focal plane.
 
 Detector senses (the fold optics M2 in front of PSD1 and the split to PSD2 decide them) are
-chosen so that seed 003 eqs. 1, 2, 4, 5 and 7 hold as printed: PSD1 reads ``(-d_y, +d_z)``,
+chosen so that Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1, 2, 4, 5 and 7 hold as printed: PSD1 reads ``(-d_y, +d_z)``,
 PSD2 ``(-d_y, -d_z)`` of the returning direction d; the QDs read the return spot in beam-frame
 (Y, Z). The ± of eqs. 8-9 then follows (see :mod:`axiscal.physics.five_dof`).
 
@@ -31,7 +31,7 @@ reflector-separation errors. Detector noise, ADC quantisation and air-induced be
 
 References
 ----------
-Seed 003_8fab92c5d1b3bd69.txt, section 2 (Figs. 2-3, eqs. 1-9) and section 3 (parts: QD
+Optics Express 2018, Five-DOF motion errors of a rotary axis, section 2 (Figs. 2-3, eqs. 1-9) and section 3 (parts: QD
 QP50-6SD2-DIAG 0.08 µm, PSD DL16-7-PCBA3 0.5 µm, f = 200 mm, h = 30 mm, l = 250 mm).
 """
 
@@ -74,7 +74,7 @@ class Detector:
     Attributes
     ----------
     resolution : float, metres
-        The data-sheet resolution (used for the resolutions of seed 003 section 3).
+        The data-sheet resolution (used for the resolutions of Optics Express 2018, Five-DOF motion errors of a rotary axis section 3).
     noise : float, metres
         Standard deviation of the white noise of one recorded reading, per axis.
     adc_step : float, metres
@@ -107,7 +107,7 @@ class Detector:
         return out
 
 
-#: Seed 003 section 3 detectors with the noise levels of this project (see FiveDofSystem Notes).
+#: Optics Express 2018, Five-DOF motion errors of a rotary axis section 3 detectors with the noise levels of this project (see FiveDofSystem Notes).
 PSD_DL16 = Detector(resolution=0.5 * UM, noise=0.5 * UM / 6, adc_step=7e-3 / 2**16)
 QD_QP50 = Detector(resolution=0.08 * UM, noise=0.08 * UM / 6, adc_step=160 * UM / 2**16)
 
@@ -211,12 +211,12 @@ class FiveErrors:
 
 @dataclass(frozen=True)
 class FiveDofSystem:
-    """The measuring system of seed 003 with its parts and mounting (SI units).
+    """The measuring system of Optics Express 2018, Five-DOF motion errors of a rotary axis with its parts and mounting (SI units).
 
     Attributes
     ----------
     f1, f2 : float, metres
-        Focal lengths of L1 (PSD1) and L2 (PSD2); 200 mm in the seed.
+        Focal lengths of L1 (PSD1) and L2 (PSD2); 200 mm in the paper.
     h : float, metres
         Separation of RR1 and RR2 (and of the two beams); 30 mm.
     l : float, metres
@@ -233,9 +233,9 @@ class FiveDofSystem:
     -----
     Noise levels (documented choice): a data-sheet "resolution" is read as the ±3σ band of one
     recorded reading, so σ = resolution/6 (PSD 0.083 µm, QD 0.013 µm); ADC quantisation is 16 bit
-    over the PSD's 7 mm and over the QDs' ±80 µm calibrated range (seed 003 section 3.1). The beam
+    over the PSD's 7 mm and over the QDs' ±80 µm calibrated range (Optics Express 2018, Five-DOF motion errors of a rotary axis section 3.1). The beam
     jitter (0.07 µrad) is not a data-sheet figure: it is chosen so that the simulated εx stability
-    matches the seed's 0.19 arcsec (the detectors alone give 0.065 arcsec), i.e. air turbulence
+    matches the paper's 0.19 arcsec (the detectors alone give 0.065 arcsec), i.e. air turbulence
     over 250 mm that the common path cannot remove because it differs between the two beams.
     """
 
@@ -260,7 +260,7 @@ class FiveDofSystem:
             raise InputError(f"beam_jitter = {self.beam_jitter!r} rad must be >= 0")
 
     def resolutions(self) -> eq.Resolutions:
-        """Resolutions of the five errors from the parts (seed 003 section 3)."""
+        """Resolutions of the five errors from the parts (Optics Express 2018, Five-DOF motion errors of a rotary axis section 3)."""
         return eq.resolutions(self.f1, self.h, self.psd1.resolution, self.qd1.resolution)
 
     def with_realistic_mounting(self) -> "FiveDofSystem":
@@ -384,7 +384,7 @@ def motion_at_unit(pose: Pose, height: float) -> FiveErrors:
 
 def reconstruct(readings: Readings, system: FiveDofSystem, compensate: bool = True,
                 zero: int = 0, drift_window: int = 1) -> tuple[FiveErrors, np.ndarray]:
-    """The five errors from the readings by seed 003 eqs. 1-9 (nominal f1, f2, h, l).
+    """The five errors from the readings by Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1-9 (nominal f1, f2, h, l).
 
     Parameters
     ----------
@@ -397,7 +397,7 @@ def reconstruct(readings: Readings, system: FiveDofSystem, compensate: bool = Tr
         Index of the reading taken as the zero of every spot ("change in position").
     drift_window : int
         Odd number of consecutive PSD2 readings averaged (centred) for Δβ, Δγ: the drift is
-        slow (seed 003 section 2.4), so a short mean cuts PSD2's noise. 1 = no averaging.
+        slow (Optics Express 2018, Five-DOF motion errors of a rotary axis section 2.4), so a short mean cuts PSD2's noise. 1 = no averaging.
 
     Returns
     -------

@@ -2,15 +2,15 @@
 
 The simulator computes the two arms' path difference from the 3-D positions of the two
 retro-reflectors (:func:`axiscal.physics.misalignment.reflector_pose`) and the directions of the
-two beams, then converts it like the laser's software: ``θ = arcsin(ΔL/(K·S))`` (seed 000). What
+two beams, then converts it like the laser's software: ``θ = arcsin(ΔL/(K·S))`` (Renishaw, Interferometric calibration of rotary axes). What
 it models:
 
 * the true retro-reflector spacing against the nominal one the software uses (K corrects it);
-* beams that are not quite parallel (≤ 15 arcsec, seed 000): lateral motion of the reflector
+* beams that are not quite parallel (≤ 15 arcsec, Renishaw, Interferometric calibration of rotary axes): lateral motion of the reflector
   then reads as an angle (0.5 arcsec per mm at 15 arcsec and S = 30 mm);
 * the laser's line of sight tilted by β out of the plane of rotation;
 * a yaw of the interferometer itself (an off-axis set-up carries it on a linear axis);
-* the periscope's temperature sensitivity (13.8 µrad/°C, seed 000) over a temperature change;
+* the periscope's temperature sensitivity (13.8 µrad/°C, Renishaw, Interferometric calibration of rotary axes) over a temperature change;
 * noise and the resolution of the reading;
 * loss of signal when the reflector turns more than about ±10° from the beams: a
   :class:`~axiscal.errors.SignalLossError` naming the angle, never a silent zero.
@@ -20,7 +20,7 @@ Angles radians, lengths metres.
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "Interferometric angular measurement", "Inaccuracies in the laser
+Renishaw, Interferometric calibration of rotary axes, "Interferometric angular measurement", "Inaccuracies in the laser
 interferometer reading".
 """
 
@@ -39,7 +39,7 @@ from axiscal.units import ARCSEC
 __all__ = ["AngularLaser", "SimulatedAngularInterferometer", "SimulatedAngularLaser",
            "PERISCOPE_SENSITIVITY"]
 
-#: Temperature sensitivity of the angular periscope, rad/K (seed 000: 13.8 µrad/°C).
+#: Temperature sensitivity of the angular periscope, rad/K (Renishaw, Interferometric calibration of rotary axes: 13.8 µrad/°C).
 PERISCOPE_SENSITIVITY = 13.8e-6
 
 
@@ -82,11 +82,11 @@ class SimulatedAngularInterferometer:
     spacing : float, metres
         True centre-to-centre spacing of the retro-reflectors.
     nominal_spacing : float, metres
-        Spacing the software uses (30 mm in seed 000's example).
+        Spacing the software uses (30 mm in Renishaw, Interferometric calibration of rotary axes's example).
     beam_tilt : float, radians
         β: tilt of the line of sight out of the plane of rotation.
     nonparallelism : float, radians
-        Angle between the two beams (seed 000: within ±15 arcsec).
+        Angle between the two beams (Renishaw, Interferometric calibration of rotary axes: within ±15 arcsec).
     noise : float, radians
         Standard deviation of the angular reading noise.
     resolution : float, radians
@@ -153,7 +153,7 @@ class SimulatedAngularInterferometer:
     def turn(self, u, interferometer_yaw=0.0) -> np.ndarray:
         """The reflector's turn from facing the beams, radians, for reflector directions ``u``.
 
-        The centre-line's component along the beam is the sine of the turn (seed 000: beyond
+        The centre-line's component along the beam is the sine of the turn (Renishaw, Interferometric calibration of rotary axes: beyond
         about ±10° the returned beams are lost).
         """
         b1, _ = self.beams(interferometer_yaw)
@@ -255,7 +255,7 @@ class SimulatedAngularLaser:
         self._datum = self._path()
 
     def set_correction(self, k: float) -> None:
-        """Set K (seed 000 optics self-calibration); must be positive and finite."""
+        """Set K (Renishaw, Interferometric calibration of rotary axes optics self-calibration); must be positive and finite."""
         if not (math.isfinite(k) and k > 0):
             raise InputError(f"k={k!r} must be a positive correction factor")
         self.k = float(k)

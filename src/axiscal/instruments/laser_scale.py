@@ -1,8 +1,8 @@
-"""A laser scale (HS20-like, seed 002): the laser head and its reference switch.
+"""A laser scale (HS20-like, Renishaw, Laser scale axis referencing): the laser head and its reference switch.
 
 The head counts interference fringes between the beam returned by a reflector on the moving axis
 and its reference beam. The reflector doubles the sensitivity: one fringe is λ/2 of motion, the
-*effective scale pitch* 0.316 µm for the 0.633 µm HeNe light (seed 002). The head's digital A/B
+*effective scale pitch* 0.316 µm for the 0.633 µm HeNe light (Renishaw, Laser scale axis referencing). The head's digital A/B
 quadrature output used with the compensator has a resolution of 0.633 µm (one count per λ of
 motion, chosen "to minimise the signal bandwidth between HS20 laser and RCU10 compensator").
 
@@ -77,7 +77,7 @@ class LaserHead:
     vacuum_wavelength : float, metres
         632.991 nm for the stabilised HeNe laser.
     counts_per_wavelength : int
-        Quadrature counts per wavelength of motion: 1 gives the seed's 0.633 µm resolution,
+        Quadrature counts per wavelength of motion: 1 gives the paper's 0.633 µm resolution,
         2 one count per fringe (0.316 µm).
     dead_path : float, metres
         Beam length from the head to the reflector with the axis at x = 0.
@@ -99,11 +99,11 @@ class LaserHead:
 
     @property
     def count_size(self) -> float:
-        """Uncompensated size of one count, metres: λ_vac / k (0.633 µm in the seed)."""
+        """Uncompensated size of one count, metres: λ_vac / k (0.633 µm in the paper)."""
         return self.vacuum_wavelength / self.counts_per_wavelength
 
     def effective_pitch(self, n: float = 1.0) -> float:
-        """Motion per fringe, λ/(2n), metres: the 0.316 µm "effective scale pitch" of seed 002."""
+        """Motion per fringe, λ/(2n), metres: the 0.316 µm "effective scale pitch" of Renishaw, Laser scale axis referencing."""
         return self.vacuum_wavelength / (2.0 * n)
 
     def counts(self, position, n, power_up_position: float, power_up_n: float,

@@ -1,4 +1,4 @@
-"""Rephasing of the compensator's outputs at the reference switch (seed 002, Figure 4).
+"""Rephasing of the compensator's outputs at the reference switch (Renishaw, Laser scale axis referencing, Figure 4).
 
 A laser scale's reference switch is not registered to the fringes, so at the moment the switch
 trips the phase of the synthesised sine/cosine relative to the axis home is unknown (anything in
@@ -9,14 +9,14 @@ controller's home Z is always the same place: 5N/4 counts (320 for N = 256) beyo
 
 The pulse model of the reference mark
 -------------------------------------
-Seed 002 places B 256 output counts of real motion beyond the switch A, Z 64 counts beyond B
+Renishaw, Laser scale axis referencing places B 256 output counts of real motion beyond the switch A, Z 64 counts beyond B
 (320 beyond A), says the reference mark is active at Z, and then says the pulse ends at C
 "64 output counts beyond point B", i.e. at Z itself, which contradicts "active at Z". The
 physically consistent model used here: the reference pulse is **half a period wide and centred
 on Z**. With N counts per period it starts at B (N real counts beyond A, phase -45°), Z is N/4
 further (phase 45°, where sine = cosine and both are positive, as a conventional scale's mark is
 phased) and it ends at C, another N/4 beyond Z (phase 135°). Over the pulse sin + cos > 0. For
-N = 256: A = 0, B = 256, **Z = 320**, C = 384 output counts beyond the switch. The seed's
+N = 256: A = 0, B = 256, **Z = 320**, C = 384 output counts beyond the switch. The paper's
 "64 output counts beyond point B" for C is read as "beyond point Z".
 """
 
@@ -77,7 +77,7 @@ class RephaseResult:
 
 def rephase(output_counts, switch, counts_per_period: int = 256, direction: int = 1,
             power_up_phase: int = 0, stage2_periods: int = 1) -> RephaseResult:
-    """Rephase the synthesised signals at the reference switch (seed 002, Figure 4).
+    """Rephase the synthesised signals at the reference switch (Renishaw, Laser scale axis referencing, Figure 4).
 
     Parameters
     ----------
@@ -86,14 +86,14 @@ def rephase(output_counts, switch, counts_per_period: int = 256, direction: int 
     switch : array_like of bool
         Reference switch state per sample as the compensator sees it.
     counts_per_period : int
-        N (256 in the seed).
+        N (256 in the paper).
     direction : {+1, -1}
         Direction of the homing move in output counts.
     power_up_phase : int
         Phase of the synthesised outputs at power-up, in counts (0 to N-1): the controller
         count is ``m = o + power_up_phase`` before the switch.
     stage2_periods : int
-        k: the virtual movement is spread over k·N counts of real motion (1 in the seed). With
+        k: the virtual movement is spread over k·N counts of real motion (1 in the paper). With
         k > 1 the controller sees at most (kN + N − 1)/(kN) times the real count rate during
         stage 2 instead of nearly twice it, and B, Z, C lie (k − 1)·N counts further on (a fixed
         setting, so the home stays repeatable): see
@@ -114,7 +114,7 @@ def rephase(output_counts, switch, counts_per_period: int = 256, direction: int 
     (generally the v in 0..N-1 that puts m_Z = m_A + d(5N/4 + v) on phase 45°, m_Z ≡ N/8 mod N).
     Stage 2: over the next N counts of real motion it adds ``floor(v (u - u_A) / N)`` counts
     (u = d·o), an exact integer spread, so the controller sees N + v counts (N to 2N - 1: the
-    seed's "256 to 512"). At B (u = u_A + N) the adjustment is complete and latched: from then
+    the paper's "256 to 512"). At B (u = u_A + N) the adjustment is complete and latched: from then
     on ``m = o + φ + d v`` for ever (stage 3, the phase is preserved). The reference pulse is
     active while the controller count lies in the half period from B to C centred on Z; it is
     registered to position like a conventional scale's mark. The spread is a function of the

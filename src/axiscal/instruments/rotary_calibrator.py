@@ -6,7 +6,7 @@ simulator :class:`SimulatedRotaryCalibrator` builds its reading from the encoder
 
 * graduation errors of the disk (about ±4 arcsec, smooth), read by each head at its own place;
 * the sub-divisional error of each head's sine/cosine after automatic gain and offset control
-  (small residual imperfections; seed 000: kept below ±0.25 arcsec);
+  (small residual imperfections; Renishaw, Interferometric calibration of rotary axes: kept below ±0.25 arcsec);
 * bearing wander (random lateral shifts) and a mounting eccentricity of the disk, read with
   opposite signs by two diametrically opposed heads;
 * the average of the heads (or one head only, to show what the second one is for);
@@ -20,7 +20,7 @@ counter-rotation means commanding about minus the angle of the axis under test.
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "The XR20 - A closer look", "Inaccuracies in the rotary encoder
+Renishaw, Interferometric calibration of rotary axes, "The XR20 - A closer look", "Inaccuracies in the rotary encoder
 reading".
 """
 
@@ -65,12 +65,12 @@ class SimulatedRotaryCalibrator:
     Attributes
     ----------
     encoder : EncoderGeometry
-        Seed 000: 7,850 graduations on 50 mm, interpolated 2000×.
+        Renishaw, Interferometric calibration of rotary axes: 7,850 graduations on 50 mm, interpolated 2000×.
     graduation_error : HarmonicSeries
         Position error g(χ) of the graduation at disk coordinate χ (radians), radians.
     head_angles : tuple of float, radians
         Read-head positions (two heads 180° apart; a small departure leaves a second-order
-        residual, as seed 000 says).
+        residual, as Renishaw, Interferometric calibration of rotary axes says).
     heads_used : int
         1 (first head only) or 2 (average of both).
     head_signals : tuple of SignalImperfections

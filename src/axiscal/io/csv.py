@@ -3,7 +3,7 @@
 Format
 ------
 One reading per line with the header ``target,direction,run,deviation``; ``actual`` may stand
-instead of ``deviation``, in which case deviation = actual − target (ISO 230-2 §3.1; seed 001
+instead of ``deviation``, in which case deviation = actual − target (ISO 230-2 §3.1; Yüksel et al., Position accuracy and repeatability calibration of turn tables
 eq. 1) and ``actual`` is in the target unit. ``direction`` is ``+``/``-`` (also ``up``/``down``,
 ``fwd``/``bwd``). Comment lines start with ``#``; a leading comment may declare the units and the
 metadata as ``key=value`` pairs::

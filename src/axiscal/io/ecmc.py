@@ -15,7 +15,7 @@ Plain ``KEY=value`` lines; ``#`` starts a comment; unknown keys (``REF_PV``, ``T
 ``TGT_DATA[i]`` is the target position i (1-based), ``REF_DATA_FWD[i,j]`` and
 ``REF_DATA_BWD[i,j]`` the reference system's *actual* position at target i in cycle j in the
 forward (positive) and backward (negative) direction. The deviation is actual minus target
-(ISO 230-2 §3.1, seed 001 eq. 1), converted to µm for a length ``UNIT`` and to arcseconds for an
+(ISO 230-2 §3.1, Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 1), converted to µm for a length ``UNIT`` and to arcseconds for an
 angle ``UNIT`` (or to ``deviation_unit`` if given). Declared ``CYCLES``/``POSITIONS`` are checked
 against the data: a mismatch is reported, never silently padded.
 """

@@ -3,9 +3,9 @@
 :func:`example_files` returns the text of each file, so the files can be regenerated and a test
 checks that the shipped files are exactly what this code makes (their provenance).
 
-* ``squareness_L180_x.csv`` / ``squareness_L180_y.csv`` — seed 004 Machine 3, "L" test in
+* ``squareness_L180_x.csv`` / ``squareness_L180_y.csv`` — Chapman, Calibration of machine squareness Machine 3, "L" test in
   orientation 180° (corner top-right), 800 × 800 mm, 17 points, indicator noise 0.05 µm:
-  squareness about +65 µm/m (seed 004 Figure 16).
+  squareness about +65 µm/m (Chapman, Calibration of machine squareness Figure 16).
 * ``squareness_ballbar_150mm.csv`` — 150 mm ballbar on a machine with squareness 12 µm/m, scale
   errors +8 / −4 µm/m and backlash 6 / −3 µm, 1° steps both ways, noise 0.1 µm.
 * ``squareness_diagonal_600x800.csv`` — multi-point diagonals, 600 × 800 mm, 11 points per

@@ -14,7 +14,7 @@ semi-closed backlash) are added at the table position, with lateral play
 References
 ----------
 ISO 230-4:2005 Annex A (servo mismatch, reversal spikes, lateral play, cyclic error). Renishaw
-(M.A.V. Chapman), Calibration of machine squareness, Method 4 (seed 004).
+(M.A.V. Chapman), Calibration of machine squareness, Method 4 (Chapman, Calibration of machine squareness).
 """
 
 from __future__ import annotations

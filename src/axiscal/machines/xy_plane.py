@@ -1,4 +1,4 @@
-"""The XY plane of a machine with squareness, straightness and associated yaw (seed 004 Appendix I).
+"""The XY plane of a machine with squareness, straightness and associated yaw (Chapman, Calibration of machine squareness Appendix I).
 
 Coordinates are centred: a plane of lengths ``Lx × Ly`` spans ``x ∈ [-Lx/2, Lx/2]``,
 ``y ∈ [-Ly/2, Ly/2]`` (metres), so the quadratic bend of Appendix I, ``δy = 4 S x² / L²``
@@ -18,7 +18,7 @@ A machine commanded to ``(x, y)`` reaches ``(x + δx, y + δy)`` with (Appendix 
 * ``[yaw_y]`` — the same for Y: the yaw ``-g'(y)`` of the Y carriage (counter-clockwise positive)
   turns the X axis it carries, ``δy = -x g'(y)``. Appendix I says this is "derived in a similar
   way" and gives no equation; this sign is the one for which a rigid body keeps the local
-  squareness uniform (seed 004, Machine 5: "uniform local and global squareness").
+  squareness uniform (Chapman, Calibration of machine squareness, Machine 5: "uniform local and global squareness").
 * ``e_x``, ``e_y`` — linear (scale) errors, for scale mismatch; ``b_x``, ``b_y`` — reversal
   values (backlash) with the convention of :class:`~axiscal.machines.linear.LinearAxis`
   (a positive approach lands ``b/2`` further on).
@@ -29,7 +29,7 @@ and 5), varying with location where none does (Machines 2 and 4).
 
 References
 ----------
-Seed 004, Appendix I, Equations 1-4 and Figures 28-29; "Simulation of machine errors" (Figure 12)
+Chapman, Calibration of machine squareness, Appendix I, Equations 1-4 and Figures 28-29; "Simulation of machine errors" (Figure 12)
 and "Testing global squareness errors on machines with unequal aspect ratios" (Machines 6 and 7).
 """
 
@@ -52,7 +52,7 @@ __all__ = [
     "SEED004_STRAIGHTNESS",
 ]
 
-#: Straightness values chosen for seed 004's machines, metres (the seed gives only some; see
+#: Straightness values chosen for Chapman, Calibration of machine squareness's machines, metres (the paper gives only some; see
 #: :func:`seed004_machine`).
 SEED004_STRAIGHTNESS = {"x": 10e-6, "y": 5e-6}
 
@@ -67,7 +67,7 @@ class StraightnessProfile(Protocol):
 
 @dataclass(frozen=True)
 class QuadraticBend:
-    """The simple bend of seed 004 Equation 1: ``δ = 4 S u² / L²``, slope ``8 S u / L²``.
+    """The simple bend of Chapman, Calibration of machine squareness Equation 1: ``δ = 4 S u² / L²``, slope ``8 S u / L²``.
 
     Attributes
     ----------
@@ -141,7 +141,7 @@ class TabulatedProfile:
 
 
 def airy_points_bend(length: float, straightness: float, n: int = 401) -> TabulatedProfile:
-    """Self-weight bend of an axis resting on its Airy points (seed 004, Machine 7).
+    """Self-weight bend of an axis resting on its Airy points (Chapman, Calibration of machine squareness, Machine 7).
 
     A uniform beam of length L on two supports ``L/√3`` apart (the Airy points, where the end
     slopes are zero) sags between them and droops beyond them; the elastic line is integrated
@@ -165,7 +165,7 @@ def airy_points_bend(length: float, straightness: float, n: int = 401) -> Tabula
 
     Notes
     -----
-    Seed 004 says only that Machine 7's X axis has "a more complex form of straightness error,
+    Chapman, Calibration of machine squareness says only that Machine 7's X axis has "a more complex form of straightness error,
     such as might be shown by an axis supported at its airy points"; the shape is the classical
     beam solution, ``EI w'' = M(u)`` with ``M = -q (L/2 - |u|)² / 2 + R (c - |u|)`` inside the
     supports at ``±c = ±L/(2√3)``, ``R = qL/2`` (sagging moment positive, ``w'' = M/EI``).
@@ -195,7 +195,7 @@ def airy_points_bend(length: float, straightness: float, n: int = 401) -> Tabula
 
 @dataclass(frozen=True)
 class XYPlaneMachine:
-    """A simulated XY plane with the errors of seed 004 Appendix I (module docstring).
+    """A simulated XY plane with the errors of Chapman, Calibration of machine squareness Appendix I (module docstring).
 
     Attributes
     ----------
@@ -302,7 +302,7 @@ class XYPlaneMachine:
 
 def seed004_machine(number: int, *, x_yaw: bool | None = None,
                     y_yaw: bool | None = None) -> XYPlaneMachine:
-    """Machines 1-7 of seed 004 (Figure 12, Figures 24-25), global squareness +15 µm/m.
+    """Machines 1-7 of Chapman, Calibration of machine squareness (Figure 12, Figures 24-25), global squareness +15 µm/m.
 
     ======  ==============  =========================================  ========================
     number  plane (mm)      straightness                               associated yaw
@@ -321,11 +321,11 @@ def seed004_machine(number: int, *, x_yaw: bool | None = None,
     number : int
         1 to 7.
     x_yaw, y_yaw : bool, optional
-        Override the associated yaw (seed 004 also reports Machine 7 with both yaws added).
+        Override the associated yaw (Chapman, Calibration of machine squareness also reports Machine 7 with both yaws added).
 
     Notes
     -----
-    The seed gives the straightness values of Machines 6 and 7 only. Machine 3's angle running
+    The paper gives the straightness values of Machines 6 and 7 only. Machine 3's angle running
     from -35 to +65 µm/m along X (seed, Figure 16) fixes X's bend: ``4S/L = 50 µm/m`` gives
     S = 10 µm on 800 mm, the value of Machine 6 too. Y's 5 µm for Machines 4 and 5 is taken from
     Machine 6 (a choice; any value gives the same qualitative findings). Bends are positive

@@ -95,7 +95,7 @@ __all__ = [
 
 #: Absolute zero, −273.15 °C, as a positive number of kelvin below 0 °C.
 ABSOLUTE_ZERO_C = 273.15
-#: Vacuum wavelength of the stabilised HeNe laser line, metres (seed 002: "0.633 microns").
+#: Vacuum wavelength of the stabilised HeNe laser line, metres (Renishaw, Laser scale axis referencing: "0.633 microns").
 HENE_VACUUM_WAVELENGTH = 632.991e-9
 
 Equation = Literal["ciddor", "edlen", "birch-downs"]
@@ -289,8 +289,8 @@ def compensation_factor(temperature=20.0, pressure=101325.0, humidity=None, **kw
 
     Notes
     -----
-    A fringe count N gives :math:`L = N\\lambda_{vac}/(2n)` (seed 001 eq. 22, d = λN/2 with the
-    wavelength in air; seed 002, wavelength compensation), so a reading computed with the vacuum
+    A fringe count N gives :math:`L = N\\lambda_{vac}/(2n)` (Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 22, d = λN/2 with the
+    wavelength in air; Renishaw, Laser scale axis referencing, wavelength compensation), so a reading computed with the vacuum
     wavelength is multiplied by :math:`1/n`; the correction in ppm is :math:`(1/n - 1)\\times10^6`,
     about -271 ppm in a standard workshop.
 

@@ -1,24 +1,24 @@
 """Rotary encoder physics: graduation period, interpolation, read-heads, error map.
 
-The reference calibrator of seed 000 (XR20-like) reads a 50 mm disk with 7,850 graduations at
+The reference calibrator of Renishaw, Interferometric calibration of rotary axes (XR20-like) reads a 50 mm disk with 7,850 graduations at
 20 µm through two diametrically opposed read-heads. This module holds the geometry and the error
 mechanisms as pure functions:
 
 * :class:`EncoderGeometry`: graduation pitch, angular period (165 arcsec), resolution after
   interpolation (about 0.08 arcsec at 2000×);
 * :func:`readhead_displacement_error`: a lateral shift ``t`` of the disk against a read-head reads
-  as a rotation ``t/(d/2)`` (seed 000 Figure 20); two heads 180° apart read it with opposite
+  as a rotation ``t/(d/2)`` (Renishaw, Interferometric calibration of rotary axes Figure 20); two heads 180° apart read it with opposite
   signs and their average cancels it (Figure 21), as it cancels a mounting eccentricity;
 * :func:`graduation_error_at_heads`: the graduation errors each head sees, and their average (odd
   harmonics of the graduation error cancel between two opposed heads);
 * :class:`ErrorMap`: the factory error map, "actual position = average read-head position ± error
-  map correction" (seed 000): the map holds the error of the averaged reading, ``e(ψ) = reading −
-  actual``, and :meth:`ErrorMap.correct` returns ``reading − e(reading)`` (the seed's ± is this
+  map correction" (Renishaw, Interferometric calibration of rotary axes): the map holds the error of the averaged reading, ``e(ψ) = reading −
+  actual``, and :meth:`ErrorMap.correct` returns ``reading − e(reading)`` (the paper's ± is this
   minus sign with this definition of e).
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "Sub-divisional errors", "Bearing wander and encoder mounting
+Renishaw, Interferometric calibration of rotary axes, "Sub-divisional errors", "Bearing wander and encoder mounting
 eccentricity", "Graduation Errors".
 """
 
@@ -88,12 +88,12 @@ class EncoderGeometry:
 
     @property
     def period(self) -> float:
-        """Angular interval between graduations, radians: ``2π/N`` (seed 000: 165 arcsec)."""
+        """Angular interval between graduations, radians: ``2π/N`` (Renishaw, Interferometric calibration of rotary axes: 165 arcsec)."""
         return TWO_PI / self.graduations
 
     @property
     def resolution(self) -> float:
-        """Angular resolution after interpolation, radians (seed 000: ~0.08 arcsec at 2000×)."""
+        """Angular resolution after interpolation, radians (Renishaw, Interferometric calibration of rotary axes: ~0.08 arcsec at 2000×)."""
         return self.period / self.interpolation
 
     def quantize(self, angle):
@@ -127,7 +127,7 @@ def readhead_displacement_error(dx, dy, head_angle, radius: float):
     -------
     ndarray or float, radians
         ``(−dx·sin ψ + dy·cos ψ)/r``: the tangential part of the shift at the head, over the radius
-        (seed 000: "a counter-clockwise movement of t/(d/2) radians").
+        (Renishaw, Interferometric calibration of rotary axes: "a counter-clockwise movement of t/(d/2) radians").
 
     Examples
     --------
@@ -160,7 +160,7 @@ def eccentricity_displacement(angle, eccentricity: float, phase: float = 0.0):
     -------
     dx, dy : ndarray, metres
         ``e·cos(angle + phase)``, ``e·sin(angle + phase)``; fed to
-        :func:`readhead_displacement_error` (seed 000, "Bearing wander and encoder mounting
+        :func:`readhead_displacement_error` (Renishaw, Interferometric calibration of rotary axes, "Bearing wander and encoder mounting
         eccentricity").
     """
     th = np.asarray(angle, dtype=float) + phase
@@ -168,7 +168,7 @@ def eccentricity_displacement(angle, eccentricity: float, phase: float = 0.0):
 
 
 def average_readheads(*readings):
-    """Average the angles read by several read-heads (seed 000: "the average of the angular
+    """Average the angles read by several read-heads (Renishaw, Interferometric calibration of rotary axes: "the average of the angular
     positions indicated by each read-head"), radians.
 
     Parameters
@@ -179,7 +179,7 @@ def average_readheads(*readings):
     Returns
     -------
     ndarray, radians
-        The arithmetic mean over the heads (seed 000 Figure 21).
+        The arithmetic mean over the heads (Renishaw, Interferometric calibration of rotary axes Figure 21).
     """
     if not readings:
         raise InputError("average_readheads needs at least one reading")
@@ -207,7 +207,7 @@ def graduation_error_at_heads(angle, graduation_error, head_angles=(0.0, math.pi
     Notes
     -----
     With two heads 180° apart the odd harmonics of g cancel in the average and the even ones
-    remain; the error map removes what remains (seed 000, "Graduation Errors").
+    remain; the error map removes what remains (Renishaw, Interferometric calibration of rotary axes, "Graduation Errors").
     """
     th = np.asarray(angle, dtype=float)
     per = np.stack([np.asarray(graduation_error(np.mod(th - psi, TWO_PI)), dtype=float)

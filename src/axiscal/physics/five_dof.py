@@ -1,4 +1,4 @@
-"""Equations of the five-DOF rotary-axis measuring system of seed 003 (eqs. 1-9).
+"""Equations of the five-DOF rotary-axis measuring system of Optics Express 2018, Five-DOF motion errors of a rotary axis (eqs. 1-9).
 
 The sensitive unit (two corner-cube retro-reflectors RR1 and RR2, a beam-splitting film BS1 on half
 of RR1's base) sits on a reference rotary axis that counter-rotates on the target axis. Two
@@ -11,7 +11,7 @@ parallel beams (separation ``h``) run along X over the working distance ``l``:
 
 All functions are pure and work element-wise on arrays: metres and radians in and out.
 
-Sign choice for the ± of eqs. 8-9 (the seed leaves it open)
+Sign choice for the ± of eqs. 8-9 (the paper leaves it open)
 ------------------------------------------------------------
 The geometry of :mod:`axiscal.instruments.five_dof` fixes the detector senses so that eqs. 1, 2, 4,
 5 and 7 hold exactly as printed, with Δβ, Δγ the Y and Z components of the outgoing beam's unit
@@ -25,11 +25,11 @@ direction (its angle towards +Y and +Z). A ray traced through that geometry give
 * ``ΔY_QD = 2 δy − 2 l Δβ``: the angular drift (pivot at the measurement unit, where the QDs
   are) displaces the incoming beam by ``l Δβ`` at the reflector, and the corner cube returns it
   displaced by as much again. Hence ``δy = ΔY_QD/2 + l Δβ`` and ``δz = ΔZ_QD/2 + l Δγ``: the
-  ``+`` sign of eq. 9, with the seed's magnitude.
+  ``+`` sign of eq. 9, with the paper's magnitude.
 
 References
 ----------
-Seed 003_8fab92c5d1b3bd69.txt, "Method for simultaneous measurement of five DOF motion errors of a
+Optics Express 2018, Five-DOF motion errors of a rotary axis, "Method for simultaneous measurement of five DOF motion errors of a
 rotary axis using a single-mode fiber-coupled laser", section 2, eqs. 1-9, and section 3
 ("Measurement resolution").
 
@@ -70,7 +70,7 @@ DRIFT_ANGLE_FACTOR = 0.5
 
 
 def autocollimation_angle(spot_shift, f):
-    """Mirror angle from a spot shift on a PSD behind a lens: ``Δ/(2f)`` (seed 003 eqs. 1, 2).
+    """Mirror angle from a spot shift on a PSD behind a lens: ``Δ/(2f)`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1, 2).
 
     Parameters
     ----------
@@ -93,7 +93,7 @@ def autocollimation_angle(spot_shift, f):
 
 
 def positioning_error(spot_shift_y, f, theta_ref, theta):
-    """Angular positioning error over the full circle: ``ΔY/(2f1) + θref − θ`` (seed 003 eq. 3).
+    """Angular positioning error over the full circle: ``ΔY/(2f1) + θref − θ`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eq. 3).
 
     Parameters
     ----------
@@ -134,7 +134,7 @@ def retroreflector_displacement(spot_shift):
 
 
 def tilt_from_quadrants(dz_qd1, dz_qd2, h):
-    """Tilt motion about X: ``εx = (ΔZ_QD1 − ΔZ_QD2) / (2h)`` (seed 003 eq. 6).
+    """Tilt motion about X: ``εx = (ΔZ_QD1 − ΔZ_QD2) / (2h)`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eq. 6).
 
     Parameters
     ----------
@@ -174,7 +174,7 @@ def beam_drift(spot_shift, f):
 
 
 def compensate_angle(angle, drift, sign):
-    """Drift-corrected autocollimation angle: ``angle + sign · Δ/2`` (seed 003 eq. 8, see Notes).
+    """Drift-corrected autocollimation angle: ``angle + sign · Δ/2`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eq. 8, see Notes).
 
     Parameters
     ----------
@@ -200,7 +200,7 @@ def compensate_angle(angle, drift, sign):
 
 
 def compensate_displacement(displacement, drift, l):
-    """Drift-corrected displacement: ``δ + l·Δ`` (seed 003 eq. 9 with the ``+`` sign).
+    """Drift-corrected displacement: ``δ + l·Δ`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eq. 9 with the ``+`` sign).
 
     Parameters
     ----------
@@ -217,7 +217,7 @@ def compensate_displacement(displacement, drift, l):
 
     Notes
     -----
-    Seed 003 eq. 9 with the ``+`` sign derived in the module docstring.
+    Optics Express 2018, Five-DOF motion errors of a rotary axis eq. 9 with the ``+`` sign derived in the module docstring.
     """
     if not l >= 0:
         raise InputError(f"working distance l = {l!r} m must be >= 0")
@@ -225,7 +225,7 @@ def compensate_displacement(displacement, drift, l):
 
 
 def angular_resolution(psd_resolution, f):
-    """Resolution of εz and εy: ``r_PSD / (2 f)`` (seed 003 eqs. 1-2, section 3).
+    """Resolution of εz and εy: ``r_PSD / (2 f)`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 1-2, section 3).
 
     Parameters
     ----------
@@ -255,7 +255,7 @@ def tilt_x_resolution(qd_resolution, h):
 
 
 def displacement_resolution(qd_resolution):
-    """Resolution of δy and δz: ``r_QD / 2`` (seed 003 eqs. 4-5).
+    """Resolution of δy and δz: ``r_QD / 2`` (Optics Express 2018, Five-DOF motion errors of a rotary axis eqs. 4-5).
 
     Parameters
     ----------
@@ -292,7 +292,7 @@ class Resolutions:
 
 
 def resolutions(f1, h, psd_resolution, qd_resolution) -> Resolutions:
-    """The three resolutions of seed 003 section 3 from the focal length, h and detectors.
+    """The three resolutions of Optics Express 2018, Five-DOF motion errors of a rotary axis section 3 from the focal length, h and detectors.
 
     Parameters
     ----------
@@ -303,7 +303,7 @@ def resolutions(f1, h, psd_resolution, qd_resolution) -> Resolutions:
     Returns
     -------
     Resolutions
-        Radians and metres (seed 003 section 3: 0.26 arcsec, 0.27 arcsec, 0.04 µm).
+        Radians and metres (Optics Express 2018, Five-DOF motion errors of a rotary axis section 3: 0.26 arcsec, 0.27 arcsec, 0.04 µm).
 
     Examples
     --------

@@ -1,8 +1,8 @@
 """Laser interferometry: fringes to displacement, dead path, cosine error, angular optics.
 
-Linear optics count one fringe per half wavelength of reflector travel (seed 001 eq. 22,
+Linear optics count one fringe per half wavelength of reflector travel (Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 22,
 ``d = λN/2``); plane-mirror optics pass the beam twice and count one fringe per quarter
-wavelength. The angular interferometer of seed 000 (Figure 1) measures the difference ΔL of the
+wavelength. The angular interferometer of Renishaw, Interferometric calibration of rotary axes (Figure 1) measures the difference ΔL of the
 two arms' path lengths to a pair of retro-reflectors a distance S apart and converts it to an
 angle by ``θ = arcsin(ΔL / (K·S))``, where K is found by the optics self-calibration at 0°, +5° and
 −5° against the reference calibrator (:func:`optics_self_calibration`).
@@ -14,7 +14,7 @@ as parameters; the default ``n = 1.000271`` is that of standard air (20 °C, 101
 
 Notes
 -----
-Seed 000 (Figure 1 text) writes that each arm changes by ``S·sin θ``, a total of ``2S·sin θ``,
+Renishaw, Interferometric calibration of rotary axes (Figure 1 text) writes that each arm changes by ``S·sin θ``, a total of ``2S·sin θ``,
 and then converts with ``arcsin(ΔL/S)``. The two statements agree only if ΔL is the *displacement*
 difference of the two reflectors (fringe count × λ/2 already halves the double-pass optical
 path) and S is their centre-to-centre spacing: rotating the pair by θ about its midpoint moves one
@@ -23,11 +23,11 @@ reflector by ``(S/2)·sin θ`` towards the laser and the other as far away, a di
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "Interferometric angular measurement", "Incorrect retro-reflector
+Renishaw, Interferometric calibration of rotary axes, "Interferometric angular measurement", "Incorrect retro-reflector
 spacing", "Misaligned reflector at datum", "Air refractive index compensation errors",
 "Non-parallel beams emerging from the periscope".
-Seed 001_9e3eee70ada7914d.txt, eq. 22.
-Seed 002_0a75ba185b434e6e.txt: "0.633 microns ... the use of a reflector doubles the sensitivity,
+Yüksel et al., Position accuracy and repeatability calibration of turn tables, eq. 22.
+Renishaw, Laser scale axis referencing: "0.633 microns ... the use of a reflector doubles the sensitivity,
 so the effective scale pitch is 0.316 microns".
 """
 
@@ -86,7 +86,7 @@ def wavelength_in_air(vacuum_wavelength: float = HENE_VACUUM_WAVELENGTH,
 
     Notes
     -----
-    Definition of the refractive index (NIST, Stone and Zimmerman, eq. 1); seed 002, "wavelength
+    Definition of the refractive index (NIST, Stone and Zimmerman, eq. 1); Renishaw, Laser scale axis referencing, "wavelength
     compensation".
 
     Examples
@@ -117,9 +117,9 @@ def effective_pitch(wavelength: float, optics: Optics = "linear") -> float:
 
     Notes
     -----
-    Seed 001 eq. 22 (d = λN/2) for linear optics; the plane mirror's double pass halves it again.
-    Seed 002: "0.633 microns ... the use of a reflector doubles the sensitivity, so the effective
-    scale pitch is 0.316 microns" (0.3165 µm, written truncated in the seed).
+    Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 22 (d = λN/2) for linear optics; the plane mirror's double pass halves it again.
+    Renishaw, Laser scale axis referencing: "0.633 microns ... the use of a reflector doubles the sensitivity, so the effective
+    scale pitch is 0.316 microns" (0.3165 µm, written truncated in the paper).
 
     Examples
     --------
@@ -141,7 +141,7 @@ def fringes_per_metre(wavelength: float, optics: Optics = "linear") -> float:
     Returns
     -------
     float, 1/m
-        ``1 / effective_pitch(wavelength, optics)`` (seed 001 eq. 22).
+        ``1 / effective_pitch(wavelength, optics)`` (Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 22).
     """
     return 1.0 / effective_pitch(wavelength, optics)
 
@@ -161,7 +161,7 @@ def fringes_to_displacement(fringes, vacuum_wavelength: float = HENE_VACUUM_WAVE
     Returns
     -------
     ndarray or float, metres
-        ``N·λ_air/2`` (linear, seed 001 eq. 22) or ``N·λ_air/4`` (plane mirror).
+        ``N·λ_air/2`` (linear, Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 22) or ``N·λ_air/4`` (plane mirror).
 
     Examples
     --------
@@ -232,7 +232,7 @@ def cosine_error(length, misalignment):
     Notes
     -----
     The beam measures the projection ``L cos φ`` of the travel on its own direction: the
-    cosine error of beam alignment (issue 3; not derived in the seeds, plain geometry).
+    cosine error of beam alignment (issue 3; not derived in the source documents, plain geometry).
 
     Examples
     --------
@@ -246,7 +246,7 @@ def cosine_error(length, misalignment):
 def path_difference(angle, spacing: float):
     """Path (displacement) difference of the two arms of an angular interferometer, metres.
 
-    ``ΔL = S·sin θ`` (see the module notes on seed 000's factor 2).
+    ``ΔL = S·sin θ`` (see the module notes on Renishaw, Interferometric calibration of rotary axes's factor 2).
 
     Parameters
     ----------
@@ -261,7 +261,7 @@ def path_difference(angle, spacing: float):
 
     Notes
     -----
-    Seed 000, "Interferometric angular measurement" (Figure 1), read as in the module Notes.
+    Renishaw, Interferometric calibration of rotary axes, "Interferometric angular measurement" (Figure 1), read as in the module Notes.
     """
     _check_positive("spacing", spacing)
     out = spacing * np.sin(np.asarray(angle, dtype=float))
@@ -291,7 +291,7 @@ def angle_from_path_difference(delta_l, spacing: float, k: float = 1.0):
 
     Notes
     -----
-    Seed 000, "Incorrect retro-reflector spacing": ``θ = arcsin(ΔL/(K.S))``.
+    Renishaw, Interferometric calibration of rotary axes, "Incorrect retro-reflector spacing": ``θ = arcsin(ΔL/(K.S))``.
 
     Examples
     --------
@@ -326,7 +326,7 @@ def spacing_error_angle(angle, true_spacing: float, nominal_spacing: float):
 
     Notes
     -----
-    Seed 000: 30.1 mm instead of 30.0 mm at 1° gives about ``0.1/30 × 1° = 12 arcsec``.
+    Renishaw, Interferometric calibration of rotary axes: 30.1 mm instead of 30.0 mm at 1° gives about ``0.1/30 × 1° = 12 arcsec``.
 
     Examples
     --------
@@ -358,7 +358,7 @@ def refraction_angle_error(misalignment, delta_n):
 
     Notes
     -----
-    Seed 000, "Air refractive index compensation errors": "a 1 °C change in air temperature, when
+    Renishaw, Interferometric calibration of rotary axes, "Air refractive index compensation errors": "a 1 °C change in air temperature, when
     the interferometer and reflector are misaligned by 2.5°, will only introduce a change in
     reading of about 0.05 micro-radians (0.01 arcseconds)".
 
@@ -381,7 +381,7 @@ def nonparallel_beam_error(lateral, nonparallelism: float, spacing: float):
     ----------
     lateral : array_like, metres
     nonparallelism : float, radians
-        Angle between the two beams (seed 000: within ±15 arcsec).
+        Angle between the two beams (Renishaw, Interferometric calibration of rotary axes: within ±15 arcsec).
     spacing : float, metres
 
     Returns
@@ -390,8 +390,8 @@ def nonparallel_beam_error(lateral, nonparallelism: float, spacing: float):
 
     Notes
     -----
-    Seed 000: ±15 arcsec non-parallelism gives "±0.5 arcseconds for every millimetre of lateral
-    motion" (with the 30 mm spacing of seed 000's example).
+    Renishaw, Interferometric calibration of rotary axes: ±15 arcsec non-parallelism gives "±0.5 arcseconds for every millimetre of lateral
+    motion" (with the 30 mm spacing of Renishaw, Interferometric calibration of rotary axes's example).
 
     Examples
     --------
@@ -416,7 +416,7 @@ class OpticsCalibration:
         Angle of the reflector from perpendicular to the beams when the datum was set; the
         calibrator turns by minus this value and the laser is re-datumed.
     step : float, radians
-        The calibration step (5° in seed 000).
+        The calibration step (5° in Renishaw, Interferometric calibration of rotary axes).
     zero_return : float, radians
         Reading on the return to 0° after the ±step moves, as an angle: drift of the laser or of
         the set-up during the calibration (the two unknowns are fitted exactly from the two
@@ -451,7 +451,7 @@ def optics_self_calibration(delta_l_plus: float, delta_l_minus: float, spacing: 
     spacing : float, metres
         Nominal spacing S.
     step : float, radians
-        Reference angle of the first step (default +5°, seed 000).
+        Reference angle of the first step (default +5°, Renishaw, Interferometric calibration of rotary axes).
     step_minus : float, radians, optional
         Reference angle of the second step (default ``-step``).
     delta_l_zero, step_zero : float, metres and radians
@@ -468,7 +468,7 @@ def optics_self_calibration(delta_l_plus: float, delta_l_minus: float, spacing: 
     ``ΔL = K·S·(sin(φ₀ + a) − sin φ₀) = X·(cos a − 1) + Y·sin a`` with ``X = K·S·sin φ₀`` and
     ``Y = K·S·cos φ₀``. Two steps give a 2×2 linear system for X and Y, hence
     ``φ₀ = atan2(X, Y)`` and ``K = √(X² + Y²)/S``. For symmetric steps ±a this is
-    ``tan φ₀ = (ΔL₊+ΔL₋)·sin a / ((ΔL₊−ΔL₋)·(cos a − 1))``. Seed 000, "Incorrect retro-reflector
+    ``tan φ₀ = (ΔL₊+ΔL₋)·sin a / ((ΔL₊−ΔL₋)·(cos a − 1))``. Renishaw, Interferometric calibration of rotary axes, "Incorrect retro-reflector
     spacing" and "Misaligned reflector at datum". Note the sum of the two readings carries φ₀
     with a gain of only ``cos a − 1`` (−0.0038 at 5°): an error δ in a reference step moves φ₀ by
     about ``δ/(2·0.0038)``, 130 times δ.

@@ -1,14 +1,14 @@
-"""Misalignment error of a counter-rotating rotary calibration (seed 000 equation 1).
+"""Misalignment error of a counter-rotating rotary calibration (Renishaw, Interferometric calibration of rotary axes equation 1).
 
 With the reference calibrator's axis tilted by α from the axis under test, the laser's line of
 sight tilted by β from the plane of rotation and the reflector's centre-line twisted by ω from
 perpendicular to the calibrator's axis, the angle measured at axis angle θ is wrong by::
 
-    E(θ) = sin(2(θ+η))·α²/4 + sin(θ+η)·α·β + cos(θ+η)·α·ω        (seed 000, eq. 1)
+    E(θ) = sin(2(θ+η))·α²/4 + sin(θ+η)·α·β + cos(θ+η)·α·ω        (Renishaw, Interferometric calibration of rotary axes, eq. 1)
 
-where η is the direction of α (the seed's note under eq. 1). This module gives E and each of its
+where η is the direction of α (the paper's note under eq. 1). This module gives E and each of its
 terms, the peak and the half range over a turn, a trade-off table of expected accuracy over α and
-β in the manner of seed 000's Figure 22, and the exact 3-D pose of the reflector
+β in the manner of Renishaw, Interferometric calibration of rotary axes's Figure 22, and the exact 3-D pose of the reflector
 (:func:`reflector_pose`) from which the simulated instruments compute the laser's reading, so
 that equation 1 is a *result* of the simulation, not an input to it.
 
@@ -20,7 +20,7 @@ equation 1 with its printed signs (checked in the tests to second order in the a
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "Errors due to angular misalignment of axes", eq. 1, Figures 7-14
+Renishaw, Interferometric calibration of rotary axes, "Errors due to angular misalignment of axes", eq. 1, Figures 7-14
 and Figure 22.
 """
 
@@ -54,7 +54,7 @@ __all__ = [
 TWO_PI = 2.0 * math.pi
 _TURN = np.linspace(0.0, TWO_PI, 7201)
 
-#: Seed 000 Figure 22: estimated accuracy (arcsec) for α (columns, mrad) and β (rows, mrad).
+#: Renishaw, Interferometric calibration of rotary axes Figure 22: estimated accuracy (arcsec) for α (columns, mrad) and β (rows, mrad).
 SEED000_FIGURE22 = {
     "alpha_mrad": (0.4, 1.0, 2.0, 3.0, 4.0, 5.0),
     "beta_mrad": (1.0, 2.0, 3.0, 4.0, 5.0),
@@ -74,7 +74,7 @@ FIGURE22_FIT = {"c0_arcsec": 0.8572, "a": 4.8875, "b": 1.0116, "c": 0.8454}
 
 
 def misalignment_error(theta, alpha: float, beta: float, omega: float, eta: float = 0.0):
-    """Measurement error of seed 000 equation 1, radians.
+    """Measurement error of Renishaw, Interferometric calibration of rotary axes equation 1, radians.
 
     Parameters
     ----------
@@ -88,7 +88,7 @@ def misalignment_error(theta, alpha: float, beta: float, omega: float, eta: floa
     Returns
     -------
     float or ndarray, radians
-        ``E(θ)`` of seed 000 eq. 1 (module docstring).
+        ``E(θ)`` of Renishaw, Interferometric calibration of rotary axes eq. 1 (module docstring).
 
     Examples
     --------
@@ -101,7 +101,7 @@ def misalignment_error(theta, alpha: float, beta: float, omega: float, eta: floa
 
 @dataclass(frozen=True, eq=False)
 class MisalignmentTerms:
-    """The three terms of seed 000 equation 1 over a set of angles (radians).
+    """The three terms of Renishaw, Interferometric calibration of rotary axes equation 1 over a set of angles (radians).
 
     Attributes
     ----------
@@ -140,7 +140,7 @@ class MisalignmentTerms:
 
 def misalignment_terms(theta, alpha: float, beta: float, omega: float,
                        eta: float = 0.0) -> MisalignmentTerms:
-    """Each term of seed 000 equation 1 separately (radians); see :class:`MisalignmentTerms`.
+    """Each term of Renishaw, Interferometric calibration of rotary axes equation 1 separately (radians); see :class:`MisalignmentTerms`.
 
     Parameters
     ----------
@@ -151,7 +151,7 @@ def misalignment_terms(theta, alpha: float, beta: float, omega: float,
     Returns
     -------
     MisalignmentTerms
-        The three terms of seed 000 eq. 1, radians.
+        The three terms of Renishaw, Interferometric calibration of rotary axes eq. 1, radians.
     """
     for name, v in (("alpha", alpha), ("beta", beta), ("omega", omega), ("eta", eta)):
         if not math.isfinite(v):
@@ -177,12 +177,12 @@ def peak_error(alpha: float, beta: float, omega: float) -> float:
     Returns
     -------
     float, radians
-        max |E(θ)| of seed 000 eq. 1, sampled every 0.05° (the sampling misses the true peak by
+        max |E(θ)| of Renishaw, Interferometric calibration of rotary axes eq. 1, sampled every 0.05° (the sampling misses the true peak by
         less than 4e-7 of it).
 
     Examples
     --------
-    >>> round(peak_error(0.62e-3, 1.23e-3, 2.26e-3) / ARCSEC, 3)   # seed 000 Figure 14 case
+    >>> round(peak_error(0.62e-3, 1.23e-3, 2.26e-3) / ARCSEC, 3)   # Renishaw, Interferometric calibration of rotary axes Figure 14 case
     0.346
     """
     return float(np.max(np.abs(misalignment_terms(_TURN, alpha, beta, omega).total)))
@@ -201,7 +201,7 @@ def half_range(alpha: float, beta: float, omega: float) -> float:
     Returns
     -------
     float, radians
-        ``(max E − min E)/2`` of seed 000 eq. 1 over a turn.
+        ``(max E − min E)/2`` of Renishaw, Interferometric calibration of rotary axes eq. 1 over a turn.
     """
     e = misalignment_terms(_TURN, alpha, beta, omega).total
     return float(0.5 * (e.max() - e.min()))
@@ -209,7 +209,7 @@ def half_range(alpha: float, beta: float, omega: float) -> float:
 
 @dataclass(frozen=True, eq=False)
 class TradeoffTable:
-    """Expected measurement accuracy over grids of α and β (seed 000 Figure 22 style).
+    """Expected measurement accuracy over grids of α and β (Renishaw, Interferometric calibration of rotary axes Figure 22 style).
 
     Attributes
     ----------
@@ -218,7 +218,7 @@ class TradeoffTable:
     accuracy : ndarray, shape (len(beta), len(alpha)), radians
         ``base + peak|E|`` with the reflector twist ω at its tolerance.
     omega : float, radians
-        ω used (seed 000: reflector alignment within ±2.5 mrad).
+        ω used (Renishaw, Interferometric calibration of rotary axes: reflector alignment within ±2.5 mrad).
     base : float, radians
         The system's accuracy with perfect alignment (encoder, laser, error map residuals).
     """
@@ -249,7 +249,7 @@ def tradeoff_table(alphas, betas, omega: float = 2.5e-3, base: float = 0.8 * ARC
     ----------
     alphas, betas : array_like, radians
     omega : float, radians
-        Reflector twist at its worst (seed 000: set within ±2.5 mrad in manufacture).
+        Reflector twist at its worst (Renishaw, Interferometric calibration of rotary axes: set within ±2.5 mrad in manufacture).
     base : float, radians
         Accuracy of the system at perfect alignment. The default 0.8 arcsec is the excess of seed
         000's Figure 22 over equation 1 at its smallest α (0.4 mrad), where equation 1 adds only
@@ -266,7 +266,7 @@ def tradeoff_table(alphas, betas, omega: float = 2.5e-3, base: float = 0.8 * ARC
     peak (the three terms added with their phases, which is less than the sum of their amplitudes)
     plus a constant base. Figure 22 agrees within about 0.3 arcsec for α <= 2 mrad but grows
     faster with α (7.6 against 4.7 arcsec at α = 5, β = 1 mrad): its excess over equation 1 rises
-    roughly as 0.11 arcsec/mrad²·α², a contribution the seed does not list (for instance the error
+    roughly as 0.11 arcsec/mrad²·α², a contribution the paper does not list (for instance the error
     map's loss of validity and the cosine-type errors of a tilted calibrator). We do not invent
     that term; the comparison is printed in the report and checked in the tests.
     """
@@ -349,7 +349,7 @@ def figure22_model(alpha: float, beta: float, omega: float = 2.5e-3) -> float:
 
     Notes
     -----
-    Seed 000 Figure 22 tabulates the estimated accuracy over α = 0.4…5 mrad and β = 1…5 mrad.
+    Renishaw, Interferometric calibration of rotary axes Figure 22 tabulates the estimated accuracy over α = 0.4…5 mrad and β = 1…5 mrad.
     It grows faster with α than equation 1 does (7.6 against 0.8 + 3.9 arcsec at α = 5,
     β = 1 mrad), by an excess that shrinks with β, so it is not a pure α² term. The form above,
     equation 1's three amplitudes added in quadrature and scaled, fitted by least squares,
@@ -452,7 +452,7 @@ def max_alpha(accuracy: float, beta: float, omega: float = 2.5e-3,
 
     Notes
     -----
-    Bisection (60 halvings of 0.1 rad) on :func:`expected_accuracy`; the peak of seed 000 eq. 1
+    Bisection (60 halvings of 0.1 rad) on :func:`expected_accuracy`; the peak of Renishaw, Interferometric calibration of rotary axes eq. 1
     is ``α·max|α sin 2t/4 + β sin t + ω cos t|`` and the fitted model is increasing in α too.
 
     Examples

@@ -5,11 +5,11 @@
   A and B at once is *illegal*: the direction (±2 counts) cannot be known. It is reported (its
   sample indices and number), never silently dropped; the counter holds its value there.
 * Analogue sine/cosine (:func:`interpolate_sincos`): the phase within a signal period is
-  ``φ = arctan(sin/cos)`` (seed 000, "Sub-divisional errors") and whole periods are counted by
+  ``φ = arctan(sin/cos)`` (Renishaw, Interferometric calibration of rotary axes, "Sub-divisional errors") and whole periods are counted by
   unwrapping the phase from sample to sample. A jump of more than a quarter period between two
   samples is counted as a *tracking warning* (the signal was sampled too slowly to be sure).
 * Imperfect signals (:class:`SignalImperfections`, :func:`synthesize_sincos`): DC offsets, amplitude
-  mismatch, phase error from 90° and noise distort the Lissajous circle (seed 000 Figures 17-19)
+  mismatch, phase error from 90° and noise distort the Lissajous circle (Renishaw, Interferometric calibration of rotary axes Figures 17-19)
   into an ellipse and cause a sub-divisional error (SDE) that repeats every signal period.
 * The Heydemann correction (:func:`heydemann_fit`, :func:`heydemann_correct`) fits that ellipse and
   maps it back to a circle (Heydemann 1981), removing most of the SDE.
@@ -22,7 +22,7 @@ more with ``numpy.arctan2`` (scalar libm); the NumPy path stays the fallback and
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "Sub-divisional errors" and Figures 15-19.
+Renishaw, Interferometric calibration of rotary axes, "Sub-divisional errors" and Figures 15-19.
 P. L. M. Heydemann, "Determination and correction of quadrature fringe measurement errors in
 interferometers", Applied Optics 20(19), 3382-3384 (1981).
 """
@@ -105,7 +105,7 @@ def encode_quadrature(counts) -> tuple[np.ndarray, np.ndarray]:
 
     Notes
     -----
-    The Gray-code cycle of ×4 quadrature counting (issue 3; seed 002, "digital A/B quadrature" of
+    The Gray-code cycle of ×4 quadrature counting (issue 3; Renishaw, Laser scale axis referencing, "digital A/B quadrature" of
     the laser head): consecutive states differ in one signal only.
 
     Examples
@@ -235,7 +235,7 @@ def interpolate_sincos(sin, cos, initial_period: int = 0, *,
 
     Notes
     -----
-    Seed 000: "digitally calculating the phase angle, φ, by computing φ = arctan(sin/cos)" and
+    Renishaw, Interferometric calibration of rotary axes: "digitally calculating the phase angle, φ, by computing φ = arctan(sin/cos)" and
     counting the cycles for the coarse position; here the quadrant-correct ``arctan2`` is used and
     a change of phase of more than π between samples is taken as a wrap to the next period.
 
@@ -299,11 +299,11 @@ class SignalImperfections:
     Attributes
     ----------
     offset_sin, offset_cos : float, signal units
-        DC offsets (seed 000 Figure 19).
+        DC offsets (Renishaw, Interferometric calibration of rotary axes Figure 19).
     amplitude_sin, amplitude_cos : float, signal units
-        Amplitudes (seed 000 Figure 18: a mismatch makes an ellipse).
+        Amplitudes (Renishaw, Interferometric calibration of rotary axes Figure 18: a mismatch makes an ellipse).
     phase_error : float, radians
-        Departure of the phase difference from 90° (seed 000 Figure 17).
+        Departure of the phase difference from 90° (Renishaw, Interferometric calibration of rotary axes Figure 17).
     noise : float, signal units
         Standard deviation of additive white noise on each signal.
     """
@@ -343,7 +343,7 @@ def synthesize_sincos(position, imperfections: SignalImperfections = SignalImper
 
     Notes
     -----
-    The signal model of :class:`SignalImperfections` (seed 000 Figures 17-19: phase error,
+    The signal model of :class:`SignalImperfections` (Renishaw, Interferometric calibration of rotary axes Figures 17-19: phase error,
     amplitude mismatch, DC offset; Heydemann 1981 eq. 1).
     """
     p = imperfections
@@ -374,7 +374,7 @@ def interpolation_error(phase, imperfections: SignalImperfections):
 
     Notes
     -----
-    ``arctan2(sin, cos) − φ`` on the signals of :func:`synthesize_sincos` (seed 000,
+    ``arctan2(sin, cos) − φ`` on the signals of :func:`synthesize_sincos` (Renishaw, Interferometric calibration of rotary axes,
     "Sub-divisional errors": φ = arctan(sin/cos) on imperfect signals).
 
     Examples
@@ -394,7 +394,7 @@ def subdivisional_error(phase_error, phase, bins: int = 64) -> float:
     """Amplitude of the sub-divisional error: largest |mean phase error| over phase bins, radians.
 
     The phase error is averaged in ``bins`` equal bins of the true phase so that random noise
-    averages out and what remains is the error that repeats every period (the SDE of seed 000).
+    averages out and what remains is the error that repeats every period (the SDE of Renishaw, Interferometric calibration of rotary axes).
 
     Parameters
     ----------

@@ -9,7 +9,7 @@ expansion of the material:
 
 with α the linear expansion coefficient of the material (table :data:`MATERIALS`) and ``t`` the
 mean of the material sensors (:func:`mean_temperature`). :func:`normalise_dataset` applies this to
-a positioning test (seed 001: "If these temperature different from the 20 °C, necessary
+a positioning test (Yüksel et al., Position accuracy and repeatability calibration of turn tables: "If these temperature different from the 20 °C, necessary
 correction has to applied yield result to 20 °C").
 
 Examples
@@ -252,7 +252,7 @@ def normalise_length(length, temperature, alpha):
     Notes
     -----
     The inverse of :func:`length_at`, referring a length to the ISO 1 reference temperature
-    (ISO 230-2:2014 asks for results at 20 °C; seed 001, "necessary correction has to applied").
+    (ISO 230-2:2014 asks for results at 20 °C; Yüksel et al., Position accuracy and repeatability calibration of turn tables, "necessary correction has to applied").
     """
     return _out(np.asarray(length, dtype=float)
                 / (1.0 + np.asarray(alpha, dtype=float)

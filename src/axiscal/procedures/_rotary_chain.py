@@ -4,7 +4,7 @@
 :func:`axiscal.procedures.rotary_calibration.simulate_rotary_calibration`: the set-up readings,
 the datum, the optics self-calibration and the capture. Every reading is computed from the
 physical state (axis angle, calibrator shaft angle, reflector pose, beam directions); no error
-formula of the seed is added on top, so equation 1 and the read-head cancellation are results.
+formula of the paper is added on top, so equation 1 and the read-head cancellation are results.
 
 The rig drives the simulators' vectorised methods (``path_difference``, ``check_signal``,
 ``read``; ``move``, ``read``), not the one-reading interfaces a real driver implements
@@ -95,10 +95,10 @@ class Rig:
         """Raise SignalLossError if the reflector leaves the laser's limit during any move.
 
         Every move of the plan (from the datum at 0°, overrun and approach moves included) is
-        followed in steps of at most :data:`MOVE_CHECK_STEP`, not only its end: seed 000 "only
+        followed in steps of at most :data:`MOVE_CHECK_STEP`, not only its end: Renishaw, Interferometric calibration of rotary axes "only
         suitable ... over a range of about ±10°" holds all along the path, and a real laser
         loses the whole run when the beams are lost mid-move. With counter-rotation the
-        calibrator is driven opposite to the axis during the move (seed 000: "as the axis under
+        calibrator is driven opposite to the axis during the move (Renishaw, Interferometric calibration of rotary axes: "as the axis under
         test is rotated ... the XR20 is driven in the opposite direction"). Commanded angles
         are used: the axis's errors (arcseconds) do not matter against a 10° limit.
         """

@@ -1,6 +1,6 @@
-"""Measuring the five motion errors of a rotary axis with the system of seed 003.
+"""Measuring the five motion errors of a rotary axis with the system of Optics Express 2018, Five-DOF motion errors of a rotary axis.
 
-Three experiments of seed 003 section 3 on the simulation, and the crosstalk study it leaves open:
+Three experiments of Optics Express 2018, Five-DOF motion errors of a rotary axis section 3 on the simulation, and the crosstalk study it leaves open:
 
 * :func:`indexing_test`: the target axis (an indexing table) steps through 0-360° (30° steps),
   the reference rotary axis counter-rotates by the same nominal angle and the five errors are
@@ -67,7 +67,7 @@ class BeamDrift:
     """Angular drift of the collimated beam over time (Δβ towards Y, Δγ towards Z), radians.
 
     ``Δβ(t) = rate[0]·t + wander·sin(2πt/period)``, ``Δγ(t) = rate[1]·t + wander·cos(2πt/period) − wander``
-    (slow mechanical deformation and air, seed 003 section 2.4); zero at t = 0.
+    (slow mechanical deformation and air, Optics Express 2018, Five-DOF motion errors of a rotary axis section 2.4); zero at t = 0.
     """
 
     rate: tuple[float, float] = (0.0, 0.0)
@@ -81,7 +81,7 @@ class BeamDrift:
                 self.rate[1] * t + self.wander * (np.cos(w) - 1.0))
 
 
-#: A drift of the seed's kind: 1 µrad/h plus 0.5 µrad wander (20 min), visible uncompensated.
+#: A drift of the paper's kind: 1 µrad/h plus 0.5 µrad wander (20 min), visible uncompensated.
 TYPICAL_DRIFT = BeamDrift(rate=(1e-6 / 3600, -0.7e-6 / 3600), wander=0.5e-6)
 
 
@@ -127,7 +127,7 @@ def indexing_test(axis: RotaryAxis, system: FiveDofSystem, rng: np.random.Genera
     system : FiveDofSystem
     rng : numpy.random.Generator
     step_deg : float, degrees
-        Indexing step; 360 must be a whole multiple (30° for the seed's HSD-200RT).
+        Indexing step; 360 must be a whole multiple (30° for the paper's HSD-200RT).
     reference : ReferenceAxis
     drift : BeamDrift
     dwell : float, seconds
@@ -161,7 +161,7 @@ def indexing_test(axis: RotaryAxis, system: FiveDofSystem, rng: np.random.Genera
 def stability_test(system: FiveDofSystem, rng: np.random.Generator, duration: float = 3600.0,
                    interval: float = 10.0, drift: BeamDrift = TYPICAL_DRIFT,
                    drift_window: int = 7) -> MotionRun:
-    """The system standing still, read every ``interval`` s for ``duration`` s (seed 003 §3.2).
+    """The system standing still, read every ``interval`` s for ``duration`` s (Optics Express 2018, Five-DOF motion errors of a rotary axis §3.2).
 
     The sensitive unit does not move (truth zero): what the measured errors show is the
     instrument's noise and the residue of the drift compensation. ``drift_window`` = 7 readings
@@ -178,7 +178,7 @@ def stability_test(system: FiveDofSystem, rng: np.random.Generator, duration: fl
 
 def repeatability_test(axis: RotaryAxis, system: FiveDofSystem, rng: np.random.Generator,
                        runs: int = 3, pause: float = 600.0, **kwargs) -> tuple[MotionRun, ...]:
-    """The indexing test ``runs`` times, ``pause`` s apart (seed 003 §3.3: three runs).
+    """The indexing test ``runs`` times, ``pause`` s apart (Optics Express 2018, Five-DOF motion errors of a rotary axis §3.3: three runs).
 
     Extra keyword arguments go to :func:`indexing_test`.
     """

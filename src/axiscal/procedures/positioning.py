@@ -16,14 +16,14 @@ first and last targets at the ends of the travel. The draw comes from ``seed``, 
 reproducible.
 
 Rotary axes: at least 3, 5 or 8 targets for a travel up to 90°, up to 180° and beyond (ISO 230-2
-Table 1, seed 001 Table 1), and the main positions 0°, 90°, 180°, 270° wherever the travel has them.
-Over a full turn 360° is a target of its own (seed 001 Table 3 lists 0° ... 315° and 0°/360°).
+Table 1, Yüksel et al., Position accuracy and repeatability calibration of turn tables Table 1), and the main positions 0°, 90°, 180°, 270° wherever the travel has them.
+Over a full turn 360° is a target of its own (Yüksel et al., Position accuracy and repeatability calibration of turn tables Table 3 lists 0° ... 315° and 0°/360°).
 
 Cycles (ISO 230-2:2014 §5.3 and its figures)
 --------------------------------------------
 ``linear``: each run moves through all targets in the positive direction, then back through all in
 the negative direction; the direction is reversed beyond the last target by the overrun, and the
-first target of each run is approached from ``overrun`` below it (seed 001 used 5° on a turntable).
+first target of each run is approached from ``overrun`` below it (Yüksel et al., Position accuracy and repeatability calibration of turn tables used 5° on a turntable).
 ``pilgrim``: each target is approached ``runs`` times from below and from above before the axis
 moves to the next target (the pilgrim-step cycle), each approach starting from ``overrun`` away.
 """
@@ -292,7 +292,7 @@ def plan_rotary(
     """A plan for a rotary axis by ISO 230-2:2014 Table 1 (all angles in degrees).
 
     Targets are evenly spaced by ``step`` (or split the travel into ``n_targets - 1`` intervals;
-    default 45°, as seed 001), and the main positions 0°, 90°, 180°, 270° (and 360°) are added
+    default 45°, as Yüksel et al., Position accuracy and repeatability calibration of turn tables), and the main positions 0°, 90°, 180°, 270° (and 360°) are added
     wherever the travel includes them.
 
     Examples
@@ -355,7 +355,7 @@ def simulate_positioning_test(
     deviation_unit : str, optional
         ``um`` (linear) or ``arcsec`` (rotary) by default.
     feed : float, optional
-        Speed in plan units per second (default 20 mm/s or 10 deg/s, seed 001's table speed).
+        Speed in plan units per second (default 20 mm/s or 10 deg/s, Yüksel et al., Position accuracy and repeatability calibration of turn tables's table speed).
     measurement_sigma : float
         Standard deviation of the instrument's reading noise, in ``deviation_unit``.
     metadata : Metadata, optional

@@ -1,4 +1,4 @@
-"""Referencing (homing) of an axis fed by a compensated laser scale (seed 002, Figure 4).
+"""Referencing (homing) of an axis fed by a compensated laser scale (Renishaw, Laser scale axis referencing, Figure 4).
 
 :func:`simulate_referencing` runs the whole chain on one axis, sample by sample and vectorised:
 

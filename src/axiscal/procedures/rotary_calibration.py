@@ -1,6 +1,6 @@
 """Rotary axis calibration with an angular interferometer and a counter-rotating calibrator.
 
-The procedure of seed 000, run on simulated instruments. A run on real instruments would take
+The procedure of Renishaw, Interferometric calibration of rotary axes, run on simulated instruments. A run on real instruments would take
 the same steps through the interfaces :class:`~axiscal.instruments.laser.AngularLaser` and
 :class:`~axiscal.instruments.rotary_calibrator.RotaryCalibrator`; the simulated chain
 (:mod:`axiscal.procedures._rotary_chain`) instead calls the simulators' vectorised physics
@@ -9,7 +9,7 @@ directly, for speed (a test checks the protocol adapters read the same):
 1. **Set-up checks** (:func:`setup_checks`): the dial-gauge TIR on the calibrator's mounting ring
    gives the tilt of the mounting face, ``TIR/(2r)``; the offset of the beam returned by the
    reflector's rear target at the laser's shutter gives the laser's misalignment, ``d/(2L)``;
-   the seed's thresholds (TIR < 0.04 mm at 50 mm, return within 1 mm at 1 m, axes coincident
+   the paper's thresholds (TIR < 0.04 mm at 50 mm, return within 1 mm at 1 m, axes coincident
    within ±0.5 mm) are checked and the bounds on α and β are carried into the error budget.
 2. **Optics self-calibration** at 0°, +5°, −5° of the calibrator (K and the reflector's
    misalignment at the datum), then the calibrator turns the reflector square to the beams and
@@ -17,13 +17,13 @@ directly, for speed (a test checks the protocol adapters read the same):
 3. **Capture**: the ISO 230-2 plan (:class:`~axiscal.procedures.positioning.TestPlan`: targets,
    runs, linear or pilgrim cycle, overrun, dwell) is executed; at every step the calibrator
    counter-rotates to minus the target, and at each target the deviation is
-   ``(laser reading + calibrator angle) − target`` (seed 000: the target compared with "the
+   ``(laser reading + calibrator angle) − target`` (Renishaw, Interferometric calibration of rotary axes: the target compared with "the
    arithmetic sum of the angular readings from the laser interferometer and the XR20"), with the
    calibrator's angle expressed in the sense of the axis under test.
 4. The deviations form a :class:`~axiscal.datasets.PositioningDataset` (deg / arcsec) that
    :func:`axiscal.standards.iso230_2.evaluate` evaluates; the simulation also returns the truth.
 
-Sign: issue 4 words the capture as "the target minus the sum"; ISO 230-2 (seed 001 eq. 1)
+Sign: issue 4 words the capture as "the target minus the sum"; ISO 230-2 (Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 1)
 defines the deviation as actual minus target, which is what this module returns (the truth tests
 inject a known error and recover it with its sign).
 
@@ -33,7 +33,7 @@ the datum.
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt (whole); seed 001_9e3eee70ada7914d.txt §3 (targets every 45°, five
+Renishaw, Interferometric calibration of rotary axes (whole); Yüksel et al., Position accuracy and repeatability calibration of turn tables §3 (targets every 45°, five
 runs each way, 5° overrun, dwell, mounting tolerances).
 """
 
@@ -64,26 +64,26 @@ __all__ = [
     "TARGET_ALIGNMENT", "REFLECTOR_TWIST_TOLERANCE", "CALIBRATION_STEP",
 ]
 
-#: Seed 000: "the TIR should be < 0.04mm at 50mm radius".
+#: Renishaw, Interferometric calibration of rotary axes: "the TIR should be < 0.04mm at 50mm radius".
 TIR_LIMIT = (0.04e-3, 50e-3)
-#: Seed 000: "if the laser is placed 1 metre away ... aligned to within 1mm on the laser shutter".
+#: Renishaw, Interferometric calibration of rotary axes: "if the laser is placed 1 metre away ... aligned to within 1mm on the laser shutter".
 RETURN_BEAM_LIMIT = (1e-3, 1.0)
-#: Seed 000: "aligned so that the two axes of rotation are coincident within ±0.5 mm".
+#: Renishaw, Interferometric calibration of rotary axes: "aligned so that the two axes of rotation are coincident within ±0.5 mm".
 CENTRING_LIMIT = 0.5e-3
-#: Seed 000: the calibrator's axis "is perpendicular to its mounting face to within ±0.025°".
+#: Renishaw, Interferometric calibration of rotary axes: the calibrator's axis "is perpendicular to its mounting face to within ±0.025°".
 CALIBRATOR_PERPENDICULARITY = 0.025 * DEG
-#: Seed 000: the rear target "is aligned to the XR20's axis of rotation to within ±0.33 milliradians".
+#: Renishaw, Interferometric calibration of rotary axes: the rear target "is aligned to the XR20's axis of rotation to within ±0.33 milliradians".
 TARGET_ALIGNMENT = 0.33e-3
-#: Seed 000: retro-reflectors and housing "set during XR20 manufacture to be within ±2.5 milliradians".
+#: Renishaw, Interferometric calibration of rotary axes: retro-reflectors and housing "set during XR20 manufacture to be within ±2.5 milliradians".
 REFLECTOR_TWIST_TOLERANCE = 2.5e-3
-#: Seed 000: the optics calibration compares the laser with the calibrator "at 0°, +5° and -5°".
+#: Renishaw, Interferometric calibration of rotary axes: the optics calibration compares the laser with the calibrator "at 0°, +5° and -5°".
 CALIBRATION_STEP = 5.0 * DEG
-#: Seed 000: sub-divisional error "kept below ±0.25 arcseconds".
+#: Renishaw, Interferometric calibration of rotary axes: sub-divisional error "kept below ±0.25 arcseconds".
 SDE_LIMIT = 0.25 * ARCSEC
 #: The document the set-up thresholds come from, as warnings name it.
 _DOC = "Renishaw, Interferometric calibration of rotary axes"
 
-#: Residual of the graduation error after the factory map (our assumption; the seed gives none).
+#: Residual of the graduation error after the factory map (our assumption; the paper gives none).
 MAP_RESIDUAL = 0.2 * ARCSEC
 
 
@@ -167,7 +167,7 @@ class RotarySetup:
 
 @dataclass(frozen=True)
 class OffAxisSetup:
-    """An off-axis set-up (seed 000 Figures 25-27), radians and metres.
+    """An off-axis set-up (Renishaw, Interferometric calibration of rotary axes Figures 25-27), radians and metres.
 
     Attributes
     ----------
@@ -209,7 +209,7 @@ class OffAxisSetup:
 
 @dataclass(frozen=True)
 class SetupCheck:
-    """Set-up readings, the misalignment bounds they imply, and the seed's thresholds.
+    """Set-up readings, the misalignment bounds they imply, and the paper's thresholds.
 
     Attributes
     ----------
@@ -244,7 +244,7 @@ class SetupCheck:
 
     @property
     def passed(self) -> bool:
-        """True when every reading is within the seed's recommendation."""
+        """True when every reading is within the paper's recommendation."""
         return not self.warnings
 
     def as_rows(self) -> list[tuple[str, str]]:
@@ -267,7 +267,7 @@ class SetupCheck:
 
 def setup_checks(tir: float, return_offset: float, centring: float, tir_radius: float = 50e-3,
                  laser_distance: float = 1.0) -> SetupCheck:
-    """Translate the set-up readings into bounds on α and β and check the seed's thresholds.
+    """Translate the set-up readings into bounds on α and β and check the paper's thresholds.
 
     Parameters
     ----------
@@ -473,7 +473,7 @@ def simulate_rotary_calibration(axis: RotaryAxis, plan: TestPlan, setup: RotaryS
     calibrator : SimulatedRotaryCalibrator
     rng : numpy.random.Generator
     speed : float, deg/s
-        Speed of the axis between targets (seed 001: 10°/s).
+        Speed of the axis between targets (Yüksel et al., Position accuracy and repeatability calibration of turn tables: 10°/s).
     offaxis : OffAxisSetup, optional
     metadata : Metadata, optional
 

@@ -2,7 +2,7 @@
 
 When the calibrator cannot sit on the axis under test it is mounted on a bracket at a radius R;
 as the axis turns, the reflector moves on a circle and a linear axis carries the interferometer
-sideways to keep the beams on the reflector (seed 000, Figures 25-27). This module:
+sideways to keep the beams on the reflector (Renishaw, Interferometric calibration of rotary axes, Figures 25-27). This module:
 
 * fits the circle from a **three-point alignment** (the linear-axis position that centres the beam
   at three rotary angles): ``y(θ) = y₀ + a·sin θ + b·cos θ``, so ``R = √(a² + b²)``;
@@ -17,12 +17,12 @@ as −ε. In the separate yaw measurement the moving optic may be the interferom
 the reflector (reading +ε), and the laser's direction setting may be reversed (×−1). The sign with
 which the separately measured profile must be *subtracted* follows from those two records; a user
 who states a sign that contradicts them gets a :class:`~axiscal.errors.SignConventionError`,
-because seed 000 warns that with the wrong sign "the subtraction process will double them".
+because Renishaw, Interferometric calibration of rotary axes warns that with the wrong sign "the subtraction process will double them".
 The data alone cannot reveal the sign (the rotary error is unknown), so the records must carry it.
 
 References
 ----------
-Seed 000_195fa2f74e2dde5a.txt, "Off axis rotary calibration" and its "Error analysis".
+Renishaw, Interferometric calibration of rotary axes, "Off axis rotary calibration" and its "Error analysis".
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ __all__ = [
     "OFFAXIS_EXTRA_ERROR",
 ]
 
-#: Extra measurement error to add to the budget off axis (seed 000: "an additional measurement
+#: Extra measurement error to add to the budget off axis (Renishaw, Interferometric calibration of rotary axes: "an additional measurement
 #: error of ±0.5 arcseconds"), radians.
 OFFAXIS_EXTRA_ERROR = 0.5 * ARCSEC
 

@@ -1,13 +1,13 @@
 """Squareness test methods as sequences of commanded positions on a simulated XY plane.
 
-Each test (seed 004 "Simulation modes" a-e) is a small frozen description: where it is (its
+Each test (Chapman, Calibration of machine squareness "Simulation modes" a-e) is a small frozen description: where it is (its
 centre, metres, in the machine's centred coordinates), how large, and how it is oriented. A
 ``measure_*`` function drives an :class:`~axiscal.machines.xy_plane.XYPlaneMachine` through the
 test's commanded positions and returns what the instrument reads (a procedure never evaluates);
 ``evaluate_*`` turns those readings into a squareness with the ``standards`` modules, and
 :func:`run_test` does both.
 
-Geometry of the bi-axial straightness tests (seed 004 Figures 3-8, 14), orientations in degrees
+Geometry of the bi-axial straightness tests (Chapman, Calibration of machine squareness Figures 3-8, 14), orientations in degrees
 clockwise, the test square spanning ``centre ± size/2``:
 
 ======  ============================================  ==============================================
@@ -24,9 +24,9 @@ T 270   middle                                        left edge
 \\+      middle                                        middle (straightedge on a 90° indexer)
 ======  ============================================  ==============================================
 
-Seed 004 names the orientations but shows them only in its figures: "T" 0° is the T with its bar
-at the top and "T" 180° the inverted T (the seed's set-up for a vertical axis), 90° turns the
-equipment clockwise (the seed's Figure 14 note); "L" 0° is the letter L. The seed's remark that
+Chapman, Calibration of machine squareness names the orientations but shows them only in its figures: "T" 0° is the T with its bar
+at the top and "T" 180° the inverted T (the paper's set-up for a vertical axis), 90° turns the
+equipment clockwise (the paper's Figure 14 note); "L" 0° is the letter L. The paper's remark that
 with a vertical axis the "L" orientations 0° and 90° are the easy ones suggests that its "L" 90°
 may be the mirror image with the corner at the bottom right (here "L" 270°). Either way the four
 results are the same set; only their labels could differ.
@@ -35,16 +35,16 @@ The straightness readings are the deviations perpendicular to each reference: δ
 trajectory, δx along the Y trajectory (plus the tilt of a reference square with an angle error).
 A ballbar test reads ``|P(φ) - P(centre)| - R`` with P the actual positions; a diagonal test
 reads the displacement along each diagonal from its start, in both directions, averaged to
-remove backlash (seed 004 Method 5).
+remove backlash (Chapman, Calibration of machine squareness Method 5).
 
-Local tests (seed 004 Figures 19-23) are at five locations: the centre of the plane and the
-centres of its four quadrants, each over a quarter of each axis (200 mm on 800 mm). The seed
+Local tests (Chapman, Calibration of machine squareness Figures 19-23) are at five locations: the centre of the plane and the
+centres of its four quadrants, each over a quarter of each axis (200 mm on 800 mm). The paper
 shows the locations only in its figures; this choice is documented here and in
 :func:`local_locations`.
 
 References
 ----------
-Seed 004, "Simulation modes", Figures 13-26, Appendix I (last paragraph).
+Chapman, Calibration of machine squareness, "Simulation modes", Figures 13-26, Appendix I (last paragraph).
 """
 
 from __future__ import annotations
@@ -87,7 +87,7 @@ CONFIGS = ("L", "T", "+")
 
 @dataclass(frozen=True)
 class BiaxialTest:
-    """A bi-axial straightness test in "L", "T" or "+" configuration (seed 004 Methods 1-3).
+    """A bi-axial straightness test in "L", "T" or "+" configuration (Chapman, Calibration of machine squareness Methods 1-3).
 
     Attributes
     ----------
@@ -124,7 +124,7 @@ class BiaxialTest:
 
 @dataclass(frozen=True)
 class DiagonalTest:
-    """A laser diagonal test over a rectangle (seed 004 Method 5, ISO 230-6)."""
+    """A laser diagonal test over a rectangle (Chapman, Calibration of machine squareness Method 5, ISO 230-6)."""
 
     centre: tuple[float, float] = (0.0, 0.0)
     size: tuple[float, float] = (0.8, 0.8)
@@ -138,7 +138,7 @@ class DiagonalTest:
 
 @dataclass(frozen=True)
 class BallbarTest:
-    """A circular test with a telescoping ballbar (seed 004 Method 4, ISO 230-4).
+    """A circular test with a telescoping ballbar (Chapman, Calibration of machine squareness Method 4, ISO 230-4).
 
     Attributes
     ----------
@@ -195,7 +195,7 @@ class DiagonalReadings:
 
 @dataclass(frozen=True)
 class MethodResult:
-    """One method's squareness at one place, as in seed 004's result boxes.
+    """One method's squareness at one place, as in Chapman, Calibration of machine squareness's result boxes.
 
     Attributes
     ----------
@@ -239,7 +239,7 @@ def biaxial_lines(test: BiaxialTest) -> tuple[float, float]:
 
 def measure_biaxial(machine: XYPlaneMachine, test: BiaxialTest, *,
                     rng: np.random.Generator | None = None, noise: float = 0.0) -> BiaxialReadings:
-    """Drive the machine along both trajectories and read the straightness (seed 004 d, e, c).
+    """Drive the machine along both trajectories and read the straightness (Chapman, Calibration of machine squareness d, e, c).
 
     Parameters
     ----------
@@ -279,7 +279,7 @@ def evaluate_biaxial(readings: BiaxialReadings, *, square_error: float = 0.0,
 def measure_diagonal(machine: XYPlaneMachine, test: DiagonalTest, *,
                      rng: np.random.Generator | None = None, noise: float = 0.0
                      ) -> DiagonalReadings:
-    """Laser displacement along both diagonals, each run both ways and averaged (seed 004 b)."""
+    """Laser displacement along both diagonals, each run both ways and averaged (Chapman, Calibration of machine squareness b)."""
     (xc, yc), (sx, sy) = test.centre, test.size
     d0 = float(np.hypot(sx, sy))
     s = np.linspace(0.0, d0, test.n_points)
@@ -298,7 +298,7 @@ def measure_diagonal(machine: XYPlaneMachine, test: DiagonalTest, *,
 
 
 def evaluate_diagonal(readings: DiagonalReadings) -> DiagonalResult:
-    """Squareness from the end errors of the two diagonals (ISO 230-6, seed 004's choice)."""
+    """Squareness from the end errors of the two diagonals (ISO 230-6, Chapman, Calibration of machine squareness's choice)."""
     sx, sy = readings.test.size
     return diagonal_squareness(sx, sy, float(readings.errors_d1[-1]),
                                float(readings.errors_d2[-1]))
@@ -311,7 +311,7 @@ _APPROACH = 1e-7
 def measure_ballbar(machine: XYPlaneMachine, test: BallbarTest, *,
                     rng: np.random.Generator | None = None, noise: float = 0.0
                     ) -> tuple[CircularRun, CircularRun]:
-    """Ballbar readings, counter-clockwise then clockwise (seed 004 a, ISO 230-4).
+    """Ballbar readings, counter-clockwise then clockwise (Chapman, Calibration of machine squareness a, ISO 230-4).
 
     The centre pivot sits where the machine puts the tool when commanded to the centre. Each
     axis carries the backlash of the side it last moved on: the velocity is taken a hair before
@@ -368,7 +368,7 @@ def local_locations(machine: XYPlaneMachine) -> list[tuple[float, float]]:
 
 def ballbar_row(machine: XYPlaneMachine, radius: float, count: int, *,
                 arrangement: str = "adjacent") -> list[BallbarTest]:
-    """Several ballbar tests in a line along the longer axis (seed 004 Figures 24-26).
+    """Several ballbar tests in a line along the longer axis (Chapman, Calibration of machine squareness Figures 24-26).
 
     Parameters
     ----------

@@ -1,19 +1,19 @@
-"""Every squareness method on one simulated machine, globally or locally (seed 004 Figures 14-26).
+"""Every squareness method on one simulated machine, globally or locally (Chapman, Calibration of machine squareness Figures 14-26).
 
 :func:`compare_methods` runs the ballbar, the laser diagonal, the "+" test and the "T" and "L"
-tests in their four orientations, and adds the averages the seed recommends: "L" results from
+tests in their four orientations, and adds the averages the paper recommends: "L" results from
 opposite corners (0° with 180°, 90° with 270°) and "T" results from opposite sides, and for a
 plane whose axes differ in length the average of several ballbar tests along the long axis,
-adjacent and evenly overlapping (seed 004 Figures 24-26).
+adjacent and evenly overlapping (Chapman, Calibration of machine squareness Figures 24-26).
 
 Global scope: each test over the full travel of both axes, centred; the ballbar radius is half
 the shorter axis. Local scope: the five locations of
 :func:`~axiscal.procedures.squareness.local_locations`, each test over a quarter of each axis
-(200 mm on the seed's 800 mm), ballbar radius an eighth of the shorter axis.
+(200 mm on the paper's 800 mm), ballbar radius an eighth of the shorter axis.
 
 References
 ----------
-Seed 004, "Global squareness simulation results", "Local squareness simulation results",
+Chapman, Calibration of machine squareness, "Global squareness simulation results", "Local squareness simulation results",
 "Testing global squareness errors on machines with unequal aspect ratios".
 """
 
@@ -37,7 +37,7 @@ from axiscal.procedures.squareness import (
 
 __all__ = ["MethodComparison", "compare_methods", "tests_at", "OPPOSITE_PAIRS"]
 
-#: Pairs whose average the seed recommends: opposite corners ("L") and opposite sides ("T").
+#: Pairs whose average the paper recommends: opposite corners ("L") and opposite sides ("T").
 OPPOSITE_PAIRS = (("L 0", "L 180"), ("L 90", "L 270"), ("T 0", "T 180"), ("T 90", "T 270"))
 ORIENTATIONS = (0, 90, 180, 270)
 
@@ -122,7 +122,7 @@ def tests_at(centre: tuple[float, float], size: tuple[float, float], radius: flo
 
 def compare_methods(machine: XYPlaneMachine, scope: str = "global",
                     rng: np.random.Generator | None = None, noise: float = 0.0) -> MethodComparison:
-    """Run every method on the machine (seed 004 Figures 14-26) and the recommended averages.
+    """Run every method on the machine (Chapman, Calibration of machine squareness Figures 14-26) and the recommended averages.
 
     Parameters
     ----------

@@ -1,7 +1,7 @@
-"""Referencing of a twin axis (gantry) with compensated laser feedback (seed 002).
+"""Referencing of a twin axis (gantry) with compensated laser feedback (Renishaw, Laser scale axis referencing).
 
 Two linked axes, X1 and X2, each with its own laser scale, compensator and reference switch. The
-sequence of the seed:
+sequence of the paper:
 
 1. X1 is master and homes; X2 tracks X1's movement *as the controller sees it*. During X1's
    stage 2 the controller sees 256 + v1 counts while X1 moves 256, so X2 moves v1 counts more
@@ -18,7 +18,7 @@ controller count on the commanded value. The skew the controller sees before syn
     p1 - p2 = s0 + (switch_2 - switch_1) + d (v2 - v1)
 
 (s0 the real skew X1 - X2 before homing, d the homing direction): the homing adds d (v2 - v1),
-never more than ±(N - 1) counts, the seed's ±256 for N = 256. In length that is just under one
+never more than ±(N - 1) counts, the paper's ±256 for N = 256. In length that is just under one
 signal period whatever N: (N − 1)·period/N (255 × 78.125 nm = 19.92 µm, 127 × 156.25 nm =
 19.84 µm at 20 µm); fewer counts per period reduce the skew in counts, not in micrometres. A
 compensator rephases at the first hit of its own switch, whether its axis is master or slave at

@@ -35,7 +35,7 @@ def magnification(machine, target: float = 0.04) -> float:
 
 
 def comparison_figure(machine, comparison):
-    """Seed 004 Figure 13-26 style: one panel per method, distorted plane, paths, results."""
+    """Chapman, Calibration of machine squareness Figure 13-26 style: one panel per method, distorted plane, paths, results."""
     plt = _pyplot()
     mag = magnification(machine)
     aspect = machine.length_y / machine.length_x
@@ -250,7 +250,7 @@ def _draw_test(ax, machine, r, mag, first: bool) -> None:
                                    ((xc + sx / 2, yc - sy / 2), (xc - sx / 2, yc + sy / 2))):
             s = np.linspace(0, 1, 41)
             ax.plot(*_warp(machine, xa + s * (xb - xa), ya + s * (yb - ya), mag), **red)
-    elif first:  # only one path of the four orientations, as in the seed's figures
+    elif first:  # only one path of the four orientations, as in the paper's figures
         cfg, orient = (r.method.split() + ["0"])[:2]
         y_line, x_line = biaxial_lines(BiaxialTest(cfg, int(orient), r.centre, r.size))
         xs = np.linspace(xc - sx / 2, xc + sx / 2, 41)

@@ -5,7 +5,7 @@ by linear least squares on a model of the radial deviation ``Δr(φ)`` (φ count
 first axis, ``s = +1`` CCW, ``-1`` CW, ``v`` the feed, ``R`` the radius). Each term's first-order
 effect on ``Δr = δx cos φ + δy sin φ`` (Renishaw, Calibration of machine squareness, Method 4,
 "isolate the squareness error from ... backlash, servo, scale mismatch, cyclic, straightness
-errors"; seed 004):
+errors"; Chapman, Calibration of machine squareness):
 
 * centre and radius: ``1, cos φ, sin φ`` (and ``±`` half of them: a shift between the runs);
 * scale mismatch ``δx = e_x x, δy = e_y y``: ``(R/2)(e_x - e_y) cos 2φ``;
@@ -33,7 +33,7 @@ is ``s v (τ_x - τ_y) sin φ cos φ``, which changes sign with the direction (s
 References
 ----------
 ISO 230-4:2005 §3 and Annex A (interpretation of circular test plots). Renishaw (M.A.V. Chapman),
-Calibration of machine squareness, Method 4 (seed 004).
+Calibration of machine squareness, Method 4 (Chapman, Calibration of machine squareness).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """ISO 230-1:2012 — reference straight lines, straightness, and squareness between two linear axes.
 
-Reference straight lines (ISO 230-1:2012 §3.4.8, seed 004 "Squareness ... definitions" a-c):
+Reference straight lines (ISO 230-1:2012 §3.4.8, Chapman, Calibration of machine squareness "Squareness ... definitions" a-c):
 
 * :func:`least_squares_line` — minimises the sum of squared deviations from the line.
 * :func:`end_point_line` — joins the first and the last reading.
@@ -13,7 +13,7 @@ Reference straight lines (ISO 230-1:2012 §3.4.8, seed 004 "Squareness ... defin
 
 Straightness deviation (§3.4.9) is the band width about the chosen line, :func:`straightness`.
 
-Squareness (§3.6.7, seed 004 Figure 2) is the difference of the inclinations of the reference
+Squareness (§3.6.7, Chapman, Calibration of machine squareness Figure 2) is the difference of the inclinations of the reference
 lines of two trajectories, :func:`squareness_from_trajectories`. A trajectory of the first axis
 records deviations along the second axis and vice versa, both in the machine's positive axis
 directions. With ``a`` the slope of the first trajectory (its deviation along the second axis per
@@ -22,23 +22,23 @@ the angle between the positive directions of the two trajectories is ``90° - (a
 
 Sign conventions (both always available, see :class:`Squareness`):
 
-* *seed 004 / Renishaw*: positive when the angle between the positive directions of the two
+* *Chapman, Calibration of machine squareness / Renishaw*: positive when the angle between the positive directions of the two
   axes exceeds 90°: ``excess = -(a + b)``.
 * *ISO 230-1 datum / referred axis*: the rotation of the referred axis relative to the datum axis
   by the right-hand rule about the third axis, stated together with the note whether the angle
-  is larger or smaller than 90° (seed 004 Note 1). For X datum / Y referred it equals the seed's
+  is larger or smaller than 90° (Chapman, Calibration of machine squareness Note 1). For X datum / Y referred it equals the paper's
   value, for Y datum / X referred it is its negative; for planes taken against the cyclic order
   X→Y→Z→X (for example datum X, referred Z) the sign flips again.
 
 Errors of the reference square itself: :func:`correct_reference_angle` adds the angle error of an
-optical square (the *prism error*, seed 004 Method 3) or a mechanical square, and :func:`reversal`
-removes an unknown square error from two measurements with the square reversed (seed 004 Note 2).
+optical square (the *prism error*, Chapman, Calibration of machine squareness Method 3) or a mechanical square, and :func:`reversal`
+removes an unknown square error from two measurements with the square reversed (Chapman, Calibration of machine squareness Note 2).
 
 References
 ----------
 ISO 230-1:2012, Test code for machine tools — Part 1: Geometric accuracy of machines operating
 under no-load or quasi-static conditions, §3.4.8, §3.4.9, §3.6.7, §10.3.2.
-Seed 004: M.A.V. Chapman, "Calibration of machine squareness", Figures 1 and 2, Notes 1-3.
+Chapman, Calibration of machine squareness: M.A.V. Chapman, "Calibration of machine squareness", Figures 1 and 2, Notes 1-3.
 """
 
 from __future__ import annotations
@@ -135,7 +135,7 @@ class Squareness:
     Attributes
     ----------
     excess : float, rad
-        Angle between the positive directions of ``axes[0]`` and ``axes[1]`` minus 90° (the seed
+        Angle between the positive directions of ``axes[0]`` and ``axes[1]`` minus 90° (the paper
         004 / Renishaw value: positive when the angle exceeds 90°).
     axes : tuple of str
         The two axes, for example ``("X", "Y")``.
@@ -173,12 +173,12 @@ class Squareness:
 
     @property
     def um_per_m(self) -> float:
-        """Seed 004 convention, µm/m (positive when the angle exceeds 90°)."""
+        """Chapman, Calibration of machine squareness convention, µm/m (positive when the angle exceeds 90°)."""
         return self.excess * 1e6
 
     @property
     def arcsec(self) -> float:
-        """Seed 004 convention, arcseconds."""
+        """Chapman, Calibration of machine squareness convention, arcseconds."""
         return self.excess / ARCSEC
 
     @property
@@ -292,7 +292,7 @@ def reference_line(positions, deviations, method: Method = "least_squares") -> R
 
 
 def least_squares_line(positions, deviations) -> ReferenceLine:
-    """Least-squares reference straight line (ISO 230-1 §3.4.8, seed 004 Figure 1).
+    """Least-squares reference straight line (ISO 230-1 §3.4.8, Chapman, Calibration of machine squareness Figure 1).
 
     Parameters
     ----------
@@ -336,7 +336,7 @@ def end_point_line(positions, deviations) -> ReferenceLine:
 
     Notes
     -----
-    ISO 230-1 §3.4.8 (seed 004, reference line (b)): the line joining the readings at the
+    ISO 230-1 §3.4.8 (Chapman, Calibration of machine squareness, reference line (b)): the line joining the readings at the
     smallest and the largest position.
 
     Examples
@@ -447,7 +447,7 @@ def squareness_from_trajectories(
     axes : tuple of str
         Names of the two axes.
     method : {"least_squares", "end_point", "minimum_zone"}
-        Reference line for both trajectories (seed 004 advises the same method for both).
+        Reference line for both trajectories (Chapman, Calibration of machine squareness advises the same method for both).
     datum : str
         Datum axis of the ISO 230-1 value (default the first axis).
     reference_excess : float, rad
@@ -484,7 +484,7 @@ def orientation_sign(orientation: int) -> int:
 
     Turning the square by 90° makes its arms point along (+first, -second) or (-first, +second),
     so the angle between the references of the + directions becomes 90° − ε instead of 90° + ε;
-    turning by 180° keeps it (seed 004 Method 3 and Figure 14).
+    turning by 180° keeps it (Chapman, Calibration of machine squareness Method 3 and Figure 14).
 
     Parameters
     ----------
@@ -512,9 +512,9 @@ def correct_reference_angle(square_error: float, orientation: int = 0) -> float:
     ----------
     square_error : float, rad
         The square's angle minus 90° as set up in orientation 0 (arms along the + directions of
-        both axes). For an optical square this is the *prism error* (seed 004 Method 3).
+        both axes). For an optical square this is the *prism error* (Chapman, Calibration of machine squareness Method 3).
     orientation : {0, 90, 180, 270}
-        The equipment's orientation, degrees clockwise (seed 004 Figure 14).
+        The equipment's orientation, degrees clockwise (Chapman, Calibration of machine squareness Figure 14).
 
     Returns
     -------
@@ -531,7 +531,7 @@ def correct_reference_angle(square_error: float, orientation: int = 0) -> float:
 
 
 def reversal(first: float, reversed_: float) -> tuple[float, float]:
-    """Reversal technique: remove an unknown square error (seed 004 Note 2, Method 1 "T").
+    """Reversal technique: remove an unknown square error (Chapman, Calibration of machine squareness Note 2, Method 1 "T").
 
     A square with angle error ε gives ``m1 = s - ε`` and, mirrored, ``m2 = s + ε``.
 

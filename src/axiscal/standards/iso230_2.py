@@ -4,10 +4,10 @@
 :class:`Iso230_2Result` with the per-target statistics and the axis parameters A, A↑, A↓, E, E↑,
 E↓, M, R, R↑, R↓, B and the mean reversal B̄, in the dataset's deviation unit.
 
-Definitions (ISO 230-2:2014 clause 3, reproduced as equations 1-21 of seed 001):
+Definitions (ISO 230-2:2014 clause 3, reproduced as equations 1-21 of Yüksel et al., Position accuracy and repeatability calibration of turn tables):
 
 ============================  ==========================================================  =======
-quantity                      definition                                                  seed 001
+quantity                      definition                                                  Yüksel et al., Position accuracy and repeatability calibration of turn tables
 ============================  ==========================================================  =======
 deviation                     x_ij = P_ij - P_i (actual minus target)                     (1)
 mean unidirectional           x̄_i↑ = (1/n) Σ_j x_ij↑, x̄_i↓ likewise                      (2), (3)
@@ -27,7 +27,7 @@ bidirectional accuracy        A = max[x̄_i↑ + 2s_i↑; x̄_i↓ + 2s_i↓]
                                   - min[x̄_i↑ - 2s_i↑; x̄_i↓ - 2s_i↓]                      (21)
 ============================  ==========================================================  =======
 
-Seed 001 prints equation 12 as ``max[2Si↑ + 2Si↓ |Bi|; ...]``: the plus sign before ``|B_i|`` was
+Yüksel et al., Position accuracy and repeatability calibration of turn tables prints equation 12 as ``max[2Si↑ + 2Si↓ |Bi|; ...]``: the plus sign before ``|B_i|`` was
 lost in that copy; the standard adds the three terms, and so does this module.
 
 Sign convention of B: B_i = x̄_i↑ - x̄_i↓. A positive B_i means the axis stops further in the
@@ -44,7 +44,7 @@ runs is allowed with a warning (ISO 230-2:2014 §5.3 asks for 5).
 Rotary axes over a full turn: 0° and 360° are the same physical position, but in a test they are
 approached at different points of the sequence (0° at the start of a positive run, 360° at its
 end). With ``full_turn="separate"`` (the default) they stay two target positions, as CARTO and
-seed 001's Table 3 (targets 0…8, target 8 = 0°/360°) list them; the difference of their means,
+Yüksel et al., Position accuracy and repeatability calibration of turn tables's Table 3 (targets 0…8, target 8 = 0°/360°) list them; the difference of their means,
 the *closure*, is reported, with a warning if it exceeds what the repeatability explains. With
 ``full_turn="merge"`` the readings at 360° are pooled with those at 0° into one target. Either way
 the count of distinct positions for ISO 230-2 Table 1 counts 0° and 360° once.
@@ -53,7 +53,7 @@ References
 ----------
 ISO 230-2:2014, Test code for machine tools — Part 2: Determination of accuracy and repeatability
 of positioning of numerically controlled axes.
-Seed 001: Yüksel et al., "Position accuracy and repeatability calibration of turn tables by using
+Yüksel et al., Position accuracy and repeatability calibration of turn tables: Yüksel et al., "Position accuracy and repeatability calibration of turn tables by using
 laser interferometers", equations (1)-(21), Table 1.
 """
 
@@ -104,7 +104,7 @@ class Iso230_2Result:
     n_up, n_down : ndarray of int
         Readings used at each target in each direction.
     mean_up, mean_down : ndarray
-        x̄_i↑, x̄_i↓ (seed 001 eq. 2, 3).
+        x̄_i↑, x̄_i↓ (Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 2, 3).
     mean_bi : ndarray
         x̄_i (eq. 4).
     reversal : ndarray
@@ -202,7 +202,7 @@ class Iso230_2Result:
 
 
 def minimum_rotary_targets(travel_deg: float) -> int:
-    """Minimum number of target positions for a rotary axis, ISO 230-2 Table 1 (seed 001 Table 1).
+    """Minimum number of target positions for a rotary axis, ISO 230-2 Table 1 (Yüksel et al., Position accuracy and repeatability calibration of turn tables Table 1).
 
     Parameters
     ----------
@@ -278,7 +278,7 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
 
     Notes
     -----
-    Equations of ISO 230-2:2014 clause 3, as numbered in seed 001 (see the module docstring).
+    Equations of ISO 230-2:2014 clause 3, as numbered in Yüksel et al., Position accuracy and repeatability calibration of turn tables (see the module docstring).
 
     Examples
     --------

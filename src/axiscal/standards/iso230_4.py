@@ -17,13 +17,13 @@ ISO 230-4 definitions (§3, evaluated here on the sampled path):
 * **H, circular hysteresis** — largest radial difference between the CW and CCW paths at the same
   angle, both referred to their common least-squares centre.
 
-Diagnosis (seed 004 Method 4: squareness "isolated from backlash, scale mismatch ..."): to first
+Diagnosis (Chapman, Calibration of machine squareness Method 4: squareness "isolated from backlash, scale mismatch ..."): to first
 order the errors enter ``Δr`` as
 
 ====================  ============================================  ===========================
 error                 model                                        ``Δr(φ)`` term
 ====================  ============================================  ===========================
-squareness θ          δx = -θ y (seed 004 Eq. 2)                    ``-(θR/2) sin 2φ``
+squareness θ          δx = -θ y (Chapman, Calibration of machine squareness Eq. 2)                    ``-(θR/2) sin 2φ``
 scale mismatch        δx = e_x x, δy = e_y y                        ``R(e_x - e_y)/2 cos 2φ``
                                                                     (+ a radius change)
 backlash b_x, b_y     δx = (b_x/2) sign(v_x) (``LinearAxis``)        ``±(b_x/2) sign(sin φ) cos φ``,
@@ -36,13 +36,13 @@ CW runs holds squareness and scale mismatch free of backlash: a least-squares fi
 ``[1, cos φ, sin φ, cos 2φ, sin 2φ]`` to the mean gives them. Half the difference of the runs holds
 the backlash (with any centre and radius shift between runs): a fit of
 ``[1, cos φ, sin φ, B_x(φ), B_y(φ)]`` gives b_x and b_y. Least squares (not Fourier sums) keeps
-this valid on partial arcs, accepted down to 220° (seed 004). With one direction only, all terms
+this valid on partial arcs, accepted down to 220° (Chapman, Calibration of machine squareness). With one direction only, all terms
 are fitted together and the result carries a warning.
 
 References
 ----------
 ISO 230-4:2005, Test code for machine tools — Part 4: Circular tests for numerically controlled
-machine tools, §3. Seed 004, Method 4 (Figure 9) and "Testing global squareness errors on
+machine tools, §3. Chapman, Calibration of machine squareness, Method 4 (Figure 9) and "Testing global squareness errors on
 machines with unequal aspect ratios".
 """
 
@@ -58,7 +58,7 @@ from axiscal.standards.iso230_1 import Squareness
 
 __all__ = ["CircularRun", "CircularResult", "evaluate_circular", "MIN_ARC_DEG", "arc_coverage"]
 
-#: Smallest arc accepted for squareness, degrees (seed 004: "partial arc tests (down to 220°)").
+#: Smallest arc accepted for squareness, degrees (Chapman, Calibration of machine squareness: "partial arc tests (down to 220°)").
 MIN_ARC_DEG = 220.0
 
 
@@ -176,7 +176,7 @@ def arc_coverage(angles) -> float:
     Returns
     -------
     float, degrees
-        At most 360. The arc a partial-arc test covers (seed 004: down to 220°).
+        At most 360. The arc a partial-arc test covers (Chapman, Calibration of machine squareness: down to 220°).
 
     Examples
     --------

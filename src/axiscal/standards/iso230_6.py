@@ -1,13 +1,13 @@
 """ISO 230-6:2002 diagonal displacement test — squareness from two face diagonals.
 
-Squareness (seed 004 Method 5, ISO 230-1 §10.3.2.6)::
+Squareness (Chapman, Calibration of machine squareness Method 5, ISO 230-1 §10.3.2.6)::
 
     squareness = D0 (D1 - D2) / (2 X Y)        (rad; = (D1 - D2) / D0 when X = Y)
 
 with X and Y the programmed travels, ``D0 = sqrt(X² + Y²)`` the nominal diagonal and D1, D2 the
 actual lengths of the two diagonals.
 
-Labelling and sign (seed 004 does not say which diagonal is which; this module fixes it):
+Labelling and sign (Chapman, Calibration of machine squareness does not say which diagonal is which; this module fixes it):
 
 * **D1** joins the corner (+X, −Y) to the corner (−X, +Y): the diagonal along (−X, +Y).
 * **D2** joins the corner (−X, −Y) to the corner (+X, +Y): the diagonal along (+X, +Y).
@@ -18,14 +18,14 @@ one. Proof to first order: with ``δx = -θ y``, the (+X, +Y) diagonal becomes
 ``D0 - θ X Y / D0`` and the other ``D0 + θ X Y / D0``. Equal scale errors on both diagonals (air
 refraction, a common linear error) cancel.
 
-Multi-point variant (seed 004: "data may be taken at multiple positions along each diagonal"):
+Multi-point variant (Chapman, Calibration of machine squareness: "data may be taken at multiple positions along each diagonal"):
 a least-squares line is fitted to the displacement error along each diagonal; its slope ``k``
 (m/m) times ``D0`` is the diagonal's length error, so ``squareness = D0² (k1 - k2) / (2 X Y)``.
 
 References
 ----------
 ISO 230-6:2002, Test code for machine tools — Part 6: Determination of positioning accuracy on
-body and face diagonals. ISO 230-1:2012 §10.3.2.6. Seed 004, Method 5, Figure 11.
+body and face diagonals. ISO 230-1:2012 §10.3.2.6. Chapman, Calibration of machine squareness, Method 5, Figure 11.
 """
 
 from __future__ import annotations
@@ -75,7 +75,7 @@ class DiagonalResult:
 
 def diagonal_squareness(length_x: float, length_y: float, error_d1: float, error_d2: float,
                         *, axes: tuple[str, str] = ("X", "Y"), datum: str = "") -> DiagonalResult:
-    """Squareness from the length errors of the two diagonals (ISO 230-6, seed 004 Method 5).
+    """Squareness from the length errors of the two diagonals (ISO 230-6, Chapman, Calibration of machine squareness Method 5).
 
     Parameters
     ----------

@@ -30,7 +30,7 @@ References
 ----------
 ISO 230-7:2015, Test code for machine tools — Part 7: Geometric accuracy of axes of rotation,
 clauses 3.1-3.5 (error motion, synchronous/asynchronous, fundamental), 5.4 (polar plots, PC centre)
-and 3.3 (axis average line). Seed 003_8fab92c5d1b3bd69.txt, section 1 and Fig. 1 (the six motion
+and 3.3 (axis average line). Optics Express 2018, Five-DOF motion errors of a rotary axis, section 1 and Fig. 1 (the six motion
 errors εz, εx, εy, δx, δy, δz of an axis about Z).
 
 Examples
@@ -74,7 +74,7 @@ class MotionErrorData:
     dy, dz : ndarray, shape (R, M), metres
         Radial error motion along Y (fixed sensitive direction) and axial error motion.
     dx : ndarray, shape (R, M), metres, optional
-        Radial error motion along X, when the instrument measures it (seed 003's does not).
+        Radial error motion along X, when the instrument measures it (Optics Express 2018, Five-DOF motion errors of a rotary axis's does not).
     title : str
     """
 
@@ -190,7 +190,7 @@ class PositioningSummary:
     range : float
         Max − min of ``mean`` (the systematic positioning error over the turn).
     repeatability : float
-        Largest half-range across runs at one angle (the seed's "± repeatability deviation"),
+        Largest half-range across runs at one angle (the paper's "± repeatability deviation"),
         NaN for one run.
     """
 
@@ -366,8 +366,8 @@ def halfrange(runs) -> float:
 
     Notes
     -----
-    Seed 003, section 3, "Repeatability experiments" (the "deviation of repeatability" ± of three
-    runs, Fig. 7); the seed does not define it further, half the spread is axiscal's reading.
+    Optics Express 2018, Five-DOF motion errors of a rotary axis, section 3, "Repeatability experiments" (the "deviation of repeatability" ± of three
+    runs, Fig. 7); the paper does not define it further, half the spread is axiscal's reading.
 
     Examples
     --------

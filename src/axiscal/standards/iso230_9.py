@@ -53,7 +53,7 @@ ISO 230-2:2014, Annex A (informative), Measurement uncertainty estimation for li
 ISO/TR 230-9:2005, Estimation of measurement uncertainty for machine tool tests according to
 series ISO 230, basic equations.
 JCGM 100:2008 (GUM), JCGM 101:2008 (GUM Supplement 1, Monte Carlo method).
-Seed 000: Renishaw, "Interferometric calibration of rotary axes", eq. 1.
+Renishaw, Interferometric calibration of rotary axes: Renishaw, "Interferometric calibration of rotary axes", eq. 1.
 """
 
 from __future__ import annotations

@@ -24,11 +24,11 @@ term   definition (JIS B 0182-1993, clause 3 (3))                    equation he
 x̄_i↑, x̄_i↓ are the mean unidirectional deviations and s_i↑, s_i↓ the estimates of the standard
 deviation at target i (n - 1 in the denominator), exactly as ISO 230-2 forms them: they are taken
 from :func:`axiscal.standards.iso230_2.evaluate`, not computed a second time. The JIS repeatability
-uses ±3 s where ISO 230-2:2014 uses ±2 s (compare seed 001 eq. 12: 2 s↑ + 2 s↓ + |B_i|, 4 s).
+uses ±3 s where ISO 230-2:2014 uses ±2 s (compare Yüksel et al., Position accuracy and repeatability calibration of turn tables eq. 12: 2 s↑ + 2 s↓ + |B_i|, 4 s).
 
 Axis values: JIS B 0182 term 346 is defined *at a target*. For the axis this module reports the
 largest value over the targets, ``R = max R_i`` and ``B = max |B_i|``; that is the reading chosen
-here (it is how ISO 230-2:2014 forms R and B from R_i and B_i, seed 001 eqs. 6 and 15), not a quoted
+here (it is how ISO 230-2:2014 forms R and B from R_i and B_i, Yüksel et al., Position accuracy and repeatability calibration of turn tables eqs. 6 and 15), not a quoted
 JIS clause. The JIS accuracy of positioning, the number of targets and the number of runs are not
 implemented: their definitions were not available publicly.
 

@@ -8,7 +8,7 @@ public text of a standard's definitions was available to this project, the entry
 ==================  ===================================================  =========================
 key                 standard                                             status
 ==================  ===================================================  =========================
-iso230-2:2014       ISO 230-2:2014                                       evaluated (seed 001 eqs
+iso230-2:2014       ISO 230-2:2014                                       evaluated (Yüksel et al., Position accuracy and repeatability calibration of turn tables eqs
                                                                          1-21, :mod:`.iso230_2`)
 jis-b6192           JIS B 6192 / JIS B 0182-1993 vocabulary              R and B only (terms 342,
                                                                          346, :mod:`.jis_b6192`)
