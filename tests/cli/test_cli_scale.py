@@ -122,3 +122,18 @@ def test_rephase_periods_in_the_configuration(tmp_path):
 def test_examples_parse():
     for p in EXAMPLES.glob("scale_*.toml"):
         assert read_scale_config(p)["_source"] == str(p)
+
+
+def test_a_homing_start_far_from_the_switch_is_refused_in_counts(tmp_path):
+    """A homing start 5 m before the switch was within the 5 m reach and took 19 GB (the
+    simulation follows every count of the approach); it is bounded in counts and says how close
+    the start must be."""
+    from pathlib import Path
+
+    ex = Path(__file__).resolve().parents[2] / "examples" / "scale_single.toml"
+    f = tmp_path / "far.toml"
+    f.write_text(ex.read_text().replace("start_mm = 99.96", "start_mm = -4899"))
+    r = runner.invoke(app, ["scale", "home", str(f)])
+    assert r.exit_code == 2
+    assert "is 6.4e+07 output counts (78.1 nm each) before the switch" in r.stderr, r.stderr
+    assert "start within 117 mm of the switch" in r.stderr

@@ -204,6 +204,8 @@ def homing_from_config(cfg: dict[str, Any], axis) -> dict[str, Any]:
         "homing_speed": _num(cfg, "homing", "speed_mm_per_min", h, 300.0) / 60e3,
     }
     _within_reach(cfg, "homing", "start_mm", kwargs["start"], axis.switch.position)
+    _homing_counts(cfg, "homing", "start_mm", kwargs["start"], axis.switch.position,
+                   axis.output.count_size)
     if "seed" in h:
         kwargs["rng"] = np.random.default_rng(_seed(cfg, "homing", h))
     if "power_up_phase" in h:
@@ -249,6 +251,7 @@ def twin_axis_from_config(cfg: dict[str, Any]):
     for i, s in ((1, s1), (2, s2)):
         starts.append(counts(f"start_{i}_mm", (s - d * 512) * q * 1e3))
         _within_reach(cfg, "gantry", f"start_{i}_mm", starts[-1] * q, s * q)
+        _homing_counts(cfg, "gantry", f"start_{i}_mm", starts[-1] * q, s * q, q)
     gantry = TwinAxis(output=out, controller=_controller(cfg, out), switch_1=s1, switch_2=s2,
                       start_1=starts[0], start_2=starts[1], direction=d)
     rng = np.random.default_rng(_seed(cfg, "gantry", g)) if "seed" in g else None
@@ -292,8 +295,8 @@ def _int(cfg, section, key, table, default) -> int:
     return int(v)
 
 
-#: Longest distance the simulation follows from the switch: it samples every 1/8 period (about
-#: 10 nm), so 5 m is already some hundred megabytes.
+#: Longest distance a move may go from the switch (a 5 m move at 4096 counts a period takes 0.5 GB;
+#: the homing approach has its own, tighter bound in counts: MAX_HOMING_COUNTS).
 MAX_REACH_MM = 5000.0
 #: Largest machine coordinate taken: 1 km.
 MAX_POSITION_MM = 1e6
@@ -329,6 +332,22 @@ def _within_reach(cfg, section, key, position_m: float, switch_m: float) -> None
         raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {position_m * 1e3:g} mm is more "
                           f"than {MAX_REACH_MM:g} mm from the switch at {switch_m * 1e3:g} mm; the "
                           "simulation follows every count and stops there")
+
+
+#: Most output counts a homing approach may cover before the switch: the referencing simulation
+#: follows every count of it (1.28 million, 100 mm at 256 counts of 78 nm, take 0.5 GB and 2 s;
+#: a start 5 m away took 19 GB). A real axis starts its homing a few millimetres before the switch.
+MAX_HOMING_COUNTS = 1_500_000
+
+
+def _homing_counts(cfg, section, key, start_m: float, switch_m: float, count_m: float) -> None:
+    counts = abs(start_m - switch_m) / count_m
+    if counts > MAX_HOMING_COUNTS:
+        raise ConfigError(f"{cfg['_source']}: [{section}] {key} = {start_m * 1e3:g} mm is "
+                          f"{counts:.3g} output counts ({count_m * 1e9:.3g} nm each) before the "
+                          f"switch at {switch_m * 1e3:g} mm; the homing simulation follows every "
+                          f"count, at most {MAX_HOMING_COUNTS:g} (start within "
+                          f"{MAX_HOMING_COUNTS * count_m * 1e3:.3g} mm of the switch)")
 
 
 def _direction(cfg, section, table) -> int:
