@@ -366,13 +366,16 @@ class PositioningDataset:
 
     def records(self) -> list[tuple[float, str, int, float]]:
         """The readings as ``(target, direction, run, deviation)`` tuples, missing ones left out."""
-        out = []
+        return list(self.iter_records())
+
+    def iter_records(self):
+        """:meth:`records` one at a time (a file of millions of readings need not hold them)."""
         for d, arr in ((Direction.UP, self.up), (Direction.DOWN, self.down)):
-            for i, t in enumerate(self.targets):
-                for j in range(arr.shape[1]):
-                    if not math.isnan(arr[i, j]):
-                        out.append((float(t), d.value, j + 1, float(arr[i, j])))
-        return out
+            for i, t in enumerate(self.targets.tolist()):
+                row = arr[i].tolist()
+                for j, v in enumerate(row):
+                    if v == v:   # not NaN
+                        yield (t, d.value, j + 1, v)
 
     def with_deviation_unit(self, unit: str) -> "PositioningDataset":
         """The same dataset with deviations expressed in another unit of the same dimension."""

@@ -123,3 +123,37 @@ def test_reading_corrections_are_the_air_and_the_material(tmp_path):
     # 270 and 272 ppm; the material at 20.3-20.8 °C (11.5 ppm/K) by up to 9.2 ppm more (µm = m·ppm)
     assert -0.8 * (272 + 11.5 * 0.8) < change < -0.8 * (270 + 11.5 * 0.3)
     assert detail.times.shape == detail.deviation_um.shape == raw.readings.shape
+
+
+@pytest.mark.parametrize("bad, words", [
+    ("12.0,0,+,1,abc", "raw.csv:3: reading 'abc' is not a number"),
+    ("12.0,0,sideways,1,0.1", "raw.csv:3: direction 'sideways': use + or -"),
+    ("12.0,0,+,1,nan", "raw.csv:3: reading 'nan' is not a finite number"),
+    ("12.0,0,+,1", "raw.csv:3: 4 cells where the header has 5"),
+    ("12.0,0,+,1,1e308", "raw.csv:3: reading 1e308 is out of range"),
+])
+def test_raw_readings_read_directly_or_checked_give_the_same_errors(tmp_path, bad, words):
+    """The raw-readings reader converts plain lines directly and the rest through the checked
+    cells: a bad cell still names its column and line (streamed from a file, or from text)."""
+    from axiscal.errors import DataFormatError
+    from axiscal.io.measured import parse_raw_readings, read_raw_readings
+
+    text = f"# reading_unit=mm\ntime_s,target,direction,run,reading\n{bad}\n13.0,0,+,2,0.1\n"
+    f = tmp_path / "raw.csv"
+    f.write_text(text)
+    for read in (lambda: read_raw_readings(f), lambda: parse_raw_readings(text, str(f))):
+        with pytest.raises(DataFormatError) as exc:
+            read()
+        assert words in str(exc.value), str(exc.value)
+
+
+def test_raw_readings_streamed_equal_the_text_and_the_written_file(tmp_path):
+    from axiscal.io.measured import parse_raw_readings, read_raw_readings
+
+    _write_raw(tmp_path)
+    a = read_raw_readings(tmp_path / "raw.csv")
+    b = parse_raw_readings((tmp_path / "raw.csv").read_text(), str(tmp_path / "raw.csv"))
+    for name in ("times", "targets", "directions", "runs", "readings"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    assert a.dead_path == pytest.approx(0.15) and a.meta["machine"] == "VMC-800"
+    assert set(a.directions) == {"+", "-"} and a.runs.dtype.kind == "i"

@@ -13,7 +13,7 @@ from axiscal import units
 from axiscal._parse import csv_cells, finite_number
 from axiscal.errors import AxiscalError, DataFormatError
 
-__all__ = ["parse_tidy", "number", "length_factor"]
+__all__ = ["parse_tidy", "header_of", "take_comment", "number", "length_factor"]
 
 
 def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source: str):
@@ -39,21 +39,12 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         if not stripped:
             continue
         if stripped.startswith("#"):
-            for key, value in _comment(stripped[1:], meta_keys).items():
-                if meta.get(key, value) != value:
-                    raise DataFormatError(f"{key}={value} contradicts {key}={meta[key]} declared "
-                                          "above", source, lineno)
-                meta[key] = value
+            take_comment(meta, stripped, meta_keys, source, lineno)
+            continue
+        if header is None:
+            header = header_of(stripped, columns, source, lineno)
             continue
         cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
-        if header is None:
-            header = [c.lower() for c in cells]
-            missing = [c for c in columns if c not in header]
-            if missing:
-                raise DataFormatError(f"header {','.join(cells)!r} lacks column(s) "
-                                      f"{', '.join(missing)}; expected {','.join(columns)}",
-                                      source, lineno)
-            continue
         if len(cells) < len(header):
             raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
                                   source, lineno)
@@ -62,6 +53,27 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         raise DataFormatError(f"no data: expected a header {','.join(columns)} and readings",
                               source)
     return meta, rows
+
+
+def header_of(stripped: str, columns: tuple[str, ...], source: str, lineno: int) -> list[str]:
+    """The lower-case column names of a header line; a missing column is refused by name."""
+    cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
+    header = [c.lower() for c in cells]
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise DataFormatError(f"header {','.join(cells)!r} lacks column(s) {', '.join(missing)}; "
+                              f"expected {','.join(columns)}", source, lineno)
+    return header
+
+
+def take_comment(meta: dict, stripped: str, keys: set[str], source: str, lineno: int) -> None:
+    """Add a ``# key=value ...`` line's declarations to ``meta``; a key declared twice with two
+    values (two files pasted together?) is refused naming the line."""
+    for key, value in _comment(stripped[1:], keys).items():
+        if meta.get(key, value) != value:
+            raise DataFormatError(f"{key}={value} contradicts {key}={meta[key]} declared above",
+                                  source, lineno)
+        meta[key] = value
 
 
 def number(text: str, column: str, source: str, lineno: int) -> float:

@@ -375,7 +375,7 @@ def format_positioning_csv(ds: PositioningDataset) -> str:
         head += f" {k}={shlex.quote(v)}"
     buf.write(f"# {head}\n")
     buf.write("target,direction,run,deviation\n")
-    for t, d, run, dev in ds.records():
+    for t, d, run, dev in ds.iter_records():
         buf.write(f"{t:.12g},{d},{run},{dev:.12g}\n")
     return buf.getvalue()
 

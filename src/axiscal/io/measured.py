@@ -94,35 +94,97 @@ class Record:
 
 
 def read_raw_readings(path) -> RawReadings:
-    """Read a raw readings CSV (module docstring)."""
-    from axiscal.io._files import read_text
+    """Read a raw readings CSV (module docstring), streaming it: memory grows with the readings
+    (five numbers each), not with the text."""
+    from axiscal.io.csv import iter_file_lines
 
-    return parse_raw_readings(read_text(path), str(path))
+    return _raw_readings(iter_file_lines(path), str(path))
 
 
 def parse_raw_readings(text: str, source: str = "<text>") -> RawReadings:
     """Parse raw laser readings; errors name the line."""
-    from axiscal.io._tidy import parse_tidy
+    from axiscal.io.csv import _numbered_lines
 
-    keys = {"reading_unit", "target_unit", "machine", "axis", "dead_path_mm", "index", "datum",
-            "operator", "date", "instrument"}
-    meta, rows = parse_tidy(text, ("time_s", "target", "direction", "run", "reading"), keys,
-                            source)
+    return _raw_readings(_numbered_lines(text), source)
+
+
+_RAW_COLUMNS = ("time_s", "target", "direction", "run", "reading")
+_RAW_KEYS = {"reading_unit", "target_unit", "machine", "axis", "dead_path_mm", "index", "datum",
+             "operator", "date", "instrument"}
+_SIGN = {"+": 1, "up": 1, "fwd": 1, "forward": 1, "positive": 1,
+         "-": -1, "down": -1, "bwd": -1, "backward": -1, "negative": -1}
+
+
+def _raw_readings(lines, source: str) -> RawReadings:
+    """The readings of numbered lines, kept in compact arrays as they are read; a line of plain
+    cells is converted directly, anything else through the checked cells (same messages)."""
+    from array import array
+
+    from axiscal._parse import MAX_MAGNITUDE, csv_cells
+    from axiscal.io._tidy import header_of, take_comment
+
+    meta: dict[str, str] = {}
+    header: list[str] | None = None
+    cols: dict = {c: array("d") for c in ("time_s", "target", "run", "reading")}
+    signs, where = array("b"), array("q")
+    for lineno, line in lines:
+        stripped = line.strip()
+        if not stripped:
+            continue
+        if stripped.startswith("#"):
+            take_comment(meta, stripped, _RAW_KEYS, source, lineno)
+            continue
+        if header is None:
+            header = header_of(stripped, _RAW_COLUMNS, source, lineno)
+            idx = [header.index(c) for c in _RAW_COLUMNS]
+            continue
+        cells = stripped.split(",")
+        row = None
+        if len(cells) >= len(header) and '"' not in stripped:
+            try:
+                row = (float(cells[idx[0]]), float(cells[idx[1]]),
+                       _SIGN[cells[idx[2]].strip().lower()], float(cells[idx[3]]),
+                       float(cells[idx[4]]))
+            except (ValueError, KeyError):
+                row = None
+            if row is not None and not all(-MAX_MAGNITUDE <= v <= MAX_MAGNITUDE
+                                           for v in (row[0], row[1], row[3], row[4])):
+                row = None
+        if row is None:   # the checked path: the one-line error naming the cell and the line
+            cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
+            if len(cells) < len(header):
+                raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
+                                      source, lineno)
+            c = [cells[i] for i in idx]
+            row = (finite_number(c[0], "time_s", source, lineno),
+                   finite_number(c[1], "target", source, lineno),
+                   1 if _direction(c[2], source, lineno) == "+" else -1,
+                   finite_number(c[3], "run", source, lineno),
+                   finite_number(c[4], "reading", source, lineno))
+        cols["time_s"].append(row[0])
+        cols["target"].append(row[1])
+        signs.append(row[2])
+        cols["run"].append(row[3])
+        cols["reading"].append(row[4])
+        where.append(lineno)
+    if header is None or not where:
+        raise DataFormatError(f"no data: expected a header {','.join(_RAW_COLUMNS)} and readings",
+                              source)
     ru, tu = meta.get("reading_unit", "mm"), meta.get("target_unit", "mm")
     try:
         fr = units.factor(ru, "length")
         units.factor(tu, "length")
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
-    t = np.array([finite_number(r["time_s"], "time_s", source, n) for n, r in rows])
-    tg = np.array([finite_number(r["target"], "target", source, n) for n, r in rows])
-    d = np.array([_direction(r["direction"], source, n) for n, r in rows])
-    run = np.array([int(finite_number(r["run"], "run", source, n)) for n, r in rows])
-    x = np.array([finite_number(r["reading"], "reading", source, n) for n, r in rows]) * fr
+    t = np.frombuffer(cols["time_s"], dtype=float).copy()
+    tg = np.frombuffer(cols["target"], dtype=float).copy()
+    d = np.where(np.frombuffer(signs, dtype=np.int8) > 0, "+", "-")
+    run = np.frombuffer(cols["run"], dtype=float).astype(int)
+    x = np.frombuffer(cols["reading"], dtype=float) * fr
     if np.any(np.diff(t) < 0):
         i = int(np.argmax(np.diff(t) < 0))
         raise DataFormatError(f"time_s goes back from {t[i]:g} to {t[i + 1]:g} s",
-                              source, rows[i + 1][0])
+                              source, int(where[i + 1]))
     dead = _meta_number(meta, "dead_path_mm", 0.0, 0.0, 1e5, source) * 1e-3
     index = _meta_number(meta, "index", 1.0, 0.99, 1.01, source)
     datum = _meta_number(meta, "datum", float(tg[0]), -1e9, 1e9, source)
