@@ -11,6 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from axiscal.cli import app
+from tests.cli._assertions import one_error_line
 
 runner = CliRunner()
 ROOT = Path(__file__).resolve().parents[2]
@@ -127,12 +128,7 @@ def test_file_mistakes_are_one_line(tmp_path, command, content, words):
         r = runner.invoke(app, args)
     finally:
         os.chdir(old)
-    assert r.exit_code == 2, r.output
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("axiscal: error: "), r.stderr
-    assert r.stdout == "" and "Traceback" not in r.output
-    for w in words:
-        assert w in lines[0], (w, lines[0])
+    one_error_line(r, *words)
     assert sorted(os.listdir(tmp_path)) == before
 
 

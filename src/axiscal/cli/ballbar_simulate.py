@@ -50,10 +50,6 @@ def _schema():
     }, example="examples/ballbar_sim.toml")
 
 
-#: Most samples per direction simulated (a 100 mm ballbar at 1000 mm/min and 250 Hz has 9,424):
-#: what ``ballbar analyze`` reads.
-from axiscal.io.ballbar import MAX_SAMPLES_PER_RUN as MAX_SAMPLES  # noqa: E402
-
 
 def simulate(
     config: Path = typer.Argument(..., help="TOML file (sections machine, servo, ballbar, test)."),
@@ -101,6 +97,8 @@ def _load(path: Path) -> dict:
 
     from axiscal.errors import ConfigError
     from axiscal.io._files import read_text
+    # at most what `ballbar analyze` reads (a 100 mm ballbar at 1000 mm/min, 250 Hz: 9,424)
+    from axiscal.io.ballbar import MAX_SAMPLES_PER_RUN as MAX_SAMPLES
 
     cfg = _schema().parse(read_text(path), str(path))
     b, t = cfg["ballbar"], cfg["test"]

@@ -230,10 +230,10 @@ def _setup(header, header_meta, target_unit, deviation_unit, axis_kind, source):
     return columns, value_col, to_dev, kind, tu, du
 
 
-_FAST_DIRECTION = {}
-for _w, _d in _DIRECTION_WORDS.items():
-    for _v in {_w, _w.upper(), _w.capitalize()}:
-        _FAST_DIRECTION[_v] = 1 if _d is Direction.UP else 0
+#: Direction spellings taken without stripping or case folding (1 for ↑, 0 for ↓); any other goes
+#: through Direction.parse.
+_FAST_DIRECTION = {spelled: int(d is Direction.UP) for word, d in _DIRECTION_WORDS.items()
+                   for spelled in (word, word.upper(), word.capitalize())}
 
 
 class _Readings:
