@@ -2,8 +2,9 @@
 
 JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one object per standard:
 ``standard`` (key), ``title``, ``evaluated`` (bool), ``parameters`` (name -> ``value``, ``unit``,
-``description``; empty if not evaluated), ``warnings`` (list of text), ``reason`` (why it was not
-evaluated, else null)). With ``--tolerance``: ``acceptance``, ``decision_rule`` and ``accepted``
+``description``; empty if not evaluated), ``not_evaluated`` (name -> why axiscal does not evaluate
+that parameter of a standard evaluated in part), ``warnings`` (list of text), ``reason`` (why the
+standard was not evaluated at all, else null)). With ``--tolerance``: ``acceptance``, ``decision_rule`` and ``accepted``
 as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
 
 Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
@@ -103,6 +104,7 @@ def _entry_json(std, res) -> dict:
         name: {"value": v, "unit": u, "description": d}
         for name, (v, u, d) in res.parameters().items()}
     return {"standard": std.key, "title": std.title, "evaluated": evaluated, "parameters": params,
+            "not_evaluated": dict(res.not_evaluated) if evaluated else {},
             "warnings": list(res.warnings) if evaluated else [],
             "reason": None if evaluated else res}
 
@@ -133,6 +135,8 @@ def _render(results, ds, title, verdicts) -> None:
             shown = name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
             t.add_row(escape(std.title) if first else "", shown, value, escape(desc))
             first = False
+        for name, why in res.not_evaluated:
+            t.add_row("", name, "—", escape(why), style="dim")
         t.add_section()
     con.print(t)
     unpublished = [std.title for std, _ in skipped if not std.available]
@@ -146,7 +150,7 @@ def _render(results, ds, title, verdicts) -> None:
         con.print(f"acceptance ({verdicts[0].rule.value} decision rule):")
         for v in verdicts:
             state = "n/a" if v.outcome is None else v.outcome.value
-            u = "U not estimated" if math.isnan(v.U) else f"U = {v.U:.2f}"
+            u = "uncertainty not estimated" if math.isnan(v.U) else f"U = {v.U:.2f}"
             value = "n/a" if v.value is None else f"{v.value:.2f}"
             con.print(f"  {escape(v.parameter)}: {value} ({u}), tolerance {v.upper:g}: {state}")
     for std, res in results:

@@ -8,20 +8,26 @@ public text of a standard's definitions was available to this project, the entry
 ==================  ===================================================  =========================
 key                 standard                                             status
 ==================  ===================================================  =========================
-iso230-2:2014       ISO 230-2:2014                                       evaluated (Yüksel et al., Position accuracy and repeatability calibration of turn tables eqs
-                                                                         1-21, :mod:`.iso230_2`)
-jis-b6192           JIS B 6192 / JIS B 0182-1993 vocabulary              R and B only (terms 342,
-                                                                         346, :mod:`.jis_b6192`)
-iso230-2:1988,      earlier editions of ISO 230-2                        not available publicly
-iso230-2:1997,
-iso230-2:2006
+iso230-2:2014       ISO 230-2:2014                                       evaluated (Yüksel et al.,
+                                                                         eqs 1-21, :mod:`.iso230_2`)
+iso230-2:2006       ISO 230-2:2006                                       R↑, R↓ (4s; AMT),
+                                                                         :mod:`.iso230_2_editions`
+iso230-2:1997       ISO 230-2:1997                                       not available publicly
+iso230-2:1988       ISO 230-2:1988                                       R↑, R↓ (6s; WIT 1999),
+                                                                         :mod:`.iso230_2_editions`
 gb-t17421.2         GB/T 17421.2 (Chinese adoption of an ISO 230-2       not available publicly
                     edition)
-vdi3441             VDI/DGQ 3441                                         not available publicly
+jis-b6192           JIS B 6192 / JIS B 0182-1993 vocabulary              R and B only (terms 342,
+                                                                         346, :mod:`.jis_b6192`)
+vdi3441             VDI/DGQ 3441                                         Pa, U, Ū (Rexroth
+                                                                         R310DE), :mod:`.vdi3441`
 asme-b5.54          ASME B5.54                                           not available publicly
 bs3800              BS 3800                                              not available publicly
 nmtba               NMTBA                                                not available publicly
 ==================  ===================================================  =========================
+
+A standard evaluated in part names the parameters it does not evaluate, with the reason
+(:attr:`StandardResult.not_evaluated`); a tolerance on one of them is refused.
 
 Every evaluated standard gives a :class:`StandardResult`; its :meth:`StandardResult.parameters`
 maps name -> (value, unit, description), the same shape for every standard, so results can be
@@ -57,12 +63,15 @@ class StandardResult:
         The standard's own parameter names and symbols, in its order; value None where it does
         not apply to this test.
     warnings : tuple of str
+    not_evaluated : tuple of (name, reason)
+        The standard's other parameters, which axiscal does not evaluate, and why.
     """
 
     key: str
     title: str
     rows: tuple[tuple[str, float | None, str, str], ...]
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    not_evaluated: tuple[tuple[str, str], ...] = field(default_factory=tuple)
 
     def parameters(self) -> dict[str, tuple[float | None, str, str]]:
         """name -> (value, unit, description)."""
@@ -111,18 +120,43 @@ def _jis_b6192(ds: PositioningDataset) -> StandardResult:
     return StandardResult("jis-b6192", STANDARDS["jis-b6192"].title, rows, r.warnings)
 
 
+def _vdi3441(ds: PositioningDataset) -> StandardResult:
+    from axiscal.standards import vdi3441
+
+    r = vdi3441.evaluate(ds)
+    rows = tuple((name, v, u, d) for name, (v, u, d) in r.parameters().items())
+    return StandardResult("vdi3441", STANDARDS["vdi3441"].title, rows, r.warnings,
+                          tuple(vdi3441.NOT_EVALUATED.items()))
+
+
+def _iso_edition(edition: str) -> Callable[[PositioningDataset], StandardResult]:
+    def run(ds: PositioningDataset) -> StandardResult:
+        from axiscal.standards import iso230_2_editions as ed
+
+        r = getattr(ed, f"evaluate_{edition}")(ds)
+        rows = tuple((name, v, u, d) for name, (v, u, d) in r.parameters().items())
+        key = f"iso230-2:{edition}"
+        return StandardResult(key, STANDARDS[key].title, rows, r.warnings,
+                              tuple(ed.NOT_EVALUATED.items()))
+    return run
+
+
 _NONE = "no public text of its definitions was available to axiscal"
 
 STANDARDS: dict[str, Standard] = {s.key: s for s in (
     Standard("iso230-2:2014", "ISO 230-2:2014",
              "ISO 230-2:2014 clause 3 (Yüksel et al., eqs. 1-21)", _iso230_2_2014),
-    Standard("iso230-2:2006", "ISO 230-2:2006", _NONE),
+    Standard("iso230-2:2006", "ISO 230-2:2006",
+             "AMT announcement of ISO 230-2:2006 (2 standard uncertainties)", _iso_edition("2006")),
     Standard("iso230-2:1997", "ISO 230-2:1997", _NONE),
-    Standard("iso230-2:1988", "ISO 230-2:1988", _NONE),
+    Standard("iso230-2:1988", "ISO 230-2:1988",
+             "WIT Trans. Eng. Sci. 23 (1999): a six standard deviation spread",
+             _iso_edition("1988")),
     Standard("gb-t17421.2", "GB/T 17421.2", _NONE + " (nor which ISO 230-2 edition it adopts)"),
     Standard("jis-b6192", "JIS B 6192 / B 0182",
              "JIS B 0182-1993 terms 342, 346", _jis_b6192),
-    Standard("vdi3441", "VDI/DGQ 3441", _NONE),
+    Standard("vdi3441", "VDI/DGQ 3441", "Bosch Rexroth, Linearmodule R310DE 2402, p. 151",
+             _vdi3441),
     Standard("asme-b5.54", "ASME B5.54", _NONE),
     Standard("bs3800", "BS 3800", _NONE),
     Standard("nmtba", "NMTBA", _NONE),
@@ -193,7 +227,11 @@ def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResu
     from axiscal.standards.iso14253_1 import Rule, _rule, decide_all
 
     values = {name: v for name, (v, _u, _d) in result.parameters().items()}
+    skipped = dict(result.not_evaluated)
     for name, tol in tolerances.items():
+        if name in skipped:
+            raise InputError(f"tolerance for {name!r}: {result.title} {name}, "
+                             f"{skipped[name]}; use one of {', '.join(values)}")
         if name not in values:
             raise InputError(f"tolerance for {name!r}: not a {result.title} parameter; use one "
                              f"of {', '.join(values)}")
