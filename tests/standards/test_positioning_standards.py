@@ -1,6 +1,10 @@
 """Registry of positioning standards: one result shape, refusals that say why, tolerances."""
 
+import math
+
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import InputError
 from axiscal.standards import iso230_2, jis_b6192
@@ -11,7 +15,8 @@ from axiscal.standards.positioning_standards import (
     evaluate,
     evaluate_all,
 )
-from tests.standards.test_iso230_2 import hand_dataset
+from axiscal.datasets import PositioningDataset
+from tests.standards.test_iso230_2 import datasets, hand_dataset
 
 ISSUE_KEYS = {"vdi3441", "asme-b5.54", "jis-b6192", "gb-t17421.2", "bs3800", "nmtba",
               "iso230-2:1988", "iso230-2:1997", "iso230-2:2006", "iso230-2:2014"}
@@ -105,3 +110,39 @@ def test_partly_evaluated_entries_are_their_modules_and_name_what_they_leave_out
     assert r.parameters() == getattr(mod, fn)(ds).parameters()
     assert dict(r.not_evaluated) == mod.NOT_EVALUATED
     assert not set(r.parameters()) & set(mod.NOT_EVALUATED)
+
+
+#: Parameters that keep the sign of the readings (the others are spans, ranges or magnitudes).
+SIGNED = {"B_mean"}
+
+
+def _values(key, ds):
+    return {k: v for k, (v, _u, _d) in evaluate(key, ds).parameters().items()}
+
+
+def _close(a, b, abs_tol=1e-9):
+    assert a.keys() == b.keys()
+    for k in a:
+        assert (a[k] is None) == (b[k] is None), k
+        if a[k] is not None:
+            assert math.isclose(a[k], b[k], rel_tol=1e-9, abs_tol=abs_tol), (k, a[k], b[k])
+
+
+@pytest.mark.parametrize("key", sorted(k for k, s in STANDARDS.items() if s.available))
+@given(ds=datasets(), data=st.data(), c=st.floats(-1000, 1000))
+@settings(max_examples=25, deadline=None)
+def test_every_standard_is_invariant_to_run_order_offset_and_sign_flip(key, ds, data, c):
+    """The issue's invariants, for every standard axiscal evaluates: the order of the runs in
+    each direction and a constant offset of every reading change no parameter; a sign flip of
+    every reading changes none but the signed mean reversal, which it negates."""
+    n = ds.up.shape[1]
+    pu, pd = data.draw(st.permutations(range(n))), data.draw(st.permutations(range(n)))
+    base = _values(key, ds)
+
+    def variant(up, down):
+        return _values(key, PositioningDataset.from_arrays("linear", ds.targets, up, down))
+
+    _close(base, variant(ds.up[:, pu], ds.down[:, pd]))
+    _close(base, variant(ds.up + c, ds.down + c), abs_tol=1e-7)
+    flipped = variant(-ds.up, -ds.down)
+    _close(base, {k: (-v if k in SIGNED and v is not None else v) for k, v in flipped.items()})

@@ -1,6 +1,6 @@
 """VDI/DGQ 3441 Pa and U as Bosch Rexroth (Linearmodule R310DE 2402, p. 151) defines them:
-hand-worked examples, an independent implementation, invariants (order of runs, constant offset,
-sign flip), and agreement with ISO 230-2:2014 where both define the same quantity."""
+hand-worked examples, an independent implementation and agreement with ISO 230-2:2014 where both
+define the same quantity (the invariants of every standard: test_positioning_standards)."""
 
 import math
 import statistics
@@ -8,7 +8,6 @@ import statistics
 import numpy as np
 import pytest
 from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
@@ -66,31 +65,15 @@ def test_agrees_with_independent_implementation(ds):
     assert (r.Pa, r.U, r.U_mean) == pytest.approx((Pa, U, Um), rel=1e-9, abs=1e-9)
 
 
-@given(datasets(), st.data())
-@settings(max_examples=40, deadline=None)
-def test_invariant_to_order_of_runs(ds, data):
-    n = ds.up.shape[1]
-    pu, pd = data.draw(st.permutations(range(n))), data.draw(st.permutations(range(n)))
-    shuffled = PositioningDataset.from_arrays("linear", ds.targets, ds.up[:, pu], ds.down[:, pd])
-    a, b = evaluate(ds), evaluate(shuffled)
-    assert (a.Pa, a.U, a.U_mean) == pytest.approx((b.Pa, b.U, b.U_mean), rel=1e-9, abs=1e-9)
-
-
-@given(datasets(), st.floats(-1000, 1000))
-@settings(max_examples=40, deadline=None)
-def test_constant_offset_leaves_every_parameter_unchanged(ds, c):
-    a = evaluate(ds)
-    b = evaluate(PositioningDataset.from_arrays("linear", ds.targets, ds.up + c, ds.down + c))
-    assert (a.Pa, a.U, a.U_mean) == pytest.approx((b.Pa, b.U, b.U_mean), rel=1e-9, abs=1e-7)
-
-
 @given(datasets())
 @settings(max_examples=40, deadline=None)
-def test_sign_flip_keeps_every_parameter(ds):
+def test_sign_flip_negates_the_position_means(ds):
+    """Order of runs, offset and sign flip on Pa, U, Ū: test_positioning_standards (every
+    standard); here the per-target means, which flip with the readings."""
     a = evaluate(ds)
     b = evaluate(PositioningDataset.from_arrays("linear", ds.targets, -ds.up, -ds.down))
-    assert (a.Pa, a.U, a.U_mean) == pytest.approx((b.Pa, b.U, b.U_mean), rel=1e-9, abs=1e-9)
     np.testing.assert_allclose(b.mean, -a.mean, atol=1e-9)
+    np.testing.assert_allclose(b.U_j, a.U_j, atol=1e-9)
 
 
 @given(datasets())

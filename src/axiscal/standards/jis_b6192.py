@@ -88,8 +88,9 @@ class JisB6192Result:
 
     def parameters(self) -> dict[str, tuple[float, str, str]]:
         """Axis parameters: name -> (value, unit, description with its clause)."""
-        return {name: (getattr(self, name), self.deviation_unit, f"{desc} ({clause})")
-                for name, (desc, clause) in PARAMETERS.items()}
+        from axiscal.standards.positioning_standards import described_parameters
+
+        return described_parameters(self, PARAMETERS)
 
 
 def evaluate(dataset: PositioningDataset) -> JisB6192Result:

@@ -44,7 +44,14 @@ from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
 
 __all__ = ["Standard", "StandardResult", "STANDARDS", "evaluate", "evaluate_all",
-           "check_tolerances", "NotAvailableError"]
+           "check_tolerances", "NotAvailableError", "described_parameters"]
+
+
+def described_parameters(result, table: dict[str, tuple[str, str]]):
+    """name -> (value, unit, "description (source)") of ``result``'s attributes named in ``table``
+    (name -> (description, clause or source)), in the table's order and ``deviation_unit``."""
+    return {name: (getattr(result, name), result.deviation_unit, f"{desc} ({src})")
+            for name, (desc, src) in table.items()}
 
 
 class NotAvailableError(InputError):

@@ -110,9 +110,11 @@ class Vdi3441Result:
     warnings: tuple[str, ...] = field(default_factory=tuple)
 
     def parameters(self) -> dict[str, tuple[float, str, str]]:
-        """Axis parameters: name -> (value, unit, description with its source)."""
-        return {name: (getattr(self, name), self.deviation_unit, f"{desc} ({src})")
-                for name, (desc, src) in PARAMETERS.items()}
+        """Pa, U, U_mean: name -> (value, unit, description with its source); P and Ps are in
+        :data:`NOT_EVALUATED`."""
+        from axiscal.standards.positioning_standards import described_parameters
+
+        return described_parameters(self, PARAMETERS)
 
 
 def evaluate(dataset: PositioningDataset) -> Vdi3441Result:
@@ -121,7 +123,7 @@ def evaluate(dataset: PositioningDataset) -> Vdi3441Result:
     Parameters
     ----------
     dataset : PositioningDataset
-        A bidirectional test (deviations per target, direction and run; NaN = missing).
+        Every target approached from both sides, several times (NaN = a missing reading).
 
     Returns
     -------
