@@ -31,7 +31,8 @@ def band_widths(upper, lower, slopes: np.ndarray) -> np.ndarray:
     sl = edge_slopes(xl, yl)  # increasing along the lower chain
     ku = np.searchsorted(-su, -slopes, side="left")  # vertex maximising y - m x
     kl = np.searchsorted(sl, slopes, side="left")  # vertex minimising y - m x
-    return (yu[ku] - slopes * xu[ku]) - (yl[kl] - slopes * xl[kl])
+    with np.errstate(over="ignore", invalid="ignore"):  # a huge slope gives inf: not the minimum
+        return (yu[ku] - slopes * xu[ku]) - (yl[kl] - slopes * xl[kl])
 
 
 def hull_chains(x: np.ndarray, y: np.ndarray):
@@ -90,17 +91,30 @@ def _qhull_candidates(xs: np.ndarray, ys: np.ndarray, as_mask: bool):
 def _monotone_chain(xs: np.ndarray, ys: np.ndarray, upper: bool):
     """Andrew's monotone chain on x-sorted points with distinct x (exact cross products).
 
-    Vectorised passes first drop, all at once, every point that is not strictly convex against
-    its present neighbours (such a point lies on or inside the segment of two other points, so it
-    is no vertex whatever else is dropped); a pass over the few points left finishes the chain.
+    Vectorised passes first drop, all at once, every point that is certainly not strictly convex
+    against its present neighbours (such a point lies on or inside the segment of two other
+    points, so it is no vertex whatever else is dropped); a point whose cross product is within
+    its rounding bound goes only while both its neighbours stay, since dropping two such
+    neighbours at once can lose a vertex. A pass over the few points left finishes the chain.
     """
     sign = -1.0 if upper else 1.0
     for _ in range(64):
         if xs.size < 3:
             break
-        cross = ((xs[1:-1] - xs[:-2]) * (ys[2:] - ys[:-2])
-                 - (ys[1:-1] - ys[:-2]) * (xs[2:] - xs[:-2]))
-        keep = np.r_[True, sign * cross > 0, True]
+        a = (xs[1:-1] - xs[:-2]) * (ys[2:] - ys[:-2])
+        b = (ys[1:-1] - ys[:-2]) * (xs[2:] - xs[:-2])
+        cross = a - b
+        # Within the rounding bound of the differences and products the sign is uncertain: a
+        # true vertex beside a point a subnormal step away can round to 0. Points certainly not
+        # convex go all at once; an uncertain one only where both its neighbours stay (every
+        # other one per pass), so it lies within rounding of the segment that replaces it.
+        bound = 4.0 * np.finfo(float).eps * (np.abs(a) + np.abs(b))
+        certain = sign * cross <= -bound
+        uncertain = (sign * cross <= 0) & ~certain
+        uncertain[1::2] = False
+        uncertain[1:] &= ~(certain[:-1] | uncertain[:-1])
+        uncertain[:-1] &= ~certain[1:]
+        keep = np.r_[True, ~(certain | uncertain), True]
         if keep.all():
             break
         xs, ys = xs[keep], ys[keep]
