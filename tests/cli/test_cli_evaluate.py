@@ -88,3 +88,35 @@ def test_plot_for_iso_2014(good, tmp_path):
     r = runner.invoke(app, ["evaluate", str(good), "-s", "iso230-2:2014", "--plot", str(png)])
     assert r.exit_code == 0, r.output
     assert png.stat().st_size > 1000
+
+
+def test_report_for_any_standard_names_sources_gaps_and_acceptance(good, tmp_path):
+    """--report works for every standard: each parameter with its source, what is not evaluated
+    and why, the acceptance with its decision rule, and the per-target figure."""
+    html = tmp_path / "vdi.html"
+    r = runner.invoke(app, ["evaluate", str(good), "-s", "vdi3441", "--tolerance", "U=1.5",
+                            "--report", str(html)])
+    assert r.exit_code == 1, r.output  # U = 2 µm in GOOD, beyond 1.5
+    page = html.read_text()
+    assert "Positioning test x.csv by VDI/DGQ 3441" in page and "Rexroth R310DE" in page
+    assert "position scatter: not evaluated" in page and "<svg" in page
+    assert "simple acceptance (ILAC-G8" in page and ">FAIL<" in page
+    both = tmp_path / "all.html"
+    r = runner.invoke(app, ["evaluate", str(good), "-s", "all", "--report", str(both)])
+    assert r.exit_code == 0, r.output
+    page = both.read_text()
+    for title in ("ISO 230-2:2014", "ISO 230-2:1988", "JIS B 6192", "VDI/DGQ 3441", "AMT"):
+        assert title in page
+    assert "<h2>Not evaluated</h2>" in page and "NMTBA" in page
+
+
+def test_iso_report_with_a_tolerance_shows_the_iso14253_decision(good, tmp_path):
+    """Regression: `evaluate -s iso230-2:2014 --tolerance ... --report` raised AttributeError
+    (the report expected the old verdict type); it now shows U and the ISO 14253-1 rule."""
+    html = tmp_path / "iso.html"
+    r = runner.invoke(app, ["evaluate", str(good), "-s", "iso230-2:2014", "--tolerance", "E=100",
+                            "--report", str(html)])
+    assert r.exit_code == 0, r.output
+    page = html.read_text()
+    assert "Decision rule: ISO 14253-1:2017" in page and ">PASS<" in page
+    assert "U (k = 2)" in page and "not estimated" not in page

@@ -33,7 +33,7 @@ def evaluate(
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (with --standard iso230-2:2014)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report (with --standard iso230-2:2014)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report: every parameter of the chosen standard(s) with its source, what is not evaluated and why, the acceptance, the per-target figure."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
     rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
 ) -> None:
@@ -51,9 +51,9 @@ def evaluate(
     if key == "all" and tolerances:
         raise InputError("--tolerance needs one --standard (parameter names differ between "
                          "standards)")
-    if (plot is not None or report is not None) and key != "iso230-2:2014":
-        raise InputError("--plot and --report are drawn for --standard iso230-2:2014 (the per-"
-                         "target figures every standard starts from)")
+    if plot is not None and key != "iso230-2:2014":
+        raise InputError("--plot draws the ISO 230-2:2014 figure (±2s bands): use it with "
+                         "--standard iso230-2:2014; --report shows the readings for any standard")
     if key != "all" and key not in ps.STANDARDS:
         raise InputError(f"--standard {standard}: use one of {_KEYS.replace('|', ', ')}")
     for p, check in ((plot, plot_path), (report, report_path)):
@@ -67,8 +67,14 @@ def evaluate(
     else:
         results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
     verdicts = ps.check_tolerances(key, ds, results[0][1], tolerances, rule) if tolerances else ()
-    if plot is not None or report is not None:
+    if plot is not None or (report is not None and key == "iso230-2:2014"):
         _iso_outputs(ds, plot, report, verdicts)
+    elif report is not None:
+        from axiscal.report.html import standards_report
+
+        what = "every positioning standard" if key == "all" else results[0][0].title
+        standards_report(ds, results, f"Positioning test {file.name} by {what}",
+                         verdicts).write(report)
     if json_out:
         d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
              "standards": [_entry_json(std, res) for std, res in results]}

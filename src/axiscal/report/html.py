@@ -18,6 +18,7 @@ from __future__ import annotations
 import datetime as _dt
 import html as _html
 import io
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Sequence
@@ -176,15 +177,7 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
     rep.add_table(["Parameter", f"Value [{u}]", "Meaning (ISO 230-2:2014)"], rows, digits=2,
                   css_class="params")
     if verdicts:
-        verdict = {True: '<span class="ok">PASS</span>', False: '<span class="bad">FAIL</span>',
-                   None: "n/a"}
-        rows = "".join(
-            f"<tr><td>{_PARAM_LABEL[v.parameter]}</td><td>{_cell(v.value, 2)}</td>"
-            f"<td>{v.tolerance:g}</td><td>{verdict[v.passed]}</td></tr>" for v in verdicts)
-        rep.add_html(f"<h3>Acceptance</h3><table><thead><tr><th>Parameter</th><th>Measured [{u}]</th>"
-                     f"<th>Tolerance [{u}]</th><th>Verdict</th></tr></thead><tbody>{rows}</tbody>"
-                     "<caption>Measured value compared with the tolerance, without a guard band "
-                     "for measurement uncertainty (ISO 14253-1 decision rules not applied).</caption></table>")
+        add_acceptance(rep, verdicts, u, _PARAM_LABEL)
     rep.add_warnings(result.warnings)
     rep.add_figure(iso230_2_figure(result, dataset),
                    f"Mean deviation per direction with ±2s bands and every run's readings "
@@ -220,6 +213,83 @@ _PARAM_MEANING = {
     "R_up": "Unidirectional repeatability, positive", "R_down": "Unidirectional repeatability, negative",
     "B": "Reversal value (largest |B_i|)", "B_mean": "Mean reversal value (signed)",
 }
+
+
+def add_acceptance(rep: Report, decisions, unit_text: str, labels: dict | None = None) -> None:
+    """The acceptance table of ISO 14253-1 decisions (:class:`~axiscal.standards.iso14253_1.
+    Decision`): measured value, expanded uncertainty U (or "not estimated"), tolerance, outcome,
+    with the decision rule in the caption."""
+    labels = labels or {}
+    cls = {"PASS": "ok", "FAIL": "bad"}
+    rows = []
+    for d in decisions:
+        state = "n/a" if d.outcome is None else d.outcome.short
+        css = cls.get(state, "zone")
+        u = "not estimated" if math.isnan(d.U) else _cell(d.U, 2)
+        rows.append(f"<tr><td>{_esc(labels.get(d.parameter, d.parameter))}</td>"
+                    f"<td>{_cell(d.value, 2)}</td><td>{u}</td><td>{d.upper:g}</td>"
+                    f'<td><span class="{css}">{state}</span></td></tr>')
+    rule = decisions[0].rule.value
+    how = ("ISO 14253-1:2017: conformance is proven when the value plus U is within the "
+           "tolerance, non-conformance when the value minus U is beyond it, else ZONE"
+           if rule == "iso14253-1" else
+           "simple acceptance (ILAC-G8 §4.2.1): the measured value compared with the tolerance, "
+           "without a guard band; no published budget gives U for these parameters")
+    rep.add_html(f"<h3>Acceptance</h3><table><thead><tr><th>Parameter</th><th>Measured "
+                 f"[{unit_text}]</th><th>U (k = 2) [{unit_text}]</th><th>Tolerance "
+                 f"[{unit_text}]</th><th>Verdict</th></tr></thead><tbody>{''.join(rows)}</tbody>"
+                 f"<caption>Decision rule: {_esc(how)}.</caption></table>")
+
+
+def standards_report(dataset, results, title: str, decisions=()) -> Report:
+    """The report of ``axiscal evaluate``: one test by one or every positioning standard.
+
+    ``results`` are the (Standard, StandardResult or reason) pairs of
+    :func:`axiscal.standards.positioning_standards.evaluate_all`. Every parameter keeps its
+    standard's name and source; a parameter or standard axiscal does not evaluate is listed with
+    the reason. The figure is the per-target one every standard starts from.
+    """
+    from axiscal.report.plots import iso230_2_figure
+    from axiscal.standards import iso230_2
+
+    md = dataset.metadata
+    evaluated = [(std, r) for std, r in results if not isinstance(r, str)]
+    rep = Report(title, subtitle="Evaluated by " + ", ".join(std.title for std, _ in evaluated),
+                 metadata={"Machine": md.machine, "Axis": md.axis, "Operator": md.operator,
+                           "Date": md.date, "Instrument": md.instrument, "Notes": md.notes})
+    u = unit_label(dataset.deviation_unit)
+    rep.add_heading("Result")
+    rows = []
+    for std, r in evaluated:
+        first = True
+        for name, (v, _unit, desc) in r.parameters().items():
+            rows.append([std.title if first else "", _std_label(name), v, desc])
+            first = False
+        rows += [["", name, None, why] for name, why in r.not_evaluated]
+    rep.add_table(["Standard", "Parameter", f"Value [{u}]", "Meaning (source)"], rows, digits=2,
+                  css_class="params standards")
+    if decisions:
+        add_acceptance(rep, decisions, u)
+    rep.add_warnings(f"{std.title}: {w}" for std, r in evaluated for w in r.warnings)
+    skipped = [(std, r) for std, r in results if isinstance(r, str)]
+    if skipped:
+        rep.add_heading("Not evaluated")
+        rep.add_table(["Standard", "Why"],
+                      [[std.title, why.removeprefix(f"{std.title}: ")] for std, why in skipped],
+                      css_class="text")
+    base = iso230_2.evaluate(dataset)
+    rep.add_figure(iso230_2_figure(base, dataset),
+                   f"The readings every standard starts from: mean deviation per direction and "
+                   f"every run's readings, with the ±2s bands of ISO 230-2:2014 ({u} against "
+                   f"target in {unit_label(dataset.target_unit)}).")
+    rep.add_heading("Sources")
+    rep.add_table(["Standard", "Definitions taken from"],
+                  [[std.title, std.source] for std, _ in evaluated], css_class="text")
+    return rep
+
+
+def _std_label(name: str) -> str:
+    return name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
 
 
 def target_label(value: float) -> str:
