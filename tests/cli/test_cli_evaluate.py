@@ -73,7 +73,7 @@ def test_tolerance_verdict_and_exit_code(good):
 @pytest.mark.parametrize("args, message", [
     (["-s", "din9999"], "use one of"),
     (["-s", "all", "--tolerance", "R=1"], "needs one --standard"),
-    (["-s", "jis-b6192", "--plot", "x.png"], "iso230-2:2014"),
+    (["-s", "nmtba", "--plot", "x.png"], "NMTBA: not evaluated"),
     (["-s", "jis-b6192", "--tolerance", "A=1"], "not a JIS"),
     (["-s", "vdi3441", "--tolerance", "P=1"], "VDI/DGQ 3441 P, position uncertainty: not "
                                               "evaluated"),
@@ -120,3 +120,21 @@ def test_iso_report_with_a_tolerance_shows_the_iso14253_decision(good, tmp_path)
     page = html.read_text()
     assert "Decision rule: ISO 14253-1:2017" in page and ">PASS<" in page
     assert "U (k = 2)" in page and "not estimated" not in page
+
+
+@pytest.mark.parametrize("key, band", [("jis-b6192", "x̄ ± 3s"), ("iso230-2:1988", "x̄ ± 3s"),
+                                       ("iso230-2:2006", "x̄ ± 2s"), ("vdi3441", None)])
+def test_plot_for_any_standard_draws_its_band_and_parameters(good, tmp_path, key, band):
+    """--plot for a standard other than ISO 230-2:2014: its own band (none for VDI/DGQ 3441,
+    whose scatter factor is not public) and its own parameters in the box."""
+    svg = tmp_path / "p.svg"
+    r = runner.invoke(app, ["evaluate", str(good), "-s", key, "--plot", str(svg)])
+    assert r.exit_code == 0, r.output
+    text = svg.read_text()
+    from axiscal.standards.positioning_standards import STANDARDS
+
+    assert STANDARDS[key].title in text
+    if band is None:
+        assert "x̄ ± " not in text and "Pa" in text
+    else:
+        assert band in text

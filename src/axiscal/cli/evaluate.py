@@ -32,7 +32,7 @@ def evaluate(
     target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a file that does not declare it: mm or deg."),
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (with --standard iso230-2:2014)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the per-target plot with the chosen standard's band (±2s ISO 230-2:2014/2006, ±3s JIS and ISO 230-2:1988, none where not public) and parameters; 'all' draws ISO 230-2:2014's."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report: every parameter of the chosen standard(s) with its source, what is not evaluated and why, the acceptance, the per-target figure."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
     rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
@@ -51,9 +51,6 @@ def evaluate(
     if key == "all" and tolerances:
         raise InputError("--tolerance needs one --standard (parameter names differ between "
                          "standards)")
-    if plot is not None and key != "iso230-2:2014":
-        raise InputError("--plot draws the ISO 230-2:2014 figure (±2s bands): use it with "
-                         "--standard iso230-2:2014; --report shows the readings for any standard")
     if key != "all" and key not in ps.STANDARDS:
         raise InputError(f"--standard {standard}: use one of {_KEYS.replace('|', ', ')}")
     for p, check in ((plot, plot_path), (report, report_path)):
@@ -67,9 +64,13 @@ def evaluate(
     else:
         results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
     verdicts = ps.check_tolerances(key, ds, results[0][1], tolerances, rule) if tolerances else ()
-    if plot is not None or (report is not None and key == "iso230-2:2014"):
-        _iso_outputs(ds, plot, report, verdicts)
-    elif report is not None:
+    if key in ("iso230-2:2014", "all"):
+        _iso_outputs(ds, plot, report if key != "all" else None, verdicts)
+    elif plot is not None:
+        from axiscal.report.plots import save_figure, standard_figure
+
+        save_figure(standard_figure(ds, *results[0]), plot)
+    if report is not None and key != "iso230-2:2014":
         from axiscal.report.html import standards_report
 
         what = "every positioning standard" if key == "all" else results[0][0].title
@@ -91,6 +92,8 @@ def evaluate(
 
 
 def _iso_outputs(ds, plot, report, verdicts) -> None:
+    if plot is None and report is None:
+        return
     from axiscal.standards.iso230_2 import evaluate as iso_evaluate
 
     result = iso_evaluate(ds)

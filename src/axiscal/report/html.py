@@ -249,7 +249,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     standard's name and source; a parameter or standard axiscal does not evaluate is listed with
     the reason. The figure is the per-target one every standard starts from.
     """
-    from axiscal.report.plots import iso230_2_figure
+    from axiscal.report.plots import iso230_2_figure, standard_figure
     from axiscal.standards import iso230_2
 
     md = dataset.metadata
@@ -277,11 +277,17 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
         rep.add_table(["Standard", "Why"],
                       [[std.title, why.removeprefix(f"{std.title}: ")] for std, why in skipped],
                       css_class="text")
-    base = iso230_2.evaluate(dataset)
-    rep.add_figure(iso230_2_figure(base, dataset),
-                   f"The readings every standard starts from: mean deviation per direction and "
-                   f"every run's readings, with the ±2s bands of ISO 230-2:2014 ({u} against "
-                   f"target in {unit_label(dataset.target_unit)}).")
+    units = f"{u} against target in {unit_label(dataset.target_unit)}"
+    if len(evaluated) == 1 and evaluated[0][0].key != "iso230-2:2014":
+        std, r = evaluated[0]
+        band = (f"with the ±{std.band:g}s band of its definitions" if std.band else
+                "without a band: its scatter factor is not public")
+        rep.add_figure(standard_figure(dataset, std, r),
+                       f"Mean deviation per direction and every run's readings, {band} ({units}).")
+    else:
+        rep.add_figure(iso230_2_figure(iso230_2.evaluate(dataset), dataset),
+                       f"The readings every standard starts from: mean deviation per direction "
+                       f"and every run's readings, with the ±2s bands of ISO 230-2:2014 ({units}).")
     rep.add_heading("Sources")
     rep.add_table(["Standard", "Definitions taken from"],
                   [[std.title, std.source] for std, _ in evaluated], css_class="text")

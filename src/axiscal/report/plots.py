@@ -28,7 +28,8 @@ def _pyplot():
     return plt
 
 
-def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None):
+def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None, *,
+                    band: float | None = 2.0, box: str | None = None):
     """The standard ISO 230-2 plot of one positioning test.
 
     Parameters
@@ -39,6 +40,11 @@ def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None):
     title : str, optional
     truth : tuple of (ndarray, ndarray), optional
         ``(positions, systematic deviation)`` a simulation knew, drawn as a dashed line.
+    band : float or None
+        The ±k·s band drawn around each direction's mean (2 for ISO 230-2:2014 eqs. 20, 21);
+        None draws none. :func:`standard_figure` passes another standard's band.
+    box : str, optional
+        The parameter box beside the plot (default: the ISO 230-2:2014 parameters).
 
     Returns
     -------
@@ -56,8 +62,9 @@ def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None):
     ):
         if np.all(np.isnan(mean)):
             continue
-        ax.fill_between(t, mean - 2 * s, mean + 2 * s, color=color, alpha=0.13, linewidth=0,
-                        label=f"x̄ ± 2s, {name.split()[0]}")
+        if band is not None:
+            ax.fill_between(t, mean - band * s, mean + band * s, color=color, alpha=0.13,
+                            linewidth=0, label=f"x̄ ± {band:g}s, {name.split()[0]}")
         ax.plot(t, mean, "-", color=color, lw=1.8, marker="o", ms=3.5, label=f"mean x̄, {name}")
         if arr is not None and arr.shape[1]:
             jitter = 0.004 * (t[-1] - t[0]) * (1 if color == UP_COLOR else -1)
@@ -79,11 +86,33 @@ def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None):
             ax.set_xticks(np.arange(np.ceil(t[0] / 45) * 45, t[-1] + 1e-9, 45 if span <= 720 else 90))
     ax.set_title(title or default_title(dataset), loc="left", fontsize=12)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
-    ax.text(1.015, 0.0, _parameter_box(result, u), transform=ax.transAxes, fontsize=9,
+    ax.text(1.015, 0.0, box or _parameter_box(result, u), transform=ax.transAxes, fontsize=9,
             family="monospace", va="bottom", ha="left",
             bbox=dict(boxstyle="round,pad=0.5", fc="#f5f7fa", ec="#c9d1db"))
     fig.tight_layout()
     return fig
+
+
+def standard_figure(dataset, standard, result):
+    """The per-target plot of one test by another positioning standard: each direction's mean and
+    every run's readings, the band that standard's definitions use (``standard.band``: ±3s for
+    JIS B 0182 and ISO 230-2:1988, none where it is not public) and its own parameters beside.
+
+    ``standard`` is a :class:`~axiscal.standards.positioning_standards.Standard` and ``result``
+    its :class:`~axiscal.standards.positioning_standards.StandardResult` for ``dataset``.
+    """
+    from axiscal.standards import iso230_2
+
+    u = {"um": "µm", "arcsec": "arcsec"}.get(dataset.deviation_unit, dataset.deviation_unit)
+    lines = [f"{standard.title} [{u}]"]
+    for name, (v, _unit, _d) in result.parameters().items():
+        label = name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
+        lines.append(f"{label:<7}" + ("      —" if v is None else f"{v:9.2f}"))
+    lines += [f"{name:<7}      —" for name, _ in result.not_evaluated]
+    base = iso230_2.evaluate(dataset)
+    lines.append(f"runs {base.n_runs}, targets {base.targets.size}")
+    title = default_title(dataset).replace("ISO 230-2:2014", standard.title)
+    return iso230_2_figure(base, dataset, title, band=standard.band, box="\n".join(lines))
 
 
 def default_title(dataset=None) -> str:

@@ -93,6 +93,8 @@ class Standard:
     title: str
     source: str
     run: Callable[[PositioningDataset], StandardResult] | None = None
+    #: The ±k·s band its definitions draw around each direction's mean (None: not public).
+    band: float | None = None
 
     @property
     def available(self) -> bool:
@@ -152,16 +154,17 @@ _NONE = "no public text of its definitions was available to axiscal"
 
 STANDARDS: dict[str, Standard] = {s.key: s for s in (
     Standard("iso230-2:2014", "ISO 230-2:2014",
-             "ISO 230-2:2014 clause 3 (Yüksel et al., eqs. 1-21)", _iso230_2_2014),
+             "ISO 230-2:2014 clause 3 (Yüksel et al., eqs. 1-21)", _iso230_2_2014, 2.0),
     Standard("iso230-2:2006", "ISO 230-2:2006",
-             "AMT announcement of ISO 230-2:2006 (2 standard uncertainties)", _iso_edition("2006")),
+             "AMT announcement of ISO 230-2:2006 (2 standard uncertainties)", _iso_edition("2006"),
+             2.0),
     Standard("iso230-2:1997", "ISO 230-2:1997", _NONE),
     Standard("iso230-2:1988", "ISO 230-2:1988",
              "WIT Trans. Eng. Sci. 23 (1999): a six standard deviation spread",
-             _iso_edition("1988")),
+             _iso_edition("1988"), 3.0),
     Standard("gb-t17421.2", "GB/T 17421.2", _NONE + " (nor which ISO 230-2 edition it adopts)"),
     Standard("jis-b6192", "JIS B 6192 / B 0182",
-             "JIS B 0182-1993 terms 342, 346", _jis_b6192),
+             "JIS B 0182-1993 terms 342, 346", _jis_b6192, 3.0),
     Standard("vdi3441", "VDI/DGQ 3441", "Bosch Rexroth, Linearmodule R310DE 2402, p. 151",
              _vdi3441),
     Standard("asme-b5.54", "ASME B5.54", _NONE),
