@@ -121,6 +121,8 @@ def _entry_json(std, res) -> dict:
 def _render(results, ds, title, verdicts) -> None:
     import math
 
+    from axiscal.standards import positioning_standards as ps
+
     from rich.markup import escape
     from rich.table import Table
 
@@ -141,7 +143,7 @@ def _render(results, ds, title, verdicts) -> None:
         first = True
         for name, (v, _u, desc) in res.parameters().items():
             value = "—" if v is None or math.isnan(v) else f"{v:.2f}"
-            shown = name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
+            shown = ps.parameter_label(name)
             t.add_row(escape(std.title) if first else "", shown, value, escape(desc))
             first = False
         for name, why in res.not_evaluated:

@@ -167,6 +167,7 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
     from rich.table import Table
 
     from axiscal.cli._common import console as make_console
+    from axiscal.standards.positioning_standards import parameter_label
 
     con = console or make_console()
     u, tu = result.deviation_unit, result.target_unit
@@ -223,8 +224,7 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
     }
     for name, v in result.parameters().items():
         extra = [] if budget is None else ["—" if v is None else f(budget.U(name))]
-        p.add_row(name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"),
-                  f(v), *extra, meanings[name])
+        p.add_row(parameter_label(name), f(v), *extra, meanings[name])
     for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
         if v is not None:   # a full turn keeps 0° and 360° as two targets
             p.add_row(f"closure{arrow}", f(v), *(["—"] if budget is not None else []),

@@ -251,6 +251,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     """
     from axiscal.report.plots import iso230_2_figure, standard_figure
     from axiscal.standards import iso230_2
+    from axiscal.standards.positioning_standards import parameter_label
 
     md = dataset.metadata
     evaluated = [(std, r) for std, r in results if not isinstance(r, str)]
@@ -263,7 +264,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     for std, r in evaluated:
         first = True
         for name, (v, _unit, desc) in r.parameters().items():
-            rows.append([std.title if first else "", _std_label(name), v, desc])
+            rows.append([std.title if first else "", parameter_label(name), v, desc])
             first = False
         rows += [["", name, None, why] for name, why in r.not_evaluated]
     rep.add_table(["Standard", "Parameter", f"Value [{u}]", "Meaning (source)"], rows, digits=2,
@@ -292,10 +293,6 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     rep.add_table(["Standard", "Definitions taken from"],
                   [[std.title, std.source] for std, _ in evaluated], css_class="text")
     return rep
-
-
-def _std_label(name: str) -> str:
-    return name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
 
 
 def target_label(value: float) -> str:

@@ -102,11 +102,12 @@ def standard_figure(dataset, standard, result):
     its :class:`~axiscal.standards.positioning_standards.StandardResult` for ``dataset``.
     """
     from axiscal.standards import iso230_2
+    from axiscal.standards.positioning_standards import parameter_label
 
     u = {"um": "µm", "arcsec": "arcsec"}.get(dataset.deviation_unit, dataset.deviation_unit)
     lines = [f"{standard.title} [{u}]"]
     for name, (v, _unit, _d) in result.parameters().items():
-        label = name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
+        label = parameter_label(name)
         lines.append(f"{label:<7}" + ("      —" if v is None else f"{v:9.2f}"))
     lines += [f"{name:<7}      —" for name, _ in result.not_evaluated]
     base = iso230_2.evaluate(dataset)

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.report.html import Report, target_label
+from axiscal.standards.positioning_standards import parameter_label
 from axiscal.units import ARCSEC
 
 __all__ = ["rotary_report", "write_rotary_report", "rotary_error_figure", "common_offset"]
@@ -106,7 +107,7 @@ def rotary_report(r, title: str | None = None) -> Report:
     rows = []
     for k in _PARAMS:
         m, t = summary["measured"][k], summary["truth"][k]
-        rows.append([k.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean"), m, t,
+        rows.append([parameter_label(k), m, t,
                      None if m is None or t is None else f"{m - t:+.2f}"])
     rep.add_table(["Parameter", "Measured [arcsec]", "True [arcsec]", "Measured − true [arcsec]"],
                   rows, caption="ISO 230-2:2014 parameters of the measured and of the true "

@@ -44,7 +44,13 @@ from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
 
 __all__ = ["Standard", "StandardResult", "STANDARDS", "evaluate", "evaluate_all",
-           "check_tolerances", "NotAvailableError", "described_parameters"]
+           "check_tolerances", "NotAvailableError", "described_parameters", "parameter_label"]
+
+
+def parameter_label(name: str) -> str:
+    """How a parameter name is shown: ``R_up`` -> ``R↑``, ``R_down`` -> ``R↓``, ``U_mean`` ->
+    ``U mean``."""
+    return name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
 
 
 def described_parameters(result, table: dict[str, tuple[str, str]]):
