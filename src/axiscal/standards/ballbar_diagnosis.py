@@ -271,29 +271,34 @@ def _solve(a, y):
 
 def _cyclic(phi, res, radius):
     """Pitch of each axis's cyclic error: grid search of the projections of the mean residual of
-    the two runs (a cyclic error of position is the same in both directions)."""
+    the two runs (a cyclic error of position is the same in both directions).
+
+    The search only ranks the candidate pitches, so it runs in single precision (5x faster sines
+    here; a rounding of 1e-4 rad moves a pick by at most one step of the fine grid, where the
+    power is flat); the columns of the chosen pitch are then formed in double precision."""
     n = phi.size
     mean = 0.5 * (res[:n] + res[n:])
     dphi = 2 * np.pi / max(n, 8)
     pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 48)
     cols, out = [], {}
     for name, w in (("x", np.cos(phi)), ("y", np.sin(phi))):
-        power, sn, cs = _cyclic_power(pitches, w, mean, radius)
-        i = int(np.argmax(power))           # then a finer grid between the neighbours
+        w32, mean32 = w.astype(np.float32), mean.astype(np.float32)
+        i = int(np.argmax(_cyclic_power(pitches, w32, mean32, radius)))
         fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 24)
-        power, sn, cs = _cyclic_power(fine, w, mean, radius)
-        i = int(np.argmax(power))
-        out[f"{name}_pitch"] = float(fine[i])
-        cols += [np.tile(sn[i], 2), np.tile(cs[i], 2)]
+        pitch = float(fine[int(np.argmax(_cyclic_power(fine, w32, mean32, radius)))])
+        out[f"{name}_pitch"] = pitch
+        arg = 2 * np.pi * radius / pitch * w
+        cols += [np.tile(w * np.sin(arg), 2), np.tile(w * np.cos(arg), 2)]
     return np.column_stack(cols), out
 
 
 def _cyclic_power(pitches, w, mean, radius):
-    arg = (2 * np.pi * radius / pitches)[:, None] * w[None, :]
+    """Power of the mean residual projected on w·sin and w·cos of each pitch's phase 2πr·w/p,
+    in the precision of ``w`` and ``mean``."""
+    arg = (2 * np.pi * radius / pitches).astype(w.dtype)[:, None] * w[None, :]
     sn, cs = w * np.sin(arg), w * np.cos(arg)
-    power = (sn @ mean) ** 2 / np.einsum("ij,ij->i", sn, sn) + \
+    return (sn @ mean) ** 2 / np.einsum("ij,ij->i", sn, sn) + \
         (cs @ mean) ** 2 / np.einsum("ij,ij->i", cs, cs)
-    return power, sn, cs
 
 
 # --- the result ----------------------------------------------------------------------------------
