@@ -42,3 +42,26 @@ def test_test_page_shows_U_and_the_pdf_certificate_downloads(tmp_path, monkeypat
     text = "".join(p.extract_text() for p in PdfReader(io.BytesIO(pdf.content)).pages)
     assert "page 1 of" in text and "VMC-800" in text
     assert c.get("/tests/1/certificate.pdf?paper=Legal").status_code == 400
+
+
+def test_test_page_shows_every_standard_and_its_report_downloads(tmp_path, monkeypatch):
+    """A positioning test's page lists the other standards' parameters under their own names,
+    the ones not evaluated with the reason, and offers the report by every standard."""
+    monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "none.toml"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"))
+    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    page = c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", _file(), "text/csv")})
+    assert page.status_code == 200
+    from axiscal.io import parse_positioning
+    from axiscal.standards import vdi3441
+
+    ds = parse_positioning(_file().decode(), "x.csv")
+    params = page.text.split('id="parameters"')[1].split("</table>")[0]
+    assert "jis-b6192:R" not in params  # the ISO 230-2:2014 table keeps its own parameters
+    others = page.text.split('id="standards"')[1].split("</table>")[0]
+    assert "VDI/DGQ 3441" in others and f"{vdi3441.evaluate(ds).Pa:.3f}" in others
+    assert "position scatter: not evaluated" in others and "ISO 230-2:1988" in others
+    assert "NMTBA" in page.text.split('id="standards"')[1]
+    rep = c.get("/tests/1/standards.html")
+    assert rep.status_code == 200 and "by every positioning standard" in rep.text
+    assert "Rexroth R310DE" in rep.text and "<svg" in rep.text

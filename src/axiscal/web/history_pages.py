@@ -60,6 +60,7 @@ def add_routes(app: FastAPI) -> None:
 
         return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
                       f"{t.summary.axis}", t=t, ev=ev, plot=plot,
+                      standards=_other_standards(ev) if ev.kind == "iso230-2" else None,
                       targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
                       budget=budget, decisions=decisions,
                       controllers=sorted(CONTROLLERS), others=[
@@ -95,6 +96,19 @@ def add_routes(app: FastAPI) -> None:
 
         html = positioning_report(ev.dataset, ev.evaluation).html()
         return download(html, f"test_{test_id}_report.html", "text/html")
+
+    @app.get("/tests/{test_id}/standards.html")
+    def standards(request: Request, test_id: int):
+        t = store(request).get(test_id)
+        ev = t.evaluate_again()
+        if ev.kind != "iso230-2":
+            raise InputError(f"a {ev.kind} test is not a positioning test: no standards report")
+        from axiscal.report.html import standards_report
+        from axiscal.standards.positioning_standards import evaluate_all
+
+        html = standards_report(ev.dataset, evaluate_all(ev.dataset),
+                                f"Test {test_id} by every positioning standard").html()
+        return download(html, f"test_{test_id}_standards.html", "text/html")
 
     @app.get("/tests/{test_id}/certificate.pdf")
     def certificate(request: Request, test_id: int, paper: str = "A4"):
@@ -292,3 +306,27 @@ def _uncertainty(ev):
     budget = positioning_budget(ev.dataset, ev.evaluation, cfg.get("uncertainty"))
     decisions, _, _ = decisions_for(ev.evaluation.parameters(), budget, {}, cfg, None)
     return budget, {d.parameter: d for d in decisions}
+
+
+def _other_standards(ev) -> dict:
+    """The test by every other positioning standard, for the test page: ``rows`` (standard,
+    parameter, value, meaning; a parameter not evaluated has value None and its reason) and
+    ``unpublished`` (the standards with no public definitions)."""
+    from axiscal.standards.positioning_standards import evaluate_all, parameter_label
+
+    rows, unpublished = [], []
+    for std, res in evaluate_all(ev.dataset):
+        if std.key == "iso230-2:2014":
+            continue
+        if isinstance(res, str):  # no public definitions, or this test cannot form them
+            if std.available:
+                rows.append((std.title, "—", None, res))
+            else:
+                unpublished.append(std.title)
+            continue
+        first = True
+        for name, (v, _u, desc) in res.parameters().items():
+            rows.append((std.title if first else "", parameter_label(name), v, desc))
+            first = False
+        rows += [("", name, None, why) for name, why in res.not_evaluated]
+    return {"rows": rows, "unpublished": unpublished}
