@@ -138,3 +138,45 @@ def test_plot_for_any_standard_draws_its_band_and_parameters(good, tmp_path, key
         assert "x̄ ± " not in text and "Pa" in text
     else:
         assert band in text
+
+
+ONE_RUN = """# target_unit=mm deviation_unit=um machine=VMC axis=X
+target,direction,run,deviation
+0,+,1,1.0
+0,-,1,-1.0
+210,+,1,2.0
+210,-,1,0.5
+600,+,1,0.0
+600,-,1,-0.5
+"""
+
+
+def test_a_test_iso_refuses_but_vdi_evaluates_still_has_its_plot_and_report(tmp_path):
+    """One approach each way: ISO 230-2:2014, its editions and JIS need two readings (no s), VDI
+    evaluates with a warning. The plot and report follow what is evaluated; each refusal names
+    its standard."""
+    f = tmp_path / "one.csv"
+    f.write_text(ONE_RUN)
+    r = runner.invoke(app, ["evaluate", str(f), "-s", "all"])
+    assert r.exit_code == 0, r.output
+    assert "not evaluated (ISO 230-2:2014):" in r.stdout and "not evaluated (JIS" in r.stdout
+    for key in ("vdi3441", "all"):
+        png, html = tmp_path / f"{key}.png", tmp_path / f"{key}.html"
+        r = runner.invoke(app, ["evaluate", str(f), "-s", key, "--plot", str(png), "--report",
+                                str(html)])
+        assert r.exit_code == 0, r.output
+        assert png.stat().st_size > 1000 and "VDI/DGQ 3441" in html.read_text()
+    # no standard at all: one direction, one run
+    f.write_text("\n".join(line for line in ONE_RUN.splitlines() if ",-," not in line) + "\n")
+    r = runner.invoke(app, ["evaluate", str(f), "-s", "all", "--plot", str(tmp_path / "n.png")])
+    assert r.exit_code == 2 and "no standard evaluates this test" in r.stderr
+    assert not (tmp_path / "n.png").exists()
+
+
+def test_report_acceptance_uses_the_parameter_labels_of_the_result_table(good, tmp_path):
+    html = tmp_path / "r.html"
+    r = runner.invoke(app, ["evaluate", str(good), "-s", "iso230-2:1988", "--tolerance",
+                            "R_up=100", "--report", str(html)])
+    assert r.exit_code == 0, r.output
+    acceptance = html.read_text().split("<h3>Acceptance</h3>")[1].split("</table>")[0]
+    assert "<td>R↑</td>" in acceptance and "R_up" not in acceptance

@@ -105,3 +105,14 @@ def test_agrees_with_squareness_circular():
 def test_needs_both_directions():
     with pytest.raises(InputError, match="one CCW and one CW"):
         diagnose(_runs()[:1], R)
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-18, 1e18])
+def test_cyclic_pitch_search_is_scale_free(scale):
+    """The pitch search ranks in single precision on the residual divided by its peak, so a
+    residual of any size (1e-24 m underflowed float32 before) finds the same pitch, 5 mm here."""
+    from axiscal.standards.ballbar_diagnosis import _cyclic
+
+    phi, r = np.linspace(0, 2 * np.pi, 3600, endpoint=False), 0.15
+    res = np.tile(np.cos(phi) * np.sin(2 * np.pi * r * np.cos(phi) / 0.005), 2) * 1e-6
+    assert _cyclic(phi, res * scale, r)[1]["x_pitch"] == pytest.approx(0.005, rel=0.01)

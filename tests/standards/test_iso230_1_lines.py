@@ -178,3 +178,13 @@ def test_prism_error_correction_and_reversal():
         Squareness(1e-6, ("X", "X"))
     with pytest.raises(InputError):
         Squareness(1e-6, ("X", "Y"), datum="Z")
+
+
+@pytest.mark.parametrize("sx, sy", [(1.0, 1.0), (1e155, 1e155), (1e-100, 1e-230), (1e300, 1e-300)])
+def test_minimum_zone_does_not_depend_on_the_unit(sx, sy):
+    """The zone of (0,0) (1,1) (2,0) (3,1) is 1 (the band between y = 0 and y = 1); in any unit,
+    however large or small, it scales with the deviations. Before the hull's cross products
+    were formed on power-of-two-scaled coordinates, 1e155 overflowed them and 1e-230 underflowed,
+    both giving 4/3, wider than least squares (1.2)."""
+    x, y = np.array([0, 1, 2, 3.0]) * sx, np.array([0, 1, 0, 1.0]) * sy
+    assert straightness(x, y, "minimum_zone").deviation == pytest.approx(sy, rel=1e-12)

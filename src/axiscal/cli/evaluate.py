@@ -64,12 +64,16 @@ def evaluate(
     else:
         results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
     verdicts = ps.check_tolerances(key, ds, results[0][1], tolerances, rule) if tolerances else ()
-    if key in ("iso230-2:2014", "all"):
-        _iso_outputs(ds, plot, report if key != "all" else None, verdicts)
+    if key == "iso230-2:2014":
+        _iso_outputs(ds, plot, report, verdicts)
     elif plot is not None:
-        from axiscal.report.plots import save_figure, standard_figure
+        from axiscal.report.plots import save_figure, standard_figure, standards_figure
 
-        save_figure(standard_figure(ds, *results[0]), plot)
+        fig = standards_figure(ds, results) if key == "all" else standard_figure(ds, *results[0])
+        if fig is None:
+            raise InputError("--plot: no standard evaluates this test, so there is no figure; "
+                             "the reasons are in the table without --plot")
+        save_figure(fig, plot)
     if report is not None and key != "iso230-2:2014":
         from axiscal.report.html import standards_report
 
@@ -92,8 +96,6 @@ def evaluate(
 
 
 def _iso_outputs(ds, plot, report, verdicts) -> None:
-    if plot is None and report is None:
-        return
     from axiscal.standards.iso230_2 import evaluate as iso_evaluate
 
     result = iso_evaluate(ds)
@@ -156,7 +158,7 @@ def _render(results, ds, title, verdicts) -> None:
                   f"(docs/standards.md): {escape(', '.join(unpublished))}")
     for std, reason in skipped:
         if std.available:
-            con.print(f"not evaluated: {escape(reason)}")
+            con.print(f"not evaluated ({escape(std.title)}): {escape(reason)}")
     if verdicts:
         con.print(f"acceptance ({verdicts[0].rule.value} decision rule):")
         for v in verdicts:

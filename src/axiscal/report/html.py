@@ -249,8 +249,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     standard's name and source; a parameter or standard axiscal does not evaluate is listed with
     the reason. The figure is the per-target one every standard starts from.
     """
-    from axiscal.report.plots import iso230_2_figure, standard_figure
-    from axiscal.standards import iso230_2
+    from axiscal.report.plots import standard_figure, standards_figure
     from axiscal.standards.positioning_standards import parameter_label
 
     md = dataset.metadata
@@ -270,7 +269,8 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     rep.add_table(["Standard", "Parameter", f"Value [{u}]", "Meaning (source)"], rows, digits=2,
                   css_class="params standards")
     if decisions:
-        add_acceptance(rep, decisions, u)
+        add_acceptance(rep, decisions, u, {d.parameter: parameter_label(d.parameter)
+                                           for d in decisions})
     rep.add_warnings(f"{std.title}: {w}" for std, r in evaluated for w in r.warnings)
     skipped = [(std, r) for std, r in results if isinstance(r, str)]
     if skipped:
@@ -285,10 +285,12 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
                 "without a band: its scatter factor is not public")
         rep.add_figure(standard_figure(dataset, std, r),
                        f"Mean deviation per direction and every run's readings, {band} ({units}).")
-    else:
-        rep.add_figure(iso230_2_figure(iso230_2.evaluate(dataset), dataset),
+    elif evaluated:
+        std = evaluated[0][0]
+        rep.add_figure(standards_figure(dataset, results),
                        f"The readings every standard starts from: mean deviation per direction "
-                       f"and every run's readings, with the ±2s bands of ISO 230-2:2014 ({units}).")
+                       f"and every run's readings, drawn as {std.title} does"
+                       + (f" (±{std.band:g}s bands)" if std.band else "") + f" ({units}).")
     rep.add_heading("Sources")
     rep.add_table(["Standard", "Definitions taken from"],
                   [[std.title, std.source] for std, _ in evaluated], css_class="text")

@@ -93,6 +93,33 @@ def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None, 
     return fig
 
 
+def per_target(dataset):
+    """Each direction's mean and standard deviation at every target, for a figure: NaN-aware, an
+    s of NaN (no band) where a direction has fewer than 2 readings, so a test another standard
+    evaluates but ISO 230-2:2014 refuses still has its picture. The fields
+    :func:`iso230_2_figure` reads from an :class:`~axiscal.standards.iso230_2.Iso230_2Result`."""
+    from types import SimpleNamespace
+
+    def stats(a):
+        if a.shape[1] == 0:
+            return (np.full(dataset.targets.size, np.nan),) * 2
+        n = np.sum(~np.isnan(a), axis=1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mean = np.nansum(a, axis=1) / n
+            dev = np.where(np.isnan(a), 0.0, a - mean[:, None])
+            s = np.sqrt(np.sum(dev ** 2, axis=1) / (n - 1))
+        return mean, np.where(n >= 2, s, np.nan)
+
+    up, s_up = stats(dataset.up)
+    down, s_down = stats(dataset.down)
+    both = dataset.up.shape[1] > 0 and dataset.down.shape[1] > 0
+    return SimpleNamespace(
+        targets=dataset.targets, mean_up=up, mean_down=down, s_up=s_up, s_down=s_down,
+        mean_bi=0.5 * (up + down), bidirectional=both, axis_kind=dataset.axis_kind,
+        target_unit=dataset.target_unit, deviation_unit=dataset.deviation_unit,
+        n_runs=int(max(dataset.up.shape[1], dataset.down.shape[1])))
+
+
 def standard_figure(dataset, standard, result):
     """The per-target plot of one test by another positioning standard: each direction's mean and
     every run's readings, the band that standard's definitions use (``standard.band``: ±3s for
@@ -101,7 +128,6 @@ def standard_figure(dataset, standard, result):
     ``standard`` is a :class:`~axiscal.standards.positioning_standards.Standard` and ``result``
     its :class:`~axiscal.standards.positioning_standards.StandardResult` for ``dataset``.
     """
-    from axiscal.standards import iso230_2
     from axiscal.standards.positioning_standards import parameter_label
 
     u = {"um": "µm", "arcsec": "arcsec"}.get(dataset.deviation_unit, dataset.deviation_unit)
@@ -110,10 +136,24 @@ def standard_figure(dataset, standard, result):
         label = parameter_label(name)
         lines.append(f"{label:<7}" + ("      —" if v is None else f"{v:9.2f}"))
     lines += [f"{name:<7}      —" for name, _ in result.not_evaluated]
-    base = iso230_2.evaluate(dataset)
+    base = per_target(dataset)
     lines.append(f"runs {base.n_runs}, targets {base.targets.size}")
     title = default_title(dataset).replace("ISO 230-2:2014", standard.title)
     return iso230_2_figure(base, dataset, title, band=standard.band, box="\n".join(lines))
+
+
+def standards_figure(dataset, results):
+    """The figure of ``evaluate --standard all``: ISO 230-2:2014's when it evaluates the test,
+    else the first standard's that does (``results`` as
+    :func:`~axiscal.standards.positioning_standards.evaluate_all` gives them); None if none does."""
+    from axiscal.standards import iso230_2
+
+    done = [(std, r) for std, r in results if not isinstance(r, str)]
+    if not done:
+        return None
+    if done[0][0].key == "iso230-2:2014":
+        return iso230_2_figure(iso230_2.evaluate(dataset), dataset)
+    return standard_figure(dataset, *done[0])
 
 
 def default_title(dataset=None) -> str:

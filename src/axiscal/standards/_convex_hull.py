@@ -89,27 +89,38 @@ def _qhull_candidates(xs: np.ndarray, ys: np.ndarray, as_mask: bool):
 
 
 def _monotone_chain(xs: np.ndarray, ys: np.ndarray, upper: bool):
-    """Andrew's monotone chain on x-sorted points with distinct x (exact cross products).
+    """Andrew's monotone chain on x-sorted points with distinct x (floating cross products, with
+    their rounding bound).
 
-    Vectorised passes first drop, all at once, every point that is certainly not strictly convex
-    against its present neighbours (such a point lies on or inside the segment of two other
-    points, so it is no vertex whatever else is dropped); a point whose cross product is within
-    its rounding bound goes only while both its neighbours stay, since dropping two such
-    neighbours at once can lose a vertex. A pass over the few points left finishes the chain.
+    The cross products are formed on a copy scaled by a power of two where the coordinates are
+    huge or tiny (:func:`_pow2`), so that no product overflows, whatever the unit. Vectorised passes first
+    drop, all at once, every point that is certainly not strictly convex against its present
+    neighbours (such a point lies on or inside the segment of two other points, so it is no
+    vertex whatever else is dropped); a point whose cross product is within its rounding bound
+    (or whose products underflow) goes only while both its neighbours stay, since dropping two
+    such neighbours at once can lose a vertex. A pass over the few points left finishes the chain.
+    The chain is returned in the original coordinates.
     """
     sign = -1.0 if upper else 1.0
+    X, Y = xs * _pow2(xs), ys * _pow2(ys)
+    idx = np.arange(xs.size)
+    eps, tiny = np.finfo(float).eps, np.finfo(float).tiny / np.finfo(float).eps
     for _ in range(64):
-        if xs.size < 3:
+        if idx.size < 3:
             break
-        a = (xs[1:-1] - xs[:-2]) * (ys[2:] - ys[:-2])
-        b = (ys[1:-1] - ys[:-2]) * (xs[2:] - xs[:-2])
+        x, y = X[idx], Y[idx]
+        dxab, dyac = x[1:-1] - x[:-2], y[2:] - y[:-2]
+        dyab, dxac = y[1:-1] - y[:-2], x[2:] - x[:-2]
+        a, b = dxab * dyac, dyab * dxac
         cross = a - b
         # Within the rounding bound of the differences and products the sign is uncertain: a
         # true vertex beside a point a subnormal step away can round to 0. Points certainly not
         # convex go all at once; an uncertain one only where both its neighbours stay (every
         # other one per pass), so it lies within rounding of the segment that replaces it.
-        bound = 4.0 * np.finfo(float).eps * (np.abs(a) + np.abs(b))
-        certain = sign * cross <= -bound
+        bound = 4.0 * eps * (np.abs(a) + np.abs(b))
+        exact_zero = ((dxab == 0) | (dyac == 0)) & ((dyab == 0) | (dxac == 0))
+        underflow = (np.abs(a) + np.abs(b) < tiny) & ~exact_zero
+        certain = (sign * cross <= -bound) & ~underflow
         uncertain = (sign * cross <= 0) & ~certain
         uncertain[1::2] = False
         uncertain[1:] &= ~(certain[:-1] | uncertain[:-1])
@@ -117,16 +128,26 @@ def _monotone_chain(xs: np.ndarray, ys: np.ndarray, upper: bool):
         keep = np.r_[True, ~(certain | uncertain), True]
         if keep.all():
             break
-        xs, ys = xs[keep], ys[keep]
-    hx: list[float] = []
-    hy: list[float] = []
-    for px, py in zip(xs.tolist(), ys.tolist()):
-        while len(hx) >= 2:
-            cross = (hx[-1] - hx[-2]) * (py - hy[-2]) - (hy[-1] - hy[-2]) * (px - hx[-2])
+        idx = idx[keep]
+    hull: list[int] = []  # positions in idx
+    xl, yl = X[idx].tolist(), Y[idx].tolist()
+    for i in range(len(xl)):
+        while len(hull) >= 2:
+            p, q = hull[-2], hull[-1]
+            cross = (xl[q] - xl[p]) * (yl[i] - yl[p]) - (yl[q] - yl[p]) * (xl[i] - xl[p])
             if sign * cross > 0:
                 break
-            hx.pop()
-            hy.pop()
-        hx.append(px)
-        hy.append(py)
-    return np.array(hx), np.array(hy)
+            hull.pop()
+        hull.append(i)
+    return xs[idx[hull]], ys[idx[hull]]
+
+
+def _pow2(v: np.ndarray) -> float:
+    """A power of two that brings the largest |v| near 1 when it lies outside [2**-500, 2**500],
+    else 1. Scaling up is exact; scaling down is needed only for huge coordinates, where it
+    rounds nothing but values 2**-500 below the largest (scaling every set would round a
+    subnormal step to zero and lose a vertex)."""
+    m = float(np.max(np.abs(v))) if v.size else 0.0
+    if m == 0 or not np.isfinite(m) or 2.0 ** -500 <= m <= 2.0 ** 500:
+        return 1.0
+    return float(np.ldexp(1.0, min(-int(np.frexp(m)[1]), 1000)))  # 2**1000: no overflow

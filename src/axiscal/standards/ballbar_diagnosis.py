@@ -282,7 +282,8 @@ def _cyclic(phi, res, radius):
     pitches = np.geomspace(max(8 * radius * dphi, radius / 200), radius / 2, 48)
     cols, out = [], {}
     for name, w in (("x", np.cos(phi)), ("y", np.sin(phi))):
-        w32, mean32 = w.astype(np.float32), mean.astype(np.float32)
+        peak = float(np.max(np.abs(mean))) or 1.0   # ranking is scale-free: no float32 underflow
+        w32, mean32 = w.astype(np.float32), (mean / peak).astype(np.float32)
         i = int(np.argmax(_cyclic_power(pitches, w32, mean32, radius)))
         fine = np.geomspace(pitches[max(i - 1, 0)], pitches[min(i + 1, pitches.size - 1)], 24)
         pitch = float(fine[int(np.argmax(_cyclic_power(fine, w32, mean32, radius)))])

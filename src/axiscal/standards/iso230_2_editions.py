@@ -38,6 +38,9 @@ Readings chosen here, not quoted: the spread is taken per direction at each targ
 B 0182-1993 term 346 does, and the axis value is the largest over the targets, as ISO 230-2:2014
 forms R↑ (eq. 13). Not evaluated, because no public text gives their form in these editions: the
 accuracy A, the bidirectional repeatability R and the reversal B (names shown with that reason).
+Nor are the ISO 230-2:2014 rules on the number of targets and runs (Table 1, §5.2, §5.3) applied
+to these editions, since theirs are not public: only a target with fewer than 2 readings in a
+measured direction is refused (no s), and missing readings are reported.
 
 References
 ----------

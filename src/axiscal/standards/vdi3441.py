@@ -13,8 +13,8 @@ name   definition (Rexroth, quoted in translation)                 equation here
 U      reversal span (Umkehrspanne): "the difference of the mean   U_j = |x̄_j↑ - x̄_j↓| at every target;
        values of the two approach directions; determined at        U = max U_j, Ū = mean of the U_j
        every measuring position"
-Pa     position deviation (Positionsabweichung): "the largest      Pa = max_j x̄_j - min_j x̄_j
-       occurring difference of the mean values of all measuring
+Pa     position deviation (Positionsabweichung): "the largest      Pa = max_j x̄_j - min_j x̄_j,
+       occurring difference of the mean values of all measuring     x̄_j = (x̄_j↑ + x̄_j↓) / 2
        positions; it describes systematic deviations"
 Ps     position scatter (Positionsstreubreite): "describes the     not evaluated
        effect of random deviations; determined at every
@@ -32,9 +32,11 @@ that names the rule.
 Readings chosen here, not quoted from the guideline:
 
 * x̄_j↑, x̄_j↓ are the means of the approaches in each direction at target j, and x̄_j ("the mean
-  value of a measuring position") the mean of every approach at j, both directions together (equal
-  to (x̄_j↑ + x̄_j↓)/2 when both directions have the same number of readings). Missing readings
-  (NaN) are left out.
+  value of a measuring position") the mean of the two, (x̄_j↑ + x̄_j↓)/2: the mean of every
+  approach when both directions have the same number of readings, and, when a reading is
+  missing, still free of the reversal (pooling every approach would move x̄_j toward the
+  direction with more readings and turn a pure reversal into a position deviation). Missing
+  readings (NaN) are left out.
 * "Span" is read as a magnitude, so U_j >= 0. The axis values U = max U_j and Ū = mean U_j follow
   the outputs "U max" (reversal error) and "U mean" (mean reversal error) of the Keysight E1733A
   laser calibration software (E1733A_Remote.h, VDI_UMAX and VDI_UMEAN; GitHub 9997433-bit/MD).
@@ -66,8 +68,7 @@ _SOURCE = "Rexroth R310DE p. 151"
 
 #: name -> (description, source) of the axis parameters this module forms.
 PARAMETERS = {
-    "Pa": ("position deviation, max x̄_j − min x̄_j (x̄_j: mean of every approach at target j)",
-           _SOURCE),
+    "Pa": ("position deviation, max x̄_j − min x̄_j, x̄_j = (x̄_j↑ + x̄_j↓)/2", _SOURCE),
     "U": ("reversal span, max U_j, U_j = |x̄_j↑ − x̄_j↓|", _SOURCE),
     "U_mean": ("mean reversal span, mean of the U_j", _SOURCE),
 }
@@ -91,7 +92,7 @@ class Vdi3441Result:
     mean_up, mean_down : ndarray
         x̄_j↑, x̄_j↓: mean of the approaches in each direction at each target.
     mean : ndarray
-        x̄_j: mean of every approach at each target, both directions together.
+        x̄_j = (x̄_j↑ + x̄_j↓) / 2 at each target.
     U_j : ndarray
         Reversal span at each target, |x̄_j↑ − x̄_j↓|.
     Pa, U, U_mean : float
@@ -156,7 +157,7 @@ def evaluate(dataset: PositioningDataset) -> Vdi3441Result:
                              "reversal span needs a mean in each direction at every target")
     mean_up = np.nansum(up, axis=1) / n_up
     mean_down = np.nansum(down, axis=1) / n_down
-    mean = (np.nansum(up, axis=1) + np.nansum(down, axis=1)) / (n_up + n_down)
+    mean = 0.5 * (mean_up + mean_down)
     U_j = np.abs(mean_up - mean_down)
     warn: list[str] = []
     if np.any(n_up < 2) or np.any(n_down < 2):
