@@ -31,6 +31,15 @@ def add_routes(app: FastAPI) -> None:
     def store(request: Request):
         return request.app.state.store
 
+    def positioning_test(request: Request, test_id: int, what: str):
+        """The stored test and its evaluation; a download only a positioning test has is
+        refused for the others with one line."""
+        t = store(request).get(test_id)
+        ev = t.evaluate_again()
+        if ev.kind != "iso230-2":
+            raise InputError(f"a {ev.kind} test has no {what} here; download its JSON")
+        return t, ev
+
     @app.get("/", response_class=HTMLResponse)
     def machines(request: Request):
         return render(request, "machines.html", "Machines", machines=store(request).machines())
@@ -88,10 +97,7 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/tests/{test_id}/report.html")
     def report(request: Request, test_id: int):
-        t = store(request).get(test_id)
-        ev = t.evaluate_again()
-        if ev.kind != "iso230-2":
-            raise InputError(f"a {ev.kind} test has no HTML report here; download its JSON")
+        _, ev = positioning_test(request, test_id, "HTML report")
         from axiscal.report.html import positioning_report
 
         html = positioning_report(ev.dataset, ev.evaluation).html()
@@ -99,10 +105,7 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/tests/{test_id}/standards.html")
     def standards(request: Request, test_id: int):
-        t = store(request).get(test_id)
-        ev = t.evaluate_again()
-        if ev.kind != "iso230-2":
-            raise InputError(f"a {ev.kind} test is not a positioning test: no standards report")
+        _, ev = positioning_test(request, test_id, "report by every standard")
         from axiscal.report.html import standards_report
         from axiscal.standards.positioning_standards import evaluate_all
 
@@ -112,10 +115,7 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/tests/{test_id}/certificate.pdf")
     def certificate(request: Request, test_id: int, paper: str = "A4"):
-        t = store(request).get(test_id)
-        ev = t.evaluate_again()
-        if ev.kind != "iso230-2":
-            raise InputError(f"a {ev.kind} test has no certificate here; download its JSON")
+        t, ev = positioning_test(request, test_id, "certificate")
         if paper not in ("A4", "Letter"):
             raise InputError(f"paper {paper!r}: A4 or Letter")
         import tempfile
