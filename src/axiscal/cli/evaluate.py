@@ -4,8 +4,8 @@ JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one 
 ``standard`` (key), ``title``, ``evaluated`` (bool), ``parameters`` (name -> ``value``, ``unit``,
 ``description``; empty if not evaluated), ``not_evaluated`` (name -> why axiscal does not evaluate
 that parameter of a standard evaluated in part), ``warnings`` (list of text), ``reason`` (why the
-standard was not evaluated at all, else null)). With ``--tolerance``: ``acceptance``, ``decision_rule`` and ``accepted``
-as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
+standard was not evaluated at all, else null)). With ``--tolerance``: ``acceptance``,
+``decision_rule`` and ``accepted`` as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
 
 Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
 error (including a single ``--standard`` whose definitions were not publicly available to axiscal).
@@ -32,7 +32,7 @@ def evaluate(
     target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a file that does not declare it: mm or deg."),
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the per-target plot with the chosen standard's band (±2s ISO 230-2:2014/2006, ±3s JIS and ISO 230-2:1988, none where not public) and parameters; 'all' draws ISO 230-2:2014's."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the per-target plot with the chosen standard's band (±2s ISO 230-2:2014/2006, ±3s JIS and ISO 230-2:1988, none where not public) and parameters; 'all' draws ISO 230-2:2014's, or the first standard's that evaluates the test."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report: every parameter of the chosen standard(s) with its source, what is not evaluated and why, the acceptance, the per-target figure."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
     rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
