@@ -115,3 +115,22 @@ def test_user_errors_are_one_line(tmp_path):
         runner.invoke(app, ["rotary", "simulate", TURNTABLE, "--report", str(nofolder)]))
     assert "small misalignment" in _one_line_error(
         runner.invoke(app, ["rotary", "budget", "--alpha", "500", "--beta", "1"]))
+
+
+def test_budget_plot_and_report(tmp_path):
+    """rotary budget --plot draws eq. 1's terms over a turn; --report has the method with its
+    document, the figure, every figure of --json and both accuracy tables (Figure 22 as
+    published: α = 1, β = 4 mrad is ±1.8 arcsec there, the only 1.8 in it)."""
+    png, html = tmp_path / "b.png", tmp_path / "b.html"
+    res = runner.invoke(app, ["rotary", "budget", "--alpha", "0.62", "--beta", "1.23", "--omega",
+                              "2.26", "--plot", str(png), "--report", str(html)])
+    assert res.exit_code == 0, res.output
+    assert png.stat().st_size > 1000
+    page = html.read_text()
+    assert "Interferometric calibration of rotary axes, eq. 1" in page and "<svg" in page
+    fig22 = page.split("Figure 22 [± arcsec]</caption>")[1].split("</table>")[0]
+    assert "<td>4</td><td>1.30</td><td>1.80</td>" in fig22
+    assert "peak_arcsec" in page
+    bad = runner.invoke(app, ["rotary", "budget", "--alpha", "1", "--beta", "1", "--plot",
+                              str(tmp_path / "b.txt")])
+    assert bad.exit_code == 2 and not (tmp_path / "b.txt").exists()

@@ -362,13 +362,14 @@ def result_rows(result: dict, prefix: str = "") -> list[list[Any]]:
 
 def write_result_report(path, title: str, result: dict, *, figure=None, caption: str = "",
                         method: str = "", subtitle: str = "", notes=(), simulation: bool = False,
-                        metadata: dict | None = None) -> Path:
+                        metadata: dict | None = None, tables=()) -> Path:
     """A report of one command's result: the method (with its document and clause), the plot,
     and every figure of the ``--json`` result as a table.
 
     Used by the commands whose result is a handful of figures and one plot (straightness, the
-    squareness tests, scale referencing, capture, history comparisons and trends); ``simulation``
-    marks every page as a simulation report.
+    squareness tests, scale referencing, capture, history comparisons and trends, the rotary
+    budget); ``tables`` adds (caption, headers, rows) for a result that is itself a table;
+    ``simulation`` marks every page as a simulation report.
     """
     rep = Report(title, subtitle=subtitle, metadata=metadata or {}, simulation=simulation)
     if method:
@@ -378,4 +379,6 @@ def write_result_report(path, title: str, result: dict, *, figure=None, caption:
         rep.add_figure(figure, caption)
     rep.add_heading("Results")
     rep.add_table(["", ""], result_rows(result), digits=4, css_class="kv")
+    for caption_, headers, rows in tables:  # (caption, headers, rows): a result that is a table
+        rep.add_table(headers, rows, caption=caption_, digits=2)
     return rep.write(path)

@@ -201,3 +201,43 @@ def _esc(text: str) -> str:
     import html
 
     return html.escape(text)
+
+
+def budget_figure(data: dict):
+    """The misalignment error of a rotary calibration over a turn, for ``axiscal rotary budget``.
+
+    Each term of Renishaw, "Interferometric calibration of rotary axes", eq. 1 (α²/4 sin 2θ,
+    αβ sin θ, αω cos θ) and their sum E(θ) in arcsec for the α, β, ω of ``data`` (the command's
+    JSON result, mrad), with the expected accuracy (± arcsec, the more cautious of eq. 1 + base
+    and the fitted Figure 22) as a band.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from axiscal.physics.misalignment import misalignment_terms
+
+    deg = np.linspace(0, 360, 721)
+    a, b, w = (data[k] * 1e-3 for k in ("alpha_mrad", "beta_mrad", "omega_mrad"))
+    terms = misalignment_terms(np.radians(deg), a, b, w)
+    acc = data["expected_accuracy_arcsec"]
+    fig, ax = plt.subplots(figsize=(10, 4.2), dpi=110)
+    ax.axhspan(-acc, acc, color="#27ae60", alpha=0.08,
+               label=f"expected accuracy ± {acc:.2f} arcsec")
+    for name, label, style in (("quadratic", "α²/4 · sin 2θ", ":"), ("alpha_beta", "αβ · sin θ", "--"),
+                               ("alpha_omega", "αω · cos θ", "-.")):
+        ax.plot(deg, getattr(terms, name) / ARCSEC, style, lw=1.1, label=label)
+    ax.plot(deg, terms.total / ARCSEC, "-", color="#2c3e50", lw=1.8, label="E(θ), eq. 1")
+    ax.axhline(0, color="#888", lw=0.6)
+    ax.set_xlabel("Axis position θ [°]")
+    ax.set_ylabel("Misalignment error [arcsec]")
+    ax.set_xlim(0, 360)
+    ax.set_xticks(np.arange(0, 361, 45))
+    ax.grid(True, color="#e3e7ec", lw=0.7)
+    ax.set_title(f"Misalignment error over a turn: α = {data['alpha_mrad']:g}, β = "
+                 f"{data['beta_mrad']:g}, ω = {data['omega_mrad']:g} mrad (Renishaw, "
+                 "Interferometric calibration of rotary axes, eq. 1)", loc="left", fontsize=10)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
+    fig.tight_layout()
+    return fig
