@@ -137,3 +137,17 @@ def test_a_homing_start_far_from_the_switch_is_refused_in_counts(tmp_path):
     assert r.exit_code == 2
     assert "is 6.4e+07 output counts (78.1 nm each) before the switch" in r.stderr, r.stderr
     assert "start within 117 mm of the switch" in r.stderr
+
+
+def test_gantry_plot_and_report(tmp_path):
+    """scale gantry --plot draws the skew step by step with the limits; --report is marked a
+    simulation and carries every figure of --json and the document it follows."""
+    png, html = tmp_path / "g.png", tmp_path / "g.html"
+    res = runner.invoke(app, ["scale", "gantry", str(EXAMPLES / "scale_gantry.toml"), "--plot",
+                              str(png), "--report", str(html), "--json"])
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.stdout)
+    page = html.read_text()
+    assert png.stat().st_size > 1000 and "Laser scale axis referencing" in page
+    assert "simulation" in page.lower() and "required_skew_limit" in page
+    assert f"<td>{d['required_skew_limit']}</td>" in page

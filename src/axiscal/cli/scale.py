@@ -13,7 +13,7 @@
     ``max_pulse_error``: against the compensator's exact product, ``count_uncertainty``: one
     laser count in output counts, ``end_controller_mm``, ``end_true_mm``, ``end_part_mm``,
     ``end_uncompensated_mm``).
-``scale gantry CONFIG.toml [--json]``
+``scale gantry CONFIG.toml [--json] [--plot FILE] [--report FILE]``
     Twin-axis homing. JSON keys: those of the run (``counts_per_period``, ``count_size_nm``,
     ``virtual_1``, ``virtual_2``, ``homing_skew_min``, ``homing_skew_max``, ``skew_before_sync``,
     ``skew_limit``, ``alarm``, ``deskew_move``, ``skew_after_sync``, ``offset``,
@@ -136,6 +136,8 @@ def gantry(
                                   "table, see examples/scale_gantry.toml)."),
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, see the docs)."),
     seed: Optional[int] = _SEED,
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the skew during homing with the skew limits (PNG, SVG or PDF by extension)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write a simulation report (skew plot and every figure): HTML or PDF."),
 ) -> None:
     """Simulate twin-axis (gantry) homing: skew, skew-limit alarm, deskew, limit needed.
 
@@ -145,6 +147,9 @@ def gantry(
     from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
                                               worst_case_runs)
 
+    for p, check in ((plot, plot_path), (report, report_path)):
+        if p is not None:
+            check(p)
     cfg = _with_seed(read_scale_config(config, gantry=True), "gantry", seed)
     g, run_kwargs, sigma = twin_axis_from_config(cfg)
     run = simulate_twin_homing(g, **run_kwargs)
@@ -155,9 +160,35 @@ def gantry(
     d["switch_sigma_counts"] = sigma
     d["worst_case"] = [{"virtual_1": w.virtual_1, "virtual_2": w.virtual_2,
                         "skew_before_sync": w.skew_check.skew, "alarm": w.alarm} for w in worst]
+    if plot is not None or report is not None:
+        from axiscal.report.scale_plot import gantry_figure
+
+        if plot is not None:
+            from axiscal.report.plots import save_figure
+
+            save_figure(gantry_figure(run, d["required_skew_limit"]), plot)
+        if report is not None:
+            from axiscal.report.html import write_result_report
+
+            write_result_report(
+                report, f"Twin-axis homing — {config.name}", d, simulation=True,
+                figure=gantry_figure(run, d["required_skew_limit"]),
+                caption="Real skew X1 − X2 at each command step of the homing sequence, with "
+                        "the controller's skew limit and the limit this configuration needs.",
+                method="Homing of a gantry driven by two laser-scale axes through their "
+                       "environmental compensators: each rephases at its own switch, the "
+                       "controller checks the skew before synchronisation and deskews X2 "
+                       "(Renishaw, Laser scale axis referencing).")
     if json_out:
         print_json(d)
-        return
+    else:
+        _print_gantry(run, worst, d, g, spread)
+    for what, path in (("plot", plot), ("report", report)):
+        if path is not None:
+            note(f"wrote {what} {path}")
+
+
+def _print_gantry(run, worst, d, g, spread) -> None:
     typer.echo(str(run))
     for w in worst:
         typer.echo(f"  worst case v1 = {w.virtual_1}, v2 = {w.virtual_2}: skew "

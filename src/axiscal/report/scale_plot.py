@@ -102,3 +102,43 @@ def save_referencing_plot(run, path) -> Path:
     from axiscal.report.plots import save_figure
 
     return save_figure(referencing_figure(run), path)
+
+
+def gantry_figure(run, required_limit: int | None = None):
+    """The real skew X1 − X2 of a twin-axis homing, step by step (Renishaw, Laser scale axis
+    referencing: the twin-axis sequence), with the controller's skew limit and the limit this
+    configuration needs (``required_limit``, counts). ``run`` is a
+    :class:`~axiscal.procedures.twin_axis.TwinHomingResult`."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    g = run.gantry
+    q = g.output.count_size * 1e6
+    skew = run.real_skew * q
+    steps = np.arange(skew.size)
+    fig, ax = plt.subplots(figsize=(10, 4.2), dpi=110)
+    names = {1: "X1 homes (master)", 2: "X2 homes (master)", 3: "deskew, X2 alone"}
+    for ph, colour in ((1, "#1f77b4"), (2, "#d62728"), (3, "#2ca02c")):
+        m = run.phase == ph
+        if m.any():
+            ax.plot(steps[m], skew[m], ".", ms=2.5, color=colour, label=names[ph])
+    lim = run.skew_check.limit * q
+    ax.axhline(lim, color="#c0392b", lw=1.0, ls="--", label=f"skew limit ±{lim:.2f} µm")
+    ax.axhline(-lim, color="#c0392b", lw=1.0, ls="--")
+    if required_limit is not None:
+        need = required_limit * q
+        ax.axhline(need, color="#7f8c8d", lw=0.9, ls=":",
+                   label=f"limit needed ±{need:.2f} µm")
+        ax.axhline(-need, color="#7f8c8d", lw=0.9, ls=":")
+    ax.axhline(0, color="#888", lw=0.6)
+    ax.set_xlabel("Command step")
+    ax.set_ylabel("Real skew X1 − X2 [µm]")
+    ax.grid(True, color="#e3e7ec", lw=0.7)
+    ax.set_title(f"Twin-axis homing: skew before synchronisation {run.skew_check.skew} counts "
+                 f"({run.skew_check.skew * q:.2f} µm)" + (", ALARM" if run.alarm else ""),
+                 loc="left", fontsize=11)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
+    fig.tight_layout()
+    return fig
