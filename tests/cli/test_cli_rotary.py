@@ -134,3 +134,9 @@ def test_budget_plot_and_report(tmp_path):
     bad = runner.invoke(app, ["rotary", "budget", "--alpha", "1", "--beta", "1", "--plot",
                               str(tmp_path / "b.txt")])
     assert bad.exit_code == 2 and not (tmp_path / "b.txt").exists()
+
+
+def test_budget_base_is_bounded():
+    """Found by the fuzz harness: --base 1e308 passed the check and broke the plot."""
+    res = runner.invoke(app, ["rotary", "budget", "--alpha", "1", "--beta", "1", "--base", "1e308"])
+    assert res.exit_code == 2 and "between 0 and 3600 arcsec" in res.stderr

@@ -151,3 +151,16 @@ def test_gantry_plot_and_report(tmp_path):
     assert png.stat().st_size > 1000 and "Laser scale axis referencing" in page
     assert "simulation" in page.lower() and "required_skew_limit" in page
     assert f"<td>{d['required_skew_limit']}</td>" in page
+
+
+def test_gantry_plot_of_a_long_homing_stays_small(tmp_path):
+    """Found by the fuzz harness: a homing from 10 mm before the switch has 128,000 steps; the
+    plot keeps each bin's extremes (at most 4,000 points), so the report stays under 1 MB."""
+    cfg = tmp_path / "far.toml"
+    cfg.write_text((EXAMPLES / "scale_gantry.toml").read_text()
+                   .replace("start_1_mm = 99.95", "start_1_mm = 90.0")
+                   .replace("start_2_mm = 99.95", "start_2_mm = 90.0"))
+    html = tmp_path / "g.html"
+    res = runner.invoke(app, ["scale", "gantry", str(cfg), "--report", str(html)])
+    assert res.exit_code == 0, res.output
+    assert html.stat().st_size < 1_000_000

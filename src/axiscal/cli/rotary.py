@@ -193,8 +193,9 @@ def _budget_data(alpha, beta, omega, accuracy, base) -> dict:
     for name, v in (("--alpha", alpha), ("--beta", beta), ("--omega", omega)):
         if not (abs(v) <= 100):
             raise InputError(f"{name} {v!r} mrad is not a small misalignment (at most 100 mrad)")
-    if not base >= 0:
-        raise InputError(f"--base {base!r} arcsec must be >= 0")
+    if not 0 <= base <= 3600:
+        raise InputError(f"--base {base!r} arcsec: the accuracy of the system at perfect "
+                         "alignment must be between 0 and 3600 arcsec (1°)")
     a, b, w = alpha * 1e-3, beta * 1e-3, omega * 1e-3
     turn = np.linspace(0, 2 * np.pi, 3601)
     terms = mis.misalignment_terms(turn, a, b, w)

@@ -123,7 +123,7 @@ def gantry_figure(run, required_limit: int | None = None):
     for ph, colour in ((1, "#1f77b4"), (2, "#d62728"), (3, "#2ca02c")):
         m = run.phase == ph
         if m.any():
-            ax.plot(steps[m], skew[m], ".", ms=2.5, color=colour, label=names[ph])
+            ax.plot(*_envelope(steps[m], skew[m]), ".", ms=2.5, color=colour, label=names[ph])
     lim = run.skew_check.limit * q
     ax.axhline(lim, color="#c0392b", lw=1.0, ls="--", label=f"skew limit ±{lim:.2f} µm")
     ax.axhline(-lim, color="#c0392b", lw=1.0, ls="--")
@@ -142,3 +142,15 @@ def gantry_figure(run, required_limit: int | None = None):
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
     fig.tight_layout()
     return fig
+
+
+def _envelope(x: np.ndarray, y: np.ndarray, bins: int = 2000):
+    """At most 2·``bins`` points that keep every extreme: the lowest and highest y of each run
+    of consecutive samples (a homing from far away has a million steps; drawn whole, its report
+    would be tens of megabytes for the same picture)."""
+    if x.size <= 2 * bins:
+        return x, y
+    edges = np.linspace(0, x.size, bins + 1).astype(np.int64)[:-1]
+    lo, hi = np.minimum.reduceat(y, edges), np.maximum.reduceat(y, edges)
+    xb = x[edges]
+    return np.repeat(xb, 2), np.column_stack([lo, hi]).ravel()
