@@ -142,14 +142,9 @@ def _render(results, ds, title, verdicts) -> None:
         if isinstance(res, str):
             skipped.append((std, res))
             continue
-        first = True
-        for name, (v, _u, desc) in res.parameters().items():
+        for title_, label, v, desc, done in ps.table_rows(std, res):
             value = "—" if v is None or math.isnan(v) else f"{v:.2f}"
-            shown = ps.parameter_label(name)
-            t.add_row(escape(std.title) if first else "", shown, value, escape(desc))
-            first = False
-        for name, why in res.not_evaluated:
-            t.add_row("", name, "—", escape(why), style="dim")
+            t.add_row(escape(title_), label, value, escape(desc), style=None if done else "dim")
         t.add_section()
     con.print(t)
     unpublished = [std.title for std, _ in skipped if not std.available]

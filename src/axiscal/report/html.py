@@ -250,7 +250,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     the reason. The figure is the per-target one every standard starts from.
     """
     from axiscal.report.plots import standard_figure, standards_figure
-    from axiscal.standards.positioning_standards import parameter_label
+    from axiscal.standards.positioning_standards import parameter_label, table_rows
 
     md = dataset.metadata
     evaluated = [(std, r) for std, r in results if not isinstance(r, str)]
@@ -259,13 +259,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
                            "Date": md.date, "Instrument": md.instrument, "Notes": md.notes})
     u = unit_label(dataset.deviation_unit)
     rep.add_heading("Result")
-    rows = []
-    for std, r in evaluated:
-        first = True
-        for name, (v, _unit, desc) in r.parameters().items():
-            rows.append([std.title if first else "", parameter_label(name), v, desc])
-            first = False
-        rows += [["", name, None, why] for name, why in r.not_evaluated]
+    rows = [row[:4] for std, r in evaluated for row in table_rows(std, r)]
     rep.add_table(["Standard", "Parameter", f"Value [{u}]", "Meaning (source)"], rows, digits=2,
                   css_class="params standards")
     if decisions:

@@ -44,13 +44,23 @@ from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
 
 __all__ = ["Standard", "StandardResult", "STANDARDS", "evaluate", "evaluate_all",
-           "check_tolerances", "NotAvailableError", "described_parameters", "parameter_label"]
+           "check_tolerances", "NotAvailableError", "described_parameters", "parameter_label",
+           "table_rows"]
 
 
 def parameter_label(name: str) -> str:
     """How a parameter name is shown: ``R_up`` -> ``R↑``, ``R_down`` -> ``R↓``, ``U_mean`` ->
     ``U mean``."""
     return name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
+
+
+def table_rows(std: "Standard", result: "StandardResult") -> list[tuple]:
+    """One standard's rows of a results table, as the terminal, the report and the workbench
+    show them: (the standard's title on its first row only, parameter label, value, meaning,
+    evaluated), the parameters axiscal does not evaluate last, with value None and the reason."""
+    rows = [(parameter_label(n), v, d, True) for n, (v, _u, d) in result.parameters().items()]
+    rows += [(parameter_label(n), None, why, False) for n, why in result.not_evaluated]
+    return [(std.title if i == 0 else "", *r) for i, r in enumerate(rows)]
 
 
 def described_parameters(result, table: dict[str, tuple[str, str]]):
@@ -127,32 +137,32 @@ def _iso230_2_2014(ds: PositioningDataset) -> StandardResult:
     return StandardResult("iso230-2:2014", STANDARDS["iso230-2:2014"].title, rows, r.warnings)
 
 
+def _described(key: str, r, not_evaluated: dict | None = None) -> StandardResult:
+    """A module's result (whose ``parameters()`` gives name -> (value, unit, description)) as
+    the registry's :class:`StandardResult`."""
+    rows = tuple((name, v, u, d) for name, (v, u, d) in r.parameters().items())
+    return StandardResult(key, STANDARDS[key].title, rows, r.warnings,
+                          tuple((not_evaluated or {}).items()))
+
+
 def _jis_b6192(ds: PositioningDataset) -> StandardResult:
     from axiscal.standards import jis_b6192
 
-    r = jis_b6192.evaluate(ds)
-    rows = tuple((name, v, u, d) for name, (v, u, d) in r.parameters().items())
-    return StandardResult("jis-b6192", STANDARDS["jis-b6192"].title, rows, r.warnings)
+    return _described("jis-b6192", jis_b6192.evaluate(ds))
 
 
 def _vdi3441(ds: PositioningDataset) -> StandardResult:
     from axiscal.standards import vdi3441
 
-    r = vdi3441.evaluate(ds)
-    rows = tuple((name, v, u, d) for name, (v, u, d) in r.parameters().items())
-    return StandardResult("vdi3441", STANDARDS["vdi3441"].title, rows, r.warnings,
-                          tuple(vdi3441.NOT_EVALUATED.items()))
+    return _described("vdi3441", vdi3441.evaluate(ds), vdi3441.NOT_EVALUATED)
 
 
 def _iso_edition(edition: str) -> Callable[[PositioningDataset], StandardResult]:
     def run(ds: PositioningDataset) -> StandardResult:
         from axiscal.standards import iso230_2_editions as ed
 
-        r = getattr(ed, f"evaluate_{edition}")(ds)
-        rows = tuple((name, v, u, d) for name, (v, u, d) in r.parameters().items())
-        key = f"iso230-2:{edition}"
-        return StandardResult(key, STANDARDS[key].title, rows, r.warnings,
-                              tuple(ed.NOT_EVALUATED.items()))
+        return _described(f"iso230-2:{edition}", getattr(ed, f"evaluate_{edition}")(ds),
+                          ed.NOT_EVALUATED)
     return run
 
 

@@ -312,7 +312,7 @@ def _other_standards(ev) -> dict:
     """The test by every other positioning standard, for the test page: ``rows`` (standard,
     parameter, value, meaning; a parameter not evaluated has value None and its reason) and
     ``unpublished`` (the standards with no public definitions)."""
-    from axiscal.standards.positioning_standards import evaluate_all, parameter_label
+    from axiscal.standards.positioning_standards import evaluate_all, table_rows
 
     rows, unpublished = [], []
     for std, res in evaluate_all(ev.dataset):
@@ -324,9 +324,5 @@ def _other_standards(ev) -> dict:
             else:
                 unpublished.append(std.title)
             continue
-        first = True
-        for name, (v, _u, desc) in res.parameters().items():
-            rows.append((std.title if first else "", parameter_label(name), v, desc))
-            first = False
-        rows += [("", name, None, why) for name, why in res.not_evaluated]
+        rows += [row[:4] for row in table_rows(std, res)]
     return {"rows": rows, "unpublished": unpublished}
