@@ -9,12 +9,13 @@ OUT    ?= demo-output
 
 setup: $(STAMP)
 
-# Debian packages: WeasyPrint (PDF certificates) needs Pango and HarfBuzz, the tests render PDF
+# Debian packages: WeasyPrint (PDF certificates) needs Pango and HarfBuzz (and Noto CJK so a
+# Chinese, Japanese or Korean name on a certificate renders), the tests render PDF
 # pages with pdftoppm (poppler-utils), the history tests run on a real throw-away PostgreSQL
 # (tools/pgtest.py starts one per test process in a temporary folder), and the workbench's
 # browser tests drive Chromium with its driver (Selenium). Installed when missing.
-DEBS := libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core poppler-utils \
-        postgresql chromium chromium-driver
+DEBS := libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core fonts-noto-cjk \
+        poppler-utils postgresql chromium chromium-driver
 APT := $(if $(filter 0,$(shell id -u)),,sudo) env DEBIAN_FRONTEND=noninteractive apt-get
 sysdeps:
 	@command -v dpkg >/dev/null || { echo "not Debian: install $(DEBS) yourself"; exit 0; }; \
