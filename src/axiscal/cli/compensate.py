@@ -34,7 +34,9 @@ itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, `
 E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``. Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
-(``utf-8`` or ``windows-1252``) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
+(``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
+``value``, ``unit``, ``assumed``, ``source`` = option, file or default, ``why``, ``set_with``:
+Fanuc's reference position and detection unit, the 840D's MD10240 unit) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
 ``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
 given.
 
@@ -186,7 +188,9 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     mod = get_controller(controller)
     opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
     table = mod.parse(text, source=str(path), **opts)
-    d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table))
+    inputs = _file_inputs(mod, text, path, source, opts)
+    d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table),
+             inputs=[i.to_dict() for i in inputs])
     rows = []
     if source is not None:
         res, _ = load_mean_deviations(source)
@@ -200,6 +204,8 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
         print_json(d)
         return
     typer.echo(f"{mod.NAME} file ({encoding}): {table}")
+    for i in inputs:
+        typer.echo(f"  {i}")
     if rows:
         u = table.correction_unit
         typer.echo(f"compared with {source} (mean bidirectional deviation + correction):")
@@ -207,6 +213,19 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
             typer.echo(f"  {r['target']:>10.4g} {table.position_unit}: deviation {r['deviation']:+8.3f}, "
                        f"correction {r['correction']:+8.3f}, residual {r['residual']:+8.3f} {u}")
         typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
+
+
+def _file_inputs(mod, text, path, source, opts) -> tuple:
+    """What the parser took from the file, was given, or assumed (``mod.inputs``, where the
+    format leaves numbers out); a comparison resting on an assumed position is refused."""
+    from axiscal.errors import InputError
+
+    inputs = mod.inputs(text, source=str(path), **opts) if hasattr(mod, "inputs") else ()
+    for i in inputs:
+        if source is not None and i.assumed and i.needed_to_compare:
+            raise InputError(f"{path}: {i.why}: give -o {i.name}=… ({i.unit}) to compare it "
+                             f"with {source}")
+    return tuple(inputs)
 
 
 def _same_units(res, table, source) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -11,8 +12,8 @@ from axiscal import units
 from axiscal._parse import finite_number
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
-__all__ = ["ControllerFile", "check_points", "check_spacing", "check_travel", "check_modulo",
-           "correction_factor", "parse_number", "decimals"]
+__all__ = ["ControllerFile", "FileInput", "check_points", "check_spacing", "check_travel",
+           "check_modulo", "correction_factor", "parse_number", "decimals"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,3 +155,129 @@ def require_equidistant(table, fmt: str) -> None:
         raise ControllerLimitError(f"{fmt}: the table has irregular positions (at the measured "
                                    "targets); this controller takes equidistant points: give a "
                                    "spacing")
+
+
+@dataclass(frozen=True)
+class FileInput:
+    """A number a parser needs that a controller file may not carry, and where it came from.
+
+    Attributes
+    ----------
+    name : str
+        The parser's option that sets it (``reference_position``, ``unit`` ...).
+    value : object
+        The value used.
+    unit : str
+        Its unit (``mm``, ``deg``, ``""``).
+    source : str
+        ``"option"`` (given), ``"file"`` (stated in the file) or ``"default"`` (assumed).
+    why : str
+        What the file says, or why the value had to be assumed.
+    needed_to_compare : bool
+        A comparison with measured data is meaningless on an assumed value (refused then).
+    """
+
+    name: str
+    value: object
+    unit: str
+    source: str
+    why: str
+    needed_to_compare: bool = False
+
+    @property
+    def assumed(self) -> bool:
+        """True when neither the file nor the caller gave the value."""
+        return self.source == "default"
+
+    def to_dict(self) -> dict:
+        return dict(name=self.name, value=self.value, unit=self.unit, assumed=self.assumed,
+                    source=self.source, why=self.why, set_with=f"-o {self.name}=…")
+
+    def __str__(self) -> str:
+        v = f"{self.value:g}" if isinstance(self.value, float) else str(self.value)
+        u = f" {self.unit}" if self.unit else ""
+        if self.assumed:
+            return f"assumed: {self.name} = {v}{u} ({self.why}; set with -o {self.name}=…)"
+        return f"{self.name} = {v}{u} ({'given' if self.source == 'option' else self.why})"
+
+
+# -- names written into controller files ------------------------------------------------------
+#: Axis letters of DIN 66025 / ISO 6983-1 (linear X, Y, Z; rotary A, B, C; secondary U, V, W).
+AXIS_LETTERS = "XYZABCUVW"
+#: The POSIX portable filename character set (The Open Group Base Specifications Issue 6,
+#: IEEE Std 1003.1-2004, §3.276), which HEIDENHAIN's TNC file names must keep to (TNC 640
+#: User's Manual, "File management: fundamentals", File names). It holds none of the characters
+#: Windows reserves (``< > : " / \\ | ? *`` and 0-31; Microsoft, "Naming Files, Paths, and
+#: Namespaces"), and LinuxCNC's COMP_FILE names are letters and numbers ("INI Configuration",
+#: [JOINT_n] COMP_FILE).
+_NOT_PORTABLE = re.compile(r"[^A-Za-z0-9_-]+")
+#: Device names Windows reserves whatever the extension (the same Microsoft page).
+_RESERVED = {"CON", "PRN", "AUX", "NUL", *(f"COM{i}" for i in range(1, 10)),
+             *(f"LPT{i}" for i in range(1, 10))}
+#: Longest name written: well inside the 255 characters of path and name a TNC 640 takes (User's
+#: Manual, File names) and Windows' 260 (MAX_PATH).
+NAME_LENGTH = 64
+#: How the comment that keeps a sanitised name's source begins.
+SOURCE_COMMENT = "axis name in the source data:"
+
+
+@dataclass(frozen=True)
+class SafeName:
+    """An axis name as a controller file may hold it, and the name it came from.
+
+    Attributes
+    ----------
+    name : str
+        What is written into the file and its file name: an axis letter where the controller
+        wants one, else the source's characters outside the portable set replaced by ``_``.
+    source : str
+        The name as the data gave it (``""`` when the data named no axis).
+    """
+
+    name: str
+    source: str
+
+    @property
+    def changed(self) -> bool:
+        """The file holds another name than the data gave."""
+        return bool(self.source) and self.name != self.source
+
+    def comment(self, begin: str, end: str = "", upper: bool = False) -> list[str]:
+        """The comment line keeping the source name (none when the name is unchanged).
+
+        ``begin``/``end`` are the format's comment delimiters; they, and control characters,
+        are taken out of the name so the comment cannot end early.
+        """
+        if not self.changed:
+            return []
+        text = "".join("?" if ord(c) < 32 or c in begin + end else c for c in self.source)
+        line = f"{SOURCE_COMMENT} {text}"
+        return [f"{begin}{line.upper() if upper else line}{end}"]
+
+
+def safe_axis_name(axis: str, fmt: str, *, letter: bool = False,
+                   given: str | None = None) -> SafeName:
+    """The axis name ``fmt`` may write, from the table's ``axis`` (or ``given``, the writer's
+    ``axis=`` option, which wins).
+
+    With ``letter=True`` (a controller whose axis column is an axis letter, HEIDENHAIN's
+    ``.COM``) the name must be one of :data:`AXIS_LETTERS`, optionally followed by one digit
+    (``X``, ``x2``): an ecmc PV name such as ``SLS-SIOC-ECAT01:M1-PosSet`` is refused, naming
+    ``-o axis=``. Otherwise characters outside the POSIX portable set become ``_``, a Windows
+    device name gets a trailing ``_``, and the name is cut to :data:`NAME_LENGTH` characters.
+    """
+    source = str(axis or "").strip()
+    wanted = str(given).strip() if given else source
+    if letter:
+        if not wanted:
+            return SafeName("X", "")
+        if not re.fullmatch(f"[{AXIS_LETTERS}][0-9]?", wanted, re.IGNORECASE):
+            what = "-o axis=" if given else "the data's axis"
+            raise ControllerLimitError(
+                f"{fmt}: the axis column takes an axis letter ({', '.join(AXIS_LETTERS)}); "
+                f"{what} {wanted[:60]!r} is not one: give -o axis=X (or --axis X)")
+        return SafeName(wanted.upper(), source)
+    name = _NOT_PORTABLE.sub("_", wanted).strip("_-")[:NAME_LENGTH].rstrip("_-")
+    if name.upper() in _RESERVED:
+        name += "_"
+    return SafeName(name, source)
