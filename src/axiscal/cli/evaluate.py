@@ -27,7 +27,7 @@ _KEYS = "iso230-2:2014|iso230-2:2006|iso230-2:1997|iso230-2:1988|gb-t17421.2|jis
 
 
 def evaluate(
-    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON or EPICS ecmc file."),
+    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON, Renishaw .rtl/.rta or EPICS ecmc file."),
     standard: str = typer.Option(..., "--standard", "-s", help=f"{_KEYS}. Standards whose definitions were not publicly available are listed with the reason and not evaluated."),
     target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a file that does not declare it: mm or deg."),
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec."),

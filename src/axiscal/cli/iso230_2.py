@@ -32,7 +32,7 @@ __all__ = ["register", "result_json", "render_result"]
 
 
 def iso230_2(
-    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON or EPICS ecmc file."),
+    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON, Renishaw .rtl/.rta or EPICS ecmc file."),
     target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a CSV or ecmc file that does not declare it: mm or deg (a different declaration in the file is an error)."),
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec (a different declaration in the file is an error)."),
     full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),

@@ -20,7 +20,8 @@ STREAM_ABOVE_BYTES = 1 << 20
 
 def read_positioning(path, target_unit: str | None = None, deviation_unit: str | None = None,
                      axis_kind: str | None = None, progress=None):
-    """Read a positioning test from a CSV, JSON or EPICS ecmc file (see :func:`parse_positioning`).
+    """Read a positioning test from a CSV, JSON, Renishaw .rtl/.rta or EPICS ecmc file (see
+    :func:`parse_positioning`).
 
     Parameters
     ----------
@@ -51,18 +52,20 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
 
 
 def _whole_file_format(text: str, source: str) -> bool:
-    """True for a JSON or ecmc positioning file (told by the name or the content)."""
+    """True for a JSON, Renishaw or ecmc positioning file (told by the name or the content)."""
     from axiscal.io import ecmc as _ecmc
+    from axiscal.io import renishaw as _renishaw
 
     return (Path(source).suffix.lower() == ".json" or text.lstrip("\ufeff \t\r\n").startswith("{")
-            or _ecmc.looks_like_ecmc(text))
+            or _ecmc.looks_like_ecmc(text) or _renishaw.looks_like_renishaw(text))
 
 
 def parse_positioning(text: str, source: str = "<text>", target_unit: str | None = None,
                       deviation_unit: str | None = None, axis_kind: str | None = None):
     """Parse positioning data already read, choosing the format by ``source``'s extension and content.
 
-    JSON (``.json`` or text starting with ``{``), EPICS ecmc (``TGT_DATA[`` keys) or tidy CSV.
+    JSON (``.json`` or text starting with ``{``), Renishaw ``.rtl``/``.rta`` (a ``HEADER::``
+    line first), EPICS ecmc (``TGT_DATA[`` keys) or tidy CSV.
     """
     from axiscal.io import csv as _csv
     from axiscal.io import ecmc as _ecmc
@@ -73,6 +76,11 @@ def parse_positioning(text: str, source: str = "<text>", target_unit: str | None
             raise DataFormatError("a JSON dataset carries its own units; drop the unit options",
                                   source)
         return _json.parse_positioning_json(text, source=source)
+    from axiscal.io import renishaw as _renishaw
+
+    if _renishaw.looks_like_renishaw(text):
+        return _renishaw.parse_renishaw(text, source=source, target_unit=target_unit,
+                                        deviation_unit=deviation_unit, axis_kind=axis_kind)
     if _ecmc.looks_like_ecmc(text):
         return _ecmc.parse_ecmc(text, target_unit=target_unit, deviation_unit=deviation_unit,
                                 axis_kind=axis_kind, source=source)

@@ -50,7 +50,7 @@ def detect_kind(text: str) -> str:
     stripped = text.lstrip("\ufeff \t\r\n")
     if stripped.startswith("{"):
         return "iso230-2"
-    if "TGT_DATA[" in text:
+    if "TGT_DATA[" in text or stripped.startswith("HEADER::"):   # ecmc; Renishaw .rtl/.rta
         return "iso230-2"
     for line in stripped.splitlines():
         s = line.strip()

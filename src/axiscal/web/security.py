@@ -38,7 +38,7 @@ MAX_UPLOAD_BYTES = 20 * 1024 * 1024
 UPLOAD_TYPES = ("text/csv", "text/plain", "application/json", "application/octet-stream",
                 "application/vnd.ms-excel", "text/x-csv", "application/csv", "")
 #: File name endings of the data files the workbench evaluates.
-UPLOAD_SUFFIXES = (".csv", ".json", ".txt", ".dat", ".ecmc")
+UPLOAD_SUFFIXES = (".csv", ".json", ".txt", ".dat", ".ecmc", ".rtl", ".rta")
 SESSION_SECONDS = 12 * 3600
 
 
