@@ -46,6 +46,18 @@ axis, :func:`parse` one (``machine_axis=``, needed when the file holds more than
 comment, from a Windows tool): the callers decode the file (:func:`axiscal.io._files.
 read_controller_text`); the numbers are ASCII.
 
+**Inch machines.** MD10240 ``$MN_SCALING_SYSTEM_IS_METRIC`` = 0 makes the control's basic
+system inch: data loaded from a file (part program or download) is scaled in inch, so the
+values, STEP, MIN and MAX of a linear axis's table are in inch (SINUMERIK 808D ADVANCED
+Parameter Manual 08/2013 §2.2, MD10240; SINUMERIK 840D sl Function Manual Basic Functions
+01/2015, G2 §7.3 "Metric/inch measuring system": compensation values follow the system of
+units; 1 inch = 25.4 mm, MD10250 ``$MN_SCALING_VALUE_INCH``). An EEC file does not hold
+MD10240 itself: :func:`write` (``unit="inch"``) states it in a comment
+(``; MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0: …``, ``= 1`` for mm) and in the enable list,
+:func:`parse` reads it back (also a ``$MN_SCALING_SYSTEM_IS_METRIC=0`` line of an archive), a
+``unit`` contradicting it is refused, and a file that says nothing is read in mm (assumed:
+:func:`inputs` says so). Rotary axes are in degrees in either system.
+
 **Ends** (``zero_ends=True``): outside MIN…MAX the controller keeps applying the end values
 (not confirmed against the manual); ``zero_ends`` forces the first and last values to zero so
 the table fades out instead, at the cost of the correction in the last interval.
@@ -59,13 +71,13 @@ from dataclasses import replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
-    decimals, parse_number, require_equidistant)
+    ControllerFile, FileInput, check_modulo, check_points, check_spacing, check_travel,
+    correction_factor, decimals, file_unit, parse_number, require_equidistant)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
-__all__ = ["NAME", "write", "write_axes", "parse", "parse_axes", "MAX_POINTS"]
+__all__ = ["NAME", "write", "write_axes", "parse", "parse_axes", "inputs", "MAX_POINTS"]
 
 NAME = "siemens-840d"
 #: Default MD38000 limit (not confirmed; the machine's MD38000 value is the real limit).
@@ -76,11 +88,13 @@ _PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d{1,9})\s*,\
                     r"\s*=\s*(\S+)")
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
 _NAME = re.compile(r"^;\s*axiscal: axis (\S+),")
+_MD10240 = re.compile(r"^(?:;\s*MD10240\s+)?\$MN_SCALING_SYSTEM_IS_METRIC\s*=\s*(\S+?)(?::|\s|$)")
 
 
 def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
           max_points: int = MAX_POINTS, position_resolution: float = 0.001,
-          zero_at_reference: bool = True, zero_ends: bool = False) -> ControllerFile:
+          zero_at_reference: bool = True, zero_ends: bool = False,
+          unit: str = "mm") -> ControllerFile:
     """Write ``table`` as a ``%_N_AX_EEC_INI`` file for ``machine_axis``.
 
     Parameters
@@ -99,13 +113,16 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
         Shift the table so the value at its reference point is 0 (Siemens' advice).
     zero_ends : bool
         Set the first and last values to 0 (see the module docstring).
+    unit : str
+        ``mm`` or ``inch``: the machine's basic system (MD10240 = 1 or 0) for a linear axis.
 
     Returns
     -------
     ControllerFile
     """
     _check(table, travel, max_points, position_resolution)
-    body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends)
+    body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends,
+                                               file_unit(unit, table, NAME))
     text = "\n".join(["%_N_AX_EEC_INI", "CHANDATA(1)", *body, "M17"]) + "\n"
     return ControllerFile(NAME, text, "AX_EEC.INI", written, tuple(enable), notes=tuple(notes))
 
@@ -120,11 +137,12 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     body, enable, notes = [], [], []
     mp = options.pop("max_points", MAX_POINTS)
     res = options.pop("position_resolution", 0.001)
+    unit = options.pop("unit", "mm")
     for ax, table in tables.items():
         tr = travel.get(ax) if isinstance(travel, dict) else travel
         _check(table, tr, mp, res)
         b, e, _, n = _axis_block(table, ax, options.get("zero_at_reference", True),
-                                 options.get("zero_ends", False))
+                                 options.get("zero_ends", False), file_unit(unit, table, NAME))
         body += b
         enable += e
         notes += n
@@ -133,16 +151,20 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     return ControllerFile(NAME, text, "AX_EEC.INI", first, tuple(enable), notes=tuple(notes))
 
 
-def _axis_block(table, machine_axis, zero_at_reference, zero_ends):
-    """The lines of one axis's table, its enabling steps, the table as written, notes."""
+def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0):
+    """The lines of one axis's table, its enabling steps, the table as written, notes.
+
+    ``per``: mm per unit of the file (25.4 on an inch machine, MD10240 = 0).
+    """
     notes = []
     if zero_at_reference and table.mean[table.reference_index] != 0:
         notes.append(f"table shifted by {-table.mean[table.reference_index]:+.4g} "
                      f"{table.correction_unit} so it is zero at the reference point "
                      f"{table.reference_position:g} {table.position_unit}")
         table = table.zeroed_at_reference(on="mean")
-    k = correction_factor(table, table.position_unit)  # correction unit -> mm or deg
-    nd = decimals(table.position_unit)
+    k = correction_factor(table, table.position_unit) / per  # correction unit -> file unit
+    nd = decimals(table.position_unit) + (1 if per != 1.0 else 0)
+    fu = table.position_unit if per == 1.0 else "inch"
     mean = table.mean
     if zero_ends:
         mean = mean.copy()
@@ -150,20 +172,27 @@ def _axis_block(table, machine_axis, zero_at_reference, zero_ends):
     values = np.round(-mean * k, nd) + 0.0      # file value = deviation = −correction
     ax = machine_axis
     lines = [f"; axiscal: axis {table.axis or '-'}, {table.n_points} points, values = deviation "
-             f"(-correction) in {table.position_unit}"]
+             f"(-correction) in {fu}"]
+    metric = []
+    if table.position_unit == "mm":
+        metric = [f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {1 if per == 1.0 else 0}"]
+        lines.append(f"; {metric[0]}: values, STEP, MIN and MAX in {fu}")
     lines += [f"$AA_ENC_COMP[0,{i},{ax}]={_fmt(v)}" for i, v in enumerate(values)]
-    lines += [f"$AA_ENC_COMP_STEP[0,{ax}]={_fmt(table.spacing)}",
-              f"$AA_ENC_COMP_MIN[0,{ax}]={_fmt(table.start)}",
-              f"$AA_ENC_COMP_MAX[0,{ax}]={_fmt(table.end)}",
+    nd_pos = 9 if per == 1.0 else 12
+    lines += [f"$AA_ENC_COMP_STEP[0,{ax}]={_fmt(table.spacing / per, nd_pos)}",
+              f"$AA_ENC_COMP_MIN[0,{ax}]={_fmt(table.start / per, nd_pos)}",
+              f"$AA_ENC_COMP_MAX[0,{ax}]={_fmt(table.end / per, nd_pos)}",
               f"$AA_ENC_COMP_IS_MODULO[0,{ax}]={1 if table.modulo else 0}"]
     enable = [f"MD38000 $MA_MM_ENC_COMP_MAX_POINTS[0,{ax}] >= {table.n_points} "
               "(memory is re-formatted at the next power-on)",
               f"load the file while MD32700 $MA_ENC_COMP_ENABLE[0,{ax}] = 0",
               f"then MD32700 $MA_ENC_COMP_ENABLE[0,{ax}] = 1 and reference the axis"]
+    enable += [f"{m} on the machine (the file's values, STEP, MIN and MAX are in {fu})"
+               for m in metric]
     if table.bidirectional:
         b = np.round(-table.backlash * k, nd) + 0.0
         lines.append(f"; MD32450 $MA_BACKLASH[0,{ax}]={_fmt(b)}")
-        enable.append(f"MD32450 $MA_BACKLASH[0,{ax}] = {_fmt(b)} {table.position_unit} "
+        enable.append(f"MD32450 $MA_BACKLASH[0,{ax}] = {_fmt(b)} {fu} "
                       "(mean reversal; the table holds the mean of both directions)")
     as_file = np.round(-values / k, 6) + 0.0          # what the file holds, back in the table's unit
     written = replace(table, up=as_file, down=as_file, bidirectional=False)
@@ -174,16 +203,18 @@ def _axis_block(table, machine_axis, zero_at_reference, zero_ends):
 
 def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" = None,
           axis: str = "", correction_unit: str | None = None,
-          machine_axis: str | None = None) -> CompensationTable:
+          machine_axis: str | None = None, unit: str | None = None) -> CompensationTable:
     """Read one axis of a ``%_N_AX_EEC_INI`` file back into a table (corrections = −file values).
 
     ``machine_axis`` chooses the axis of a file holding several (it must then be given).
     ``axis_kind`` defaults to rotary if the table is modulo, else linear. Corrections come back
     in ``correction_unit`` (default µm or arcsec). A ``; MD32450`` comment written by
     :func:`write` makes the table bidirectional again (mean ± backlash/2); a ``; axiscal: axis X``
-    comment gives the axis name back.
+    comment gives the axis name back. ``unit`` (``mm`` or ``inch``) is the machine's basic system
+    (MD10240); the file's own statement of it wins, and a ``unit`` contradicting it is refused.
     """
-    tables = parse_axes(text, source, axis_kind=axis_kind, correction_unit=correction_unit)
+    tables = parse_axes(text, source, axis_kind=axis_kind, correction_unit=correction_unit,
+                        unit=unit)
     if machine_axis is None:
         if len(tables) > 1:
             raise DataFormatError(f"the file holds the tables of {len(tables)} machine axes "
@@ -199,8 +230,12 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
 
 
 def parse_axes(text: str, source: str = "<text>", axis_kind=None,
-               correction_unit: str | None = None) -> dict:
-    """Every machine axis's table of a ``%_N_AX_EEC_INI`` file, by machine axis name."""
+               correction_unit: str | None = None, unit: str | None = None) -> dict:
+    """Every machine axis's table of a ``%_N_AX_EEC_INI`` file, by machine axis name.
+
+    Positions come back in mm (deg), whatever the file's unit (see :func:`inputs`).
+    """
+    per = file_unit(inputs(text, source, unit=unit)[0].value, None, NAME)
     values: dict[str, dict[int, float]] = {}
     params: dict[str, dict[str, float]] = {}
     backlash: dict[str, float] = {}
@@ -215,7 +250,8 @@ def parse_axes(text: str, source: str = "<text>", axis_kind=None,
         m = _NAME.match(line)
         if m:
             pending_name = "" if m.group(1) == "-" else m.group(1)
-        if not line or line.startswith((";", "%", "CHANDATA", "M17", "M30")):
+        if not line or line.startswith((";", "%", "CHANDATA", "M17", "M30")) or \
+                _MD10240.match(line):
             continue
         m = _VALUE.match(line)
         if m:
@@ -239,11 +275,42 @@ def parse_axes(text: str, source: str = "<text>", axis_kind=None,
     for ax in values:
         b = backlash.get(ax, backlash.get("") if len(values) == 1 else None)
         out[ax] = _one_axis(values[ax], params.get(ax, {}), b, ax, names.get(ax, ""), axis_kind,
-                            correction_unit, source)
+                            correction_unit, source, per)
     return out
 
 
-def _one_axis(values, params, backlash, machine_axis, name, axis_kind, correction_unit, source):
+def inputs(text: str, source: str = "<text>", unit: str | None = None, **_) -> tuple:
+    """The file's length unit (MD10240): stated in the file, given as ``unit``, or mm assumed.
+
+    A ``unit`` that contradicts the file's statement, or a file stating MD10240 twice
+    differently, is refused (:class:`DataFormatError`).
+    """
+    stated = None
+    for n, raw in enumerate(text.splitlines(), 1):
+        m = _MD10240.match(raw.strip())
+        if not m:
+            continue
+        v = {"0": "inch", "false": "inch", "1": "mm", "true": "mm"}.get(m.group(1).lower())
+        if v is None or stated not in (None, v):
+            raise DataFormatError(f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {m.group(1)[:20]!r}"
+                                  + ("" if v is None else " contradicts an earlier line")
+                                  + " (1: metric, 0: inch)", source, n)
+        stated = v
+    why = f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {0 if stated == 'inch' else 1}"
+    if unit is not None:
+        given = "inch" if file_unit(unit, None, NAME) != 1.0 else "mm"
+        if stated not in (None, given):
+            raise DataFormatError(f"the file states {why} (values in {stated}), not {given}",
+                                  source)
+        return (FileInput("unit", given, "", "option", "given"),)
+    if stated is not None:
+        return (FileInput("unit", stated, "", "file", f"the file states {why}"),)
+    return (FileInput("unit", "mm", "", "default", "the file does not state MD10240 (a metric "
+                      "machine, MD10240 = 1, assumed)"),)
+
+
+def _one_axis(values, params, backlash, machine_axis, name, axis_kind, correction_unit, source,
+              per=1.0):
     for key in ("STEP", "MIN", "MAX"):
         if key not in params:
             raise DataFormatError(f"$AA_ENC_COMP_{key} of {machine_axis} is missing", source)
@@ -254,21 +321,28 @@ def _one_axis(values, params, backlash, machine_axis, name, axis_kind, correctio
     kind = AxisKind.parse(axis_kind or ("rotary" if modulo else "linear"))
     pu = "mm" if kind is AxisKind.LINEAR else "deg"
     cu = correction_unit or ("um" if kind is AxisKind.LINEAR else "arcsec")
-    dev = np.array([values[i] for i in range(len(values))])
+    per = per if kind is AxisKind.LINEAR else 1.0     # degrees in either basic system
+    dev = np.array([values[i] for i in range(len(values))]) * per
     span = (len(dev) - 1) * params["STEP"]
     if abs(params["MIN"] + span - params["MAX"]) > 1e-6 * max(1.0, abs(span)):
         raise DataFormatError(f"{machine_axis}: MIN {params['MIN']:g} + {len(dev) - 1} x STEP "
                               f"{params['STEP']:g} does not reach MAX {params['MAX']:g}", source)
     try:
-        t = CompensationTable(name or machine_axis, kind, pu, cu, params["MIN"], params["STEP"],
-                              dev, dev, modulo=modulo)
+        t = CompensationTable(name or machine_axis, kind, pu, cu, _mm(params["MIN"], per),
+                              _mm(params["STEP"], per), dev, dev, modulo=modulo)
     except ControllerLimitError:
         raise
     except InputError as exc:  # the table's own validation of what the file declared
         raise DataFormatError(str(exc), source) from None
     t = replace(t, up=np.round(-dev / correction_factor(t, pu), 6) + 0.0,
                 down=np.round(-dev / correction_factor(t, pu), 6) + 0.0)
-    return t if backlash is None else _with_backlash(t, backlash / correction_factor(t, pu))
+    return t if backlash is None else _with_backlash(t, backlash * per / correction_factor(t, pu))
+
+
+def _mm(v: float, per: float) -> float:
+    """A position of the file in mm: inch x 25.4, rounded to 1e-9 mm (the 12 decimals of inch
+    :func:`write` gives a position leave a few 1e-11 mm)."""
+    return v if per == 1.0 else float(np.round(v * per, 9))
 
 
 def _once(seen: dict, key, what: str, source: str, line: int) -> None:
