@@ -19,7 +19,7 @@ from axiscal.standards.iso230_9_montecarlo import monte_carlo_linear
 
 #: A hand-worked case: 1000 mm travel, laser 0.5 ppm (k = 2), 1 nm resolution, beam 0.5 mm off,
 #: steel α = 11.5 µm/(m·K) ± 10 %, machine at 21 °C, sensor ± 0.1 K, position ± 0.2 K, E_VE 1 µm.
-HAND = LinearInputs(e_ve=1.0, material_temperature=21.0, e_ve_source="drift check")
+HAND = LinearInputs(e_ve=1.0, material_temperature=21.0, e_ve_source="drift check", beam_offset=0.5)
 
 
 def test_hand_worked_linear_case():
@@ -101,7 +101,8 @@ def test_monte_carlo_detects_a_wrong_budget():
 def test_each_contributor_sensitivity(field, value, name, factor):
     """Changing one input changes its own contributor by the factor its model says, no other
     contributor, and U(E) by exactly √(Σu²) with the new term."""
-    base = dict(e_ve=1.0, material_temperature=21.0, expansion_coefficient_halfwidth=1.15e-6)
+    base = dict(e_ve=1.0, material_temperature=21.0, expansion_coefficient_halfwidth=1.15e-6,
+                beam_offset=0.5)
     b0 = linear_budget(1000.0, LinearInputs(**base))
     b1 = linear_budget(1000.0, LinearInputs(**{**base, field: value}))
     u0 = {c.name: c.u for c in b0.contributors}
@@ -116,7 +117,7 @@ def test_each_contributor_sensitivity(field, value, name, factor):
 def test_scatter_parameters_ignore_length_errors():
     """R and B are formed at one target: the laser's ppm and the thermal terms do not act on them
     (ISO 230-2:2014 Annex A: repeatability and reversal carry E_VE and the reading)."""
-    b0 = linear_budget(1000.0, LinearInputs(e_ve=1.0))
+    b0 = linear_budget(1000.0, LinearInputs(e_ve=1.0, material_temperature=20.0))
     b1 = linear_budget(
         1000.0, LinearInputs(e_ve=1.0, laser_accuracy_ppm=5, beam_offset=3, material_temperature=25)
     )

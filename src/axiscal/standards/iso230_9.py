@@ -15,9 +15,11 @@ Builders
     ===============  ===============================================  ============================
     contributor      model                                            distribution
     ===============  ===============================================  ============================
-    u_DEVICE         accuracy a [ppm, expanded with k_cal] × L       normal, u = a·L/k_cal
+    u_DEVICE         laser: accuracy a [ppm, expanded with k_cal] × L  normal, u = a·L/k_cal
+                     encoder: scale accuracy ± a [µm/m] × L            rectangular, u = a·L/√3
     u_RESOLUTION     resolution r of the reading                      rectangular, u = r/(2√3)
-    u_MISALIGNMENT   cosine error e = L·θ²/2 = d²/(2L), beam offset d  rectangular 0…e, u = e/(2√3)
+    u_MISALIGNMENT   laser only: cosine error e = L·θ²/2 = d²/(2L),    rectangular 0…e, u = e/(2√3)
+                     beam offset d over the travel
     u_E,MACHINE      uncertainty of α (half-width a_α) × L × |T − 20|  rectangular, u = a_α·L·ΔT/√3
     u_M,MACHINE      temperature measurement (half-width a_T) × α × L  rectangular, u = a_T·α·L/√3
     u_M,POSITION     sensor position (half-width a_P) × α × L          rectangular, u = a_P·α·L/√3
@@ -27,6 +29,19 @@ Builders
     with L the measured travel. E, M, A and their unidirectional forms carry every contributor
     (ISO 230-2:2014 A.2-A.4, A.6); R and B carry the reading (resolution) and E_VE only (A.5-A.7):
     a scale or length error acts on the span between targets, not on the scatter at one target.
+
+    The temperature-deviation contributor is ISO/TR 16015:2003's uncertainty of the expansion
+    coefficient (case b: mean temperature not 20 °C, corrected) in ISO 230-2:2014 Annex A.4::
+
+        u_E,MACHINE = L · ΔT · u(α),   u(α) = a_α/√3,   ΔT = |T − 20 °C|
+
+    with T the stated material temperature or, when none is stated, the end of the declared
+    shop range farthest from 20 °C (ΔT = max(|T_min − 20|, |T_max − 20|); default 17-23 °C,
+    ΔT = 3 K, shown as assumed). An 800 mm steel axis in a 23 °C shop: 800 mm × 3 K ×
+    1.15 µm/(m·K)/√3 = 1.59 µm.
+
+    E_VE is never assumed: without a drift check or a declared value it is left out of U and
+    named in :attr:`UncertaintyBudget.missing_inputs` (a certificate is then a draft).
 :func:`rotary_budget`
     The same for a rotary axis measured with a rotary calibrator: the calibrator's accuracy in
     arcsec, its resolution, the misalignment of Renishaw, "Interferometric calibration of rotary
@@ -45,7 +60,12 @@ Monte Carlo (JCGM 101:2008, GUM Supplement 1) as an independent check of the lin
 
 Readings chosen where the standard leaves a choice (stated on every certificate): E_VE is taken
 as the full range of a drift check, so ±E_VE/2 rectangular; the cosine error is a one-sided
-rectangular 0…e; the uncertainty of α defaults to ±10 % of α when no value is declared.
+rectangular 0…e; the uncertainty of α defaults to ±10 % of α when no value is declared. Every
+default is a :class:`~axiscal.standards.iso230_9_inputs.BudgetInput` marked assumed, with the
+rule it comes from (:mod:`axiscal.standards.iso230_9_inputs`).
+
+U is displayed by :func:`format_uncertainty`: two significant digits, rounded up (JCGM 100:2008
+§7.2.6), never as zero.
 
 References
 ----------
@@ -65,6 +85,15 @@ from typing import Any, Mapping
 import numpy as np
 
 from axiscal.errors import InputError
+from axiscal.standards.iso230_9_inputs import (
+    BudgetInput,
+    LinearInputs,
+    RotaryInputs,
+    environmental_variation,
+    resolve_linear,
+    resolve_rotary,
+    runs_statement,
+)
 
 __all__ = [
     "Contributor",
@@ -77,6 +106,8 @@ __all__ = [
     "chain_budget",
     "positioning_budget",
     "environmental_variation",
+    "round_up",
+    "format_uncertainty",
     "COVERAGE_FACTOR",
     "DISTANCE_PARAMETERS",
     "SCATTER_PARAMETERS",
@@ -150,7 +181,12 @@ class UncertaintyBudget:
     method : str
         How u_c was formed (``GTC`` or ``plain arithmetic``), for the certificate.
     notes : tuple of str
-        Assumptions a reader must know (defaults used, E_VE declared rather than measured ...).
+        What a reader must know, in plain words: each assumed input with its rule, each input
+        left out of U, the number of runs behind R and B.
+    inputs : tuple of BudgetInput
+        Every input with its value, unit, whether it was assumed, how to set it and its rule.
+    missing_inputs : tuple of str
+        Names of inputs U could not include (``e_ve`` when no drift check or value was given).
     """
 
     unit: str
@@ -160,14 +196,52 @@ class UncertaintyBudget:
     expanded: Mapping[str, float]
     method: str = "GTC"
     notes: tuple[str, ...] = ()
+    inputs: tuple[BudgetInput, ...] = ()
+    missing_inputs: tuple[str, ...] = ()
 
     def U(self, parameter: str) -> float | None:
         """Expanded uncertainty of ``parameter`` (None if the budget does not cover it)."""
         return self.expanded.get(parameter)
 
+    def U_text(self, parameter: str) -> str:
+        """U of ``parameter`` as displayed: :func:`format_uncertainty` ("—" if not covered)."""
+        return format_uncertainty(self.U(parameter))
+
+    @property
+    def assumed(self) -> tuple[BudgetInput, ...]:
+        """The inputs neither the user nor the data file gave (defaults and missing ones)."""
+        return tuple(i for i in self.inputs if i.assumed)
+
+    @property
+    def missing(self) -> tuple[str, ...]:
+        """Each missing input in words (what a certificate lists as missing)."""
+        by = {i.name: i for i in self.inputs}
+        return tuple(f"{by[m].label} ({by[m].rule})" if m in by else m
+                     for m in self.missing_inputs)
+
     def rows(self, parameter: str) -> list[tuple[str, float]]:
         """``(name, u)`` of the contributors acting on ``parameter``."""
         return [(c.name, c.u) for c in self.contributors if parameter in c.applies_to]
+
+    def to_json(self, parameters=None) -> dict[str, Any]:
+        """The budget as stable JSON: ``unit``, ``k``, ``method``, ``U`` (raw floats),
+        ``U_display`` (as shown), ``contributors``, ``inputs`` (name -> ``value``, ``unit``,
+        ``assumed``, ``set_with``, ``rule``, ``label``), ``assumed`` (names),
+        ``missing_inputs`` and ``notes``."""
+        names = [p for p in (parameters or self.expanded) if p in self.expanded]
+        return {
+            "unit": self.unit, "k": self.k, "method": self.method,
+            "U": {p: self.expanded[p] for p in names},
+            "U_display": {p: self.U_text(p) for p in names},
+            "contributors": [{"name": c.name, "quantity": c.quantity, "u": c.u,
+                              "distribution": c.distribution, "basis": c.basis,
+                              "clause": c.clause, "applies_to": list(c.applies_to)}
+                             for c in self.contributors],
+            "inputs": {i.name: i.to_json() for i in self.inputs},
+            "assumed": [i.name for i in self.assumed],
+            "missing_inputs": list(self.missing_inputs),
+            "notes": list(self.notes),
+        }
 
     def __str__(self) -> str:
         lines = [f"uncertainty budget ({self.unit}, k = {self.k:g}):"]
@@ -175,8 +249,50 @@ class UncertaintyBudget:
             f"  {c.name:<14} u = {c.u:8.4f}  {c.distribution:<11} {c.clause}"
             for c in self.contributors
         ]
-        lines += [f"  U({p}) = {v:.4f}" for p, v in self.expanded.items()]
+        lines += [f"  U({p}) = {self.U_text(p)}" for p in self.expanded]
         return "\n".join(lines)
+
+
+def round_up(U: float, digits: int = 2) -> float:
+    """``U`` rounded up to ``digits`` significant digits (JCGM 100:2008 §7.2.6).
+
+    A value already at ``digits`` digits stays (2.4 stays 2.4, not 2.5, in spite of its binary
+    representation); 0 stays 0; NaN and infinities are returned as they are.
+
+    Examples
+    --------
+    >>> round_up(0.000577), round_up(2.41), round_up(3.52), round_up(12.01), round_up(2.4)
+    (0.00058, 2.5, 3.6, 13.0, 2.4)
+    """
+    if not math.isfinite(U) or U <= 0:
+        return U
+    e = math.floor(math.log10(U)) - (digits - 1)
+    scaled = U / 10.0**e
+    whole = round(scaled)
+    n = whole if abs(scaled - whole) <= 1e-9 * scaled else math.ceil(scaled)
+    return round(n * 10.0**e, max(0, -e))
+
+
+def format_uncertainty(U: float | None, digits: int = 2) -> str:
+    """U as displayed everywhere: :func:`round_up` to two significant digits, never "0.00".
+
+    None or NaN (not covered, not estimated) is a dash; an exact 0 (a budget with no
+    contributor for the parameter) is "0".
+
+    Examples
+    --------
+    >>> format_uncertainty(0.000577), format_uncertainty(2.41), format_uncertainty(0.998)
+    ('0.00058', '2.5', '1.0')
+    >>> format_uncertainty(123.4), format_uncertainty(None)
+    ('130', '—')
+    """
+    if U is None or (isinstance(U, float) and math.isnan(U)):
+        return "—"
+    if U == 0 or not math.isfinite(U):
+        return f"{U:g}"
+    r = round_up(float(U), digits)
+    decimals = max(0, digits - 1 - math.floor(math.log10(r)))
+    return f"{r:.{decimals}f}"
 
 
 def combine(
@@ -248,114 +364,6 @@ def _combine_plain(contributors, names) -> dict[str, float]:
     return {p: math.sqrt(sum(c.u**2 for c in contributors if p in c.applies_to)) for p in names}
 
 
-def _check_inputs(inputs, signed: tuple, k: str) -> None:
-    """Every input a finite number >= 0 (``signed`` ones may be negative), ``e_ve_source``
-    one of its two words, and the coverage factor ``k`` positive."""
-    for f in fields(inputs):
-        v = getattr(inputs, f.name)
-        if f.name == "e_ve_source":
-            if v not in ("drift check", "declared"):
-                raise InputError(
-                    f"uncertainty e_ve_source = {v!r}: use 'drift check' or 'declared'")
-        elif v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))
-                                or not math.isfinite(v) or (v < 0 and f.name not in signed)):
-            raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
-    if getattr(inputs, k) <= 0:
-        raise InputError(f"uncertainty {k} must be > 0")
-
-
-def _known_keys(cls, d: Mapping[str, Any]) -> dict:
-    """``d`` as keyword arguments of ``cls``, an unknown key refused by name."""
-    from axiscal._schema import refuse_unknown
-
-    refuse_unknown(dict(d) if not isinstance(d, dict) else d, {f.name for f in fields(cls)},
-                   "[uncertainty]")
-    return dict(d)
-
-
-@dataclass(frozen=True)
-class LinearInputs:
-    """What a linear ISO 230-2 budget needs; each field settable in the test metadata or a config.
-
-    Attributes
-    ----------
-    laser_accuracy_ppm : float, ppm
-        Accuracy of the laser measurement (wavelength, air compensation) from its calibration
-        certificate, an expanded uncertainty with coverage factor ``laser_accuracy_k``.
-    laser_accuracy_k : float
-    resolution : float, deviation unit (µm)
-        Resolution of the reading.
-    beam_offset : float, mm
-        Lateral offset of the beam over the travel (alignment as set up).
-    expansion_coefficient : float, 1/K
-        α of the machine's scale (the dataset's value when it has one).
-    expansion_coefficient_halfwidth : float or None, 1/K
-        Half-width of the rectangular distribution of α (None: 10 % of α).
-    material_temperature : float, °C
-        Mean temperature of the machine (the dataset's value when it has one).
-    temperature_halfwidth : float, K
-        Accuracy of the material temperature sensor (half-width).
-    sensor_position_halfwidth : float, K
-        Largest difference between the sensor's place and the scale's mean temperature.
-    e_ve : float, deviation unit (µm)
-        Environmental variation error: range of a drift check over the test's duration.
-    e_ve_source : str
-        ``drift check`` or ``declared``.
-    """
-
-    laser_accuracy_ppm: float = 0.5
-    laser_accuracy_k: float = 2.0
-    resolution: float = 0.001
-    beam_offset: float = 0.5
-    expansion_coefficient: float = 11.5e-6
-    expansion_coefficient_halfwidth: float | None = None
-    material_temperature: float = 20.0
-    temperature_halfwidth: float = 0.1
-    sensor_position_halfwidth: float = 0.2
-    e_ve: float = 0.0
-    e_ve_source: str = "declared"
-
-    def __post_init__(self) -> None:
-        _check_inputs(self, signed=("material_temperature",), k="laser_accuracy_k")
-
-    @classmethod
-    def from_mapping(cls, d: Mapping[str, Any], dataset=None) -> "LinearInputs":
-        """From a config table (``[uncertainty]``), filling α and T from the dataset if absent."""
-        kw = _known_keys(cls, d)
-        if dataset is not None:
-            env = dataset.metadata.environment
-            if "expansion_coefficient" not in kw and env.expansion_coefficient is not None:
-                kw["expansion_coefficient"] = env.expansion_coefficient
-            if "material_temperature" not in kw and env.material_temperature:
-                kw["material_temperature"] = float(np.mean(env.material_temperature))
-        return cls(**kw)
-
-
-def environmental_variation(readings) -> float:
-    """E_VE from a drift check: the range of the readings of a still set-up over the test's time.
-
-    Parameters
-    ----------
-    readings : array_like, deviation unit
-        Laser readings with the machine at rest (target and reflector fixed), taken over at least
-        the duration of the positioning test.
-
-    Returns
-    -------
-    float, deviation unit
-        max − min (ISO 230-2:2014 Annex A, environmental variation error E_VE).
-
-    Examples
-    --------
-    >>> environmental_variation([0.1, 0.4, -0.2, 0.3])
-    0.6
-    """
-    r = np.asarray(readings, dtype=float).ravel()
-    if r.size < 2 or not np.all(np.isfinite(r)):
-        raise InputError(f"drift check: {r.size} readings; E_VE needs at least 2 finite readings")
-    return round(float(r.max() - r.min()), 12)
-
-
 def linear_budget(
     travel_mm: float,
     inputs: LinearInputs = LinearInputs(),
@@ -376,153 +384,91 @@ def linear_budget(
     Returns
     -------
     UncertaintyBudget
-        For A, A↑, A↓, E, E↑, E↓, M, R, R↑, R↓, B, B̄.
+        For A, A↑, A↓, E, E↑, E↓, M, R, R↑, R↓, B, B̄; without E_VE when ``inputs.e_ve`` is
+        None (then ``missing_inputs == ("e_ve",)``).
+
+    Notes
+    -----
+    The contributors and their models are in the module's table. The temperature-deviation
+    contributor is u_E,MACHINE = L·ΔT·a_α/√3 (ISO 230-2:2014 Annex A.4; ISO/TR 16015:2003
+    case b), ΔT = :attr:`LinearInputs.temperature_deviation`.
 
     Examples
     --------
     >>> b = linear_budget(1000.0, LinearInputs(e_ve=1.0, material_temperature=21.0))
     >>> round(b.U("E"), 3), round(b.U("R"), 3)
-    (3.342, 0.577)
+    (3.341, 0.577)
     """
     if not (math.isfinite(travel_mm) and travel_mm > 0):
         raise InputError(f"travel {travel_mm!r} mm: an uncertainty budget needs a travel > 0")
     to_unit = {"um": 1.0, "mm": 1e-3, "nm": 1e3}.get(unit)
     if to_unit is None:
         raise InputError(f"linear uncertainty budget in {unit!r}: use um or mm")
-    L_um = travel_mm * 1e3
-    i = inputs
-    a_alpha = (
-        0.1 * i.expansion_coefficient
-        if i.expansion_coefficient_halfwidth is None
-        else i.expansion_coefficient_halfwidth
-    )
-    dT = abs(i.material_temperature - 20.0)
-    cos_e = (i.beam_offset * 1e3) ** 2 / (2 * L_um)
+    L_um, i = travel_mm * 1e3, inputs
     d, s = DISTANCE_PARAMETERS, _ALL
-    c = [
-        Contributor(
-            "u_DEVICE",
-            "laser measurement accuracy",
-            i.laser_accuracy_ppm * 1e-6 * L_um / i.laser_accuracy_k,
-            "normal",
-            f"{_ANNEX}, A.2 (measuring device)",
-            f"{i.laser_accuracy_ppm:g} ppm (k = {i.laser_accuracy_k:g}) over {travel_mm:g} mm",
-            d,
-        ),
-        Contributor(
-            "u_RESOLUTION",
-            "resolution of the reading",
-            i.resolution / (2 * _SQ3),
-            "rectangular",
-            f"{_ANNEX}, A.2; ISO/TR 230-9 §5",
-            f"resolution {i.resolution:g} µm",
-            s,
-        ),
-        Contributor(
-            "u_MISALIGNMENT",
-            "cosine error of the beam alignment",
-            cos_e / (2 * _SQ3),
-            "rectangular",
-            f"{_ANNEX}, A.3 (misalignment)",
+    c = [_device(i, travel_mm), Contributor(
+        "u_RESOLUTION", "resolution of the reading", i.resolution / (2 * _SQ3), "rectangular",
+        f"{_ANNEX}, A.2; ISO/TR 230-9 §5", f"resolution {i.resolution:g} µm", s)]
+    if i.reference == "laser":
+        cos_e = (i.beam_offset * 1e3) ** 2 / (2 * L_um)
+        c.append(Contributor(
+            "u_MISALIGNMENT", "cosine error of the beam alignment", cos_e / (2 * _SQ3),
+            "rectangular", f"{_ANNEX}, A.3 (misalignment)",
             f"beam offset {i.beam_offset:g} mm over {travel_mm:g} mm: e = d²/2L = {cos_e:.3g} µm",
-            d,
-        ),
-        Contributor(
-            "u_E,MACHINE",
-            "uncertainty of the expansion coefficient",
-            a_alpha * L_um * dT / _SQ3,
-            "rectangular",
-            f"{_ANNEX}, A.4 (machine temperature compensation)",
-            f"α ± {a_alpha * 1e6:.3g} µm/(m·K), |T − 20 °C| = {dT:.3g} K",
-            d,
-        ),
-        Contributor(
-            "u_M,MACHINE",
-            "material temperature measurement",
-            i.temperature_halfwidth * i.expansion_coefficient * L_um / _SQ3,
-            "rectangular",
-            f"{_ANNEX}, A.4 (machine temperature compensation)",
-            f"sensor ± {i.temperature_halfwidth:g} K, "
-            f"α = {i.expansion_coefficient * 1e6:.3g} µm/(m·K)",
-            d,
-        ),
-        Contributor(
-            "u_M,POSITION",
-            "material sensor position",
-            i.sensor_position_halfwidth * i.expansion_coefficient * L_um / _SQ3,
-            "rectangular",
-            f"{_ANNEX}, A.4; ISO/TR 230-9 §6 (temperature)",
-            f"sensor place vs scale ± {i.sensor_position_halfwidth:g} K",
-            d,
-        ),
-        Contributor(
-            "u_EVE",
-            "environmental variation error",
-            i.e_ve / (2 * _SQ3),
-            "rectangular",
+            d))
+    c += _thermal(i, L_um)
+    if i.e_ve is not None:
+        c.append(Contributor(
+            "u_EVE", "environmental variation error", i.e_ve / (2 * _SQ3), "rectangular",
             f"{_ANNEX}, A.5 (environmental variation error E_VE)",
-            f"E_VE = {i.e_ve:g} µm ({i.e_ve_source})",
-            s,
-        ),
+            f"E_VE = {i.e_ve:g} µm ({i.e_ve_source})", s))
+    c = [replace(x, u=x.u * to_unit) for x in c]
+    return combine(c, unit, k, _ALL)
+
+
+def _device(i: LinearInputs, travel_mm: float) -> Contributor:
+    """u_DEVICE of the reference: a laser's ppm (normal, k_cal) or an encoder's ± µm/m."""
+    if i.reference == "encoder":
+        return Contributor(
+            "u_DEVICE", "encoder scale accuracy", i.encoder_accuracy * travel_mm * 1e-3 / _SQ3,
+            "rectangular", f"{_ANNEX}, A.2 (measuring device); ISO/TR 230-9 §5",
+            f"± {i.encoder_accuracy:g} µm/m over {travel_mm:g} mm", DISTANCE_PARAMETERS)
+    return Contributor(
+        "u_DEVICE", "laser measurement accuracy",
+        i.laser_accuracy_ppm * 1e-3 * travel_mm / i.laser_accuracy_k, "normal",
+        f"{_ANNEX}, A.2 (measuring device)",
+        f"{i.laser_accuracy_ppm:g} ppm (k = {i.laser_accuracy_k:g}) over {travel_mm:g} mm",
+        DISTANCE_PARAMETERS)
+
+
+def _thermal(i: LinearInputs, L_um: float) -> list[Contributor]:
+    """u_E,MACHINE (α's uncertainty over ΔT), u_M,MACHINE and u_M,POSITION, µm."""
+    a_alpha, dT, d = i.alpha_halfwidth, i.temperature_deviation, DISTANCE_PARAMETERS
+    where = (f"|T − 20 °C| = {dT:.3g} K" if i.material_temperature is not None else
+             f"T not stated: shop {i.shop_temperature_min:g}-{i.shop_temperature_max:g} °C, "
+             f"largest |T − 20 °C| = {dT:.3g} K")
+    clause = f"{_ANNEX}, A.4 (machine temperature compensation)"
+    return [
+        Contributor("u_E,MACHINE", "uncertainty of the expansion coefficient",
+                    a_alpha * L_um * dT / _SQ3, "rectangular", f"{clause}; ISO/TR 16015:2003",
+                    f"L·ΔT·u(α): α ± {a_alpha * 1e6:.3g} µm/(m·K), {where}", d),
+        Contributor("u_M,MACHINE", "material temperature measurement",
+                    i.temperature_halfwidth * i.expansion_coefficient * L_um / _SQ3,
+                    "rectangular", clause, f"sensor ± {i.temperature_halfwidth:g} K, "
+                    f"α = {i.expansion_coefficient * 1e6:.3g} µm/(m·K)", d),
+        Contributor("u_M,POSITION", "material sensor position",
+                    i.sensor_position_halfwidth * i.expansion_coefficient * L_um / _SQ3,
+                    "rectangular", f"{_ANNEX}, A.4; ISO/TR 230-9 §6 (temperature)",
+                    f"sensor place vs scale ± {i.sensor_position_halfwidth:g} K", d),
     ]
-    c = [
-        Contributor(
-            x.name, x.quantity, x.u * to_unit, x.distribution, x.clause, x.basis, x.applies_to
-        )
-        for x in c
-    ]
-    return combine(c, unit, k, _ALL, _notes(i))
-
-
-def _notes(i: LinearInputs) -> list[str]:
-    notes = []
-    if i.expansion_coefficient_halfwidth is None:
-        notes.append("uncertainty of the expansion coefficient taken as ±10 % of α (not declared)")
-    if i.e_ve_source == "declared":
-        notes.append(f"E_VE = {i.e_ve:g} µm declared, not measured by a drift check")
-    return notes
-
-
-@dataclass(frozen=True)
-class RotaryInputs:
-    """What a rotary ISO 230-2 budget needs (angles in arcsec, misalignments in mrad).
-
-    Attributes
-    ----------
-    calibrator_accuracy : float, arcsec
-        Accuracy of the rotary calibrator from its certificate, expanded with ``calibrator_k``.
-    calibrator_k : float
-    resolution : float, arcsec
-    alpha, beta, omega : float, mrad
-        Misalignments of Renishaw, "Interferometric calibration of rotary axes", eq. 1: axes (α),
-        laser line of sight (β), reflector twist (ω).
-    e_ve : float, arcsec
-    e_ve_source : str
-    """
-
-    calibrator_accuracy: float = 1.0
-    calibrator_k: float = 2.0
-    resolution: float = 0.1
-    alpha: float = 0.5
-    beta: float = 1.0
-    omega: float = 2.5
-    e_ve: float = 0.0
-    e_ve_source: str = "declared"
-
-    def __post_init__(self) -> None:
-        _check_inputs(self, signed=(), k="calibrator_k")
-
-    @classmethod
-    def from_mapping(cls, d: Mapping[str, Any]) -> "RotaryInputs":
-        """From a config table (``[uncertainty]``)."""
-        return cls(**_known_keys(cls, d))
-
 
 
 def rotary_budget(
     inputs: RotaryInputs = RotaryInputs(), unit: str = "arcsec", k: float = COVERAGE_FACTOR
 ) -> UncertaintyBudget:
     """ISO 230-2 Annex A budget of a rotary positioning test (rotary calibrator).
+
+    Without E_VE (``inputs.e_ve`` None) the budget leaves it out (see :func:`linear_budget`).
 
     Examples
     --------
@@ -536,54 +482,23 @@ def rotary_budget(
     mis = half_range(i.alpha * 1e-3, i.beta * 1e-3, i.omega * 1e-3) / ARCSEC
     d, s = DISTANCE_PARAMETERS, _ALL
     c = [
-        Contributor(
-            "u_DEVICE",
-            "rotary calibrator accuracy",
-            i.calibrator_accuracy / i.calibrator_k,
-            "normal",
-            f"{_ANNEX}, A.2 (measuring device)",
-            f"± {i.calibrator_accuracy:g} arcsec (k = {i.calibrator_k:g})",
-            d,
-        ),
-        Contributor(
-            "u_RESOLUTION",
-            "resolution of the reading",
-            i.resolution / (2 * _SQ3),
-            "rectangular",
-            f"{_ANNEX}, A.2; ISO/TR 230-9 §5",
-            f"resolution {i.resolution:g} arcsec",
-            s,
-        ),
-        Contributor(
-            "u_MISALIGNMENT",
-            "misalignment (Renishaw, Interferometric calibration of " "rotary axes, eq. 1)",
-            mis / _SQ3,
-            "rectangular",
-            f"{_ANNEX}, A.3; Renishaw eq. 1",
-            f"α = {i.alpha:g}, β = {i.beta:g}, ω = {i.omega:g} mrad: ± {mis:.3g} arcsec",
-            d,
-        ),
-        Contributor(
-            "u_EVE",
-            "environmental variation error",
-            i.e_ve / (2 * _SQ3),
-            "rectangular",
-            f"{_ANNEX}, A.5 (environmental variation error E_VE)",
-            f"E_VE = {i.e_ve:g} arcsec ({i.e_ve_source})",
-            s,
-        ),
+        Contributor("u_DEVICE", "rotary calibrator accuracy", i.calibrator_accuracy /
+                    i.calibrator_k, "normal", f"{_ANNEX}, A.2 (measuring device)",
+                    f"± {i.calibrator_accuracy:g} arcsec (k = {i.calibrator_k:g})", d),
+        Contributor("u_RESOLUTION", "resolution of the reading", i.resolution / (2 * _SQ3),
+                    "rectangular", f"{_ANNEX}, A.2; ISO/TR 230-9 §5",
+                    f"resolution {i.resolution:g} arcsec", s),
+        Contributor("u_MISALIGNMENT", "misalignment (Renishaw, Interferometric calibration of "
+                    "rotary axes, eq. 1)", mis / _SQ3, "rectangular",
+                    f"{_ANNEX}, A.3; Renishaw eq. 1",
+                    f"α = {i.alpha:g}, β = {i.beta:g}, ω = {i.omega:g} mrad: ± {mis:.3g} arcsec", d),
     ]
+    if i.e_ve is not None:
+        c.append(Contributor("u_EVE", "environmental variation error", i.e_ve / (2 * _SQ3),
+                             "rectangular", f"{_ANNEX}, A.5 (environmental variation error E_VE)",
+                             f"E_VE = {i.e_ve:g} arcsec ({i.e_ve_source})", s))
     f = convert(1.0, "arcsec", unit)
-    c = [
-        Contributor(x.name, x.quantity, x.u * f, x.distribution, x.clause, x.basis, x.applies_to)
-        for x in c
-    ]
-    notes = (
-        [f"E_VE = {i.e_ve:g} arcsec declared, not measured by a drift check"]
-        if i.e_ve_source == "declared"
-        else []
-    )
-    return combine(c, unit, k, _ALL, notes)
+    return combine([replace(x, u=x.u * f) for x in c], unit, k, _ALL)
 
 
 def chain_budget(
@@ -625,39 +540,65 @@ def chain_budget(
 
 
 def positioning_budget(
-    dataset, result, table: Mapping[str, Any] | None = None, k: float = COVERAGE_FACTOR
+    dataset, result, table: Mapping[str, Any] | None = None, k: float = COVERAGE_FACTOR,
+    set_with: str = "[uncertainty] {key}",
 ) -> UncertaintyBudget:
-    """The Annex A budget of an evaluated ISO 230-2 test, linear or rotary.
+    """The Annex A budget of an evaluated ISO 230-2 test, linear or rotary, with its inputs.
 
     Parameters
     ----------
     dataset : PositioningDataset
-        Its environment supplies α and the material temperature where ``table`` does not.
+        Supplies α, the material temperature and the reference's kind where ``table`` does not.
     result : Iso230_2Result
-        Supplies the travel (first to last target) and the deviation unit.
+        Supplies the travel (first to last target), the deviation unit and the number of runs.
     table : mapping, optional
         The ``[uncertainty]`` table of the configuration (keys of :class:`LinearInputs` or
-        :class:`RotaryInputs`); absent keys take the documented defaults.
+        :class:`RotaryInputs`); absent keys take the documented defaults, marked assumed.
     k : float
+    set_with : str
+        How a user sets an input, ``{key}`` replaced by its name (a front end names its option).
 
     Returns
     -------
     UncertaintyBudget
+        With ``inputs`` (every input, assumed ones marked), ``missing_inputs`` (``e_ve`` when
+        neither measured nor declared: left out of U) and ``notes`` (the same in plain words,
+        and what the number of runs means for R and B).
     """
     table = dict(table or {})
     if dataset.axis_kind.value == "rotary":
-        return rotary_budget(RotaryInputs.from_mapping(table), result.deviation_unit, k)
-    from axiscal.units import convert
+        inputs, records, missing = resolve_rotary(table, set_with)
+        b = rotary_budget(inputs, result.deviation_unit, k)
+    else:
+        from axiscal.units import convert
 
-    travel = float(convert(float(np.ptp(result.targets)), result.target_unit, "mm"))
-    env = dataset.metadata.environment
-    notes = []
-    if "material_temperature" not in table and not env.material_temperature:
-        notes.append(
-            "material temperature not stated: 20 °C assumed, so the uncertainty of α "
-            "contributes nothing; state it in the data file or [uncertainty]"
-        )
-    if "expansion_coefficient" not in table and env.expansion_coefficient is None:
-        notes.append("expansion coefficient not stated: 11.5 µm/(m·K) (steel) assumed")
-    b = linear_budget(travel, LinearInputs.from_mapping(table, dataset), result.deviation_unit, k)
-    return replace(b, notes=b.notes + tuple(notes))
+        travel = float(convert(float(np.ptp(result.targets)), result.target_unit, "mm"))
+        inputs, records, missing = resolve_linear(table, dataset, set_with)
+        b = linear_budget(travel, inputs, result.deviation_unit, k)
+    notes = _notes(inputs, records, missing) + [runs_statement(result.n_runs)]
+    return replace(b, notes=tuple(notes), inputs=records, missing_inputs=missing)
+
+
+def _notes(inputs, records, missing) -> list[str]:
+    """The inputs in plain words: each assumed one with its rule, each missing one, the
+    reference without a beam, an E_VE declared rather than measured."""
+    out, by = [], {r.name: r for r in records}
+    for r in records:
+        if r.name in missing or not r.assumed or r.name == "shop_temperature_max":
+            continue
+        if r.name == "shop_temperature_min":
+            hi = by["shop_temperature_max"]
+            out.append(f"assumed: material temperature not stated, shop temperature "
+                       f"{r.value:g}-{hi.value:g} °C ({r.rule}); set with "
+                       f"{r.set_with} and {hi.set_with}")
+        elif r.name != "material_temperature":
+            out.append(f"assumed: {r.label} {r.value_text} ({r.rule}); set with {r.set_with}")
+    for m in missing:
+        r = by[m]
+        out.append(f"{r.label} not given: U leaves it out; measure it by a drift check over the "
+                   f"test's duration (ISO 230-2:2014 Annex A.5) or declare it with {r.set_with}")
+    if getattr(inputs, "reference", "") == "encoder":
+        out.append("reference is an encoder: no laser beam, so no beam-misalignment contributor")
+    if inputs.e_ve is not None and inputs.e_ve_source == "declared":
+        out.append(f"E_VE = {by['e_ve'].value_text} declared, not measured by a drift check")
+    return out

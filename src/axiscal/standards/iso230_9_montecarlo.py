@@ -60,9 +60,12 @@ def monte_carlo_linear(
 
         δ = L·ε_laser − L·θ²/2 + L·[(α + δα)(ΔT + δT + δT_pos) − α·ΔT] + reading + drift
 
-    with ε_laser ~ N(0, a/k_cal), θ ~ U(−d/L, d/L) (the cosine error is quadratic in the angle,
+    with ε_laser ~ N(0, a/k_cal) (an encoder reference: L·ε ~ U(±a·L), no beam so no θ),
+    θ ~ U(−d/L, d/L) (the cosine error is quadratic in the angle,
     not rectangular), δα ~ U(±a_α), δT ~ U(±a_T), δT_pos ~ U(±a_P), reading ~ U(±r/2), drift ~
-    U(±E_VE/2); ΔT = T − 20 °C enters with its sign, so the product term is kept whole. For R
+    U(±E_VE/2) (E_VE not given: 0, as the budget leaves it out); ΔT = T − 20 °C enters with its
+    sign, so the product term is kept whole (T not stated: the shop range's end farthest from
+    20 °C, as the budget takes it). For R
     and B only the reading and the drift act.
 
     Parameters
@@ -83,15 +86,16 @@ def monte_carlo_linear(
     if n < 1000:
         raise InputError(f"Monte Carlo trials = {trials!r}: use at least 1000 (GUM S1 §7.2)")
     L = travel_mm * 1e3
-    a_alpha = (
-        0.1 * i.expansion_coefficient
-        if i.expansion_coefficient_halfwidth is None
-        else i.expansion_coefficient_halfwidth
-    )
-    dT = i.material_temperature - 20.0
-    laser = rng.normal(0.0, i.laser_accuracy_ppm * 1e-6 / i.laser_accuracy_k, n) * L
-    theta = rng.uniform(-1.0, 1.0, n) * (i.beam_offset * 1e3 / L)
-    cosine = -L * theta**2 / 2
+    a_alpha = i.alpha_halfwidth
+    dT = (i.material_temperature - 20.0 if i.material_temperature is not None
+          else i.temperature_deviation)   # not stated: the shop range's end farthest from 20 °C
+    if i.reference == "encoder":   # a ± bound of the scale, no beam
+        device = rng.uniform(-1.0, 1.0, n) * i.encoder_accuracy * 1e-6 * L
+        cosine = np.zeros(n)
+    else:
+        device = rng.normal(0.0, i.laser_accuracy_ppm * 1e-6 / i.laser_accuracy_k, n) * L
+        theta = rng.uniform(-1.0, 1.0, n) * (i.beam_offset * 1e3 / L)
+        cosine = -L * theta**2 / 2
     alpha = i.expansion_coefficient + rng.uniform(-a_alpha, a_alpha, n)
     temp = (
         dT
@@ -100,9 +104,10 @@ def monte_carlo_linear(
     )
     thermal = L * (alpha * temp - i.expansion_coefficient * dT)
     reading = rng.uniform(-i.resolution / 2, i.resolution / 2, n)
-    drift = rng.uniform(-i.e_ve / 2, i.e_ve / 2, n)
+    e_ve = 0.0 if i.e_ve is None else i.e_ve   # not given: left out, as the budget does
+    drift = rng.uniform(-e_ve / 2, e_ve / 2, n)
     to_unit = {"um": 1.0, "mm": 1e-3, "nm": 1e3}[unit]
-    dist = (laser + cosine + thermal + reading + drift) * to_unit
+    dist = (device + cosine + thermal + reading + drift) * to_unit
     scat = (reading + drift) * to_unit
     u, half = {}, {}
     for names, sample in ((DISTANCE_PARAMETERS, dist), (SCATTER_PARAMETERS, scat)):
