@@ -15,6 +15,7 @@ fanuc          :mod:`~axiscal.compensation.controllers.fanuc`         parameters
 heidenhain     :mod:`~axiscal.compensation.controllers.heidenhain`    ``.COM`` table + ``.CMA``
 linuxcnc       :mod:`~axiscal.compensation.controllers.linuxcnc`      ``COMP_FILE`` (type 0 or 1)
 csv            :mod:`~axiscal.compensation.controllers.csv`           plain CSV with a header
+renishaw-ren   :mod:`~axiscal.compensation.controllers.renishaw_ren`  Renishaw ``.ren`` export
 ============== =================================================== ===========================
 """
 
@@ -34,6 +35,7 @@ CONTROLLERS = {
     "heidenhain": "heidenhain",
     "linuxcnc": "linuxcnc",
     "csv": "csv",
+    "renishaw-ren": "renishaw_ren",
 }
 
 
@@ -75,6 +77,10 @@ def detect(text: str) -> str | None:
         return "heidenhain"
     if re.search(r"^N0*362[0-4]\s*(A\d+)?\s*P", body, re.MULTILINE):
         return "fanuc"
+    from axiscal.compensation.controllers.renishaw_ren import looks_like_ren
+
+    if looks_like_ren(body):        # 'Compensation spacing' and 'No. Axis position Combined'
+        return "renishaw-ren"
     if re.search(r"^position_\w+,correction_up_", body, re.MULTILINE):
         return "csv"
     lines = [ln.split() for ln in body.splitlines() if ln.strip()]
