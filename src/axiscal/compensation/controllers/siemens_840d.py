@@ -36,7 +36,8 @@ confirmed against a Siemens source. Direction-dependent LEC through the CEC tabl
 
 **Limits checked.** Number of points ≤ ``max_points`` (MD38000; the 840D sl manuals show tables
 of several thousand points, the default 5000 here is not confirmed; the 808D allows 200);
-spacing a whole number of ``position_resolution`` (0.001 mm or deg by default); modulo tables
+spacing a whole number of ``position_resolution`` in the file's unit (0.001 mm, inch or deg by
+default); modulo tables
 run 0…360° and close on themselves; the range lies inside the axis travel when given.
 
 **Several axes.** A control's EEC file commonly holds the tables of several machine axes, each
@@ -107,8 +108,8 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
         Machine axis name in the file (``AX1``, ``X1`` ...).
     max_points : int
         MD38000 ``$MA_MM_ENC_COMP_MAX_POINTS``.
-    position_resolution : float, mm or deg
-        The spacing must be a whole multiple of this.
+    position_resolution : float, mm, inch or deg
+        The spacing must be a whole multiple of this, in the file's unit.
     zero_at_reference : bool
         Shift the table so the value at its reference point is 0 (Siemens' advice).
     zero_ends : bool
@@ -120,9 +121,10 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
     -------
     ControllerFile
     """
-    _check(table, travel, max_points, position_resolution)
+    per = file_unit(unit, table, NAME)
+    _check(table, travel, max_points, position_resolution, per)
     body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends,
-                                               file_unit(unit, table, NAME))
+                                               per)
     text = "\n".join(["%_N_AX_EEC_INI", "CHANDATA(1)", *body, "M17"]) + "\n"
     return ControllerFile(NAME, text, "AX_EEC.INI", written, tuple(enable), notes=tuple(notes))
 
@@ -140,7 +142,7 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     unit = options.pop("unit", "mm")
     for ax, table in tables.items():
         tr = travel.get(ax) if isinstance(travel, dict) else travel
-        _check(table, tr, mp, res)
+        _check(table, tr, mp, res, file_unit(unit, table, NAME))
         b, e, _, n = _axis_block(table, ax, options.get("zero_at_reference", True),
                                  options.get("zero_ends", False), file_unit(unit, table, NAME))
         body += b
@@ -358,10 +360,11 @@ def _with_backlash(table: CompensationTable, md32450: float) -> CompensationTabl
                    down=np.round(table.mean - half, 6) + 0.0, bidirectional=True)
 
 
-def _check(table, travel, max_points, position_resolution) -> None:
+def _check(table, travel, max_points, position_resolution, per=1.0) -> None:
     require_equidistant(table, NAME)
     check_points(table.n_points, max_points, NAME, "points (MD38000)")
-    check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
+    check_spacing(table.spacing / per, position_resolution,
+                  table.position_unit if per == 1.0 else "inch", NAME)
     check_travel(table, travel, NAME)
     check_modulo(table, NAME)
     if table.modulo and abs(table.start) > 1e-9:
