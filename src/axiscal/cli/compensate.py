@@ -36,7 +36,11 @@ table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``a
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
 (``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
 ``value``, ``unit``, ``assumed``, ``source`` = option, file or default, ``why``, ``set_with``:
-Fanuc's reference position and detection unit, the 840D's MD10240 unit) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
+Fanuc's reference position and detection unit, the 840D's MD10240 unit, LinuxCNC's unit,
+``file_type`` and ``axis_kind`` with source ``ini`` when the INI naming the file gave them),
+``trim_jumps`` (LinuxCNC: trims that jump from their neighbours beyond the plausible step, each
+``direction``, ``kind``, ``position``, ``trim``, ``before``, ``after``, ``jump``, ``threshold``
+in the table's units; empty otherwise) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
 ``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
 given.
 
@@ -73,6 +77,7 @@ def compensate(
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
+    ini: Optional[Path] = typer.Option(None, "--ini", help="With --read of a LinuxCNC file: the INI whose [JOINT_n] COMP_FILE names it (default: the *.ini beside it); its [TRAJ] LINEAR_UNITS or ANGULAR_UNITS, [JOINT_n] UNITS, TYPE and COMP_FILE_TYPE are used (LinuxCNC, INI Configuration)."),
     squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (Chapman, Calibration of machine squareness sign: angle between + axes minus 90°)."),
     axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
     aligned: Optional[str] = typer.Option(None, "--aligned", help="With --squareness: the axis aligned to the spindle; it receives the corrections (Chapman, Calibration of machine squareness Appendix II)."),
@@ -101,7 +106,7 @@ def compensate(
     if verify is not None:
         return _verify(verify, seed, controller, spacing, opts, out, json_out, plot, report)
     if read is not None:
-        return _read(read, controller, source, opts, json_out)
+        return _read(read, controller, source, opts, json_out, ini)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
                            resolution, travel, opts, out, json_out)
@@ -165,7 +170,7 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
     _render_loop(r)
 
 
-def _read(path: Path, controller, source, opts, json_out) -> None:
+def _read(path: Path, controller, source, opts, json_out, ini=None) -> None:
     import numpy as np
 
     from axiscal.compensation.controllers import controller as get_controller
@@ -187,10 +192,12 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
                          f"--controller or give --controller {found}")
     mod = get_controller(controller)
     opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
+    opts, ini_inputs = _ini_options(mod, path, text, ini, opts)
     table = mod.parse(text, source=str(path), **opts)
-    inputs = _file_inputs(mod, text, path, source, opts)
+    inputs = ini_inputs + _file_inputs(mod, text, path, source, opts)
+    jumps = mod.trim_jumps(table) if hasattr(mod, "trim_jumps") else ()
     d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table),
-             inputs=[i.to_dict() for i in inputs])
+             inputs=[i.to_dict() for i in inputs], trim_jumps=[j.to_dict() for j in jumps])
     rows = []
     if source is not None:
         res, _ = load_mean_deviations(source)
@@ -206,6 +213,8 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
     typer.echo(f"{mod.NAME} file ({encoding}): {table}")
     for i in inputs:
         typer.echo(f"  {i}")
+    for j in jumps:
+        typer.echo(f"  warning: {j.describe(table, opts.get('unit'))}")
     if rows:
         u = table.correction_unit
         typer.echo(f"compared with {source} (mean bidirectional deviation + correction):")
@@ -213,6 +222,21 @@ def _read(path: Path, controller, source, opts, json_out) -> None:
             typer.echo(f"  {r['target']:>10.4g} {table.position_unit}: deviation {r['deviation']:+8.3f}, "
                        f"correction {r['correction']:+8.3f}, residual {r['residual']:+8.3f} {u}")
         typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
+
+
+def _ini_options(mod, path, text, ini, opts) -> tuple[dict, tuple]:
+    """A LinuxCNC file's unit, type and joint kind from the INI naming it, or assumed (shown)."""
+    from axiscal.errors import InputError
+
+    if mod.NAME != "linuxcnc":
+        if ini is not None:
+            raise InputError(f"--ini is read with a LinuxCNC compensation file; {path} is a "
+                             f"{mod.NAME} file: drop --ini")
+        return opts, ()
+    from axiscal.compensation.controllers.linuxcnc_ini import read_options
+    from axiscal.io.linuxcnc_ini import find_comp_settings
+
+    return read_options(find_comp_settings(path, ini), opts, text, str(path))
 
 
 def _file_inputs(mod, text, path, source, opts) -> tuple:
@@ -281,7 +305,7 @@ _USES = {
               "option", "out", "json_out"}),
     "verify": ("--verify", {"verify", "controller", "spacing", "option", "out", "seed", "plot",
                "report", "json_out"}),
-    "read": ("--read", {"read", "source", "controller", "option", "json_out"}),
+    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini"}),
     "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
                    "start", "end", "resolution", "travel", "option", "out", "json_out"}),
 }

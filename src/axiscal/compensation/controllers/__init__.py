@@ -66,7 +66,8 @@ def detect(text: str) -> str | None:
 
     Siemens files begin ``%_N_AX_EEC_INI`` (or ``%_N_NC_CEC_INI``), Heidenhain tables
     ``BEGIN <name>.COM``, Fanuc tapes hold ``N3620``…``N3624`` parameter lines, an axiscal CSV
-    its ``position_<unit>`` header, and a LinuxCNC file is nothing but lines of three numbers.
+    its ``position_<unit>`` header, and a LinuxCNC file is lines of three numbers (comment lines
+    may follow them, never precede them: LinuxCNC stops reading at the first other line).
     """
     import re
 
@@ -83,11 +84,6 @@ def detect(text: str) -> str | None:
         return "renishaw-ren"
     if re.search(r"^position_\w+,correction_up_", body, re.MULTILINE):
         return "csv"
-    lines = [ln.split() for ln in body.splitlines() if ln.strip()]
-    if len(lines) >= 2 and all(len(c) >= 3 for c in lines):
-        try:
-            [float(x) for c in lines for x in c[:3]]
-            return "linuxcnc"
-        except ValueError:
-            return None
-    return None
+    from axiscal.compensation.controllers.linuxcnc import looks_like
+
+    return "linuxcnc" if looks_like(body) else None

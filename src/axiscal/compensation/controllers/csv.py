@@ -8,14 +8,20 @@ Format (written and read here; every column and unit named so nothing is implied
     0,-1.2,0.3
     ...
 
-No limits beyond a table's own (at least 2 equidistant points).
+No limits beyond a table's own (at least 2 equidistant points). The axis name in the header and
+the file name keeps to the POSIX portable characters (any other becomes ``_``, see
+:func:`~axiscal.compensation.controllers._common.safe_axis_name`); a name changed so is kept in a
+``# axis name in the source data: …`` comment line.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
-from axiscal.compensation.controllers._common import ControllerFile, check_travel, parse_number
+from axiscal.compensation.controllers._common import (
+    SOURCE_COMMENT, ControllerFile, check_travel, parse_number, safe_axis_name)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.errors import DataFormatError
 
@@ -29,13 +35,15 @@ _KEYS = ("axis", "axis_kind", "position_unit", "correction_unit", "bidirectional
 def write(table: CompensationTable, travel=None) -> ControllerFile:
     """Write ``table`` as CSV with a two-line header of metadata."""
     check_travel(table, travel, NAME)
+    names = safe_axis_name(table.axis, NAME)
+    table = replace(table, axis=names.name)
     pu, cu = table.position_unit, table.correction_unit
     meta = dict(axis=table.axis or "-", axis_kind=table.axis_kind.value, position_unit=pu,
                 correction_unit=cu, bidirectional=str(table.bidirectional).lower(),
                 modulo=str(table.modulo).lower(), reference_index=table.reference_index,
                 resolution=f"{table.resolution:g}", extrapolation=table.extrapolation)
     lines = ["# axiscal compensation table: correction = -deviation (add to the commanded position)",
-             "# " + " ".join(f"{k}={v}" for k, v in meta.items()),
+             "# " + " ".join(f"{k}={v}" for k, v in meta.items()), *names.comment("# "),
              f"position_{pu},correction_up_{cu},correction_down_{cu}"]
     lines += [f"{p:.10g},{u:.10g},{d:.10g}" for p, u, d in zip(table.positions, table.up, table.down)]
     enable = ["load the columns into the controller's table in its own sign convention "
@@ -52,6 +60,8 @@ def parse(text: str, source: str = "<text>") -> CompensationTable:
     for n, raw in enumerate(text.splitlines(), 1):
         line = raw.strip()
         if not line:
+            continue
+        if line.startswith(f"# {SOURCE_COMMENT}"):
             continue
         if line.startswith("#"):
             for tok in line[1:].split():

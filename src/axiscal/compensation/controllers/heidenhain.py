@@ -33,12 +33,13 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
-    decimals, file_unit, parse_number, require_equidistant)
+    SOURCE_COMMENT, ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
+    decimals, file_unit, parse_number, require_equidistant, safe_axis_name)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError
@@ -53,7 +54,7 @@ _BEGIN = re.compile(r"^BEGIN\s+(\S+?)(?:\.COM)?\s+(MM|INCH)?\s*$", re.IGNORECASE
 
 def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS,
           position_resolution: float = 0.0001, power_of_two: bool = False,
-          driving_axis: str | None = None, unit: str = "mm") -> ControllerFile:
+          driving_axis: str | None = None, unit: str = "mm", axis: str = "") -> ControllerFile:
     """Write ``table`` as ``<AXIS>.COM`` with its ``.CMA`` assignment (in ``extra_files``).
 
     Parameters
@@ -72,6 +73,12 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
         620: "[axis in column from *.com] = F(axis in column from *.cma ...)").
     unit : {"mm", "inch"}
         Unit of the file (``BEGIN <name>.COM INCH``) for a linear axis.
+    axis : str, optional
+        The axis letter of the value column and of the file names, where the table's own axis
+        name is not one (an ecmc PV name): the column is named after the axis key of
+        CfgAxes/axisList (MANUALplus 620, "Entering compensation values"), and a TNC file name
+        keeps to the POSIX portable characters (TNC 640 User's Manual, File names). A .COM
+        table has no documented comment line, so the source name goes into the notes.
     """
     require_equidistant(table, NAME)
     mm = file_unit(unit, table, NAME)
@@ -85,7 +92,8 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
                                        "is not a power of two micrometres (2^k µm), as this TNC needs")
     check_travel(table, travel, NAME)
     check_modulo(table, NAME)
-    ax = (table.axis or "X").upper()
+    names = safe_axis_name(table.axis, NAME, letter=True, given=axis)
+    ax = names.name
     word = "INCH" if mm != 1.0 else "MM"
     k = correction_factor(table, table.position_unit if mm == 1.0 else "in")
     nd = decimals(table.position_unit) + (1 if mm != 1.0 else 0)
@@ -109,8 +117,12 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
               "(MP730 on TNC 4xx; CfgAxisComp on newer controls: not confirmed)"]
     if mm != 1.0:
         enable.append("the table is in inch (BEGIN … INCH): the control must run in inch")
-    return ControllerFile(NAME, "\n".join(lines) + "\n", name, _as_written(table, up, extra, k),
-                          tuple(enable), extra_files={f"{drv}.CMA": write_cma({drv: name})})
+    notes = [f"axis {ax} (the data named no axis: give -o axis=)" if not names.source else
+             f"axis {ax}; {SOURCE_COMMENT} {names.source}" if names.changed else ""]
+    return ControllerFile(NAME, "\n".join(lines) + "\n", name,
+                          replace(_as_written(table, up, extra, k), axis=ax), tuple(enable),
+                          extra_files={f"{drv}.CMA": write_cma({drv: name})},
+                          notes=tuple(n for n in notes if n))
 
 
 def write_cma(assignments: dict[str, str]) -> str:
@@ -179,8 +191,6 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
 
 
 def _as_written(table, up_file, extra_file, k) -> CompensationTable:
-    from dataclasses import replace
-
     up = np.round(np.asarray(up_file) / k, 6) + 0.0
     down = np.round((np.asarray(up_file) + np.asarray(extra_file)) / k, 6) + 0.0
     return replace(table, up=up, down=down if table.bidirectional else up)
