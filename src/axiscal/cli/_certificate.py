@@ -1,67 +1,36 @@
-"""What the commands that write a certificate share: configuration, budget, decisions, number.
+"""What the commands that write a certificate share: their options and how an outcome is told.
 
-The user configuration (``axiscal config``) and a job file are merged here, the uncertainty
-budget and the decisions are formed by the standards modules, and the certificate itself is a
-pure function in :mod:`axiscal.report.certificate`.
+Building and issuing the certificate is library work (:mod:`axiscal.report.issue`); this module
+only parses and renders.
 """
 
 from __future__ import annotations
 
-import datetime as _dt
-import hashlib
-from pathlib import Path
-from typing import Any
-
 import typer
 
-__all__ = ["JOB", "RULE", "PAPER", "load_config", "decisions_for", "info_for"]
+__all__ = ["JOB", "RULE", "PAPER", "DRAFT", "DRAFT_EXIT", "tell_outcome"]
 
-JOB = typer.Option(None, "--job", help="Job file (TOML): customer, machine, test conditions, tolerances, uncertainty inputs, report number; overrides the user configuration (axiscal config).")
+JOB = typer.Option(None, "--job", help="Job file (TOML): customer, machine, test conditions (date, air and material temperature), tolerances (marked as supplied by the customer), specification; overrides the user configuration (axiscal config).")
 RULE = typer.Option(None, "--rule", help="Decision rule for tolerances: iso14253-1 (conformance proven with U; default) or simple (simple acceptance, stated on the certificate).")
 PAPER = typer.Option(None, "--paper", help="Paper of a PDF report: A4 (default) or Letter.")
+DRAFT = typer.Option(False, "--draft", help="A certificate lacking a mandatory item (ISO/IEC 17025:2017 §7.8.2, §7.8.4) is written as a DRAFT either way; with --draft that is not an error (exit 0 instead of 3).")
+#: Exit code of a command whose certificate came out as a DRAFT (without --draft).
+DRAFT_EXIT = 3
 
 
-def load_config(job: Path | None) -> dict[str, Any]:
-    """The user configuration with the job file on top."""
-    from axiscal.io.user_config import load_job, load_user_config, merge
+def tell_outcome(outcome, draft_ok: bool) -> None:
+    """Say what was written: the number and register of an issued certificate, or each missing
+    item of a DRAFT (stderr; exit 3 unless ``draft_ok``)."""
+    from axiscal.cli._common import note
 
-    cfg = load_user_config()
-    return merge(cfg, load_job(job)) if job is not None else cfg
-
-
-def decisions_for(values, budget, tolerances: dict, cfg: dict, rule: str | None):
-    """Tolerances of the command line over those of the configuration, decided by the rule."""
-    from axiscal.standards.iso14253_1 import RULE_TEXT, _rule, decide_all
-
-    tol = {**cfg.get("tolerance", {}), **tolerances}
-    r = _rule(rule or cfg.get("certificate", {}).get("rule", "iso14253-1"))
-    return (decide_all(values, budget, tol, r) if tol else ()), r, RULE_TEXT[r]
-
-
-def info_for(cfg: dict, job: Path | None, dataset_bytes: bytes, paper: str | None):
-    """Certificate information: the configuration, today's date, a report number."""
-    from axiscal.io.user_config import config_path, logo_data_uri
-    from axiscal.report.certificate import certificate_info
-
-    today = _dt.date.today()
-    prefix = str(cfg.get("certificate", {}).get("number_prefix", "AXC-"))
-    number = f"{prefix}{today:%Y%m%d}-{hashlib.sha256(dataset_bytes).hexdigest()[:6].upper()}"
-    if paper is not None:
-        cfg = {**cfg, "certificate": {**cfg.get("certificate", {}), "paper": paper}}
-    where = job if job is not None and cfg.get("company", {}).get("logo") else config_path()
-    return certificate_info(cfg, number=number, issued=today.isoformat(),
-                            logo=logo_data_uri(cfg, where))
-
-
-def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, tolerances=None,
-                      rule: str | None = None, paper: str | None = None, job: Path | None = None):
-    """Budget, decisions and certificate of one positioning test, written to ``path``
-    (.html or .pdf); returns the decisions."""
-    from axiscal.report.certificate import positioning_certificate
-    from axiscal.standards.iso230_9 import positioning_budget
-
-    budget = positioning_budget(dataset, result, cfg.get("uncertainty"))
-    decisions, _, rule_text = decisions_for(result.parameters(), budget, tolerances or {}, cfg, rule)
-    info = info_for(cfg, job, data_bytes, paper)
-    positioning_certificate(dataset, result, budget, info, decisions, rule_text).write(path)
-    return decisions
+    if not outcome.draft:
+        r = outcome.record
+        extra = f", replaces {r.replaces}" if r.replaces else ""
+        note(f"issued certificate {r.number}{extra} (SHA-256 {r.sha256[:16]}…, kept in the "
+             f"register with test {r.test_id}): {outcome.path}")
+        return
+    typer.echo(f"axiscal: {outcome.path} is a DRAFT, not a certificate; missing:", err=True)
+    for m in outcome.missing:
+        typer.echo(f"  - {m}", err=True)
+    if not draft_ok:
+        raise typer.Exit(DRAFT_EXIT)

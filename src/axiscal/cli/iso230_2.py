@@ -8,14 +8,20 @@ names them, "" if not), ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
 ``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
 ``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
-``tolerance``, ``U``, ``outcome`` — ``conformance proven``, ``non-conformance proven`` or
-``uncertainty zone`` —, ``passed`` true/false/null for the zone), ``decision_rule`` and ``accepted``
-(true when conformance is proven for every parameter, false when non-conformance is proven for
-one, null otherwise). Always: ``uncertainty`` (U at k = 2 per parameter, ISO 230-2:2014 Annex A,
-in ``unit``).
+``tolerance``, ``U``, ``U_display``, ``outcome`` — ``conformance proven``, ``non-conformance
+proven`` or ``uncertainty zone`` —, ``passed`` true/false/null for the zone), ``decision_rule`` and
+``accepted`` (true when conformance is proven for every parameter, false when non-conformance is
+proven for one, null otherwise); a tolerance not larger than its U (never provable, ISO
+14253-1:2017 §5.2) adds a line to ``warnings``. Always: ``uncertainty`` (U at k = 2 per
+parameter, ISO 230-2:2014 Annex A, in ``unit``, the raw number), ``uncertainty_display`` (U as
+shown: two significant digits rounded up, JCGM 100:2008 §7.2.6) and ``uncertainty_budget``
+(``unit``, ``k``, ``method``, ``U``, ``U_display``, ``contributors``, ``inputs``: name ->
+``value``, ``unit``, ``assumed``, ``set_with``, ``rule``, ``label``; ``assumed`` (names),
+``missing_inputs`` (left out of U, e.g. ``e_ve``) and ``notes``).
 
 Exit codes: 0 evaluated (and conformance proven for every tolerance), 1 a tolerance not proven
-met (non-conformance or uncertainty zone; with ``--rule simple``: exceeded), 2 a user error.
+met (non-conformance or uncertainty zone; with ``--rule simple``: exceeded), 2 a user error, 3 the
+``--report`` certificate lacks a mandatory item and was written as a DRAFT (not with ``--draft``).
 """
 
 from __future__ import annotations
@@ -25,7 +31,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._certificate import JOB, PAPER, RULE
+from axiscal.cli._certificate import DRAFT, JOB, PAPER, RULE
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register", "result_json", "render_result"]
@@ -40,12 +46,14 @@ def iso230_2(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot (PNG, SVG or PDF by extension)."),
     history: bool = typer.Option(False, "--history", help="Also store the test in the calibration history (see 'axiscal history')."),
     machine: Optional[str] = typer.Option(None, "--machine", help="With --history: the machine's name, if the file does not give it."),
-    db: Optional[str] = typer.Option(None, "--db", help="With --history: the database URL (default: AXISCAL_DB, else the user's SQLite file)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write the calibration certificate: self-contained HTML (.html) or PDF (.pdf, WeasyPrint)."),
+    db: Optional[str] = typer.Option(None, "--db", help="With --history or --report: the history database whose certificate register numbers the certificate (default: AXISCAL_DB, else the user's SQLite file)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the calibration certificate: PDF (.pdf, WeasyPrint) or self-contained HTML (.html); issued and numbered in the register when every mandatory item is given, else a DRAFT naming what is missing."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if conformance is not proven)."),
     job: Optional[Path] = JOB,
     rule: Optional[str] = RULE,
     paper: Optional[str] = PAPER,
+    draft: bool = DRAFT,
+    uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's [uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3 (names and units: the 'Uncertainty inputs' table; every input not given is shown as assumed, with the rule of its default)."),
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target),
     with its uncertainty (ISO 230-2 Annex A) and, with tolerances, ISO 14253-1 decisions.
@@ -70,34 +78,40 @@ def iso230_2(
         raise InputError(f"--full-turn {full_turn} pools 0 and 360 deg of a rotary test; {file} "
                          f"is a {ds.axis_kind.value} axis")
     result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
-    from axiscal.cli._certificate import decisions_for, load_config
-    from axiscal.standards.iso230_9 import positioning_budget
+    from axiscal.report.issue import budget_for, decisions_for, load_config
 
-    cfg = load_config(job)
+    cfg = with_uncertainty_options(load_config(job), uncertainty)
     check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})   # names and values
-    budget = positioning_budget(ds, result, cfg.get("uncertainty"))
+    budget = budget_for(ds, result, cfg)
     verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
     if plot is not None:
         from axiscal.report.plots import save_iso230_2_plot
 
         save_iso230_2_plot(result, ds, plot)
+    outcome = None
     if report is not None:
-        from axiscal.cli._certificate import write_certificate
+        from axiscal.io.user_config import config_problem
+        from axiscal.report.issue import write_certificate
+        from axiscal.store import open_store
 
-        write_certificate(report, ds, result, cfg, Path(file).read_bytes(), tolerances, rule,
-                          paper, job)
+        outcome = write_certificate(report, ds, result, cfg, Path(file).read_bytes(), tolerances,
+                                    rule, paper, job, store=lambda: open_store(db),
+                                    filename=file.name, config_note=config_problem())
     if json_out:
         print_json({**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
                     "axis": ds.metadata.axis})
     else:
         render_result(result, ds, title=str(file), verdicts=verdicts, budget=budget)
-    for p, what in ((plot, "plot"), (report, "report")):
-        if p is not None:
-            note(f"wrote {what} {p}")
+    if plot is not None:
+        note(f"wrote plot {plot}")
     if history:
         from axiscal.cli.history import store_run
 
         store_run(file, db, machine=machine)
+    if outcome is not None:
+        from axiscal.cli._certificate import tell_outcome
+
+        tell_outcome(outcome, draft)
     if any(v.passed is not True for v in verdicts if v.value is not None):
         raise typer.Exit(1)
 
@@ -120,13 +134,33 @@ def parse_tolerances(items: List[str]) -> dict:
     return out
 
 
+def with_uncertainty_options(cfg: dict, items: List[str]) -> dict:
+    """``cfg`` with ``--uncertainty NAME=VALUE`` items over its ``[uncertainty]`` table (a number
+    where the value is one, else text: ``reference=encoder``); the budget checks the names."""
+    from axiscal.errors import InputError
+
+    table = dict(cfg.get("uncertainty") or {})
+    for item in items:
+        name, sep, value = (x.strip() for x in item.partition("="))
+        if not sep or not name or not value:
+            raise InputError(f"--uncertainty {item!r}: write NAME=VALUE, e.g. beam_offset=0.05")
+        try:
+            table[name] = float(value)
+        except ValueError:
+            table[name] = value
+    return {**cfg, "uncertainty": table} if items else cfg
+
+
 def verdicts_json(verdicts) -> dict:
     """The acceptance part of the JSON output (ISO 14253-1 decisions)."""
     from axiscal.standards.iso14253_1 import overall
 
     out = overall(verdicts)
+    from axiscal.standards.iso230_9 import format_uncertainty
+
     return {"acceptance": [{"parameter": v.parameter, "value": v.value, "tolerance": v.upper,
-                            "U": v.U, "outcome": v.outcome.value if v.outcome else None,
+                            "U": v.U, "U_display": format_uncertainty(v.U),
+                            "outcome": v.outcome.value if v.outcome else None,
                             "passed": v.passed} for v in verdicts],
             "decision_rule": verdicts[0].rule.value if verdicts else None,
             "accepted": None if out is None else {"conformance proven": True,
@@ -148,11 +182,20 @@ def result_json(result, verdicts=(), budget=None) -> dict:
         warnings=list(result.warnings),
     )
     if budget is not None:
-        d["uncertainty"] = {p: budget.U(p) for p in result.parameters()
-                            if result.parameters()[p] is not None}
+        shown = [p for p, v in result.parameters().items() if v is not None]
+        d["uncertainty"] = {p: budget.U(p) for p in shown}
+        d["uncertainty_display"] = {p: budget.U_text(p) for p in shown}
+        d["uncertainty_budget"] = budget.to_json(shown)
     if verdicts:
+        from axiscal.standards.iso14253_1 import unprovable
+
         d.update(verdicts_json(verdicts))
+        d["warnings"] += unprovable(verdicts, _sym(result.deviation_unit))
     return d
+
+
+def _sym(unit: str) -> str:
+    return {"um": "µm"}.get(unit, unit)
 
 
 #: Most per-target rows printed in the terminal (a table of 40,000 targets took minutes to draw).
@@ -167,6 +210,8 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
     from rich.table import Table
 
     from axiscal.cli._common import console as make_console
+    from axiscal.standards.iso14253_1 import unprovable
+    from axiscal.standards.iso230_9 import format_uncertainty
     from axiscal.standards.positioning_standards import parameter_label
 
     con = console or make_console()
@@ -223,7 +268,7 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
         "B": "reversal value (max |B_i|)", "B_mean": "mean reversal value (signed, B_i = x̄↑ − x̄↓)",
     }
     for name, v in result.parameters().items():
-        extra = [] if budget is None else ["—" if v is None else f(budget.U(name))]
+        extra = [] if budget is None else ["—" if v is None else budget.U_text(name)]
         p.add_row(parameter_label(name), f(v), *extra, meanings[name])
     for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
         if v is not None:   # a full turn keeps 0° and 360° as two targets
@@ -239,12 +284,36 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
             state = {"PASS": "[green]PASS[/green]", "FAIL": "[bold red]FAIL[/bold red]",
                      "ZONE": "[yellow]ZONE[/yellow]"}[v.outcome.short] if v.outcome else "n/a"
             text = f"{state} {v.outcome.value}" if v.outcome else state
-            a.add_row(v.parameter, f(v.value), f(v.U), f"{v.upper:g}", text)
+            a.add_row(v.parameter, f(v.value), format_uncertainty(v.U), f"{v.upper:g}", text)
         con.print(a)
+        for w in unprovable(verdicts, sym):
+            con.print(f"[bold red]warning:[/bold red] {escape(w)}")
     for w in result.warnings:
         con.print(f"[yellow]warning:[/yellow] {w}")
-    for n in (budget.notes if budget is not None else ()):
-        con.print(f"[yellow]uncertainty:[/yellow] {escape(n)}")
+    if budget is not None:
+        render_uncertainty(con, budget)
+
+
+def render_uncertainty(con, budget) -> None:
+    """The budget's inputs as a table (value, where it came from, the rule of an assumed one)
+    and what the budget says in words besides (inputs left out of U, the runs behind R and B)."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    t = Table(title=escape("Uncertainty inputs (ISO 230-2:2014 Annex A): an assumed input is a "
+                           "default; declare yours with --uncertainty NAME=VALUE or [uncertainty] "
+                           "NAME in the job file"), title_justify="left")
+    for c in ("input", "NAME", "value", "from", "rule or source"):
+        t.add_column(c, justify="right" if c == "value" else "left")
+    for i in budget.inputs:
+        src = ("[bold red]missing[/bold red]" if i.name in budget.missing_inputs else
+               "[yellow]assumed[/yellow]" if i.assumed else
+               "data file" if i.rule.startswith("taken from the data file") else "declared")
+        t.add_row(escape(i.label), i.name, escape(i.value_text), src, escape(i.rule))
+    con.print(t)
+    for n in budget.notes:
+        if not n.startswith("assumed: "):   # those are the table's rows
+            con.print(f"[yellow]uncertainty:[/yellow] {escape(n)}")
 
 
 def register(app: typer.Typer) -> None:

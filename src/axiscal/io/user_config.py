@@ -4,7 +4,11 @@ The file is ``config.toml`` in the user's configuration folder (platformdirs:
 ``~/.config/axiscal/config.toml`` on Linux), or the file named by ``AXISCAL_CONFIG``.
 ``axiscal config --init`` writes a commented template there. A job file (``--job FILE.toml``
 on a command that writes a certificate) has the same tables and overrides the user file for one
-test: customer, machine, test conditions, tolerances, report number.
+test: customer, machine, test conditions, tolerances, specification.
+
+:func:`config_problem` says why the user configuration cannot identify a laboratory (absent,
+empty, still the template, or ``AXISCAL_CONFIG`` naming a file that does not exist): a
+certificate names that reason among its missing items (ISO/IEC 17025:2017 §7.8.2.1 c).
 """
 
 from __future__ import annotations
@@ -16,15 +20,25 @@ from typing import Any
 
 from axiscal.errors import ConfigError
 
-__all__ = ["config_path", "load_user_config", "load_job", "merge", "logo_data_uri", "TEMPLATE"]
+__all__ = ["config_path", "load_user_config", "load_job", "merge", "logo_data_uri", "TEMPLATE",
+           "TEMPLATE_COMPANY", "config_problem", "DEFAULT_NUMBER_PATTERN"]
+
+#: The laboratory's certificate numbers when the configuration gives no pattern: the laboratory's
+#: code, the year of issue and the register's counter.
+DEFAULT_NUMBER_PATTERN = "{lab}-{year}-{counter:05d}"
+#: The template's company name: a configuration that still holds it identifies no laboratory.
+TEMPLATE_COMPANY = "Your Calibration Company Ltd"
 
 TEMPLATE = """\
 # axiscal user configuration: what every certificate carries.
 # A job file (--job FILE.toml) with the same tables overrides these for one test.
+# A certificate is issued (numbered in the register) only when every mandatory item of
+# ISO/IEC 17025:2017 §7.8.2 and §7.8.4 is given; otherwise it is a DRAFT naming what is missing.
 
 [company]
 name = "Your Calibration Company Ltd"
 address = ["1 Example Street", "Town, Postcode", "Country"]
+code = "YCC"                          # the laboratory's code in certificate numbers
 # logo = "/path/to/logo.png"          # PNG, JPEG or SVG
 # accreditation = "Accredited calibration laboratory no. ..."
 
@@ -34,8 +48,9 @@ name = "A. Operator"
 [certificate]
 paper = "A4"                          # or "Letter"
 rule = "iso14253-1"                   # or "simple" (simple acceptance, stated on the certificate)
-number_prefix = "AXC-"
-# approver = "B. Approver"
+number_pattern = "{lab}-{year}-{counter:05d}"   # {lab} = [company] code, counter from the register
+signatory = "B. Signatory"            # who authorises the certificate ...
+signatory_role = "Head of laboratory" # ... and in which role
 
 [[instrument]]
 name = "Laser interferometer"
@@ -75,6 +90,25 @@ def load_user_config(path: Path | None = None) -> dict[str, Any]:
     if path is None and not p.exists():
         return {}
     return load_toml(p)
+
+
+def config_problem(config: dict[str, Any] | None = None) -> str:
+    """Why the user configuration identifies no laboratory ('' when it may).
+
+    Absent (and where it was looked for), ``AXISCAL_CONFIG`` naming a file that does not exist,
+    empty, or still the template :data:`TEMPLATE` (its company name unchanged).
+    """
+    p = config_path()
+    if not p.exists():
+        if os.environ.get("AXISCAL_CONFIG"):
+            return f"AXISCAL_CONFIG names {p}, which does not exist"
+        return f"no user configuration at {p} (write one with 'axiscal config --init')"
+    cfg = load_user_config() if config is None else config
+    if not cfg:
+        return f"the user configuration {p} is empty"
+    if cfg.get("company", {}).get("name") == TEMPLATE_COMPANY:
+        return f"the user configuration {p} is still the template of 'axiscal config --init'"
+    return ""
 
 
 def load_job(path) -> dict[str, Any]:

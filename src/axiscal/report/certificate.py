@@ -9,13 +9,20 @@ user configuration and job file (see :mod:`axiscal.io.user_config`) into
 written as HTML or, with a ``.pdf`` name, as a PDF from the same template.
 
 A certificate shows no simulation truth and no internal references: documents are cited by their
-title and clause.
+title and clause. It carries the statements of ISO/IEC 17025:2017 §7.8 (traceability through the
+instruments' certificates, results relating only to the item, reproduction only in full, the
+customer-supplied information marked, the decision rule and specification, assumptions and
+deviations in plain words, the authorising signatory, an end mark). A certificate that lacks a
+mandatory item (:mod:`axiscal.report.certificate_content`) is built as a DRAFT: "not a
+certificate" in its title, a watermark on every page and the missing items listed.
 """
 
 from __future__ import annotations
 
 import html as _html
+import re
 from dataclasses import dataclass, field
+from importlib import resources
 from typing import Any, Mapping
 
 from axiscal.errors import ConfigError
@@ -38,12 +45,14 @@ __all__ = [
 
 NOT_STATED = "not stated"
 _SECTIONS = {
-    "company": {"name", "address", "logo", "accreditation"},
+    "company": {"name", "address", "logo", "accreditation", "code"},
     "operator": {"name"},
     "customer": {"name", "address", "reference"},
     "machine": {"maker", "model", "serial", "location"},
-    "conditions": {"date", "measuring_line", "feed", "dwell", "cycle", "location"},
-    "certificate": {"paper", "rule", "number", "number_prefix", "issued", "approver"},
+    "conditions": {"date", "measuring_line", "feed", "dwell", "cycle", "location",
+                   "air_temperature", "material_temperature"},
+    "certificate": {"paper", "rule", "number", "number_prefix", "number_pattern", "issued",
+                    "approver", "signatory", "signatory_role", "specification"},
     "instrument": {"name", "serial", "certificate", "due"},
     "uncertainty": None,  # checked by the budget's own inputs
     "tolerance": None,  # NAME = value, checked against the standard's parameters
@@ -65,7 +74,9 @@ class Instrument:
 class CertificateInfo:
     """Everything on a certificate that is not the measurement (all text, as the user wrote it).
 
-    ``logo`` is a ``data:`` URI (read by the I/O layer), ``issued`` the date of issue.
+    ``logo`` is a ``data:`` URI (read by the I/O layer), ``issued`` the date of issue,
+    ``customer_supplied`` the tolerances the customer gave (the job file), ``missing`` the
+    mandatory items not given (a DRAFT when any), ``replaces`` and ``reason`` an amendment's.
     """
 
     company: Mapping[str, Any] = field(default_factory=dict)
@@ -76,13 +87,25 @@ class CertificateInfo:
     instruments: tuple[Instrument, ...] = ()
     number: str = ""
     issued: str = ""
-    approver: str = ""
+    signatory: str = ""
+    signatory_role: str = ""
+    specification: str = ""
     paper: str = "A4"
     logo: str = ""
+    customer_supplied: tuple[str, ...] = ()
+    missing: tuple[str, ...] = ()
+    replaces: str = ""
+    reason: str = ""
+
+    @property
+    def draft(self) -> bool:
+        """Not a certificate: a mandatory item is missing, or no number was issued."""
+        return bool(self.missing) or not self.number
 
 
 def certificate_info(
-    config: Mapping[str, Any], number: str = "", issued: str = "", logo: str = ""
+    config: Mapping[str, Any], number: str = "", issued: str = "", logo: str = "",
+    customer_supplied=(),
 ) -> CertificateInfo:
     """Build :class:`CertificateInfo` from a configuration mapping (user file merged with a job).
 
@@ -98,6 +121,8 @@ def certificate_info(
         Date of issue.
     logo : str
         The company logo as a ``data:`` URI.
+    customer_supplied : sequence of str
+        Names of the tolerances the customer supplied (marked on the certificate).
     """
     from axiscal._schema import refuse_unknown
 
@@ -124,16 +149,19 @@ def certificate_info(
         instruments=tuple(Instrument(**{k: str(v) for k, v in t.items()}) for t in inst),
         number=str(cert.get("number") or number),
         issued=str(cert.get("issued") or issued),
-        approver=str(cert.get("approver", "")),
+        signatory=str(cert.get("signatory") or cert.get("approver") or ""),
+        signatory_role=str(cert.get("signatory_role", "")),
+        specification=str(cert.get("specification", "")),
         paper=paper,
         logo=logo,
+        customer_supplied=tuple(customer_supplied),
     )
 
 
 def positioning_certificate(
     dataset, result, budget, info: CertificateInfo, decisions=(), rule_text: str = ""
 ) -> Report:
-    """The certificate of one ISO 230-2 positioning test.
+    """The certificate of one ISO 230-2 positioning test (a DRAFT when ``info.draft``).
 
     Parameters
     ----------
@@ -150,45 +178,77 @@ def positioning_certificate(
     Returns
     -------
     Report
+
+    Notes
+    -----
+    Order of the page: verdict, identification, conditions, instruments, uncertainty budget,
+    figure, deviations per target, assumptions and deviations, then one block that is never
+    split across pages: the results with U and k, the statements, the signatory and the end
+    mark (the signature always stands with the results it signs).
     """
     from axiscal.report.plots import iso230_2_figure
     from axiscal.standards.iso14253_1 import overall
 
     md = dataset.metadata
     kind = "rotary" if dataset.axis_kind.value == "rotary" else "linear"
+    what = f"positioning of the {md.axis or kind} axis"
     rep = Report(
-        f"Calibration certificate — positioning of the {md.axis or kind} axis",
+        f"DRAFT — not a certificate: calibration of the {what}" if info.draft
+        else f"Calibration certificate — {what}",
         subtitle="Accuracy and repeatability of positioning by ISO 230-2:2014; measurement "
         "uncertainty by ISO 230-2:2014 Annex A and ISO/TR 230-9",
-        reference=f"Certificate {info.number}" if info.number else "",
+        reference=_reference(info),
         letterhead=_letterhead(info),
         paper=info.paper,
     )
+    rep.add_html(f"<style>{_CSS}</style>")
+    if info.draft:
+        rep.add_html(_draft_box(info))
+    elif info.replaces:
+        rep.add_html(f'<div class="amend">This certificate replaces certificate '
+                     f"{_esc(info.replaces)}. Reason: {_esc(info.reason)}</div>")
     rep.add_html(_verdict_box(overall(decisions), rule_text))
-    rep.add_html(
-        '<div class="grid2">'
-        + _kv(_identification(md, info), "Customer and machine")
-        + _kv(_conditions(dataset, result, info), "Test conditions (ISO 230-2:2014 §6)")
-        + "</div>"
-    )
-    _results(rep, result, budget, decisions, rule_text)
+    rep.add_html(_pairs(_identification(md, info), "Customer and item calibrated"))
+    rep.add_html(_pairs(_conditions(dataset, result, info), "Test conditions (ISO 230-2:2014 §6)"))
+    _instruments(rep, info, md)
+    _budget_table(rep, budget)
     u = unit_label(result.deviation_unit)
     rep.add_figure(
         iso230_2_figure(result, dataset),
         f"Mean deviation per direction with ±2s bands and every run's readings ({u}).",
     )
-    rep.add_warnings(result.warnings)
-    _instruments(rep, info, md)
-    _budget_table(rep, budget)
     _per_target(rep, result)
-    rep.add_html(
-        '<div class="signatures"><div>Calibrated by'
-        + (f": {_esc(info.operator)}" if info.operator else "")
-        + "<br>date, signature</div><div>Approved by"
-        + (f": {_esc(info.approver)}" if info.approver else "")
-        + "<br>date, signature</div></div>"
-    )
+    _assumptions(rep, dataset, result, budget, info)
+    rep.add_html('<div class="closing">' + _results(result, budget, decisions, info)
+                 + _statements(info, decisions, rule_text)
+                 + _signatures(info, info.operator or md.operator) + "</div>")
     return rep
+
+
+def _reference(info: CertificateInfo) -> str:
+    if info.draft:
+        return "DRAFT — not a certificate"
+    return f"Certificate {info.number}"
+
+
+def _draft_box(info: CertificateInfo) -> str:
+    items = "".join(f"<li>{_plain(_HINT.sub('', m))}</li>" for m in info.missing) or (
+        "<li>certificate number: a certificate is numbered only when the certificate register "
+        "issues it</li>")
+    return ('<div class="watermark">DRAFT</div><div class="draftbox"><strong>DRAFT — not a '
+            "certificate.</strong> It lacks what ISO/IEC 17025:2017 §7.8.2 and §7.8.4 require "
+            f"a certificate to carry:<ul>{items}</ul></div>")
+
+
+def _signatures(info: CertificateInfo, operator: str) -> str:
+    who = ", ".join(x for x in (info.signatory, info.signatory_role) if x) or NOT_STATED
+    return (
+        '<div class="signatures"><div>Calibrated by'
+        + (f": {_esc(operator)}" if operator else "")
+        + f"<br>date, signature</div><div>Authorised by: {_esc(who)}"
+        + f"<br>{_esc(info.issued or 'date')}, signature</div></div>"
+        + '<p class="endmark">— End of certificate —</p>'
+    )
 
 
 def _verdict_box(outcome, rule_text: str) -> str:
@@ -224,30 +284,31 @@ def _identification(md, info: CertificateInfo) -> dict[str, Any]:
 
 
 def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
+    from axiscal.report.certificate_content import calibration_date, measured_temperatures
+
     md, env, cond = dataset.metadata, dataset.metadata.environment, info.conditions
-    date = md.date or cond.get("date") or "not stated in the data file"
     tu = unit_label(result.target_unit)
     cycle = cond.get("cycle") or (
         f"{'bidirectional' if result.bidirectional else 'unidirectional'}, {result.n_runs} runs, "
-        f"{result.targets.size} targets {target_label(result.targets[0])}…"
+        f"{result.targets.size} targets from {target_label(result.targets[0])} to "
         f"{target_label(result.targets[-1])} {tu}"
     )
-    mat = ", ".join(f"{t:g}" for t in env.material_temperature) or NOT_STATED
+    air, mat = measured_temperatures(dataset, info)
+    if env.material_temperature:
+        mat = ", ".join(f"{t:g}" for t in env.material_temperature)
     alpha = env.expansion_coefficient
     alpha = NOT_STATED if alpha is None else f"{alpha * 1e6:g}"
-    if dataset.axis_kind.value == "rotary":  # angles do not expand
-        alpha = NOT_STATED if env.expansion_coefficient is None else alpha
-        alpha = "not applicable (rotary axis)" if alpha == NOT_STATED else alpha
+    if dataset.axis_kind.value == "rotary" and alpha == NOT_STATED:  # angles do not expand
+        alpha = "not applicable (rotary axis)"
     return {
-        "Date of test": date,
+        "Date of test": calibration_date(dataset, info) or "not stated in the data file",
         "Location of the measuring line": cond.get("measuring_line") or NOT_STATED,
-        "Air temperature [°C]": (
-            NOT_STATED if env.air_temperature is None else f"{env.air_temperature:g}"
-        ),
-        "Material temperature [°C]": mat,
-        "Expansion coefficient [µm/(m·K)]": alpha,
-        "Air pressure [Pa]": None if env.pressure is None else f"{env.pressure:g}",
-        "Humidity [%RH]": None if env.humidity is None else f"{env.humidity:g}",
+        "Air temperature (°C)": NOT_STATED if air is None else f"{air:g}",
+        "Material temperature (°C)": NOT_STATED if mat is None else (
+            mat if isinstance(mat, str) else f"{mat:g}"),
+        "Expansion coefficient (µm/(m·K))": alpha,
+        "Air pressure (Pa)": None if env.pressure is None else f"{env.pressure:g}",
+        "Humidity (%RH)": None if env.humidity is None else f"{env.humidity:g}",
         "Feed": cond.get("feed") or NOT_STATED,
         "Dwell": cond.get("dwell") or NOT_STATED,
         "Test cycle": cycle,
@@ -255,7 +316,11 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
     }
 
 
-def _results(rep: Report, result, budget, decisions, rule_text: str) -> None:
+def _results(result, budget, decisions, info: CertificateInfo) -> str:
+    """The results table with U and k: the first part of the block the signature closes. U is
+    never printed as zero: two significant digits, rounded up (JCGM 100:2008 §7.2.6)."""
+    from axiscal.standards.iso230_9 import format_uncertainty
+
     u = unit_label(result.deviation_unit)
     by = {d.parameter: d for d in decisions}
     state = {
@@ -268,28 +333,86 @@ def _results(rep: Report, result, budget, decisions, rule_text: str) -> None:
         if v is None:
             continue
         d = by.get(name)
-        tol = "" if d is None else f"{d.upper:g}"
+        mark = " *" if name in info.customer_supplied else ""
+        tol = "" if d is None else f"{d.upper:g}{mark}"
         verdict = "" if d is None or d.outcome is None else state[d.outcome.short]
-        U = budget.U(name)
         rows.append(
             f"<tr><td>{_PARAM_LABEL[name]}</td><td>{_cell(v, 2)}</td>"
-            f"<td>{'—' if U is None else f'{U:.2f}'}</td><td>{tol}</td><td>{verdict}</td>"
-            f"<td>{_esc(_PARAM_MEANING[name])}</td></tr>"
+            f"<td>{format_uncertainty(budget.U(name))}</td><td>{tol}</td><td>{verdict}</td>"
+            f"<td>{_plain(_PARAM_MEANING[name])}</td></tr>"
         )
     for arrow, v in (("↑", result.closure_up), ("↓", result.closure_down)):
         if v is not None:   # a full turn: 0° and 360° stay two targets; their difference
             rows.append(f"<tr><td>Closure {arrow}</td><td>{_cell(v, 2)}</td><td>—</td><td></td>"
                         "<td></td><td>Mean deviation at 360° minus that at 0° (full turn: the "
                         "two stay separate targets)</td></tr>")
-    rep.add_heading("Results")
-    rep.add_html(
-        f'<table class="results"><thead><tr><th>Parameter</th><th>Value [{u}]</th>'
-        f"<th>U (k = 2) [{u}]</th><th>Tolerance [{u}]</th><th>Verdict</th><th>Meaning "
-        f"(ISO 230-2:2014 clause 3)</th></tr></thead><tbody>{''.join(rows)}</tbody><caption>U: "
-        f"expanded uncertainty, coverage factor k = 2 (about 95 % coverage), ISO 230-2:2014 "
-        f"Annex A. Verdict: PASS = conformance proven, FAIL = non-conformance proven, ZONE = in "
-        f"the uncertainty zone (neither proven).</caption></table>"
+    supplied = " * Supplied by the customer (job file)." if info.customer_supplied else ""
+    return (
+        f'<h2>Results</h2><table class="results"><thead><tr><th>Parameter</th><th>Value '
+        f"({u})</th><th>U, k = {budget.k:g} ({u})</th><th>Tolerance ({u})</th><th>Verdict</th>"
+        f"<th>Meaning (ISO 230-2:2014 clause 3)</th></tr></thead><tbody>{''.join(rows)}"
+        f"</tbody><caption>U: expanded uncertainty, coverage factor k = {budget.k:g} (about "
+        f"95 % coverage), ISO 230-2:2014 Annex A. Verdict: PASS = conformance proven, FAIL = "
+        f"non-conformance proven, ZONE = in the uncertainty zone (neither proven).{supplied}"
+        "</caption></table>"
     )
+
+
+def _statements(info: CertificateInfo, decisions, rule_text: str) -> str:
+    """The statements ISO/IEC 17025:2017 §7.8.2.1 and §7.8.4.1 ask a certificate to make."""
+    certs = [f"{i.name} (certificate {i.certificate}, due {i.due})" for i in info.instruments
+             if i.certificate]
+    trace = ("The measurements are metrologically traceable to the SI through the calibration "
+             "certificates of the instruments used: " + "; ".join(certs) + "."
+             if certs else "Metrological traceability: not stated (no instrument certificates).")
+    items = [
+        trace,
+        "The results relate only to the item calibrated.",
+        "This certificate shall not be reproduced except in full without the written approval "
+        "of the laboratory.",
+    ]
+    if decisions:
+        spec = info.specification or NOT_STATED
+        items.append(f"Statement of conformity against the specification: {spec}"
+                     + (" (supplied by the customer)" if info.customer_supplied else "")
+                     + f". {rule_text}")
+    lis = "".join(f"<li>{_esc(t)}</li>" for t in items)
+    return f'<h2>Statements</h2><ul class="statements">{lis}</ul>'
+
+
+def _assumptions(rep: Report, dataset, result, budget, info: CertificateInfo) -> None:
+    """What the evaluation assumed or could not follow, in plain words (not tool warnings):
+    each assumed input of the budget with its rule, the budget's other statements (runs behind
+    R and B, E_VE declared ...), the result's warnings and the test conditions not stated."""
+    notes = [f"{i.label}: {i.value_text} assumed, not given ({i.rule})"
+             for i in getattr(budget, "assumed", ()) if i.value is not None]
+    missing = set(getattr(budget, "missing_inputs", ()))
+    notes += [_SET_WITH.sub("", n) for n in budget.notes
+              if not n.startswith("assumed:") and not (missing and "not given" in n)]
+    notes += list(result.warnings)
+    cond = info.conditions
+    for key, what in (("measuring_line", "The location of the measuring line"),
+                      ("feed", "The feed"), ("dwell", "The dwell time")):
+        if not cond.get(key):
+            notes.append(f"{what} was not stated (ISO 230-2:2014 §6).")
+    rep.add_heading("Assumptions and deviations")
+    if not notes:
+        rep.add_text("None: the test followed ISO 230-2:2014 and every input of the "
+                     "uncertainty budget was measured or declared.")
+        return
+    lis = "".join(f"<li>{_plain(_sentence(n))}</li>" for n in notes)
+    rep.add_html(f'<ul class="assumptions">{lis}</ul>')
+
+
+#: Where a missing item is set ("([customer] address)"): said in the terminal, not on the page.
+_HINT = re.compile(r"\s*\([^()]*\[[^()]*\)|;\s*give \[[^;)]*")
+#: How a tool sets an input ("; set with [uncertainty] beam_offset"): not for a customer.
+_SET_WITH = re.compile(r";?\s*(?:set|declare it) with [^;)]*")
+
+
+def _sentence(text: str) -> str:
+    t = str(text).strip()
+    return (t[:1].upper() + t[1:] + ("" if t.endswith(".") else ".")) if t else t
 
 
 def _instruments(rep: Report, info: CertificateInfo, md) -> None:
@@ -310,33 +433,30 @@ def _instruments(rep: Report, info: CertificateInfo, md) -> None:
 def _budget_table(rep: Report, budget) -> None:
     u = unit_label(budget.unit)
     rep.add_heading("Measurement uncertainty")
-    rows = [
-        [c.name, c.quantity, c.u, c.distribution, c.basis, c.clause] for c in budget.contributors
-    ]
-    rep.add_table(
-        ["Symbol", "Contribution", f"u [{u}]", "Distribution", "Input", "Source"],
-        rows,
-        digits=4,
-        css_class="budget",
-    )
-    rep.add_text(
-        f"Combined by the law of propagation of uncertainty (JCGM 100:2008, uncorrelated "
-        f"inputs) with {budget.method}; U = k·u_c with k = {budget.k:g}. Length-"
+    rows = "".join(
+        f"<tr><td>{_plain(c.name)}</td><td>{_plain(c.quantity)}</td><td>{_cell(c.u, 4)}</td>"
+        f"<td>{_esc(c.distribution)}</td><td>{_plain(c.basis)}</td><td>{_plain(c.clause)}</td>"
+        "</tr>" for c in budget.contributors)
+    rep.add_html(
+        f'<table class="budget"><thead><tr><th>Symbol</th><th>Contribution</th><th>u ({u})'
+        "</th><th>Distribution</th><th>Input</th><th>Source</th></tr></thead><tbody>"
+        f"{rows}</tbody></table>")
+    rep.add_html(_plain(
+        f"<p>Combined by the law of propagation of uncertainty (JCGM 100:2008, uncorrelated "
+        f"inputs) with {_esc(budget.method)}; U = k·u_c with k = {budget.k:g}. Length-"
         "proportional contributions act on A, E and M; R and B carry the reading "
-        "resolution and E_VE."
-    )
-    rep.add_warnings(budget.notes)
+        "resolution and E_VE.</p>", escaped=True))
 
 
 def _per_target(rep: Report, result) -> None:
     u = unit_label(result.deviation_unit)
     rep.add_heading("Deviations per target")
     headers = [
-        f"Target [{unit_label(result.target_unit)}]",
+        f"Target ({unit_label(result.target_unit)})",
         "n↑",
-        *(f"{h} [{u}]" for h in ("x̄↑", "s↑")),
+        *(f"{h} ({u})" for h in ("x̄↑", "s↑")),
         "n↓",
-        *(f"{h} [{u}]" for h in ("x̄↓", "s↓", "x̄", "B_i", "R_i")),
+        *(f"{h} ({u})" for h in ("x̄↓", "s↓", "x̄", "Bᵢ", "Rᵢ")),
     ]
     rows = [
         [
@@ -376,16 +496,29 @@ def _letterhead(info: CertificateInfo) -> str:
     )
 
 
-def _kv(items: dict[str, Any], caption: str) -> str:
-    rows = "".join(
-        f"<tr><td>{_esc(k)}</td><td>{_esc(v)}</td></tr>"
-        for k, v in items.items()
-        if v not in (None, "")
-    )
-    return (
-        f'<table class="kv meta"><caption>{_esc(caption)}</caption><thead><tr><th></th><th>'
-        f"</th></tr></thead><tbody>{rows}</tbody></table>"
-    )
+def _pairs(items: dict[str, Any], caption: str) -> str:
+    """A two-column block of labelled values (two label-value pairs a row; long text wraps
+    inside its cell)."""
+    cells = [(k, v) for k, v in items.items() if v not in (None, "")]
+    rows = []
+    for i in range(0, len(cells), 2):
+        pair = cells[i:i + 2] + ([("", "")] if i + 1 >= len(cells) else [])
+        rows.append("<tr>" + "".join(f'<td class="k">{_esc(k)}</td><td>{_esc(v)}</td>'
+                                     for k, v in pair) + "</tr>")
+    return (f'<table class="pairs"><caption>{_esc(caption)}</caption><colgroup><col class="k">'
+            '<col class="v"><col class="k"><col class="v"></colgroup><tbody>'
+            f"{''.join(rows)}</tbody></table>")
+
+
+def _plain(text: Any, escaped: bool = False) -> str:
+    """Escaped text with a symbol's subscript written as one (u_DEVICE -> u<sub>DEVICE</sub>):
+    a certificate shows no code identifiers."""
+    t = str(text) if escaped else _esc(text)
+    return _SUBSCRIPT.sub(r"\1<sub>\2</sub>", t)
+
+
+_SUBSCRIPT = re.compile(r"(?<![A-Za-z0-9])([A-Za-zα])_([A-Za-z0-9,]+)")
+_CSS = resources.files("axiscal.report").joinpath("templates/certificate.css").read_text("utf-8")
 
 
 def _lines(v: Any, sep: str = "\n") -> str | None:

@@ -10,7 +10,8 @@ process leaves the database as it was before the interrupted test (SQLite's WAL 
 PostgreSQL's MVCC), and an import can be run again (files already stored are recognised by
 their SHA-256 and skipped). Two processes may add at once: SQLite writers wait for the write lock
 (``BEGIN IMMEDIATE`` with a 30 s busy timeout; readers never wait in WAL mode), PostgreSQL's unique index on the hash lets one
-of two identical files in.
+of two identical files in. Certificates issued for a test are kept in the register
+(:mod:`axiscal.store.register`) with numbers unique per laboratory.
 """
 
 from __future__ import annotations
@@ -286,6 +287,26 @@ class Store:
             q = q.where(Test.kind == kind)
         with self._guard("read"), self._session() as s:
             return [tuple(r) for r in s.execute(q).all()]
+
+    # -- the certificate register (axiscal.store.register) --------------------------------
+    def issue_certificate(self, **kw):
+        """Number, render and keep a certificate of a stored test (see
+        :func:`axiscal.store.register.issue`); returns its ``CertificateRecord``."""
+        from axiscal.store.register import issue
+
+        return issue(self, **kw)
+
+    def certificates(self, laboratory: str | None = None) -> list:
+        """The register, newest first (``CertificateRecord`` without documents)."""
+        from axiscal.store.register import listing
+
+        return listing(self, laboratory)
+
+    def certificate(self, number: str, laboratory: str | None = None):
+        """One certificate with its issued document (SHA-256 checked)."""
+        from axiscal.store.register import fetch
+
+        return fetch(self, number, laboratory)
 
     def close(self) -> None:
         """Release the connections."""

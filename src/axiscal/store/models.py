@@ -3,7 +3,8 @@
 One machine has axes; one axis has tests; a test keeps the file exactly as it came (bytes and
 their SHA-256, which makes a second copy of the same file a duplicate), the dataset in axiscal's
 exact JSON where the kind has one, the full evaluation as JSON, its summary parameters as rows
-(what ``list`` and ``trend`` query), and the compensation tables written from it. Numbers are
+(what ``list`` and ``trend`` query), the compensation tables written from it and the
+certificates issued for it (the register: :class:`Certificate`). Numbers are
 stored as 8-byte floats (SQLite REAL, PostgreSQL double precision): exact, no rounding through
 text. The schema is created and changed only by the Alembic migrations in
 ``axiscal/store/migrations``.
@@ -16,7 +17,7 @@ import datetime as dt
 from sqlalchemy import (Double, ForeignKey, Index, LargeBinary, String, Text, UniqueConstraint)
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
-__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table"]
+__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table", "Certificate"]
 
 
 class Base(DeclarativeBase):
@@ -79,6 +80,8 @@ class Test(Base):
                                                          order_by="Parameter.id")
     tables: Mapped[list["Table"]] = relationship(back_populates="test",
                                                  cascade="all, delete-orphan")
+    certificates: Mapped[list["Certificate"]] = relationship(back_populates="test",
+                                                             cascade="all, delete-orphan")
 
 
 class Parameter(Base):
@@ -105,3 +108,37 @@ class Table(Base):
     text: Mapped[str] = mapped_column(Text)
     created: Mapped[dt.datetime] = mapped_column()
     test: Mapped[Test] = relationship(back_populates="tables")
+
+
+class Certificate(Base):
+    """A certificate issued for a test: its number, the issued document as it left, its status.
+
+    ``counter`` is unique in its ``series`` (the laboratory, and the year when the number
+    pattern holds one) and ``number`` unique per laboratory: two processes that take the same
+    counter at once cannot both commit, and the loser takes the next one (ISO/IEC 17025:2017
+    §7.8.2.1 b: a unique identification). ``inputs_json`` keeps what the page was built from
+    (customer, machine, conditions, instruments, tolerances, rule) so an amendment can be
+    rebuilt; ``replaces_id`` and ``reason`` make an amendment (§7.8.8), ``status`` is
+    ``issued`` or ``superseded``.
+    """
+
+    __tablename__ = "certificate"
+    __table_args__ = (UniqueConstraint("laboratory", "number"),
+                      UniqueConstraint("laboratory", "series", "counter"))
+    id: Mapped[int] = mapped_column(primary_key=True)
+    test_id: Mapped[int] = mapped_column(ForeignKey("test.id", ondelete="CASCADE"))
+    laboratory: Mapped[str] = mapped_column(String(200))
+    series: Mapped[str] = mapped_column(String(250))
+    counter: Mapped[int] = mapped_column()
+    number: Mapped[str] = mapped_column(String(100))
+    customer: Mapped[str] = mapped_column(String(400), default="")
+    issued: Mapped[str] = mapped_column(String(40))
+    status: Mapped[str] = mapped_column(String(20), default="issued")
+    replaces_id: Mapped[int | None] = mapped_column(ForeignKey("certificate.id"), nullable=True)
+    reason: Mapped[str] = mapped_column(Text, default="")
+    media_type: Mapped[str] = mapped_column(String(40))
+    document: Mapped[bytes] = mapped_column(LargeBinary)
+    sha256: Mapped[str] = mapped_column(String(64))
+    inputs_json: Mapped[str] = mapped_column(Text, default="{}")
+    created: Mapped[dt.datetime] = mapped_column()
+    test: Mapped[Test] = relationship(back_populates="certificates")

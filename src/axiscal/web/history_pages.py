@@ -121,7 +121,7 @@ def add_routes(app: FastAPI) -> None:
         import tempfile
         from pathlib import Path
 
-        from axiscal.cli._certificate import load_config, write_certificate
+        from axiscal.report.issue import load_config, write_certificate
 
         with tempfile.TemporaryDirectory() as d:
             path = Path(d) / "certificate.pdf"
@@ -299,7 +299,7 @@ def _missing(message: str):
 def _uncertainty(ev):
     """The ISO 230-2 Annex A budget of a stored test and, if the user configuration names
     tolerances, the ISO 14253-1 decisions (by parameter)."""
-    from axiscal.cli._certificate import decisions_for, load_config
+    from axiscal.report.issue import decisions_for, load_config
     from axiscal.standards.iso230_9 import positioning_budget
 
     cfg = load_config(None)

@@ -1,0 +1,297 @@
+"""Issuing a calibration certificate: configuration, budget, decisions, the mandatory content, a
+number from the certificate register, the document kept with the test.
+
+This is the library work behind ``axiscal iso230-2 --report``, ``axiscal certificate`` and the
+workbench's certificate: the front ends parse and render, they call :func:`write_certificate`
+and :func:`reissue_certificate`.
+
+A certificate is *issued* only when every mandatory item of ISO/IEC 17025:2017 §7.8.2 and §7.8.4
+is there (:func:`axiscal.report.certificate_content.missing_items`) and a register (a calibration
+history, :mod:`axiscal.store`) numbers it; otherwise the page is written as a DRAFT that names
+each missing item and takes no number. An issued certificate's number comes from the laboratory's
+pattern (``[certificate] number_pattern``, default ``{lab}-{year}-{counter:05d}``: ``{lab}`` the
+``[company] code``, ``{year}`` the year of issue, ``{counter}`` the register's next counter for
+the laboratory and year), never from the data alone; the issued bytes and their SHA-256 are kept
+with the stored test. An amendment (§7.8.8) is a new number that replaces the old one, with a
+reason; the old one is kept and marked superseded.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime as _dt
+import json
+from pathlib import Path
+from typing import Any
+
+from axiscal.errors import ConfigError, InputError
+
+__all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
+           "reissue_certificate", "CertificateOutcome", "number_format"]
+
+
+@dataclasses.dataclass(frozen=True)
+class CertificateOutcome:
+    """What :func:`write_certificate` wrote: an issued certificate (``record`` from the register)
+    or a DRAFT (``missing`` names each mandatory item not given)."""
+
+    path: Path
+    decisions: tuple
+    missing: tuple[str, ...]
+    number: str = ""
+    record: Any = None
+
+    @property
+    def draft(self) -> bool:
+        return self.record is None
+
+
+def load_config(job: Path | None) -> dict[str, Any]:
+    """The user configuration with the job file on top."""
+    from axiscal.io.user_config import load_job, load_user_config, merge
+
+    cfg = load_user_config()
+    return merge(cfg, load_job(job)) if job is not None else cfg
+
+
+def budget_for(dataset, result, cfg: dict):
+    """The ISO 230-2:2014 Annex A budget with the configuration's ``[uncertainty]`` inputs; a
+    material temperature measured and stated in the job's ``[conditions]`` (the data file
+    holding none) is the budget's too, so the certificate and its budget agree."""
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    table = dict(cfg.get("uncertainty") or {})
+    mat = cfg.get("conditions", {}).get("material_temperature")
+    if (mat is not None and "material_temperature" not in table
+            and dataset.axis_kind.value == "linear"
+            and not dataset.metadata.environment.material_temperature):
+        table["material_temperature"] = mat
+    return positioning_budget(dataset, result, table)
+
+
+def decisions_for(values, budget, tolerances: dict, cfg: dict, rule: str | None):
+    """Tolerances of the command line over those of the configuration, decided by the rule."""
+    from axiscal.standards.iso14253_1 import RULE_TEXT, _rule, decide_all
+
+    tol = {**cfg.get("tolerance", {}), **tolerances}
+    r = _rule(rule or cfg.get("certificate", {}).get("rule", "iso14253-1"))
+    return (decide_all(values, budget, tol, r) if tol else ()), r, RULE_TEXT[r]
+
+
+def number_format(cfg: dict, issued: str):
+    """(laboratory, series, counter -> number) of the configuration's numbering.
+
+    A ``[certificate] number`` is used as it is (the register refuses it a second time); else
+    ``number_pattern`` (``number_prefix`` of earlier versions means ``PREFIX{year}-{counter:05d}``).
+    """
+    from axiscal.io.user_config import DEFAULT_NUMBER_PATTERN
+
+    company, cert = cfg.get("company", {}), cfg.get("certificate", {})
+    lab = str(company.get("name", "")).strip()
+    code = str(company.get("code") or "".join(w[0] for w in lab.split() if w[:1].isalnum())
+               or "LAB").upper()
+    year = issued[:4]
+    if cert.get("number"):
+        fixed = str(cert["number"])
+        return lab, f"{code}|fixed", lambda counter: fixed
+    pattern = str(cert.get("number_pattern") or (
+        f"{cert['number_prefix']}{{year}}-{{counter:05d}}" if cert.get("number_prefix")
+        else DEFAULT_NUMBER_PATTERN))
+    try:
+        pattern.format(lab=code, year=year, counter=1)
+    except (KeyError, ValueError, IndexError) as exc:
+        raise ConfigError(f"[certificate] number_pattern {pattern!r}: {exc}; use {{lab}}, "
+                          "{year} and {counter}") from None
+    if "{counter" not in pattern:
+        raise ConfigError(f"[certificate] number_pattern {pattern!r} has no {{counter}}: every "
+                          "number would be the same")
+    series = f"{code}|{year}" if "{year" in pattern else code
+    return lab, series, lambda counter: pattern.format(lab=code, year=year, counter=counter)
+
+
+def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, tolerances=None,
+                      rule: str | None = None, paper: str | None = None, job: Path | None = None,
+                      *, store=None, filename: str = "data.csv", today: str | None = None,
+                      config_note: str = "", customer_supplied=None, logo: str | None = None,
+                      replaces: str = "", reason: str = "") -> CertificateOutcome:
+    """Budget, decisions and certificate of one positioning test, written to ``path``
+    (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
+
+    Parameters
+    ----------
+    cfg : dict
+        The configuration (user file merged with the job, or the demo's own).
+    data_bytes, filename : bytes, str
+        The data file as it came: stored with the certificate in the history.
+    job : Path, optional
+        The job file: its tolerances are marked as supplied by the customer, its logo path is
+        relative to it.
+    store : Store or callable returning one, optional
+        The calibration history whose register numbers the certificate (a callable is called
+        only when the certificate is complete); without one the page is a DRAFT (a number is
+        issued only by the register).
+    today : str, optional
+        Date of issue (``YYYY-MM-DD``), default today; ``[certificate] issued`` overrides.
+    config_note : str
+        Why the user configuration identifies no laboratory (:func:`~axiscal.io.user_config.
+        config_problem`), named among the missing items.
+
+    Raises
+    ------
+    InputError
+        The date of test is after the date of issue; a name no font can print.
+    """
+    from axiscal.report.certificate_content import (calibration_date, check_dates,
+                                                    missing_items)
+
+    budget = budget_for(dataset, result, cfg)
+    decisions, _, rule_text = decisions_for(result.parameters(), budget, tolerances or {}, cfg,
+                                            rule)
+    cfg = _with_paper(cfg, paper)
+    if customer_supplied is None:
+        customer_supplied = _job_tolerances(job)
+    if logo is None:
+        logo = _logo(cfg, job)
+    info = _info(cfg, today, logo, customer_supplied)
+    check_dates(calibration_date(dataset, info), info.issued)
+    missing = tuple(missing_items(dataset, result, budget, info, decisions, config_note))
+    if store is None and not missing:
+        missing = ("certificate number: a certificate is numbered only by the certificate "
+                   "register (a calibration history, --db)",)
+    info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason)
+
+    def render(number: str) -> bytes:
+        from axiscal.report.certificate import positioning_certificate
+
+        rep = positioning_certificate(dataset, result, budget,
+                                      dataclasses.replace(info, number=number), decisions,
+                                      rule_text)
+        if Path(path).suffix.lower() == ".pdf":
+            from axiscal.report.pdf import html_to_pdf
+
+            return html_to_pdf(rep.html())
+        return rep.html().encode("utf-8")
+
+    from axiscal.io._files import write_bytes_atomic
+
+    if missing:
+        write_bytes_atomic(Path(path), render(""))
+        return CertificateOutcome(Path(path), tuple(decisions), missing)
+    inputs = {"config": cfg, "tolerances": dict(tolerances or {}), "rule": rule, "paper": paper,
+              "logo": logo, "customer_supplied": list(customer_supplied)}
+    store = store() if callable(store) else store        # opened only to issue
+    record = _register(store, dataset, info, data_bytes, filename, render, inputs, path)
+    write_bytes_atomic(Path(path), record.document)
+    return CertificateOutcome(Path(path), tuple(decisions), (), record.number, record)
+
+
+def reissue_certificate(store, number: str, reason: str, path, corrections: dict | None = None,
+                        today: str | None = None, laboratory: str | None = None
+                        ) -> CertificateOutcome:
+    """Amend certificate ``number``: a new certificate with a new number that replaces it, for
+    ``reason``, rebuilt from the stored test and the inputs kept with the old one, with
+    ``corrections`` (job-file tables) on top; the old one is marked superseded. A reissue that
+    would be a DRAFT is refused and changes nothing."""
+    from axiscal.io.user_config import merge
+
+    if not reason.strip():
+        raise InputError("a reissue states its reason (--reason)")
+    old = store.certificate(number, laboratory)
+    stored = store.get(old.test_id)
+    ev = stored.evaluate_again()
+    inputs = old.inputs
+    cfg = merge(inputs["config"], corrections or {})
+    cfg["certificate"] = {k: v for k, v in cfg.get("certificate", {}).items()
+                          if k not in ("number", "issued")}
+    if (corrections or {}).get("certificate", {}).get("issued"):
+        cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
+    if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
+        raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    out = _draft_refused(path, lambda p: write_certificate(
+        p, ev.dataset, ev.evaluation, cfg, stored.raw, inputs["tolerances"], inputs["rule"],
+        inputs["paper"], store=store, filename=stored.summary.filename, today=today,
+        customer_supplied=inputs["customer_supplied"], logo=inputs["logo"], replaces=number,
+        reason=reason.strip()), number)
+    return out
+
+
+def _draft_refused(path, write, number: str) -> CertificateOutcome:
+    """Run ``write`` into a scratch file; a DRAFT is refused, an issued one moved to ``path``."""
+    import tempfile
+
+    from axiscal.io._files import write_bytes_atomic
+
+    with tempfile.TemporaryDirectory() as d:
+        scratch = Path(d) / Path(path).name
+        out = write(scratch)
+        if out.draft:
+            raise InputError(f"certificate {number} cannot be reissued: missing "
+                             + "; ".join(out.missing))
+        write_bytes_atomic(Path(path), scratch.read_bytes())
+    return dataclasses.replace(out, path=Path(path))
+
+
+def _register(store, dataset, info, data_bytes: bytes, filename: str, render, inputs, path):
+    """Keep the test in the history and issue the next number of the laboratory."""
+    md = dataset.metadata
+    m = info.machine
+    machine = None if md.machine else " ".join(
+        str(m.get(k)) for k in ("maker", "model", "serial") if m.get(k)) or None
+    test = store.add(data_bytes, Path(filename).name, machine=machine)
+    lab, series, number_for = number_format(inputs["config"], info.issued)
+    pdf = Path(path).suffix.lower() == ".pdf"
+    return store.issue_certificate(
+        test_id=test.id, laboratory=lab, series=series, number_for=number_for, render=render,
+        customer=str(info.customer.get("name", "")), issued=info.issued,
+        media_type="application/pdf" if pdf else "text/html",
+        inputs=json.loads(json.dumps(inputs, default=str)), replaces=info.replaces,
+        reason=info.reason)
+
+
+def _info(cfg: dict, today: str | None, logo: str, customer_supplied):
+    from axiscal.report.certificate import certificate_info
+    from axiscal.report.certificate_content import parse_date, refuse_unrenderable
+
+    issued = str(cfg.get("certificate", {}).get("issued") or today
+                 or _dt.date.today().isoformat())
+    parse_date(issued, "date of issue")
+    info = certificate_info(cfg, issued=issued, logo=logo, customer_supplied=customer_supplied)
+    refuse_unrenderable(_texts(cfg))
+    return dataclasses.replace(info, number="")
+
+
+def _texts(cfg: dict) -> dict[str, Any]:
+    """Every text of the configuration a certificate prints, by where it comes from."""
+    out: dict[str, Any] = {}
+    for table in ("company", "operator", "customer", "machine", "conditions", "certificate"):
+        for k, v in cfg.get(table, {}).items():
+            if k != "logo":
+                out[f"[{table}] {k}"] = " ".join(map(str, v)) if isinstance(v, list) else v
+    inst = cfg.get("instrument", [])
+    for n, t in enumerate(inst if isinstance(inst, list) else [inst], 1):
+        for k, v in t.items():
+            out[f"[[instrument]] {n} {k}"] = v
+    return out
+
+
+def _with_paper(cfg: dict, paper: str | None) -> dict:
+    if paper is None:
+        return cfg
+    return {**cfg, "certificate": {**cfg.get("certificate", {}), "paper": paper}}
+
+
+def _job_tolerances(job: Path | None) -> tuple[str, ...]:
+    """The tolerances a job file gives: supplied by the customer (ISO/IEC 17025:2017
+    §7.8.2.1, information supplied by the customer identified)."""
+    if job is None:
+        return ()
+    from axiscal.io.user_config import load_job
+
+    return tuple(load_job(job).get("tolerance", {}))
+
+
+def _logo(cfg: dict, job: Path | None) -> str:
+    from axiscal.io.user_config import config_path, logo_data_uri
+
+    where = job if job is not None and cfg.get("company", {}).get("logo") else config_path()
+    return logo_data_uri(cfg, where)
