@@ -26,6 +26,16 @@ rest of the path; vibration is the largest line of the residual's amplitude spec
 (feed known). The residual after every modelled term is reported so a user sees what the model
 does not explain. ISO 230-4 G, H, F come from :func:`~axiscal.standards.iso230_4.evaluate_circular`.
 
+What the simpler model folds in: the ISO 230-4 two-direction fit
+(:func:`~axiscal.standards.iso230_4.evaluate_circular`) has the centre, radius, shift, scale,
+squareness and backlash columns only, a subset of this model's columns on the same rows. Both are
+linear least squares, so each ISO 230-4 coefficient is this model's coefficient plus, for every
+term the ISO 230-4 model lacks, that term's coefficient times the ISO 230-4 regression of its
+column (``(AᵀA)⁻¹ Aᵀ t``, A the ISO 230-4 columns); the residual adds nothing (it is orthogonal
+to every column). :class:`FoldedError` gives that split for squareness, scale mismatch and the
+backlash of each axis; servo mismatch (``s sin 2φ``, a sign change with the direction like the
+backlash) is the usual one.
+
 Servo mismatch: an axis whose position loop has gain ``K`` follows ``τ = 1/K`` behind its command
 (first-order loop, steady state); with ``ẋ = -s v sin φ``, ``ẏ = s v cos φ`` the radial effect
 is ``s v (τ_x - τ_y) sin φ cos φ``, which changes sign with the direction (squareness does not).
@@ -44,10 +54,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import InputError
-from axiscal.standards.iso230_4 import (REVERSAL_TOL, CircularResult, _backlash_basis,
-                                        _common, _harmonics, evaluate_circular)
+from axiscal.standards.iso230_4 import (CircularResult, _common, _harmonics, evaluate_circular,
+                                        normal_equations, velocity_signs)
 
-__all__ = ["BallbarDiagnosis", "DiagnosisTerm", "diagnose", "ADVICE"]
+__all__ = ["BallbarDiagnosis", "DiagnosisTerm", "FoldedError", "diagnose", "ADVICE"]
 
 #: What a service engineer does about each term (ISO 230-4:2005 Annex A; ballbar practice).
 ADVICE = {
@@ -86,6 +96,60 @@ class DiagnosisTerm:
 
 
 @dataclass(frozen=True)
+class FoldedError:
+    """A figure of the ISO 230-4 fit that folds other errors in (module docstring).
+
+    Attributes
+    ----------
+    quantity : str
+        ``squareness``, ``scale_mismatch``, ``backlash_x`` or ``backlash_y``.
+    label : str
+        The quantity as a reader names it (``backlash X``).
+    unit : str
+        ``µm`` or ``µm/m``.
+    iso230_4, diagnosis : float
+        The value by the ISO 230-4 fit and by the full diagnosis, in ``unit``.
+    parts : tuple of (str, str, float)
+        Each term the ISO 230-4 fit lacks (its ranking key, its label with the plane's axis
+        letter) with what it adds to ``iso230_4`` (``unit``), largest first; they sum to
+        ``iso230_4 - diagnosis`` (the residual adds nothing).
+    material : bool
+        The difference moves the radial deviation by more than the residual the diagnosis
+        leaves (rms, at least 1 nm): a separation the readings resolve, so it is stated.
+    """
+
+    quantity: str
+    label: str
+    unit: str
+    iso230_4: float
+    diagnosis: float
+    parts: tuple[tuple[str, str, float], ...]
+    material: bool
+
+    def as_dict(self) -> dict:
+        """JSON: the quantity, unit, both values, the difference and every folded term."""
+        return {"quantity": self.quantity, "unit": self.unit, "iso230_4": self.iso230_4,
+                "diagnosis": self.diagnosis, "difference": self.iso230_4 - self.diagnosis,
+                "folded": {k: v for k, _, v in self.parts}, "material": self.material,
+                "statement": str(self)}
+
+    def __str__(self) -> str:
+        diff = self.iso230_4 - self.diagnosis
+        big = [p for p in self.parts if abs(p[2]) >= FOLD_SHARE * abs(diff)] or \
+            list(self.parts[:1])
+        rest = sum(p[2] for p in self.parts[len(big):])
+        names = ", ".join(f"{label} ({v:+.3f} {self.unit})" for _, label, v in big)
+        if len(big) < len(self.parts):
+            names += f" and {len(self.parts) - len(big)} smaller terms ({rest:+.3f} {self.unit})"
+        return (f"{self.label} {self.iso230_4:+.3f} {self.unit} by the ISO 230-4 fit folds "
+                f"{names} in; the full diagnosis gives {self.diagnosis:+.3f} {self.unit}")
+
+
+#: A folded term is named in the statement when it holds at least this share of the difference.
+FOLD_SHARE = 0.1
+
+
+@dataclass(frozen=True)
 class BallbarDiagnosis:
     """The diagnosis of a circular test (module docstring); lengths in m, ratios in m/m.
 
@@ -100,6 +164,9 @@ class BallbarDiagnosis:
     residual_rms, residual_ptp : float, m
         What the model leaves.
     warnings : tuple of str
+    folded : tuple of FoldedError
+        What the ISO 230-4 fit of ``circular`` folds into its squareness, scale mismatch and
+        backlash, against this diagnosis.
     """
 
     circular: CircularResult
@@ -109,6 +176,7 @@ class BallbarDiagnosis:
     residual_ptp: float
     feed: float | None
     warnings: tuple[str, ...] = field(default=())
+    folded: tuple[FoldedError, ...] = field(default=())
 
     def as_dict(self) -> dict:
         """JSON numbers: µm, µm/m, ms, Hz, mm; the ranking with shares in %."""
@@ -116,7 +184,8 @@ class BallbarDiagnosis:
         d.update({"residual_rms_um": self.residual_rms * 1e6,
                   "residual_ptp_um": self.residual_ptp * 1e6,
                   "feed_mm_per_min": None if self.feed is None else self.feed * 6e4,
-                  "iso230_4": self.circular.as_dict(),
+                  "iso230_4": {**self.circular.as_dict(),
+                               "folded": [f.as_dict() for f in self.folded]},
                   "ranking": [{"term": t.key, "value": t.value, "unit": t.unit,
                                "effect_um": t.ptp * 1e6, "share_percent": t.share * 100,
                                "advice": t.advice} for t in self.terms],
@@ -129,6 +198,7 @@ class BallbarDiagnosis:
                  + ("" if self.feed is None else f", feed {self.feed * 6e4:g} mm/min"),
                  f"  ISO 230-4:2005 §3: G ccw {_um(c.G_ccw)}, G cw {_um(c.G_cw)}, "
                  f"H {_um(c.H)}, F max {_um(c.F_max)}, F min {_um(c.F_min)}",
+                 *self.folded_lines(),
                  "  rank  term                 value            effect   share  advice"]
         for i, t in enumerate(self.terms, 1):
             lines.append(f"  {i:>4}  {t.key:<19} {t.value:>+9.3f} {t.unit:<6} "
@@ -138,9 +208,13 @@ class BallbarDiagnosis:
         lines += [f"  warning: {w}" for w in self.warnings]
         return "\n".join(lines)
 
+    def folded_lines(self) -> list[str]:
+        """The statements of :attr:`folded` whose difference the readings resolve."""
+        return [f"  {f}" for f in self.folded if f.material]
+
 
 def diagnose(runs, radius: float, *, feed: float | None = None,
-             axes: tuple[str, str] = ("X", "Y")) -> BallbarDiagnosis:
+             axes: tuple[str, str] = ("X", "Y"), datum: str = "") -> BallbarDiagnosis:
     """Diagnose a circular test from its CCW and CW runs.
 
     Parameters
@@ -152,6 +226,8 @@ def diagnose(runs, radius: float, *, feed: float | None = None,
         Contouring feed; servo mismatch (ms) and vibration (Hz) need it.
     axes : (str, str)
         The plane's axes (keys keep ``x`` and ``y`` for the first and second axis).
+    datum : str
+        Datum axis of the ISO 230-1 sign of the squareness (default the first axis).
 
     Returns
     -------
@@ -176,12 +252,12 @@ def diagnose(runs, radius: float, *, feed: float | None = None,
         raise InputError("the diagnosis needs one CCW and one CW run")
     if feed is not None and not (math.isfinite(feed) and feed > 0):
         raise InputError(f"feed={feed!r} m/s: must be positive")
-    circ = evaluate_circular(runs, radius, axes=axes)
+    circ = evaluate_circular(runs, radius, axes=axes, datum=datum)
     by = {r.direction: r for r in runs}
     phi, ccw, cw = _common(by["ccw"], by["cw"], circ.arc_deg)
     y = np.concatenate([ccw, cw])
     fit = _fit(phi, y, radius)
-    return _assemble(circ, phi, y, fit, radius, feed)
+    return _assemble(circ, phi, y, fit, radius, feed, axes)
 
 
 # --- the fit -------------------------------------------------------------------------------------
@@ -193,29 +269,27 @@ _LINEAR = ("centre_r", "centre_x", "centre_y", "scale", "square", "shift_r", "sh
 
 def _columns(phi: np.ndarray, radius: float) -> np.ndarray:
     """Design matrix of both runs (CCW rows then CW rows): the 15 fixed columns of _LINEAR, then
-    the X spike column for each of _DECAYS, then the Y spike column for each."""
-    blocks = []
-    for sense, direction in ((1.0, "ccw"), (-1.0, "cw")):
-        h = _harmonics(phi)
-        b = _backlash_basis(phi, direction)
-        c, s = np.cos(phi), np.sin(phi)
-        sx, sy = _axis_signs(phi, sense)
+    the X spike column for each of _DECAYS, then the Y spike column for each. Column-major, each
+    column filled in place (the sines and cosines are the same for both runs)."""
+    n, nd = phi.size, _DECAYS.size
+    c, s = np.cos(phi), np.sin(phi)
+    h = _harmonics(phi)
+    m = np.empty((2 * n, 15 + 2 * nd), order="F")
+    rate = -radius / _DECAYS
+    for k, sense in enumerate((1.0, -1.0)):
+        blk = m[k * n:(k + 1) * n]
+        sx, sy = velocity_signs(s, c, sense)
+        blk[:, :5] = h
+        blk[:, 5:8] = sense * 0.5 * h[:, :3]
+        blk[:, 8] = sense * 0.5 * h[:, 4]
+        blk[:, 9], blk[:, 10] = 0.5 * sx * c, 0.5 * sy * s        # = _backlash_basis
+        blk[:, 11], blk[:, 12] = 0.5 * sx * s, 0.5 * sy * c
+        blk[:, 13], blk[:, 14] = c * c * s, s * s * c
         ax = np.mod(sense * phi, np.pi)                 # travel angle since the X reversal
         ay = np.mod(sense * (phi - np.pi / 2), np.pi)   # ... since the Y reversal
-        blocks.append(np.column_stack([
-            h, sense * 0.5 * h[:, :3], sense * 0.5 * h[:, 4], b, 0.5 * sx * s, 0.5 * sy * c,
-            c * c * s, s * s * c,
-            np.abs(c)[:, None] * np.exp(-radius * ax[:, None] / _DECAYS[None, :]),
-            np.abs(s)[:, None] * np.exp(-radius * ay[:, None] / _DECAYS[None, :])]))
-    return np.vstack(blocks)
-
-
-def _axis_signs(phi: np.ndarray, sense: float) -> tuple[np.ndarray, np.ndarray]:
-    """Signs of the X and Y velocities, approach side on a reversal point (as the backlash)."""
-    s, c = np.sin(phi), np.cos(phi)
-    sx = np.where(np.abs(s) < REVERSAL_TOL, np.sign(c), -sense * np.sign(s))
-    sy = np.where(np.abs(c) < REVERSAL_TOL, np.sign(s), sense * np.sign(c))
-    return sx, sy
+        blk[:, 15:15 + nd] = np.abs(c)[:, None] * np.exp(ax[:, None] * rate[None, :])
+        blk[:, 15 + nd:] = np.abs(s)[:, None] * np.exp(ay[:, None] * rate[None, :])
+    return m
 
 
 @dataclass(frozen=True)
@@ -226,14 +300,17 @@ class _Fit:
     model: dict          # term -> its Δr contribution on the stacked rows
     residual: np.ndarray
     observable: dict
+    gram: np.ndarray     # AᵀA of the final columns (_LINEAR, then the 4 cyclic columns)
+    c: np.ndarray        # their coefficients
 
 
 def _fit(phi, y, radius) -> _Fit:
     """Linear terms by least squares, the spike decays by a coordinate search on the normal
-    equations of all candidate columns (one product, then 15+2 column systems per candidate)."""
+    equations of all candidate columns (one product, then 15+2 column systems per candidate);
+    the final system with the cyclic columns is bordered onto the same product."""
     m = _columns(phi, radius)
     nf, nd = 15, _DECAYS.size
-    gram, rhs = m.T @ m, m.T @ y
+    gram, rhs = normal_equations(m, y)
     yy = float(y @ y)
     pick = [nf + nd // 2, nf + nd + nd // 2]
     for axis in (0, 1, 0, 1):
@@ -244,29 +321,26 @@ def _fit(phi, y, radius) -> _Fit:
             c = np.linalg.lstsq(gram[np.ix_(idx, idx)], rhs[idx], rcond=None)[0]
             sse = yy - float(c @ rhs[idx])
             if best is None or sse < best[0] - 1e-18 * yy:
-                best = (sse, idx[nf:])
+                best = (sse, idx[nf:], c)
         pick = best[1]
-    a = m[:, list(range(nf)) + pick]
+    sel = list(range(nf)) + pick
+    a = m[:, sel]
     decay = (float(_DECAYS[pick[0] - nf]), float(_DECAYS[pick[1] - nf - nd]))
-    c, _ = _solve(a, y)
-    cyc_cols, cyclic = _cyclic(phi, y - a @ c, radius)
-    full = np.column_stack([a, cyc_cols])
-    c, _ = _solve(full, y)
-    model = {k: full[:, i] * c[i] for i, k in enumerate(_LINEAR)}
-    model["cyclic_x"] = full[:, -4:-2] @ c[-4:-2]
-    model["cyclic_y"] = full[:, -2:] @ c[-2:]
+    cyc_cols, cyclic = _cyclic(phi, y - a @ best[2], radius)
+    cc, cross = normal_equations(cyc_cols, a)
+    cy = normal_equations(cyc_cols, y)[1]
+    g = np.block([[gram[np.ix_(sel, sel)], cross.T], [cross, cc]])
+    c = np.linalg.lstsq(g, np.concatenate([rhs[sel], cy]), rcond=None)[0]
+    model = {k: a[:, i] * c[i] for i, k in enumerate(_LINEAR)}
+    model["cyclic_x"] = cyc_cols[:, :2] @ c[-4:-2]
+    model["cyclic_y"] = cyc_cols[:, 2:] @ c[-2:]
     cyclic["x_amp"] = float(math.hypot(*c[-4:-2]))
     cyclic["y_amp"] = float(math.hypot(*c[-2:]))
-    norms = np.linalg.norm(full, axis=0) / math.sqrt(len(y))
+    norms = np.sqrt(np.diag(g) / len(y))
     observable = {k: bool(norms[i] > 1e-3) for i, k in enumerate(_LINEAR)}
-    return _Fit(dict(zip(_LINEAR, map(float, c))), decay, cyclic, model, y - full @ c,
-                observable)
-
-
-def _solve(a, y):
-    """Least squares by the normal equations (columns of order one, well conditioned)."""
-    c = np.linalg.lstsq(a.T @ a, a.T @ y, rcond=None)[0]
-    return c, float(np.sqrt(np.mean((y - a @ c) ** 2)))
+    residual = y - a @ c[:-4] - cyc_cols @ c[-4:]
+    return _Fit(dict(zip(_LINEAR, map(float, c))), decay, cyclic, model, residual, observable,
+                g, c)
 
 
 def _cyclic(phi, res, radius):
@@ -304,7 +378,7 @@ def _cyclic_power(pitches, w, mean, radius):
 
 # --- the result ----------------------------------------------------------------------------------
 
-def _assemble(circ, phi, y, fit: _Fit, radius, feed) -> BallbarDiagnosis:
+def _assemble(circ, phi, y, fit: _Fit, radius, feed, axes) -> BallbarDiagnosis:
     c, warnings = fit.coef, []
     v = {"squareness_um_per_m": -2 * c["square"] / radius * 1e6,
          "scale_mismatch_um_per_m": 2 * c["scale"] / radius * 1e6,
@@ -330,8 +404,56 @@ def _assemble(circ, phi, y, fit: _Fit, radius, feed) -> BallbarDiagnosis:
               "vibration_hz": vib[0]})
     terms = _rank(fit, circ, v, stick, vib[1])
     res = fit.residual
-    return BallbarDiagnosis(circ, v, terms, float(np.sqrt(np.mean(res**2))), float(np.ptp(res)),
-                            feed, tuple(warnings) + circ.warnings)
+    rms = float(np.sqrt(np.mean(res**2)))
+    return BallbarDiagnosis(circ, v, terms, rms, float(np.ptp(res)), feed,
+                            tuple(warnings) + circ.warnings,
+                            _folded(circ, fit, v, radius, axes, rms))
+
+
+#: Columns of the ISO 230-4 two-direction fit among _LINEAR (centre, radius, shift, scale,
+#: squareness, backlash); the others, and the four cyclic columns, are what it lacks.
+_ISO_COLUMNS = (0, 1, 2, 3, 4, 5, 6, 7, 9, 10)
+_FOLDED = (  # quantity, ISO column, value key, unit, ISO 230-4 value from the CircularResult
+    ("squareness", 4, "squareness_um_per_m", "µm/m", lambda r: r.squareness.um_per_m),
+    ("scale_mismatch", 3, "scale_mismatch_um_per_m", "µm/m", lambda r: r.scale_mismatch * 1e6),
+    ("backlash_x", 9, "backlash_x_um", "µm", lambda r: r.backlash_x * 1e6),
+    ("backlash_y", 10, "backlash_y_um", "µm", lambda r: r.backlash_y * 1e6),
+)
+
+
+def _folded(circ, fit: _Fit, v, radius, axes, rms) -> tuple[FoldedError, ...]:
+    """What the ISO 230-4 fit folds into each of its figures (module docstring): the regression
+    of every column it lacks on its own columns, times that column's coefficient."""
+    iso = list(_ISO_COLUMNS)
+    other = [i for i in range(fit.c.size) if i not in _ISO_COLUMNS]
+    g = fit.gram
+    x = np.linalg.solve(g[np.ix_(iso, iso)], g[np.ix_(iso, other)]) * fit.c[other]
+    names = [_RANK_KEY[_LINEAR[i]] if i < len(_LINEAR) else f"cyclic_{'xxyy'[i - len(_LINEAR)]}"
+             for i in other]
+    out = []
+    for quantity, col, vkey, unit, iso_value in _FOLDED:
+        scale = 1e6 if unit == "µm" else (2 if col == 3 else -2) / radius * 1e6
+        row = x[iso.index(col)] * scale
+        parts: dict[str, float] = {}
+        for name, amount in zip(names, row):
+            parts[name] = parts.get(name, 0.0) + float(amount)
+        full = v[vkey]
+        effect = abs(iso_value(circ) - full) * 1e-6 * (1.0 if unit == "µm" else radius)  # m
+        out.append(FoldedError(
+            quantity, _axis_label(quantity, axes), unit, float(iso_value(circ)), float(full),
+            tuple(sorted(((k, _axis_label(k, axes), a) for k, a in parts.items()),
+                         key=lambda p: -abs(p[2]))),
+            bool(effect > max(rms, 1e-9))))
+    return tuple(out)
+
+
+def _axis_label(key: str, axes) -> str:
+    """``backlash_x`` -> ``backlash X`` (the plane's axis letters), ``servo_mismatch`` ->
+    ``servo mismatch``."""
+    for suffix, axis in (("_x", axes[0]), ("_y", axes[1])):
+        if key.endswith(suffix):
+            return f"{key[:-2].replace('_', ' ')} {axis}"
+    return key.replace("_", " ")
 
 
 _TERMS = (  # ranking key, model parts, value key, unit
@@ -349,6 +471,10 @@ _TERMS = (  # ranking key, model parts, value key, unit
     ("cyclic_x", ("cyclic_x",), "cyclic_x_um", "µm"),
     ("cyclic_y", ("cyclic_y",), "cyclic_y_um", "µm"),
 )
+
+
+#: The ranking key of each model part (``servo`` -> ``servo_mismatch``).
+_RANK_KEY = {p: key for key, parts, _, _ in _TERMS for p in parts}
 
 
 def _rank(fit, circ, v, stick, vib_amp) -> tuple[DiagnosisTerm, ...]:
