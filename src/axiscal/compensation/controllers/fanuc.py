@@ -65,7 +65,9 @@ parameters for several axes is read for the axis ``axis_number`` names.
 **Limits checked.** Point numbers 0…1023 (``max_number``); each value within −128…127 after the
 magnification (the range of the 16i/18i/0i series; later series allow more, not confirmed);
 interval a whole number of detection units (0.001 mm or 0.001 deg by default); range inside the
-travel; rotary sum zero.
+travel; rotary sum zero; on reading, a negative-direction table (3626) whose point numbers
+overlap the positive one's (3621 … 3622) is refused (one point cannot hold two values; this
+module's reading, not a rule found in the sources).
 """
 
 from __future__ import annotations
@@ -223,6 +225,10 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
         if not 0 <= nf <= max_number - (last - first):
             raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
                                   f"{nf} … {nf + last - first} fall outside 0 … {max_number}", source)
+        if nf <= last and first <= nf + last - first:      # one point would hold two values
+            raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
+                                  f"{nf} … {nf + last - first} overlap the positive-direction "
+                                  f"points {first} … {last} (3621 … 3622)", source)
         down = _absolute(data, nf, nf + last - first, nf + ref - first, params.get(3627, 0), mag,
                          source)
     t = CompensationTable(axis, kind, pu, cu, got["reference_position"].value - (ref - first) * spacing,
