@@ -26,7 +26,7 @@ def simulate(
     json_out: bool = typer.Option(False, "--json", help="Print the result and the truth as JSON."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot with the truth (PNG, SVG or PDF by extension)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write a simulation report (.html, or .pdf with WeasyPrint)."),
-    data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv or .json)."),
+    data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv, .json, or Renishaw .rtl/.rta for a linear/rotary axis)."),
 ) -> None:
     """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.
 
@@ -40,7 +40,7 @@ def simulate(
     if report is not None:
         report_path(report)
     if data is not None:
-        typed_path(data, "data", (".csv", ".json"))
+        typed_path(data, "data", (".csv", ".json", ".rtl", ".rta"))
     sim = simulate_from_config(load_toml(config), seed=seed)
     write_outputs(sim, plot, report, data)
     if json_out:
@@ -75,6 +75,10 @@ def write_outputs(sim, plot=None, report=None, data=None) -> None:
 
         if Path(data).suffix.lower() == ".json":
             from axiscal.io.json import format_positioning_json as fmt
+        elif Path(data).suffix.lower() in (".rtl", ".rta"):
+            from axiscal.io.renishaw import format_rtl, format_rta
+
+            fmt = format_rtl if Path(data).suffix.lower() == ".rtl" else format_rta
         else:
             from axiscal.io.csv import format_positioning_csv as fmt
         write_text_atomic(data, fmt(sim.dataset))

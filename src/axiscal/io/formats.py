@@ -46,6 +46,18 @@ FORMATS: tuple[FileFormat, ...] = (
     FileFormat("Renishaw XL-80 dynamic capture", True, False, (".rtx",),
                "tests/io/test_rtx.py builds one to the public description",
                "axiscal.io.rtx (T. Pani, rtx2csv, github.com/TanmayPani/rtx2csv)"),
+    FileFormat("Renishaw linear positioning export (HEADER:: … EOF::)", True, True, (".rtl",),
+               "tests/io/test_renishaw.py builds them to the public descriptions (no real "
+               "public sample found)",
+               "axiscal.io.renishaw (a C# writer, Paolico/AxisCorection RtlParser.java, a C++ "
+               "and a JavaScript reader; see the module docstring)"),
+    FileFormat("Renishaw angular positioning export (deviations in µrad)", True, True, (".rta",),
+               "tests/io/test_renishaw.py (no real public sample found)",
+               "axiscal.io.renishaw (Read Laser Plot: .rta deviations × 0.2063 = arcsec)"),
+    FileFormat("Renishaw .ren compensation export (spacing, start, end, Combined)", True, True,
+               (".ren",), "axiscal compensate ... --controller renishaw-ren",
+               "axiscal.compensation.controllers.renishaw_ren (a public .REN → Siemens "
+               "$AA_ENC_COMP converter)"),
     FileFormat("Test plan", True, True, (".csv",),
                "axiscal plan linear --length 800 --csv plan.csv", "axiscal.io.measured"),
     FileFormat("Straightness trajectory", True, True, (".csv",),
