@@ -79,7 +79,7 @@ from dataclasses import replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, FileInput, check_points, check_spacing, check_travel, correction_factor,
+    ControllerFile, FileInput, safe_axis_name, check_points, check_spacing, check_travel, correction_factor,
     file_unit, require_equidistant)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
@@ -129,6 +129,8 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1,
         ``detection_unit`` on a linear axis.
     """
     require_equidistant(table, NAME)
+    names = safe_axis_name(table.axis, NAME)             # portable: the comment and file name
+    table = replace(table, axis=names.name)
     per = file_unit(unit, table, NAME)                  # mm per file unit (1 on a rotary axis)
     count = detection_unit * per                         # one count in the table's position unit
     table, mag = _prepare(table, travel, count, magnification)
@@ -158,7 +160,8 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1,
     word = _WORD[table.position_unit if per == 1.0 else "inch"]
     lines = ["%", f"(AXISCAL PITCH ERROR COMPENSATION AXIS {table.axis or '-'}, CORRECTION = "
              f"-DEVIATION, 1 COUNT = {detection_unit:.12g} {word})",
-             f"(REFERENCE POSITION {table.reference_position / per:.12g} {word} AT POINT {ref})"]
+             f"(REFERENCE POSITION {table.reference_position / per:.12g} {word} AT POINT {ref})",
+             *names.comment("(", ")", upper=True)]
     if table.bidirectional:      # a bit parameter: the tape would overwrite all eight bits
         lines.append(f"(SET 3605#0 = 1 FOR AXIS {a} BY HAND, KEEPING BITS 1-7)")
     lines += [f"N{p}A{a}P{v}" for p, v in params]

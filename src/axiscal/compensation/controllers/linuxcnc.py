@@ -118,6 +118,7 @@ def write(table: CompensationTable, travel=None, *, file_type: int = 1, joint: i
         notes.append(f"{table.n_points} irregular positions (the measured targets); LinuxCNC "
                      "interpolates between any increasing positions")
     written = replace(table, axis=names.name, up=fwd / k, down=rev / k,
+                      bidirectional=not np.allclose(fwd, rev),   # as parse tells it
                       nodes=None if table.equidistant else nom * mm)
     return ControllerFile(NAME, text, name, written, tuple(enable), notes=tuple(notes))
 

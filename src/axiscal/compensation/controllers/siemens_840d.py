@@ -73,7 +73,7 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, FileInput, check_modulo, check_points, check_spacing, check_travel,
-    correction_factor, decimals, file_unit, parse_number, require_equidistant)
+    correction_factor, decimals, file_unit, parse_number, require_equidistant, safe_axis_name)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -173,8 +173,10 @@ def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0):
         mean[[0, -1]] = 0.0
     values = np.round(-mean * k, nd) + 0.0      # file value = deviation = −correction
     ax = machine_axis
+    names = safe_axis_name(table.axis, NAME)         # portable characters; the source kept
+    table = replace(table, axis=names.name)
     lines = [f"; axiscal: axis {table.axis or '-'}, {table.n_points} points, values = deviation "
-             f"(-correction) in {fu}"]
+             f"(-correction) in {fu}", *names.comment("; ")]
     metric = []
     if table.position_unit == "mm":
         metric = [f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {1 if per == 1.0 else 0}"]
