@@ -48,6 +48,7 @@ COMMANDS: dict[str, str] = {
     "formats": "axiscal.cli.measured",
     "serve": "axiscal.cli.serve",
     "history": "axiscal.cli.history",
+    "certificate": "axiscal.cli.certificate",
     "volumetric": "axiscal.cli.volumetric",
     "config": "axiscal.cli.config",
     "ballbar": "axiscal.cli.ballbar",

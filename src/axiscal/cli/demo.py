@@ -18,11 +18,23 @@ import typer
 from axiscal.cli._common import note, out_path
 
 DEMOS = (("linear", "demo_linear.toml", "X axis, 800 mm"), ("rotary", "demo_rotary.toml", "C axis, full turn (ideal reference)"))
-#: What the demonstration certificates carry besides the user configuration (axiscal config).
-DEMO_JOB = {
-    "customer": {"name": "Demonstration customer (simulated readings)"},
+#: The demonstration's own laboratory and job: its certificates never use the user's configuration
+#: (axiscal config). Dates are the day the demo runs (the simulation's test), the instrument's
+#: calibration is due a year later; the simulated machine is at 20 °C.
+DEMO_CONFIG = {
+    "company": {"name": "axiscal Demonstration Laboratory",
+                "address": ["Simulated readings: not an accredited laboratory"], "code": "DEMO"},
+    "operator": {"name": "axiscal demo"},
+    "customer": {"name": "Demonstration customer (simulated readings)",
+                 "address": ["Simulation, no real address"]},
+    "machine": {"maker": "axiscal", "model": "simulated machine", "serial": "SIM-0001"},
     "conditions": {"measuring_line": "along the axis through the table centre (simulated)",
-                   "feed": "not applicable (simulation)", "dwell": "not applicable (simulation)"},
+                   "feed": "not applicable (simulation)", "dwell": "not applicable (simulation)",
+                   "air_temperature": 20.0, "material_temperature": 20.0},
+    "certificate": {"signatory": "A. Demonstrator",
+                    "signatory_role": "Signatory of the demonstration (simulated)",
+                    "specification": "the demonstration's tolerances (axiscal demo)"},
+    "uncertainty": {"e_ve": 0.2, "e_ve_source": "declared"},
 }
 DEMO_TOLERANCES = {"linear": {"A": 20.0, "E": 15.0, "R": 8.0, "B": 5.0},
                    "rotary": {"A": 14.0, "E": 12.0, "R": 6.0, "B": 4.0}}
@@ -52,6 +64,7 @@ def demo(
         raise InputError(f"cannot create the folder --out {out}: {exc.strerror or exc}") from None
     out_path(out / "index.html", "the demonstration")   # writable, before the simulations run
     pages = []
+    url = db or f"sqlite:///{(out / 'history.sqlite').resolve()}"
     for name, cfg, label in DEMOS:
         config = tomllib.loads(resources.files("axiscal.data").joinpath(cfg).read_text("utf-8"))
         sim = simulate_from_config(config, seed=seed)
@@ -59,12 +72,12 @@ def demo(
         render_simulation(sim)
         write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
                       out / f"{name}_data.csv")
-        _certificate(out / f"{name}_certificate.pdf", sim, name)
+        _certificate(out / f"{name}_certificate.pdf", sim, name, url)
         pages.append((label, f"{name}_report.html", sim.result))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)
     _measured_inputs(out, seed)
-    _history(out, db or f"sqlite:///{(out / 'history.sqlite').resolve()}", seed)
+    _history(out, url, seed)
     note(f"\nopen {out / 'index.html'} for the reports")
 
 
@@ -109,6 +122,9 @@ def _history(out: Path, db: str, seed: int) -> None:
     typer.echo(f"\nthe linear axis before and after compensation (axiscal history compare "
                f"{ids[0]} {ids[1]} --db {db}):")
     typer.echo(str(c))
+    typer.echo(f"\ncertificate register (axiscal certificate list --db {db}):")
+    for r in store.certificates():
+        typer.echo(f"  {r}")
 
 
 #: The job file the README's certificate example uses (one test's customer, machine, conditions and
@@ -167,21 +183,32 @@ def _measured_inputs(out: Path, seed: int) -> None:
          "README's tour)")
 
 
-def _certificate(path: Path, sim, name: str) -> None:
-    """The customer certificate (PDF) of a demonstration test; skipped, said, without WeasyPrint."""
+def _certificate(path: Path, sim, name: str, db: str) -> None:
+    """The customer certificate (PDF) of a demonstration test, issued through the register of the
+    demo's history with the demo's own laboratory; skipped, said, without WeasyPrint."""
+    import datetime as dt
     import importlib.util
 
-    from axiscal.cli._certificate import load_config, write_certificate
-    from axiscal.io.user_config import merge
+    from axiscal.report.issue import write_certificate
+    from axiscal.store import open_store
 
     if importlib.util.find_spec("weasyprint") is None:
         note(f"no {path.name}: a PDF needs WeasyPrint (pip install 'axiscal[report]')")
         return
-    cfg = merge(load_config(None), DEMO_JOB)
+    today = dt.date.today()
+    rotary = name == "rotary"
+    instrument = {"name": f"simulated {'rotary calibrator' if rotary else 'laser interferometer'}",
+                  "serial": "SIM-1", "certificate": f"SIM-CAL-{name.upper()}",
+                  "due": (today + dt.timedelta(days=365)).isoformat()}
+    cfg = {**DEMO_CONFIG, "conditions": {**DEMO_CONFIG["conditions"], "date": today.isoformat()},
+           "instrument": [instrument],   # E_VE declared: 0.2 µm, 0.1 arcsec (a still simulation)
+           "uncertainty": {**DEMO_CONFIG["uncertainty"], "e_ve": 0.1 if rotary else 0.2}}
     out_path(path, "certificate")
-    data = (path.parent / f"{name}_data.csv").read_bytes()
-    write_certificate(path, sim.dataset, sim.result, cfg, data, DEMO_TOLERANCES[name])
-    note(f"wrote certificate {path}")
+    data = path.parent / f"{name}_data.csv"
+    o = write_certificate(path, sim.dataset, sim.result, cfg, data.read_bytes(),
+                          DEMO_TOLERANCES[name], store=open_store(db), filename=data.name,
+                          customer_supplied=tuple(DEMO_TOLERANCES[name]))
+    note(f"wrote certificate {path}: {o.number or 'DRAFT'}")
 
 
 def _rotary_calibration(out: Path):

@@ -1,0 +1,127 @@
+"""``axiscal certificate list|show|reissue``: the certificate register of the calibration history.
+
+Certificates are issued by ``axiscal iso230-2 FILE --report CERT.pdf`` (and ``make demo``) when
+every mandatory item of ISO/IEC 17025:2017 §7.8 is given; each has a number unique per
+laboratory, and the issued document and its SHA-256 are kept with the test
+(:mod:`axiscal.store.register`, :mod:`axiscal.report.issue`). An amendment (§7.8.8) is a reissue:
+a new number that replaces the old one, with the reason; the old one is kept, marked superseded.
+
+JSON output (``--json``), stable keys: ``list`` prints a list of objects with ``number``,
+``laboratory``, ``test_id``, ``customer``, ``issued``, ``status`` (``issued`` or
+``superseded``), ``replaces``, ``replaced_by``, ``reason``, ``media_type``, ``sha256``;
+``show`` and ``reissue`` print one such object (``reissue``: the new certificate) and ``path``
+when a document was written.
+
+Exit codes: 0 done, 2 a user error (no such certificate, a reissue that would lack a mandatory
+item, no reason given).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from axiscal.cli._common import note, print_json
+
+__all__ = ["register", "record_json"]
+
+app = typer.Typer(help="The certificate register: numbers, issued documents and amendments "
+                  "(ISO/IEC 17025:2017 §7.8.8) kept in the calibration history.",
+                  no_args_is_help=True)
+
+_DB = typer.Option(None, "--db", help="History database URL (default: AXISCAL_DB, else SQLite "
+                   "in the user's data folder).")
+_LAB = typer.Option(None, "--laboratory", help="The laboratory's name, where two laboratories "
+                    "share a database.")
+_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
+
+
+def record_json(r) -> dict:
+    """The stable JSON object of a register entry (see the module docstring)."""
+    return {"number": r.number, "laboratory": r.laboratory, "test_id": r.test_id,
+            "customer": r.customer, "issued": r.issued, "status": r.status,
+            "replaces": r.replaces, "replaced_by": r.replaced_by, "reason": r.reason,
+            "media_type": r.media_type, "sha256": r.sha256}
+
+
+@app.command("list")
+def list_(db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
+          json_out: bool = _JSON) -> None:
+    """List the register, newest first: number, status, date of issue, test, customer.
+
+    Example: axiscal certificate list --db sqlite:///history.sqlite
+    """
+    from axiscal.store import open_store
+
+    rows = open_store(db).certificates(laboratory)
+    if json_out:
+        print_json([record_json(r) for r in rows])
+        return
+    if not rows:
+        typer.echo("no certificates in the register")
+    for r in rows:
+        typer.echo(str(r))
+
+
+@app.command("show")
+def show(number: str = typer.Argument(..., help="The certificate number."),
+         out: Optional[Path] = typer.Option(None, "--out", help="Write the issued document, "
+                                            "byte for byte, to this file."),
+         db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
+         json_out: bool = _JSON) -> None:
+    """Show one certificate of the register (its SHA-256 checked) and write its document.
+
+    Example: axiscal certificate show PM-2026-00001 --out PM-2026-00001.pdf
+    """
+    from axiscal.io._files import write_bytes_atomic
+    from axiscal.store import open_store
+
+    r = open_store(db).certificate(number, laboratory)
+    if out is not None:
+        write_bytes_atomic(out, r.document)
+    if json_out:
+        print_json({**record_json(r), **({"path": str(out)} if out else {})})
+    else:
+        typer.echo(str(r))
+        typer.echo(f"laboratory {r.laboratory}; {r.media_type}, {len(r.document)} bytes, "
+                   f"SHA-256 {r.sha256}")
+    if out is not None:
+        note(f"wrote {out}")
+
+
+@app.command("reissue")
+def reissue(number: str = typer.Argument(..., help="The number of the certificate to amend."),
+            reason: str = typer.Option(..., "--reason", help="Why it is amended (printed on "
+                                       "the new certificate)."),
+            out: Path = typer.Option(..., "--out", help="The new certificate (.pdf)."),
+            job: Optional[Path] = typer.Option(None, "--job", help="Corrections (TOML, the "
+                                               "tables of a job file) over the inputs kept with "
+                                               "the old certificate."),
+            db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
+            json_out: bool = _JSON) -> None:
+    """Amend a certificate: a new number that replaces it, with the reason; the old one stays in
+    the register, marked superseded (ISO/IEC 17025:2017 §7.8.8).
+
+    Example: axiscal certificate reissue PM-2026-00001 --reason "serial number corrected" --job fix.toml --out PM-2026-00002.pdf
+    """
+    from axiscal.cli._common import report_path
+    from axiscal.io.user_config import load_job
+    from axiscal.report.issue import reissue_certificate
+    from axiscal.store import open_store
+
+    report_path(out)
+    corrections = load_job(job) if job is not None else None
+    o = reissue_certificate(open_store(db), number, reason, out, corrections,
+                            laboratory=laboratory)
+    if json_out:
+        print_json({**record_json(o.record), "path": str(out)})
+    else:
+        typer.echo(str(o.record))
+    note(f"issued certificate {o.record.number}, replacing {number}: {out}")
+
+
+def register(root: typer.Typer) -> None:
+    """Add the ``certificate`` command group to the application."""
+    root.add_typer(app, name="certificate")
