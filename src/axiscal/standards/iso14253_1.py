@@ -31,7 +31,8 @@ from enum import Enum
 
 from axiscal.errors import InputError
 
-__all__ = ["Outcome", "Rule", "Decision", "decide", "decide_all", "overall", "RULE_TEXT"]
+__all__ = ["Outcome", "Rule", "Decision", "decide", "decide_all", "overall", "unprovable",
+           "RULE_TEXT"]
 
 
 class Outcome(str, Enum):
@@ -183,6 +184,47 @@ def overall(decisions) -> Outcome | None:
     if Outcome.NONCONFORMS in outcomes:
         return Outcome.NONCONFORMS
     return Outcome.CONFORMS if all(o is Outcome.CONFORMS for o in outcomes) else Outcome.ZONE
+
+
+def unprovable(decisions, unit: str = "") -> list[str]:
+    """One warning line per tolerance whose conformance can never be proven.
+
+    Under ISO 14253-1:2017 §5.2 conformance is proven only inside the acceptance zone, the
+    tolerance zone reduced by U on each limited side: for an upper limit T alone the zone is
+    y ≤ T − U, empty for a parameter that cannot be negative once U ≥ T (and for a two-sided
+    zone once 2U ≥ T − L). Simple acceptance has no guard band, so nothing is said there.
+
+    Parameters
+    ----------
+    decisions : sequence of Decision
+    unit : str
+        Display unit of the values (``µm`` ...).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> unprovable([decide("A", 0.09, 3.52, 1.0)], "µm")[0][:60]
+    'tolerance A = 1 µm is not larger than its expanded uncertain'
+    """
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    out = []
+    for d in decisions:
+        if d.rule is not Rule.ISO_14253_1 or math.isnan(d.U):
+            continue
+        width = d.upper if d.lower is None else (d.upper - d.lower) / 2
+        if d.U >= width:
+            u = f" {unit}" if unit else ""
+            out.append(
+                f"tolerance {d.parameter} = {d.upper:g}{u} is not larger than its expanded "
+                f"uncertainty U = {format_uncertainty(d.U)}{u}: conformance can never be proven "
+                "(ISO 14253-1:2017 §5.2: the tolerance reduced by U leaves no acceptance zone); "
+                "declare the assumed uncertainty inputs or use a better set-up to lower U"
+            )
+    return out
 
 
 def decide_all(

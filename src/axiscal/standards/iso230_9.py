@@ -122,6 +122,8 @@ SCATTER_PARAMETERS = ("R", "R_up", "R_down", "B", "B_mean")
 _ALL = DISTANCE_PARAMETERS + SCATTER_PARAMETERS
 _SQ3 = math.sqrt(3.0)
 _ANNEX = "ISO 230-2:2014 Annex A"
+#: How a user sets an input (job or configuration file, or the commands' ``--uncertainty``).
+SET_WITH = "[uncertainty] {key} in the job or configuration file, or --uncertainty {key}=VALUE"
 
 
 @dataclass(frozen=True)
@@ -541,7 +543,7 @@ def chain_budget(
 
 def positioning_budget(
     dataset, result, table: Mapping[str, Any] | None = None, k: float = COVERAGE_FACTOR,
-    set_with: str = "[uncertainty] {key}",
+    set_with: str = SET_WITH,
 ) -> UncertaintyBudget:
     """The Annex A budget of an evaluated ISO 230-2 test, linear or rotary, with its inputs.
 

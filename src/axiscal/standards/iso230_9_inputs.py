@@ -277,7 +277,8 @@ _LINEAR = {
                          "Renishaw, TONiC FS encoder system with RTLC20 linear scale: accurate "
                          "to ±5 µm/m; use your encoder's data sheet or calibration"),
     "resolution": ("resolution of the reading", "µm",
-                   "last digit of a laser interferometer's reading (ISO 230-2:2014 Annex A.2)"),
+                   "1 nm, the last digit of a laser interferometer's or an encoder's reading "
+                   "(axiscal's rule; ISO 230-2:2014 Annex A.2 names the effect)"),
     "beam_offset": ("beam offset over the travel", "mm", _HP),
     "expansion_coefficient": ("expansion coefficient α of the machine's scale", "1/K",
                               "steel, 11.5 µm/(m·K) (ISO/TR 16015:2003, table of materials)"),
@@ -369,7 +370,7 @@ def resolve_linear(table: Mapping[str, Any] | None, dataset=None,
         The inputs, their records (assumed ones marked), and the names of missing inputs.
     """
     kw = _known_keys(LinearInputs, table or {})
-    given = {k: "declared in the [uncertainty] inputs" for k in kw}
+    given = {k: "declared ([uncertainty] table or --uncertainty)" for k in kw}
     if dataset is not None:
         env = dataset.metadata.environment
         if "expansion_coefficient" not in kw and env.expansion_coefficient is not None:
@@ -397,7 +398,7 @@ def resolve_rotary(table: Mapping[str, Any] | None, set_with: str = "[uncertaint
     """As :func:`resolve_linear` for a rotary budget (a rotary calibrator as reference)."""
     kw = _known_keys(RotaryInputs, table or {})
     inputs = RotaryInputs(**kw)
-    given = {k: "declared in the [uncertainty] inputs" for k in kw}
+    given = {k: "declared ([uncertainty] table or --uncertainty)" for k in kw}
     skip = {"e_ve_source"} if inputs.e_ve is None else set()
     rows = _records(inputs, _ROTARY, given, skip, set_with)
     return inputs, rows, ("e_ve",) if inputs.e_ve is None else ()

@@ -1,0 +1,177 @@
+"""Every assumed input of an uncertainty budget in the open: ``axiscal iso230-2`` on a real PSI/ESS
+ecmc file, the demo's test, the tolerance that can never be proven, U never shown as zero.
+
+The ecmc file ``tests/data/ecmc/sls_fat_sat_ISO230.dat`` is an ISO 230-2 input file written by
+ecmc's data-collection scripts at PSI (targets -10 … 10.48 mm, so a 20.48 mm travel, 5 cycles;
+reference PV ``sls-sioc-ecat01:m0s001-Enc01-PosAct``, an encoder's actual position).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from axiscal.cli import app
+
+ECMC = Path(__file__).resolve().parents[1] / "data" / "ecmc" / "sls_fat_sat_ISO230.dat"
+L_MM = 10.48 - (-10.0)      # the file's travel, first to last TGT_DATA
+SQ3 = math.sqrt(3)
+
+
+@pytest.fixture(autouse=True)
+def _no_user_config(tmp_path, monkeypatch):
+    monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "absent.toml"))
+    monkeypatch.setenv("COLUMNS", "160")
+
+
+def _json(*args):
+    r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--json", *args])
+    assert r.exit_code in (0, 1), r.output
+    return json.loads(r.stdout)
+
+
+def _thermal_u2(L_um: float) -> float:
+    """Σu² of the three temperature contributors with every default (ISO 230-2:2014 Annex A.4):
+    α = 11.5 µm/(m·K) ± 10 %, temperature not stated so |T − 20 °C| = 3 K (shop 17-23 °C),
+    sensor ± 0.1 K, sensor place ± 0.2 K, each rectangular (u = a/√3)."""
+    alpha = 11.5e-6
+    return ((0.1 * alpha * L_um * 3 / SQ3) ** 2 + (0.1 * alpha * L_um / SQ3) ** 2
+            + (0.2 * alpha * L_um / SQ3) ** 2)
+
+
+def test_ecmc_reference_is_the_encoder_the_file_names():
+    """REF_PV ``…-Enc01-PosAct`` makes the reference an encoder, shown as taken from the file:
+    its ±5 µm/m scale accuracy replaces the laser's ppm, there is no beam to misalign, and U(A)
+    is the root sum of squares computed here by hand."""
+    d = _json()
+    b = d["uncertainty_budget"]
+    ref = b["inputs"]["reference"]
+    assert ref["value"] == "encoder" and ref["assumed"] is False
+    assert "Enc01-PosAct" in ref["rule"] and "data file" in ref["rule"]
+    assert "beam_offset" not in b["inputs"] and "laser_accuracy_ppm" not in b["inputs"]
+    enc = b["inputs"]["encoder_accuracy"]
+    assert (enc["value"], enc["unit"], enc["assumed"]) == (5.0, "µm/m", True)
+    names = [c["name"] for c in b["contributors"]]
+    assert "u_MISALIGNMENT" not in names and "u_EVE" not in names
+    u2 = (5.0 * L_MM * 1e-3 / SQ3) ** 2 + (0.001 / (2 * SQ3)) ** 2 + _thermal_u2(L_MM * 1e3)
+    assert d["uncertainty"]["A"] == pytest.approx(2 * math.sqrt(u2), rel=1e-9)
+
+
+def test_ecmc_as_laser_states_the_assumed_beam_offset():
+    """Declared a laser test, the budget shows its beam offset as assumed, with the rule it
+    comes from (HP 5528A guide: 0.25 mm perceptible return-dot motion, d = 0.125 mm), in the
+    terminal and in --json."""
+    d = _json("--uncertainty", "reference=laser")
+    beam = d["uncertainty_budget"]["inputs"]["beam_offset"]
+    assert beam["value"] == 0.125 and beam["unit"] == "mm" and beam["assumed"] is True
+    assert "5528A" in beam["rule"] and "--uncertainty beam_offset=" in beam["set_with"]
+    assert "beam_offset" in d["uncertainty_budget"]["assumed"]
+    r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--uncertainty", "reference=laser"])
+    line = next(ln for ln in r.stdout.splitlines() if "beam offset over the travel" in ln)
+    assert "beam_offset" in line and "0.125 mm" in line and "assumed" in line
+
+
+def test_ecmc_given_beam_offset_changes_U_as_the_budget_predicts():
+    """With the offset given, only the cosine-error contributor changes: e = d²/(2L) over
+    L = 20.48 mm, u = e/(2√3) (ISO 230-2:2014 Annex A.3). U(A) from 0.125 to 0.5 mm computed
+    here from the contributors' models, independently of the budget's code."""
+    L_um = L_MM * 1e3
+    u_dev = 0.5e-6 * L_um / 2          # 0.5 ppm at k = 2
+    u_res = 0.001 / (2 * SQ3)
+
+    def U(d_mm):
+        e = (d_mm * 1e3) ** 2 / (2 * L_um)
+        return 2 * math.sqrt(u_dev**2 + u_res**2 + (e / (2 * SQ3)) ** 2 + _thermal_u2(L_um))
+
+    small = _json("--uncertainty", "reference=laser")
+    big = _json("--uncertainty", "reference=laser", "--uncertainty", "beam_offset=0.5")
+    assert small["uncertainty"]["A"] == pytest.approx(U(0.125), rel=1e-9)
+    assert big["uncertainty"]["A"] == pytest.approx(U(0.5), rel=1e-9)
+    assert big["uncertainty"]["A"] == pytest.approx(3.525, abs=1e-3)   # the issue's 3.52 µm
+    assert big["uncertainty_display"]["A"] == "3.6"
+    assert big["uncertainty_budget"]["inputs"]["beam_offset"]["assumed"] is False
+
+
+def test_tolerance_smaller_than_U_is_said_at_once():
+    """--tolerance A=1 with U(A) = 3.6 µm can never be proven (ISO 14253-1:2017 §5.2): one
+    warning naming the parameter, T and U, in --json "warnings" and on the terminal; the
+    encoder budget of the same file (U(A) = 0.16 µm) gives no such warning."""
+    args = ["--uncertainty", "reference=laser", "--uncertainty", "beam_offset=0.5",
+            "--tolerance", "A=1"]
+    d = _json(*args)
+    warn = [w for w in d["warnings"] if w.startswith("tolerance A")]
+    assert len(warn) == 1 and "A = 1 µm" in warn[0] and "U = 3.6 µm" in warn[0]
+    assert "never be proven" in warn[0]
+    r = CliRunner().invoke(app, ["iso230-2", str(ECMC), *args])
+    assert r.exit_code == 1
+    assert sum("warning: tolerance A = 1 µm" in ln for ln in r.stdout.splitlines()) == 1
+    ok = _json("--tolerance", "A=1")
+    assert ok["uncertainty_display"]["A"] == "0.16"
+    assert not any(w.startswith("tolerance") for w in ok["warnings"])
+
+
+def test_missing_E_VE_is_named_and_left_out():
+    """No drift check, no declared E_VE: the budget says so (missing input, a note) and U(R) is
+    the reading's alone: 2 · 0.001/(2√3) µm, shown rounded up to two significant digits."""
+    d = _json()
+    b = d["uncertainty_budget"]
+    assert b["missing_inputs"] == ["e_ve"] and b["inputs"]["e_ve"]["value"] is None
+    assert any("E_VE not given" in n and "drift check" in n for n in b["notes"])
+    assert d["uncertainty"]["R"] == pytest.approx(0.001 / SQ3, rel=1e-12)
+    assert d["uncertainty_display"]["R"] == "0.00058"
+    declared = _json("--uncertainty", "e_ve=0.3")
+    assert declared["uncertainty_budget"]["missing_inputs"] == []
+    assert declared["uncertainty"]["R"] == pytest.approx(
+        2 * math.hypot(0.001 / (2 * SQ3), 0.3 / (2 * SQ3)), rel=1e-12)
+
+
+def test_runs_stated():
+    """R and B rest on 5 runs: the relative standard uncertainty of s, 1/√(2·4) = 35 %
+    (JCGM 100:2008 Annex E.4.3), is stated."""
+    notes = _json()["uncertainty_budget"]["notes"]
+    assert any("5 runs per direction" in n and "35 %" in n for n in notes)
+
+
+@pytest.mark.parametrize("item, message", [
+    ("beam_offset", "write NAME=VALUE"),
+    ("beam_ofset=0.1", "unknown key"),
+    ("beam_offset=-1", "must be a finite number >= 0"),
+    ("reference=tracker", "use laser or encoder"),
+])
+def test_bad_uncertainty_option_is_one_line(item, message):
+    r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--uncertainty", item])
+    assert r.exit_code == 2
+    assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert "Traceback" not in r.output
+
+
+def test_demo_U_of_R_is_not_zero(tmp_path):
+    """The demo's linear test (src/axiscal/data/demo_linear.toml, seed 1): U(R) is the budget's
+    value rounded up to two significant digits, 0.00058 µm, never "0.00" (JCGM 100:2008
+    §7.2.6); its raw value is kept in --json."""
+    import tomllib
+    from importlib import resources
+
+    from axiscal.io.csv import format_positioning_csv
+    from axiscal.procedures.positioning import simulate_from_config
+    from axiscal.standards.iso230_2 import evaluate
+    from axiscal.standards.iso230_9 import positioning_budget, round_up
+
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_linear.toml").read_text())
+    ds = simulate_from_config(cfg, seed=1).dataset
+    budget = positioning_budget(ds, evaluate(ds))
+    assert budget.U("R") > 0 and round_up(budget.U("R")) == 0.00058
+    path = tmp_path / "linear_data.csv"
+    path.write_text(format_positioning_csv(ds))
+    r = CliRunner().invoke(app, ["iso230-2", str(path), "--json", "--tolerance", "R=5"])
+    d = json.loads(r.stdout)
+    assert d["uncertainty"]["R"] == pytest.approx(budget.U("R"), rel=1e-12)
+    assert d["uncertainty_display"]["R"] == "0.00058"
+    assert d["acceptance"][0]["U_display"] == "0.00058"
+    r = CliRunner().invoke(app, ["iso230-2", str(path), "--tolerance", "R=5"])
+    row = next(ln for ln in r.stdout.splitlines() if ln.startswith("│ R ") and "FAIL" in ln)
+    assert "0.00058" in row and "0.00 " not in row
