@@ -80,7 +80,7 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, FileInput, safe_axis_name, check_points, check_spacing, check_travel, correction_factor,
-    file_unit, require_equidistant)
+    file_unit, parse_number, require_equidistant)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -257,18 +257,22 @@ def inputs(text: str, source: str = "<text>", axis_kind=None, axis_number: int |
 # -- what the tape says and what is assumed ------------------------------------------------
 def _inputs(text, params, source, axis_kind, detection_unit, reference_position, unit):
     head, ref = _HEAD.search(text), _REF.search(text)
+    if head and ref and head.group(3) != ref.group(2):
+        raise DataFormatError(f"the tape's comments disagree: counts in {head.group(3)}, the "
+                              f"reference position in {ref.group(2)}", source)
     stated = (head.group(3).lower() if head else None) or (ref.group(2).lower() if ref else None)
     kind = _kind(axis_kind, stated, params, source)
     rotary = kind.value == AxisKind.ROTARY.value
     u = _unit(unit, None if stated == "deg" else stated, rotary, source)
-    du = _stated(detection_unit, None if head is None else float(head.group(2)),
+    du = _stated(detection_unit, None if head is None else parse_number(head.group(2), source, None),
                  "detection_unit", 0.001, u.value if not rotary else "deg", source,
                  "the tape does not record the detection unit (0.001 on an IS-B machine)")
     if not (math.isfinite(du.value) and du.value > 0):
         raise InputError(f"{NAME}: detection_unit = {du.value!r} must be a positive number "
                          "(mm, inch or deg per count)")
     per = 1.0 if rotary else file_unit(u.value, None, NAME)
-    rp = _stated(reference_position, None if ref is None else float(ref.group(1)) * per,
+    rp = _stated(reference_position,
+                 None if ref is None else parse_number(ref.group(1), source, None) * per,
                  "reference_position", 0.0, "deg" if rotary else "mm", source,
                  "a Fanuc tape does not record where the reference position (point 3620) lies "
                  "in the coordinates of the measurement")
@@ -282,6 +286,8 @@ def _stated(given, in_file, name, default, unit, source, why) -> FileInput:
             value = float(given)
         except (TypeError, ValueError):
             raise InputError(f"{NAME}: {name} = {given!r} must be a number") from None
+        if not math.isfinite(value):
+            raise InputError(f"{NAME}: {name} = {given!r} must be a finite number")
         if in_file is not None and not math.isclose(value, in_file, rel_tol=1e-9, abs_tol=1e-9):
             raise DataFormatError(f"the tape's comment states {name} = {in_file:g} {unit}, not "
                                   f"{value:g}", source)
