@@ -9,12 +9,15 @@ Three uses:
 * ``axiscal compensate --verify CONFIG.toml`` runs measure → compensate → re-measure on the
   simulated machine of the configuration and prints A, E, M, R, B before and after.
 * ``axiscal compensate --read TABLE --controller NAME [DATA_OR_RESULT]`` reads a table back and,
-  with a data file or result, compares it with the deviations it should correct.
+  with a data file or result, compares it with the deviations it should correct; with
+  ``--to NAME [--out FILE]`` it writes the table read in another controller's format (a Renishaw
+  ``.ren`` export converted to a Siemens, Fanuc, Heidenhain or LinuxCNC table).
 * ``axiscal compensate --squareness 40 --axes XZ --aligned Z --start -200 --end 200 --spacing 50
   --controller siemens-840d`` writes the cross-axis table of Chapman, Calibration of machine squareness Appendix II (corrections on
   the axis aligned to the spindle, driven by the other axis).
 
-Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``. Format options
+Controllers: ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv``, ``renishaw-ren``
+(Renishaw's ``.ren`` export). Format options
 (``machine_axis``, ``detection_unit``, ``file_type``, ``reference_position`` …) go through
 ``--option KEY=VALUE``.
 
@@ -62,8 +65,8 @@ __all__ = ["register"]
 
 def compensate(
     ctx: typer.Context,
-    source: Optional[Path] = typer.Argument(None, help="Positioning data (CSV, JSON, ecmc) or an 'axiscal iso230-2 --json' result."),
-    controller: Optional[str] = typer.Option(None, "--controller", "-c", help="siemens-840d, fanuc, heidenhain, linuxcnc or csv (default csv; with --verify the configuration's)."),
+    source: Optional[Path] = typer.Argument(None, help="Positioning data (CSV, JSON, Renishaw .rtl/.rta, ecmc) or an 'axiscal iso230-2 --json' result."),
+    controller: Optional[str] = typer.Option(None, "--controller", "-c", help="siemens-840d, fanuc, heidenhain, linuxcnc, csv or renishaw-ren (default csv; with --verify the configuration's)."),
     spacing: Optional[float] = typer.Option(None, "--spacing", help="Distance between table points, mm or deg (default: the mean target spacing)."),
     bidirectional: bool = typer.Option(False, "--bidirectional", help="Separate tables for the + and - directions (or one table plus a backlash value where the format has one)."),
     resolution: float = typer.Option(0.1, "--resolution", help="Round corrections to this step, um or arcsec (0: no rounding)."),
@@ -77,6 +80,7 @@ def compensate(
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
+    to: Optional[str] = typer.Option(None, "--to", help="With --read: write the table read in this controller's format (siemens-840d, fanuc, heidenhain, linuxcnc, csv, renishaw-ren), to --out or the terminal."),
     ini: Optional[Path] = typer.Option(None, "--ini", help="With --read of a LinuxCNC file: the INI whose [JOINT_n] COMP_FILE names it (default: the *.ini beside it); its [TRAJ] LINEAR_UNITS or ANGULAR_UNITS, [JOINT_n] UNITS, TYPE and COMP_FILE_TYPE are used (LinuxCNC, INI Configuration)."),
     squareness: Optional[float] = typer.Option(None, "--squareness", help="Write a cross-axis table for this squareness, µm/m (Chapman, Calibration of machine squareness sign: angle between + axes minus 90°)."),
     axes: str = typer.Option("XY", "--axes", help="The two axes of --squareness, e.g. XY or XZ."),
@@ -106,7 +110,7 @@ def compensate(
     if verify is not None:
         return _verify(verify, seed, controller, spacing, opts, out, json_out, plot, report)
     if read is not None:
-        return _read(read, controller, source, opts, json_out, ini)
+        return _read(read, controller, source, opts, json_out, ini, to=to, out=out)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
                            resolution, travel, opts, out, json_out)
@@ -170,7 +174,7 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
     _render_loop(r)
 
 
-def _read(path: Path, controller, source, opts, json_out, ini=None) -> None:
+def _read(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None) -> None:
     import numpy as np
 
     from axiscal.compensation.controllers import controller as get_controller
@@ -194,6 +198,8 @@ def _read(path: Path, controller, source, opts, json_out, ini=None) -> None:
     opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
     opts, ini_inputs = _ini_options(mod, path, text, ini, opts)
     table = mod.parse(text, source=str(path), **opts)
+    if to is not None or out is not None:
+        return _convert_table(table, to, out, source, json_out)
     inputs = ini_inputs + _file_inputs(mod, text, path, source, opts)
     jumps = mod.trim_jumps(table) if hasattr(mod, "trim_jumps") else ()
     d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table),
@@ -252,6 +258,19 @@ def _file_inputs(mod, text, path, source, opts) -> tuple:
     return tuple(inputs)
 
 
+def _convert_table(table, to, out, source, json_out) -> None:
+    """--read FILE --to NAME: the table read, written in another controller's format."""
+    from axiscal.compensation.controllers import controller as get_controller
+    from axiscal.errors import InputError
+
+    if to is None or source is not None:
+        raise InputError("--read converts with --to NAME [--out FILE] or compares with SOURCE; "
+                         "give one of them" if to is not None else "--out with --read needs --to")
+    cf = get_controller(to).write(table)
+    _write_files(cf, out)
+    _render_table(cf, out, json_out)
+
+
 def _same_units(res, table, source) -> None:
     """A table is compared only with data in its own units (mm/µm against deg/arcsec is nonsense)."""
     from axiscal import units
@@ -305,7 +324,7 @@ _USES = {
               "option", "out", "json_out"}),
     "verify": ("--verify", {"verify", "controller", "spacing", "option", "out", "seed", "plot",
                "report", "json_out"}),
-    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini"}),
+    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini", "to", "out"}),
     "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
                    "start", "end", "resolution", "travel", "option", "out", "json_out"}),
 }

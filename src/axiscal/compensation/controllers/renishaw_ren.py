@@ -99,8 +99,8 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
                      f"{float(np.mean(table.backlash)):+.4g} {table.correction_unit} is not "
                      "carried by the format")
     name = f"{(table.axis or 'axis').upper()}.REN"
-    enable = ["convert to the controller's table (axiscal compensate --read FILE.REN --controller "
-              "renishaw-ren, then write it with --controller NAME)"]
+    enable = ["load it in Renishaw's software, or convert it to a controller's table: axiscal "
+              "compensate --read FILE.REN --to NAME --out FILE"]
     return ControllerFile(NAME, text, name, written, tuple(enable), notes=tuple(notes))
 
 
