@@ -175,3 +175,25 @@ def test_demo_U_of_R_is_not_zero(tmp_path):
     r = CliRunner().invoke(app, ["iso230-2", str(path), "--tolerance", "R=5"])
     row = next(ln for ln in r.stdout.splitlines() if ln.startswith("│ R ") and "FAIL" in ln)
     assert "0.00058" in row and "0.00 " not in row
+
+
+def test_evaluate_shows_the_same_budget_and_warning(tmp_path):
+    """``axiscal evaluate -s iso230-2:2014`` decides with the same budget as ``iso230-2`` (the
+    same --uncertainty inputs), says the unprovable tolerance, shows the inputs, and its report
+    carries the uncertainty section with every input and the warning."""
+    args = ["evaluate", str(ECMC), "-s", "iso230-2:2014", "--tolerance", "A=1",
+            "--uncertainty", "reference=laser", "--uncertainty", "beam_offset=0.5"]
+    r = CliRunner().invoke(app, [*args, "--json"])
+    d = json.loads(r.stdout)
+    same = _json("--uncertainty", "reference=laser", "--uncertainty", "beam_offset=0.5")
+    assert d["acceptance"][0]["U"] == pytest.approx(same["uncertainty"]["A"], rel=1e-12)
+    assert d["acceptance"][0]["U_display"] == "3.6"
+    assert len(d["warnings"]) == 1 and "tolerance A = 1 µm" in d["warnings"][0]
+    assert d["uncertainty_budget"]["inputs"]["beam_offset"]["assumed"] is False
+    r = CliRunner().invoke(app, [*args, "--report", str(tmp_path / "r.html")])
+    assert r.exit_code == 1 and "warning: tolerance A = 1 µm" in r.stdout
+    assert "beam offset over the travel" in r.stdout
+    page = (tmp_path / "r.html").read_text()
+    assert "Measurement uncertainty" in page and "tolerance A = 1 µm" in page
+    assert "beam offset over the travel" in page and "5528A" not in page   # declared, no rule
+    assert "environmental variation error E_VE" in page and "missing: left out of U" in page

@@ -5,7 +5,9 @@ JSON output (``--json``), stable: ``unit``, ``target_unit``, ``standards`` (one 
 ``description``; empty if not evaluated), ``not_evaluated`` (name -> why axiscal does not evaluate
 that parameter of a standard evaluated in part), ``warnings`` (list of text), ``reason`` (why the
 standard was not evaluated at all, else null)). With ``--tolerance``: ``acceptance``,
-``decision_rule`` and ``accepted`` as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014).
+``decision_rule`` and ``accepted`` as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014;
+``U_display`` the same rounded up to two significant digits), ``warnings`` (a tolerance not larger
+than its U) and, for ISO 230-2:2014, ``uncertainty_budget`` as in ``axiscal iso230-2``.
 
 Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
 error (including a single ``--standard`` whose definitions were not publicly available to axiscal).
@@ -36,18 +38,20 @@ def evaluate(
     report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report: every parameter of the chosen standard(s) with its source, what is not evaluated and why, the acceptance, the per-target figure."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
     rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
+    uncertainty: List[str] = typer.Option([], "--uncertainty", help="With -s iso230-2:2014: an input of its uncertainty budget as NAME=VALUE, e.g. --uncertainty e_ve=0.3 (as 'axiscal iso230-2'; every input not given is shown as assumed)."),
 ) -> None:
     """Evaluate a positioning test by a named standard, or by all of them side by side.
 
     Example: axiscal evaluate x.csv --standard all
     """
-    from axiscal.cli.iso230_2 import parse_tolerances, verdicts_json
+    from axiscal.cli.iso230_2 import parse_tolerances, verdicts_json, with_uncertainty_options
     from axiscal.errors import InputError
     from axiscal.io import read_positioning
     from axiscal.standards import positioning_standards as ps
 
     key = standard.strip().lower()
     tolerances = parse_tolerances(tolerance)
+    table = with_uncertainty_options({}, uncertainty).get("uncertainty")
     if key == "all" and tolerances:
         raise InputError("--tolerance needs one --standard (parameter names differ between "
                          "standards)")
@@ -63,9 +67,11 @@ def evaluate(
         results = ps.evaluate_all(ds)
     else:
         results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
-    verdicts = ps.check_tolerances(key, ds, results[0][1], tolerances, rule) if tolerances else ()
+    verdicts = (ps.check_tolerances(key, ds, results[0][1], tolerances, rule, table)
+                if tolerances else ())
+    budget = _budget(ds, verdicts, table)
     if key == "iso230-2:2014":
-        _iso_outputs(ds, plot, report, verdicts)
+        _iso_outputs(ds, plot, report, verdicts, budget or _budget_of(ds, table))
     elif plot is not None:
         from axiscal.report.plots import save_figure, standard_figure, standards_figure
 
@@ -84,10 +90,15 @@ def evaluate(
         d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
              "standards": [_entry_json(std, res) for std, res in results]}
         if verdicts:
+            from axiscal.standards.iso14253_1 import unprovable
+
             d.update(verdicts_json(verdicts))
+            d["warnings"] = unprovable(verdicts, _sym(ds.deviation_unit))
+        if budget is not None:
+            d["uncertainty_budget"] = budget.to_json([v.parameter for v in verdicts])
         print_json(d)
     else:
-        _render(results, ds, str(file), verdicts)
+        _render(results, ds, str(file), verdicts, budget)
     for p, what in ((plot, "plot"), (report, "report")):
         if p is not None:
             note(f"wrote {what} {p}")
@@ -95,7 +106,28 @@ def evaluate(
         raise typer.Exit(1)
 
 
-def _iso_outputs(ds, plot, report, verdicts) -> None:
+def _budget(ds, verdicts, table=None):
+    """The ISO 230-2:2014 Annex A budget behind the verdicts' U (None when no verdict has one:
+    the other standards' parameters have no published budget)."""
+    import math
+
+    if not any(not math.isnan(v.U) for v in verdicts):
+        return None
+    return _budget_of(ds, table)
+
+
+def _budget_of(ds, table):
+    from axiscal.standards.iso230_2 import evaluate as iso_evaluate
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    return positioning_budget(ds, iso_evaluate(ds), table)
+
+
+def _sym(unit: str) -> str:
+    return {"um": "µm"}.get(unit, unit)
+
+
+def _iso_outputs(ds, plot, report, verdicts, budget) -> None:
     from axiscal.standards.iso230_2 import evaluate as iso_evaluate
 
     result = iso_evaluate(ds)
@@ -104,9 +136,12 @@ def _iso_outputs(ds, plot, report, verdicts) -> None:
 
         save_iso230_2_plot(result, ds, plot)
     if report is not None:
-        from axiscal.report.html import write_positioning_report
+        from axiscal.report.html import positioning_report
+        from axiscal.report.uncertainty import add_uncertainty
 
-        write_positioning_report(report, ds, result, verdicts=verdicts)
+        rep = positioning_report(ds, result, verdicts=verdicts)
+        add_uncertainty(rep, budget, verdicts)
+        rep.write(report)
 
 
 def _entry_json(std, res) -> dict:
@@ -120,7 +155,7 @@ def _entry_json(std, res) -> dict:
             "reason": None if evaluated else res}
 
 
-def _render(results, ds, title, verdicts) -> None:
+def _render(results, ds, title, verdicts, budget=None) -> None:
     import math
 
     from axiscal.standards import positioning_standards as ps
@@ -155,12 +190,22 @@ def _render(results, ds, title, verdicts) -> None:
         if std.available:
             con.print(f"not evaluated ({escape(std.title)}): {escape(reason)}")
     if verdicts:
+        from axiscal.standards.iso14253_1 import unprovable
+        from axiscal.standards.iso230_9 import format_uncertainty
+
         con.print(f"acceptance ({verdicts[0].rule.value} decision rule):")
         for v in verdicts:
             state = "n/a" if v.outcome is None else v.outcome.value
-            u = "uncertainty not estimated" if math.isnan(v.U) else f"U = {v.U:.2f}"
+            u = ("uncertainty not estimated" if math.isnan(v.U) else
+                 f"U = {format_uncertainty(v.U)}")
             value = "n/a" if v.value is None else f"{v.value:.2f}"
             con.print(f"  {escape(v.parameter)}: {value} ({u}), tolerance {v.upper:g}: {state}")
+        for w in unprovable(verdicts, sym):
+            con.print(f"[bold red]warning:[/bold red] {escape(w)}")
+    if budget is not None:
+        from axiscal.cli.iso230_2 import render_uncertainty
+
+        render_uncertainty(con, budget)
     for std, res in results:
         if not isinstance(res, str):
             for w in res.warnings:

@@ -225,7 +225,7 @@ def evaluate_all(dataset: PositioningDataset) -> tuple[tuple[Standard, StandardR
 
 
 def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResult,
-                     tolerances: dict[str, float], rule: str | None = None):
+                     tolerances: dict[str, float], rule: str | None = None, uncertainty=None):
     """Decide acceptance tolerances of any standard's parameters (ISO 14253-1:2017 decisions).
 
     Parameters
@@ -242,6 +242,8 @@ def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResu
         :func:`axiscal.standards.iso230_9.positioning_budget`. No published budget gives U for the
         other standards' parameters, so for them the rule is simple acceptance (ILAC-G8 §4.2.1)
         and U is reported as not estimated (NaN); asking for ``iso14253-1`` there is refused.
+    uncertainty : mapping, optional
+        The ``[uncertainty]`` inputs of that budget (absent ones are assumed and shown so).
 
     Returns
     -------
@@ -264,7 +266,7 @@ def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResu
         if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
             raise InputError(f"tolerance {name} = {tol!r} must be a number >= 0")
     if key == "iso230-2:2014":
-        budget = iso230_9.positioning_budget(dataset, iso230_2.evaluate(dataset))
+        budget = iso230_9.positioning_budget(dataset, iso230_2.evaluate(dataset), uncertainty)
         return decide_all(values, budget, tolerances, _rule(rule or "iso14253-1"))
     r = _rule(rule or "simple")
     if r is not Rule.SIMPLE:
