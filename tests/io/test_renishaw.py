@@ -5,7 +5,7 @@ show them: CRLF, ``HEADER::`` … ``EOF::``, targets five a line (a C# writer an
 run-target-deviation lines with odd runs over targets 1…m and even runs back over m…1, and an
 ENVIRONMENT block whose lines are the ones quoted from a real file in Paolico/AxisCorection
 (``RtlEnvironment.java``, commit b06d718c). No real public .rtl/.rta file was found (see
-docs/formats.md).
+docs/renishaw.md).
 """
 
 import math
