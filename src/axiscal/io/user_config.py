@@ -59,15 +59,21 @@ certificate = "..."
 due = "YYYY-MM-DD"
 
 # ISO 230-2:2014 Annex A inputs (see axiscal.standards.iso230_9)
+# An input left out is assumed by a documented rule and shown as assumed beside U; give the
+# values of your own instruments and set-up (the numbers below are the assumed defaults).
 [uncertainty]
-laser_accuracy_ppm = 0.5              # from the laser's calibration certificate, expanded ...
-laser_accuracy_k = 2.0                # ... with this coverage factor
-resolution = 0.001                    # µm
-beam_offset = 0.5                     # mm, lateral beam offset over the travel
-temperature_halfwidth = 0.1           # K, material sensor accuracy
-sensor_position_halfwidth = 0.2       # K, sensor place vs scale
-# expansion_coefficient_halfwidth = 1e-6   # 1/K (default ±10 % of α)
-# e_ve = 1.0                          # µm, environmental variation error ...
+# reference = "laser"                 # or "encoder" (taken from the data file where it says so)
+# laser_accuracy_ppm = 0.5            # from the laser's calibration certificate, expanded ...
+# laser_accuracy_k = 2.0              # ... with this coverage factor
+# encoder_accuracy = 5.0              # µm/m, ± bound of an encoder reference
+# resolution = 0.001                  # µm
+# beam_offset = 0.125                 # mm, lateral beam offset over the travel as aligned
+# shop_temperature_min = 17.0         # °C, the shop's range when the material temperature ...
+# shop_temperature_max = 23.0         # ... is not stated in the data file
+# temperature_halfwidth = 0.1         # K, material sensor accuracy
+# sensor_position_halfwidth = 0.2     # K, sensor place vs scale
+# expansion_coefficient_halfwidth = 1.15e-6   # 1/K (default ±10 % of α)
+# e_ve = 1.0                          # µm, environmental variation error: never assumed ...
 # e_ve_source = "drift check"         # ... measured ("drift check") or "declared"
 """
 
