@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report.labels import fmt
 from axiscal.report.squareness_plots import _nice, _pyplot, _save
 
 __all__ = ["diagnosis_figure", "save_diagnosis_plot", "write_diagnosis_report"]
@@ -38,20 +39,46 @@ def write_diagnosis_report(path, runs, diagnosis, title: str = "Ballbar diagnosi
     """An HTML report: summary, the figure, the ranked table with advice, warnings."""
     from axiscal.report.html import Report
 
+    from axiscal.report.labels import label
+
     c = diagnosis.circular
+    axes = c.squareness.axes
     rep = Report(title, "ISO 230-4:2005 circular test; diagnosis after Renishaw, Calibration of "
                  "machine squareness, Method 4",
-                 {"radius": f"{c.radius * 1e3:g} mm", "arc": f"{c.arc_deg:.0f}°",
-                  "feed": "—" if diagnosis.feed is None else f"{diagnosis.feed * 6e4:g} mm/min"})
+                 {"Radius": f"{fmt(c.radius * 1e3, 'mm')} mm", "Arc": f"{fmt(c.arc_deg, '°')}°",
+                  "Feed": "—" if diagnosis.feed is None else
+                  f"{fmt(diagnosis.feed * 6e4, 'mm/min')} mm/min"})
     rep.add_figure(diagnosis_figure(runs, diagnosis, title))
-    rep.add_table(["rank", "term", "value", "unit", "effect µm", "share %", "advice"],
-                  [(i, t.key, t.value, t.unit, t.ptp * 1e6, t.share * 100, t.advice)
-                   for i, t in enumerate(diagnosis.terms, 1)], caption="Ranked diagnosis")
-    rep.add_key_values({"G ccw µm": _um(c.G_ccw), "G cw µm": _um(c.G_cw), "H µm": _um(c.H),
-                        "residual rms µm": diagnosis.residual_rms * 1e6},
-                       caption="ISO 230-4:2005 §3 values")
+    rep.add_table(["Rank", "Term", "Value", "Unit", "Effect [µm]", "Share of G [%]", "Advice"],
+                  [(i, _term_label(t, axes), fmt(t.value, t.unit), t.unit,
+                    fmt(t.ptp * 1e6, "µm"), fmt(t.share * 100, "%"), t.advice)
+                   for i, t in enumerate(diagnosis.terms, 1)],
+                  caption="Ranked diagnosis. Effect: the term's peak-to-valley on the radial "
+                  "deviation; share: effect / G. The terms are not additive, so a share can exceed "
+                  "100 %.")
+    rep.add_table(["", ""], [[label(k), fmt(_um(v), "µm")] for k, v in
+                             (("G_ccw_um", c.G_ccw), ("G_cw_um", c.G_cw), ("H_um", c.H),
+                              ("residual_rms_um", diagnosis.residual_rms))],
+                  caption="ISO 230-4:2005 §3 values", css_class="kv")
+    _add_folded(rep, diagnosis)
     rep.add_warnings(diagnosis.warnings)
     return rep.write(path)
+
+
+def _term_label(term, axes) -> str:
+    """A diagnosed term as people name it (:mod:`axiscal.report.labels`): ``Backlash X``."""
+    from axiscal.report.labels import quantity
+
+    return quantity(term.key, axes=axes)[0]
+
+
+def _add_folded(rep, diagnosis) -> None:
+    """The statements of what the ISO 230-4 fit folds together, where the readings resolve it."""
+    folds = diagnosis.folded_lines()
+    if folds:
+        rep.add_text("The ISO 230-4:2005 fit (squareness circular) cannot separate these terms; "
+                     "what it folds in, against this diagnosis: "
+                     + "; ".join(f.strip() for f in folds) + ".")
 
 
 def _um(v):
@@ -71,7 +98,7 @@ def _polar(ax, runs, d) -> None:
     inner, outer = base - k * g / 2, base + k * g / 2
     ax.fill(np.r_[outer * np.cos(t), inner * np.cos(t[::-1])],
             np.r_[outer * np.sin(t), inner * np.sin(t[::-1])], color="tab:green", alpha=0.12,
-            label=f"band G = {g * 1e6:.2f} µm")
+            label=f"band G = {fmt(g * 1e6, 'µm')} µm")
     for r in runs:
         col = _COLOURS[r.direction]
         a, dv = r.angles, r.deviations            # in measuring order
@@ -95,7 +122,7 @@ def _polar(ax, runs, d) -> None:
     ax.set_xticks([])
     ax.set_yticks([])
     ax.legend(loc="upper right", fontsize=9)
-    ax.set_title(f"R = {c.radius * 1e3:g} mm, {c.arc_deg:.0f}°, G ccw {_fmt(c.G_ccw)}, "
+    ax.set_title(f"R = {fmt(c.radius * 1e3, 'mm')} mm, {fmt(c.arc_deg, '°')}°, G ccw {_fmt(c.G_ccw)}, "
                  f"G cw {_fmt(c.G_cw)}, H {_fmt(c.H)}", fontsize=10)
 
 
@@ -104,13 +131,15 @@ def _bars(ax, d) -> None:
     y = np.arange(len(terms))
     eff = [t.ptp * 1e6 for t in terms]
     ax.barh(y, eff, color=["0.5" if t.key == "residual" else "tab:orange" for t in terms])
-    ax.set_yticks(y, [f"{t.key}  ({t.value:+.2f} {t.unit})" for t in terms], fontsize=9)
+    axes = d.circular.squareness.axes
+    ax.set_yticks(y, [f"{_term_label(t, axes)}  ({fmt(t.value, t.unit)} {t.unit})" for t in terms],
+                  fontsize=9)
     for yi, t in zip(y, terms):
-        ax.text(t.ptp * 1e6, yi, f" {t.share * 100:.0f} %", va="center", fontsize=8)
+        ax.text(t.ptp * 1e6, yi, f" {fmt(t.share * 100, '%')} %", va="center", fontsize=8)
     ax.set_xlabel("effect on the radial deviation, peak-to-valley [µm] (share of G)")
     ax.set_title("Diagnosis, largest first")
     ax.grid(axis="x", alpha=0.3)
 
 
 def _fmt(v):
-    return "—" if v is None else f"{v * 1e6:.2f} µm"
+    return "—" if v is None else f"{fmt(v * 1e6, 'µm')} µm"

@@ -219,13 +219,15 @@ def add_acceptance(rep: Report, decisions, unit_text: str, labels: dict | None =
     """The acceptance table of ISO 14253-1 decisions (:class:`~axiscal.standards.iso14253_1.
     Decision`): measured value, expanded uncertainty U (or "not estimated"), tolerance, outcome,
     with the decision rule in the caption."""
+    from axiscal.standards.iso230_9 import format_uncertainty
+
     labels = labels or {}
     cls = {"PASS": "ok", "FAIL": "bad"}
     rows = []
     for d in decisions:
         state = "n/a" if d.outcome is None else d.outcome.short
         css = cls.get(state, "zone")
-        u = "not estimated" if math.isnan(d.U) else _cell(d.U, 2)
+        u = "not estimated" if math.isnan(d.U) else format_uncertainty(d.U)
         rows.append(f"<tr><td>{_esc(labels.get(d.parameter, d.parameter))}</td>"
                     f"<td>{_cell(d.value, 2)}</td><td>{u}</td><td>{d.upper:g}</td>"
                     f'<td><span class="{css}">{state}</span></td></tr>')
@@ -331,27 +333,64 @@ def _cell(v: Any, digits: int) -> str:
     return _esc(v)
 
 
-def result_rows(result: dict, prefix: str = "") -> list[list[Any]]:
-    """A command's JSON result as ``[name, value]`` rows: every number, text and flag, nested
-    names joined with a dot; a short list of numbers inline, a long one counted (``--json`` holds
-    it whole)."""
-    rows: list[list[Any]] = []
+def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]]:
+    """A command's JSON result as ``[label, value]`` rows of text: each scalar under its label
+    with unit (:func:`axiscal.report.labels.label`) and its unit's decimals; a short list of
+    numbers inline, a long one counted (``--json`` holds it whole). Nested objects and lists of
+    objects are left to :func:`result_tables`."""
+    from axiscal.report.labels import quantity
+
+    rows: list[list[str]] = []
     for key, value in result.items():
-        name = f"{prefix}{key}"
-        if isinstance(value, dict):
-            rows.extend(result_rows(value, f"{name}."))
-        elif isinstance(value, (list, tuple)):
-            if len(value) <= 6 and all(isinstance(v, (int, float, str)) for v in value):
-                rows.append([name, ", ".join(_cell(v, 4) if isinstance(v, float) else str(v)
-                                             for v in value) or "—"])
-            elif len(value) <= 20 and all(isinstance(v, dict) for v in value):
-                for i, v in enumerate(value):
-                    rows.extend(result_rows(v, f"{name}[{i + 1}]."))
-            else:
-                rows.append([name, f"{len(value)} values (in --json)"])
-        elif value is not None:
-            rows.append([name, value])
+        if key == "warnings" or isinstance(value, dict) or _records(value):
+            continue
+        name, u = quantity(key, unit, axes)
+        shown = f"{name} [{u}]" if u else name
+        if value is not None:
+            rows.append([shown, _shown(value, u)])
     return rows
+
+
+def _shown(value, unit: str) -> str:
+    """A result's value as text with its unit's decimals; a short list inline, a long one
+    counted (``--json`` holds it whole)."""
+    from axiscal.report.labels import fmt
+
+    if not isinstance(value, (list, tuple)):
+        return fmt(value, unit)
+    if len(value) > 6:
+        return f"{len(value)} values (in --json)"
+    return ", ".join(fmt(v, unit) for v in value) or "—"
+
+
+def result_tables(result: dict, unit: str = "", axes=("X", "Y")) -> list[tuple[str, list, list]]:
+    """The nested parts of a command's result as (caption, headers, rows) tables: an object as a
+    table of its own, an object of objects or a list of objects as one row per entry."""
+    from axiscal.report.labels import label, quantity, symbol_html
+
+    out = []
+    for key, value in result.items():
+        caption = quantity(key, unit, axes)[0]
+        if isinstance(value, dict) and value and all(isinstance(v, dict) for v in value.values()):
+            value = [{"": quantity(k, unit, axes)[0], **v} for k, v in value.items()]
+        if _records(value):
+            keys = list(dict.fromkeys(k for v in value for k in v))
+            units = {k: quantity(f"{key}.{k}", unit, axes)[1] if k else "" for k in keys}
+            rows = [[symbol_html(_shown(v.get(k), units[k])) if k in ("name", "") else
+                     _esc(_shown(v.get(k), units[k])) for k in keys] for v in value]
+            out.append((caption, [label(f"{key}.{k}", unit, axes) if k else "" for k in keys],
+                        rows))
+        elif isinstance(value, dict):
+            rows = [[_esc(r[0]), _esc(r[1])] for r in result_rows(value, unit, axes)]
+            out.append((caption, ["", ""], rows))
+            out.extend((f"{caption}: {c}", h, r) for c, h, r in result_tables(value, unit, axes))
+    return out
+
+
+def _records(value) -> bool:
+    """A non-empty list of objects (a result that is itself a table)."""
+    return isinstance(value, (list, tuple)) and bool(value) and all(isinstance(v, dict)
+                                                                     for v in value)
 
 
 def write_result_report(path, title: str, result: dict, *, figure=None, caption: str = "",
@@ -368,11 +407,24 @@ def write_result_report(path, title: str, result: dict, *, figure=None, caption:
     rep = Report(title, subtitle=subtitle, metadata=metadata or {}, simulation=simulation)
     if method:
         rep.add_text(method)
-    rep.add_warnings(notes)
+    rep.add_warnings(list(notes) + list(result.get("warnings") or ()))
     if figure is not None:
         rep.add_figure(figure, caption)
     rep.add_heading("Results")
-    rep.add_table(["", ""], result_rows(result), digits=4, css_class="kv")
+    unit = result.get("unit") or result.get("deviation_unit") or ""
+    axes = tuple(result.get("axes") or ("X", "Y"))
+    rep.add_table(["", ""], result_rows(result, unit, axes), css_class="kv")
+    for caption_, headers, rows in result_tables(result, unit, axes):
+        rep.add_html(_html_table(caption_, headers, rows))
     for caption_, headers, rows in tables:  # (caption, headers, rows): a result that is a table
         rep.add_table(headers, rows, caption=caption_, digits=2)
     return rep.write(path)
+
+
+def _html_table(caption: str, headers, rows) -> str:
+    """A table of cells already written as HTML (a key/value table when its headers are empty)."""
+    kv = not any(headers)
+    head = "".join(f"<th>{_esc(h)}</th>" for h in headers)
+    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    return (f'<table class="{"kv" if kv else "records"}"><caption>{_esc(caption)}</caption>'
+            f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report.labels import fmt
+
 __all__ = ["comparison_figure", "save_comparison_plot", "ballbar_figure", "save_ballbar_plot",
            "straightness_figure", "save_straightness_plot", "magnification"]
 
@@ -116,11 +118,11 @@ def straightness_figure(data, result):
     ax.plot(x, fit, "--", color="tab:blue", label=f"{line.method.replace('_', ' ')} line")
     lo, hi = result.residuals.min() * 1e6, result.residuals.max() * 1e6
     ax.fill_between(x, fit + lo, fit + hi, color="tab:blue", alpha=0.08,
-                    label=f"band {result.deviation * 1e6:.3f} µm")
+                    label=f"band {fmt(result.deviation * 1e6, 'µm')} µm")
     ax.set_xlabel(f"position along {data.axis or 'the axis'} [mm]")
     ax.set_ylabel(f"deviation along {data.direction or 'the normal'} [µm]")
-    ax.set_title(f"Straightness {result.deviation * 1e6:.3f} µm, slope "
-                 f"{line.slope * 1e6:+.3f} µm/m ({result.n} readings)")
+    ax.set_title(f"Straightness {fmt(result.deviation * 1e6, 'µm')} µm, slope "
+                 f"{fmt(line.slope * 1e6, 'µm/m', True)} µm/m ({result.n} readings)")
     ax.grid(alpha=0.3)
     ax.legend()
     fig.tight_layout()
@@ -137,13 +139,13 @@ def biaxial_figure(one, two, r, title: str = "Bi-axial squareness"):
         ax.plot(x, y, "o-", color="tab:red", ms=3, lw=1, label="readings")
         ax.plot(x, res.line(data.positions) * 1e6, "--", color="tab:blue",
                 label=f"{res.line.method.replace('_', ' ')} line, slope "
-                      f"{res.line.slope * 1e6:+.2f} µm/m")
+                      f"{fmt(res.line.slope * 1e6, 'µm/m', True)} µm/m")
         ax.set_xlabel(f"position along {data.axis or 'the axis'} [mm]")
         ax.set_ylabel(f"deviation along {data.direction or 'the normal'} [µm]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     sq = r.squareness
-    fig.suptitle(f"{title}: squareness {sq.um_per_m:+.2f} µm/m ({sq.arcsec:+.2f}″), "
+    fig.suptitle(f"{title}: squareness {_sq(sq)}, "
                  f"{sq.angle_note}", fontsize=10.5)
     fig.tight_layout()
     return fig
@@ -162,7 +164,7 @@ def diagonal_figure(d, r, title: str = "Diagonal squareness"):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     sq = r.squareness
-    ax.set_title(f"{title}: squareness {sq.um_per_m:+.2f} µm/m ({sq.arcsec:+.2f}″)")
+    ax.set_title(f"{title}: squareness {_sq(sq)}")
     fig.tight_layout()
     return fig
 
@@ -261,7 +263,7 @@ def _draw_test(ax, machine, r, mag, first: bool) -> None:
     # pull the box a little towards the test's centre so it stays inside the plane
     bx = lx + 0.18 * (xc - lx) if r.method[0] in "TL" else lx
     by = ly + 0.18 * (yc - ly) if r.method[0] in "TL" else ly
-    ax.text(bx * 1e3, by * 1e3, f"{r.squareness.um_per_m:.1f}", ha="center", va="center",
+    ax.text(bx * 1e3, by * 1e3, fmt(r.squareness.um_per_m, "µm/m"), ha="center", va="center",
             fontsize=8, bbox=dict(boxstyle="square,pad=0.2", fc="white", ec="0.3", lw=0.6))
 
 
@@ -283,7 +285,7 @@ def _draw_ballbar_trace(ax, machine, r, style) -> None:
 def _summary_panel(ax, machine, comparison, mag) -> None:
     ax.axis("off")
     lines = [str(machine).replace(", ", "\n"), "",
-             f"truth θ0 = {comparison.truth:+.2f} µm/m", f"plane distortion × {mag:g}",
+             f"truth θ0 = {fmt(comparison.truth, 'µm/m', True)} µm/m", f"plane distortion × {mag:g}",
              "red: test path (one orientation of T / L shown;", "     ballbar trace auto-scaled;",
              "     orange dashed: overlapping ballbar row)",
              "", "averages (µm/m):"]
@@ -293,7 +295,7 @@ def _summary_panel(ax, machine, comparison, mag) -> None:
     for centre, items in groups.items():
         if comparison.scope == "local":
             lines.append(f" at ({centre[0] * 1e3:+.0f}, {centre[1] * 1e3:+.0f}) mm:")
-        pairs = [f"{n.replace(' + ', '+')} {v:+.1f}" for n, v in items]
+        pairs = [f"{n.replace(' + ', '+')} {fmt(v, 'µm/m', True)}" for n, v in items]
         for i in range(0, len(pairs), 2):
             lines.append("   " + "   ".join(pairs[i:i + 2]))
     ax.text(0.0, 1.0, "\n".join(lines), va="top", family="monospace", fontsize=8,
@@ -301,12 +303,17 @@ def _summary_panel(ax, machine, comparison, mag) -> None:
 
 
 def _ballbar_text(result) -> str:
-    f = (lambda v: "—" if v is None else f"{v * 1e6:+.2f} µm")
+    f = (lambda v: "—" if v is None else f"{fmt(v * 1e6, 'µm', True)} µm")
     s = result.squareness
     return "\n".join([
-        f"squareness  {s.um_per_m:+.2f} µm/m ({s.arcsec:+.2f}″)",
+        f"squareness  {_sq(s)}",
         f"            {s.angle_note}",
-        f"scale mismatch {result.scale_mismatch * 1e6:+.2f} µm/m",
+        f"scale mismatch {fmt(result.scale_mismatch * 1e6, 'µm/m', True)} µm/m",
         f"backlash {s.axes[0]} {f(result.backlash_x)}, {s.axes[1]} {f(result.backlash_y)}",
         f"G ccw {f(result.G_ccw)}  G cw {f(result.G_cw)}  H {f(result.H)}",
     ])
+
+
+def _sq(sq) -> str:
+    """A squareness as the plots' titles and boxes show it, with the tables' decimals."""
+    return f"{fmt(sq.um_per_m, 'µm/m', True)} µm/m ({fmt(sq.arcsec, 'arcsec', True)}″)"
