@@ -11,7 +11,7 @@ from fastapi.testclient import TestClient
 from axiscal.datasets import Metadata, PositioningDataset
 from axiscal.io.csv import format_positioning_csv
 from axiscal.standards.iso230_2 import evaluate
-from axiscal.standards.iso230_9 import positioning_budget
+from axiscal.standards.iso230_9 import positioning_budget, round_up
 from axiscal.web.app import create_app
 
 
@@ -33,8 +33,8 @@ def test_test_page_shows_U_and_the_pdf_certificate_downloads(tmp_path, monkeypat
     from axiscal.io import parse_positioning
 
     ds = parse_positioning(_file().decode(), "x.csv")
-    u_e = positioning_budget(ds, evaluate(ds)).U("E")
-    assert "U (k = 2)" in r.text and f"{u_e:.3f}" in r.text
+    u_e = positioning_budget(ds, evaluate(ds)).U("E")   # shown rounded up, 2 significant digits
+    assert "U (k = 2)" in r.text and f'<td class="num">{round_up(u_e):.1f}</td>' in r.text
     pdf = c.get("/tests/1/certificate.pdf")
     assert pdf.status_code == 200 and pdf.content.startswith(b"%PDF")
     from pypdf import PdfReader

@@ -226,7 +226,9 @@ def _budget_json(b) -> dict:
 
 def _budget_line(b) -> str:
     names = ", ".join(c.name for c in b.contributors)
-    return f"U (k = 2) = {b.U('squareness'):.2f} µm/m ({names}; ISO/TR 230-9)"
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    return f"U (k = 2) = {format_uncertainty(b.U('squareness'))} µm/m ({names}; ISO/TR 230-9)"
 
 
 def _check_crossed(one, two, axes) -> None:
