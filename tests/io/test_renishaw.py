@@ -156,6 +156,13 @@ def test_user_text_gives_machine_axis_operator_date_and_notes():
     assert (md.machine, md.axis, md.operator) == ("VMC 800", "Y", "RJ")
     assert md.date == "2016-12-12 10:46"     # USER-TEXT Date empty: ENVIRONMENT's first Date Time
     assert md.notes == "after service | Serial No: S123 | Location: Bay 3"
+    user["Date"] = "12/12/2016"                       # not ISO 8601: the real file's Date Time
+    md = parse_rtl(renishaw_text("rtl", T7, [R1_UP, R1_DN], user=user,
+                                 environment=REAL_ENVIRONMENT)).metadata
+    assert md.date == "2016-12-12 10:46"
+    user["Date"] = "2016-12-11 09:00:00"              # ISO 8601 (as the C# writer writes it)
+    assert parse_rtl(renishaw_text("rtl", T7, [R1_UP, R1_DN], user=user,
+                                   environment=REAL_ENVIRONMENT)).metadata.date == user["Date"]
 
 
 def test_targets_wrapped_over_lines_and_read_by_content_not_name(tmp_path):

@@ -94,8 +94,9 @@ Readings chosen where the sources are silent or could be read two ways
   dataset's conditions hold; the third field is not interpreted). Air pressure is in kPa (99.04
   in source 2 is a plausible air pressure only in kPa) and stored in Pa; ``Exp coeff`` in
   ppm/°C (8.0 in source 2) stored in 1/K; a material sensor reading exactly −10.000000 at start
-  and end is a sensor not fitted (source 2) and left out. ``Date`` in USER-TEXT is the test date;
-  when it is empty, ENVIRONMENT's first ``Date Time`` is used.
+  and end is a sensor not fitted (source 2) and left out. ``Date`` in USER-TEXT is the test date
+  when it is an ISO 8601 date (as source 1 writes it); otherwise ENVIRONMENT's first
+  ``Date Time`` (``"10:46 Dec 12 2016"`` in source 2's real file) is used when there is one.
 * **Metadata.** Machine → machine, Axis → axis, By → operator, TITLE → notes (with
   ``Serial No`` and ``Location`` appended when present). The format has no instrument field.
 
@@ -465,8 +466,19 @@ def _metadata(user: dict, env: Environment, env_date: str) -> Metadata:
                                                        ("location", "Location")) if get(key)]
     if extra:
         notes = " | ".join([notes] + extra if notes else extra)
+    date = get("date")
+    if env_date and not _is_iso_date(date):
+        date = env_date
     return Metadata(machine=get("machine"), axis=get("axis"), operator=get("by"),
-                    date=get("date") or env_date, notes=notes, environment=env)
+                    date=date, notes=notes, environment=env)
+
+
+def _is_iso_date(text: str) -> bool:
+    try:
+        datetime.fromisoformat(text.strip())
+    except ValueError:
+        return False
+    return True
 
 
 # -- writing ----------------------------------------------------------------------------------
