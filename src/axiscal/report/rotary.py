@@ -177,7 +177,8 @@ def _budget_section(rep: Report, r) -> None:
                   caption="The same budget in GUM form (ISO/TR 230-9): each ± bound a rectangular "
                           f"distribution, u = a/√3, combined with {gum.method}.", css_class="params")
     res = r.result.parameters()
-    rows = [[k, res[k], gum.U(k)] for k in ("A", "E", "M", "R", "B") if res.get(k) is not None]
+    rows = [[k, res[k], gum.U_text(k)] for k in ("A", "E", "M", "R", "B")
+            if res.get(k) is not None]
     rep.add_table(["Parameter", "Value [arcsec]", "U (k = 2) [arcsec]"], rows, digits=2,
                   caption="Expanded uncertainty of the ISO 230-2 parameters from this budget; "
                           "R and B carry the reading noise only.")
