@@ -120,7 +120,8 @@ def test_840d_inch_file_read_and_md10240_shown(tmp_path):
     assert d["table"]["up"] == pytest.approx([0.0, -2.54, 5.08])
     assert d["inputs"][0]["value"] == "inch" and d["inputs"][0]["assumed"] is False
     line = _one_line_error(_run("compensate", "--read", f, "-o", "unit=mm"))
-    assert "states MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0 (values in inch), not mm" in line
+    assert ("unit = mm contradicts the file (the file states MD10240 "
+            "$MN_SCALING_SYSTEM_IS_METRIC = 0: inch)") in line
 
 
 def test_840d_inch_written_from_data_states_md10240(tmp_path):

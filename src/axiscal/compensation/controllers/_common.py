@@ -12,8 +12,8 @@ from axiscal import units
 from axiscal._parse import finite_number
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
-__all__ = ["ControllerFile", "FileInput", "check_points", "check_spacing", "check_travel",
-           "check_modulo", "correction_factor", "parse_number", "decimals"]
+__all__ = ["ControllerFile", "FileInput", "resolve_input", "check_points", "check_spacing",
+           "check_travel", "check_modulo", "correction_factor", "parse_number", "decimals"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,11 +194,40 @@ class FileInput:
                     source=self.source, why=self.why, set_with=f"-o {self.name}=…")
 
     def __str__(self) -> str:
-        v = f"{self.value:g}" if isinstance(self.value, float) else str(self.value)
         u = f" {self.unit}" if self.unit else ""
         if self.assumed:
-            return f"assumed: {self.name} = {v}{u} ({self.why}; set with -o {self.name}=…)"
-        return f"{self.name} = {v}{u} ({'given' if self.source == 'option' else self.why})"
+            return (f"assumed: {self.name} = {_shown(self.value)}{u} ({self.why}; set with "
+                    f"-o {self.name}=…)")
+        return (f"{self.name} = {_shown(self.value)}{u} "
+                f"({'given' if self.source == 'option' else self.why})")
+
+
+def resolve_input(name: str, given, stated, default, *, said: str, why: str, unit: str = "",
+                  source: str = "<text>", needed_to_compare: bool = False) -> FileInput:
+    """The caller's value (refused where it contradicts the file's), the file's, or the default.
+
+    ``stated`` is what the file says (None: silent), ``said`` how it says it (the ``why`` of a
+    value from the file), ``why`` the reason a default had to be assumed.
+    """
+    if given is not None:
+        if stated is not None and not _same(given, stated):
+            u = f" {unit}" if unit else ""
+            raise DataFormatError(f"{name} = {_shown(given)}{u} contradicts the file ({said}: "
+                                  f"{_shown(stated)}{u})", source)
+        return FileInput(name, given, unit, "option", "given", needed_to_compare)
+    if stated is not None:
+        return FileInput(name, stated, unit, "file", said, needed_to_compare)
+    return FileInput(name, default, unit, "default", why, needed_to_compare)
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-9)
+    return a == b
+
+
+def _shown(v) -> str:
+    return f"{v:g}" if isinstance(v, float) else str(v)
 
 
 # -- names written into controller files ------------------------------------------------------

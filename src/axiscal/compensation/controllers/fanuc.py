@@ -79,8 +79,8 @@ from dataclasses import replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, FileInput, safe_axis_name, check_points, check_spacing, check_travel, correction_factor,
-    file_unit, parse_number, require_equidistant)
+    ControllerFile, FileInput, check_points, check_spacing, check_travel, correction_factor,
+    file_unit, parse_number, require_equidistant, resolve_input, safe_axis_name)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -261,71 +261,52 @@ def _inputs(text, params, source, axis_kind, detection_unit, reference_position,
         raise DataFormatError(f"the tape's comments disagree: counts in {head.group(3)}, the "
                               f"reference position in {ref.group(2)}", source)
     stated = (head.group(3).lower() if head else None) or (ref.group(2).lower() if ref else None)
-    kind = _kind(axis_kind, stated, params, source)
+    said = "from the tape's comment"
+    k_stated, k_said = (None, said) if stated is None else (
+        "rotary" if stated == "deg" else "linear", said)
+    if stated is None and params.get(3625, 0) != 0:
+        k_stated, k_said = "rotary", "parameter 3625 (travel per revolution) is set"
+    kind = resolve_input("axis_kind", None if axis_kind is None else AxisKind.parse(axis_kind).value,
+                         k_stated, "linear", said=k_said, source=source,
+                         why="3625 is not set and the tape does not say")
     rotary = kind.value == AxisKind.ROTARY.value
-    u = _unit(unit, None if stated == "deg" else stated, rotary, source)
-    du = _stated(detection_unit, None if head is None else parse_number(head.group(2), source, None),
-                 "detection_unit", 0.001, u.value if not rotary else "deg", source,
-                 "the tape does not record the detection unit (0.001 on an IS-B machine)")
-    if not (math.isfinite(du.value) and du.value > 0):
+    u = FileInput("unit", "deg", "", "file", "a rotary axis counts in degrees") if rotary else \
+        resolve_input("unit", None if unit is None else _unit_name(unit),
+                      None if stated == "deg" else stated, "mm", said=said, source=source,
+                      why="a metric machine (1001#0 INM = 0) assumed")
+    du = resolve_input("detection_unit", _number("detection_unit", detection_unit),
+                       None if head is None else parse_number(head.group(2), source, None),
+                       0.001, said=said, unit="deg" if rotary else u.value, source=source,
+                       why="the tape does not record the detection unit (0.001 on an IS-B "
+                           "machine)")
+    if not du.value > 0:
         raise InputError(f"{NAME}: detection_unit = {du.value!r} must be a positive number "
                          "(mm, inch or deg per count)")
     per = 1.0 if rotary else file_unit(u.value, None, NAME)
-    rp = _stated(reference_position,
-                 None if ref is None else parse_number(ref.group(1), source, None) * per,
-                 "reference_position", 0.0, "deg" if rotary else "mm", source,
-                 "a Fanuc tape does not record where the reference position (point 3620) lies "
-                 "in the coordinates of the measurement")
-    return (replace(rp, needed_to_compare=True), du, u, kind)
+    rp = resolve_input("reference_position", _number("reference_position", reference_position),
+                       None if ref is None else parse_number(ref.group(1), source, None) * per,
+                       0.0, said=said, unit="deg" if rotary else "mm", source=source,
+                       needed_to_compare=True,
+                       why="a Fanuc tape does not record where the reference position (point "
+                           "3620) lies in the coordinates of the measurement")
+    return (rp, du, u, kind)
 
 
-def _stated(given, in_file, name, default, unit, source, why) -> FileInput:
-    """One input: the caller's value (checked against the file's), the file's, or the default."""
-    if given is not None:
-        try:
-            value = float(given)
-        except (TypeError, ValueError):
-            raise InputError(f"{NAME}: {name} = {given!r} must be a number") from None
-        if not math.isfinite(value):
-            raise InputError(f"{NAME}: {name} = {given!r} must be a finite number")
-        if in_file is not None and not math.isclose(value, in_file, rel_tol=1e-9, abs_tol=1e-9):
-            raise DataFormatError(f"the tape's comment states {name} = {in_file:g} {unit}, not "
-                                  f"{value:g}", source)
-        return FileInput(name, value, unit, "option", "given")
-    if in_file is not None:
-        return FileInput(name, in_file, unit, "file", "from the tape's comment")
-    return FileInput(name, default, unit, "default", why)
+def _number(name, given):
+    """An option as a finite float (None stays None), or an :class:`InputError` naming it."""
+    if given is None:
+        return None
+    try:
+        value = float(given)
+    except (TypeError, ValueError):
+        raise InputError(f"{NAME}: {name} = {given!r} must be a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{NAME}: {name} = {given!r} must be a finite number")
+    return value
 
 
-def _kind(axis_kind, stated, params, source) -> FileInput:
-    from_file = None if stated is None else ("rotary" if stated == "deg" else "linear")
-    if axis_kind is not None:
-        kind = AxisKind.parse(axis_kind).value
-        if from_file is not None and kind != from_file:
-            raise DataFormatError(f"the tape's comment states a {from_file} axis, not {kind}",
-                                  source)
-        return FileInput("axis_kind", kind, "", "option", "given")
-    if from_file is not None:
-        return FileInput("axis_kind", from_file, "", "file", "from the tape's comment")
-    if params.get(3625, 0) != 0:
-        return FileInput("axis_kind", "rotary", "", "file", "parameter 3625 (travel per "
-                         "revolution) is set")
-    return FileInput("axis_kind", "linear", "", "default", "3625 is not set and the tape does "
-                     "not say")
-
-
-def _unit(unit, stated, rotary, source) -> FileInput:
-    if rotary:
-        return FileInput("unit", "deg", "", "file", "a rotary axis counts in degrees")
-    if unit is not None:
-        u = "inch" if file_unit(unit, None, NAME) != 1.0 else "mm"
-        if stated is not None and u != stated:
-            raise DataFormatError(f"the tape's comment states counts in {stated}, not {u}",
-                                  source)
-        return FileInput("unit", u, "", "option", "given")
-    if stated is not None:
-        return FileInput("unit", stated, "", "file", "from the tape's comment")
-    return FileInput("unit", "mm", "", "default", "a metric machine (1001#0 INM = 0) assumed")
+def _unit_name(unit) -> str:
+    return "inch" if file_unit(unit, None, NAME) != 1.0 else "mm"
 
 
 def _bidirectional(params) -> bool:

@@ -72,8 +72,9 @@ from dataclasses import replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, FileInput, check_modulo, check_points, check_spacing, check_travel,
-    correction_factor, decimals, file_unit, parse_number, require_equidistant, safe_axis_name)
+    ControllerFile, check_modulo, check_points, check_spacing, check_travel,
+    correction_factor, decimals, file_unit, parse_number, require_equidistant, resolve_input,
+    safe_axis_name)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -300,17 +301,11 @@ def inputs(text: str, source: str = "<text>", unit: str | None = None, **_) -> t
                                   + ("" if v is None else " contradicts an earlier line")
                                   + " (1: metric, 0: inch)", source, n)
         stated = v
-    why = f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {0 if stated == 'inch' else 1}"
-    if unit is not None:
-        given = "inch" if file_unit(unit, None, NAME) != 1.0 else "mm"
-        if stated not in (None, given):
-            raise DataFormatError(f"the file states {why} (values in {stated}), not {given}",
-                                  source)
-        return (FileInput("unit", given, "", "option", "given"),)
-    if stated is not None:
-        return (FileInput("unit", stated, "", "file", f"the file states {why}"),)
-    return (FileInput("unit", "mm", "", "default", "the file does not state MD10240 (a metric "
-                      "machine, MD10240 = 1, assumed)"),)
+    given = None if unit is None else ("inch" if file_unit(unit, None, NAME) != 1.0 else "mm")
+    said = f"the file states MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {0 if stated == 'inch' else 1}"
+    return (resolve_input("unit", given, stated, "mm", said=said, source=source,
+                          why="the file does not state MD10240 (a metric machine, MD10240 = 1, "
+                              "assumed)"),)
 
 
 def _one_axis(values, params, backlash, machine_axis, name, axis_kind, correction_unit, source,
