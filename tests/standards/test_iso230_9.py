@@ -202,3 +202,90 @@ def test_e_ve_from_a_drift_check():
     assert b.U("R") == pytest.approx(2 * e_ve / (2 * math.sqrt(3)), rel=1e-12)
     with pytest.raises(InputError):
         environmental_variation([1.0])
+
+
+def test_temperature_deviation_contributor_matches_its_formula():
+    """u_E,MACHINE = L·|T − 20 °C|·u(α), u(α) = a_α/√3 (ISO 230-2:2014 Annex A.4; ISO/TR
+    16015:2003 case b). Material temperature not stated: |T − 20 °C| is the end of the shop
+    range farthest from 20 °C, by default 17-23 °C so 3 K: an 800 mm steel axis (α = 11.5
+    µm/(m·K) ± 10 %) gives 800e3 µm × 3 K × 1.15e-6/K / √3 = 1.5935 µm (the issue's "about
+    1.6 µm in a 23 °C shop"); a stated 23 °C gives the same; a shop of 18-25 °C gives 5 K."""
+    def u_e(**kw):
+        b = linear_budget(800.0, LinearInputs(**kw))
+        return {c.name: c.u for c in b.contributors}["u_E,MACHINE"]
+
+    by_hand = 800e3 * 3.0 * (0.1 * 11.5e-6) / math.sqrt(3)
+    assert by_hand == pytest.approx(1.5935, abs=1e-4)
+    assert u_e() == pytest.approx(by_hand, rel=1e-12)
+    assert u_e(material_temperature=23.0) == pytest.approx(by_hand, rel=1e-12)
+    assert u_e(material_temperature=20.0) == 0.0
+    assert u_e(shop_temperature_min=18.0, shop_temperature_max=25.0) == pytest.approx(
+        800e3 * 5.0 * 1.15e-6 / math.sqrt(3), rel=1e-12)
+    assert u_e(expansion_coefficient_halfwidth=0.5e-6) == pytest.approx(
+        800e3 * 3.0 * 0.5e-6 / math.sqrt(3), rel=1e-12)
+    with pytest.raises(InputError, match="shop_temperature_min"):
+        LinearInputs(shop_temperature_min=24.0, shop_temperature_max=22.0)
+
+
+@pytest.mark.parametrize("inputs", [
+    LinearInputs(),                                              # T not stated, no E_VE
+    LinearInputs(reference="encoder", e_ve=0.5),
+    LinearInputs(reference="encoder", encoder_accuracy=1.0, material_temperature=24.0),
+])
+def test_monte_carlo_agrees_with_the_new_inputs(inputs):
+    """The Monte Carlo model (JCGM 101:2008) with an encoder's rectangular ± bound, an unstated
+    temperature and no E_VE agrees with the budget within 5 % of U."""
+    b = linear_budget(300.0, inputs)
+    mc = monte_carlo_linear(300.0, inputs, np.random.default_rng(11), trials=200_000)
+    for p, U in b.expanded.items():
+        assert mc.expanded[p] == pytest.approx(U, rel=0.05), p
+
+
+def test_encoder_reference_replaces_the_laser_and_has_no_beam():
+    """An encoder's ± a µm/m over L is rectangular, u = a·L/√3; no cosine-error contributor."""
+    b = linear_budget(20.48, LinearInputs(reference="encoder"))
+    u = {c.name: c.u for c in b.contributors}
+    assert u["u_DEVICE"] == pytest.approx(5.0 * 0.02048 / math.sqrt(3), rel=1e-12)
+    assert "u_MISALIGNMENT" not in u and "u_EVE" not in u
+
+
+@pytest.mark.parametrize("U, shown", [
+    (0.000577350269, "0.00058"),   # the demo's U(R): never "0.00"
+    (2.41, "2.5"), (3.5253, "3.6"), (0.998, "1.0"), (2.4, "2.4"), (0.5, "0.50"),
+    (12.0001, "13"), (123.4, "130"), (0.1559, "0.16"), (0.0, "0"), (None, "—"),
+    (float("nan"), "—"),
+])
+def test_U_is_rounded_up_to_two_significant_digits(U, shown):
+    """JCGM 100:2008 §7.2.6: U to at most two significant digits, rounded up (never down, so
+    2.41 shows 2.5); a value already at two digits stays (2.4)."""
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    assert format_uncertainty(U) == shown
+
+
+def test_inputs_say_where_each_value_came_from():
+    """resolve_linear: declared keys are not assumed, the data file's α, temperature and
+    reference are 'taken from the data file', every other input is assumed with its rule, and
+    E_VE is missing."""
+    from axiscal.datasets import Environment, Metadata, PositioningDataset
+    from axiscal.standards.iso230_9_inputs import resolve_linear
+
+    md = Metadata(instrument="XL-80 laser", environment=Environment(
+        material_temperature=(21.0, 21.4), expansion_coefficient=10e-6))
+    ds = PositioningDataset.from_arrays("linear", [0, 100], [[0.0, 0.1], [0.2, 0.3]],
+                                        [[0.1, 0.0], [0.3, 0.2]], metadata=md)
+    inputs, rows, missing = resolve_linear({"beam_offset": 0.05}, ds)
+    by = {r.name: r for r in rows}
+    assert inputs.material_temperature == pytest.approx(21.2) and inputs.reference == "laser"
+    assert by["beam_offset"].assumed is False and by["beam_offset"].value == 0.05
+    for name in ("material_temperature", "expansion_coefficient", "reference"):
+        assert by[name].assumed is False and "data file" in by[name].rule, name
+    assert "shop_temperature_min" not in by                # a stated temperature needs no range
+    assert by["laser_accuracy_ppm"].assumed and "XL-80" in by["laser_accuracy_ppm"].rule
+    assert missing == ("e_ve",) and by["e_ve"].value is None and by["e_ve"].assumed
+
+
+def test_rotary_budget_without_E_VE_leaves_it_out():
+    b = rotary_budget(RotaryInputs())
+    assert "u_EVE" not in [c.name for c in b.contributors]
+    assert b.U("R") == pytest.approx(2 * 0.1 / (2 * math.sqrt(3)), rel=1e-12)
