@@ -9,12 +9,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from axiscal.compensation.controllers import detect, linuxcnc
+from axiscal.compensation.controllers import CONTROLLERS, detect, linuxcnc
 from axiscal.compensation.controllers.linuxcnc_ini import (
     comp_sections, comp_settings, parse_ini, read_options)
 from axiscal.compensation.tables import CompensationTable, table_from_deviations
-from axiscal.errors import DataFormatError, InputError
+from axiscal.errors import AxiscalError, DataFormatError, InputError
 from axiscal.io.linuxcnc_ini import find_comp_settings
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "linuxcnc"
@@ -191,3 +193,22 @@ def test_a_comment_before_data_or_a_last_line_cut_short_is_refused():
         linuxcnc.parse("0 0 0\n10 0 0\n20 0.001\n")
     assert str(e.value).startswith("<text>:3:")                          # the line is named
     assert detect("# header\n0 0 0\n10 0 0\n") is None
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(alphabet=st.sampled_from(list("[]=;#\\ \n_JOINTAXISCOMPFILETYPEUNITS0123.-inchmdegra")),
+               max_size=300))
+def test_arbitrary_ini_and_comp_text_raise_only_axiscal_errors(text):
+    """Habit 9: a parser never raises anything but AxiscalError on arbitrary text."""
+    sections = parse_ini(text)
+    for section, _ in comp_sections(sections):
+        try:
+            read_options(comp_settings(sections, section, "m.ini"), {}, "0 0 0\n1 0 0\n")
+        except AxiscalError:
+            pass
+    try:
+        linuxcnc.parse(text)
+    except AxiscalError:
+        pass
+    found = detect(text)
+    assert found is None or found in CONTROLLERS
