@@ -93,25 +93,13 @@ def test_fanuc_listing_with_several_axes(tmp_path):
     assert d["table"]["positions"] == [0.0, 2.0, 4.0] and d["table"]["up"] == [0.0, -2.0, -4.0]
 
 
-#: 840D EEC file of an inch machine (MD10240 = 0), as in
-#: tests/compensation/test_controllers_as_machines_hold_them.py.
-INCH_EEC = """%_N_AX_EEC_INI
-CHANDATA(1)
-; MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0
-$AA_ENC_COMP[0,0,X1]=0.0
-$AA_ENC_COMP[0,1,X1]=0.0001
-$AA_ENC_COMP[0,2,X1]=-0.0002
-$AA_ENC_COMP_STEP[0,X1]=0.5
-$AA_ENC_COMP_MIN[0,X1]=-1.0
-$AA_ENC_COMP_MAX[0,X1]=0.0
-$AA_ENC_COMP_IS_MODULO[0,X1]=0
-M17
-"""
+#: 840D EEC file of an inch machine, MD10240 = 0 (tests/data/siemens/README.md).
+INCH_EEC = ROOT / "tests" / "data" / "siemens" / "inch_AX_EEC.INI"
 
 
 def test_840d_inch_file_read_and_md10240_shown(tmp_path):
     f = tmp_path / "AX_EEC.INI"
-    f.write_text(INCH_EEC)
+    f.write_text(INCH_EEC.read_text())
     r = _run("compensate", "--read", f)
     assert r.exit_code == 0, r.output
     assert "unit = inch (the file states MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0)" in r.stdout

@@ -6,6 +6,7 @@ inch."""
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -128,21 +129,12 @@ def test_fanuc_detection_unit_and_axis_kind_come_from_the_comment():
         fanuc.parse(cf.text, detection_unit=0.001)
 
 
-#: An EEC file as an inch machine holds it (SINUMERIK 840D sl Function Manual Extended Functions
-#: K3 layout; MD10240 = 0: values, STEP, MIN and MAX in inch, 808D ADVANCED Parameter Manual
-#: §2.2): −1 … 0 inch every 0.5 inch, deviations 0, +0.0001 and −0.0002 inch.
-INCH_EEC = """%_N_AX_EEC_INI
-CHANDATA(1)
-; MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0
-$AA_ENC_COMP[0,0,X1]=0.0
-$AA_ENC_COMP[0,1,X1]=0.0001
-$AA_ENC_COMP[0,2,X1]=-0.0002
-$AA_ENC_COMP_STEP[0,X1]=0.5
-$AA_ENC_COMP_MIN[0,X1]=-1.0
-$AA_ENC_COMP_MAX[0,X1]=0.0
-$AA_ENC_COMP_IS_MODULO[0,X1]=0
-M17
-"""
+#: An EEC file as an inch machine holds it (tests/data/siemens/README.md: the SINUMERIK 840D sl
+#: Function Manual Extended Functions K3 layout; MD10240 = 0: values, STEP, MIN and MAX in inch,
+#: 808D ADVANCED Parameter Manual §2.2): −1 … 0 inch every 0.5 inch, deviations 0, +0.0001 and
+#: −0.0002 inch.
+INCH_EEC = (Path(__file__).resolve().parents[1] / "data" / "siemens"
+            / "inch_AX_EEC.INI").read_text()
 
 
 def test_840d_inch_table_read_to_the_right_values():
