@@ -23,21 +23,10 @@ from axiscal.io._files import read_controller_text
 runner = CliRunner()
 ROOT = Path(__file__).resolve().parents[2]
 
-#: LinuxCNC's own sample, configs/sim/screwcompX.dat (LinuxCNC repository, GPL-2.0; used with
+#: LinuxCNC's own sample, configs/sim/screwcompX.dat (tests/data/linuxcnc, GPL-2.0; used with
 #: LINEAR_UNITS = inch by the sim configurations): a COMP_FILE_TYPE 0 file, nominal, forward and
-#: reverse positions in inch. Copied here as published (its -4 line has a 0.2 inch forward value).
-SCREWCOMP_X = """-10 -10.001  -9.999
- -8  -8.001  -7.999
- -6  -6.002  -5.999
- -4  -4.2  -3.998
- -2  -2.003  -1.998
-  0  -0.003   0.002
-  2   1.997   2.003
-  4   3.997   4.002
-  6   5.998   6.001
-  8   7.999   8.001
- 10   9.999  10.000
-"""
+#: reverse positions in inch (its -4 line has a 0.2 inch forward value).
+SCREWCOMP_X = (ROOT / "tests" / "data" / "linuxcnc" / "screwcompX.dat").read_text()
 
 
 def test_linuxcnc_sample_file_read_to_the_right_values():
