@@ -303,8 +303,11 @@ def render_uncertainty(con, budget) -> None:
     t = Table(title=escape("Uncertainty inputs (ISO 230-2:2014 Annex A): an assumed input is a "
                            "default; declare yours with --uncertainty NAME=VALUE or [uncertainty] "
                            "NAME in the job file"), title_justify="left")
-    for c in ("input", "NAME", "value", "from", "rule or source"):
-        t.add_column(c, justify="right" if c == "value" else "left")
+    t.add_column("input", max_width=30)
+    t.add_column("NAME", no_wrap=True)
+    t.add_column("value", justify="right", no_wrap=True)
+    t.add_column("from", no_wrap=True)
+    t.add_column("rule or source", ratio=1)
     for i in budget.inputs:
         src = ("[bold red]missing[/bold red]" if i.name in budget.missing_inputs else
                "[yellow]assumed[/yellow]" if i.assumed else
