@@ -20,6 +20,8 @@ from typing import List, Optional
 
 import typer
 
+from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
+                                SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register"]
@@ -29,7 +31,7 @@ _KEYS = "iso230-2:2014|iso230-2:2006|iso230-2:1997|iso230-2:1988|gb-t17421.2|jis
 
 
 def evaluate(
-    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON, Renishaw .rtl/.rta or EPICS ecmc file."),
+    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON, Renishaw .rtl/.rta, EPICS ecmc file or EPICS camonitor log."),
     standard: str = typer.Option(..., "--standard", "-s", help=f"{_KEYS}. Standards whose definitions were not publicly available are listed with the reason and not evaluated."),
     target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a file that does not declare it: mm or deg."),
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec."),
@@ -39,6 +41,12 @@ def evaluate(
     tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
     rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
     uncertainty: List[str] = typer.Option([], "--uncertainty", help="With -s iso230-2:2014: an input of its uncertainty budget as NAME=VALUE, e.g. --uncertainty e_ve=0.3 (as 'axiscal iso230-2'; every input not given is shown as assumed)."),
+    setpoint_pv: Optional[str] = SETPOINT_PV,
+    reference_pv: Optional[str] = REFERENCE_PV,
+    targets: Optional[str] = TARGETS,
+    reference_scale: Optional[float] = REFERENCE_SCALE,
+    reference_offset: Optional[float] = REFERENCE_OFFSET,
+    rest_window: Optional[float] = REST_WINDOW,
 ) -> None:
     """Evaluate a positioning test by a named standard, or by all of them side by side.
 
@@ -62,7 +70,10 @@ def evaluate(
             check(p)
     with progress_bar(f"reading {file.name}") as bar:
         ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
-                              progress=bar)
+                              progress=bar, epics=epics_options(
+                                  setpoint_pv, reference_pv, targets, reference_scale,
+                                  reference_offset, rest_window))
+    show_notes(ds)
     if key == "all":
         results = ps.evaluate_all(ds)
     else:

@@ -4,7 +4,8 @@ JSON output (``--json``), stable: top-level keys ``A``, ``A_up``, ``A_down``, ``
 ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``, ``B_mean`` (numbers in ``unit``, or null where
 a unidirectional test makes them not apply), ``unit``, ``target_unit``, ``axis_kind``,
 ``n_runs``, ``missing``, ``closure_up``, ``closure_down``, ``machine``, ``axis`` (as the file
-names them, "" if not), ``targets`` (one object per target:
+names them, "" if not), ``notes`` (the dataset's notes: for an EPICS camonitor log the PVs, the
+stops found and the defaults used), ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
 ``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
 ``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
@@ -32,13 +33,15 @@ from typing import List, Optional
 import typer
 
 from axiscal.cli._certificate import DRAFT, JOB, PAPER, RULE
+from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
+                                SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register", "result_json", "render_result"]
 
 
 def iso230_2(
-    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON, Renishaw .rtl/.rta or EPICS ecmc file."),
+    file: Path = typer.Argument(..., help="Positioning data: tidy CSV, axiscal JSON, Renishaw .rtl/.rta, EPICS ecmc file or EPICS camonitor log."),
     target_unit: Optional[str] = typer.Option(None, "--target-unit", help="Unit of the targets in a CSV or ecmc file that does not declare it: mm or deg (a different declaration in the file is an error)."),
     deviation_unit: Optional[str] = typer.Option(None, "--deviation-unit", help="Unit of the deviations in a CSV that does not declare it: um, mm or arcsec (a different declaration in the file is an error)."),
     full_turn: str = typer.Option("separate", "--full-turn", help="Rotary 0-360 deg test: keep 0 and 360 deg as two targets ('separate') or pool them ('merge')."),
@@ -54,6 +57,12 @@ def iso230_2(
     paper: Optional[str] = PAPER,
     draft: bool = DRAFT,
     uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's [uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3 (names and units: the 'Uncertainty inputs' table; every input not given is shown as assumed, with the rule of its default)."),
+    setpoint_pv: Optional[str] = SETPOINT_PV,
+    reference_pv: Optional[str] = REFERENCE_PV,
+    targets: Optional[str] = TARGETS,
+    reference_scale: Optional[float] = REFERENCE_SCALE,
+    reference_offset: Optional[float] = REFERENCE_OFFSET,
+    rest_window: Optional[float] = REST_WINDOW,
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target),
     with its uncertainty (ISO 230-2 Annex A) and, with tolerances, ISO 14253-1 decisions.
@@ -71,7 +80,10 @@ def iso230_2(
         report_path(report)
     with progress_bar(f"reading {file.name}") as bar:
         ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
-                              progress=bar)
+                              progress=bar, epics=epics_options(
+                                  setpoint_pv, reference_pv, targets, reference_scale,
+                                  reference_offset, rest_window))
+    show_notes(ds)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
 
@@ -99,7 +111,7 @@ def iso230_2(
                                     filename=file.name, config_note=config_problem())
     if json_out:
         print_json({**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
-                    "axis": ds.metadata.axis})
+                    "axis": ds.metadata.axis, "notes": ds.metadata.notes})
     else:
         render_result(result, ds, title=str(file), verdicts=verdicts, budget=budget)
     if plot is not None:

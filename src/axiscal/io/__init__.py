@@ -19,7 +19,7 @@ STREAM_ABOVE_BYTES = 1 << 20
 
 
 def read_positioning(path, target_unit: str | None = None, deviation_unit: str | None = None,
-                     axis_kind: str | None = None, progress=None):
+                     axis_kind: str | None = None, progress=None, epics: dict | None = None):
     """Read a positioning test from a CSV, JSON, Renishaw .rtl/.rta or EPICS ecmc file (see
     :func:`parse_positioning`).
 
@@ -32,6 +32,9 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
         Overrides the kind a CSV file would be given from its units.
     progress : callable, optional
         Called with ``(bytes read, file size)`` while a large CSV file is streamed.
+    epics : dict, optional
+        Options of an EPICS camonitor log (:func:`axiscal.io.epics.parse_epics`: ``setpoint_pv``,
+        ``reference_pv``, ``targets``, ``plan`` ...); refused for any other file.
 
     A CSV file over :data:`STREAM_ABOVE_BYTES` is read a line at a time into compact arrays, so
     memory grows with the readings, not with the file's text.
@@ -48,25 +51,38 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
 
             return _csv.read_positioning_csv(path, target_unit, deviation_unit, axis_kind,
                                              progress=progress)
-    return parse_positioning(read_text(path), str(path), target_unit, deviation_unit, axis_kind)
+    return parse_positioning(read_text(path), str(path), target_unit, deviation_unit, axis_kind,
+                             epics=epics)
 
 
 def _whole_file_format(text: str, source: str) -> bool:
     """True for a JSON, Renishaw or ecmc positioning file (told by the name or the content)."""
     from axiscal.io import ecmc as _ecmc
+    from axiscal.io import epics as _epics
     from axiscal.io import renishaw as _renishaw
 
     return (Path(source).suffix.lower() == ".json" or text.lstrip("\ufeff \t\r\n").startswith("{")
-            or _ecmc.looks_like_ecmc(text) or _renishaw.looks_like_renishaw(text))
+            or _ecmc.looks_like_ecmc(text) or _renishaw.looks_like_renishaw(text)
+            or _epics.looks_like_camonitor(text))
 
 
 def parse_positioning(text: str, source: str = "<text>", target_unit: str | None = None,
-                      deviation_unit: str | None = None, axis_kind: str | None = None):
+                      deviation_unit: str | None = None, axis_kind: str | None = None,
+                      epics: dict | None = None):
     """Parse positioning data already read, choosing the format by ``source``'s extension and content.
 
     JSON (``.json`` or text starting with ``{``), Renishaw ``.rtl``/``.rta`` (a ``HEADER::``
-    line first), EPICS ecmc (``TGT_DATA[`` keys) or tidy CSV.
+    line first), EPICS ecmc (``TGT_DATA[`` keys), an EPICS camonitor log (``PV time stamp
+    value`` lines; ``epics`` holds its options) or tidy CSV.
     """
+    from axiscal.io import epics as _epics
+
+    if _epics.looks_like_camonitor(text):
+        return _epics.parse_epics(text, target_unit=target_unit, deviation_unit=deviation_unit,
+                                  axis_kind=axis_kind, source=source, **(epics or {}))
+    if epics:
+        raise DataFormatError(f"--{next(iter(epics)).replace('_', '-')} applies to an EPICS "
+                              "camonitor log; this file is not one", source)
     from axiscal.io import csv as _csv
     from axiscal.io import ecmc as _ecmc
     from axiscal.io import json as _json

@@ -30,7 +30,8 @@ from axiscal import units
 from axiscal.datasets import Metadata, PositioningDataset
 from axiscal.errors import InputError, MeasurementError
 
-__all__ = ["Stop", "CaptureResult", "find_stops", "capture_test", "SMOOTHING_S"]
+__all__ = ["Stop", "CaptureResult", "find_stops", "capture_test", "match_stops", "plan_dataset",
+           "SMOOTHING_S"]
 
 #: Moving-average length applied before looking for stops, seconds.
 SMOOTHING_S = 0.01
@@ -166,6 +167,29 @@ def capture_test(record, plan, *, window: float = 1.0, dwell: float | None = Non
     spectrum = _spectrum(record.times, record.readings, stops)
     return CaptureResult(ds, tuple(stops), tuple(assigned), overruns, settling, spectrum,
                          smooth, vel, acc, w, d, float(record.sample_rate), applied)
+
+
+def match_stops(stops, plan, *, factor: float, times, zero: float = 0.0, smooth=None,
+                window: float = 0.0):
+    """Assign ``stops`` to ``plan``'s rows in order, as :func:`capture_test` does (overrun rows may
+    or may not show a stop; a misfit is refused by saying where).
+
+    ``stops[k].mean`` is the stop's reading in SI from ``zero`` (plan unit), ``factor`` the SI
+    size of the plan unit; ``times`` (s) date the record's start in messages. Without ``smooth``
+    (a record between the stops), two stops in a row at one position are one stop.
+
+    Returns ``[(stop index, plan row), ...]`` for the measurements and the number of overrun
+    stops.
+    """
+    return _match(stops, plan, zero, factor, np.asarray(times, dtype=float),
+                  np.zeros(0) if smooth is None else smooth, window)
+
+
+def plan_dataset(plan, rows, deviations, deviation_unit: str, applied: str = ""
+                 ) -> PositioningDataset:
+    """The dataset of ``plan`` with ``deviations`` (``deviation_unit``) at its rows ``rows``;
+    ``applied`` is added to the notes."""
+    return _dataset(plan, rows, deviations, deviation_unit, applied)
 
 
 def _match(stops, plan, zero, f, times, smooth, window):

@@ -1,0 +1,61 @@
+"""The options of an EPICS camonitor log, shared by ``iso230-2``, ``evaluate`` and ``capture``
+(the reader: :mod:`axiscal.io.epics`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+__all__ = ["SETPOINT_PV", "REFERENCE_PV", "TARGETS", "REFERENCE_SCALE", "REFERENCE_OFFSET",
+           "REST_WINDOW", "epics_options", "show_notes"]
+
+_LOG = "EPICS camonitor log: "
+SETPOINT_PV: Optional[str] = typer.Option(
+    None, "--setpoint-pv", help=_LOG + "the setpoint PV whose steps are the stops (found when "
+    "the log holds two PVs).")
+REFERENCE_PV: Optional[str] = typer.Option(
+    None, "--reference-pv", help=_LOG + "the reference (or readback) PV measured at each stop.")
+TARGETS: Optional[str] = typer.Option(
+    None, "--targets", help=_LOG + "the targets, comma-separated (default: the setpoint values "
+    "passed through; turning points are over-travel).")
+REFERENCE_SCALE: Optional[float] = typer.Option(
+    None, "--reference-scale", help=_LOG + "position = scale × reference + offset (ecmc's "
+    "REF_GR; default 1).")
+REFERENCE_OFFSET: Optional[float] = typer.Option(
+    None, "--reference-offset", help=_LOG + "the offset of that line, target unit (ecmc's "
+    "REF_OFF; default 0).")
+REST_WINDOW: Optional[float] = typer.Option(
+    None, "--rest-window", help=_LOG + "the reference rests within this band, µm (arcsec "
+    "rotary; default 1) for 0.5 s at a stop.")
+
+
+def epics_options(setpoint_pv=None, reference_pv=None, targets=None, scale=None, offset=None,
+                  window=None, plan: Path | None = None, dwell=None) -> dict:
+    """The options given, as :func:`axiscal.io.epics.parse_epics` takes them (none: ``{}``)."""
+    from axiscal.errors import InputError
+
+    d: dict = {k: v for k, v in (("setpoint_pv", setpoint_pv), ("reference_pv", reference_pv),
+                                 ("reference_scale", scale), ("reference_offset", offset),
+                                 ("window", window), ("dwell", dwell)) if v is not None}
+    if targets is not None:
+        try:
+            d["targets"] = [float(x) for x in targets.split(",") if x.strip()]
+        except ValueError:
+            raise InputError(f"--targets {targets!r}: give numbers separated by commas, "
+                             "e.g. 0,100,200") from None
+    if plan is not None:
+        from axiscal.io.measured import read_plan_csv
+
+        d["plan"] = read_plan_csv(plan)
+    return d
+
+
+def show_notes(ds) -> None:
+    """Print (stderr) what the reader of a camonitor log found and assumed."""
+    from axiscal.cli._common import note
+    from axiscal.io.epics import NOTES_START
+
+    if ds.metadata.notes.startswith(NOTES_START):
+        note(ds.metadata.notes)
