@@ -20,11 +20,19 @@ JOB = JOB_TOML
 USER = """
 [company]
 name = "Precision Metrology GmbH"
+address = ["Messweg 12", "70565 Stuttgart"]
 logo = "logo.svg"
 [operator]
 name = "J. Keller"
 [certificate]
 number_prefix = "PM-"
+signatory = "Dr. M. Braun"
+signatory_role = "Head of laboratory"
+[[instrument]]
+name = "Laser interferometer"
+serial = "L-1"
+certificate = "C-77"
+due = "2099-04-30"
 [uncertainty]
 e_ve = 0.8
 e_ve_source = "drift check"
@@ -55,37 +63,115 @@ def _data(tmp_path):
     return tmp_path / "x.csv"
 
 
-def test_pdf_certificate_from_the_command_line(tmp_path):
+def _issue(tmp_path, *extra, env=None):
+    return runner.invoke(app, ["iso230-2", str(tmp_path / "x.csv"), "--job",
+                               str(tmp_path / "job.toml"), "--db", _db(tmp_path), *extra],
+                         env=env or {"AXISCAL_CONFIG": str(tmp_path / "config.toml")})
+
+
+def _db(tmp_path) -> str:
+    return f"sqlite:///{tmp_path / 'h.sqlite'}"
+
+
+def _setup(tmp_path, user=USER):
     data = _data(tmp_path)
-    (tmp_path / "config.toml").write_text(USER)
+    (tmp_path / "config.toml").write_text(user)
     (tmp_path / "logo.svg").write_text(LOGO)
     (tmp_path / "job.toml").write_text(JOB)
-    env = {"AXISCAL_CONFIG": str(tmp_path / "config.toml")}
+    return data
+
+
+def test_pdf_certificate_from_the_command_line(tmp_path):
+    """Every mandatory item given (user configuration + the README's job file): issued, numbered
+    by the register from number_prefix (PM-{year}-{counter:05d}), kept with its SHA-256."""
+    _setup(tmp_path)
     pdf = tmp_path / "cert.pdf"
-    r = runner.invoke(
-        app,
-        [
-            "iso230-2",
-            str(data),
-            "--job",
-            str(tmp_path / "job.toml"),
-            "--report",
-            str(pdf),
-            "--paper",
-            "Letter",
-            "--json",
-        ],
-        env=env,
-    )
+    r = _issue(tmp_path, "--report", str(pdf), "--paper", "Letter", "--json")
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["accepted"] is True and d["decision_rule"] == "iso14253-1"
     assert d["acceptance"][0]["outcome"] == "conformance proven"
     assert d["uncertainty"]["E"] == d["acceptance"][0]["U"] > 0
+    year = __import__("datetime").date.today().year
+    number = f"PM-{year}-00001"
+    assert f"issued certificate {number}" in r.stderr
     text = "\n".join(pdf_text(pdf))
-    assert "Precision Metrology GmbH" in text and "VMC8-0042" in text and "PM-" in text
-    assert f"{d['uncertainty']['E']:.2f}" in text and "page 1 of" in text
+    assert "Precision Metrology GmbH" in text and "VMC8-0042" in text and number in text
+    assert d["uncertainty_display"]["E"] in text and "page 1 of" in text
+    assert "Purchase order 4711" in text and "15 *" in text     # customer-supplied, marked
     assert render_pages(pdf, "certificate_cli_letter")
+    r = runner.invoke(app, ["certificate", "show", number, "--db", _db(tmp_path), "--out",
+                            str(tmp_path / "again.pdf"), "--json"])
+    assert r.exit_code == 0 and json.loads(r.stdout)["status"] == "issued"
+    assert (tmp_path / "again.pdf").read_bytes() == pdf.read_bytes()
+
+
+def test_same_file_twice_two_numbers_and_a_reissue(tmp_path):
+    """Two certificates of the same file: two numbers. A reissue: a new number that replaces
+    the old (printed on it, with the reason), the old kept and marked superseded."""
+    _setup(tmp_path)
+    year = __import__("datetime").date.today().year
+    for i in (1, 2):
+        r = _issue(tmp_path, "--report", str(tmp_path / f"c{i}.html"))
+        assert r.exit_code == 0 and f"issued certificate PM-{year}-0000{i}" in r.stderr
+    (tmp_path / "fix.toml").write_text('[machine]\nserial = "VMC8-0043"\n')
+    r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason",
+                            "serial number corrected", "--job", str(tmp_path / "fix.toml"),
+                            "--out", str(tmp_path / "c3.html"), "--db", _db(tmp_path)])
+    assert r.exit_code == 0, r.output
+    html = (tmp_path / "c3.html").read_text()
+    assert f"replaces certificate PM-{year}-00001. Reason: serial number corrected" in html
+    assert "VMC8-0043" in html and f"PM-{year}-00003" in html
+    rows = json.loads(runner.invoke(app, ["certificate", "list", "--db", _db(tmp_path),
+                                          "--json"]).stdout)
+    by = {x["number"]: x for x in rows}
+    assert by[f"PM-{year}-00001"]["status"] == "superseded"
+    assert by[f"PM-{year}-00001"]["replaced_by"] == f"PM-{year}-00003"
+    assert by[f"PM-{year}-00003"]["replaces"] == f"PM-{year}-00001"
+    r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason", "x",
+                            "--out", str(tmp_path / "c4.html"), "--db", _db(tmp_path)])
+    assert r.exit_code == 2 and "already superseded" in r.stderr
+    assert not (tmp_path / "c4.html").exists()
+
+
+@pytest.mark.parametrize("config, said", [
+    (None, "AXISCAL_CONFIG names"),            # points at a file that does not exist
+    ("", "is empty"),
+    ("template", "still the template of 'axiscal config --init'"),
+])
+def test_draft_names_what_is_missing_and_exits_3(tmp_path, config, said):
+    """A configuration absent, empty or still the template is said; the certificate is a DRAFT
+    (exit 3, each missing item on stderr); with --draft the same page and exit 0."""
+    from axiscal.io.user_config import TEMPLATE
+
+    _setup(tmp_path)
+    cfg = tmp_path / "config.toml"
+    if config is None:
+        cfg.unlink()
+    else:
+        cfg.write_text(TEMPLATE if config == "template" else config)
+    r = _issue(tmp_path, "--report", str(tmp_path / "d.pdf"))
+    assert r.exit_code == 3, r.output
+    assert "is a DRAFT, not a certificate; missing:" in r.stderr and said in r.stderr
+    texts = pdf_text(tmp_path / "d.pdf")
+    assert all("DRAFT" in t for t in texts) and "not a certificate" in texts[0]
+    r = _issue(tmp_path, "--report", str(tmp_path / "d.pdf"), "--draft")
+    assert r.exit_code == 0 and said in r.stderr
+    assert runner.invoke(app, ["certificate", "list", "--db", _db(tmp_path)]).stdout.startswith(
+        "no certificates")
+
+
+def test_overdue_instrument_and_late_test_date(tmp_path):
+    """An instrument due before the test: DRAFT naming it. A test dated after the date of issue:
+    refused, one line, nothing written."""
+    _setup(tmp_path, USER.replace("2099-04-30", "2020-01-01"))
+    r = _issue(tmp_path, "--report", str(tmp_path / "d.html"))
+    assert r.exit_code == 3 and "due 2020-01-01, overdue on the date of calibration" in r.stderr
+    (tmp_path / "job.toml").write_text(JOB.replace('date = "2026-11-20"', 'date = "2999-01-01"'))
+    r = _issue(tmp_path, "--report", str(tmp_path / "late.html"))
+    assert r.exit_code == 2 and len(r.stderr.strip().splitlines()) == 1
+    assert "date of test 2999-01-01 is after the date of issue" in r.stderr
+    assert not (tmp_path / "late.html").exists()
 
 
 def test_zone_exits_1_and_simple_rule_is_selectable(tmp_path):

@@ -39,8 +39,10 @@ CONFIG = {
             "due": "2027-04-30",
         }
     ],
-    "certificate": {"approver": "Dr. M. Braun"},
+    "certificate": {"approver": "Dr. M. Braun"},  # the older name of [certificate] signatory
 }
+#: A measured material temperature: the budget then holds no shop-temperature range (issue 28).
+MEASURED = {"e_ve": 0.8, "e_ve_source": "drift check", "material_temperature": 20.2}
 
 
 @pytest.fixture(scope="module")
@@ -52,7 +54,7 @@ def linear():
 
 def _certificate(ds, result, tolerances, rule=Rule.ISO_14253_1, paper="A4", uncertainty=None):
     budget = positioning_budget(
-        ds, result, uncertainty or {"e_ve": 0.8, "e_ve_source": "drift check"}
+        ds, result, MEASURED if uncertainty is None else uncertainty
     )
     decisions = decide_all(result.parameters(), budget, tolerances, rule)
     info = certificate_info(
@@ -82,7 +84,7 @@ def test_pdf_pages_text_and_layout(linear, tmp_path, paper, size):
     text = "\n".join(texts)
     assert "Overall verdict: CONFORMS" in text
     for p in ("E", "R", "A", "B"):
-        assert f"{budget.U(p):.2f}" in text
+        assert budget.U_text(p) in text
     assert "ISO 14253-1:2017" in text and "Precision Metrology GmbH" in text
     assert "VMC8-0042" in text and "Laser interferometer" in text and "2027-04-30" in text
     pngs = render_pages(pdf, f"certificate_linear_{paper}")
@@ -122,11 +124,11 @@ def test_unknown_conditions_are_said_plainly(linear):
     """ISO 230-2 asks the report to state the test conditions: what the data does not hold is
     written as not stated, never left out."""
     ds, result = linear
-    html = _certificate(ds, result, {})[0].html()
+    html = _certificate(ds, result, {}, uncertainty={"e_ve": 0.8})[0].html()
     assert "not stated in the data file" in html  # the demo data carries no date
-    assert "Material temperature [°C]</td><td>not stated" in html
+    assert "Material temperature (°C)</td><td>not stated" in html
     assert "No tolerance given" in html
-    assert "20 °C assumed" in html  # the budget says what it assumed
+    assert "Assumptions and deviations" in html and "assumed, not given" in html
 
 
 def test_certificate_info_refuses_unknown_keys():
@@ -161,7 +163,7 @@ def test_rotary_certificate_pdf(tmp_path):
     texts = pdf_text(pdf)
     assert all(f"page {i} of {len(texts)}" in t for i, t in enumerate(texts, 1))
     text = "\n".join(texts)
-    assert "Overall verdict: CONFORMS" in text and f"{budget.U('E'):.2f}" in text
+    assert "Overall verdict: CONFORMS" in text and budget.U_text("E") in text
     assert "not applicable (rotary axis)" in text and "Renishaw" in text
     fractions = [used_fraction(p) for p in render_pages(pdf, "certificate_rotary_A4")]
     assert all(f >= 0.5 for f in fractions[:-1]), fractions

@@ -132,15 +132,21 @@ def _history(out: Path, db: str, seed: int) -> None:
 JOB_TOML = """\
 [customer]
 name = "Example Machining AG"
+address = ["Industriestrasse 4", "73728 Esslingen"]
 [machine]
 maker = "Example"
 model = "VMC-800"
 serial = "VMC8-0042"
 location = "Hall 2, cell 5"
 [conditions]
+date = "2026-11-20"
+air_temperature = 20.3
+material_temperature = 20.5
 measuring_line = "X axis, 100 mm above the table centre"
 feed = "2000 mm/min"
 dwell = "4 s"
+[certificate]
+specification = "Purchase order 4711 (positioning tolerances of the VMC-800 acceptance)"
 [tolerance]
 E = 15
 R = 8

@@ -96,7 +96,11 @@ def missing_items(dataset, result, budget, info, decisions, config_note: str = "
 
 
 def _identity(info, config_note: str) -> list[str]:
+    from axiscal.io.user_config import TEMPLATE_COMPANY
+
     c, m, out = info.company, info.machine, []
+    if c.get("name") == TEMPLATE_COMPANY and not config_note:
+        config_note = f"[company] name is still the template's {TEMPLATE_COMPANY!r}"
     if not c.get("name") or not c.get("address") or config_note:
         why = f": {config_note}" if config_note else " ([company] name and address)"
         out.append(f"laboratory identity{why}")

@@ -1,0 +1,185 @@
+"""Issuing a certificate (issue 28): each mandatory item of ISO/IEC 17025:2017 §7.8.2.1 and
+§7.8.4.1 missing gives a DRAFT naming it, an overdue instrument gives a DRAFT, a test dated after
+the date of issue is refused, a name no font can print is refused, the certificate's statements
+and layout (long and Chinese names) on the rendered PDF."""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from importlib import resources
+
+import pytest
+
+from axiscal.errors import AxiscalError
+from axiscal.procedures.positioning import simulate_from_config
+from axiscal.report.issue import write_certificate
+from axiscal.store import open_store
+
+from pdf_pages import pdf_text, render_pages, used_fraction
+
+#: Every mandatory item given (the certificate is issued).
+COMPLETE = {
+    "company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "Stuttgart"],
+                "code": "PM"},
+    "operator": {"name": "J. Keller"},
+    "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
+    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042"},
+    "conditions": {"date": "2026-11-20", "air_temperature": 20.4, "material_temperature": 20.6,
+                   "measuring_line": "100 mm above the table centre", "feed": "2000 mm/min",
+                   "dwell": "4 s"},
+    "instrument": [{"name": "Laser interferometer", "serial": "L-1", "certificate": "C-77",
+                    "due": "2027-04-30"}],
+    "certificate": {"signatory": "Dr. M. Braun", "signatory_role": "Head of laboratory",
+                    "specification": "Contract 4711"},
+    "uncertainty": {"e_ve": 0.8, "e_ve_source": "drift check"},
+}
+TOL = {"E": 25.0, "R": 8.0}
+
+
+@pytest.fixture(scope="module")
+def linear():
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_linear.toml").read_text())
+    sim = simulate_from_config(cfg, seed=1)
+    from axiscal.io.csv import format_positioning_csv
+
+    return sim.dataset, sim.result, format_positioning_csv(sim.dataset).encode()
+
+
+def _without(path: str, value=None):
+    """COMPLETE with ``table.key`` removed (or set to ``value``)."""
+    cfg = copy.deepcopy(COMPLETE)
+    table, _, key = path.partition(".")
+    if not key:
+        del cfg[table]
+    elif value is None:
+        del cfg[table][key]
+    else:
+        cfg[table][key] = value
+    return cfg
+
+
+def _issue(tmp_path, linear, cfg, name="c.html", note="", **kw):
+    ds, result, raw = linear
+    store = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    o = write_certificate(tmp_path / name, ds, result, cfg, raw, kw.pop("tol", TOL), store=store,
+                          filename="x.csv", today="2026-11-24", config_note=note, **kw)
+    return o, store
+
+
+def _instrument(**kw):
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["instrument"] = [{**cfg["instrument"][0], **kw}]
+    return cfg
+
+
+@pytest.mark.parametrize("cfg, note, named", [
+    (_without("company.name"), "", "laboratory identity"),
+    (_without("company.address"), "", "laboratory identity"),
+    (_without("company.name", "Your Calibration Company Ltd"), "", "still the template"),
+    (COMPLETE, "AXISCAL_CONFIG names /x/none.toml, which does not exist",
+     "laboratory identity: AXISCAL_CONFIG names /x/none.toml, which does not exist"),
+    (COMPLETE, "the user configuration /x/c.toml is empty", "is empty"),
+    (_without("customer.name"), "", "customer name"),
+    (_without("customer.address"), "", "customer address"),
+    (_without("machine.maker"), "", "maker of the machine"),
+    (_without("machine.model"), "", "model of the machine"),
+    (_without("machine.serial"), "", "serial number of the machine"),
+    (_without("conditions.date"), "", "date of calibration"),
+    (_without("conditions.air_temperature"), "", "air temperature during the test, measured"),
+    (_without("conditions.material_temperature"), "", "material temperature during the test"),
+    (_without("instrument"), "", "instruments used, with their calibration certificates"),
+    (_instrument(certificate="..."), "", "calibration certificate number of the instrument"),
+    (_instrument(due="YYYY-MM-DD"), "", "calibration due date of the instrument"),
+    (_instrument(due="2020-01-01"), "", "due 2020-01-01, overdue on the date of calibration"),
+    (_without("uncertainty.e_ve"), "", "environmental variation error"),
+    (_without("certificate.specification"), "", "source of the specification"),
+    (_without("certificate.signatory"), "", "name of the person authorising"),
+    (_without("certificate.signatory_role"), "", "role of the person authorising"),
+])
+def test_each_missing_item_makes_a_draft_naming_it(tmp_path, linear, cfg, note, named):
+    """ISO/IEC 17025:2017 §7.8.2.1 (b, c, e, f, h, i, o), §7.8.4.1 (a, c), §7.8.6.2: one item
+    missing -> a DRAFT (title "not a certificate", no number taken) naming it; nothing else
+    missing."""
+    o, store = _issue(tmp_path, linear, cfg, note=note)
+    assert o.draft and o.number == "" and store.certificates() == []
+    assert len(o.missing) == 1 and named in o.missing[0], o.missing
+    html = o.path.read_text()
+    assert "DRAFT — not a certificate" in html and 'class="watermark"' in html
+
+
+def test_no_statement_of_conformity_needs_no_specification(tmp_path, linear):
+    """§7.8.6.2 asks for the specification only when a verdict is given."""
+    o, _ = _issue(tmp_path, linear, _without("certificate.specification"), tol={})
+    assert not o.draft and o.number == "PM-2026-00001"
+
+
+def test_complete_certificate_is_issued_with_its_statements(tmp_path, linear):
+    o, store = _issue(tmp_path, linear, COMPLETE)
+    assert not o.draft and o.missing == () and o.number == "PM-2026-00001"
+    html = o.path.read_text()
+    assert "Calibration certificate — positioning of the X axis" in html
+    assert "DRAFT" not in html and 'class="watermark"' not in html
+    for s in ("metrologically traceable to the SI through the calibration certificates of the "
+              "instruments used: Laser interferometer (certificate C-77, due 2027-04-30)",
+              "The results relate only to the item calibrated.",
+              "This certificate shall not be reproduced except in full without the written "
+              "approval of the laboratory.", "against the specification: Contract 4711. Decision rule",
+              "Assumptions and deviations", "— End of certificate —",
+              "Authorised by: Dr. M. Braun, Head of laboratory"):
+        assert s in html, s
+    rec = store.certificate(o.number)
+    assert rec.document == o.path.read_bytes() and rec.media_type == "text/html"
+
+
+def test_job_tolerances_are_marked_as_supplied_by_the_customer(tmp_path, linear):
+    job = tmp_path / "job.toml"
+    job.write_text("[tolerance]\nE = 25\n")
+    cfg = {**COMPLETE, "tolerance": {"E": 25.0}}
+    o, _ = _issue(tmp_path, linear, cfg, job=job, tol={"R": 8.0})
+    html = o.path.read_text()
+    assert "<td>25 *</td>" in html and "<td>8</td>" in html
+    assert "* Supplied by the customer (job file)." in html
+    assert "Contract 4711 (supplied by the customer)" in html
+
+
+def test_test_dated_after_the_date_of_issue_is_refused(tmp_path, linear):
+    cfg = _without("conditions.date", "2026-12-01")
+    with pytest.raises(AxiscalError, match="date of test 2026-12-01 is after the date of issue "
+                                           "2026-11-24"):
+        _issue(tmp_path, linear, cfg)
+    assert not (tmp_path / "c.html").exists()
+
+
+def test_a_name_no_font_can_print_is_refused(tmp_path, linear):
+    """An Egyptian hieroglyph is in neither DejaVu Sans nor Noto Sans CJK: refused by name, not
+    printed as an empty box."""
+    cfg = _without("customer.name", "Pharao \U00013000 Ltd")
+    with pytest.raises(AxiscalError, match=r"\[customer\] name: the character .* \(U\+13000, EGYPTIAN"):
+        _issue(tmp_path, linear, cfg)
+    assert not (tmp_path / "c.html").exists()
+
+
+def test_long_and_chinese_names_wrap_and_render(tmp_path, linear):
+    """A 200-character customer name wraps in its cell (no blank page, no page but the last
+    under half full) and a Chinese name is drawn by Noto Sans CJK (it is in the text layer;
+    the pages were looked at in build/test-artefacts)."""
+    name = ("长城精密机械有限公司 Example Machining AG and Sons " * 6)[:200]
+    o, _ = _issue(tmp_path, linear, _without("customer.name", name), name="c.pdf")
+    assert not o.draft
+    texts = pdf_text(o.path)
+    joined = "".join("".join(t.split()) for t in texts)
+    assert "长城精密机械有限公司" in joined
+    assert "".join(name.split()) in joined
+    pngs = render_pages(o.path, "certificate_long_cjk_name")
+    fractions = [used_fraction(p) for p in pngs]
+    assert all(f >= 0.5 for f in fractions[:-1]), fractions
+    last = texts[-1]
+    assert "Results" in last and "Authorised by" in last and "End of certificate" in last
+
+
+def test_draft_pdf_is_marked_on_every_page(tmp_path, linear):
+    o, _ = _issue(tmp_path, linear, _without("certificate.signatory"), name="d.pdf")
+    texts = pdf_text(o.path)
+    assert all("DRAFT" in t for t in texts) and "not a certificate" in texts[0]
+    render_pages(o.path, "certificate_draft")
