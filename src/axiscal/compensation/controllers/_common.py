@@ -13,7 +13,8 @@ from axiscal._parse import finite_number
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["ControllerFile", "FileInput", "resolve_input", "check_points", "check_spacing",
-           "check_travel", "check_modulo", "correction_factor", "parse_number", "decimals"]
+           "check_travel", "check_modulo", "correction_factor", "parse_number", "decimals",
+           "SafeName", "safe_axis_name", "SOURCE_COMMENT"]
 
 
 @dataclass(frozen=True, eq=False)
