@@ -161,12 +161,7 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1,
     lines = ["%", f"(AXISCAL PITCH ERROR COMPENSATION AXIS {table.axis or '-'}, CORRECTION = "
              f"-DEVIATION, 1 COUNT = {detection_unit:.12g} {word})",
              f"(REFERENCE POSITION {table.reference_position / per:.12g} {word} AT POINT {ref})",
-             *names.comment("(", ")", upper=True)]
-    if table.bidirectional:      # a bit parameter: the tape would overwrite all eight bits
-        lines.append(f"(SET 3605#0 = 1 FOR AXIS {a} BY HAND, KEEPING BITS 1-7)")
-    lines += [f"N{p}A{a}P{v}" for p, v in params]
-    lines += [f"N{10000 + k}P{v}" for k, v in data]
-    lines.append("%")
+             *names.comment("(", ")", upper=True), *_tape(params, data, a, table.bidirectional)]
     return ControllerFile(NAME, "\n".join(lines) + "\n", f"PITCH_{table.axis or 'AXIS'}.TXT",
                           table, _enable(params, a, table.bidirectional),
                           notes=_notes(table, ref, mag, detection_unit, count, per, word))
@@ -222,19 +217,9 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
     spacing = params[3624] * count
     data = params["data"]
     up = _absolute(data, first, last, ref, 0, mag, source)
-    down = up
-    if bidirectional:
-        nf = params[3626]
-        if not 0 <= nf <= max_number - (last - first):
-            raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
-                                  f"{nf} … {nf + last - first} fall outside 0 … {max_number}", source)
-        if nf <= last and first <= nf + last - first:      # one point would hold two values
-            raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
-                                  f"{nf} … {nf + last - first} overlap the positive-direction "
-                                  f"points {first} … {last} (3621 … 3622)", source)
-        down = _absolute(data, nf, nf + last - first, nf + ref - first, params.get(3627, 0), mag,
-                         source)
-    t = CompensationTable(axis, kind, pu, cu, got["reference_position"].value - (ref - first) * spacing,
+    down = _negative(params, first, last, ref, mag, max_number, source) if bidirectional else up
+    t = CompensationTable(axis, kind, pu, cu,
+                          got["reference_position"].value - (ref - first) * spacing,
                           spacing, up, down, bidirectional=bidirectional,
                           modulo=params.get(3625, 0) != 0, reference_index=ref - first)
     k = count / correction_factor(t, pu)   # counts -> correction unit
@@ -317,6 +302,14 @@ def _bidirectional(params) -> bool:
 
 
 # -- writing helpers -------------------------------------------------------------------------
+def _tape(params, data, a, bidirectional) -> list[str]:
+    """The parameter and data lines of axis ``a`` (ISO tape, 0i-PB §4), closed by ``%``."""
+    lines = [f"(SET 3605#0 = 1 FOR AXIS {a} BY HAND, KEEPING BITS 1-7)"] if bidirectional else []
+    lines += [f"N{p}A{a}P{v}" for p, v in params]            # 3605 is a bit parameter: a tape
+    lines += [f"N{10000 + k}P{v}" for k, v in data]          # line would overwrite all 8 bits
+    return lines + ["%"]
+
+
 def _enable(params, a, bidirectional) -> tuple[str, ...]:
     return (f"parameters {', '.join(str(p) for p, _ in params)} as written (axis {a})",
             "set bit 0 of parameter 3605 to 1 (bidirectional pitch error compensation) on "
@@ -464,6 +457,20 @@ def _axis_params(lines, axis_number, source) -> dict:
     out: dict = {p: v[a] if a in v else v[None] for p, v in params.items() if a in v or None in v}
     out["data"] = data
     return out
+
+
+def _negative(params, first, last, ref, mag, max_number, source):
+    """The negative-direction table: points from 3626 on, 3627 at the reference (A-77810E)."""
+    nf = params[3626]
+    if not 0 <= nf <= max_number - (last - first):
+        raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
+                              f"{nf} … {nf + last - first} fall outside 0 … {max_number}", source)
+    if nf <= last and first <= nf + last - first:      # one point would hold two values
+        raise DataFormatError(f"parameter 3626 = {nf}: the negative-direction points "
+                              f"{nf} … {nf + last - first} overlap the positive-direction "
+                              f"points {first} … {last} (3621 … 3622)", source)
+    return _absolute(params["data"], nf, nf + last - first, nf + ref - first,
+                     params.get(3627, 0), mag, source)
 
 
 def _absolute(data, first, last, ref, at_ref, mag, source):
