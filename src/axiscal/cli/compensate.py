@@ -76,7 +76,7 @@ def compensate(
     reference: Optional[float] = typer.Option(None, "--home", help="Home (reference) position, mm or deg (default: the table start)."),
     travel: Optional[List[float]] = typer.Option(None, "--travel", help="Axis travel low and high, mm or deg (give twice); the table must lie inside."),
     axis: str = typer.Option("", "--axis", help="Axis name written in the table (X, C ...)."),
-    option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001."),
+    option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001, unit=inch (840D: MD10240 = 0), axis_number=2 and reference_position=15 (reading a Fanuc tape)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
