@@ -66,7 +66,12 @@ def test_write_then_read_gives_the_written_table_and_crlf():
     bi = table_from_deviations([0, 100, 200], [2.0, -1.0, 4.0], [3.0, 0.0, 5.0], spacing=50)
     cf = ren.write(bi)
     assert any("mean of both directions" in n for n in cf.notes)
-    np.testing.assert_allclose(ren.parse(cf.text).up, bi.mean, atol=1e-6)
+    back = ren.parse(cf.text)
+    assert back.bidirectional and back.backlash == pytest.approx(bi.backlash, abs=1e-6)
+    np.testing.assert_allclose(back.mean, bi.mean, atol=1e-6)
+    np.testing.assert_allclose(back.up, cf.table.up, atol=1e-6)
+    siemens = siemens_840d.parse(siemens_840d.write(bi, zero_at_reference=False).text)
+    np.testing.assert_allclose(back.up, siemens.up, atol=1e-6)   # the same mean + backlash
 
 
 @pytest.mark.parametrize("text, words", [

@@ -23,8 +23,10 @@ Readings chosen
   deviation in mm (deg), correction = −value, the same as a Siemens file's value. No public
   source states this directly.
 * **One table.** ``Combined`` is one value per point: a bidirectional table is written as its
-  mean, the mean reversal noted (the format has no backlash field). A rotary table needs
-  ``axis_kind="rotary"`` to be read (the file does not say).
+  mean, and its mean reversal B̄ (ISO 230-2:2014 eq. 7, as a controller's backlash value) on a
+  line ``Mean reversal : … mm`` before the table, which the converter ignores (it is not a
+  Renishaw field) and :func:`parse` reads back as ``up = mean − B̄/2``, ``down = mean + B̄/2``.
+  A rotary table needs ``axis_kind="rotary"`` to be read (the file does not say).
 * **Layout written.** A title line, the axis, the three lines, a blank line, the header and the
   rows ``No.  position  value`` (numbered from 0, as the converter counts), CRLF line ends as a
   Windows tool writes them. Anything else in a file read (a further line of text after the table,
@@ -56,6 +58,7 @@ _HEADER = re.compile(r"^No\.\s+Axis position\s+Combined\s*$", re.IGNORECASE)
 _PARAM = re.compile(r"^\s*Compensation (spacing|start|end)\b[^-+\d.]*([-+]?\d*\.?\d+(?:[eE][-+]?\d+)?)",
                     re.IGNORECASE)
 _AXIS = re.compile(r"^\s*Axis\s*:\s*(\S*)\s*$", re.IGNORECASE)
+_REVERSAL = re.compile(r"^\s*Mean reversal\s*:\s*(\S+)", re.IGNORECASE)
 
 
 def looks_like_ren(text: str) -> bool:
@@ -86,18 +89,23 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
     lines = ["Renishaw compensation table (written by axiscal)", f"Axis : {table.axis or '-'}",
              f"Compensation spacing : {table.spacing:.{nd}f} {pu}",
              f"Compensation start : {table.start:.{nd}f} {pu}",
-             f"Compensation end : {table.end:.{nd}f} {pu}", "", HEADER]
+             f"Compensation end : {table.end:.{nd}f} {pu}"]
+    b = np.round(table.backlash * k, nd) + 0.0 if table.bidirectional else None
+    if b is not None:
+        lines.append(f"Mean reversal : {b:.{nd}f} {pu} (axiscal: B of ISO 230-2, down - up)")
+    lines += ["", HEADER]
     lines += [f"{i:<8d}{p:<21.{nd}f}{v:.{nd}f}" for i, (p, v) in
               enumerate(zip(table.positions, values))]
     text = "\r\n".join(lines) + "\r\n"
     as_file = np.round(-values / k, 6) + 0.0
-    written = replace(table, up=as_file, down=as_file, bidirectional=False)
+    written = _with_reversal(replace(table, up=as_file, down=as_file, bidirectional=False),
+                             None if b is None else b / k)
     notes = [f"values are the axis error (−correction) in {pu}, as a Siemens $AA_ENC_COMP table "
              "holds them (the public .REN converter copies them there unchanged)"]
     if table.bidirectional:
         notes.append(f"the table holds the mean of both directions; the mean reversal "
-                     f"{float(np.mean(table.backlash)):+.4g} {table.correction_unit} is not "
-                     "carried by the format")
+                     f"{table.backlash:+.4g} {table.correction_unit} is on a 'Mean reversal' line "
+                     "that Renishaw's software and the converter do not read")
     name = f"{(table.axis or 'axis').upper()}.REN"
     enable = ["load it in Renishaw's software, or convert it to a controller's table: axiscal "
               "compensate --read FILE.REN --to NAME --out FILE"]
@@ -112,7 +120,7 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
     ``axis``: overrides the file's ``Axis :`` line.
     """
     kind = AxisKind.parse(axis_kind)
-    params, named, rows = _scan(text, source)
+    params, named, rows, reversal = _scan(text, source)
     for key in ("spacing", "start", "end"):
         if key not in params:
             raise DataFormatError(f"no 'Compensation {key}' line", source)
@@ -135,14 +143,24 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
     modulo = kind is AxisKind.ROTARY and abs(end - start - 360.0) < 1e-6
     t = CompensationTable(axis or named, kind, pu, cu, start, spacing, values, values,
                           modulo=modulo)
-    c = np.round(-values / correction_factor(t, pu), 6) + 0.0
-    return replace(t, up=c, down=c)
+    k = correction_factor(t, pu)
+    c = np.round(-values / k, 6) + 0.0
+    return _with_reversal(replace(t, up=c, down=c), None if reversal is None else reversal / k)
+
+
+def _with_reversal(table: CompensationTable, b: float | None) -> CompensationTable:
+    """Mean table and mean reversal B̄ (correction unit) -> up/down tables."""
+    if b is None:
+        return table
+    return replace(table, up=np.round(table.mean - b / 2, 6) + 0.0,
+                   down=np.round(table.mean + b / 2, 6) + 0.0, bidirectional=True)
 
 
 def _scan(text: str, source: str):
     """The three parameters, the axis name and the table rows (line, position, value)."""
     params: dict[str, float] = {}
     named = ""
+    reversal = None
     rows: list[tuple[int, float, float]] = []
     in_table = False
     for n, raw in enumerate(text.lstrip("\ufeff").splitlines(), 1):
@@ -163,6 +181,8 @@ def _scan(text: str, source: str):
             if key in params:
                 raise DataFormatError(f"'Compensation {key}' is given twice", source, n)
             params[key] = parse_number(m.group(2), source, n)
+        elif _REVERSAL.match(line):
+            reversal = parse_number(_REVERSAL.match(line).group(1), source, n)
         elif _AXIS.match(line):
             named = _AXIS.match(line).group(1).strip("-")
         elif _HEADER.match(line):
@@ -171,4 +191,4 @@ def _scan(text: str, source: str):
         raise DataFormatError(f"no table header {HEADER!r}", source)
     if len(rows) < 2:
         raise DataFormatError(f"{len(rows)} table row(s); a table needs at least 2", source)
-    return params, named, rows
+    return params, named, rows, reversal
