@@ -10,7 +10,11 @@ JSON output (``--json``), stable keys:
   ``stick_slip_um``, ``vibration_um``, ``vibration_hz``), ``residual_rms_um``,
   ``residual_ptp_um``, ``feed_mm_per_min``, ``iso230_4`` (the ``squareness circular`` object),
   ``ranking`` (``term``, ``value``, ``unit``, ``effect_um``, ``share_percent``, ``advice``, largest
-  effect first), ``warnings``. ``x``/``y`` are the plane's first and second axis.
+  effect first), ``warnings``. ``iso230_4.folded`` lists, for squareness, scale mismatch and each
+  backlash, what the ISO 230-4 fit folds in: ``quantity``, ``unit``, ``iso230_4``, ``diagnosis``,
+  ``difference``, ``folded`` (term -> amount), ``material``, ``statement``. The history stores
+  this same object (with ``plane``) for a two-direction ballbar file
+  (:func:`axiscal.store.kinds.evaluate_ballbar`). ``x``/``y`` are the plane's first and second axis.
 * ``ballbar volumetric``: ``planes`` (per file: ``plane``, ``squareness_um_per_m``,
   ``scale_mismatch_um_per_m``, ``backlash_x_um``, ``backlash_y_um``), ``squareness_um_per_m``
   (object by plane), ``scale_mismatch_um_per_m`` (object by plane).
@@ -50,7 +54,6 @@ def analyze(
     """
     from axiscal.errors import InputError
     from axiscal.io.ballbar import read_ballbar
-    from axiscal.standards.ballbar_diagnosis import diagnose
 
     if plot is not None:
         plot_path(plot)
@@ -65,8 +68,7 @@ def analyze(
         if p not in ("XY", "YZ", "ZX"):
             raise InputError(f"--plane {plane!r}: choose XY, YZ or ZX")
         axes = (p[0], p[1])
-    f = feed / 6e4 if feed is not None else data.feed
-    result = diagnose(data.runs, data.radius, feed=f, axes=axes)
+    result = _diagnosis(file, data, feed=None if feed is None else feed / 6e4, axes=axes)
     if plot is not None:
         from axiscal.report.ballbar_plots import save_diagnosis_plot
 
@@ -94,12 +96,11 @@ def volumetric(
     """
     from axiscal.errors import InputError
     from axiscal.io.ballbar import read_ballbar
-    from axiscal.standards.ballbar_diagnosis import diagnose
 
     rows = []
     for file in files:
         data = read_ballbar(file)
-        v = diagnose(data.runs, data.radius, feed=data.feed, axes=data.axes).values
+        v = _diagnosis(file, data).values
         rows.append({"plane": "".join(data.axes), "file": str(file),
                      "squareness_um_per_m": v["squareness_um_per_m"],
                      "scale_mismatch_um_per_m": v["scale_mismatch_um_per_m"],
@@ -118,6 +119,19 @@ def volumetric(
         typer.echo(f"  {r['plane']}: squareness {r['squareness_um_per_m']:+8.2f} µm/m, scale "
                    f"mismatch {r['scale_mismatch_um_per_m']:+8.2f} µm/m, backlash "
                    f"{r['backlash_x_um']:+.2f} / {r['backlash_y_um']:+.2f} µm")
+
+
+def _diagnosis(file, data, feed=None, axes=None):
+    """The library's one ballbar evaluation (the history and the workbench store the same);
+    a one-direction test refused in one line, since only the diagnosis is shown here."""
+    from axiscal.errors import InputError
+    from axiscal.store.kinds import evaluate_ballbar
+
+    if len(data.runs) != 2:
+        raise InputError(f"{file}: one direction ({data.runs[0].direction}) only; the diagnosis "
+                         "needs one CCW and one CW run ('axiscal squareness circular' evaluates "
+                         "one direction by ISO 230-4)")
+    return evaluate_ballbar(data, feed=feed, axes=axes)
 
 
 def register(app: typer.Typer) -> None:

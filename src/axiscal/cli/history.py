@@ -344,7 +344,15 @@ def _figures(ev, plot, report, stored) -> None:
             from axiscal.report.html import write_positioning_report
 
             write_positioning_report(report, ev.dataset, ev.evaluation)
-    elif ev.kind == "ballbar" and plot and not report:
+    elif ev.kind == "ballbar" and hasattr(ev.evaluation, "circular"):     # the diagnosis
+        from axiscal.report.ballbar_plots import save_diagnosis_plot, write_diagnosis_report
+
+        title = f"Ballbar diagnosis {stored.summary.filename}"
+        if plot:
+            save_diagnosis_plot(ev.dataset.runs, ev.evaluation, plot, title=title)
+        if report:
+            write_diagnosis_report(report, ev.dataset.runs, ev.evaluation, title=title)
+    elif ev.kind == "ballbar" and plot and not report:                    # one direction
         from axiscal.report.squareness_plots import save_ballbar_plot
 
         save_ballbar_plot(ev.dataset.runs, ev.evaluation, plot,

@@ -18,7 +18,12 @@ JSON output (``--json``), stable keys:
 * ``squareness circular``: ``squareness``, ``radius_mm``, ``scale_mismatch_um_per_m``,
   ``backlash_x_um``, ``backlash_y_um``, ``G_ccw_um``, ``G_cw_um`` (minimum zone), ``G_lsc_ccw_um``,
   ``G_lsc_cw_um`` (least-squares centre), ``H_um``, ``F_max_um``,
-  ``F_min_um``, ``arc_deg``, ``fit_rms_um``, ``warnings``.
+  ``F_min_um``, ``arc_deg``, ``fit_rms_um``, ``warnings``, ``folded`` (both directions: what the
+  ISO 230-4 fit folds into squareness, scale mismatch and each backlash against the full ballbar
+  diagnosis, as ``ballbar analyze`` gives it; empty with one direction: a list of ``quantity``,
+  ``unit``, ``iso230_4`` (this fit's value), ``diagnosis`` (the full diagnosis's),
+  ``difference``, ``folded`` (term -> what it adds), ``material`` (true when the difference
+  exceeds the residual the diagnosis leaves, and so is printed) and ``statement``).
 * ``squareness biaxial``, ``diagonal`` and ``circular`` also: ``U_um_per_m`` (expanded
   uncertainty, k = 2, ISO/TR 230-9 form, see ``axiscal.standards.iso230_9_geometry``) and
   ``uncertainty`` (list of ``name``, ``u_um_per_m``, ``clause``); inputs not measured take the
@@ -335,37 +340,50 @@ def circular(
 ) -> None:
     """Circular test by ISO 230-4: G, H, F, and squareness free of backlash and scale mismatch.
 
+    With both directions the full ballbar diagnosis runs too, and every figure its simpler fit
+    folds other errors into (servo mismatch into backlash, most often) is stated beside it.
+
     Example: axiscal squareness circular examples/squareness_ballbar_150mm.csv --plot polar.png
     """
     from axiscal.io.ballbar import read_ballbar
-    from axiscal.standards.iso230_4 import evaluate_circular
+    from axiscal.store.kinds import evaluate_ballbar
 
     from axiscal._schema import check_option
 
     check_option("--radius", radius, "mm", lo=1, hi=MAX_LENGTH_MM)   # a ballbar of at least 1 mm
     _outputs(plot, report)
     data = read_ballbar(file, radius_mm=radius)
-    r = evaluate_circular(data.runs, data.radius, axes=data.axes, datum=datum)
+    full = evaluate_ballbar(data, datum=datum)
+    r = getattr(full, "circular", full)            # one direction: the ISO 230-4 result itself
+    folded = getattr(full, "folded", ())
+    statements = [str(f) for f in folded if f.material]
     if plot is not None:
         from axiscal.report.squareness_plots import save_ballbar_plot
 
         save_ballbar_plot(data.runs, r, plot, title=f"Ballbar test {file.name}")
     budget = _budget("ballbar", ballbar_radius=data.radius)
-    d = {**r.as_dict(), **_budget_json(budget)}
+    d = {**r.as_dict(), "folded": [f.as_dict() for f in folded], **_budget_json(budget)}
     if report is not None:
         from axiscal.report.html import write_result_report
         from axiscal.report.squareness_plots import ballbar_figure
 
         write_result_report(report, f"Circular test — {file.name}", d,
                             figure=ballbar_figure(data.runs, r, title=f"Ballbar test {file.name}"),
+                            notes=statements,
                             method="Circular deviation G, circular hysteresis H and radial "
                                    "deviation F by ISO 230-4:2005; the squareness from the "
                                    "fitted ellipse, free of backlash and scale mismatch "
-                                   "(Chapman, Calibration of machine squareness, Method 4).")
+                                   "(Chapman, Calibration of machine squareness, Method 4). "
+                                   "Its reversal fit cannot separate servo mismatch, lateral "
+                                   "play, reversal spikes or cyclic error: the full ballbar "
+                                   "diagnosis (axiscal ballbar analyze) fits them, and each "
+                                   "figure it moves is stated with what was folded in.")
     if json_out:
         print_json(d)
     else:
         typer.echo(str(r))
+        for line in statements:
+            typer.echo(f"  {line}")
         typer.echo(_budget_line(budget))
     _wrote(plot, report)
 

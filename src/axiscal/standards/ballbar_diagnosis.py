@@ -137,12 +137,13 @@ class FoldedError:
         diff = self.iso230_4 - self.diagnosis
         big = [p for p in self.parts if abs(p[2]) >= FOLD_SHARE * abs(diff)] or \
             list(self.parts[:1])
-        rest = sum(p[2] for p in self.parts[len(big):])
-        names = ", ".join(f"{label} ({v:+.3f} {self.unit})" for _, label, v in big)
-        if len(big) < len(self.parts):
-            names += f" and {len(self.parts) - len(big)} smaller terms ({rest:+.3f} {self.unit})"
-        return (f"{self.label} {self.iso230_4:+.3f} {self.unit} by the ISO 230-4 fit folds "
-                f"{names} in; the full diagnosis gives {self.diagnosis:+.3f} {self.unit}")
+        rest = [p[2] for p in self.parts[len(big):] if abs(p[2]) >= 5e-4]   # shown as ≠ 0
+        names = ", ".join(f"{label} {v:+.3f} {self.unit}" for _, label, v in big)
+        if rest:
+            names += f" ({len(rest)} smaller {'terms' if len(rest) > 1 else 'term'} " \
+                     f"{sum(rest):+.3f} {self.unit})"
+        return (f"{self.label} {self.iso230_4:+.3f} {self.unit} by the ISO 230-4 fit folds in "
+                f"{names}; the full diagnosis gives {self.diagnosis:+.3f} {self.unit}")
 
 
 #: A folded term is named in the statement when it holds at least this share of the difference.

@@ -21,7 +21,8 @@ from axiscal import units
 from axiscal._json import jsonable
 from axiscal.errors import DataFormatError, InputError
 
-__all__ = ["KINDS", "Evaluated", "detect_kind", "evaluate_file", "jsonable", "result_text"]
+__all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
+           "evaluate_file", "jsonable", "result_text"]
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion")
 
@@ -140,21 +141,76 @@ def _straightness(text: str, filename: str) -> Evaluated:
 
 def _ballbar(text: str, filename: str) -> Evaluated:
     from axiscal.io.ballbar import parse_ballbar
-    from axiscal.standards.iso230_4 import evaluate_circular
 
     d = parse_ballbar(text, source=filename)
-    r = evaluate_circular(d.runs, d.radius, axes=d.axes)
-    res = r.as_dict()
-    params = {"squareness": (res["squareness"]["um_per_m"], "um/m"),
-              "scale_mismatch": (res["scale_mismatch_um_per_m"], "um/m"),
-              "backlash_x": (res["backlash_x_um"], "um"), "backlash_y": (res["backlash_y_um"], "um"),
-              "H": (res["H_um"], "um")}
-    for key, name in (("G_ccw_um", "G_ccw"), ("G_cw_um", "G_cw")):
-        if res.get(key) is not None:
-            params[name] = (res[key], "um")
-    plane = "".join(d.axes)
-    return Evaluated("ballbar", "linear", jsonable(res), params, axis=plane, dataset=d,
-                     evaluation=r)
+    r = evaluate_ballbar(d)
+    res = {"plane": "".join(d.axes), **r.as_dict()}
+    return Evaluated("ballbar", "linear", jsonable(res), ballbar_parameters(r),
+                     axis=res["plane"], dataset=d, evaluation=r)
+
+
+def evaluate_ballbar(data, *, feed: float | None = None, axes: tuple[str, str] | None = None,
+                     datum: str = ""):
+    """The one evaluation of a ballbar test, whichever path it takes (``ballbar analyze``,
+    ``squareness circular``, ``history add`` and ``show``, the workbench, archive import).
+
+    Both directions: the full diagnosis
+    (:func:`~axiscal.standards.ballbar_diagnosis.diagnose`), which holds the ISO 230-4:2005
+    figures and what their simpler fit folds together. One direction: the diagnosis cannot
+    separate backlash from squareness, so the ISO 230-4 evaluation
+    (:func:`~axiscal.standards.iso230_4.evaluate_circular`) with its warning.
+
+    Parameters
+    ----------
+    data : axiscal.io.ballbar.BallbarData
+    feed : float or None, m/s
+        Overrides the file's feed.
+    axes : (str, str) or None
+        Overrides the file's plane.
+    datum : str
+        Datum axis of the ISO 230-1 squareness sign.
+
+    Returns
+    -------
+    BallbarDiagnosis or CircularResult
+    """
+    from axiscal.standards.ballbar_diagnosis import diagnose
+    from axiscal.standards.iso230_4 import evaluate_circular
+
+    axes = axes or data.axes
+    if {r.direction for r in data.runs} == {"ccw", "cw"}:
+        return diagnose(data.runs, data.radius, feed=data.feed if feed is None else feed,
+                        axes=axes, datum=datum)
+    return evaluate_circular(data.runs, data.radius, axes=axes, datum=datum)
+
+
+#: Units of the diagnosis's JSON keys, by suffix (the store writes um, not µm).
+_SUFFIX_UNITS = (("_um_per_m", "um/m"), ("_um", "um"), ("_ms", "ms"), ("_mm", "mm"),
+                 ("_hz", "Hz"))
+
+
+def ballbar_parameters(r) -> dict:
+    """A ballbar evaluation's summary parameters (name -> (value, unit)) for compare and trend:
+    every diagnosed term by its JSON key without the unit, G and H of ISO 230-4:2005, and the
+    ISO 230-4 fit's own squareness, scale mismatch and backlash as ``iso230-4:NAME``."""
+    circ = getattr(r, "circular", r)
+    c = circ.as_dict()
+    params = {"H": (c["H_um"], "um"), "G_ccw": (c["G_ccw_um"], "um"),
+              "G_cw": (c["G_cw_um"], "um")}
+    simple = {"squareness": (c["squareness"]["um_per_m"], "um/m"),
+              "scale_mismatch": (c["scale_mismatch_um_per_m"], "um/m"),
+              "backlash_x": (c["backlash_x_um"], "um"), "backlash_y": (c["backlash_y_um"], "um")}
+    if circ is r:                       # one direction: the ISO 230-4 figures are the result
+        params.update(simple)
+    else:
+        params.update({f"iso230-4:{k}": v for k, v in simple.items()})
+        for key, value in r.values.items():
+            suffix, unit = next(((s, u) for s, u in _SUFFIX_UNITS if key.endswith(s)))
+            name = key[:-len(suffix)]
+            params[key if name in params else name] = (value, unit)   # vibration, vibration_hz
+        params["residual_rms"] = (r.residual_rms * 1e6, "um")
+    return {k: (float(v), u) for k, (v, u) in params.items()
+            if v is not None and math.isfinite(v)}
 
 
 def _diagonal(text: str, filename: str) -> Evaluated:
@@ -179,10 +235,10 @@ def _motion(text: str, filename: str) -> Evaluated:
     d = parse_motion_errors(text, source=filename)
     r = evaluate(d)
     params = {}
-    for m in r.motions:
-        scale, unit = (1e6, "um") if m.kind == "length" else (1 / units.ARCSEC, "arcsec")
+    for m in r.motions:   # converted as ``axiscal motion analyze --json`` does: one answer
+        scale, unit = (units.UM, "um") if m.kind == "length" else (units.ARCSEC, "arcsec")
         key = m.name.replace(" ", "_")
-        params[f"{key}_total"] = (m.total * scale, unit)
+        params[f"{key}_total"] = (m.total / scale, unit)
     res = {"title": d.title, "n_runs": r.n_runs,
            "motions": [{"name": m.name, "kind": m.kind, "total": m.total,
                         "synchronous": m.synchronous, "asynchronous": m.asynchronous}
