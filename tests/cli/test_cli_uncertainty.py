@@ -196,4 +196,6 @@ def test_evaluate_shows_the_same_budget_and_warning(tmp_path):
     page = (tmp_path / "r.html").read_text()
     assert "Measurement uncertainty" in page and "tolerance A = 1 µm" in page
     assert "beam offset over the travel" in page and "5528A" not in page   # declared, no rule
-    assert "environmental variation error E_VE" in page and "missing: left out of U" in page
+    assert "environmental variation error E<sub>VE</sub>" in page
+    assert "missing: left out of U" in page
+    assert "beam_offset" not in page and "[uncertainty]" not in page   # no keys on the page

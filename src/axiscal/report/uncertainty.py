@@ -11,6 +11,7 @@ JCGM 100:2008 §7.2.6), like the terminal and ``--json``'s display fields.
 from __future__ import annotations
 
 from axiscal.report.html import Report, unit_label
+from axiscal.report.labels import symbol_html
 
 __all__ = ["add_uncertainty"]
 
@@ -25,6 +26,11 @@ def add_uncertainty(rep: Report, budget, decisions=()) -> None:
         With its ``inputs`` (:func:`~axiscal.standards.iso230_9.positioning_budget`).
     decisions : sequence of Decision, optional
         A tolerance not larger than its U is said first (ISO 14253-1:2017 §5.2).
+
+    Notes
+    -----
+    Symbols are written with their subscripts (E<sub>VE</sub>) and the inputs by their names in
+    words: a customer's page carries no configuration keys (they are in ``--json``).
     """
     from axiscal.standards.iso14253_1 import unprovable
     from axiscal.standards.iso230_9 import format_uncertainty
@@ -32,28 +38,31 @@ def add_uncertainty(rep: Report, budget, decisions=()) -> None:
     u = unit_label(budget.unit)
     rep.add_heading("Measurement uncertainty")
     rep.add_warnings(unprovable(decisions, u))
-    rep.add_table(
+    rep.add_html(_table(
         ["Contribution", f"u [{u}]", "Distribution", "Input", "Source"],
         [[c.quantity, format_uncertainty(c.u), c.distribution, c.basis, c.clause]
          for c in budget.contributors],
-        css_class="text",
-        caption=f"Standard uncertainties (two significant digits, rounded up), combined by the "
-                f"law of propagation of uncertainty (JCGM 100:2008, uncorrelated inputs) with "
-                f"{budget.method}; U = k·u_c with k = {budget.k:g}. Length-proportional "
-                "contributions act on A, E and M; R and B carry the reading resolution and "
-                "E_VE.",
-    )
-    rep.add_table(
-        ["Input", "Value", "From", "Rule or source", "Set with"],
-        [[i.label, i.value_text, _source(i, budget), i.rule, i.set_with]
-         for i in budget.inputs],
-        css_class="text",
-        caption="Inputs of the budget: an assumed input is a default chosen by the rule shown; "
-                "declare the real value to replace it.",
-    )
+        f"Standard uncertainties (two significant digits, rounded up), combined by the law of "
+        f"propagation of uncertainty (JCGM 100:2008, uncorrelated inputs) with {budget.method}; "
+        f"U = k·u_c with k = {budget.k:g}. Length-proportional contributions act on A, E and M; "
+        "R and B carry the reading resolution and E_VE."))
+    rep.add_html(_table(
+        ["Input", "Value", "From", "Rule or source"],
+        [[i.label, i.value_text, _source(i, budget), i.rule] for i in budget.inputs],
+        "Inputs of the budget. An assumed input is a default chosen by the rule shown: declare "
+        "the real value in the job file's uncertainty table or with the command's --uncertainty "
+        "option to replace it."))
     for n in budget.notes:
         if not n.startswith("assumed: "):   # those are the inputs table's rows
-            rep.add_text(n)
+            rep.add_html(f"<p>{symbol_html(n.split(' with [uncertainty]')[0])}</p>")
+
+
+def _table(headers, rows, caption: str) -> str:
+    head = "".join(f"<th>{symbol_html(h)}</th>" for h in headers)
+    body = "".join("<tr>" + "".join(f"<td>{symbol_html(str(c))}</td>" for c in row) + "</tr>"
+                   for row in rows)
+    return (f'<table class="text"><caption>{symbol_html(caption)}</caption><thead><tr>{head}'
+            f"</tr></thead><tbody>{body}</tbody></table>")
 
 
 def _source(i, budget) -> str:

@@ -111,6 +111,8 @@ class BudgetInput:
         """The value with its unit (``0.125 mm``; ``not given``)."""
         if self.value is None:
             return "not given"
+        if self.unit == "1/K":   # as α is written: 11.5 µm/(m·K), not 1.15e-05 1/K
+            return f"{self.value * 1e6:.4g} µm/(m·K)"
         v = f"{self.value:g}" if isinstance(self.value, (int, float)) else str(self.value)
         return f"{v} {self.unit}".strip()
 
@@ -370,7 +372,8 @@ def resolve_linear(table: Mapping[str, Any] | None, dataset=None,
         The inputs, their records (assumed ones marked), and the names of missing inputs.
     """
     kw = _known_keys(LinearInputs, table or {})
-    given = {k: "declared ([uncertainty] table or --uncertainty)" for k in kw}
+    given = {k: "declared by the user (job or configuration file, or the --uncertainty option)"
+             for k in kw}
     if dataset is not None:
         env = dataset.metadata.environment
         if "expansion_coefficient" not in kw and env.expansion_coefficient is not None:
@@ -398,7 +401,8 @@ def resolve_rotary(table: Mapping[str, Any] | None, set_with: str = "[uncertaint
     """As :func:`resolve_linear` for a rotary budget (a rotary calibrator as reference)."""
     kw = _known_keys(RotaryInputs, table or {})
     inputs = RotaryInputs(**kw)
-    given = {k: "declared ([uncertainty] table or --uncertainty)" for k in kw}
+    given = {k: "declared by the user (job or configuration file, or the --uncertainty option)"
+             for k in kw}
     skip = {"e_ve_source"} if inputs.e_ve is None else set()
     rows = _records(inputs, _ROTARY, given, skip, set_with)
     return inputs, rows, ("e_ve",) if inputs.e_ve is None else ()
