@@ -2,8 +2,11 @@
 
 Format (as written by ecmc's ISO 230-2 data-collection scripts)
 ----------------------------------------------------------------
-Plain ``KEY=value`` lines; ``#`` starts a comment; unknown keys (``REF_PV``, ``TEST_PV``,
-``TGT_SET_PV``, ``DEC`` ...) are ignored::
+Plain ``KEY=value`` lines; ``#`` starts a comment. ``REF_PV`` (the reference system's PV) is kept
+as the dataset's ``instrument`` and ``TGT_SET_PV`` (the setpoint's) as its ``axis``: the
+uncertainty budget takes the reference's kind from the PV's name (``…-Enc01-PosAct``, an
+encoder's actual position: :func:`axiscal.standards.iso230_9_inputs.reference_kind`) and shows it
+as taken from the file. Other keys (``TEST_PV``, ``DEC`` ...) are ignored::
 
     UNIT=mm
     CYCLES=5
