@@ -9,7 +9,7 @@ from typing import Optional
 import typer
 
 __all__ = ["SETPOINT_PV", "REFERENCE_PV", "TARGETS", "REFERENCE_SCALE", "REFERENCE_OFFSET",
-           "REST_WINDOW", "epics_options", "show_notes"]
+           "REST_WINDOW", "epics_options", "show_notes", "is_camonitor_log", "capture_log"]
 
 _LOG = "EPICS camonitor log: "
 SETPOINT_PV: Optional[str] = typer.Option(
@@ -59,3 +59,43 @@ def show_notes(ds) -> None:
 
     if ds.metadata.notes.startswith(NOTES_START):
         note(ds.metadata.notes)
+
+
+def is_camonitor_log(path: Path) -> bool:
+    """True if ``path`` is a readable file whose first line reads like camonitor's."""
+    from axiscal.io.epics import looks_like_camonitor
+
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(4096).decode("utf-8", errors="replace")
+    except OSError:
+        return False
+    return looks_like_camonitor(head)
+
+
+def capture_log(record: Path, plan: Path, out: Path, window: float, dwell, epics: dict,
+                not_for_a_log: dict, json_out: bool) -> None:
+    """``axiscal capture`` of a camonitor log: the stops of the setpoint matched to the plan,
+    the reference read where it rests; written as a positioning CSV."""
+    from axiscal.cli._common import print_json
+    from axiscal.errors import InputError
+    from axiscal.io._files import read_text, write_text_atomic
+    from axiscal.io.csv import format_positioning_csv
+    from axiscal.io.epics import capture_epics
+
+    given = [name for name, value in not_for_a_log.items() if value is not None]
+    if given:
+        raise InputError(f"{given[0]} applies to a laser record; {record} is an EPICS camonitor "
+                         "log (its reference is read where it rests, see --window)")
+    opts = epics_options(**epics, window=window, plan=plan, dwell=dwell)
+    cap = capture_epics(read_text(record), source=str(record), **opts)
+    write_text_atomic(out, format_positioning_csv(cap.dataset))
+    d = {"out": str(out), "stops": cap.stops, "measurements": cap.measurements,
+         "overruns": cap.other_stops, "window_um": window, "dwell_s": opts.get("dwell", 1.0),
+         "sample_rate_hz": None, "settling_s": None, "vibration": None, "applied": None,
+         "notes": cap.dataset.metadata.notes}
+    if json_out:
+        print_json(d)
+        return
+    typer.echo(cap.dataset.metadata.notes)
+    typer.echo(f"wrote {out} (evaluate: axiscal iso230-2 {out})")

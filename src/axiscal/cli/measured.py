@@ -14,7 +14,10 @@ JSON (``--json``), stable keys:
   (``[min, max]``, the latter null without material compensation).
 * ``capture``: ``out``, ``stops`` (found), ``measurements``, ``overruns``, ``window_um``,
   ``dwell_s``, ``sample_rate_hz``, ``settling_s`` (``median``, ``max``), ``vibration`` (``peak_hz``,
-  ``amplitude_um``), ``applied`` (environment compensation, or null).
+  ``amplitude_um``), ``applied`` (environment compensation, or null). For an EPICS camonitor
+  log (the setpoint's stops, :mod:`axiscal.io.epics`): ``sample_rate_hz``, ``settling_s`` and
+  ``vibration`` are null, ``overruns`` counts every stop that is not a measurement, and
+  ``notes`` says what was found and assumed.
 * ``formats``: list of ``name``, ``read``, ``write``, ``extensions``, ``example``, ``described_in``.
 """
 
@@ -26,6 +29,8 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
+from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, SETPOINT_PV,
+                                capture_log, is_camonitor_log)
 
 __all__ = ["register"]
 
@@ -119,8 +124,9 @@ def compensate_environment(
 
 
 def capture(
-    record: Path = typer.Argument(..., help="Continuous record: Renishaw .rtx or CSV "
-                                  "time_s,reading_mm[,commanded_mm]."),
+    record: Path = typer.Argument(..., help="Continuous record: Renishaw .rtx, CSV "
+                                  "time_s,reading_mm[,commanded_mm], or an EPICS camonitor log "
+                                  "(setpoint and reference PVs)."),
     plan: Path = typer.Option(..., "--plan", help="The plan the machine ran ('axiscal plan ... "
                               "--csv')."),
     out: Path = typer.Option(..., "--out", help="Positioning CSV to write."),
@@ -139,6 +145,10 @@ def capture(
     json_out: bool = typer.Option(False, "--json", help="Print what was found as JSON."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write a report of the capture "
                                           "(the dynamic view and what was found): HTML or PDF."),
+    setpoint_pv: Optional[str] = SETPOINT_PV,
+    reference_pv: Optional[str] = REFERENCE_PV,
+    reference_scale: Optional[float] = REFERENCE_SCALE,
+    reference_offset: Optional[float] = REFERENCE_OFFSET,
 ) -> None:
     """Take a positioning test from a continuous record with no trigger: stops found, matched.
 
@@ -150,6 +160,13 @@ def capture(
     from axiscal.procedures.capture import capture_test
 
     typed_path(out, "positioning CSV", (".csv",))
+    if is_camonitor_log(record):
+        capture_log(record, plan, out, window, dwell,
+                    {"setpoint_pv": setpoint_pv, "reference_pv": reference_pv,
+                     "scale": reference_scale, "offset": reference_offset},
+                    {"--datum": datum, "--unit": unit, "--environment": environment,
+                     "--plot": plot, "--report": report}, json_out)
+        return
     if plot is not None:
         plot_path(plot)
     if report is not None:

@@ -1,5 +1,6 @@
-"""The dwells of an EPICS log matched to a test: to a plan, to the targets given, or to the
-targets the setpoint passes through (the rules are in :mod:`axiscal.io.epics`)."""
+"""The dwells of an EPICS log read and matched to a test: the reference where it rests, and the
+dwells matched to a plan, to the targets given, or to the targets the setpoint passes through
+(the rules are in :mod:`axiscal.io.epics`)."""
 
 from __future__ import annotations
 
@@ -12,14 +13,14 @@ from axiscal import units
 from axiscal.datasets import PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
 
-__all__ = ["assemble"]
+__all__ = ["assemble", "settled_mean"]
 
 
 def assemble(dwells, position, targets, plan, kind, tu, du, k, meta, notes, source
              ) -> PositioningDataset:
-    """The positioning dataset of ``dwells``; ``position(dwell)`` is the reference position of
-    a dwell measured (target unit ``tu``; ``k`` converts ``tu`` to the deviation unit
-    ``du``)."""
+    """The positioning dataset of ``dwells`` and the number of stops that are not measurements
+    (over-travel); ``position(dwell)`` is the reference position of a dwell measured (target
+    unit ``tu``; ``k`` converts ``tu`` to the deviation unit ``du``)."""
     if targets is not None and plan is not None:
         raise DataFormatError("give the targets or a plan, not both", source)
     reached = [i for i, d in enumerate(dwells) if d.arrival != 0]
@@ -32,15 +33,16 @@ def assemble(dwells, position, targets, plan, kind, tu, du, k, meta, notes, sour
                   "log) is not a measurement")
     try:
         if plan is not None:
-            ds, found = _by_plan(dwells, reached, position, plan, tu, du, k, source)
+            ds, found, others = _by_plan(dwells, reached, position, plan, tu, du, k, source)
         else:
-            ds, found = _by_targets(dwells, reached, position, targets, kind, tu, du, k,
+            ds, found, others = _by_targets(dwells, reached, position, targets, kind, tu, du, k,
                                     source)
     except DataFormatError:
         raise
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
-    return dataclasses.replace(ds, metadata=dataclasses.replace(meta, notes=notes + found))
+    ds = dataclasses.replace(ds, metadata=dataclasses.replace(meta, notes=notes + found))
+    return ds, others
 
 
 def _by_targets(dwells, reached, position, targets, kind, tu, du, k, source):
@@ -67,7 +69,7 @@ def _by_targets(dwells, reached, position, targets, kind, tu, du, k, source):
     ds = PositioningDataset.from_records(kind, records, tu, du, None, source=source)
     how = "the targets given" if given else "the values the setpoint passes through"
     return ds, (f"; {len(dwells)} stops: {len(records)} measurements at {tg.size} targets "
-                f"({how}), {others} other stops (over-travel)")
+                f"({how}), {others} other stops (over-travel)"), others
 
 
 def _by_plan(dwells, reached, position, plan, tu, du, k, source):
@@ -92,7 +94,7 @@ def _by_plan(dwells, reached, position, plan, tu, du, k, source):
         dev.append((position(d) - plan.position[row]) * k)
     ds = plan_dataset(plan, rows, np.array(dev), du)
     return ds, (f"; {len(dwells)} stops matched to the plan {plan.source}: {len(rows)} "
-                f"measurements, {overruns} overrun stops")
+                f"measurements, {overruns} overrun stops"), overruns
 
 
 def _given(targets, tu, source) -> np.ndarray:
@@ -119,3 +121,77 @@ def _passed_through(dwells, source) -> np.ndarray:
         if not math.isclose(v, out[-1], rel_tol=1e-12, abs_tol=1e-12):
             out.append(v)
     return np.array(out)
+
+
+def settled_mean(ref, d, band: float, settled: float, aims, source: str) -> float:
+    """Time-weighted mean of the held reference over the settled stretch of the dwell: of the
+    stretches within ``band`` at least ``settled`` s long, the longest of the episode whose
+    mean is nearest ``aims[0]`` (the setpoint in the reference's numbers) and nearer it than
+    ``aims[1]`` (the setpoint before)."""
+    t, v = ref.times, ref.values
+    i0 = int(np.searchsorted(t, d.t_start, side="right")) - 1
+    i1 = int(np.searchsorted(t, d.t_end, side="left"))
+    where = f"the stop at {d.value:g} (setpoint line {d.line})"
+    if i0 < 0:
+        raise DataFormatError(f"PV {ref.name} has no reading before {where}", source)
+    held = v[i0:i1]
+    w = np.diff(np.concatenate(([d.t_start], t[i0 + 1:i1], [d.t_end])))
+    episodes = _stable_episodes(held, w, band, settled)
+    if not episodes:
+        if not np.isfinite(held).any():
+            raise DataFormatError(f"PV {ref.name} is unknown (disconnected, INVALID or not a "
+                                  f"number) throughout {where}", source)
+        lost = float(w[~np.isfinite(held)].sum())
+        why = (f"it is unknown for {lost:.3g} s of it (disconnected, INVALID or not a number)"
+               if lost > 0 else "a wider window or a longer dwell?")
+        raise DataFormatError(f"PV {ref.name} never stays within the window for {settled:g} s "
+                              f"during {where} ({why})", source)
+    means = [(float(np.dot(held[a:b], w[a:b]) / w[a:b].sum()) if w[a:b].sum() > 0
+              else float(held[b - 1])) for a, b in episodes]
+    here, before = aims
+    near = [m for m in means if not abs(m - before) <= abs(m - here)]
+    if not near:
+        raise DataFormatError(f"PV {ref.name} rests only nearer the setpoint before "
+                              f"({d.came_from:g}) during {where} (a wider window?)", source)
+    return min(near, key=lambda m: abs(m - here))
+
+
+def _stable_episodes(values: np.ndarray, weights: np.ndarray, band: float, least: float
+                     ) -> list:
+    """``[(a, b), ...]``: per episode of rest, the run ``values[a:b]`` (finite, max − min ≤
+    ``band``) with the largest sum of ``weights``, which is at least ``least``. Two pointers with
+    monotonic queues, one pass; overlapping runs are one episode."""
+    from collections import deque
+
+    episodes: list = []
+    a, total, open_end = 0, 0.0, -1
+    hi, lo = deque(), deque()
+    for j, x in enumerate(values):
+        if not math.isfinite(x):
+            a, total = j + 1, 0.0
+            hi.clear()
+            lo.clear()
+            continue
+        while hi and values[hi[-1]] <= x:
+            hi.pop()
+        hi.append(j)
+        while lo and values[lo[-1]] >= x:
+            lo.pop()
+        lo.append(j)
+        total += weights[j]
+        while values[hi[0]] - values[lo[0]] > band:
+            total -= weights[a]
+            a += 1
+            while hi[0] < a:
+                hi.popleft()
+            while lo[0] < a:
+                lo.popleft()
+        if total >= least:
+            if episodes and a < open_end:           # overlaps the episode's last run
+                best = episodes[-1]
+                if total > best[2]:
+                    episodes[-1] = (a, j + 1, total)
+            else:
+                episodes.append((a, j + 1, total))
+            open_end = j + 1
+    return [(p, q) for p, q, _ in episodes]

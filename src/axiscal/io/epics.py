@@ -81,8 +81,9 @@ from axiscal import units
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
 
-__all__ = ["NOTES_START", "PvSeries", "CamonitorLog", "Dwell", "looks_like_camonitor", "parse_camonitor",
-           "read_camonitor", "find_dwells", "parse_epics", "read_epics"]
+__all__ = ["NOTES_START", "PvSeries", "CamonitorLog", "Dwell", "EpicsCapture",
+           "looks_like_camonitor", "parse_camonitor", "read_camonitor", "find_dwells",
+           "capture_epics", "parse_epics", "read_epics"]
 
 _DATE = r"\d{4}-\d{2}-\d{2}[ T]\d{2}:\d{2}:\d{2}(?:\.\d+)?"
 _CLOCK = r"\d{1,2}:\d{2}:\d{2}(?:\.\d+)?"
@@ -225,13 +226,30 @@ def read_epics(path, **kwargs) -> PositioningDataset:
     return parse_epics(read_text(path), source=str(path), **kwargs)
 
 
-def parse_epics(text: str, setpoint_pv: str | None = None, reference_pv: str | None = None,
+@dataclass(frozen=True, eq=False)
+class EpicsCapture:
+    """A test taken from a camonitor log and what was found on the way."""
+
+    dataset: PositioningDataset
+    setpoint_pv: str
+    reference_pv: str
+    stops: int             # dwells of the setpoint
+    measurements: int
+    other_stops: int       # over-travel (or a plan's overrun rows)
+
+
+def parse_epics(text: str, *args, **kwargs) -> PositioningDataset:
+    """The positioning dataset of :func:`capture_epics` (same parameters)."""
+    return capture_epics(text, *args, **kwargs).dataset
+
+
+def capture_epics(text: str, setpoint_pv: str | None = None, reference_pv: str | None = None,
                 targets=None, plan=None, *, target_unit: str | None = None,
                 deviation_unit: str | None = None, axis_kind: str | None = None,
                 dwell: float = 1.0, window: float = 1.0, settled: float = 0.5,
                 reference_scale: float = 1.0,
                 reference_offset: float = 0.0, offsets: str = "relative",
-                source: str = "<text>") -> PositioningDataset:
+                source: str = "<text>") -> EpicsCapture:
     """A positioning test from a camonitor log (module docstring).
 
     Parameters
@@ -258,10 +276,11 @@ def parse_epics(text: str, setpoint_pv: str | None = None, reference_pv: str | N
 
     Returns
     -------
-    PositioningDataset
-        Its ``metadata.notes`` say what was found and which defaults were used.
+    EpicsCapture
+        The dataset (its ``metadata.notes`` say what was found and which defaults were used)
+        and the counts of stops.
     """
-    from axiscal.io._epics_stops import assemble
+    from axiscal.io._epics_stops import assemble, settled_mean
 
     log = parse_camonitor(text, source, offsets)
     sp_name, ref_name = _choose_pvs(log, setpoint_pv, reference_pv)
@@ -289,7 +308,7 @@ def parse_epics(text: str, setpoint_pv: str | None = None, reference_pv: str | N
 
     def position(d: Dwell) -> float:       # only the dwells measured need a reference
         aims = [(x - reference_offset) / reference_scale for x in (d.value, d.came_from)]
-        return (_settled_mean(ref, d, band, settled, aims, source) * reference_scale
+        return (settled_mean(ref, d, band, settled, aims, source) * reference_scale
                 + reference_offset)
 
     defaults = (f"unit {tu}" + ("" if target_unit or plan is not None else
@@ -299,9 +318,11 @@ def parse_epics(text: str, setpoint_pv: str | None = None, reference_pv: str | N
     if reference_scale != 1.0 or reference_offset != 0.0:
         defaults += f"; position = {reference_scale:.12g} × reference + {reference_offset:.12g}"
     meta = Metadata(instrument=ref_name, axis=sp_name, date=log.start.split(" ")[0])
-    return assemble(dwells, position, targets, plan, kind, tu, du, k, meta,
-                    f"{NOTES_START}: setpoint {sp_name}, reference {ref_name}; "
-                    + defaults + _alarm_note(ref), source)
+    ds, others = assemble(dwells, position, targets, plan, kind, tu, du, k, meta,
+                          f"{NOTES_START}: setpoint {sp_name}, reference {ref_name}; "
+                          + defaults + _alarm_note(ref), source)
+    n = int(np.isfinite(ds.up).sum() + np.isfinite(ds.down).sum())
+    return EpicsCapture(ds, sp_name, ref_name, len(dwells), n, others)
 
 
 # -- the log's lines ---------------------------------------------------------------------------
@@ -486,81 +507,6 @@ def _check_options(dwell, window, settled, scale, offset, source) -> None:
             and math.isfinite(offset) and abs(offset) <= 1e9):
         raise DataFormatError(f"reference scale {scale:g} and offset {offset:g}: a non-zero "
                               "scale within ±1e6 and an offset within ±1e9", source)
-
-
-def _settled_mean(ref: PvSeries, d: Dwell, band: float, settled: float, aims, source: str
-                  ) -> float:
-    """Time-weighted mean of the held reference over the settled stretch of the dwell: of the
-    stretches within ``band`` at least ``settled`` s long, the longest of the episode whose
-    mean is nearest ``aims[0]`` (the setpoint in the reference's numbers) and nearer it than
-    ``aims[1]`` (the setpoint before)."""
-    t, v = ref.times, ref.values
-    i0 = int(np.searchsorted(t, d.t_start, side="right")) - 1
-    i1 = int(np.searchsorted(t, d.t_end, side="left"))
-    where = f"the stop at {d.value:g} (setpoint line {d.line})"
-    if i0 < 0:
-        raise DataFormatError(f"PV {ref.name} has no reading before {where}", source)
-    held = v[i0:i1]
-    w = np.diff(np.concatenate(([d.t_start], t[i0 + 1:i1], [d.t_end])))
-    episodes = _stable_episodes(held, w, band, settled)
-    if not episodes:
-        if not np.isfinite(held).any():
-            raise DataFormatError(f"PV {ref.name} is unknown (disconnected, INVALID or not a "
-                                  f"number) throughout {where}", source)
-        lost = float(w[~np.isfinite(held)].sum())
-        why = (f"it is unknown for {lost:.3g} s of it (disconnected, INVALID or not a number)"
-               if lost > 0 else "a wider window or a longer dwell?")
-        raise DataFormatError(f"PV {ref.name} never stays within the window for {settled:g} s "
-                              f"during {where} ({why})", source)
-    means = [(float(np.dot(held[a:b], w[a:b]) / w[a:b].sum()) if w[a:b].sum() > 0
-              else float(held[b - 1])) for a, b in episodes]
-    here, before = aims
-    near = [m for m in means if not abs(m - before) <= abs(m - here)]
-    if not near:
-        raise DataFormatError(f"PV {ref.name} rests only nearer the setpoint before "
-                              f"({d.came_from:g}) during {where} (a wider window?)", source)
-    return min(near, key=lambda m: abs(m - here))
-
-
-def _stable_episodes(values: np.ndarray, weights: np.ndarray, band: float, least: float
-                     ) -> list:
-    """``[(a, b), ...]``: per episode of rest, the run ``values[a:b]`` (finite, max − min ≤
-    ``band``) with the largest sum of ``weights``, which is at least ``least``. Two pointers with
-    monotonic queues, one pass; overlapping runs are one episode."""
-    from collections import deque
-
-    episodes: list = []
-    a, total, open_end = 0, 0.0, -1
-    hi, lo = deque(), deque()
-    for j, x in enumerate(values):
-        if not math.isfinite(x):
-            a, total = j + 1, 0.0
-            hi.clear()
-            lo.clear()
-            continue
-        while hi and values[hi[-1]] <= x:
-            hi.pop()
-        hi.append(j)
-        while lo and values[lo[-1]] >= x:
-            lo.pop()
-        lo.append(j)
-        total += weights[j]
-        while values[hi[0]] - values[lo[0]] > band:
-            total -= weights[a]
-            a += 1
-            while hi[0] < a:
-                hi.popleft()
-            while lo[0] < a:
-                lo.popleft()
-        if total >= least:
-            if episodes and a < open_end:           # overlaps the episode's last run
-                best = episodes[-1]
-                if total > best[2]:
-                    episodes[-1] = (a, j + 1, total)
-            else:
-                episodes.append((a, j + 1, total))
-            open_end = j + 1
-    return [(p, q) for p, q, _ in episodes]
 
 
 def _alarm_note(ref: PvSeries) -> str:

@@ -43,6 +43,11 @@ FORMATS: tuple[FileFormat, ...] = (
                (".csv", ".json"), "axiscal.io.measured docstring", "axiscal.io.measured"),
     FileFormat("Continuous record (time, reading[, commanded])", True, False, (".csv",),
                "axiscal.io.measured docstring", "axiscal.io.measured"),
+    FileFormat("EPICS camonitor log (setpoint and reference PVs)", True, False,
+               (".log", ".txt"), "tests/io/test_epics.py builds one from a real ecmc test "
+               "(tests/data/ecmc)", "axiscal.io.epics (EPICS Base camonitor, "
+               "modules/ca/src/tools/tool_lib.c; real ecmc logs, "
+               "github.com/anderssandstrom/ecmc_target_muts_logger)"),
     FileFormat("Renishaw XL-80 dynamic capture", True, False, (".rtx",),
                "tests/io/test_rtx.py builds one to the public description",
                "axiscal.io.rtx (T. Pani, rtx2csv, github.com/TanmayPani/rtx2csv)"),
