@@ -93,6 +93,7 @@ def capture_log(record: Path, plan: Path, out: Path, window: float, dwell, epics
     d = {"out": str(out), "stops": cap.stops, "measurements": cap.measurements,
          "overruns": cap.other_stops, "window_um": window, "dwell_s": opts.get("dwell", 1.0),
          "sample_rate_hz": None, "settling_s": None, "vibration": None, "applied": None,
+         "warnings": [],
          "notes": cap.dataset.metadata.notes}
     if json_out:
         print_json(d)

@@ -14,7 +14,9 @@ JSON (``--json``), stable keys:
   (``[min, max]``, the latter null without material compensation).
 * ``capture``: ``out``, ``stops`` (found), ``measurements``, ``overruns``, ``window_um``,
   ``dwell_s``, ``sample_rate_hz``, ``settling_s`` (``median``, ``max``), ``vibration`` (``peak_hz``,
-  ``amplitude_um``), ``applied`` (environment compensation, or null). For an EPICS camonitor
+  ``amplitude_um``), ``applied`` (environment compensation, or null), ``warnings`` (what the
+  record's reader noted: an ``.rtx`` capture shorter than its header's ``Sample no``, padding
+  dropped; a list of text). For an EPICS camonitor
   log (the setpoint's stops, :mod:`axiscal.io.epics`): ``sample_rate_hz``, ``settling_s`` and
   ``vibration`` are null, ``overruns`` counts every stop that is not a measurement, and
   ``notes`` says what was found and assumed.
@@ -204,6 +206,8 @@ def capture(
                f" ({d['vibration']['amplitude_um']:.3g} µm)")
     if d["applied"]:
         typer.echo(d["applied"])
+    for w in d["warnings"]:
+        typer.echo(f"warning: {w}")
     typer.echo(f"wrote {out} (evaluate: axiscal iso230-2 {out})")
 
 

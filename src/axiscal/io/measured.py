@@ -91,6 +91,7 @@ class Record:
     header: dict = field(default_factory=dict)
     unit: str = "mm"
     source: str = "<text>"
+    notes: tuple = ()            # what the reader noted (an .rtx count unlike its header)
 
 
 def read_raw_readings(path) -> RawReadings:

@@ -20,12 +20,35 @@ Layout, as a public converter reads it (T. Pani, "rtx2csv", github.com/TanmayPan
     <Sample no little-endian float64 readings>
     EOF::\\r\\n
 
-The unit of the readings is not publicly documented; the public converter labels linear
-readings µm (and angular µrad), so axiscal takes µm by default and lets the user say otherwise
-(``--unit``). The readings are memory-mapped, not copied: a one-minute 50 kHz capture (24 MB)
-costs no more memory than its pages in use. A file whose data is not a whole number of
-readings, lacks its ``EOF::`` end, or holds another number of readings than its header's
-``Sample no`` is refused by name.
+What the public converter establishes, and what axiscal assumes
+---------------------------------------------------------------
+Established by ``rtx_to_csv.py`` and its published output (``test/outputs/
+MagOuterDynamic1Pitch2Cyc/header.json``, commit ``105a6fc``): the header's keys and their
+form (``Sample rate: 50000``, ``Sample no: 1000001``, ``Actual sample rate: 50000``,
+``Trigger interval: 2e-05``, ``Date: 10/02/2025 12:58:22``); the readings are 8-byte floats
+between ``Data:\r\n`` and ``EOF::\r\n``; the converter reads *every* reading it finds there
+(it never compares their number with ``Sample no``) and times reading ``i`` at
+``i / Actual sample rate``. A real header's ``Sample no`` of 1 000 001 at 50 000 Hz counts
+both ends of a 20 s capture.
+
+Not established by any public source: whether CARTO ever writes fewer or more readings than
+``Sample no``, what a padding would hold, and the unit of the readings (the converter labels
+linear readings µm and angular µrad, so axiscal takes µm by default and lets the user say
+otherwise, ``--unit``). axiscal therefore reads a count that differs from ``Sample no`` this
+way, and says so in the record's ``notes`` (carried into the capture's result):
+
+* fewer readings than ``Sample no`` (a capture stopped early): the readings there are read at
+  the header's rate, as the converter reads them, and the shortfall is stated;
+* more readings than ``Sample no``, all the readings beyond it one and the same value (0, NaN
+  or any filler): that tail is padding, dropped and stated;
+* more readings, and the tail beyond ``Sample no`` varies: which readings are the capture is
+  ambiguous (a header from another capture, or readings appended), and the file is refused.
+
+A header value that is not a finite positive number (``Sample no`` not a whole number from 2 to
+10¹², a sample rate that is NaN, negative, zero or above 10 MHz) is refused in one line. The
+readings are memory-mapped, not copied: a one-minute 50 kHz capture (24 MB) costs no more
+memory than its pages in use. A file whose data is not a whole number of readings, or lacks its
+``EOF::`` end, is refused by name.
 
 :func:`format_rtx` writes the same layout (for tests and simulations).
 """
@@ -94,13 +117,11 @@ def read_rtx(path, unit: str | None = None):
         raise DataFormatError(f"{nbytes} bytes of data are not a whole number of 8-byte "
                               "readings: the file is truncated or damaged", src)
     count = nbytes // 8
-    declared = _number(header, "Sample no", src)
-    if declared is not None and int(declared) != count:
-        raise DataFormatError(f"the header says {int(declared)} samples (Sample no), the file "
-                              f"holds {count}", src)
-    rate = _number(header, "Actual sample rate", src) or _number(header, "Sample rate", src)
-    if not rate or rate <= 0:
-        raise DataFormatError("no positive 'Actual sample rate' in the header", src)
+    declared = _sample_no(header, src)
+    rate = _rate(header, src)
+    raw = np.memmap(p, dtype="<f8", mode="r", offset=start, shape=(count,)) if count else \
+        np.zeros(0)
+    count, notes = _reconcile(raw, count, declared, src)
     if count < 2:
         raise DataFormatError(f"{count} reading(s): a record needs at least 2", src)
     u = unit or "um"
@@ -108,13 +129,12 @@ def read_rtx(path, unit: str | None = None):
         factor = units.factor(u)
     except AxiscalError as exc:
         raise DataFormatError(f"--unit {u!r}: {exc}", src) from None
-    raw = np.memmap(p, dtype="<f8", mode="r", offset=start, shape=(count,))
-    values = np.multiply(raw, factor)          # SI; one pass over the mapped pages
+    values = np.multiply(raw[:count], factor)  # SI; one pass over the mapped pages
     if not np.isfinite(values).all():
         raise DataFormatError("the record holds NaN or infinite readings", src)
     times = np.arange(count) / rate
     kind = "rotary" if units.dimension(u) == "angle" else "linear"
-    return Record(times, values, kind, None, float(rate), header, u, src)
+    return Record(times, values, kind, None, float(rate), header, u, src, notes)
 
 
 def format_rtx(readings, sample_rate: float, **fields) -> bytes:
@@ -131,10 +151,57 @@ def format_rtx(readings, sample_rate: float, **fields) -> bytes:
     return head + v.tobytes() + _EOF
 
 
+#: Largest sample rate a header may give, Hz (the XL-80 samples at up to 50 kHz).
+MAX_RATE = 1e7
+
+
+def _sample_no(header: dict, src: str):
+    """The header's ``Sample no`` as a whole number, or None if absent."""
+    n = _number(header, "Sample no", src)
+    if n is not None and not (n == int(n) and 2 <= n <= 1e12):
+        raise DataFormatError(f"header Sample no: {header['Sample no']!r} is not a whole number "
+                              "of samples from 2 to 10^12", src)
+    return None if n is None else int(n)
+
+
+def _rate(header: dict, src: str) -> float:
+    """``Actual sample rate`` (what the converter times readings by), else ``Sample rate``."""
+    for key in ("Actual sample rate", "Sample rate"):
+        r = _number(header, key, src)
+        if r is not None:
+            if not 0 < r <= MAX_RATE:
+                raise DataFormatError(f"header {key}: {header[key]!r} is not a sample rate "
+                                      f"(above 0, at most {MAX_RATE:g} Hz)", src)
+            return r
+    raise DataFormatError("no 'Actual sample rate' or 'Sample rate' in the header", src)
+
+
+def _reconcile(raw, count: int, declared, src: str) -> tuple[int, tuple]:
+    """The number of readings to keep and what was noted (module docstring)."""
+    if declared is None or declared == count:
+        return count, ()
+    if count < declared:
+        return count, (f"the file holds {count} readings, its header's Sample no {declared}: "
+                       f"the capture stopped early ({declared - count} readings short); the "
+                       "readings present are read at the header's rate",)
+    tail = np.asarray(raw[declared:])
+    first = tail[0]
+    filler = np.isnan(tail).all() if np.isnan(first) else bool((tail == first).all())
+    if not filler:
+        raise DataFormatError(f"the file holds {count} readings, its header's Sample no "
+                              f"{declared}, and the {count - declared} beyond it vary: which "
+                              "readings are the capture is ambiguous", src)
+    return declared, (f"{count - declared} readings of {first:g} after the header's Sample no "
+                      f"{declared} dropped as padding",)
+
+
 def _number(header: dict, key: str, src: str):
     if key not in header or header[key] == "":
         return None
     try:
-        return float(header[key])
+        v = float(header[key])
     except ValueError:
         raise DataFormatError(f"header {key}: {header[key]!r} is not a number", src) from None
+    if not np.isfinite(v):
+        raise DataFormatError(f"header {key}: {header[key]!r} is not a finite number", src)
+    return v

@@ -66,6 +66,7 @@ class CaptureResult:
     dwell: float
     sample_rate: float
     applied: str = ""
+    warnings: tuple = ()     # what the record's reader noted (an .rtx count unlike its header)
 
     def summary(self) -> dict:
         f, a = self.spectrum
@@ -78,7 +79,7 @@ class CaptureResult:
                                "max": float(np.max(self.settling))},
                 "vibration": {"peak_hz": float(f[k]) if a.size else 0.0,
                               "amplitude_um": float(a[k] * scale) if a.size else 0.0},
-                "applied": self.applied or None}
+                "applied": self.applied or None, "warnings": list(self.warnings)}
 
 
 def find_stops(times, readings, window: float, dwell: float) -> tuple[list, np.ndarray]:
@@ -162,11 +163,12 @@ def capture_test(record, plan, *, window: float = 1.0, dwell: float | None = Non
     rows = [r for _, r in assigned]
     pos = zero + means / f
     dev = (pos - plan.position[rows]) * f / units.factor(dev_unit)
-    ds = _dataset(plan, rows, dev, dev_unit, applied)
+    warnings = tuple(getattr(record, "notes", ()))
+    ds = _dataset(plan, rows, dev, dev_unit, "; ".join((applied, *warnings)).strip("; "))
     vel, acc, settling = _dynamics(record.times, smooth, stops, assigned)
     spectrum = _spectrum(record.times, record.readings, stops)
     return CaptureResult(ds, tuple(stops), tuple(assigned), overruns, settling, spectrum,
-                         smooth, vel, acc, w, d, float(record.sample_rate), applied)
+                         smooth, vel, acc, w, d, float(record.sample_rate), applied, warnings)
 
 
 def match_stops(stops, plan, *, factor: float, times, zero: float = 0.0, smooth=None,
