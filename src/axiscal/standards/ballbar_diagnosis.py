@@ -373,8 +373,8 @@ def _cyclic_power(pitches, w, mean, radius):
     in the precision of ``w`` and ``mean``."""
     arg = (2 * np.pi * radius / pitches).astype(w.dtype)[:, None] * w[None, :]
     sn, cs = w * np.sin(arg), w * np.cos(arg)
-    return (sn @ mean) ** 2 / np.einsum("ij,ij->i", sn, sn) + \
-        (cs @ mean) ** 2 / np.einsum("ij,ij->i", cs, cs)
+    ss = np.einsum("ij,ij->i", sn, sn)
+    return (sn @ mean) ** 2 / ss + (cs @ mean) ** 2 / (np.dot(w, w) - ss)   # sin² + cos² = 1
 
 
 # --- the result ----------------------------------------------------------------------------------

@@ -269,9 +269,14 @@ def _diagnose_both(ccw_run: CircularRun, cw_run: CircularRun, arc: float):
     """
     phi, ccw, cw = _common(ccw_run, cw_run, arc)
     h = _harmonics(phi)
-    shift = 0.5 * h[:, :3]
-    cols = np.vstack([np.column_stack([h, shift, _backlash_basis(phi, "ccw")]),
-                      np.column_stack([h, -shift, _backlash_basis(phi, "cw")])])
+    n = phi.size
+    cols = np.empty((2 * n, 10), order="F")
+    for k, sense in enumerate((1.0, -1.0)):          # CCW rows, then CW rows
+        blk = cols[k * n:(k + 1) * n]
+        sx, sy = velocity_signs(h[:, 2], h[:, 1], sense)
+        blk[:, :5] = h
+        blk[:, 5:8] = sense * 0.5 * h[:, :3]
+        blk[:, 8], blk[:, 9] = 0.5 * sx * h[:, 1], 0.5 * sy * h[:, 2]   # = _backlash_basis
     c, rms = _lstsq(cols, np.concatenate([ccw, cw]))
     return (float(c[4]), float(c[3]), float(c[8]), float(c[9]), rms, _hysteresis(phi, ccw, cw))
 
