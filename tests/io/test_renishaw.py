@@ -155,7 +155,8 @@ def test_user_text_gives_machine_axis_operator_date_and_notes():
                                  environment=REAL_ENVIRONMENT)).metadata
     assert (md.machine, md.axis, md.operator) == ("VMC 800", "Y", "RJ")
     assert md.date == "2016-12-12 10:46"     # USER-TEXT Date empty: ENVIRONMENT's first Date Time
-    assert md.notes == "after service | Serial No: S123 | Location: Bay 3"
+    assert md.notes == ("after service | Serial No: S123 | Location: Bay 3 | "
+                        "Mat temp 2, 3: -10 (no sensor, left out)")
     user["Date"] = "12/12/2016"                       # not ISO 8601: the real file's Date Time
     md = parse_rtl(renishaw_text("rtl", T7, [R1_UP, R1_DN], user=user,
                                  environment=REAL_ENVIRONMENT)).metadata

@@ -94,7 +94,7 @@ Readings chosen where the sources are silent or could be read two ways
   dataset's conditions hold; the third field is not interpreted). Air pressure is in kPa (99.04
   in source 2 is a plausible air pressure only in kPa) and stored in Pa; ``Exp coeff`` in
   ppm/°C (8.0 in source 2) stored in 1/K; a material sensor reading exactly −10.000000 at start
-  and end is a sensor not fitted (source 2) and left out. ``Date`` in USER-TEXT is the test date
+  and end is a sensor not fitted (source 2): left out of the conditions, and said so in the notes. ``Date`` in USER-TEXT is the test date
   when it is an ISO 8601 date (as source 1 writes it); otherwise ENVIRONMENT's first
   ``Date Time`` (``"10:46 Dec 12 2016"`` in source 2's real file) is used when there is one.
 * **Metadata.** Machine → machine, Axis → axis, By → operator, TITLE → notes (with
@@ -204,8 +204,8 @@ def parse_renishaw(text: str, source: str = "<text>", target_unit: str | None = 
     n_runs = _run_count(sections["RUNS"], source)
     values = _deviations(sections["DEVIATIONS"], len(targets), n_runs, source)
     records = _records(targets, values, flags, n_runs, source)
-    env, env_date = _environment(sections.get("ENVIRONMENT", []), source)
-    meta = _metadata(_fields(sections.get("USER-TEXT", []), source), env, env_date)
+    env, env_date, unfitted = _environment(sections.get("ENVIRONMENT", []), source)
+    meta = _metadata(_fields(sections.get("USER-TEXT", []), source), env, env_date, unfitted)
     try:
         ds = PositioningDataset.from_records(kind, records, tu, du, meta, source=source)
     except DataFormatError:
@@ -404,20 +404,22 @@ def _records(targets, values, flags, n_runs, source):
     return records
 
 
-def _environment(lines, source: str) -> tuple[Environment, str]:
-    """The dataset's conditions from the ENVIRONMENT records, and the first Date Time."""
+def _environment(lines, source: str) -> tuple[Environment, str, list[int]]:
+    """The dataset's conditions from the ENVIRONMENT records, the first Date Time and the
+    material sensors left out as not fitted."""
     f = _fields(lines, source)
     vals = {}
     for key, scale in (("air temp", "1"), ("air press", "1000"), ("air humid", "1"),
                        ("exp coeff", "0.000001")):
         if key in f:
             vals[key] = _mean(f[key], scale, source)
-    mats = []
+    mats, unfitted = [], []
     for i in (1, 2, 3):
         if f"mat temp {i}" in f:
             n, value = f[f"mat temp {i}"]
             nums = [finite_number(t, f"Mat temp {i}", source, n) for t in value.split()[:2]]
             if nums and all(v == NO_SENSOR for v in nums):
+                unfitted.append(i)
                 continue
             mats.append(_mean((n, value), "1", source))
     try:
@@ -426,7 +428,7 @@ def _environment(lines, source: str) -> tuple[Environment, str]:
                           expansion_coefficient=vals.get("exp coeff"))
     except AxiscalError as exc:
         raise DataFormatError(f"ENVIRONMENT: {exc}", source) from None
-    return env, _env_date(f.get("date time"))
+    return env, _env_date(f.get("date time")), unfitted
 
 
 def _mean(entry: tuple[int, str], scale: str, source: str) -> float:
@@ -457,13 +459,16 @@ def _env_date(entry) -> str:
         return quoted[0].strip()
 
 
-def _metadata(user: dict, env: Environment, env_date: str) -> Metadata:
+def _metadata(user: dict, env: Environment, env_date: str, unfitted=()) -> Metadata:
     def get(key: str) -> str:
         return user.get(key, (None, ""))[1]
 
     notes = get("title")
     extra = [f"{label}: {get(key)}" for key, label in (("serial no", "Serial No"),
                                                        ("location", "Location")) if get(key)]
+    if unfitted:
+        extra.append(f"Mat temp {', '.join(map(str, unfitted))}: {NO_SENSOR:g} (no sensor, "
+                     "left out)")
     if extra:
         notes = " | ".join([notes] + extra if notes else extra)
     date = get("date")
