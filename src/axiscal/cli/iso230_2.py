@@ -50,12 +50,13 @@ def iso230_2(
     history: bool = typer.Option(False, "--history", help="Also store the test in the calibration history (see 'axiscal history')."),
     machine: Optional[str] = typer.Option(None, "--machine", help="With --history: the machine's name, if the file does not give it."),
     db: Optional[str] = typer.Option(None, "--db", help="With --history or --report: the history database whose certificate register numbers the certificate (default: AXISCAL_DB, else the user's SQLite file)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write the calibration certificate: PDF (.pdf, WeasyPrint) or self-contained HTML (.html); issued and numbered in the register when every mandatory item is given, else a DRAFT naming what is missing."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the calibration certificate: self-contained HTML (.html) or PDF (.pdf, WeasyPrint); issued and numbered in the register when every mandatory item is given, else a DRAFT naming what is missing."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as NAME=VALUE in the deviation unit, e.g. --tolerance A=12 --tolerance R=4 (exit code 1 if conformance is not proven)."),
     job: Optional[Path] = JOB,
     rule: Optional[str] = RULE,
     paper: Optional[str] = PAPER,
     draft: bool = DRAFT,
+    drift_check: Optional[Path] = typer.Option(None, "--drift-check", help="Drift-check file (CSV: a 'reading' column, or one column of numbers, in the deviation unit): E_VE of the uncertainty budget is the range of its readings, measured (ISO 230-2:2014 Annex A.5)."),
     uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's [uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3 (names and units: the 'Uncertainty inputs' table; every input not given is shown as assumed, with the rule of its default)."),
     setpoint_pv: Optional[str] = SETPOINT_PV,
     reference_pv: Optional[str] = REFERENCE_PV,
@@ -92,7 +93,7 @@ def iso230_2(
     result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
     from axiscal.report.issue import budget_for, decisions_for, load_config
 
-    cfg = with_uncertainty_options(load_config(job), uncertainty)
+    cfg = with_uncertainty_options(load_config(job), uncertainty, drift_check)
     check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})   # names and values
     budget = budget_for(ds, result, cfg)
     verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
@@ -146,12 +147,19 @@ def parse_tolerances(items: List[str]) -> dict:
     return out
 
 
-def with_uncertainty_options(cfg: dict, items: List[str]) -> dict:
+def with_uncertainty_options(cfg: dict, items: List[str], drift_check: Path | None = None) -> dict:
     """``cfg`` with ``--uncertainty NAME=VALUE`` items over its ``[uncertainty]`` table (a number
-    where the value is one, else text: ``reference=encoder``); the budget checks the names."""
+    where the value is one, else text: ``reference=encoder``; the budget checks the names), and
+    E_VE measured from a ``--drift-check`` file."""
     from axiscal.errors import InputError
 
     table = dict(cfg.get("uncertainty") or {})
+    if drift_check is not None:
+        from axiscal.io.drift import read_drift_check
+        from axiscal.standards.iso230_9 import environmental_variation
+
+        table.update(e_ve=environmental_variation(read_drift_check(drift_check)),
+                     e_ve_source="drift check")
     for item in items:
         name, sep, value = (x.strip() for x in item.partition("="))
         if not sep or not name or not value:
@@ -160,7 +168,7 @@ def with_uncertainty_options(cfg: dict, items: List[str]) -> dict:
             table[name] = float(value)
         except ValueError:
             table[name] = value
-    return {**cfg, "uncertainty": table} if items else cfg
+    return {**cfg, "uncertainty": table} if items or drift_check is not None else cfg
 
 
 def verdicts_json(verdicts) -> dict:
