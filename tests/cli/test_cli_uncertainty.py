@@ -199,3 +199,22 @@ def test_evaluate_shows_the_same_budget_and_warning(tmp_path):
     assert "environmental variation error E<sub>VE</sub>" in page
     assert "missing: left out of U" in page
     assert "beam_offset" not in page and "[uncertainty]" not in page   # no keys on the page
+
+
+def test_E_VE_measured_by_a_drift_check(tmp_path):
+    """--drift-check FILE: E_VE is the range of the still set-up's readings (ISO 230-2:2014
+    Annex A.5), shown as measured, not assumed; U(R) = 2·√((r/(2√3))² + (E_VE/(2√3))²)."""
+    drift = tmp_path / "drift.csv"
+    drift.write_text("# X at rest, 30 min\ntime_s,reading\n0,0.00\n600,0.21\n1200,-0.09\n1800,0.15\n")
+    d = _json("--drift-check", str(drift))
+    e_ve = d["uncertainty_budget"]["inputs"]["e_ve"]
+    assert e_ve["value"] == pytest.approx(0.30) and e_ve["assumed"] is False
+    assert "drift check" in e_ve["rule"] and d["uncertainty_budget"]["missing_inputs"] == []
+    assert d["uncertainty"]["R"] == pytest.approx(
+        2 * math.hypot(0.001 / (2 * SQ3), 0.30 / (2 * SQ3)), rel=1e-9)
+    r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--drift-check", str(drift),
+                                 "--uncertainty", "e_ve=1"])
+    assert r.exit_code == 2 and "given twice" in r.stderr
+    drift.write_text("time_s,temperature\n0,20\n")
+    r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--drift-check", str(drift)])
+    assert r.exit_code == 2 and "no 'reading' or 'deviation' column" in r.stderr

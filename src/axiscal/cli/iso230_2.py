@@ -154,6 +154,9 @@ def with_uncertainty_options(cfg: dict, items: List[str], drift_check: Path | No
     from axiscal.errors import InputError
 
     table = dict(cfg.get("uncertainty") or {})
+    if drift_check is not None and any(i.partition("=")[0].strip() == "e_ve" for i in items):
+        raise InputError("E_VE is given twice: by --drift-check and by --uncertainty e_ve; "
+                         "give one")
     if drift_check is not None:
         from axiscal.io.drift import read_drift_check
         from axiscal.standards.iso230_9 import environmental_variation

@@ -409,6 +409,9 @@ def resolve_rotary(table: Mapping[str, Any] | None, set_with: str = "[uncertaint
 
 
 def _records(inputs, spec, given: dict, skip: set, set_with: str) -> tuple[BudgetInput, ...]:
+    if "e_ve" in given and inputs.e_ve_source == "drift check":
+        given = {**given, "e_ve": "measured by a drift check: the range of its readings "
+                                  "(ISO 230-2:2014 Annex A.5)"}
     out = []
     for name, (label, unit, rule) in spec.items():
         if name in skip:
