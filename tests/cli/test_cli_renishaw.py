@@ -39,7 +39,8 @@ def test_evaluate_gives_the_same_numbers_as_the_tidy_csv(files):
     a = _json(["evaluate", str(rtl), "-s", "iso230-2:2014", "--json"])
     b = _json(["evaluate", str(csv), "-s", "iso230-2:2014", "--json"])
     na, nb = _numbers(a), _numbers(b)
-    # E = max x̄ − min x̄ = x̄↓(200 mm) − x̄↑(500 mm) = (3.1 + 3.4)/2 − (−1.5 − 1.2)/2 = 4.6 µm
+    # E = max x̄ − min x̄ = x̄↓(200 mm) − x̄↑(500 mm)
+    #   = (3.1 + 3.4)/2 − (−1.5 − 1.2)/2 = 4.6 µm
     assert a["standards"][0]["parameters"]["E"]["value"] == pytest.approx(4.6, abs=1e-12)
     assert len(na) > 10 and na == nb
 

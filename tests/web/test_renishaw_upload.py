@@ -1,4 +1,5 @@
-"""A Renishaw .rtl uploaded to the workbench: stored, evaluated, its conditions on the certificate."""
+"""A Renishaw .rtl uploaded to the workbench: stored, evaluated, its conditions on the
+certificate."""
 
 from __future__ import annotations
 
@@ -12,7 +13,8 @@ from fastapi.testclient import TestClient
 from axiscal.web.app import create_app
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "io"))
-from test_renishaw import R1_DN, R1_UP, R2_DN, R2_UP, REAL_ENVIRONMENT, T7, renishaw_text  # noqa: E402
+from test_renishaw import (R1_DN, R1_UP, R2_DN, R2_UP, REAL_ENVIRONMENT, T7,  # noqa: E402
+                           renishaw_text)
 
 
 def test_rtl_upload_and_the_certificate_shows_the_files_conditions(tmp_path, monkeypatch):

@@ -52,7 +52,7 @@ Sources (public programs that read or write these files; layout learned from the
    code index as file id 1695960937, repository not resolvable through the index, licence not
    seen) *writes* ``.rtl``: the section names and order, ``File type : rtl``, ``Owner : Linear``,
    targets five a line, ``Flags: 0 0 2 0`` for a bidirectional and ``Flags: 0 1 2 0`` for a
-   unidirectional test, ``Run-count`` = 2 × runs, deviation lines ``run   target      value``
+   unidirectional test, ``Run-count`` = 2 × runs, deviation lines ``run  target  value``
    with odd runs over targets 1…m and even runs over m…1, the deviation
    ``(laser reading − target) × 1000`` with targets in mm (so µm, actual minus target), and for a
    unidirectional test an even run of zeros after each measured run. Its ENVIRONMENT block names
@@ -64,8 +64,9 @@ Sources (public programs that read or write these files; layout learned from the
    even runs backward ("tam"/"zpět"), and its comments quote a real file's ENVIRONMENT lines (the
    values shown above: air pressure 99.04, material sensors 2 and 3 at exactly −10.000000).
 3. A C++ MFC dialog (``CDialogParameters::OnBnClickedParseRtl``, index id 29642958385) *reads*
-   ``.rtl`` for a scale controller: targets in mm ("mm为单位"), deviations in µm ("um 为单位的
-   偏差值"), ``Target-count`` and ``Run-count`` before the data, targets on (m/5)+1 lines.
+   ``.rtl`` for a scale controller: targets in mm ("mm为单位"), deviations in µm
+   ("um 为单位的偏差值"), ``Target-count`` and ``Run-count`` before the data, targets on
+   (m/5)+1 lines.
 4. A JavaScript compensation view (index id 68574318152) *reads* ``.rtl``: CRLF text, targets
    "may be wrapped over several lines", positions in mm.
 5. "Read Laser Plot 5.3" (Python/PyQt, index id 5760434055) *reads* ``.rta``: targets in degrees,
@@ -94,9 +95,10 @@ Readings chosen where the sources are silent or could be read two ways
   dataset's conditions hold; the third field is not interpreted). Air pressure is in kPa (99.04
   in source 2 is a plausible air pressure only in kPa) and stored in Pa; ``Exp coeff`` in
   ppm/°C (8.0 in source 2) stored in 1/K; a material sensor reading exactly −10.000000 at start
-  and end is a sensor not fitted (source 2): left out of the conditions, and said so in the notes. ``Date`` in USER-TEXT is the test date
-  when it is an ISO 8601 date (as source 1 writes it); otherwise ENVIRONMENT's first
-  ``Date Time`` (``"10:46 Dec 12 2016"`` in source 2's real file) is used when there is one.
+  and end is a sensor not fitted (source 2): left out of the conditions, and said so in the
+  notes. ``Date`` in USER-TEXT is the test date when it is an ISO 8601 date (as source 1 writes
+  it); otherwise ENVIRONMENT's first ``Date Time`` (``"10:46 Dec 12 2016"`` in source 2's real
+  file) is used when there is one.
 * **Metadata.** Machine → machine, Axis → axis, By → operator, TITLE → notes (with
   ``Serial No`` and ``Location`` appended when present). The format has no instrument field.
 
@@ -387,8 +389,8 @@ def _records(targets, values, flags, n_runs, source):
         raise DataFormatError("targets are listed neither increasing nor decreasing; the runs' "
                               "directions cannot be told", source)
     if n_runs % 2:
-        raise DataFormatError(f"Run-count: {n_runs} is odd; the runs come in pairs "
-                              f"({'out and back' if flags == FLAGS_BIDIRECTIONAL else 'measured run and zero run'})",
+        pair = "out and back" if flags == FLAGS_BIDIRECTIONAL else "measured run and zero run"
+        raise DataFormatError(f"Run-count: {n_runs} is odd; the runs come in pairs ({pair})",
                               source)
     records = []
     for (run, i), dev in values.items():

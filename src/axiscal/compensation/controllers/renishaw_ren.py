@@ -55,8 +55,8 @@ NAME = "renishaw-ren"
 MAX_POINTS = 100000
 HEADER = "No.     Axis position        Combined"
 _HEADER = re.compile(r"^No\.\s+Axis position\s+Combined\s*$", re.IGNORECASE)
-_PARAM = re.compile(r"^\s*Compensation (spacing|start|end)\b[^-+\d.]*([-+]?\d*\.?\d+(?:[eE][-+]?\d+)?)",
-                    re.IGNORECASE)
+_PARAM = re.compile(r"^\s*Compensation (spacing|start|end)\b[^-+\d.]*"
+                    r"([-+]?\d*\.?\d+(?:[eE][-+]?\d+)?)", re.IGNORECASE)
 _AXIS = re.compile(r"^\s*Axis\s*:\s*(\S*)\s*$", re.IGNORECASE)
 _REVERSAL = re.compile(r"^\s*Mean reversal\s*:\s*(\S+)", re.IGNORECASE)
 
