@@ -24,6 +24,7 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import note, print_json
+from axiscal.cli.history import _DB, _JSON   # the history's --db and --json, the same options
 
 __all__ = ["register", "record_json"]
 
@@ -31,11 +32,8 @@ app = typer.Typer(help="The certificate register: numbers, issued documents and 
                   "(ISO/IEC 17025:2017 §7.8.8) kept in the calibration history.",
                   no_args_is_help=True)
 
-_DB = typer.Option(None, "--db", help="History database URL (default: AXISCAL_DB, else SQLite "
-                   "in the user's data folder).")
 _LAB = typer.Option(None, "--laboratory", help="The laboratory's name, where two laboratories "
                     "share a database.")
-_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
 
 
 def record_json(r) -> dict:
