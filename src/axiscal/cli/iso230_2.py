@@ -233,8 +233,6 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
     from rich.table import Table
 
     from axiscal.cli._common import console as make_console
-    from axiscal.standards.iso14253_1 import unprovable
-    from axiscal.standards.iso230_9 import format_uncertainty
     from axiscal.standards.positioning_standards import parameter_label
 
     con = console or make_console()
@@ -299,22 +297,34 @@ def render_result(result, ds=None, title: str = "", console=None, verdicts=(), b
                       "360° minus 0° mean deviation (full turn)")
     con.print(p)
     if verdicts:
-        a = Table(title=escape(f"Acceptance ({verdicts[0].rule.value} decision rule)"),
-                  title_justify="left")
-        for c in ("parameter", "measured", "U", "tolerance", "verdict"):
-            a.add_column(c, justify="left" if c in ("parameter", "verdict") else "right")
-        for v in verdicts:
-            state = {"PASS": "[green]PASS[/green]", "FAIL": "[bold red]FAIL[/bold red]",
-                     "ZONE": "[yellow]ZONE[/yellow]"}[v.outcome.short] if v.outcome else "n/a"
-            text = f"{state} {v.outcome.value}" if v.outcome else state
-            a.add_row(v.parameter, f(v.value), format_uncertainty(v.U), f"{v.upper:g}", text)
-        con.print(a)
-        for w in unprovable(verdicts, sym):
-            con.print(f"[bold red]warning:[/bold red] {escape(w)}")
+        _render_acceptance(con, verdicts, f, sym)
     for w in result.warnings:
         con.print(f"[yellow]warning:[/yellow] {w}")
     if budget is not None:
         render_uncertainty(con, budget)
+
+
+def _render_acceptance(con, verdicts, f, sym: str) -> None:
+    """The ISO 14253-1 decisions as a table, U as displayed, then each tolerance that can never
+    be proven (one warning line each)."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    from axiscal.standards.iso14253_1 import unprovable
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    a = Table(title=escape(f"Acceptance ({verdicts[0].rule.value} decision rule)"),
+              title_justify="left")
+    for c in ("parameter", "measured", "U", "tolerance", "verdict"):
+        a.add_column(c, justify="left" if c in ("parameter", "verdict") else "right")
+    for v in verdicts:
+        state = {"PASS": "[green]PASS[/green]", "FAIL": "[bold red]FAIL[/bold red]",
+                 "ZONE": "[yellow]ZONE[/yellow]"}[v.outcome.short] if v.outcome else "n/a"
+        text = f"{state} {v.outcome.value}" if v.outcome else state
+        a.add_row(v.parameter, f(v.value), format_uncertainty(v.U), f"{v.upper:g}", text)
+    con.print(a)
+    for w in unprovable(verdicts, sym):
+        con.print(f"[bold red]warning:[/bold red] {escape(w)}")
 
 
 def render_uncertainty(con, budget) -> None:
