@@ -207,15 +207,21 @@ def find_dwells(series: PvSeries, end: float, dwell: float = 1.0) -> list:
     for k, i in enumerate(starts):
         t1 = t[starts[k + 1]] if k + 1 < len(starts) else end
         stretches.append((i, float(t[i]), float(t1)))
+    known = [float(v[i]) if math.isfinite(v[i]) else None for i, _, _ in stretches]
+    before, last = [], None                     # the last known value before each stretch
+    for x in known:
+        before.append(last)
+        last = x if x is not None else last
+    after, nxt = [None] * len(known), None      # the first known value after each stretch
+    for k in range(len(known) - 1, -1, -1):
+        after[k] = nxt
+        nxt = known[k] if known[k] is not None else nxt
     out = []
     for k, (i, t0, t1) in enumerate(stretches):
-        if not math.isfinite(v[i]) or t1 - t0 < dwell:
+        if known[k] is None or t1 - t0 < dwell:
             continue
-        before = next((v[j] for j, _, _ in reversed(stretches[:k]) if math.isfinite(v[j])),
-                      None)
-        after = next((v[j] for j, _, _ in stretches[k + 1:] if math.isfinite(v[j])), None)
-        out.append(Dwell(float(v[i]), t0, t1, _sign(v[i], before), _sign(after, v[i]),
-                         int(series.lines[i]), math.nan if before is None else float(before)))
+        out.append(Dwell(known[k], t0, t1, _sign(known[k], before[k]), _sign(after[k], known[k]),
+                         int(series.lines[i]), math.nan if before[k] is None else before[k]))
     return out
 
 
