@@ -218,3 +218,15 @@ def test_E_VE_measured_by_a_drift_check(tmp_path):
     drift.write_text("time_s,temperature\n0,20\n")
     r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--drift-check", str(drift)])
     assert r.exit_code == 2 and "no 'reading' or 'deviation' column" in r.stderr
+
+
+def test_evaluate_report_lists_U_per_parameter_without_tolerances(tmp_path):
+    """Without a tolerance the report still shows U of each parameter, as displayed everywhere
+    (R: 0.00058 µm for the reading alone, never 0.00)."""
+    r = CliRunner().invoke(app, ["evaluate", str(ECMC), "-s", "iso230-2:2014",
+                                 "--report", str(tmp_path / "r.html")])
+    assert r.exit_code == 0, r.output
+    page = (tmp_path / "r.html").read_text()
+    row = page.split("U (k = 2) [µm]</td>", 1)[1].split("</tr>", 1)[0]
+    cells = [c.split("</td>")[0] for c in row.split("<td>")[1:]]
+    assert cells[0] == "0.16" and "0.00058" in cells and "0.00" not in cells

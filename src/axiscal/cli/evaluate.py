@@ -151,7 +151,8 @@ def _iso_outputs(ds, plot, report, verdicts, budget) -> None:
         from axiscal.report.uncertainty import add_uncertainty
 
         rep = positioning_report(ds, result, verdicts=verdicts)
-        add_uncertainty(rep, budget, verdicts)
+        add_uncertainty(rep, budget, verdicts,
+                        [p for p, v in result.parameters().items() if v is not None])
         rep.write(report)
 
 

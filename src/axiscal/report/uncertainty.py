@@ -16,7 +16,7 @@ from axiscal.report.labels import symbol_html
 __all__ = ["add_uncertainty"]
 
 
-def add_uncertainty(rep: Report, budget, decisions=()) -> None:
+def add_uncertainty(rep: Report, budget, decisions=(), parameters=None) -> None:
     """Add the measurement uncertainty section to ``rep``.
 
     Parameters
@@ -26,6 +26,8 @@ def add_uncertainty(rep: Report, budget, decisions=()) -> None:
         With its ``inputs`` (:func:`~axiscal.standards.iso230_9.positioning_budget`).
     decisions : sequence of Decision, optional
         A tolerance not larger than its U is said first (ISO 14253-1:2017 §5.2).
+    parameters : sequence of str, optional
+        The parameters whose U is listed (default: every one the budget covers).
 
     Notes
     -----
@@ -35,9 +37,17 @@ def add_uncertainty(rep: Report, budget, decisions=()) -> None:
     from axiscal.standards.iso14253_1 import unprovable
     from axiscal.standards.iso230_9 import format_uncertainty
 
+    from axiscal.standards.positioning_standards import parameter_label
+
     u = unit_label(budget.unit)
     rep.add_heading("Measurement uncertainty")
     rep.add_warnings(unprovable(decisions, u))
+    names = [p for p in (parameters or budget.expanded) if budget.U(p) is not None]
+    rep.add_html(_table(
+        ["Parameter", *(parameter_label(p) for p in names)],
+        [[f"U (k = {budget.k:g}) [{u}]", *(budget.U_text(p) for p in names)]],
+        "Expanded uncertainty per parameter, ISO 230-2:2014 Annex A: two significant digits, "
+        "rounded up (JCGM 100:2008 §7.2.6)."))
     rep.add_html(_table(
         ["Contribution", f"u [{u}]", "Distribution", "Input", "Source"],
         [[c.quantity, format_uncertainty(c.u), c.distribution, c.basis, c.clause]
