@@ -24,14 +24,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from axiscal.errors import AxiscalError, InputError
+from axiscal.store.database import Guard, StoreError
 from axiscal.store.kinds import Evaluated, evaluate_file
 
 __all__ = ["StoreError", "Store", "open_store", "default_url", "AddResult", "TestSummary",
-           "MachineSummary", "StoredTest", "NotFoundError"]
+           "MachineSummary", "StoredTest", "NotFoundError", "Prepared", "prepare", "ATTEMPTS"]
 
-
-class StoreError(AxiscalError, RuntimeError):
-    """The history database cannot be used as asked (not a database, full, unreachable)."""
+#: How often a write that collided with another process's is run again.
+ATTEMPTS = 8
 
 
 class NotFoundError(AxiscalError, LookupError):
@@ -118,22 +118,21 @@ class Store:
     """The history database (see the module docstring)."""
 
     def __init__(self, url: str):
-        from sqlalchemy import create_engine, event
         from sqlalchemy.exc import ArgumentError, NoSuchModuleError
+
+        from axiscal.store.database import make_engine, sqlite_path
 
         self.url = url
         try:
-            if url.startswith("sqlite"):
-                _sqlite_folder(url)
-                self.engine = create_engine(url)
-                event.listen(self.engine, "connect", _sqlite_connect)
-                event.listen(self.engine, "begin", _sqlite_begin)
-            else:
-                self.engine = create_engine(url, pool_pre_ping=True)
+            self.engine, self.read_only = make_engine(url)
         except (ArgumentError, NoSuchModuleError, ValueError) as exc:
             raise StoreError(f"history database URL {url!r}: {exc}") from None
+        except ImportError as exc:   # a scheme whose database driver is not installed
+            raise StoreError(f"history database URL {url.split(':', 1)[0]}://...: its driver "
+                             f"({exc.name or exc}) is not installed; axiscal stores to SQLite or "
+                             "PostgreSQL (postgresql+psycopg://)") from None
         with self._guard("open"):
-            self._upgrade()
+            self._upgrade(allow_empty=not url.startswith("sqlite") or sqlite_path(url) is None)
 
     # -- adding ------------------------------------------------------------------------
     def add(self, raw: bytes, filename: str, *, machine: str | None = None,
@@ -144,42 +143,35 @@ class Store:
 
         ``tables`` are (controller, filename, text) written from this test.
         """
-
-        from axiscal import __version__
-        from axiscal._json import jsonable
-        from axiscal.store.models import Parameter, Table, Test
-
-        digest = hashlib.sha256(raw).hexdigest()
-        existing = self._find_hash(digest)
+        existing = self._find_hash(hashlib.sha256(raw).hexdigest())
         if existing is not None:
             return existing
-        ev = evaluate_file(raw, filename, kind)          # before any write: nothing half-stored
-        m_name = _name(machine or ev.machine, "machine", filename)
-        a_name = _name(axis or ev.axis, "axis", filename).upper()
-        when, known = _date(date or ev.date)
+        return self.add_all([prepare(raw, filename, machine=machine, axis=axis, kind=kind,
+                                     instrument=instrument, operator=operator, note=note,
+                                     date=date, tables=tables)])[0]
+
+    def add_all(self, items) -> list[AddResult]:
+        """Store every :class:`Prepared` file in ONE transaction: all or nothing.
+
+        An error, a full disk or a killed process leaves the database as it was before; a file
+        stored before (or twice in ``items``) is reported as a duplicate. When another process
+        stores the same file or makes the same new machine at the same moment, the transaction
+        is run again (the rows it collided with are then found), up to :data:`ATTEMPTS` times.
+        """
         now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None)
-        with self._guard("store"), self._session(write=True) as s:
-            try:
-                ax = self._axis(s, m_name, a_name, ev.axis_kind, now)
-                t = Test(axis=ax, kind=ev.kind, tested_at=when, date_known=known, stored_at=now,
-                         instrument=instrument or ev.instrument, operator=operator or ev.operator,
-                         note=note, filename=Path(filename).name[:300], sha256=digest, raw=raw,
-                         dataset_json=ev.dataset_json, result_json=json.dumps(ev.result),
-                         environment_json=json.dumps(jsonable(ev.environment)),
-                         axiscal_version=__version__)
-                t.parameters = [Parameter(name=n, value=float(v), unit=u)
-                                for n, (v, u) in ev.parameters.items()]
-                t.tables = [Table(controller=c, filename=f, text=x, created=now)
-                            for c, f, x in tables]
-                s.add(t)
-                s.commit()
-                return AddResult(t.id, False, ev.kind, m_name, a_name)
-            except _integrity_error():
-                s.rollback()
-        dup = self._find_hash(digest)           # another process stored the same file just now
-        if dup is None:
-            raise StoreError(f"{filename}: could not be stored (a conflicting write)")
-        return dup
+        with self._guard("store"):
+            for _ in range(ATTEMPTS):
+                with self._session(write=True) as s:
+                    try:
+                        out = self._insert_all(s, list(items), now)
+                        s.commit()
+                        return out
+                    except Exception as exc:
+                        s.rollback()
+                        if not _collision(exc):
+                            raise
+        raise StoreError(f"history database: {len(items)} test(s) could not be stored; other "
+                         f"processes wrote the same rows {ATTEMPTS} times over; try again")
 
     def add_table(self, test_id: int, controller: str, filename: str, text: str) -> None:
         """Keep a compensation table written from stored test ``test_id``."""
@@ -187,7 +179,7 @@ class Store:
 
         now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None)
         with self._guard("store"), self._session(write=True) as s:
-            t = s.get(Test, test_id)
+            t = s.get(Test, _test_id(test_id))
             if t is None:
                 raise NotFoundError(f"no test {test_id} in the history")
             s.add(Table(test=t, controller=controller, filename=filename, text=text,
@@ -264,7 +256,7 @@ class Store:
         from axiscal.store.models import Test
 
         with self._guard("read"), self._session() as s:
-            t = s.get(Test, int(test_id))
+            t = s.get(Test, _test_id(test_id))
             if t is None:
                 raise NotFoundError(f"no test {test_id} in the history")
             return StoredTest(_summary(t), t.raw, t.sha256, json.loads(t.result_json),
@@ -316,21 +308,20 @@ class Store:
     def _session(self, write: bool = False):
         from sqlalchemy.orm import Session
 
+        if write and self.read_only:
+            from axiscal.store.database import read_only_refusal, sqlite_path
+
+            raise read_only_refusal(self.url, sqlite_path(self.url))
         engine = self.engine.execution_options(axiscal_write=True) if write else self.engine
         return Session(engine, expire_on_commit=False)
 
     def _guard(self, what: str):
-        return _Guard(self.url, what)
+        return Guard(self.url, what)
 
-    def _upgrade(self) -> None:
-        from alembic import command
-        from alembic.config import Config
+    def _upgrade(self, allow_empty: bool) -> None:
+        from axiscal.store.database import upgrade
 
-        cfg = Config()
-        cfg.set_main_option("script_location", str(Path(__file__).parent / "migrations"))
-        with self.engine.begin() as conn:
-            cfg.attributes["connection"] = conn
-            command.upgrade(cfg, "head")
+        upgrade(self.engine, self.url, self.read_only, allow_empty)
 
     def _find_hash(self, digest: str) -> AddResult | None:
         from sqlalchemy import select
@@ -343,95 +334,147 @@ class Store:
                 return None
             return AddResult(t.id, True, t.kind, t.axis.machine.name, t.axis.name)
 
-    def _axis(self, s, machine: str, axis: str, kind: str, now):
-        from sqlalchemy import select
+    def _insert_all(self, s, items: list, now) -> list[AddResult]:
+        from axiscal import __version__
+        from axiscal.store.models import Parameter, Table, Test
 
-        from axiscal.store.models import Axis, Machine
-
-        m = s.scalars(select(Machine).where(Machine.name == machine)).first()
-        if m is None:
-            m = Machine(name=machine, maker="", model="", serial="", location="", created=now)
-            s.add(m)
-        a = s.scalars(select(Axis).where(Axis.machine == m, Axis.name == axis)).first() \
-            if m.id else None
-        if a is None:
-            a = Axis(machine=m, name=axis, kind=kind)
-            s.add(a)
-        return a
-
-
-class _Guard:
-    """Database errors as one line that names the database and what went wrong."""
-
-    def __init__(self, url: str, what: str):
-        self.url, self.what = url, what
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, typ, exc, tb):
-        if exc is None or isinstance(exc, AxiscalError):
-            return False
-        from sqlalchemy.exc import DBAPIError, SQLAlchemyError
-
-        if isinstance(exc, (SQLAlchemyError, DBAPIError)) or _is_driver_error(exc):
-            raise StoreError(f"history database {_shown(self.url)}: {_reason(exc)}") from None
-        return False
+        stored = _stored(s, [p.sha256 for p in items])
+        axes = {}          # machines and axes made in one (sorted) order: no deadlock between two
+        for m, a, k in sorted({(p.machine, p.axis, p.axis_kind) for p in items}):
+            axes.setdefault((m, a), _get_or_create_axis(s, m, a, k, now))
+        made = {}
+        for p in items:
+            if p.sha256 in stored or p.sha256 in made:
+                continue
+            t = Test(axis_id=axes[p.machine, p.axis].id, kind=p.kind, tested_at=p.tested_at,
+                     date_known=p.date_known, stored_at=now, instrument=p.instrument,
+                     operator=p.operator, note=p.note, filename=p.filename, sha256=p.sha256,
+                     raw=p.raw, dataset_json=p.dataset_json, result_json=p.result_json,
+                     environment_json=p.environment_json, axiscal_version=__version__)
+            t.parameters = [Parameter(name=n, value=v, unit=u) for n, v, u in p.parameters]
+            t.tables = [Table(controller=c, filename=f, text=x, created=now)
+                        for c, f, x in p.tables]
+            s.add(t)
+            made[p.sha256] = t
+        s.flush()
+        out, seen = [], set()
+        for p in items:
+            if p.sha256 in stored:
+                out.append(stored[p.sha256])
+            else:
+                out.append(AddResult(made[p.sha256].id, p.sha256 in seen, p.kind, p.machine,
+                                     p.axis))
+                seen.add(p.sha256)
+        return out
 
 
-def _reason(exc) -> str:
-    orig = getattr(exc, "orig", None) or exc
-    text = str(orig).strip().splitlines()[0] if str(orig).strip() else type(orig).__name__
-    low = text.lower()
-    if "file is not a database" in low or "not a database" in low:
-        return "the file is not an axiscal history database (SQLite says: file is not a database)"
-    if "disk is full" in low or "database or disk is full" in low or "no space" in low:
-        return "the disk is full; nothing of this write was kept"
-    if "unable to open database" in low:
-        return "cannot open the database file (does its folder exist and is it writable?)"
-    return text
+def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str | None = None,
+            kind: str | None = None, instrument: str = "", operator: str = "", note: str = "",
+            date: str | None = None, tables: tuple = ()) -> "Prepared":
+    """Evaluate one file into the row it will be stored as (no database is touched)."""
+    from axiscal._json import jsonable
+
+    ev = evaluate_file(raw, filename, kind)
+    when, known = _date(date or ev.date)
+    return Prepared(
+        hashlib.sha256(raw).hexdigest(), raw, Path(filename).name[:300],
+        _name(machine or ev.machine, "machine", filename),
+        _name(axis or ev.axis, "axis", filename).upper(), ev.axis_kind, ev.kind, when, known,
+        instrument or ev.instrument, operator or ev.operator, note, ev.dataset_json,
+        json.dumps(ev.result), json.dumps(jsonable(ev.environment)),
+        tuple((n, float(v), u) for n, (v, u) in ev.parameters.items()),
+        tuple(tuple(x) for x in tables))
 
 
-def _is_driver_error(exc) -> bool:
-    mod = type(exc).__module__
-    return mod.startswith(("sqlite3", "psycopg", "alembic"))
+@dataclass(frozen=True)
+class Prepared:
+    """A file evaluated and ready to store: every field of its row, computed before any write."""
+
+    sha256: str
+    raw: bytes
+    filename: str
+    machine: str
+    axis: str
+    axis_kind: str
+    kind: str
+    tested_at: dt.datetime
+    date_known: bool
+    instrument: str
+    operator: str
+    note: str
+    dataset_json: str
+    result_json: str
+    environment_json: str
+    parameters: tuple          # (name, value, unit)
+    tables: tuple              # (controller, filename, text)
 
 
-def _shown(url: str) -> str:
-    """The URL without a password."""
-    if "@" in url and "://" in url:
-        scheme, rest = url.split("://", 1)
-        cred, host = rest.rsplit("@", 1)
-        return f"{scheme}://{cred.split(':')[0]}@{host}"
-    return url
+def _stored(s, digests: list) -> dict:
+    """AddResult (duplicate) of each of ``digests`` already in the history."""
+    from sqlalchemy import select
+
+    from axiscal.store.models import Axis, Machine, Test
+
+    found, unique = {}, sorted(set(digests))
+    for k in range(0, len(unique), 900):                      # SQLite's bound-parameter limit
+        q = (select(Test.sha256, Test.id, Test.kind, Machine.name, Axis.name)
+             .join(Axis, Test.axis_id == Axis.id).join(Machine, Axis.machine_id == Machine.id)
+             .where(Test.sha256.in_(unique[k:k + 900])))
+        for sha, tid, kind, m, a in s.execute(q):
+            found[sha] = AddResult(tid, True, kind, m, a)
+    return found
+
+
+def _get_or_create_axis(s, machine: str, axis: str, kind: str, now):
+    """The axis row, made with its machine if new; a row another process inserts at the same
+    moment is taken, not fought over (INSERT ... ON CONFLICT DO NOTHING, then SELECT: under
+    PostgreSQL's READ COMMITTED the insert waits for the other transaction and the select then
+    sees its row)."""
+    from sqlalchemy import select
+
+    from axiscal.store.models import Axis, Machine
+
+    insert = _dialect_insert(s)
+    s.execute(insert(Machine).values(name=machine, maker="", model="", serial="", location="",
+                                     created=now).on_conflict_do_nothing(index_elements=["name"]))
+    m_id = s.scalar(select(Machine.id).where(Machine.name == machine))
+    s.execute(insert(Axis).values(machine_id=m_id, name=axis, kind=kind)
+              .on_conflict_do_nothing(index_elements=["machine_id", "name"]))
+    return s.scalars(select(Axis).where(Axis.machine_id == m_id, Axis.name == axis)).one()
+
+
+def _dialect_insert(s):
+    if s.get_bind().dialect.name == "postgresql":
+        from sqlalchemy.dialects.postgresql import insert
+    else:
+        from sqlalchemy.dialects.sqlite import insert
+    return insert
+
+
+def _collision(exc) -> bool:
+    """A write that lost a race to another process: a unique row taken, a deadlock or a
+    serialization failure (PostgreSQL SQLSTATE 40P01, 40001); run again, it succeeds."""
+    from sqlalchemy.exc import DBAPIError, IntegrityError
+
+    if isinstance(exc, IntegrityError):
+        return True
+    code = getattr(getattr(exc, "orig", None), "sqlstate", None)
+    return isinstance(exc, DBAPIError) and code in ("40P01", "40001")
+
+
+def _test_id(test_id) -> int:
+    """A test id the database can bind: one outside 1 .. 2**63 - 1 (a 64-bit integer, what
+    SQLite and PostgreSQL's BIGINT hold) names no test, so :class:`NotFoundError`."""
+    n = int(test_id)
+    if not 0 < n < 2**63:
+        raise NotFoundError(f"no test {test_id} in the history")
+    return n
 
 
 def _integrity_error():
     from sqlalchemy.exc import IntegrityError
 
     return IntegrityError
-
-
-def _sqlite_folder(url: str) -> None:
-    path = url.split("///", 1)[1] if "///" in url else ""
-    if path and path != ":memory:":
-        Path(path).expanduser().parent.mkdir(parents=True, exist_ok=True)
-
-
-def _sqlite_connect(dbapi_conn, _record) -> None:
-    dbapi_conn.isolation_level = None          # transactions begin in _sqlite_begin
-    cur = dbapi_conn.cursor()
-    cur.execute("PRAGMA busy_timeout=30000")
-    cur.execute("PRAGMA foreign_keys=ON")
-    cur.execute("PRAGMA journal_mode=WAL")
-    cur.close()
-
-
-def _sqlite_begin(conn) -> None:
-    """Writers take the write lock at once (no deadlock between two upgrading readers); readers
-    begin a deferred transaction, so in WAL mode they never wait for each other or a writer."""
-    write = conn.get_execution_options().get("axiscal_write", False)
-    conn.exec_driver_sql("BEGIN IMMEDIATE" if write else "BEGIN")
 
 
 def _name(value: str, what: str, filename: str) -> str:
