@@ -77,9 +77,9 @@ def _instrument(**kw):
     (_without("company.name"), "", "laboratory identity"),
     (_without("company.address"), "", "laboratory identity"),
     (_without("company.name", "Your Calibration Company Ltd"), "", "still the template"),
-    (COMPLETE, "AXISCAL_CONFIG names /x/none.toml, which does not exist",
+    (_without("company"), "AXISCAL_CONFIG names /x/none.toml, which does not exist",
      "laboratory identity: AXISCAL_CONFIG names /x/none.toml, which does not exist"),
-    (COMPLETE, "the user configuration /x/c.toml is empty", "is empty"),
+    (_without("company"), "the user configuration /x/c.toml is empty", "is empty"),
     (_without("customer.name"), "", "customer name"),
     (_without("customer.address"), "", "customer address"),
     (_without("machine.maker"), "", "maker of the machine"),
@@ -106,6 +106,12 @@ def test_each_missing_item_makes_a_draft_naming_it(tmp_path, linear, cfg, note, 
     assert len(o.missing) == 1 and named in o.missing[0], o.missing
     html = o.path.read_text()
     assert "DRAFT — not a certificate" in html and 'class="watermark"' in html
+
+
+def test_a_job_may_carry_the_laboratory(tmp_path, linear):
+    """The user configuration absent but the laboratory given (a job file): issued."""
+    o, _ = _issue(tmp_path, linear, COMPLETE, note="no user configuration at /x/config.toml")
+    assert not o.draft
 
 
 def test_no_statement_of_conformity_needs_no_specification(tmp_path, linear):

@@ -71,7 +71,8 @@ def missing_items(dataset, result, budget, info, decisions, config_note: str = "
     """Each mandatory item the certificate lacks, in plain words ([] when it may be issued).
 
     ``config_note`` says why the user configuration identifies no laboratory (see
-    :func:`axiscal.io.user_config.config_problem`).
+    :func:`axiscal.io.user_config.config_problem`): named when the laboratory's name or address
+    is missing, or is the template's (a job file may carry them instead).
     """
     out = _identity(info, config_note)
     tested = calibration_date(dataset, info)
@@ -99,11 +100,11 @@ def _identity(info, config_note: str) -> list[str]:
     from axiscal.io.user_config import TEMPLATE_COMPANY
 
     c, m, out = info.company, info.machine, []
-    if c.get("name") == TEMPLATE_COMPANY and not config_note:
-        config_note = f"[company] name is still the template's {TEMPLATE_COMPANY!r}"
-    if not c.get("name") or not c.get("address") or config_note:
-        why = f": {config_note}" if config_note else " ([company] name and address)"
-        out.append(f"laboratory identity{why}")
+    if c.get("name") == TEMPLATE_COMPANY:
+        out.append("laboratory identity: " + (config_note or f"[company] name is still the "
+                                              f"template's {TEMPLATE_COMPANY!r}"))
+    elif not c.get("name") or not c.get("address"):
+        out.append("laboratory identity: " + (config_note or "[company] name and address"))
     cust = info.customer
     if not cust.get("name"):
         out.append("customer name ([customer] name)")
