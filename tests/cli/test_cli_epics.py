@@ -102,3 +102,13 @@ def test_formats_lists_the_camonitor_log_with_its_source():
     r = runner.invoke(app, ["formats", "--json"])
     entry = next(f for f in json.loads(r.stdout) if f["name"].startswith("EPICS camonitor"))
     assert entry["read"] and not entry["write"] and "tool_lib.c" in entry["described_in"]
+
+
+def test_history_of_a_log_read_with_options_is_refused_before_anything_is_stored(log, tmp_path):
+    """The history keeps the file as it came and re-reads it without options."""
+    p, _ = log
+    db = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    r = runner.invoke(app, ["iso230-2", str(p), "--setpoint-pv", SP, "--reference-pv", REF,
+                            "--history", "--machine", "M", "--db", db])
+    assert r.exit_code == 2 and "--history keeps the file as it came" in r.output
+    assert not (tmp_path / "h.sqlite").exists()

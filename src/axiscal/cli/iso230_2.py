@@ -79,11 +79,17 @@ def iso230_2(
         plot_path(plot)
     if report is not None:
         report_path(report)
+    epics = epics_options(setpoint_pv, reference_pv, targets, reference_scale, reference_offset,
+                          rest_window)
+    if history and epics:
+        from axiscal.errors import InputError
+
+        raise InputError("--history keeps the file as it came and re-reads it alone, without "
+                         f"--{next(iter(epics)).replace('_', '-')}: write the test to CSV "
+                         "first (axiscal capture LOG --plan PLAN --out x.csv) and store that")
     with progress_bar(f"reading {file.name}") as bar:
         ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
-                              progress=bar, epics=epics_options(
-                                  setpoint_pv, reference_pv, targets, reference_scale,
-                                  reference_offset, rest_window))
+                              progress=bar, epics=epics)
     show_notes(ds)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
