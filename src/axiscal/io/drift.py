@@ -21,6 +21,8 @@ rotary one).
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from axiscal._parse import csv_cells, finite_number
@@ -54,12 +56,12 @@ def parse_drift_check(text: str, source: str = "<text>") -> np.ndarray:
         raise DataFormatError("no readings: a drift check needs at least 2", source)
     col, start = 0, 0
     head = [c.strip().lower() for c in csv_cells(rows[0][1], source, rows[0][0])]
-    if not _is_number(head[0]):
-        found = [c for c in _COLUMNS if c in head]
-        if not found:
-            raise DataFormatError(f"no 'reading' or 'deviation' column in the header "
-                                  f"{rows[0][1].strip()!r}", source, rows[0][0])
+    found = [c for c in _COLUMNS if c in head]
+    if found:
         col, start = head.index(found[0]), 1
+    elif not re.fullmatch(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?|[-+]?(nan|inf)", head[0]):
+        raise DataFormatError(f"no 'reading' or 'deviation' column in the header "
+                              f"{rows[0][1].strip()!r}", source, rows[0][0])
     out = []
     for n, line in rows[start:]:
         cells = csv_cells(line, source, n)
@@ -70,10 +72,3 @@ def parse_drift_check(text: str, source: str = "<text>") -> np.ndarray:
         raise DataFormatError(f"{len(out)} reading: a drift check needs at least 2", source)
     return np.asarray(out, dtype=float)
 
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
