@@ -55,7 +55,8 @@ import numpy as np
 
 from axiscal.errors import InputError
 from axiscal.standards.iso230_4 import (CircularResult, _common, _harmonics, evaluate_circular,
-                                        normal_equations, velocity_signs)
+                                        block_product, normal_equations,
+                                        velocity_signs)
 
 __all__ = ["BallbarDiagnosis", "DiagnosisTerm", "FoldedError", "diagnose", "ADVICE"]
 
@@ -288,8 +289,11 @@ def _columns(phi: np.ndarray, radius: float) -> np.ndarray:
         blk[:, 13], blk[:, 14] = c * c * s, s * s * c
         ax = np.mod(sense * phi, np.pi)                 # travel angle since the X reversal
         ay = np.mod(sense * (phi - np.pi / 2), np.pi)   # ... since the Y reversal
-        blk[:, 15:15 + nd] = np.abs(c)[:, None] * np.exp(ax[:, None] * rate[None, :])
-        blk[:, 15 + nd:] = np.abs(s)[:, None] * np.exp(ay[:, None] * rate[None, :])
+        for col, travel, weight in ((15, ax, np.abs(c)), (15 + nd, ay, np.abs(s))):
+            spikes = blk[:, col:col + nd]                   # filled in place
+            np.multiply.outer(travel, rate, out=spikes)
+            np.exp(spikes, out=spikes)
+            spikes *= weight[:, None]
     return m
 
 
@@ -312,7 +316,7 @@ def _fit(phi, y, radius) -> _Fit:
     m = _columns(phi, radius)
     nf, nd = 15, _DECAYS.size
     gram, rhs = normal_equations(m, y)
-    yy = float(y @ y)
+    yy = float(np.einsum("i,i", y, y))          # not BLAS ddot: no threads woken
     pick = [nf + nd // 2, nf + nd + nd // 2]
     for axis in (0, 1, 0, 1):
         best = None
@@ -327,19 +331,19 @@ def _fit(phi, y, radius) -> _Fit:
     sel = list(range(nf)) + pick
     a = m[:, sel]
     decay = (float(_DECAYS[pick[0] - nf]), float(_DECAYS[pick[1] - nf - nd]))
-    cyc_cols, cyclic = _cyclic(phi, y - a @ best[2], radius)
+    cyc_cols, cyclic = _cyclic(phi, y - block_product(a, best[2]), radius)
     cc, cross = normal_equations(cyc_cols, a)
     cy = normal_equations(cyc_cols, y)[1]
     g = np.block([[gram[np.ix_(sel, sel)], cross.T], [cross, cc]])
     c = np.linalg.lstsq(g, np.concatenate([rhs[sel], cy]), rcond=None)[0]
     model = {k: a[:, i] * c[i] for i, k in enumerate(_LINEAR)}
-    model["cyclic_x"] = cyc_cols[:, :2] @ c[-4:-2]
-    model["cyclic_y"] = cyc_cols[:, 2:] @ c[-2:]
+    model["cyclic_x"] = block_product(cyc_cols[:, :2], c[-4:-2])
+    model["cyclic_y"] = block_product(cyc_cols[:, 2:], c[-2:])
     cyclic["x_amp"] = float(math.hypot(*c[-4:-2]))
     cyclic["y_amp"] = float(math.hypot(*c[-2:]))
     norms = np.sqrt(np.diag(g) / len(y))
     observable = {k: bool(norms[i] > 1e-3) for i, k in enumerate(_LINEAR)}
-    residual = y - a @ c[:-4] - cyc_cols @ c[-4:]
+    residual = y - block_product(a, c[:-4]) - model["cyclic_x"] - model["cyclic_y"]
     return _Fit(dict(zip(_LINEAR, map(float, c))), decay, cyclic, model, residual, observable,
                 g, c)
 
@@ -372,9 +376,13 @@ def _cyclic_power(pitches, w, mean, radius):
     """Power of the mean residual projected on w·sin and w·cos of each pitch's phase 2πr·w/p,
     in the precision of ``w`` and ``mean``."""
     arg = (2 * np.pi * radius / pitches).astype(w.dtype)[:, None] * w[None, :]
-    sn, cs = w * np.sin(arg), w * np.cos(arg)
-    ss = np.einsum("ij,ij->i", sn, sn)
-    return (sn @ mean) ** 2 / ss + (cs @ mean) ** 2 / (np.dot(w, w) - ss)   # sin² + cos² = 1
+    sn = np.sin(arg)
+    sn *= w
+    cs = np.cos(arg, out=arg)                   # in place: two arrays of pitches × readings
+    cs *= w
+    ss = np.einsum("ij,ij->i", sn, sn)          # einsum, not BLAS: no threads woken
+    return np.einsum("ij,j->i", sn, mean) ** 2 / ss + \
+        np.einsum("ij,j->i", cs, mean) ** 2 / (np.einsum("i,i", w, w) - ss)   # sin² + cos² = 1
 
 
 # --- the result ----------------------------------------------------------------------------------

@@ -321,7 +321,7 @@ def _lstsq(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
     conditioned: a 10-column product instead of an SVD of every reading)."""
     g, r = normal_equations(a, b)
     c = np.linalg.lstsq(g, r, rcond=None)[0]
-    res = b - a @ c
+    res = b - block_product(a, c)
     return c, float(np.sqrt(np.mean(res**2)))
 
 
@@ -334,8 +334,10 @@ def normal_equations(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarr
 
     A block is below the size at which OpenBLAS splits a product over threads: on a machine
     whose cores are busy, the split product of 20,000 × 33 readings waited 20–400 ms for its
-    threads instead of 1.4 ms (axiscal's benchmarks, 2026-11-24); by blocks it takes 1.4 ms
-    loaded or not."""
+    threads instead of 1.4 ms (axiscal's benchmarks, 2026-11-24), and threads once woken spin on
+    for a while, taking a busy core from what follows; by blocks it takes 1.4 ms loaded or not.
+    Every product over the readings in this module and the ballbar diagnosis is kept below that
+    size (this, :func:`block_product`, ``einsum`` for sums of products)."""
     n = a.shape[0]
     g = np.zeros((a.shape[1], a.shape[1]))
     r = np.zeros((a.shape[1],) + b.shape[1:])
@@ -344,6 +346,15 @@ def normal_equations(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarr
         g += blk.T @ blk
         r += blk.T @ b[i:i + _BLOCK_ROWS]
     return g, r
+
+
+def block_product(a: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """``A c`` by blocks of :data:`_BLOCK_ROWS` rows (as :func:`normal_equations`, and for the
+    same reason: a 20,000 × 17 product kept two OpenBLAS threads spinning for 19 ms)."""
+    out = np.empty((a.shape[0],) + c.shape[1:])
+    for i in range(0, a.shape[0], _BLOCK_ROWS):
+        out[i:i + _BLOCK_ROWS] = a[i:i + _BLOCK_ROWS] @ c
+    return out
 
 
 def _circular_deviations(run: CircularRun) -> tuple[float, float]:
