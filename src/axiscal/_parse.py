@@ -10,7 +10,8 @@ import math
 
 from axiscal.errors import DataFormatError
 
-__all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit"]
+__all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit", "nesting_depth",
+           "loads_json", "MAX_NESTING"]
 
 
 #: Largest magnitude a measured value may have, in any unit (a deviation of 1e308 is a typing
@@ -117,3 +118,64 @@ def agreed_unit(option: str | None, declared: str | None, key: str,
         raise DataFormatError(f"the file declares {key}={declared} but the option gives {option}; "
                               "drop the option or correct the file", source)
     return option or declared
+
+
+#: Deepest nesting of brackets a JSON or TOML input may have. axiscal's own files nest 4 deep
+#: (a dataset's ``up`` runs); Python's parsers recurse once per level and stop with a
+#: RecursionError near 1,000 (JSON) or print thousands of lines of traceback (TOML).
+MAX_NESTING = 64
+
+
+def nesting_depth(text: str, limit: int = MAX_NESTING) -> int:
+    """How deep ``[`` and ``{`` nest in ``text`` (strings left out; unclosed brackets counted as
+    nesting), counting no further than ``limit + 1``.
+
+    Each pass removes the innermost bracket pairs, so the cost is ``limit`` passes over the text
+    at most, and nothing recurses however deep the input nests.
+
+    Examples
+    --------
+    >>> nesting_depth('{"a": [[1, 2], [3]], "b": "[[[["}')
+    3
+    >>> nesting_depth("[" * 100000 + "]" * 100000)
+    65
+    """
+    import re
+
+    text = re.sub(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'', "",
+                  text)
+    text = re.sub(r"[^\[\]{}]+", "", text)
+    inner = re.compile(r"\[\]|\{\}")
+    depth = 0
+    while depth <= limit:
+        text, n = inner.subn("", text)
+        if not n:   # what is left never closes ("]]][[["): its openers nest on top
+            return min(depth + text.count("[") + text.count("{"), limit + 1)
+        depth += 1
+    return depth
+
+
+def loads_json(text: str, source: str | None = None):
+    """``json.loads(text)`` with its nesting bounded first (:data:`MAX_NESTING`); a syntax error
+    or too deep a nesting is a :class:`DataFormatError` naming the source and line.
+
+    Examples
+    --------
+    >>> loads_json('{"a": [1, 2]}')
+    {'a': [1, 2]}
+    >>> loads_json("[" * 5000, "f.json")
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.DataFormatError: f.json: brackets nest more than 64 deep; no axiscal file nests so deep
+    """
+    import json
+
+    if nesting_depth(text) > MAX_NESTING:
+        raise DataFormatError(f"brackets nest more than {MAX_NESTING} deep; no axiscal file "
+                              "nests so deep", source)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise DataFormatError(f"not valid JSON: {exc.msg}", source, exc.lineno) from None
+    except RecursionError:   # pragma: no cover - the depth check comes first
+        raise DataFormatError("brackets nest too deep", source) from None

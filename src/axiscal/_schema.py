@@ -41,7 +41,8 @@ from typing import Any
 from axiscal.errors import ConfigError, InputError
 
 __all__ = ["SchemaError", "Free", "Num", "Text", "Flag", "Schema", "check_option", "show", "MAX_MAGNITUDE",
-           "remember_document", "refuse_unknown", "document_sources"]
+           "remember_document", "refuse_unknown", "document_sources", "loads_toml",
+           "MAX_TOML_BYTES"]
 
 #: No length, angle, time, temperature or rate a machine-tool set-up has comes near this; a value
 #: beyond it is a typing slip (and squaring it overflows a float).
@@ -149,6 +150,52 @@ class SchemaError(Exception):
 _Bad = SchemaError
 
 
+#: Largest configuration file read, bytes: axiscal's configurations are a few kilobytes; a larger
+#: one holds something else (a 200 MB string would become a 200 MB report).
+MAX_TOML_BYTES = 1024 * 1024
+#: Most parts a dotted key (``a.b.c``) may have: tomllib's time grows with the square of it
+#: (20,000 parts: 9 s; 200,000 would take hours).
+MAX_KEY_PARTS = 32
+_DOTTED = re.compile(r"""(?:(?:[A-Za-z0-9_-]+|"[^"\n]*"|'[^'\n]*')[ \t]*\.[ \t]*){%d,}"""
+                     % MAX_KEY_PARTS)
+
+
+def loads_toml(text: str, source: str = "<text>") -> dict:
+    """``tomllib.loads(text)`` once the text is bounded: its size (:data:`MAX_TOML_BYTES`), the
+    nesting of its arrays and tables (``axiscal._parse.MAX_NESTING``) and the parts of a dotted
+    key (:data:`MAX_KEY_PARTS`), so no input makes the parser recurse or run for minutes; a
+    syntax error is a :class:`ConfigError` naming the file.
+
+    Examples
+    --------
+    >>> loads_toml("a = [[1], [2]]")
+    {'a': [[1], [2]]}
+    >>> loads_toml("x = " + "[" * 3000 + "]" * 3000, "job.toml")
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.ConfigError: job.toml: arrays or tables nest more than 64 deep; no axiscal configuration nests so deep
+    """
+    import tomllib
+
+    from axiscal._parse import MAX_NESTING, nesting_depth
+
+    if len(text) > MAX_TOML_BYTES:
+        raise ConfigError(f"{source}: {len(text.encode()) / 2**20:.1f} MiB is too large for a "
+                          f"configuration (at most {MAX_TOML_BYTES // 2**20} MiB)")
+    if nesting_depth(text) > MAX_NESTING:
+        raise ConfigError(f"{source}: arrays or tables nest more than {MAX_NESTING} deep; no "
+                          "axiscal configuration nests so deep")
+    if _DOTTED.search(text):
+        raise ConfigError(f"{source}: a dotted key has more than {MAX_KEY_PARTS} parts; no "
+                          "axiscal configuration has such a key")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:   # pragma: no cover - the nesting is bounded first
+        raise ConfigError(f"{source}: arrays or tables nest too deep") from None
+
+
 def _is_num(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
@@ -169,12 +216,7 @@ class Schema:
 
     def parse(self, text: str, source: str = "<text>") -> dict[str, Any]:
         """Check ``text``; return each table with its values (defaults filled in)."""
-        import tomllib
-
-        try:
-            doc = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise ConfigError(f"{source}: not valid TOML: {exc}") from None
+        doc = loads_toml(text, source)
         lines = _Lines(text, source)
         see = f" (see {self.example})" if self.example else ""
         if not doc and (self.required or self.tables):

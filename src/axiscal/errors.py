@@ -25,7 +25,31 @@ __all__ = [
     "SignalLossError",
     "ControllerLimitError",
     "SignConventionError",
+    "one_line",
+    "MAX_MESSAGE",
 ]
+
+#: Longest message shown, characters: a message quotes at most an excerpt of the input (a
+#: 200 MB one-line file once gave a 200 MB "one-line" error).
+MAX_MESSAGE = 500
+
+
+def one_line(message: str, limit: int = MAX_MESSAGE) -> str:
+    """``message`` on one line (line breaks become spaces) and at most ``limit`` characters:
+    beyond that its beginning and end with ``…`` between, so the reason (at the start) and the
+    rule (often at the end) both stay.
+
+    Examples
+    --------
+    >>> one_line("header: " + "x" * 10_000 + " is not a number", 60)
+    'header: xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx … is not a number'
+    """
+    text = " ".join(message.splitlines())
+    if len(text) <= limit:
+        return text
+    tail = min(limit // 4, 120)
+    return f"{text[:limit - tail - 3].rstrip()} … {text[-tail:].lstrip()}"
+
 
 
 class AxiscalError(Exception):

@@ -21,7 +21,7 @@ from axiscal import __version__
 from typer._click.exceptions import NoArgsIsHelpError, UsageError  # typer 0.28 vendors click
 from typer._click.types import FloatParamType, FloatRange
 
-from axiscal.errors import AxiscalError
+from axiscal.errors import AxiscalError, one_line
 
 __all__ = ["app", "main"]
 
@@ -85,15 +85,15 @@ class AxiscalGroup(typer.core.TyperGroup):
                 warnings.simplefilter("error", RuntimeWarning)
                 return super().invoke(ctx)
         except RuntimeWarning as exc:
-            typer.echo(f"axiscal: error: a value is too large to compute with ({exc}); check the "
-                       "input for a number of absurd magnitude", err=True)
+            typer.echo(one_line(f"axiscal: error: a value is too large to compute with ({exc}); "
+                                "check the input for a number of absurd magnitude"), err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None
         except MemoryError:
             typer.echo("axiscal: error: out of memory; a count, duration or size in the input is "
                        "far larger than a calibration needs", err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None
         except AxiscalError as exc:
-            typer.echo(f"axiscal: error: {_with_source(exc)}", err=True)
+            typer.echo(one_line(f"axiscal: error: {_with_source(exc)}"), err=True)
             raise typer.Exit(EXIT_USER_ERROR) from None
         except UsageError as exc:
             _usage_error(exc)
@@ -104,7 +104,10 @@ class AxiscalGroup(typer.core.TyperGroup):
 
 def _with_source(exc: AxiscalError) -> str:
     """The message, with the configuration file named when a reader raised it from the table
-    alone (``[compensation] needs spacing``) and the command read exactly one such file."""
+    alone (``[compensation] needs spacing``) and the command read exactly one such file.
+
+    The caller shows it through :func:`axiscal.errors.one_line`, the one place a message is cut
+    to an excerpt of the input it quotes."""
     from axiscal._schema import document_sources
     from axiscal.errors import ConfigError
 
@@ -124,8 +127,8 @@ def _usage_error(exc) -> None:
     message = (message[:1].lower() + message[1:]).rstrip(".")
     path = exc.ctx.command_path if exc.ctx is not None else "axiscal"
     where = path.partition(" ")[2]
-    typer.echo(f"axiscal: error: {where + ': ' if where else ''}{message} "
-               f"(see '{path} --help')", err=True)
+    typer.echo(one_line(f"axiscal: error: {where + ': ' if where else ''}{message}", 440)
+               + f" (see '{path} --help')", err=True)
     raise typer.Exit(EXIT_USER_ERROR) from None
 
 

@@ -48,9 +48,15 @@ def print_json(obj: Any) -> None:
     sys.stdout.write(json.dumps(jsonable(obj), indent=2, ensure_ascii=False) + "\n")
 
 
-def out_path(path: Path, what: str) -> Path:
-    """Check that an output file can be written (its folder exists), before any work is done."""
+def out_path(path: Path, what: str, inputs=None) -> Path:
+    """Check that an output file can be written (its folder exists), before any work is done.
+
+    An output that is one of the command's inputs (the same name, a hard link or a symbolic link
+    to it) is refused: writing it would destroy the measurement it is made from. The inputs are
+    ``inputs`` if given, else every path the running command was given (:func:`_given_paths`).
+    """
     path = Path(path)
+    _not_an_input(path, what, _given_paths(path) if inputs is None else inputs)
     try:
         if path.exists() and path.is_dir():
             raise InputError(f"{what} {path} is a folder; give a file name")
@@ -65,6 +71,60 @@ def out_path(path: Path, what: str) -> Path:
     except OSError as exc:   # a name too long, a path through a file ...
         raise InputError(f"cannot write {what} {path}: {exc.strerror or exc}") from None
     return path
+
+
+def _given_paths(output: Path) -> list[tuple[str, str]]:
+    """(name, path) of every path parameter of the running command, less ``output`` itself.
+
+    Click keeps the values as given (strings), so the output's own parameter is recognised by its
+    value: its last occurrence is dropped (commands declare their inputs first); another one is
+    an input of the same name.
+    """
+    from typer._click.globals import get_current_context
+
+    ctx = get_current_context(silent=True)
+    found = []
+    while ctx is not None:
+        for param in ctx.command.params:
+            if type(param.type).__name__ not in ("TyperPath", "Path"):
+                continue
+            values = ctx.params.get(param.name)
+            for v in values if isinstance(values, (list, tuple)) else [values]:
+                if v is not None:
+                    found.append((param.opts[0] if param.param_type_name == "option"
+                                  else param.name.upper(), str(v)))
+        ctx = ctx.parent
+    for i, (_, v) in reversed(list(enumerate(found))):
+        if v == str(output):
+            del found[i]
+            break
+    return found
+
+
+def _not_an_input(path: Path, what: str, inputs) -> None:
+    """Refuse ``path`` if it is one of ``inputs`` (same file by device and inode, or by name)."""
+    try:
+        out_stat = path.stat() if path.exists() else None
+        out_real = os.path.realpath(path)
+    except (OSError, ValueError):   # a loop of links or a bad name: out_path says which
+        return
+    for name, given in inputs:
+        try:
+            same = os.path.realpath(given) == out_real
+            if out_stat is not None and not same and Path(given).exists():
+                st = Path(given).stat()
+                same = (st.st_dev, st.st_ino) == (out_stat.st_dev, out_stat.st_ino)
+        except (OSError, ValueError):
+            continue
+        if same:
+            raise InputError(f"{what} {_short(path)} is the input {name} {_short(given)}: "
+                             "writing it would destroy that input; give another file name")
+
+
+def _short(path) -> str:
+    """A path for a message, at most about 120 characters (a hostile name can be 1 MB)."""
+    text = str(path)
+    return text if len(text) <= 120 else f"{text[:60]}…{text[-40:]}"
 
 
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")

@@ -54,7 +54,7 @@ def _schema():
 def simulate(
     config: Path = typer.Argument(..., help="TOML file (sections machine, servo, ballbar, test)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the trace CSV here."),
-    seed: int = typer.Option(0, "--seed", help="Seed of the noise."),
+    seed: int = typer.Option(0, "--seed", min=0, help="Seed of the noise, a whole number >= 0."),
     json_out: bool = typer.Option(False, "--json", help="Print the truth and file as JSON."),
 ) -> None:
     """Simulate a CW + CCW ballbar test (servo dynamics, ballbar instrument) as analyze reads it.

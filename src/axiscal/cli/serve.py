@@ -35,14 +35,23 @@ def serve(
     Example: axiscal serve --port 8000   (then open http://127.0.0.1:8000 in a browser)
     """
     import os
+    import sys
 
     from axiscal.errors import InputError
     from axiscal.web.security import UserFile, is_loopback
 
     users_path = users or _default_users()
     if add_user is not None:
-        password = os.environ.get("AXISCAL_PASSWORD") or typer.prompt(
-            f"password for {add_user}", hide_input=True, confirmation_prompt=True)
+        from axiscal.web.security import ROLES
+
+        if role not in ROLES:   # before the password is asked for, not after
+            raise InputError(f"--role {role[:40]!r}: use {' or '.join(ROLES)}")
+        password = os.environ.get("AXISCAL_PASSWORD")
+        if not password and not sys.stdin.isatty():
+            raise InputError("--add-user: no terminal to ask the password on; set "
+                             "AXISCAL_PASSWORD")
+        password = password or typer.prompt(f"password for {add_user}", hide_input=True,
+                                            confirmation_prompt=True)
         UserFile.load(users_path).add(add_user, role, password)
         typer.echo(f"{add_user} ({role}) written to {users_path}")
         return

@@ -7,7 +7,7 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-from axiscal.errors import ConfigError, DataFormatError, InputError, MissingFileError
+from axiscal.errors import DataFormatError, InputError, MissingFileError
 
 __all__ = ["read_text", "read_controller_text", "read_bytes", "load_toml", "write_text_atomic", "write_bytes_atomic"]
 
@@ -102,16 +102,10 @@ def _read_regular_file(p: Path) -> bytes:
 
 def load_toml(path) -> dict:
     """Read a TOML configuration; a syntax error becomes a :class:`ConfigError` naming the file."""
-    import tomllib
-
-    from axiscal._schema import remember_document
+    from axiscal._schema import loads_toml, remember_document
 
     text = read_text(path)
-    try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
-    return remember_document(doc, str(path), text)
+    return remember_document(loads_toml(text, str(path)), str(path), text)
 
 
 def write_bytes_atomic(path, data: bytes) -> Path:

@@ -39,10 +39,9 @@ def read_positioning_json(path) -> PositioningDataset:
 
 def parse_positioning_json(text: str, source: str = "<text>") -> PositioningDataset:
     """Parse the JSON form of a dataset; any defect is a :class:`DataFormatError`."""
-    try:
-        d = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise DataFormatError(f"not valid JSON: {exc.msg}", source, exc.lineno) from None
+    from axiscal._parse import loads_json
+
+    d = loads_json(text, source)
     if not isinstance(d, dict):
         raise DataFormatError("a dataset must be a JSON object", source)
     if d.get("format") != FORMAT:

@@ -39,7 +39,6 @@ dynamic capture is read by :mod:`axiscal.io.rtx`.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -369,8 +368,10 @@ def _meta_number(meta, key, default, lo, hi, source) -> float:
 
 
 def _environment_json(text: str, source: str) -> EnvironmentLog:
+    from axiscal._parse import loads_json
+
+    d = loads_json(text, source)
     try:
-        d = json.loads(text)
         samples = d["samples"]
         rows = [(s["time_s"], s["air_temperature_c"], s["pressure_pa"], s["humidity_pct"],
                  s.get("material_temperature_c", [])) for s in samples]
@@ -403,4 +404,34 @@ def _log(t, air, p, h, mat, alpha, source, lines) -> EnvironmentLog:
     if alpha is not None and not abs(alpha) <= 1e-4:
         raise DataFormatError(f"expansion_coefficient_ppm = {alpha * 1e6:g}: at most 100 ppm/K",
                               source)
+    _unit_slips(air, p, mat, source)
     return EnvironmentLog(t, air, p, h, mat, alpha, source)
+
+
+#: The band in which the refractive-index equations were tested against measurements (Stone and
+#: Zimmerman, NIST "Engineering metrology toolbox", index of refraction of air: 0-40 °C,
+#: 60-120 kPa; see axiscal.physics.air.VALIDITY): a log outside it that falls inside it in a
+#: unit often mistaken for the column's is a slip of unit, and refused with the reading named.
+_AIR_C, _AIR_KPA = (0.0, 40.0), (60.0, 120.0)
+
+
+def _unit_slips(air, p, mat, source) -> None:
+    """Refuse a temperature column in °F and a pressure column in kPa or hPa (module docstring
+    of :mod:`axiscal.physics.air` for the band)."""
+    lo, hi = _AIR_C
+    for name, col in (("air_temperature_c", air), ("material_temperature_c", mat)):
+        col = np.asarray(col, dtype=float)
+        if col.size and col.max() > hi:
+            as_c = (col - 32.0) * 5.0 / 9.0
+            if lo <= as_c.min() and as_c.max() <= hi:
+                raise DataFormatError(
+                    f"{name} {col.min():g} … {col.max():g} °C is hotter than any calibration "
+                    f"(the air equations are tested from {lo:g} to {hi:g} °C); read as °F it is "
+                    f"{as_c.min():.1f} … {as_c.max():.1f} °C: convert the column to °C", source)
+    lo, hi = _AIR_KPA
+    for factor, unit in ((1e3, "kPa"), (1e2, "hPa (mbar)")):
+        if p.size and lo * 1e3 <= p.min() * factor and p.max() * factor <= hi * 1e3:
+            raise DataFormatError(
+                f"pressure_pa {p.min():g} … {p.max():g} Pa is far below any air a machine "
+                f"stands in; read as {unit} it is {p.min() * factor:g} … {p.max() * factor:g} "
+                "Pa: convert the column to Pa", source)

@@ -26,7 +26,6 @@ which documents every key. Unknown keys are refused by name.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -99,11 +98,9 @@ def parse_motion_config(text: str, source: str = "<config>") -> MotionConfig:
     >>> cfg.step_deg, round(float(cfg.axis.positioning(math.pi / 2)) / ARCSEC, 6)
     (45.0, 10.0)
     """
-    try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{source}: not valid TOML: {exc}") from None
-    from axiscal._schema import remember_document
+    from axiscal._schema import loads_toml, remember_document
+
+    doc = loads_toml(text, source)
 
     t = _Table(remember_document(doc, source, text), source, text=text)
     machine = t.sub("machine")

@@ -13,7 +13,6 @@ Either way the result has what :func:`~axiscal.compensation.tables.table_from_re
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -61,10 +60,9 @@ def load_mean_deviations(path, full_turn: str = "separate"):
 
     text = read_text(path)
     if Path(path).suffix.lower() == ".json" or text.lstrip().startswith("{"):
-        try:
-            d = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise DataFormatError(f"not valid JSON: {exc.msg}", str(path), exc.lineno) from None
+        from axiscal._parse import loads_json
+
+        d = loads_json(text, str(path))
         if isinstance(d, dict) and "format" not in d and "targets" in d:
             axis = d.get("axis", "")
             return parse_result_json(d, str(path)), axis if isinstance(axis, str) else ""

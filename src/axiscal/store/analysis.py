@@ -120,8 +120,11 @@ def fit_trend(parameter: str, dates, values, unit: str, tolerance: float | None 
     dates = tuple(dates)
     if len(dates) != v.size:
         raise InputError("as many dates as values are needed")
-    if tolerance is not None and not math.isfinite(tolerance):
-        raise InputError(f"tolerance = {tolerance!r}: a finite number")
+    if tolerance is not None and not (math.isfinite(tolerance) and 0 < tolerance <= 1e100):
+        # a tolerance is the permissible size of a parameter, so positive: the parameters of
+        # ISO 230-2:2014 (E, A, R, B, M) are ranges and spans; 1e100 is _parse.MAX_MAGNITUDE
+        raise InputError(f"tolerance = {tolerance!r}: a positive finite number (up to 1e100) "
+                         "in the parameter's unit")
     base = dict(parameter=parameter, dates=dates, values=v, unit=unit, tolerance=tolerance,
                 test_ids=tuple(test_ids))
     if v.size < 3:
@@ -144,8 +147,9 @@ def fit_trend(parameter: str, dates, values, unit: str, tolerance: float | None 
     crossing = u_days = cautious = None
     if tolerance is not None and b != 0 and (tolerance - level) / b > 0:
         tc = tm + (tolerance - a) / b                 # years after t0
-        u_tc = math.sqrt(ua ** 2 / b ** 2 + (tolerance - a) ** 2 * ub ** 2 / b ** 4)
         if tc < 1000:
+            # the same law of propagation, written so that no square overflows
+            u_tc = math.hypot(ua / b, (tolerance - a) / b * ub / b)
             crossing = t0 + dt.timedelta(days=tc * 365.25)
             u_days = u_tc * 365.25
             cautious = t0 + dt.timedelta(days=max(t[-1], tc - 2 * u_tc) * 365.25)

@@ -61,17 +61,13 @@ class UserFile:
     @classmethod
     def load(cls, path) -> "UserFile":
         """Read the users file (an absent file has no accounts)."""
-        import tomllib
-
         p = Path(path)
         if not p.exists():
             return cls(p)
+        from axiscal._schema import loads_toml
         from axiscal.io._files import read_text
 
-        try:
-            data = tomllib.loads(read_text(p))
-        except tomllib.TOMLDecodeError as exc:
-            raise ConfigError(f"{p}: not valid TOML: {exc}") from None
+        data = loads_toml(read_text(p), str(p))
         users = {}
         for name, u in (data.get("users") or {}).items():
             if not isinstance(u, dict) or u.get("role") not in ROLES or \
