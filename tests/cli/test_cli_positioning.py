@@ -47,7 +47,8 @@ def test_json_output_keys_and_values(good):
 
 def test_plot_and_report_files(good, tmp_path):
     png, html = tmp_path / "p.png", tmp_path / "r.html"
-    r = runner.invoke(app, ["iso230-2", str(good), "--plot", str(png), "--report", str(html)])
+    r = runner.invoke(app, ["iso230-2", str(good), "--plot", str(png), "--report", str(html),
+                            "--draft"])   # no laboratory configured: a draft (issue 28)
     assert r.exit_code == 0, r.output
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     page = html.read_text()
@@ -140,7 +141,8 @@ def test_tolerances_give_verdicts_and_exit_code(good, tmp_path):
     d = json.loads(r.stdout)
     assert d["accepted"] is True and [a["parameter"] for a in d["acceptance"]] == ["E", "B"]
     html = tmp_path / "r.html"
-    r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "B=1", "--report", str(html)])
+    r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "B=1", "--report", str(html),
+                            "--draft"])
     assert r.exit_code == 1 and "FAIL" in r.stdout
     assert 'class="bad">FAIL' in html.read_text()
     r = runner.invoke(app, ["iso230-2", str(good), "--tolerance", "Q=1"])
@@ -169,7 +171,8 @@ def test_rotary_closure_in_the_terminal_table_and_the_report(tmp_path):
                 rows.append(f"{t},{d},{run},{(2.0 if t == 360 else 0.0) + 0.01 * run:.3f}")
     f = tmp_path / "c.csv"
     f.write_text("# target_unit=deg deviation_unit=arcsec axis=C\n" + "\n".join(rows) + "\n")
-    r = CliRunner().invoke(app, ["iso230-2", str(f), "--report", str(tmp_path / "r.html")],
+    r = CliRunner().invoke(app, ["iso230-2", str(f), "--report", str(tmp_path / "r.html"),
+                                 "--draft"],
                            env={"COLUMNS": "160"})
     assert r.exit_code == 0, r.output
     line = next(ln for ln in r.stdout.splitlines() if "closure↑" in ln)
