@@ -1,33 +1,80 @@
 """Export and import of the history as a portable archive.
 
-The archive is a ZIP file holding ``history.jsonl`` (one JSON object a line: the machine, the
-axis, the test's fields, its parameters and compensation tables, and the name of its raw file)
-and ``raw/<sha256>-<filename>``, the files as they came. Import evaluates each raw file again
-and stores it in its own transaction, skipping files already stored (SHA-256), so an
-interrupted import is simply run again.
+The archive is a ZIP file holding ``history.jsonl`` (one JSON object a line: first the header,
+``{"format": "axiscal.history/1", "tests": N}``, then one record a test: the machine, the axis,
+the test's fields, its parameters and compensation tables, and the name of its raw file) and
+``raw/<sha256>-<filename>``, the files as they came.
+
+Export writes a temporary file beside the archive and renames it into place, so a full disk or
+an error leaves no partial archive; the archive gets the mode a plain write gives (0666 less the
+umask, 0644 usually), not the temporary file's 0600.
+
+Import is all or nothing. The archive is distrusted and checked whole before the first row:
+
+* its ZIP directory: at most :data:`MAX_ENTRIES` entries, none declared larger than
+  :data:`MAX_ENTRY_BYTES`, all together at most :data:`MAX_TOTAL_BYTES`, none over 1 MiB
+  expanding more than :data:`MAX_RATIO` times its compressed size, no encrypted entry, and the
+  compressed sizes adding up to no more than the file (entries that overlap, how a zip bomb
+  makes gigabytes of a few megabytes, add up to more);
+* every entry read through a bounded reader that stops at its declared size, whatever the
+  header says (:func:`_read_entry`);
+* ``history.jsonl``: UTF-8, its header with the format and the count of records, every record a
+  JSON object with every field present and of its type, every table ``[controller, filename,
+  text]``, every raw file present and matching its SHA-256;
+* every raw file not stored before evaluated again (one that no longer evaluates refuses the
+  archive).
+
+Then every test is stored in one transaction (:meth:`~axiscal.store.history.Store.add_all`): a
+damaged archive, an error or a killed process leaves the database exactly as it was; files
+already stored (same SHA-256) are counted, not stored again, so an import can be run again.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
+import os
+import re
 import zipfile
 from pathlib import Path
 
-from axiscal.errors import DataFormatError
+from axiscal.errors import AxiscalError, DataFormatError, InputError, one_line
 
-__all__ = ["FORMAT", "export_history", "import_history"]
+__all__ = ["FORMAT", "export_history", "import_history", "MAX_ENTRIES", "MAX_ENTRY_BYTES",
+           "MAX_TOTAL_BYTES", "MAX_RATIO"]
 
 FORMAT = "axiscal.history/1"
+#: At most this many entries in an archive's ZIP directory.
+MAX_ENTRIES = 200_000
+#: No entry larger than a file axiscal reads (``axiscal.io._files.MAX_TEXT_BYTES``, 256 MiB).
+MAX_ENTRY_BYTES = 256 * 2**20
+#: All entries together, uncompressed.
+MAX_TOTAL_BYTES = 2**30
+#: An entry over 1 MiB may expand at most this many times its compressed size (measurement
+#: files deflate 2-10 times; a zip bomb's entries about 1000 times).
+MAX_RATIO = 100
+_RATIO_FROM = 2**20
+_SHA256 = re.compile(r"[0-9a-f]{64}")
+#: The fields of a record: type and default (None: required).
+_FIELDS = {"machine": (str, None), "axis": (str, None), "kind": (str, None),
+           "tested_at": (str, None), "filename": (str, None), "sha256": (str, None),
+           "raw": (str, None), "date_known": (bool, True), "instrument": (str, ""),
+           "operator": (str, ""), "note": (str, ""), "parameters": (dict, {}),
+           "tables": (list, [])}
 
 
 def export_history(store, path, machine: str | None = None) -> int:
     """Write the history (or one machine's) to the ZIP archive ``path``; returns the count."""
-    import os
     import tempfile
+
+    from axiscal.io._files import _mode_for
 
     p = Path(path)
     tests = store.tests(machine=machine)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
+    except OSError as exc:
+        raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
     os.close(fd)
     try:
         with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
@@ -44,48 +91,187 @@ def export_history(store, path, machine: str | None = None) -> int:
                     "parameters": {k: list(v) for k, v in summary.parameters.items()},
                     "tables": [list(x) for x in t.tables]}))
             z.writestr("history.jsonl", "\n".join(lines) + "\n")
+        os.chmod(tmp, _mode_for(p))
         os.replace(tmp, p)
-    except BaseException:
+    except BaseException as exc:
         Path(tmp).unlink(missing_ok=True)
+        if isinstance(exc, OSError):                     # a full disk, a file-size limit ...
+            raise InputError(f"cannot write {p}: {exc.strerror or exc}; no archive was "
+                             "left") from None
         raise
     return len(tests)
 
 
 def import_history(store, path, progress=None) -> tuple[int, int]:
-    """Store every test of the archive ``path``; returns (added, already stored)."""
-    import hashlib
+    """Store every test of the archive ``path``, all or nothing; returns (added, already stored).
 
+    ``progress(done, total)`` is called as the records are checked and evaluated.
+    """
     p = Path(path)
     try:
         z = zipfile.ZipFile(p)
-    except (zipfile.BadZipFile, OSError) as exc:
-        raise DataFormatError(f"not an axiscal history archive ({exc})", str(p)) from None
-    added = dup = 0
+    except (zipfile.BadZipFile, OSError, ValueError) as exc:
+        raise DataFormatError(f"not an axiscal history archive ({one_line(str(exc))})",
+                              str(p)) from None
     with z:
-        try:
-            lines = z.read("history.jsonl").decode("utf-8").splitlines()
-        except KeyError:
-            raise DataFormatError("no history.jsonl inside: not an axiscal history archive",
-                                  str(p)) from None
-        head = json.loads(lines[0]) if lines else {}
-        if head.get("format") != FORMAT:
-            raise DataFormatError(f"format {head.get('format')!r}; expected {FORMAT}", str(p))
-        for n, line in enumerate(lines[1:], start=2):
-            try:
-                rec = json.loads(line)
-                raw = z.read(rec["raw"])
-            except (ValueError, KeyError) as exc:
-                raise DataFormatError(f"entry {n - 1} is damaged ({exc})", str(p), n) from None
-            if hashlib.sha256(raw).hexdigest() != rec.get("sha256"):
-                raise DataFormatError(f"entry {n - 1} ({rec.get('filename')}): the raw file does "
-                                      "not match its SHA-256", str(p), n)
-            r = store.add(raw, rec["filename"], machine=rec["machine"], axis=rec["axis"],
-                          kind=rec["kind"], instrument=rec.get("instrument", ""),
-                          operator=rec.get("operator", ""), note=rec.get("note", ""),
-                          date=rec["tested_at"] if rec.get("date_known", True) else None,
-                          tables=tuple(tuple(x) for x in rec.get("tables", [])))
-            dup += r.duplicate
-            added += not r.duplicate
+        _check_directory(z, p)
+        records = _records(_jsonl_text(z, p), p)
+        names = set(z.namelist())
+        for n, rec in records:
+            if rec["raw"] not in names:
+                raise DataFormatError(f"history.jsonl line {n} ({rec['filename']}): its raw file "
+                                      f"{rec['raw']} is missing from the archive; nothing was "
+                                      "imported", str(p))
+        known = store.stored([rec["sha256"] for _, rec in records])
+        items = []
+        for k, (n, rec) in enumerate(records, start=1):
+            if rec["sha256"] not in known:
+                items.append(_prepared(z, p, n, rec))
             if progress:
-                progress(n - 1, len(lines) - 1)
-    return added, dup
+                progress(k, len(records))
+    results = store.add_all(items) if items else []
+    added = sum(not r.duplicate for r in results)
+    return added, len(records) - added
+
+
+# -- checking ----------------------------------------------------------------------------------
+def _check_directory(z: zipfile.ZipFile, p: Path) -> None:
+    """Refuse, from the ZIP directory alone, an archive that would expand beyond the bounds."""
+    infos = z.infolist()
+    if len(infos) > MAX_ENTRIES:
+        raise DataFormatError(f"{len(infos)} entries; an archive holds at most {MAX_ENTRIES}",
+                              str(p))
+    total = packed = 0
+    for i in infos:
+        if i.flag_bits & 0x1:
+            raise DataFormatError(f"entry {i.filename[:80]!r} is encrypted", str(p))
+        if i.file_size > MAX_ENTRY_BYTES:
+            raise DataFormatError(f"entry {i.filename[:80]!r} expands to {i.file_size} bytes; "
+                                  f"at most {MAX_ENTRY_BYTES // 2**20} MiB each", str(p))
+        if i.file_size > _RATIO_FROM and i.file_size > MAX_RATIO * max(i.compress_size, 1):
+            raise DataFormatError(f"entry {i.filename[:80]!r} expands {i.file_size} bytes from "
+                                  f"{i.compress_size}, more than {MAX_RATIO} times: refused "
+                                  "as a zip bomb", str(p))
+        total += i.file_size
+        packed += i.compress_size
+    if total > MAX_TOTAL_BYTES:
+        raise DataFormatError(f"the entries expand to {total} bytes; an archive holds at most "
+                              f"{MAX_TOTAL_BYTES // 2**20} MiB", str(p))
+    if packed > p.stat().st_size:
+        raise DataFormatError(f"the entries' compressed sizes add up to {packed} bytes, more "
+                              f"than the file's {p.stat().st_size}: entries overlap (a zip "
+                              "bomb's trick); refused", str(p))
+
+
+def _read_entry(z: zipfile.ZipFile, p: Path, name: str) -> bytes:
+    """An entry's bytes, read in pieces and stopped past its declared size (and the bound)."""
+    info = z.getinfo(name)
+    limit = min(info.file_size, MAX_ENTRY_BYTES)
+    parts, size = [], 0
+    try:
+        with z.open(info) as f:
+            while chunk := f.read(2**20):
+                size += len(chunk)
+                if size > limit:
+                    raise DataFormatError(f"entry {name[:80]!r} expands beyond its declared "
+                                          f"{info.file_size} bytes; refused", str(p))
+                parts.append(chunk)
+    except (zipfile.BadZipFile, OSError, EOFError, ValueError, NotImplementedError) as exc:
+        if isinstance(exc, AxiscalError):
+            raise
+        raise DataFormatError(f"entry {name[:80]!r} is damaged ({one_line(str(exc))})",
+                              str(p)) from None
+    except Exception as exc:                     # zlib.error and the like: damaged data
+        raise DataFormatError(f"entry {name[:80]!r} is damaged ({type(exc).__name__}: "
+                              f"{one_line(str(exc))[:120]})", str(p)) from None
+    return b"".join(parts)
+
+
+def _jsonl_text(z: zipfile.ZipFile, p: Path) -> str:
+    try:
+        data = _read_entry(z, p, "history.jsonl")
+    except KeyError:
+        raise DataFormatError("no history.jsonl inside: not an axiscal history archive",
+                              str(p)) from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise DataFormatError(f"history.jsonl is not UTF-8 text (byte {exc.start} is "
+                              f"0x{data[exc.start]:02X})", str(p)) from None
+
+
+def _records(text: str, p: Path) -> list[tuple[int, dict]]:
+    """(line number, record) of every record, each checked; the header checked first."""
+    lines = [(n, line) for n, line in enumerate(text.splitlines(), start=1) if line.strip()]
+    if not lines:
+        raise DataFormatError("history.jsonl is empty: not an axiscal history archive", str(p))
+    head = _json_object(lines[0][1], lines[0][0], p, "the archive's header")
+    if head.get("format") != FORMAT:
+        raise DataFormatError(f"history.jsonl line {lines[0][0]}: format "
+                              f"{str(head.get('format'))[:60]!r}; expected {FORMAT}", str(p))
+    out = [(n, _record(_json_object(line, n, p, "a test record"), n, p)) for n, line in lines[1:]]
+    count = head.get("tests")
+    if isinstance(count, int) and not isinstance(count, bool) and count != len(out):
+        raise DataFormatError(f"history.jsonl announces {count} tests and holds {len(out)}: "
+                              "the archive is truncated or altered", str(p))
+    return out
+
+
+def _json_object(line: str, n: int, p: Path, what: str) -> dict:
+    try:
+        value = json.loads(line)
+    except RecursionError:
+        raise DataFormatError(f"history.jsonl line {n}: JSON nested too deeply to be {what}",
+                              str(p)) from None
+    except ValueError as exc:
+        raise DataFormatError(f"history.jsonl line {n} is not JSON ({one_line(str(exc))[:80]})",
+                              str(p)) from None
+    if not isinstance(value, dict):
+        raise DataFormatError(f"history.jsonl line {n}: a JSON {type(value).__name__}, not "
+                              f"{what} (a JSON object)", str(p))
+    return value
+
+
+def _record(rec: dict, n: int, p: Path) -> dict:
+    """The record with every field present and of its type (defaults filled in)."""
+    out = {}
+    for key, (typ, default) in _FIELDS.items():
+        if key not in rec and default is None:
+            raise DataFormatError(f"history.jsonl line {n}: the record has no {key!r}", str(p))
+        value = rec.get(key, default)
+        if not isinstance(value, typ):
+            raise DataFormatError(f"history.jsonl line {n}: {key!r} is a JSON "
+                                  f"{type(value).__name__}, not a {typ.__name__}", str(p))
+        out[key] = value
+    for key in ("machine", "axis", "kind", "filename"):
+        if not out[key].strip():
+            raise DataFormatError(f"history.jsonl line {n}: {key!r} is empty", str(p))
+    if not _SHA256.fullmatch(out["sha256"]):
+        raise DataFormatError(f"history.jsonl line {n}: 'sha256' is not 64 hexadecimal digits",
+                              str(p))
+    for k, table in enumerate(out["tables"]):
+        if not (isinstance(table, list) and len(table) == 3
+                and all(isinstance(x, str) for x in table)):
+            size = len(table) if isinstance(table, list) else type(table).__name__
+            raise DataFormatError(f"history.jsonl line {n}: tables[{k}] is {size!r}; a table is "
+                                  "[controller, filename, text], three strings", str(p))
+    return out
+
+
+def _prepared(z: zipfile.ZipFile, p: Path, n: int, rec: dict):
+    """The record's raw file read, checked against its SHA-256 and evaluated again."""
+    from axiscal.store.history import prepare
+
+    raw = _read_entry(z, p, rec["raw"])
+    if hashlib.sha256(raw).hexdigest() != rec["sha256"]:
+        raise DataFormatError(f"history.jsonl line {n} ({rec['filename'][:80]}): the raw file "
+                              "does not match its SHA-256; nothing was imported", str(p))
+    try:
+        return prepare(raw, rec["filename"], machine=rec["machine"], axis=rec["axis"],
+                       kind=rec["kind"], instrument=rec["instrument"],
+                       operator=rec["operator"], note=rec["note"],
+                       date=rec["tested_at"] if rec["date_known"] else None,
+                       tables=tuple(tuple(x) for x in rec["tables"]))
+    except AxiscalError as exc:
+        raise DataFormatError(f"history.jsonl line {n} ({rec['filename'][:80]}): "
+                              f"{one_line(str(exc))}; nothing was imported", str(p)) from None

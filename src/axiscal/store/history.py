@@ -173,6 +173,11 @@ class Store:
         raise StoreError(f"history database: {len(items)} test(s) could not be stored; other "
                          f"processes wrote the same rows {ATTEMPTS} times over; try again")
 
+    def stored(self, digests) -> dict:
+        """{SHA-256: AddResult (a duplicate)} of each of ``digests`` already in the history."""
+        with self._guard("read"), self._session() as s:
+            return _stored(s, list(digests))
+
     def add_table(self, test_id: int, controller: str, filename: str, text: str) -> None:
         """Keep a compensation table written from stored test ``test_id``."""
         from axiscal.store.models import Table, Test
