@@ -108,6 +108,14 @@ def test_each_missing_item_makes_a_draft_naming_it(tmp_path, linear, cfg, note, 
     assert "DRAFT — not a certificate" in html and 'class="watermark"' in html
 
 
+def test_without_a_register_there_is_no_number(tmp_path, linear):
+    """§7.8.2.1 b: the number comes from the register only; without one (the workbench's
+    download) the complete page is still a DRAFT, naming the number."""
+    ds, result, raw = linear
+    o = write_certificate(tmp_path / "c.html", ds, result, COMPLETE, raw, TOL, today="2026-11-24")
+    assert o.draft and len(o.missing) == 1 and o.missing[0].startswith("certificate number")
+
+
 def test_a_job_may_carry_the_laboratory(tmp_path, linear):
     """The user configuration absent but the laboratory given (a job file): issued."""
     o, _ = _issue(tmp_path, linear, COMPLETE, note="no user configuration at /x/config.toml")
