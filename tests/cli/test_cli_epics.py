@@ -112,3 +112,14 @@ def test_history_of_a_log_read_with_options_is_refused_before_anything_is_stored
                             "--history", "--machine", "M", "--db", db])
     assert r.exit_code == 2 and "--history keeps the file as it came" in r.output
     assert not (tmp_path / "h.sqlite").exists()
+
+
+def test_the_certificate_states_what_the_log_reader_assumed(log, tmp_path):
+    p, _ = log
+    html = tmp_path / "c.html"
+    r = runner.invoke(app, ["iso230-2", str(p), "--setpoint-pv", SP, "--reference-pv", REF,
+                            "--report", str(html), "--draft"])
+    assert html.exists(), r.output
+    text = html.read_text()
+    assert "Assumptions and deviations" in text and "EPICS camonitor log: setpoint" in text
+    assert "unit mm (assumed: the log carries none)" in text

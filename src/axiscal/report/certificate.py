@@ -390,6 +390,10 @@ def _assumptions(rep: Report, dataset, result, budget, info: CertificateInfo) ->
     notes += [_SET_WITH.sub("", n) for n in budget.notes
               if not n.startswith("assumed:") and not (missing and "not given" in n)]
     notes += list(result.warnings)
+    from axiscal.io.epics import NOTES_START
+
+    if dataset.metadata.notes.startswith(NOTES_START):    # what the raw log's reader assumed
+        notes.append(dataset.metadata.notes)
     cond = info.conditions
     for key, what in (("measuring_line", "The location of the measuring line"),
                       ("feed", "The feed"), ("dwell", "The dwell time")):
