@@ -306,3 +306,21 @@ def test_only_axiscal_errors_on_arbitrary_text(text):
         parse_epics(text)
     except AxiscalError:
         pass
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(2, 6), st.integers(2, 5), st.integers(0, 2**32 - 1),
+       st.sampled_from([2.0, 10.0, 50.0]))
+def test_truth_any_test_through_its_log(n_targets, runs, seed, rate):
+    """Truth test (habit 8): known deviations written as a log of setpoint steps and a
+    reference that travels and rests are read back exactly, whatever the targets, the runs and
+    the reference's update rate; the lines of the other PVs interleave anywhere."""
+    rng = np.random.default_rng(seed)
+    tg = np.cumsum(rng.uniform(1.0, 50.0, n_targets)) - 10.0
+    up = rng.normal(0.0, 5.0, (n_targets, runs))            # µm
+    down = rng.normal(0.0, 5.0, (n_targets, runs))
+    seq = _ecmc_sequence(tg, tg[:, None] + up * 1e-3, tg[:, None] + down * 1e-3)
+    ds = parse_epics(_log(seq, tg[0], rate=rate), SP, REF)
+    np.testing.assert_allclose(ds.targets, tg, atol=1e-12)
+    np.testing.assert_allclose(ds.up, up, atol=1e-6)
+    np.testing.assert_allclose(ds.down, down, atol=1e-6)
