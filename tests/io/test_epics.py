@@ -137,7 +137,8 @@ def _plan_csv(targets, runs, overrun=0.5):
 
 def test_plan_direction_disagreeing_with_the_step_is_refused():
     ref_ds, text = _ecmc_log(DATA / "sls_fat_sat_ISO230.dat")
-    csv = _plan_csv(ref_ds.targets, ref_ds.n_runs).replace(",measure,-10.0,+,1,", ",measure,-10.0,-,1,")
+    csv = _plan_csv(ref_ds.targets, ref_ds.n_runs).replace(",measure,-10.0,+,1,",
+                                                           ",measure,-10.0,-,1,")
     with pytest.raises(DataFormatError, match="the setpoint came from below"):
         parse_epics(text, SP, REF, plan=parse_plan_csv(csv))
 

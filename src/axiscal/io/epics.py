@@ -39,33 +39,36 @@ before the next step), and may be moved away by another command before the setpo
 again, so the settled part of a dwell is read from the reference itself: the stretches of the
 dwell over which the reference stays within a band of ``window`` (default 1 µm, or 1 arcsec; as
 :mod:`axiscal.procedures.capture` finds a stop) for at least ``settled`` s (default 0.5 s) are
-the episodes of rest, and the longest stretch of the episode nearest the setpoint is the
-settled part (an axis that starts late still rests at the previous target at the dwell's
-start). The reading is the time-weighted mean of the reference over it, each value
-held until the next update: Channel Access posts a monitor only when the value changes by more
-than the record's deadband (EPICS Record Reference Manual, fields MDEL/ADEL), so a steady reading may not repeat. An update with severity ``INVALID``, a NaN or a lost
-channel makes the reference unknown until its next update (a gap no stretch crosses).
+the episodes of rest, and the longest stretch of the episode nearest the setpoint (and nearer
+it than the setpoint before) is the settled part: an axis that starts late still rests at the
+previous target at the dwell's start. The reading is the time-weighted mean of the reference
+over it, each value held until the next update: Channel Access posts a monitor only when the
+value changes by more than the record's deadband (EPICS Record Reference Manual, fields
+MDEL/ADEL), so a steady reading may not repeat. An update with severity ``INVALID``, a NaN or a
+lost channel makes the reference unknown until its next update (a gap no stretch crosses).
 
 The approach direction of a dwell is the sign of the step that reached it (from the setpoint
 value before it); the log's first dwell was not reached by a step in the log and is not a
-measurement. The deviation is the reference minus the target (ISO 230-2:2014 §3.1,
-``x_ij = P_ij − P_i``); ``reference_scale`` and ``reference_offset`` turn a raw reference into
+measurement. The deviation is the reference minus the target (ISO 230-2:2014 clause 3,
+eq. (1): ``x_ij = P_ij − P_i``); ``reference_scale`` and ``reference_offset`` turn a raw reference into
 a position first (ecmc's ``REF_GR`` and ``REF_OFF``, ``ecmcGetISO230DataFromCAFile.bash``).
 
 The dwells are matched to the test three ways:
 
-* a plan (``axiscal plan ... --csv``): in order, as :func:`axiscal.procedures.capture.capture_test`
-  matches stops (overrun rows may show a dwell); the plan's direction must agree with the step;
+* a plan (``axiscal plan ... --csv``): in order, as
+  :func:`axiscal.procedures.capture.capture_test` matches stops (overrun rows may show a dwell);
+  the plan's direction must agree with the step;
 * targets given: a dwell at a target (within 1e-6 of the targets' span) is a measurement in the
   direction of its step, any other dwell an overrun; the run is the count of earlier visits of
-  that target in that direction (ISO 230-2:2014 §3.1, run j);
+  that target in that direction (run j of ISO 230-2:2014 clause 3);
 * neither: the targets are the values of the dwells the setpoint passes *through* (reached and
   left in the same direction); a dwell where the setpoint turns back is the over-travel of the
-  standard test cycle (ISO 230-2:2014 §4.3.2, Figure 1) unless its value is one of those
+  linear test cycle (ISO 230-2:2014 §5.3 and its figures) unless its value is one of those
   targets. A test with no over-travel (the last target is its turning point) needs the targets.
 
-The defaults (dwell, window, settled, unit when not given: mm, scale 1 and offset 0) are written into the
-dataset's notes, which the commands print beside the result.
+The defaults (dwell, window, settled, unit when not given: mm, scale 1 and offset 0) are
+written into the dataset's notes, which the commands print beside the result and the
+certificate states under its assumptions.
 """
 
 from __future__ import annotations
