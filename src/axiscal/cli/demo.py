@@ -207,6 +207,8 @@ def _certificate(path: Path, sim, name: str, db: str) -> None:
                   "serial": "SIM-1", "certificate": f"SIM-CAL-{name.upper()}",
                   "due": (today + dt.timedelta(days=365)).isoformat()}
     cfg = {**DEMO_CONFIG, "conditions": {**DEMO_CONFIG["conditions"], "date": today.isoformat()},
+           "machine": {**DEMO_CONFIG["machine"],
+                       "model": sim.dataset.metadata.machine or "simulated machine"},
            "instrument": [instrument],   # E_VE declared: 0.2 µm, 0.1 arcsec (a still simulation)
            "uncertainty": {**DEMO_CONFIG["uncertainty"], "e_ve": 0.1 if rotary else 0.2}}
     out_path(path, "certificate")
