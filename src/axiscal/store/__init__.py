@@ -9,11 +9,13 @@ Library API (the ``axiscal history`` commands and the web workbench are thin lay
     t = store.get(r.id); t.evaluate_again()   # the same numbers from the stored bytes
     compare_tests(store.get(a), store.get(b)); fit_trend(...) via trend(store, ...)
     export_history(store, "vmc.zip"); import_history(store, "vmc.zip")
+    store.certificates(); store.certificate("PM-2026-00001")   # the certificate register
 
 Modules: :mod:`~axiscal.store.history` (the database), :mod:`~axiscal.store.kinds` (what a file
 is and its evaluation), :mod:`~axiscal.store.analysis` (compare, trend),
-:mod:`~axiscal.store.archive` (export, import), :mod:`~axiscal.store.models` and the Alembic
-``migrations``.
+:mod:`~axiscal.store.archive` (export, import), :mod:`~axiscal.store.register` (certificate
+numbers, issued documents, amendments; issued by :mod:`axiscal.report.issue`),
+:mod:`~axiscal.store.models` and the Alembic ``migrations``.
 """
 
 from axiscal.store.history import (AddResult, MachineSummary, NotFoundError, Store, StoreError,
