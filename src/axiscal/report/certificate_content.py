@@ -150,9 +150,12 @@ def refuse_unrenderable(texts: dict[str, Any]) -> None:
 
     ``texts`` maps where a text comes from (``[customer] name``) to the text. Each character is
     looked up in the cmap of the fonts the certificate uses (fontTools), as fontconfig would
-    fall back; where a font is not installed its characters count as missing.
+    fall back; where a font is not installed its characters count as missing. Where fontconfig
+    finds none of them (no ``fc-list``), nothing can be checked and nothing is refused.
     """
     cmaps = _cmaps()
+    if not cmaps:
+        return
     for where, text in texts.items():
         for ch in str(text):
             if ch.isspace() or unicodedata.category(ch) in ("Cc", "Cf"):
