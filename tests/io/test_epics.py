@@ -281,6 +281,8 @@ def test_reference_lost_during_the_rest_is_refused():
 def test_told_by_content_and_options_refused_for_other_files():
     text = _log([(0.0, 0.0), (1.0, 1.0), (2.0, 2.0), (1.0, 1.0)], 0.0, extras=False)
     assert looks_like_camonitor(text) and not looks_like_camonitor("time_s,target\n0,1\n")
+    assert looks_like_camonitor(f"{'IOC:gone':<30} *** Not connected (PV not found)\n" + text)
+    assert not looks_like_camonitor("UNIT=mm\nTGT_DATA[1]=15\n")
     ds = parse_positioning(text, "x.log", epics={"setpoint_pv": SP, "reference_pv": REF,
                                                   "targets": [1.0, 2.0]})
     assert ds.targets.tolist() == [1.0, 2.0]

@@ -149,10 +149,12 @@ class Dwell:
 
 
 def looks_like_camonitor(text: str) -> bool:
-    """True if the first line that is not blank reads ``PV <time stamp> value``."""
+    """True if the first line that is not blank, a ``#`` comment or a lost channel's
+    ``PV *** ...`` reads ``PV <time stamp> value``."""
     for line in text[:4096].splitlines():
-        if line.strip():
-            return bool(_FIRST.match(line.strip() + " "))
+        line = line.strip()
+        if line and not line.startswith("#") and "***" not in line:
+            return bool(_FIRST.match(line + " "))
     return False
 
 
