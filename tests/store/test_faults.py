@@ -1,5 +1,5 @@
-"""The history under faults (issue 13): a killed import, a full disk, a file that is not a
-database, an old schema, two writers at once."""
+"""The history under faults (issues 13 and 30): a killed import (all or nothing), a full disk, a
+file that is not a database, an old schema, two writers at once."""
 
 from __future__ import annotations
 
@@ -24,50 +24,79 @@ runner = CliRunner()
 PY = sys.executable
 
 
-def _archive(tmp_path, n: int) -> Path:
-    src = open_store(f"sqlite:///{tmp_path / 'src.sqlite'}")
-    rng = np.random.default_rng(0)
-    for k in range(n):
-        src.add(_raw(_dataset(rng, n_targets=21, date=f"20{10 + k // 12:02d}-{k % 12 + 1:02d}-01")),
-                f"t{k}.csv")
-    export_history(src, tmp_path / "a.zip")
-    return tmp_path / "a.zip"
-
-
-def _count(db: Path) -> int:
-    with sqlite3.connect(db) as c:
-        return c.execute("select count(*) from test").fetchone()[0]
-
-
-def test_sigkill_during_import_leaves_a_consistent_database_and_the_import_reruns(tmp_path):
-    """A process killed with SIGKILL in the middle of a large import: the database passes
-    SQLite's integrity check, holds only whole tests, and running the import again completes it
-    without doubling anything."""
-    n = 120
-    archive = _archive(tmp_path, n)
-    db = tmp_path / "h.sqlite"
-    url = f"sqlite:///{db}"
-    open_store(url).close()
-    proc = subprocess.Popen([PY, "-m", "axiscal", "history", "import", str(archive), "--db", url,
+def _import(archive: Path, url: str) -> subprocess.Popen:
+    return subprocess.Popen([PY, "-m", "axiscal", "history", "import", str(archive), "--db", url,
                              "--json"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and proc.poll() is None:
-        if _count(db) >= 10:
+
+
+def _whole_import(d: dict, before: dict, n: int) -> bool:
+    """The dump holds what was there before and every test of the archive, each whole."""
+    tests = d["test"]
+    return (len(tests) == len(before["test"]) + n
+            and set(before["test"]) <= set(tests)
+            and len({r[0] for r in d["parameter"]}) == len(d["parameter"])
+            and len(d["compensation_table"]) == len(before["compensation_table"]) + n)
+
+
+def _kill_after(proc, delay: float, wal: Path | None, rng) -> None:
+    """SIGKILL ``proc`` after ``delay`` s, or (``wal`` given) as soon as SQLite's write-ahead
+    log grows, inside the write transaction, plus up to 30 ms."""
+    t0 = time.monotonic()
+    while proc.poll() is None and time.monotonic() - t0 < delay:
+        if wal is not None and wal.exists() and wal.stat().st_size > 0:
+            time.sleep(rng.uniform(0, 0.03))
             break
-        time.sleep(0.02)
+        time.sleep(0.002)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-    with sqlite3.connect(db) as c:
-        assert c.execute("pragma integrity_check").fetchone()[0] == "ok"
-        stored = c.execute("select count(*) from test").fetchone()[0]
-        orphans = c.execute("select count(*) from parameter where test_id not in "
-                            "(select id from test)").fetchone()[0]
-        whole = c.execute("select count(*) from test where id not in "
-                          "(select test_id from parameter)").fetchone()[0]
-    assert 10 <= stored < n and orphans == 0 and whole == 0
-    r = runner.invoke(app, ["history", "import", str(archive), "--db", url, "--json"])
+
+
+def test_killed_import_leaves_the_database_exactly_as_before(tmp_path, db_url):
+    """An archive import SIGKILLed at random points (seeded delays over the import's whole
+    run; on SQLite also as soon as its write-ahead log grows, that is inside the one write
+    transaction): a dump of every table equals the dump before, or, when the kill came after
+    the commit, holds the whole archive (the database is then put back for the next kill on
+    SQLite); never a part. Finally the import runs to the end and completes."""
+    from tests.store.test_archive_trust import dump, make_archive
+
+    n = 24
+    rng = np.random.default_rng(2026)
+    src = open_store(f"sqlite:///{tmp_path / 'src.sqlite'}")
+    for k in range(n):                               # big enough that SQLite spills pages
+        src.add(_raw(_dataset(rng, n_targets=400, date=f"2021-{k % 12 + 1:02d}-01")),
+                f"t{k}.csv", tables=(("csv", f"t{k}-table.csv", "position,correction\n"),))
+    archive = tmp_path / "a.zip"
+    export_history(src, archive)
+    s = open_store(db_url)
+    s.add(_raw(_dataset(rng, machine="Lathe-2")), "old.csv",
+          tables=(("csv", "old-table.csv", "position,correction\n"),))
+    s.close()
+    before = dump(db_url)
+    sqlite_file = Path(db_url.split("///", 1)[1]) if db_url.startswith("sqlite") else None
+    saved = sqlite_file.read_bytes() if sqlite_file else None
+    kinds = {"before": 0, "whole": 0}
+    for trial in range(6 if sqlite_file else 4):
+        wal = Path(f"{sqlite_file}-wal") if sqlite_file and trial % 2 else None
+        _kill_after(_import(archive, db_url), rng.uniform(0.5, 9.0), wal, rng)
+        d = dump(db_url)
+        if d == before:
+            kinds["before"] += 1
+            continue
+        assert _whole_import(d, before, n), f"trial {trial}: a part of the archive was kept"
+        kinds["whole"] += 1
+        if sqlite_file:                              # put the database back for the next kill
+            for suffix in ("-wal", "-shm"):
+                Path(f"{sqlite_file}{suffix}").unlink(missing_ok=True)
+            sqlite_file.write_bytes(saved)
+        else:
+            before = d                               # later imports are all duplicates
+    if sqlite_file:
+        with sqlite3.connect(sqlite_file) as c:
+            assert c.execute("pragma integrity_check").fetchone()[0] == "ok"
+    assert kinds["before"] >= 1, kinds
+    r = runner.invoke(app, ["history", "import", str(archive), "--db", db_url, "--json"])
     assert r.exit_code == 0, r.output
-    assert _count(db) == n
+    assert len(open_store(db_url).tests()) == n + 1
 
 
 def test_full_disk_stores_nothing_and_says_so(tmp_path):
