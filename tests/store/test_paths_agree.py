@@ -1,7 +1,8 @@
 """One answer per file (issue 27): every path a test takes gives the same numbers.
 
 For generated files of every kind the history knows (ISO 230-2 positioning, linear and rotary;
-straightness; ballbar; multi-point diagonal; five motion errors), the numbers of
+straightness; ballbar, both directions and one; multi-point diagonal; five motion errors), the
+numbers of
 
 1. the command a user runs on the file (``--json``),
 2. ``History.add`` (the stored parameters) and ``axiscal history show --json``,
@@ -9,7 +10,8 @@ straightness; ballbar; multi-point diagonal; five motion errors), the numbers of
 4. a workbench upload (FastAPI's TestClient) and its ``result.json`` download,
 
 are identical, bit for bit; a ballbar file's stored result is the whole ``ballbar analyze``
-object (the full diagnosis, ISO 230-4:2005 figures inside). Generated traces are first-order
+object (the full diagnosis, ISO 230-4:2005 figures inside); a one-direction ballbar file, which
+the diagnosis cannot separate, gives ``squareness circular``'s ISO 230-4 figures. Generated traces are first-order
 models of the machine errors (Renishaw, Calibration of machine squareness, Method 4;
 ISO 230-4:2005 §3), the other kinds random readings in each file format's units.
 """
@@ -63,14 +65,16 @@ def _straightness(rng):
     return "straightness.csv", format_straightness(d), "X"
 
 
-def _ballbar(rng):
-    """Both directions from δx, δy of squareness, scale, backlash, servo lag and noise;
+def _ballbar(rng, directions=("ccw", "cw")):
+    """Both directions (or one) from δx, δy of squareness, scale, backlash, servo lag and noise;
     ``Δr = δx cos φ + δy sin φ`` (first order, Method 4 of Chapman's paper)."""
     n, radius, feed = int(rng.integers(90, 400)), 0.1, 1000 / 6e4
     phi = np.linspace(0, 2 * np.pi, n, endpoint=False)
     sq, ex, bx, by, tau = rng.normal(0, [20e-6, 15e-6, 5e-6, 5e-6, 3e-3])
     runs = []
     for direction, s in (("ccw", 1.0), ("cw", -1.0)):
+        if direction not in directions:
+            continue
         c, si = np.cos(phi), np.sin(phi)
         sx = np.where(np.abs(si) < 1e-9, np.sign(c), -s * np.sign(si))
         sy = np.where(np.abs(c) < 1e-9, np.sign(si), s * np.sign(c))
@@ -103,7 +107,9 @@ def _motion(rng):
 
 KINDS = {"iso230-2 linear": lambda r: _positioning(r, False),
          "iso230-2 rotary": lambda r: _positioning(r, True),
-         "straightness": _straightness, "ballbar": _ballbar, "diagonal": _diagonal,
+         "straightness": _straightness, "ballbar": _ballbar,
+         "ballbar one direction": lambda r: _ballbar(r, (str(r.choice(["ccw", "cw"])),)),
+         "diagonal": _diagonal,
          "motion": _motion}
 
 
@@ -136,6 +142,13 @@ def _command_numbers(kind: str, path) -> tuple[dict, dict | None]:
     if kind == "motion":
         return {f"{m['name'].replace(' ', '_')}_total": m["total"]
                 for m in _cli("motion", "analyze", path)["iso230_7"]["motions"]}, None
+    if kind == "ballbar one direction":     # no diagnosis: the ISO 230-4 evaluation is the result
+        j = _cli("squareness", "circular", path)
+        out = {"H": j["H_um"], "G_ccw": j["G_ccw_um"], "G_cw": j["G_cw_um"],
+               "squareness": j["squareness"]["um_per_m"],
+               "scale_mismatch": j["scale_mismatch_um_per_m"], "backlash_x": j["backlash_x_um"],
+               "backlash_y": j["backlash_y_um"]}
+        return {k: v for k, v in out.items() if v is not None}, None
     j = _cli("ballbar", "analyze", path)
     return _ballbar_numbers(j), {k: v for k, v in j.items() if k != "file"}
 
@@ -162,7 +175,8 @@ def _ballbar_numbers(j: dict) -> dict:
 def places(tmp_path_factory):
     d = tmp_path_factory.mktemp("paths")
     urls = {n: f"sqlite:///{d / f'{n}.sqlite'}" for n in ("library", "imported", "web")}
-    client = TestClient(create_app(urls["web"]))
+    client = TestClient(create_app(urls["web"]),
+                        base_url="http://127.0.0.1")
     token = re.search(r'csrf-token" content="([^"]+)"', client.get("/").text).group(1)
     stores = {n: open_store(urls[n]) for n in ("library", "imported")}
     yield d, urls, stores, client, token
