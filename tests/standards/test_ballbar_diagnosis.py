@@ -116,3 +116,43 @@ def test_cyclic_pitch_search_is_scale_free(scale):
     phi, r = np.linspace(0, 2 * np.pi, 3600, endpoint=False), 0.15
     res = np.tile(np.cos(phi) * np.sin(2 * np.pi * r * np.cos(phi) / 0.005), 2) * 1e-6
     assert _cyclic(phi, res * scale, r)[1]["x_pitch"] == pytest.approx(0.005, rel=0.01)
+
+
+#: ISO 230-4 backlash per unit of a term ``s·sin 2φ`` (servo mismatch, amplitude vΔτ/2) on a full
+#: circle: the least-squares normal equations of the half difference of the runs on the backlash
+#: columns B_x = -sgn(sin φ) cos φ / 2, B_y = sgn(cos φ) sin φ / 2 (orthogonal to the centre
+#: shift): <B_x, B_x> = 1/8, <B_x, B_y> = -1/(4π), <sin 2φ, B_x> = -2/(3π) = -<sin 2φ, B_y>,
+#: so b_x = -b_y = -(2/(3π)) / (1/8 + 1/(4π)) = -1.0373 (derived here, checked below).
+SERVO_INTO_BACKLASH = -(2 / (3 * np.pi)) / (1 / 8 + 1 / (4 * np.pi))
+
+
+def test_what_the_iso_230_4_fit_folds_in():
+    """Servo mismatch 2 ms at 1000 mm/min (vΔτ/2 = 16.7 µm) with backlash 5 / -4 µm: the diagnosis
+    gives the backlash exactly; the ISO 230-4 fit's backlash is 5 - 1.0373 × 16.7 µm, the whole
+    difference is servo mismatch by the split of what it folds in, and it is stated."""
+    d = diagnose(_runs(bx=5e-6, by=-4e-6, tx=2e-3), R, feed=FEED)
+    k = FEED * 2e-3 / 2 * 1e6                                    # µm
+    folded = {f.quantity: f for f in d.folded}
+    for q, true, sign in (("backlash_x", 5.0, 1), ("backlash_y", -4.0, -1)):
+        f = folded[q]
+        assert f.diagnosis == pytest.approx(true, abs=1e-6)
+        assert f.iso230_4 == pytest.approx(true + sign * SERVO_INTO_BACKLASH * k, abs=2e-3)
+        parts = {key: v for key, _, v in f.parts}
+        assert f.iso230_4 - f.diagnosis == pytest.approx(sum(parts.values()), abs=1e-9)
+        assert parts["servo_mismatch"] == pytest.approx(f.iso230_4 - f.diagnosis, abs=1e-6)
+        assert f.material and f.parts[0][0] == "servo_mismatch"
+    assert str(folded["backlash_x"]).startswith("backlash X -12.288 µm by the ISO 230-4 fit")
+    assert "folds in servo mismatch -17.288 µm;" in str(folded["backlash_x"])
+    assert "the full diagnosis gives +5.000 µm" in str(folded["backlash_x"])
+    assert not folded["squareness"].material
+    assert sum("folds in servo mismatch" in line for line in str(d).splitlines()) == \
+        len(d.folded_lines()) >= 2
+
+
+def test_nothing_folded_is_stated_where_the_models_agree():
+    """Squareness, scale mismatch and backlash alone: both fits hold every term, so the ISO 230-4
+    figures equal the diagnosis's and no statement is printed."""
+    d = diagnose(_runs(sq=20e-6, ex=15e-6, bx=5e-6, by=-4e-6), R, feed=FEED)
+    assert d.folded_lines() == []
+    for f in d.folded:
+        assert f.iso230_4 == pytest.approx(f.diagnosis, abs=1e-6) and not f.material
