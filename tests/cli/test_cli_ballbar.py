@@ -107,3 +107,30 @@ def test_a_ballbar_file_beyond_any_test_is_refused_before_its_rows_are_built(tmp
                  + "".join(f"{i * 360 / n},ccw,0.1\n" for i in range(n)))
     r = runner.invoke(app, ["ballbar", "analyze", str(f)])
     assert r.exit_code == 2 and f"{n + 2} lines: a ballbar test holds at most" in r.stderr, r.stderr
+
+
+def test_squareness_circular_states_what_its_fit_folds_in(tmp_path):
+    """Issue 27: the simulated test of examples/ballbar_sim.toml at a lower sample rate (servo
+    mismatch 3.03 ms, backlash 5 / -4 µm): squareness circular's backlash (the ISO 230-4 fit)
+    comes with the statement that it folds servo mismatch in and what the diagnosis gives, on the
+    terminal, in --json (``folded``) and in the report; ballbar analyze gives that diagnosis."""
+    cfg = tmp_path / "c.toml"
+    text = (Path(__file__).resolve().parents[2] / "examples" / "ballbar_sim.toml").read_text()
+    cfg.write_text(text.replace("sample_rate_hz = 250.0", "sample_rate_hz = 50.0"))
+    out, html = tmp_path / "t.csv", tmp_path / "r.html"
+    assert runner.invoke(app, ["ballbar", "simulate", str(cfg), "--out", str(out),
+                               "--seed", "1"]).exit_code == 0
+    res = runner.invoke(app, ["squareness", "circular", str(out), "--report", str(html)])
+    assert res.exit_code == 0, res.output
+    lines = [ln for ln in res.stdout.splitlines() if "folds in servo mismatch" in ln]
+    assert [ln.split()[:2] for ln in lines] == [["backlash", "X"], ["backlash", "Y"]]
+    d, s = _json("ballbar", "analyze", out), _json("squareness", "circular", out)
+    folded = {f["quantity"]: f for f in s["folded"]}
+    assert folded == {f["quantity"]: f for f in d["iso230_4"]["folded"]}
+    for axis, true in (("x", 5.0), ("y", -4.0)):
+        f = folded[f"backlash_{axis}"]
+        assert f["iso230_4"] == s[f"backlash_{axis}_um"] and f["material"]
+        assert f["diagnosis"] == d[f"backlash_{axis}_um"] == pytest.approx(true, abs=0.3)
+        assert abs(f["iso230_4"] - true) > 15                     # the confounded figure
+        assert f"the full diagnosis gives {f['diagnosis']:+.3f} µm" in f["statement"]
+    assert lines[0].strip() in html.read_text().replace("&#x27;", "'")
