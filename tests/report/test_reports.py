@@ -38,7 +38,7 @@ def test_positioning_report_shows_targets_as_planned_and_units_in_headers():
     html = positioning_report(ds, evaluate(ds)).html()
     assert "<td>34.736</td>" in html and "<td>34.74</td>" not in html
     assert "<td>121.6432</td>" in html
-    assert "x̄↑ [µm]" in html and "R_i [µm]" in html
+    assert "x̄↑ [µm]" in html and "R<sub>i</sub> [µm]" in html   # ISO 230-2:2014 writes R with subscript i
 
 
 def test_iso230_2_plot_names_machine_and_axis_when_it_leaves_the_report():

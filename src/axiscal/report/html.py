@@ -19,6 +19,7 @@ import datetime as _dt
 import html as _html
 import io
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Sequence
@@ -77,8 +78,17 @@ class Report:
         self._parts.append(f"<h{level}>{_esc(text)}</h{level}>")
 
     def add_text(self, text: str) -> None:
-        """A paragraph of plain text (escaped)."""
-        self._parts.append(f"<p>{_esc(text)}</p>")
+        """A paragraph of plain text (escaped; a standard's symbols such as ``B_i`` with their
+        subscripts, :func:`axiscal.report.labels.symbol_html`)."""
+        self._parts.append(f"<p>{_sym(text)}</p>")
+
+    def add_truth(self, heading: str = "") -> None:
+        """Start what shows a simulation's truth: marks every page of the report as a simulation
+        report (the banner of ``templates/base.html``), then the heading if one is given. Every
+        report that shows a truth calls this, so none can show it without the banner."""
+        self.simulation = True
+        if heading:
+            self.add_heading(heading)
 
     def add_html(self, fragment: str) -> None:
         """A trusted HTML fragment (built by axiscal, never from user text)."""
@@ -90,12 +100,15 @@ class Report:
         self._parts.append(f"<figure>{figure_svg(fig)}{cap}</figure>")
 
     def add_table(self, headers: Sequence[str], rows: Iterable[Sequence[Any]], caption: str = "",
-                  digits: int = 3, css_class: str = "") -> None:
-        """A table; floats are shown with ``digits`` significant decimals, None/NaN as a dash."""
-        head = "".join(f"<th>{_esc(h)}</th>" for h in headers)
-        body = "".join("<tr>" + "".join(f"<td>{_cell(v, digits)}</td>" for v in row) + "</tr>"
-                       for row in rows)
-        cap = f"<caption>{_esc(caption)}</caption>" if caption else ""
+                  digits: int = 3, css_class: str = "", formulas: Sequence[int] = ()) -> None:
+        """A table; floats are shown with ``digits`` decimals, None/NaN as a dash; the headers,
+        the caption and the ``formulas`` columns (a standard's definitions) write symbols such as
+        ``B_i`` with their subscripts."""
+        head = "".join(f"<th>{_sym(h)}</th>" for h in headers)
+        body = "".join("<tr>" + "".join(
+            f"<td>{_sym(v) if i in formulas else _cell(v, digits)}</td>" for i, v in enumerate(row))
+            + "</tr>" for row in rows)
+        cap = f"<caption>{_sym(caption)}</caption>" if caption else ""
         cls = f' class="{css_class}"' if css_class else ""
         self._parts.append(f"<table{cls}>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")
 
@@ -105,7 +118,7 @@ class Report:
 
     def add_warnings(self, warnings: Iterable[str]) -> None:
         """A highlighted list of warnings (nothing if there are none)."""
-        items = "".join(f"<li>{_esc(w)}</li>" for w in warnings)
+        items = "".join(f"<li>{_sym(w)}</li>" for w in warnings)
         if items:
             self._parts.append(f'<div class="warnings"><strong>Warnings</strong><ul>{items}</ul></div>')
 
@@ -175,7 +188,7 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
             rows.append([f"Closure {arrow}", v, "Mean deviation at 360° minus that at 0° "
                          "(full turn; the turntable paper of Yüksel et al., Table 3)"])
     rep.add_table(["Parameter", f"Value [{u}]", "Meaning (ISO 230-2:2014)"], rows, digits=2,
-                  css_class="params")
+                  css_class="params", formulas=(2,))
     if verdicts:
         add_acceptance(rep, verdicts, u, _PARAM_LABEL)
     rep.add_warnings(result.warnings)
@@ -263,7 +276,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     rep.add_heading("Result")
     rows = [row[:4] for std, r in evaluated for row in table_rows(std, r)]
     rep.add_table(["Standard", "Parameter", f"Value [{u}]", "Meaning (source)"], rows, digits=2,
-                  css_class="params standards")
+                  css_class="params standards", formulas=(3,))
     if decisions:
         add_acceptance(rep, decisions, u, {d.parameter: parameter_label(d.parameter)
                                            for d in decisions})
@@ -272,7 +285,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     if skipped:
         rep.add_heading("Not evaluated")
         rep.add_table(["Standard", "Why"],
-                      [[std.title, why.removeprefix(f"{std.title}: ")] for std, why in skipped],
+                      [[std.title, _why(why, std.title)] for std, why in skipped],
                       css_class="text")
     units = f"{u} against target in {unit_label(dataset.target_unit)}"
     if len(evaluated) == 1 and evaluated[0][0].key != "iso230-2:2014":
@@ -291,6 +304,12 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
     rep.add_table(["Standard", "Definitions taken from"],
                   [[std.title, std.source] for std, _ in evaluated], css_class="text")
     return rep
+
+
+def _why(reason: str, title: str) -> str:
+    """Why a standard was not evaluated, for a customer: without its title (the row names it) and
+    without the pointer to axiscal's own documentation (the terminal keeps it)."""
+    return reason.removeprefix(f"{title}: ").replace(" (see docs/standards.md)", "")
 
 
 def target_label(value: float) -> str:
@@ -316,6 +335,14 @@ def _esc(text: Any) -> str:
     return _html.escape(str(text))
 
 
+def _sym(text: Any) -> str:
+    """Escaped text with a standard's symbols subscripted (:func:`~axiscal.report.labels.
+    symbol_html`)."""
+    from axiscal.report.labels import symbol_html
+
+    return symbol_html(str(text))
+
+
 def _cell(v: Any, digits: int) -> str:
     import math
 
@@ -338,7 +365,7 @@ def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]
     with unit (:func:`axiscal.report.labels.label`) and its unit's decimals; a short list of
     numbers inline, a long one counted (``--json`` holds it whole). Nested objects and lists of
     objects are left to :func:`result_tables`."""
-    from axiscal.report.labels import quantity
+    from axiscal.report.labels import label, quantity
 
     rows: list[list[str]] = []
     for key, value in result.items():
@@ -346,9 +373,25 @@ def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]
             continue
         name, u = quantity(key, unit, axes)
         shown = f"{name} [{u}]" if u else name
+        if isinstance(value, str):   # a text naming another figure of the result by its key
+            value = re.sub(r"\b[a-z0-9]+(?:_[a-z0-9]+)+\b", lambda m: label(m[0], unit, axes)
+                           if m[0] in result else m[0], value)
         if value is not None:
             rows.append([shown, _shown(value, u)])
     return rows
+
+
+def _record_cell(key: str, value, unit: str, axes) -> str:
+    """One cell of a result that is a table, as HTML: a name with a standard's subscripts, an
+    object as its labelled values."""
+    from axiscal.report.labels import fmt, quantity, symbol_html
+
+    u = quantity(key, unit, axes)[1]
+    if isinstance(value, dict):
+        return _esc("; ".join(f"{quantity(k, unit, axes)[0]} {fmt(v, unit, True)}"
+                              for k, v in value.items()))
+    shown = _shown(value, u)
+    return symbol_html(shown) if key.rsplit(".", 1)[-1] in ("name", "") else _esc(shown)
 
 
 def _shown(value, unit: str) -> str:
@@ -366,20 +409,22 @@ def _shown(value, unit: str) -> str:
 def result_tables(result: dict, unit: str = "", axes=("X", "Y")) -> list[tuple[str, list, list]]:
     """The nested parts of a command's result as (caption, headers, rows) tables: an object as a
     table of its own, an object of objects or a list of objects as one row per entry."""
-    from axiscal.report.labels import label, quantity, symbol_html
+    from axiscal.report.labels import label, quantity
 
     out = []
     for key, value in result.items():
         caption = quantity(key, unit, axes)[0]
         if isinstance(value, dict) and value and all(isinstance(v, dict) for v in value.values()):
             value = [{"": quantity(k, unit, axes)[0], **v} for k, v in value.items()]
-        if _records(value):
+        if _records(value) and all("statement" in v for v in value):
+            out.append((caption, [], [[_esc(v["statement"])] for v in value]))
+        elif _records(value):
             keys = list(dict.fromkeys(k for v in value for k in v))
-            units = {k: quantity(f"{key}.{k}", unit, axes)[1] if k else "" for k in keys}
-            rows = [[symbol_html(_shown(v.get(k), units[k])) if k in ("name", "") else
-                     _esc(_shown(v.get(k), units[k])) for k in keys] for v in value]
-            out.append((caption, [label(f"{key}.{k}", unit, axes) if k else "" for k in keys],
-                        rows))
+            own = "unit" in keys   # each row in its own unit, shown in its unit column
+            rows = [[_record_cell(f"{key}.{k}", v.get(k), v.get("unit") if own else unit, axes)
+                     for k in keys] for v in value]
+            out.append((caption, [label(f"{key}.{k}", "" if own else unit, axes) if k else ""
+                                  for k in keys], rows))
         elif isinstance(value, dict):
             rows = [[_esc(r[0]), _esc(r[1])] for r in result_rows(value, unit, axes)]
             out.append((caption, ["", ""], rows))
@@ -423,6 +468,9 @@ def write_result_report(path, title: str, result: dict, *, figure=None, caption:
 
 def _html_table(caption: str, headers, rows) -> str:
     """A table of cells already written as HTML (a key/value table when its headers are empty)."""
+    if not headers:   # statements: one sentence each
+        items = "".join(f"<li>{row[0]}</li>" for row in rows)
+        return f'<h3>{_esc(caption)}</h3><ul class="statements">{items}</ul>'
     kv = not any(headers)
     head = "".join(f"<th>{_esc(h)}</th>" for h in headers)
     body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)

@@ -11,8 +11,9 @@ standard (``u_E,MACHINE``, ``B_i``) with its subscript, as the standards print i
 Decimal policy (the resolution each unit is reported to): µm to 0.01 (ISO 230-2:2014 results are
 given to 0.01 µm in practice; the instruments resolve 1 nm), µm/m to 0.01, arcsec to 0.01,
 mm to 0.001, degrees to 0.001, seconds to 0.001, ms to 0.01, Hz to 0.1, percent to 0.1. A non-zero
-value that would round to zero keeps two significant digits instead (an uncertainty is never shown
-as 0.00: JCGM 100:2008 §7.2.6 gives an uncertainty to at most two significant digits).
+value that would round to zero keeps two significant digits instead, down to a thousandth of the
+unit's resolution (an uncertainty of 0.00058 µm is not shown as 0.00: JCGM 100:2008 §7.2.6 gives
+an uncertainty to at most two significant digits; a fit's 1e-17 µm stays 0.00).
 
 Examples
 --------
@@ -105,6 +106,9 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "measurements": ("Measurements", ""), "uncertainty": ("Uncertainty contributions", None),
     "name": ("Name", ""), "uncertainty.name": ("Contribution", ""), "events.name": ("Event", ""),
     "parameters.name": ("Parameter", ""), "clause": ("Source", ""),
+    "folded": ("Errors the ISO 230-4 fit folds in", None), "quantity": ("Quantity", ""),
+    "iso230_4": ("By the ISO 230-4 fit", None), "diagnosis": ("By the full diagnosis", None),
+    "material": ("Material", ""), "statement": ("Statement", ""),
     "um_per_m": ("Squareness", "µm/m"), "arcsec": ("Squareness", "arcsec"), "results": ("Results per test", None),
     "averages": ("Averages", None), "method": ("Method", ""), "group": ("Group", ""),
     "centre": ("Centre", None), "size": ("Size", None), "machine": ("Machine", ""),
@@ -240,8 +244,8 @@ def _fmt(value: Any, unit: str) -> str:
         return "—"
     d = decimals(unit)
     text = f"{v:.{d}f}"
-    if v != 0 and float(text) == 0 and math.isfinite(v):
-        text = f"{v:.{max(d, 1 - math.floor(math.log10(abs(v))))}f}"
+    if v != 0 and float(text) == 0 and abs(v) >= 10.0 ** -(d + 3):
+        text = f"{v:.{1 - math.floor(math.log10(abs(v)))}f}"
     return text.lstrip("-") if float(text) == 0 else text
 
 
@@ -253,7 +257,7 @@ def value_text(value: str) -> str:
 
 
 _SYMBOL = re.compile(r"(?<![\w/.])([0-9]*[A-Za-zα-ωΔδεθ][\w̄↑↓]*?)_(\{[^}]*\}|[A-Za-z0-9↑↓]+(?:,[A-Za-z0-9↑↓]+)*)"
-                     r"(?![\w/]|\.\w)")
+                     r"(?!\w|/[A-Za-z_.]|\.\w)")
 
 
 def symbol_html(text: str) -> str:

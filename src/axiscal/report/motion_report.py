@@ -74,7 +74,9 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
         rep.add_key_values({"εz, εy [arcsec]": resolutions.angular / ARCSEC,
                             "εx [arcsec]": resolutions.tilt_x / ARCSEC,
                             "δy, δz [µm]": resolutions.displacement / UM},
-                           caption="r_PSD/(2 f1), r_QD/(2h), r_QD/2 (Optics Express 2018, five-DOF rotary axis, eqs. 1-6, §3)")
+                           caption="r_PSD/(2 f_1), r_QD/(2h), r_QD/2 (Optics Express 2018, five-DOF rotary axis, eqs. 1-6, §3)")
+    if truth:
+        rep.add_truth()
     if runs:
         rep.add_heading("Five errors against angle")
         rep.add_figure(mp.five_errors_figure(runs, truth[:1] if truth else None),

@@ -133,7 +133,7 @@ def volumetric_report(vmap, diagonals, errors, *, name: str, measured=None, trut
         rep.add_heading("Compensation")
         rep.add_text(str(tables))
     if truth is not None:
-        rep.add_heading("Simulation: the simulated machine's truth")
+        rep.add_truth("Simulation: the simulated machine's truth")
         diff = np.abs(vmap.error - truth.error).max() * 1e6
         rep.add_text(f"Largest true |E| {truth.largest * 1e6:.2f} µm; largest |mapped − true| "
                      f"{diff:.3f} µm over the grid.")
