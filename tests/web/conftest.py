@@ -22,29 +22,38 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.fixture(scope="module")
-def server(tmp_path_factory):
-    """The workbench on a fresh SQLite history; yields its base URL."""
-    d = tmp_path_factory.mktemp("web")
+def start_server(folder: Path, *args: str, env: dict | None = None):
+    """``axiscal serve ARGS`` on a free port over a fresh SQLite history in ``folder``; returns
+    (process, base URL) once it answers."""
     port = _free_port()
-    env = {**os.environ, "AXISCAL_DB": f"sqlite:///{d / 'history.sqlite'}"}
-    proc = subprocess.Popen([sys.executable, "-m", "axiscal", "serve", "--port", str(port)],
+    env = {**os.environ, "AXISCAL_DB": f"sqlite:///{folder / 'history.sqlite'}", **(env or {})}
+    proc = subprocess.Popen([sys.executable, "-m", "axiscal", "serve", "--port", str(port), *args],
                             env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     base = f"http://127.0.0.1:{port}"
     deadline = time.monotonic() + 30
     while True:
         try:
-            urllib.request.urlopen(base + "/plan", timeout=1).read()
-            break
+            urllib.request.urlopen(base + "/login", timeout=1).read()
+            return proc, base
         except OSError:
             if proc.poll() is not None or time.monotonic() > deadline:
                 proc.kill()
                 raise RuntimeError("the workbench did not start: "
                                    + proc.stderr.read().decode(errors="replace"))
             time.sleep(0.1)
-    yield base
+
+
+def stop_server(proc) -> None:
     proc.terminate()
     proc.wait(10)
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """The workbench on a fresh SQLite history; yields its base URL."""
+    proc, base = start_server(tmp_path_factory.mktemp("web"))
+    yield base
+    stop_server(proc)
 
 
 @pytest.fixture(scope="module")

@@ -26,7 +26,8 @@ def _file() -> bytes:
 
 def test_test_page_shows_U_and_the_pdf_certificate_downloads(tmp_path, monkeypatch):
     monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "none.toml"))
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"),
+                   base_url="http://127.0.0.1")
     tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     r = c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", _file(), "text/csv")})
     assert r.status_code == 200 and "/tests/1" in str(r.url)
@@ -48,7 +49,8 @@ def test_test_page_shows_every_standard_and_its_report_downloads(tmp_path, monke
     """A positioning test's page lists the other standards' parameters under their own names,
     the ones not evaluated with the reason, and offers the report by every standard."""
     monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "none.toml"))
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"),
+                   base_url="http://127.0.0.1")
     tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     page = c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", _file(), "text/csv")})
     assert page.status_code == 200

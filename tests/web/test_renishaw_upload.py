@@ -23,7 +23,8 @@ def test_rtl_upload_and_the_certificate_shows_the_files_conditions(tmp_path, mon
             "Axis": "X", "Location": "", "TITLE": ""}
     raw = renishaw_text("rtl", T7, [R1_UP, R1_DN, R2_UP, R2_DN], user=user,
                         environment=REAL_ENVIRONMENT).encode()
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"),
+                   base_url="http://127.0.0.1")
     tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     r = c.post("/upload", data={"csrf": tok},
                files={"file": ("x.rtl", raw, "application/octet-stream")})

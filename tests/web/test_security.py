@@ -12,7 +12,7 @@ from fastapi.testclient import TestClient
 
 from axiscal.errors import AxiscalError
 from axiscal.web.app import create_app
-from axiscal.web.security import MAX_UPLOAD_BYTES, Sessions, UserFile, check_upload, is_loopback
+from axiscal.web.security import MAX_UPLOAD_BYTES, UserFile, check_upload, is_loopback
 
 
 def _csrf(client, path="/plan") -> str:
@@ -41,7 +41,8 @@ def test_serving_beyond_localhost_needs_accounts(tmp_path):
 
 
 def test_login_roles_and_csrf(tmp_path, users):
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", users, require_login=True))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", users, require_login=True),
+                   base_url="http://127.0.0.1")
     r = c.get("/", follow_redirects=False)
     assert r.status_code == 303 and r.headers["location"].startswith("/login")
     assert _login(c, "eng", "wrong password").status_code == 401
@@ -63,17 +64,6 @@ def test_login_roles_and_csrf(tmp_path, users):
     assert r.status_code == 403
 
 
-def test_a_forged_or_expired_session_is_refused():
-    s = Sessions(b"k" * 32)
-    cookie = s.issue("eng", "engineer")
-    assert s.read(cookie)["role"] == "engineer"
-    name, role, exp, csrf, sig = cookie.split("|")
-    assert s.read("|".join([name, "engineer", str(int(exp) + 10 ** 6), csrf, sig])) is None
-    assert s.read(cookie.replace("engineer", "viewer")) is None
-    assert Sessions(b"x" * 32).read(cookie) is None                         # another key
-    assert s.read("|".join([name, role, "1", csrf, s._sign(f"{name}|{role}|1|{csrf}")])) is None
-
-
 def test_passwords_are_stored_as_argon2id(users):
     text = users.read_text()
     assert "$argon2id$" in text and "correct horse" not in text
@@ -93,7 +83,8 @@ def test_uploads_are_checked(name, ctype, size, words):
 
 
 def test_upload_size_limit_on_the_server(tmp_path):
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", upload_limit=1000))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", upload_limit=1000),
+                   base_url="http://127.0.0.1")
     tok = _csrf(c)
     r = c.post("/upload", data={"csrf": tok},
                files={"file": ("x.csv", b"#" * 5000, "text/csv")})
@@ -102,7 +93,8 @@ def test_upload_size_limit_on_the_server(tmp_path):
 
 
 def test_every_page_sends_protective_headers_and_no_trace(tmp_path):
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"),
+                   base_url="http://127.0.0.1")
     for path in ("/", "/plan", "/nowhere", "/tests/5", "/trend?machine=M&axis=X"):
         r = c.get(path)
         assert r.headers["x-content-type-options"] == "nosniff"

@@ -4,12 +4,17 @@ Localhost (127.0.0.1, the default) needs no login. Any other ``--host`` needs ac
 file (``--users``, default ``users.toml`` in the user's axiscal configuration folder); add one
 with ``axiscal serve --add-user NAME --role engineer|viewer`` (the password is asked for, or read
 from ``AXISCAL_PASSWORD``).
+
+Only requests naming the bound address (and 127.0.0.1, localhost, [::1], and any
+``--allowed-host``) in their Host header are answered (DNS rebinding); logins end after
+``--session-idle`` minutes without a request and ``--session-max`` hours; slow or endless requests
+are cut off (:mod:`axiscal.web.server`). Every limit in force is printed when the server starts.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import List, Optional
 
 import typer
 
@@ -29,6 +34,20 @@ def serve(
                                            "account in the users file and exit."),
     role: str = typer.Option("engineer", "--role", help="Role of --add-user: viewer (reads) or "
                              "engineer (uploads, stores, writes tables)."),
+    allowed_host: Optional[List[str]] = typer.Option(
+        None, "--allowed-host", help="Another host name the server answers to (repeatable), e.g. "
+        "its DNS name; requests naming any other host get 400."),
+    session_idle: float = typer.Option(30.0, "--session-idle", min=1, max=24 * 60,
+                                       help="Minutes without a request that end a login."),
+    session_max: float = typer.Option(12.0, "--session-max", min=0.1, max=24 * 7,
+                                      help="Hours after which a login ends in any case."),
+    header_timeout: float = typer.Option(10.0, "--header-timeout", min=0.1, max=600,
+                                         help="Seconds a client has to send a request's "
+                                         "headers."),
+    body_timeout: float = typer.Option(30.0, "--body-timeout", min=0.1, max=3600,
+                                       help="Seconds of silence allowed within a request body."),
+    max_connections: int = typer.Option(100, "--max-connections", min=1, max=10_000,
+                                        help="Connections served at once; more get 503."),
 ) -> None:
     """Serve the web workbench: machines, history, upload, compare, trend, tables, plans.
 
@@ -59,14 +78,23 @@ def serve(
     if not loopback and not UserFile.load(users_path).users:
         raise InputError(f"--host {host} is reachable from other computers: add an account "
                          f"first (axiscal serve --add-user NAME --users {users_path})")
-    import uvicorn
-
     from axiscal.web.app import create_app
+    from axiscal.web.guards import allowed_hosts
+    from axiscal.web.server import run
 
+    hosts = allowed_hosts(host, allowed_host or ())
     app = create_app(db, users_path if (not loopback or users) else None,
-                     require_login=not loopback)
-    typer.echo(f"axiscal workbench on http://{host}:{port}/ (Ctrl+C stops it)", err=True)
-    uvicorn.run(app, host=host, port=port, log_level="warning")
+                     require_login=not loopback, hosts=hosts, session_idle=session_idle * 60,
+                     session_max=session_max * 3600)
+    typer.echo(f"axiscal workbench on http://{_url_host(host)}:{port}/ (Ctrl+C stops it); answers "
+               f"to {', '.join(sorted(hosts))}; logins end after {session_idle:g} min idle or "
+               f"{session_max:g} h; headers within {header_timeout:g} s, body silences under "
+               f"{body_timeout:g} s, {max_connections} connections at once", err=True)
+    run(app, host, port, header_timeout, body_timeout, max_connections)
+
+
+def _url_host(host: str) -> str:
+    return f"[{host}]" if ":" in host else host
 
 
 def _default_users() -> Path:

@@ -4,7 +4,13 @@
 (autoescaped) with htmx and uPlot served from ``static/`` (vendored; nothing is fetched at run
 time). A library error (:class:`~axiscal.errors.AxiscalError`) is shown on the page in the same
 words the command line prints; anything else is an "internal error" page, its traceback only in
-the server's log. Who may do what is in :mod:`axiscal.web.security`.
+the server's log. Who may do what is in :mod:`axiscal.web.security`; the checks every request
+passes (Host allow-list, Origin of a POST, bounded bodies and fields) in :mod:`axiscal.web.guards`;
+sessions and the back-off of wrong passwords in :mod:`axiscal.web.sessions`.
+
+Every error is a page of the workbench with a way back, never FastAPI's JSON: a path that names
+nothing (``/tests/abc``, an id beyond the database's 64-bit integers) is 404, a query parameter
+out of its range (``?page=99999999999999999999``) or missing (compare with one test) is 400.
 """
 
 from __future__ import annotations
@@ -15,18 +21,25 @@ from pathlib import Path
 from urllib.parse import quote, urlencode
 
 from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 from fastapi.staticfiles import StaticFiles
 from fastapi.templating import Jinja2Templates
 
 from axiscal.errors import AxiscalError, InputError
-from axiscal.web.security import MAX_UPLOAD_BYTES, Sessions, UserFile
+from axiscal.web.guards import (FORM_OVERHEAD, BodyLimit, TooLarge, allowed_hosts, check_fields,
+                                host_allowed, origin_allowed)
+from axiscal.web.login import COOKIE
+from axiscal.web.security import MAX_UPLOAD_BYTES, UserFile
+from axiscal.web.sessions import ABSOLUTE_SECONDS, IDLE_SECONDS, LoginThrottle, Sessions
 
-__all__ = ["create_app", "Forbidden"]
+__all__ = ["create_app", "Forbidden", "MAX_ID"]
 
 HERE = Path(__file__).parent
 LOG = logging.getLogger("axiscal.web")
-COOKIE, ANON = "axiscal_session", "axiscal_anon"
+ANON = "axiscal_anon"
+#: Largest id a test can have (SQLite's and PostgreSQL's 64-bit integer keys).
+MAX_ID = 2**63 - 1
 
 
 class Forbidden(AxiscalError, PermissionError):
@@ -34,7 +47,9 @@ class Forbidden(AxiscalError, PermissionError):
 
 
 def create_app(db_url: str | None = None, users_file=None, require_login: bool = False,
-               upload_limit: int = MAX_UPLOAD_BYTES) -> FastAPI:
+               upload_limit: int = MAX_UPLOAD_BYTES, hosts=None,
+               session_idle: float = IDLE_SECONDS, session_max: float = ABSOLUTE_SECONDS,
+               ) -> FastAPI:
     """The workbench over the history database ``db_url`` (default: the user's database).
 
     Parameters
@@ -47,6 +62,11 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     require_login : bool
         True when served on a non-loopback address (``axiscal serve`` decides).
     upload_limit : int, bytes
+    hosts : iterable of str, optional
+        Host names served (default: the loopback names, :func:`~axiscal.web.guards.allowed_hosts`
+        of 127.0.0.1); a request naming another host gets a 400 page.
+    session_idle, session_max : float, seconds
+        A login ends after this long without a request, and this long after the login.
     """
     from axiscal.web import pages
 
@@ -55,7 +75,9 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
         raise InputError("serving beyond this computer needs accounts: add one with "
                          "'axiscal serve --add-user NAME --role engineer' (and --users FILE)")
     app = FastAPI(title="axiscal workbench", docs_url=None, redoc_url=None, openapi_url=None)
-    app.state.sessions = Sessions()
+    app.state.sessions = Sessions(session_idle, session_max)
+    app.state.throttle = LoginThrottle()
+    app.state.hosts = frozenset(h.lower() for h in hosts) if hosts else allowed_hosts("127.0.0.1")
     app.state.users = users
     app.state.require_login = require_login
     app.state.upload_limit = int(upload_limit)
@@ -64,9 +86,17 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     app.state.templates.env.globals.update(zip=zip, query=query)
     app.state.templates.env.filters["unit"] = lambda u: {"um": "µm", "um/m": "µm/m"}.get(u, u)
     app.mount("/static", StaticFiles(directory=str(HERE / "static")), name="static")
+    app.add_middleware(BodyLimit, limit=app.state.upload_limit + FORM_OVERHEAD)
 
     @app.middleware("http")
     async def guard(request: Request, call_next):
+        if not host_allowed(request.headers.get("host"), request.app.state.hosts):
+            return render_error(request, "this server does not answer to that host name "
+                                "(Host header); open it by the address it was started on", 400)
+        if request.method == "POST" and not origin_allowed(request.headers,
+                                                           request.app.state.hosts):
+            return render_error(request, "the form was sent from another site (Origin "
+                                "header); open the workbench and send it from there", 403)
         session = _session(request)
         request.state.session = session
         public = request.url.path.startswith("/static/") or request.url.path == "/login"
@@ -87,8 +117,12 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     @app.exception_handler(AxiscalError)
     async def library_error(request: Request, exc: AxiscalError):
         status = 403 if isinstance(exc, Forbidden) else 404 if isinstance(exc, LookupError) \
-            else 400
+            else getattr(exc, "status", 400)
         return render_error(request, str(exc), status)
+
+    @app.exception_handler(RequestValidationError)
+    async def invalid_address(request: Request, exc: RequestValidationError):
+        return render_error(request, *_validation_words(request, exc.errors()))
 
     from starlette.exceptions import HTTPException
 
@@ -120,16 +154,45 @@ def render_error(request: Request, message: str, status: int):
     """The error page: the message in plain words (escaped), never a traceback."""
     if getattr(request.state, "session", None) is None:
         request.state.session = {}
-    return render(request, "error.html", "Something needs attention", status, error=message)
+    from http import HTTPStatus
+
+    back = _came_from(request)
+    return render(request, "error.html", "Something needs attention", status, error=message,
+                  code=status, meaning=HTTPStatus(status).phrase, back=back)
 
 
-async def checked_form(request: Request):
-    """The POSTed form, after its CSRF token (field ``csrf`` or header ``X-CSRF-Token``) is
-    checked against the session's (OWASP synchronizer-token pattern)."""
+def _came_from(request: Request) -> str | None:
+    """The page of this site the user came from (Referer of an allowed host), to go back to."""
+    from urllib.parse import urlsplit
+
+    ref = request.headers.get("referer") or ""
     try:
-        form = await request.form(max_part_size=request.app.state.upload_limit + 1)
+        parts = urlsplit(ref)
+    except ValueError:
+        return None
+    hosts = getattr(request.app.state, "hosts", frozenset())
+    if not parts.hostname or parts.hostname.lower() not in hosts or \
+            not host_allowed(request.headers.get("host"), hosts):
+        return None
+    back = parts.path + (f"?{parts.query}" if parts.query else "")
+    return back if back.startswith("/") and not back.startswith("//") and \
+        back != request.url.path else None
+
+
+async def checked_form(request: Request, csrf: bool = True):
+    """The POSTed form, after its CSRF token (field ``csrf`` or header ``X-CSRF-Token``) is
+    checked against the session's (OWASP synchronizer-token pattern) and its text fields against
+    their bound (:func:`~axiscal.web.guards.check_fields`)."""
+    try:
+        form = await request.form(max_files=4, max_fields=64,
+                                  max_part_size=request.app.state.upload_limit + FORM_OVERHEAD)
+    except TooLarge:
+        raise
     except Exception:                      # a malformed body: say so, never a trace
         raise InputError("the form could not be read") from None
+    check_fields(form)
+    if not csrf:
+        return form
     token = request.headers.get("x-csrf-token") or form.get("csrf")
     if not token or not secrets.compare_digest(str(token), request.state.session["csrf"]):
         raise Forbidden("the form is out of date (CSRF token); reload the page and send it again")
@@ -168,37 +231,16 @@ def query(**params) -> str:
     return urlencode({k: v for k, v in params.items() if v not in (None, "")})
 
 
-def login_routes(app: FastAPI) -> None:
-    """``/login`` and ``/logout``."""
-
-    @app.get("/login", response_class=HTMLResponse)
-    async def login_form(request: Request, next: str = "/"):
-        request.state.session = request.state.session or {}
-        return render(request, "login.html", "Log in", next=_local(next))
-
-    @app.post("/login")
-    async def login(request: Request):
-        form = await request.form()
-        users = request.app.state.users
-        request.state.session = request.state.session or {}
-        user = users.check(str(form.get("username", "")), str(form.get("password", ""))) \
-            if users else None
-        if user is None:
-            return render(request, "login.html", "Log in", 401, next=_local(form.get("next")),
-                          error="wrong user name or password")
-        resp = RedirectResponse(_local(form.get("next")), 303)
-        resp.set_cookie(COOKIE, request.app.state.sessions.issue(user.name, user.role),
-                        httponly=True, samesite="strict")
-        return resp
-
-    @app.post("/logout")
-    async def logout(request: Request):
-        resp = RedirectResponse("/login", 303)
-        resp.delete_cookie(COOKIE)
-        return resp
-
-
-def _local(path) -> str:
-    """Only a path on this site is a place to go back to (no open redirect)."""
-    p = str(path or "/")
-    return p if p.startswith("/") and not p.startswith("//") else "/"
+def _validation_words(request: Request, errors) -> tuple[str, int]:
+    """The error page's words and status for an address FastAPI could not read: a path part that
+    names nothing is 404; a query parameter missing or out of its range is 400, named."""
+    err = errors[0] if errors else {}
+    where, name = (list(err.get("loc", ())) + ["", ""])[:2]
+    if where == "path":
+        return f"no such page: {request.url.path[:80]!r} names nothing here", 404
+    if request.url.path == "/compare":
+        return "choose two tests to compare (tick two boxes in a machine's list)", 400
+    value = str(err.get("input", ""))[:40]
+    if err.get("type") == "missing":
+        return f"the address lacks {name!r}", 400
+    return f"{name} = {value!r} in the address: {err.get('msg', 'not accepted')}", 400

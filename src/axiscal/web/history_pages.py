@@ -7,12 +7,20 @@ that ``static/axiscal.js`` draws.
 
 from __future__ import annotations
 
-from fastapi import FastAPI, Request
+from typing import Annotated
+
+from fastapi import FastAPI, Query, Request
+from fastapi import Path as InPath
 from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
 from axiscal.errors import InputError
-from axiscal.web.app import checked_form, download, query, render, require_engineer
+from axiscal.web.app import MAX_ID, checked_form, download, query, render, require_engineer
+
+#: A test's id in a path, a query, and a page number: out of range is an error page, not a 500.
+TestId = Annotated[int, InPath(ge=1, le=MAX_ID)]
+QueryId = Annotated[int, Query(ge=1, le=MAX_ID)]
+Page = Annotated[int, Query(ge=1, le=10**9)]
 
 __all__ = ["add_routes", "positioning_plot", "trend_plot"]
 
@@ -45,7 +53,7 @@ def add_routes(app: FastAPI) -> None:
         return render(request, "machines.html", "Machines", machines=store(request).machines())
 
     @app.get("/machines/{name}", response_class=HTMLResponse)
-    def machine(request: Request, name: str, axis: str = "", kind: str = "", page: int = 1):
+    def machine(request: Request, name: str, axis: str = "", kind: str = "", page: Page = 1):
         st = store(request)
         m = next((x for x in st.machines() if x.name == name), None)
         if m is None:
@@ -60,7 +68,7 @@ def add_routes(app: FastAPI) -> None:
                       query=query)
 
     @app.get("/tests/{test_id}", response_class=HTMLResponse)
-    def test_page(request: Request, test_id: int):
+    def test_page(request: Request, test_id: TestId):
         t = store(request).get(test_id)
         ev = t.evaluate_again()
         plot = positioning_plot(ev) if ev.kind == "iso230-2" else None
@@ -79,12 +87,12 @@ def add_routes(app: FastAPI) -> None:
                           if o.id != test_id])
 
     @app.get("/tests/{test_id}/raw")
-    def raw(request: Request, test_id: int):
+    def raw(request: Request, test_id: TestId):
         t = store(request).get(test_id)
         return download(t.raw, t.summary.filename, "application/octet-stream")
 
     @app.get("/tests/{test_id}/result.json")
-    def result_json(request: Request, test_id: int):
+    def result_json(request: Request, test_id: TestId):
         import json
 
         t = store(request).get(test_id)
@@ -96,7 +104,7 @@ def add_routes(app: FastAPI) -> None:
         return download(json.dumps(body, indent=2), f"test_{test_id}.json", "application/json")
 
     @app.get("/tests/{test_id}/report.html")
-    def report(request: Request, test_id: int):
+    def report(request: Request, test_id: TestId):
         _, ev = positioning_test(request, test_id, "HTML report")
         from axiscal.report.html import positioning_report
 
@@ -104,7 +112,7 @@ def add_routes(app: FastAPI) -> None:
         return download(html, f"test_{test_id}_report.html", "text/html")
 
     @app.get("/tests/{test_id}/standards.html")
-    def standards(request: Request, test_id: int):
+    def standards(request: Request, test_id: TestId):
         _, ev = positioning_test(request, test_id, "report by every standard")
         from axiscal.report.html import standards_report
         from axiscal.standards.positioning_standards import evaluate_all
@@ -114,7 +122,7 @@ def add_routes(app: FastAPI) -> None:
         return download(html, f"test_{test_id}_standards.html", "text/html")
 
     @app.get("/tests/{test_id}/certificate.pdf")
-    def certificate(request: Request, test_id: int, paper: str = "A4"):
+    def certificate(request: Request, test_id: TestId, paper: str = "A4"):
         t, ev = positioning_test(request, test_id, "certificate")
         if paper not in ("A4", "Letter"):
             raise InputError(f"paper {paper!r}: A4 or Letter")
@@ -131,7 +139,7 @@ def add_routes(app: FastAPI) -> None:
         return download(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
 
     @app.post("/tests/{test_id}/compensation")
-    async def compensation(request: Request, test_id: int):
+    async def compensation(request: Request, test_id: TestId):
         form = await checked_form(request)
         require_engineer(request)
         controller = str(form.get("controller", ""))
@@ -140,7 +148,7 @@ def add_routes(app: FastAPI) -> None:
         return download(f.text, f.filename, "text/plain")
 
     @app.get("/compare", response_class=HTMLResponse)
-    def compare(request: Request, a: int, b: int):
+    def compare(request: Request, a: QueryId, b: QueryId):
         from axiscal.store.analysis import compare_tests
 
         s = store(request)

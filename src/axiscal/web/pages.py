@@ -6,7 +6,8 @@ from fastapi import FastAPI, Request
 from fastapi.responses import HTMLResponse
 
 from axiscal.errors import InputError
-from axiscal.web.app import checked_form, download, login_routes, query, render
+from axiscal.web.app import checked_form, download, query, render
+from axiscal.web.login import login_routes
 
 __all__ = ["add_routes", "plan_from_form"]
 

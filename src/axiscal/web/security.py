@@ -5,8 +5,10 @@
 * **Any other address needs accounts.** ``axiscal serve --host 0.0.0.0`` refuses to start unless a
   users file names at least one account (``axiscal serve --add-user NAME --role engineer``).
   Passwords are stored as Argon2id hashes (argon2-cffi, the reference implementation's binding;
-  OWASP Password Storage Cheat Sheet recommends Argon2id). A login gives a session cookie signed
-  with HMAC-SHA256 (RFC 2104) under a key made at start-up, HttpOnly and SameSite=Strict.
+  OWASP Password Storage Cheat Sheet recommends Argon2id). A login gives a session kept by the
+  server (:mod:`axiscal.web.sessions`: ended at log-out, after 30 min idle or 12 h), its random
+  identifier in an HttpOnly, SameSite=Strict cookie; wrong passwords are backed off per account
+  and per address.
 * **Roles.** ``viewer`` reads every page and download; ``engineer`` also uploads, stores and writes
   compensation tables.
 * **CSRF.** Every form and every htmx request carries a token bound to the session (the
@@ -18,17 +20,14 @@
 
 from __future__ import annotations
 
-import hashlib
-import hmac
 import ipaddress
 import secrets
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from axiscal.errors import ConfigError, InputError
 
-__all__ = ["ROLES", "User", "UserFile", "Sessions", "is_loopback", "MAX_UPLOAD_BYTES",
+__all__ = ["ROLES", "User", "UserFile", "is_loopback", "MAX_UPLOAD_BYTES",
            "UPLOAD_TYPES", "UPLOAD_SUFFIXES", "check_upload"]
 
 ROLES = ("viewer", "engineer")
@@ -39,7 +38,6 @@ UPLOAD_TYPES = ("text/csv", "text/plain", "application/json", "application/octet
                 "application/vnd.ms-excel", "text/x-csv", "application/csv", "")
 #: File name endings of the data files the workbench evaluates.
 UPLOAD_SUFFIXES = (".csv", ".json", ".txt", ".dat", ".ecmc", ".rtl", ".rta")
-SESSION_SECONDS = 12 * 3600
 
 
 @dataclass(frozen=True)
@@ -128,37 +126,6 @@ def _dummy_hash() -> str:
 
         _DUMMY.append(PasswordHasher().hash(secrets.token_hex(16)))
     return _DUMMY[0]
-
-
-class Sessions:
-    """Signed session cookies: ``name|role|expiry|csrf|signature`` (HMAC-SHA256, RFC 2104)."""
-
-    def __init__(self, key: bytes | None = None):
-        self.key = key or secrets.token_bytes(32)
-
-    def issue(self, name: str, role: str) -> str:
-        """A cookie value for a logged-in user."""
-        body = f"{name}|{role}|{int(time.time()) + SESSION_SECONDS}|{secrets.token_urlsafe(24)}"
-        return f"{body}|{self._sign(body)}"
-
-    def read(self, cookie: str | None) -> dict | None:
-        """The session (``name``, ``role``, ``csrf``) of a valid, unexpired cookie, else None."""
-        if not cookie or cookie.count("|") != 4:
-            return None
-        body, sig = cookie.rsplit("|", 1)
-        if not hmac.compare_digest(sig, self._sign(body)):
-            return None
-        name, role, expiry, csrf = body.split("|")
-        if not expiry.isdigit() or int(expiry) < time.time() or role not in ROLES:
-            return None
-        return {"name": name, "role": role, "csrf": csrf}
-
-    def csrf_for(self, anonymous_id: str) -> str:
-        """The CSRF token of a session without login (localhost): bound to a random cookie."""
-        return self._sign(f"csrf|{anonymous_id}")[:32]
-
-    def _sign(self, body: str) -> str:
-        return hmac.new(self.key, body.encode(), hashlib.sha256).hexdigest()
 
 
 def is_loopback(host: str) -> bool:

@@ -1,0 +1,85 @@
+"""Serving the workbench with uvicorn, with the limits a server reachable by others needs.
+
+uvicorn closes an idle keep-alive connection (``timeout_keep_alive``) and answers 503 past
+``limit_concurrency``, but it waits for a request's headers, and for its body, as long as the
+client likes: 1,100 clients that each sent half a header held 1,100 connections open, and with
+1,024 file descriptors the server stopped accepting ("slowloris"). :class:`TimedH11Protocol`
+closes a connection whose request headers are not complete ``header_timeout`` seconds after the
+first byte of them (or after the connection opened), and one that sends no byte of a request
+body for ``body_timeout`` seconds; h11's own limit bounds the size of the headers
+(``h11_max_incomplete_event_size``). The defaults (:data:`LIMITS`) are shown by
+``axiscal serve`` when it starts.
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+import h11
+from uvicorn.protocols.http.h11_impl import H11Protocol
+
+__all__ = ["LIMITS", "TimedH11Protocol", "protocol", "run"]
+
+#: Defaults: seconds to send the request headers; seconds of silence within a body; connections
+#: served at once (more get 503); seconds an idle keep-alive connection is kept; header bytes.
+LIMITS = {"header_timeout": 10.0, "body_timeout": 30.0, "max_connections": 100,
+          "keep_alive": 5, "max_header_bytes": 16 * 1024}
+
+
+class TimedH11Protocol(H11Protocol):
+    """uvicorn's h11 protocol with a deadline for the headers and a silence limit in the body."""
+
+    header_timeout = LIMITS["header_timeout"]
+    body_timeout = LIMITS["body_timeout"]
+
+    def connection_made(self, transport: asyncio.Transport) -> None:
+        super().connection_made(transport)
+        self._timer: asyncio.TimerHandle | None = None
+        self._arm(self.header_timeout)
+
+    def data_received(self, data: bytes) -> None:
+        super().data_received(data)
+        state = self.conn.their_state
+        if state is h11.IDLE and self._timer is None:      # a new request's headers begin
+            self._arm(self.header_timeout)
+        elif state is h11.SEND_BODY:                        # silence in a body: from now
+            self._arm(self.body_timeout)
+        elif state is not h11.IDLE:
+            self._disarm()
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self._disarm()
+        super().connection_lost(exc)
+
+    def _arm(self, seconds: float) -> None:
+        self._disarm()
+        self._timer = self.loop.call_later(seconds, self._too_slow)
+
+    def _disarm(self) -> None:
+        if getattr(self, "_timer", None) is not None:
+            self._timer.cancel()
+            self._timer = None
+
+    def _too_slow(self) -> None:
+        self._timer = None
+        if not self.transport.is_closing():
+            self.logger.warning("closed a connection from %s: request too slow",
+                                self.client[0] if self.client else "?")
+            self.transport.close()
+
+
+def protocol(header_timeout: float, body_timeout: float) -> type:
+    """:class:`TimedH11Protocol` with these timeouts, seconds."""
+    return type("TimedH11Protocol", (TimedH11Protocol,), {
+        "header_timeout": float(header_timeout), "body_timeout": float(body_timeout)})
+
+
+def run(app, host: str, port: int, header_timeout: float, body_timeout: float,
+        max_connections: int) -> None:
+    """Serve ``app`` with uvicorn under the limits above (one process)."""
+    import uvicorn
+
+    uvicorn.run(app, host=host, port=port, log_level="warning",
+                http=protocol(header_timeout, body_timeout),
+                timeout_keep_alive=LIMITS["keep_alive"], limit_concurrency=max_connections,
+                h11_max_incomplete_event_size=LIMITS["max_header_bytes"])
