@@ -1,0 +1,111 @@
+"""A real ``axiscal serve`` (uvicorn on 127.0.0.1) against raw sockets: a client that sends its
+headers slowly, or stops inside a body, loses its connection; the connection limit answers 503 and
+frees itself; a declared 200 MB upload is refused before its body is sent (issue 31)."""
+
+from __future__ import annotations
+
+import socket
+import time
+import urllib.request
+
+import pytest
+
+from tests.web.conftest import start_server, stop_server
+
+HEADER_TIMEOUT, BODY_TIMEOUT, MAX_CONNECTIONS = 1.0, 1.5, 4
+
+
+@pytest.fixture(scope="module")
+def limited(tmp_path_factory):
+    proc, base = start_server(tmp_path_factory.mktemp("limits"),
+                              "--header-timeout", str(HEADER_TIMEOUT),
+                              "--body-timeout", str(BODY_TIMEOUT),
+                              "--max-connections", str(MAX_CONNECTIONS))
+    yield base
+    stop_server(proc)
+
+
+def _port(base: str) -> int:
+    return int(base.rsplit(":", 1)[1])
+
+
+def _open(base: str, first: bytes) -> socket.socket:
+    s = socket.create_connection(("127.0.0.1", _port(base)), timeout=10)
+    s.sendall(first)
+    return s
+
+
+def _closed_within(s: socket.socket, seconds: float) -> bytes | None:
+    """What the server sent before closing the connection, or None if it stayed open."""
+    s.settimeout(seconds)
+    got = b""
+    try:
+        while chunk := s.recv(65536):
+            got += chunk
+    except TimeoutError:
+        return None
+    except ConnectionResetError:
+        pass
+    return got
+
+
+def _status(url: str) -> int:
+    try:
+        return urllib.request.urlopen(url, timeout=10).status
+    except urllib.error.HTTPError as exc:
+        return exc.code
+
+
+def test_slow_headers_do_not_hold_a_connection(limited):
+    """Slowloris: half-sent headers; each connection is closed after the header timeout, and
+    meanwhile the connection limit refuses others with 503 instead of letting them queue."""
+    slow = [_open(limited, b"GET /plan HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")
+            for _ in range(MAX_CONNECTIONS)]
+    time.sleep(0.2)
+    assert _status(limited + "/plan") == 503
+    start = time.monotonic()
+    for s in slow:
+        assert _closed_within(s, HEADER_TIMEOUT + 5) == b""
+        s.close()
+    assert time.monotonic() - start < HEADER_TIMEOUT + 5
+    assert _status(limited + "/plan") == 200                    # served again
+
+
+def test_a_body_that_stops_loses_its_connection_and_nothing_is_stored(limited):
+    s = _open(limited, b"POST /upload HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 100000\r\n"
+                       b"Content-Type: multipart/form-data; boundary=xyz\r\n\r\n--xyz\r\n")
+    assert _closed_within(s, BODY_TIMEOUT + 5) is not None
+    s.close()
+    assert "The history is empty" in urllib.request.urlopen(limited + "/", timeout=10).read() \
+        .decode()
+
+
+def test_a_declared_200_mb_upload_is_refused_before_its_body(limited):
+    s = _open(limited, b"POST /upload HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 209715200\r\n"
+                       b"Content-Type: multipart/form-data; boundary=xyz\r\n\r\n")
+    answer = _closed_within(s, 5)
+    s.close()
+    assert answer is not None and answer.startswith(b"HTTP/1.1 413")
+    assert b"200 MiB" in answer and b"at most 21 MiB" in answer
+
+
+def test_the_host_check_holds_on_the_real_server(limited):
+    s = _open(limited, b"GET /plan HTTP/1.1\r\nHost: evil.example\r\nConnection: close\r\n\r\n")
+    answer = _closed_within(s, 5)
+    s.close()
+    assert answer.startswith(b"HTTP/1.1 400") and b'csrf-token" content=""' in answer
+
+
+def test_serve_defaults_are_the_library_limits():
+    """The command line's defaults (shown in its help) are the limits the library documents."""
+    import inspect
+
+    from axiscal.cli.serve import serve
+    from axiscal.web.server import LIMITS
+    from axiscal.web.sessions import ABSOLUTE_SECONDS, IDLE_SECONDS
+
+    d = {k: v.default.default for k, v in inspect.signature(serve).parameters.items()}
+    assert d["header_timeout"] == LIMITS["header_timeout"]
+    assert d["body_timeout"] == LIMITS["body_timeout"]
+    assert d["max_connections"] == LIMITS["max_connections"]
+    assert d["session_idle"] * 60 == IDLE_SECONDS and d["session_max"] * 3600 == ABSOLUTE_SECONDS
