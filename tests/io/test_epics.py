@@ -327,3 +327,13 @@ def test_truth_any_test_through_its_log(n_targets, runs, seed, rate):
     np.testing.assert_allclose(ds.targets, tg, atol=1e-12)
     np.testing.assert_allclose(ds.up, up, atol=1e-6)
     np.testing.assert_allclose(ds.down, down, atol=1e-6)
+
+
+def test_a_setpoint_rounded_by_camonitors_default_format_meets_the_target_given():
+    """camonitor's default %g (tool_lib.c, dblFormatStr) prints six significant digits: a
+    target of 123.4567 mm is logged 123.457; the deviation is taken from the target given."""
+    lines = [_line(SP, 0.0, 100.0), _line(REF, 0.0, 100.0), _line(SP, 5.0, 123.457),
+             _line(REF, 6.0, 123.4572), _line(SP, 15.0, 150.0), _line(REF, 16.0, 150.0),
+             _line(SP, 25.0, 160.0)]
+    ds = parse_epics("\n".join(lines), SP, REF, targets=[123.4567, 150.0])
+    assert ds.up[0, 0] == pytest.approx(0.5, abs=1e-6)        # µm: 123.4572 − 123.4567

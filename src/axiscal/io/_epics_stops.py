@@ -17,7 +17,7 @@ __all__ = ["assemble", "settled_mean"]
 
 
 def assemble(dwells, position, targets, plan, kind, tu, du, k, meta, notes, source
-             ) -> PositioningDataset:
+             ) -> tuple[PositioningDataset, int]:
     """The positioning dataset of ``dwells`` and the number of stops that are not measurements
     (over-travel); ``position(dwell)`` is the reference position of a dwell measured (target
     unit ``tu``; ``k`` converts ``tu`` to the deviation unit ``du``)."""
@@ -35,8 +35,8 @@ def assemble(dwells, position, targets, plan, kind, tu, du, k, meta, notes, sour
         if plan is not None:
             ds, found, others = _by_plan(dwells, reached, position, plan, tu, du, k, source)
         else:
-            ds, found, others = _by_targets(dwells, reached, position, targets, kind, tu, du, k,
-                                    source)
+            ds, found, others = _by_targets(dwells, reached, position, targets, kind, tu, du,
+                                            k, source)
     except DataFormatError:
         raise
     except AxiscalError as exc:
@@ -49,7 +49,7 @@ def _by_targets(dwells, reached, position, targets, kind, tu, du, k, source):
     given = targets is not None
     tg = _given(targets, tu, source) if given else _passed_through(dwells, source)
     span = float(tg[-1] - tg[0]) if tg.size > 1 else max(1.0, abs(float(tg[0])))
-    tol = 1e-6 * span
+    tol = 1e-6 * span + 5e-6 * float(np.abs(tg).max())  # camonitor's %g: 6 significant digits
     counts: dict = {}
     records, others = [], 0
     for i in reached:
@@ -69,7 +69,7 @@ def _by_targets(dwells, reached, position, targets, kind, tu, du, k, source):
     ds = PositioningDataset.from_records(kind, records, tu, du, None, source=source)
     how = "the targets given" if given else "the values the setpoint passes through"
     return ds, (f"; {len(dwells)} stops: {len(records)} measurements at {tg.size} targets "
-                f"({how}), {others} other stops (over-travel)"), others
+                f"({how}), {others} other stops (over-travel, or not at a target)"), others
 
 
 def _by_plan(dwells, reached, position, plan, tu, du, k, source):

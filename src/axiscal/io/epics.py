@@ -58,9 +58,10 @@ The dwells are matched to the test three ways:
 * a plan (``axiscal plan ... --csv``): in order, as
   :func:`axiscal.procedures.capture.capture_test` matches stops (overrun rows may show a dwell);
   the plan's direction must agree with the step;
-* targets given: a dwell at a target (within 1e-6 of the targets' span) is a measurement in the
-  direction of its step, any other dwell an overrun; the run is the count of earlier visits of
-  that target in that direction (run j of ISO 230-2:2014 clause 3);
+* targets given: a dwell at a target (within 1e-6 of the targets' span, plus the 5e-6 relative
+  rounding of camonitor's default ``%g``) is a measurement in the direction of its step, any
+  other dwell an overrun; the run is the count of earlier visits of that target in that
+  direction (run j of ISO 230-2:2014 clause 3); the deviation is taken from the target given;
 * neither: the targets are the values of the dwells the setpoint passes *through* (reached and
   left in the same direction); a dwell where the setpoint turns back is the over-travel of the
   linear test cycle (ISO 230-2:2014 §5.3 and its figures) unless its value is one of those
