@@ -39,7 +39,9 @@ app = typer.Typer(help="Calibration history: every machine, axis, test, result a
                   no_args_is_help=True)
 
 _DB = typer.Option(None, "--db", help="Database URL (default: AXISCAL_DB, else SQLite in the "
-                   "user's data folder), e.g. postgresql+psycopg://user@host/axiscal.")
+                   "user's data folder), e.g. postgresql+psycopg://user@host/axiscal. A file "
+                   "that is not an axiscal history is refused, not converted; a read-only one "
+                   "is listed and shown.")
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
 
 
@@ -287,6 +289,8 @@ def export(
 ) -> None:
     """Write the history (or one machine's) as a portable archive: JSON lines + raw files.
 
+    Written to a temporary file and renamed into place: a full disk leaves no partial archive.
+
     Example: axiscal history export vmc800.zip --machine VMC-800
     """
     from axiscal.cli._common import typed_path
@@ -306,7 +310,12 @@ def import_(
     db: Optional[str] = _DB,
     json_out: bool = _JSON,
 ) -> None:
-    """Store every test of an archive (tests already stored are recognised and skipped).
+    """Store every test of an archive, all or nothing (tests already stored are recognised and
+    skipped).
+
+    The archive is checked whole before the first row (its ZIP directory's sizes, every record,
+    every raw file and its SHA-256, every file evaluated again), then stored in one transaction:
+    a damaged archive or an interrupted import leaves the history as it was.
 
     Example: axiscal history import vmc800.zip --db sqlite:///customer.sqlite
     """
