@@ -123,3 +123,18 @@ def test_the_certificate_states_what_the_log_reader_assumed(log, tmp_path):
     text = html.read_text()
     assert "Assumptions and deviations" in text and "EPICS camonitor log: setpoint" in text
     assert "unit mm (assumed: the log carries none)" in text
+
+
+def test_history_add_keeps_a_log_of_two_pvs(tmp_path):
+    """A log holding only the setpoint and the reference is read alone (the PVs found), so the
+    history can keep it as it came and re-read it."""
+    ref_ds, text = _ecmc_log(ECMC, extras=False)
+    p = tmp_path / "two.log"
+    p.write_text(text)
+    db = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    r = runner.invoke(app, ["history", "add", str(p), "--machine", "MCU1025", "--axis", "X",
+                            "--db", db])
+    assert r.exit_code == 0 and "iso230-2" in r.output, r.output
+    r = runner.invoke(app, ["history", "show", "1", "--db", db, "--json"])
+    assert json.loads(r.stdout)["parameters"]["A"]["value"] == pytest.approx(
+        evaluate(ref_ds).A, abs=1e-6)

@@ -53,6 +53,10 @@ def detect_kind(text: str) -> str:
         return "iso230-2"
     if "TGT_DATA[" in text or stripped.startswith("HEADER::"):   # ecmc; Renishaw .rtl/.rta
         return "iso230-2"
+    from axiscal.io.epics import looks_like_camonitor
+
+    if looks_like_camonitor(stripped):         # an EPICS camonitor log of two PVs
+        return "iso230-2"
     for line in stripped.splitlines():
         s = line.strip()
         if not s or s.startswith("#"):
