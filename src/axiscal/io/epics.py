@@ -95,6 +95,7 @@ _OFFSET = r"[+-]\d+\.\d+"
 _STAMP = rf"(?:{_DATE}|{_CLOCK}|<undefined>|{_OFFSET})"
 _LINE = re.compile(rf"^(?P<name>\S+)\s+(?:(?P<server>{_STAMP})\s*)?"
                    rf"(?:\((?P<client>{_STAMP})\)\s*)?(?P<rest>.*)$")
+_OFFSET_RE, _DATE_RE = re.compile(_OFFSET), re.compile(_DATE)
 _FIRST = re.compile(rf"^\S+\s+(?:{_DATE}|{_CLOCK}|<undefined>|\({_DATE}\))\s")
 _SEVERITIES = {"NO_ALARM", "MINOR", "MAJOR", "INVALID"}
 #: How the notes of a dataset read from a camonitor log begin.
@@ -366,6 +367,7 @@ class _State:
         self.first_server = None    # s: camonitor's tsFirst (the -tr reference)
         self.previous = None        # s: the previous update's time (the -ti reference)
         self.day = 0.0              # s added to a clock-only stamp after midnight
+        self.seconds: dict = {}     # whole-second text -> datetime
 
     def take(self, line: str, lineno: int) -> None:
         m = _LINE.match(line)
@@ -374,7 +376,7 @@ class _State:
         name, rest = m.group("name"), m.group("rest")
         pv = self.pvs.setdefault(name, _Pv())
         stamp = m.group("server") or m.group("client")
-        if stamp and re.fullmatch(_OFFSET, stamp) and pv.first_abs is None:
+        if stamp and _OFFSET_RE.fullmatch(stamp) and pv.first_abs is None:
             rest, stamp = f"{stamp} {rest}".strip(), None    # a value: -tn has no stamps
         if "***" in rest:                     # a lost channel: unknown from then on
             if stamp:
@@ -402,7 +404,7 @@ class _State:
             pv.last = self.previous = t
 
     def _time(self, pv: _Pv, stamp: str, lineno: int) -> float:
-        if re.fullmatch(_OFFSET, stamp):
+        if _OFFSET_RE.fullmatch(stamp):
             ref = {"relative": self.first_server, "incremental": self.previous,
                    "by-channel": pv.last}[self.offsets]
             if ref is None:
@@ -417,14 +419,16 @@ class _State:
         return t
 
     def _absolute(self, stamp: str, lineno: int) -> float:
-        dated = re.fullmatch(_DATE, stamp) is not None
-        fmt = "%Y-%m-%d %H:%M:%S" if dated else "%H:%M:%S"
+        dated = _DATE_RE.fullmatch(stamp) is not None
         whole, _, frac = stamp.replace("T", " ").partition(".")
-        try:
-            when = datetime.strptime(whole, fmt)
-        except ValueError:
-            raise DataFormatError(f"time stamp {stamp!r} is not a date and time", self.source,
-                                  lineno) from None
+        when = self.seconds.get(whole)             # many updates share a second: parse it once
+        if when is None:
+            try:
+                when = datetime.strptime(whole, "%Y-%m-%d %H:%M:%S" if dated else "%H:%M:%S")
+            except ValueError:
+                raise DataFormatError(f"time stamp {stamp!r} is not a date and time",
+                                      self.source, lineno) from None
+            self.seconds[whole] = when
         seconds = float(f"0.{frac}") if frac else 0.0
         if self.origin is None:
             self.origin, self.start_text, self.origin_frac = when, stamp, seconds
