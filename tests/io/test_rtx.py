@@ -135,3 +135,21 @@ def test_the_shortfall_is_carried_into_the_capture(tmp_path):
     assert result.warnings == rec.notes and "stopped early (10 readings short)" in rec.notes[0]
     assert "stopped early" in result.dataset.metadata.notes
     assert result.summary()["warnings"] == list(rec.notes)
+
+
+def test_capture_refuses_a_damaged_header_in_one_line_and_writes_nothing(tmp_path):
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    p, _ = _file(tmp_path, **{"Actual sample rate": "-50000"})
+    plan = tmp_path / "plan.csv"
+    plan.write_text("seq,kind,position,direction,run,target_index,dwell_s\n"
+                    "1,measure,0,+,1,0,1\n2,measure,10,+,1,1,1\n")
+    out = tmp_path / "data.csv"
+    r = CliRunner().invoke(app, ["capture", str(p), "--plan", str(plan), "--out", str(out)])
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert r.output.strip().splitlines() == [
+        f"axiscal: error: {p}: header Actual sample rate: '-50000' is not a sample rate "
+        "(above 0, at most 1e+07 Hz)"]
+    assert not out.exists()
