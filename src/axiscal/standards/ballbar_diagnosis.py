@@ -422,11 +422,14 @@ def _assemble(circ, phi, y, fit: _Fit, radius, feed, axes) -> BallbarDiagnosis:
 #: Columns of the ISO 230-4 two-direction fit among _LINEAR (centre, radius, shift, scale,
 #: squareness, backlash); the others, and the four cyclic columns, are what it lacks.
 _ISO_COLUMNS = (0, 1, 2, 3, 4, 5, 6, 7, 9, 10)
-_FOLDED = (  # quantity, ISO column, value key, unit, ISO 230-4 value from the CircularResult
-    ("squareness", 4, "squareness_um_per_m", "µm/m", lambda r: r.squareness.um_per_m),
-    ("scale_mismatch", 3, "scale_mismatch_um_per_m", "µm/m", lambda r: r.scale_mismatch * 1e6),
-    ("backlash_x", 9, "backlash_x_um", "µm", lambda r: r.backlash_x * 1e6),
-    ("backlash_y", 10, "backlash_y_um", "µm", lambda r: r.backlash_y * 1e6),
+_FOLDED = (  # quantity, ISO column, value key, unit, its value per unit of the column's
+    # coefficient at radius R (as _assemble), the ISO 230-4 value from the CircularResult
+    ("squareness", 4, "squareness_um_per_m", "µm/m", lambda R: -2 / R * 1e6,
+     lambda r: r.squareness.um_per_m),
+    ("scale_mismatch", 3, "scale_mismatch_um_per_m", "µm/m", lambda R: 2 / R * 1e6,
+     lambda r: r.scale_mismatch * 1e6),
+    ("backlash_x", 9, "backlash_x_um", "µm", lambda R: 1e6, lambda r: r.backlash_x * 1e6),
+    ("backlash_y", 10, "backlash_y_um", "µm", lambda R: 1e6, lambda r: r.backlash_y * 1e6),
 )
 
 
@@ -436,15 +439,13 @@ def _folded(circ, fit: _Fit, v, radius, axes, rms) -> tuple[FoldedError, ...]:
     iso = list(_ISO_COLUMNS)
     other = [i for i in range(fit.c.size) if i not in _ISO_COLUMNS]
     g = fit.gram
-    x = np.linalg.solve(g[np.ix_(iso, iso)], g[np.ix_(iso, other)]) * fit.c[other]
+    x = np.linalg.lstsq(g[np.ix_(iso, iso)], g[np.ix_(iso, other)], rcond=None)[0] * fit.c[other]
     names = [_RANK_KEY[_LINEAR[i]] if i < len(_LINEAR) else f"cyclic_{'xxyy'[i - len(_LINEAR)]}"
              for i in other]
     out = []
-    for quantity, col, vkey, unit, iso_value in _FOLDED:
-        scale = 1e6 if unit == "µm" else (2 if col == 3 else -2) / radius * 1e6
-        row = x[iso.index(col)] * scale
+    for quantity, col, vkey, unit, per_coef, iso_value in _FOLDED:
         parts: dict[str, float] = {}
-        for name, amount in zip(names, row):
+        for name, amount in zip(names, x[iso.index(col)] * per_coef(radius)):
             parts[name] = parts.get(name, 0.0) + float(amount)
         full = v[vkey]
         effect = abs(iso_value(circ) - full) * 1e-6 * (1.0 if unit == "µm" else radius)  # m
