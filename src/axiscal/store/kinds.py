@@ -2,11 +2,14 @@
 
 A file is recognised by its content (or given a kind): a positioning test (tidy CSV, axiscal
 JSON or EPICS ecmc; ISO 230-2:2014, linear or rotary, which includes a rotary calibration's
-result), a straightness trajectory (ISO 230-1), a ballbar circular test (ISO 230-4), a
-multi-point diagonal test of squareness (ISO 230-6), and five motion errors of a rotary axis
-(ISO 230-7). :func:`evaluate_file` returns what the store keeps: the evaluation as JSON, its
-summary parameters with their units, and the metadata the file declares. Evaluating the same
-bytes again gives the same numbers, which is how a stored test is shown again.
+result), a straightness trajectory (ISO 230-1), a ballbar circular test (the full diagnosis
+with its ISO 230-4 figures, :func:`evaluate_ballbar`), a multi-point diagonal test of squareness
+(ISO 230-6), and five motion errors of a rotary axis (ISO 230-7). :func:`evaluate_file` returns
+what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
+metadata the file declares. Evaluating the same bytes again gives the same numbers, which is how
+a stored test is shown again; and they are the numbers of the command a user runs on the file
+(``ballbar analyze``, ``straightness``, ``evaluate``...), which tests/store/test_paths_agree.py
+checks for every kind.
 """
 
 from __future__ import annotations
