@@ -301,6 +301,33 @@ def capture_epics(text: str, setpoint_pv: str | None = None, reference_pv: str |
     for s in (sp, ref):
         _check_usable(s, source)
     _check_options(dwell, window, settled, reference_scale, reference_offset, source)
+    tu, du, k, kind = _units(target_unit, deviation_unit, axis_kind, plan, source)
+    dwells = find_dwells(sp, log.end, dwell)
+    if not dwells:
+        raise DataFormatError(f"the setpoint {sp_name} never holds a value for {dwell:g} s: "
+                              "no steps to measure at (give a shorter dwell?)", source)
+    band = window / k / abs(reference_scale)      # in the reference's own numbers
+
+    def position(d: Dwell) -> float:       # only the dwells measured need a reference
+        aims = [(x - reference_offset) / reference_scale for x in (d.value, d.came_from)]
+        return (settled_mean(ref, d, band, settled, aims, source) * reference_scale
+                + reference_offset)
+
+    said = (f"{NOTES_START}: setpoint {sp_name}, reference {ref_name}; unit {tu}"
+            + ("" if target_unit or plan is not None else " (assumed: the log carries none)")
+            + f"; dwell ≥ {dwell:g} s; reference averaged where it rests within {window:g} "
+            f"{ {'um': 'µm'}.get(du, du)} for ≥ {settled:g} s in each dwell")
+    if reference_scale != 1.0 or reference_offset != 0.0:
+        said += f"; position = {reference_scale:.12g} × reference + {reference_offset:.12g}"
+    meta = Metadata(instrument=ref_name, axis=sp_name, date=log.start.split(" ")[0])
+    ds, others = assemble(dwells, position, targets, plan, kind, tu, du, k, meta,
+                          said + _alarm_note(ref), source)
+    n = int(np.isfinite(ds.up).sum() + np.isfinite(ds.down).sum())
+    return EpicsCapture(ds, sp_name, ref_name, len(dwells), n, others)
+
+
+def _units(target_unit, deviation_unit, axis_kind, plan, source):
+    """Target unit, deviation unit, the factor between them and the axis kind."""
     unit_text = target_unit or (plan.target_unit if plan is not None else None) or "mm"
     try:
         tu = units.canonical(unit_text)
@@ -312,30 +339,7 @@ def capture_epics(text: str, setpoint_pv: str | None = None, reference_pv: str |
         raise DataFormatError(str(exc), source) from None
     kind = AxisKind.parse(axis_kind) if axis_kind else (
         AxisKind.LINEAR if dim == "length" else AxisKind.ROTARY)
-    dwells = find_dwells(sp, log.end, dwell)
-    if not dwells:
-        raise DataFormatError(f"the setpoint {sp_name} never holds a value for {dwell:g} s: "
-                              "no steps to measure at (give a shorter dwell?)", source)
-
-    band = window / k / abs(reference_scale)      # in the reference's own numbers
-
-    def position(d: Dwell) -> float:       # only the dwells measured need a reference
-        aims = [(x - reference_offset) / reference_scale for x in (d.value, d.came_from)]
-        return (settled_mean(ref, d, band, settled, aims, source) * reference_scale
-                + reference_offset)
-
-    defaults = (f"unit {tu}" + ("" if target_unit or plan is not None else
-                                " (assumed: the log carries none)")
-                + f"; dwell ≥ {dwell:g} s; reference averaged where it rests within {window:g} "
-                f"{ {'um': 'µm'}.get(du, du)} for ≥ {settled:g} s in each dwell")
-    if reference_scale != 1.0 or reference_offset != 0.0:
-        defaults += f"; position = {reference_scale:.12g} × reference + {reference_offset:.12g}"
-    meta = Metadata(instrument=ref_name, axis=sp_name, date=log.start.split(" ")[0])
-    ds, others = assemble(dwells, position, targets, plan, kind, tu, du, k, meta,
-                          f"{NOTES_START}: setpoint {sp_name}, reference {ref_name}; "
-                          + defaults + _alarm_note(ref), source)
-    n = int(np.isfinite(ds.up).sum() + np.isfinite(ds.down).sum())
-    return EpicsCapture(ds, sp_name, ref_name, len(dwells), n, others)
+    return tu, du, k, kind
 
 
 # -- the log's lines ---------------------------------------------------------------------------
