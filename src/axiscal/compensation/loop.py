@@ -160,7 +160,8 @@ def loop_settings(config: dict) -> dict:
     return out
 
 
-def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **overrides) -> CompensationLoopResult:
+def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, machine=None,
+                          **overrides) -> CompensationLoopResult:
     """Run measure → compensate → re-measure on the configured simulated axis.
 
     Parameters
@@ -171,6 +172,11 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
         Seed of the one random stream both tests draw from.
     sign : float
         +1 (the convention) or −1 (apply every correction with the wrong sign).
+    machine : optional
+        A real controller to measure through instead of the simulation (``machine.measure(plan,
+        axis, rng, measurement_sigma, controller_file)``, the file None for the bare axis), e.g.
+        :class:`axiscal.compensation.on_controller.OnLinuxCNC`; the truth figures stay those of
+        the simulated axis and of the table read back.
     **overrides
         Replace ``[compensation]`` keys (``controller=``, ``spacing=`` …).
 
@@ -199,7 +205,8 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
     msigma = float(test.pop("measurement_sigma", 0.0))
     plan = plan_from_config(test, kind, axis.name)
     rng = np.random.default_rng(seed)
-    ds0 = simulate_positioning_test(plan, axis, rng, measurement_sigma=msigma)
+    ds0 = (simulate_positioning_test(plan, axis, rng, measurement_sigma=msigma) if machine is None
+           else machine.measure(plan, axis, rng, msigma, None))
     before = evaluate(ds0)
     mod = controller_module(s["controller"])
     travel = _travel(axis, plan.target_unit)
@@ -216,7 +223,8 @@ def run_compensation_loop(config: dict, seed: int = 1, sign: float = 1.0, **over
     cf = mod.write(table, travel, **options)
     applied = _read_back(mod, cf, s["options"])
     comp = CompensatedAxis(axis, applied, sign=sign)
-    ds1 = simulate_positioning_test(plan, comp, rng, measurement_sigma=msigma)
+    ds1 = (simulate_positioning_test(plan, comp, rng, measurement_sigma=msigma) if machine is None
+           else machine.measure(plan, axis, rng, msigma, cf))
     after = evaluate(ds1)
     du = ds0.deviation_unit
     ideal = _ideal_table(plan, axis, du, table, s)

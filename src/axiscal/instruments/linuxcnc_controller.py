@@ -1,0 +1,428 @@
+"""A live LinuxCNC controller running a simulated one-joint machine headless (issue 32).
+
+The real driver beside the simulated machines: :class:`LinuxCNC` starts the controller LinuxCNC
+ships (Debian ``linuxcnc-uspace`` 2.9) on a configuration axiscal writes from its package data
+(``axiscal/data/linuxcnc/axiscal_sim.ini`` and ``axiscal_sim.hal``), homes it, moves it by MDI
+and reads, through a HAL component of its own (``axiscal-laser``), the joint's
+``pos-cmd`` (what the interpreter commanded) and ``motor-pos-cmd`` (what reaches the drive, the
+compensation trim included). :class:`LinuxCNCAxis` puts a simulated machine axis behind the drive:
+the axis's errors act on ``motor-pos-cmd``, and the simulated laser reads the result, so the
+procedures drive the controller through the same interface as a simulated axis
+(``name``, ``travel``, ``repeatability_sigma``, ``check_in_travel``, ``move``).
+
+How LinuxCNC is run, as LinuxCNC documents and as tried on Debian 12 (issue 32's notes):
+
+* as root it needs ``RTAPI_UID`` (an unprivileged uid, 65534 here) and ``RTAPI_FIFO_PATH``,
+  the path of rtapi_app's socket, in a folder that uid can write (mode 1777);
+* ``[DISPLAY] DISPLAY = dummy`` and ``linuxcnc -r config.ini`` with stdin a pipe: the dummy display
+  waits for a line; closing stdin shuts LinuxCNC down (``/usr/bin/linuxcnc``, "dummy display just
+  waits for <ENTER>", then its ``Cleanup``);
+* the first ``linuxcnc.stat().poll()`` waits until the dummy display has started (polling earlier
+  can break that process's NML connection for good);
+* one LinuxCNC per computer: fixed shared-memory keys (the NML buffers 1001…1005 of
+  ``linuxcnc.nml``, HAL's ``0x48414c32``, RTAPI's ``0x48484c34``) and ``/tmp/linuxcnc.lock``.
+  axiscal takes an ``fcntl`` lock (:data:`SESSION_LOCK`) for the whole session, so two test
+  processes (pytest-xdist) never run two at once; the lock dies with its holder, and the next
+  session first removes what a killed one left (:func:`clean_leftovers`): every process carrying
+  axiscal's marker in its environment, the lock file, and those segments when nothing is attached;
+* a HAL component created in this process must ``exit()`` before LinuxCNC shuts down.
+
+With a ``COMP_FILE``, ``motor-pos-cmd = pos-cmd + trim`` (LinuxCNC ``src/emc/motion/control.c``,
+``compute_screw_comp``): the forward trim while the joint moves +, the reverse trim while it moves
+−, the last value held when stopped; :attr:`LinuxCNCAxis.log` keeps both pins at every reading.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import shutil
+import signal
+import subprocess
+import tempfile
+import time
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from string import Template
+
+import numpy as np
+
+from axiscal.errors import InputError, MeasurementError
+
+__all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "unavailable_reason", "clean_leftovers",
+           "running_processes", "leftover_segments", "SESSION_LOCK", "LINUXCNC_LOCK"]
+
+#: axiscal's own lock: one LinuxCNC session at a time on this computer (held with fcntl).
+SESSION_LOCK = Path(tempfile.gettempdir()) / "axiscal-linuxcnc.session.lock"
+#: LinuxCNC's lock file (``/usr/bin/linuxcnc``, ``LOCKFILE``).
+LINUXCNC_LOCK = Path("/tmp/linuxcnc.lock")
+#: Environment marker on every process axiscal starts (how leftovers are told from others').
+MARKER = "AXISCAL_LINUXCNC_SESSION"
+#: Shared-memory keys LinuxCNC creates: NML buffers (linuxcnc.nml), HAL ("HAL2"), RTAPI.
+SHM_KEYS = (1001, 1002, 1003, 1004, 1005, 0x48414C32, 0x48484C34)
+#: Process names of a LinuxCNC (the script, its servers, the realtime app, halcmd).
+NAMES = ("linuxcnc", "linuxcncsvr", "milltask", "io", "rtapi_app", "halcmd", "realtime")
+#: An unprivileged uid rtapi_app runs as when started by root.
+RTAPI_UID = 65534
+_UNITS_MM = {"mm": 1.0, "inch": 25.4}
+#: The final approach of :meth:`LinuxCNC.move` with ``approach``: distance (machine units) and
+#: feed (machine units per minute); 1 mm/min·60 … a step of at most 1 µm per 1 ms servo period.
+CREEP, CREEP_FEED = 0.01, 60.0
+
+
+def unavailable_reason() -> str | None:
+    """Why LinuxCNC cannot run here (one sentence), or None when it can."""
+    if not Path("/etc/debian_version").exists():
+        return "not Debian: axiscal runs LinuxCNC from Debian's linuxcnc-uspace package"
+    if os.geteuid() != 0:
+        return ("not root: axiscal starts LinuxCNC as root with RTAPI_UID (the way it was "
+                "tried); run as root")
+    if shutil.which("linuxcnc") is None:
+        return "linuxcnc-uspace is not installed: run 'make linuxcnc'"
+    try:
+        import hal  # noqa: F401
+        import linuxcnc  # noqa: F401
+    except ImportError as exc:
+        return f"LinuxCNC's Python modules do not import ({exc}): run 'make linuxcnc'"
+    return None
+
+
+def running_processes(marked_only: bool = True) -> list[int]:
+    """Live (not zombie) LinuxCNC processes: those axiscal started, or any by name."""
+    out = []
+    for d in Path("/proc").iterdir():
+        if not d.name.isdigit() or int(d.name) == os.getpid():
+            continue
+        try:
+            stat = (d / "stat").read_text()
+            if stat.rsplit(")", 1)[1].split()[0] == "Z":
+                continue
+            comm = stat[stat.index("(") + 1:stat.rindex(")")]
+            env = (d / "environ").read_bytes() if marked_only else b""
+        except (OSError, ValueError, IndexError):
+            continue
+        if (MARKER.encode() + b"=") in env or (not marked_only and comm in NAMES):
+            out.append(int(d.name))
+    return out
+
+
+def leftover_segments() -> list[int]:
+    """LinuxCNC's shared-memory keys still present (``ipcs -m``)."""
+    text = subprocess.run(["ipcs", "-m"], capture_output=True, text=True).stdout
+    keys = []
+    for line in text.splitlines():
+        cells = line.split()
+        if cells and cells[0].startswith("0x") and int(cells[0], 16) in SHM_KEYS:
+            keys.append(int(cells[0], 16))
+    return keys
+
+
+def clean_leftovers() -> list[str]:
+    """Remove what a killed session left: marked processes, the lock file, unattached segments.
+
+    Returns what was removed (for the caller to say). Refuses, with :class:`MeasurementError`,
+    when a LinuxCNC that axiscal did not start is running: one LinuxCNC per computer.
+    """
+    done = []
+    for pid in running_processes():
+        try:
+            os.kill(pid, signal.SIGKILL)
+            done.append(f"process {pid}")
+        except ProcessLookupError:
+            pass
+    _wait(lambda: not running_processes(), 5.0, "leftover LinuxCNC processes to end")
+    others = running_processes(marked_only=False)
+    if others:
+        raise MeasurementError(f"another LinuxCNC is running (pids {others}); LinuxCNC runs "
+                               "once per computer: stop it first")
+    for key in leftover_segments():
+        if subprocess.run(["ipcrm", "-M", hex(key)], capture_output=True).returncode == 0:
+            done.append(f"shared memory {hex(key)}")
+    if LINUXCNC_LOCK.exists():
+        LINUXCNC_LOCK.unlink()
+        done.append(str(LINUXCNC_LOCK))
+    return done
+
+
+@dataclass(frozen=True)
+class Reading:
+    """The joint's two HAL positions after a move, machine units.
+
+    ``trim = motor_pos_cmd − pos_cmd`` is what the compensation added.
+    """
+
+    pos_cmd: float
+    motor_pos_cmd: float
+
+    @property
+    def trim(self) -> float:
+        """The compensation LinuxCNC applied, machine units."""
+        return self.motor_pos_cmd - self.pos_cmd
+
+
+@dataclass
+class LinuxCNC:
+    """One headless LinuxCNC session on a simulated one-joint machine (a context manager).
+
+    Parameters
+    ----------
+    limits : (float, float), machine units
+        The joint's ``MIN_LIMIT`` and ``MAX_LIMIT``.
+    units : str
+        ``[TRAJ] LINEAR_UNITS``: ``mm`` or ``inch``.
+    comp_file : str, optional
+        Text of a ``COMP_FILE``; written beside the INI as ``[JOINT_0] COMP_FILE = x.comp``.
+    comp_file_type : int
+        ``[JOINT_0] COMP_FILE_TYPE`` (0 or 1).
+    letter : str
+        The axis letter (``[TRAJ] COORDINATES``).
+    velocity, acceleration : float, machine units per s and per s²
+        The joint's limits: high, so a test of hundreds of moves takes seconds (the simulated
+        drive follows any command).
+    """
+
+    limits: tuple
+    units: str = "mm"
+    comp_file: str | None = None
+    comp_file_type: int = 1
+    letter: str = "X"
+    velocity: float = 10000.0
+    acceleration: float = 1.0e6
+    ready_timeout: float = 30.0
+    folder: Path | None = field(default=None, init=False)
+    ini_text: str = field(default="", init=False)
+    _proc: object = field(default=None, init=False, repr=False)
+    _lock: object = field(default=None, init=False, repr=False)
+    _comp: object = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.units not in _UNITS_MM:
+            raise InputError(f"LinuxCNC LINEAR_UNITS {self.units!r}: use mm or inch")
+        if self.comp_file_type not in (0, 1):
+            raise InputError(f"COMP_FILE_TYPE = {self.comp_file_type!r}; LinuxCNC knows 0 and 1")
+
+    # -- session -------------------------------------------------------------------------------
+    def __enter__(self) -> "LinuxCNC":
+        why = unavailable_reason()
+        if why:
+            raise MeasurementError(f"LinuxCNC cannot run here: {why}")
+        self._lock = open(SESSION_LOCK, "w")
+        fcntl.flock(self._lock, fcntl.LOCK_EX)          # waits for another session to end
+        try:
+            clean_leftovers()
+            self._write_config()
+            self._start()
+            self._connect()
+        except BaseException:
+            self.close()
+            raise
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Shut LinuxCNC down (stdin closed; killed if it does not end) and clean up."""
+        try:
+            if self._comp is not None:
+                self._comp.exit()
+                self._comp = None
+            p = self._proc
+            if p is not None and p.poll() is None:
+                p.stdin.close()
+                try:
+                    p.wait(15)
+                except subprocess.TimeoutExpired:
+                    os.killpg(p.pid, signal.SIGKILL)
+                    p.wait(5)
+            self._proc = None
+            if self._lock is not None:
+                clean_leftovers()
+        finally:
+            if self.folder is not None:
+                shutil.rmtree(self.folder, ignore_errors=True)
+                self.folder = None
+            if self._lock is not None:
+                fcntl.flock(self._lock, fcntl.LOCK_UN)
+                self._lock.close()
+                self._lock = None
+
+    def _write_config(self) -> None:
+        self.folder = Path(tempfile.mkdtemp(prefix="axiscal-linuxcnc-"))
+        os.chmod(self.folder, 0o1777)                  # rtapi_app (RTAPI_UID) makes its socket here
+        data = resources.files("axiscal.data") / "linuxcnc"
+        comp = ""
+        if self.comp_file is not None:
+            (self.folder / "x.comp").write_text(self.comp_file)
+            comp = f"COMP_FILE = x.comp\nCOMP_FILE_TYPE = {self.comp_file_type}"
+        self.ini_text = Template((data / "axiscal_sim.ini").read_text()).substitute(
+            letter=self.letter, linear_units=self.units, velocity=repr(float(self.velocity)),
+            acceleration=repr(float(self.acceleration)), min_limit=repr(float(self.limits[0])),
+            max_limit=repr(float(self.limits[1])), joint_type="LINEAR", comp_lines=comp)
+        (self.folder / "config.ini").write_text(self.ini_text)
+        (self.folder / "axiscal_sim.hal").write_text((data / "axiscal_sim.hal").read_text())
+        (self.folder / "tool.tbl").write_text("")
+
+    def _env(self) -> dict:
+        return dict(os.environ, RTAPI_UID=str(RTAPI_UID), **{MARKER: str(os.getpid())},
+                    RTAPI_FIFO_PATH=str(self.folder / "rtapi_fifo"))
+
+    def _start(self) -> None:
+        log = open(self.folder / "linuxcnc.log", "w")
+        self._proc = subprocess.Popen(["linuxcnc", "-r", "config.ini"], cwd=self.folder,
+                                      stdin=subprocess.PIPE, stdout=log, stderr=subprocess.STDOUT,
+                                      env=self._env(), start_new_session=True)
+        log.close()
+
+        def ready():
+            if self._proc.poll() is not None:
+                raise MeasurementError(f"LinuxCNC ended while starting: {self._log_tail()}")
+            return "DUMMY DISPLAY" in (self.folder / "linuxcnc.log").read_text(errors="replace")
+
+        _wait(ready, self.ready_timeout, "LinuxCNC to start")
+
+    def _log_tail(self) -> str:
+        lines = (self.folder / "linuxcnc.log").read_text(errors="replace").strip().splitlines()
+        return " | ".join(lines[-3:]) or "no output"
+
+    def _connect(self) -> None:
+        import hal
+        import linuxcnc
+
+        self._stat, self._cmd = linuxcnc.stat(), linuxcnc.command()
+        comp = hal.component("axiscal-laser")
+        for pin in ("motor-pos-cmd", "pos-cmd"):
+            comp.newpin(pin, hal.HAL_FLOAT, hal.HAL_IN)
+        comp.ready()
+        self._comp = comp
+        for sig, pin in (("j0-motor-pos-cmd", "motor-pos-cmd"), ("j0-pos-cmd", "pos-cmd")):
+            subprocess.run(["halcmd", "net", sig, f"axiscal-laser.{pin}"], env=self._env(),
+                           check=True, capture_output=True)
+        c = self._cmd
+        c.state(linuxcnc.STATE_ESTOP_RESET)
+        c.state(linuxcnc.STATE_ON)
+        c.wait_complete()
+        c.mode(linuxcnc.MODE_MANUAL)
+        c.wait_complete()
+        c.teleop_enable(0)
+        c.wait_complete()
+        c.home(-1)
+
+        def homed():
+            self._stat.poll()
+            return bool(self._stat.homed[0])
+
+        _wait(homed, 10.0, "LinuxCNC to home the joint")
+        c.mode(linuxcnc.MODE_MDI)
+        c.wait_complete()
+
+    # -- use -----------------------------------------------------------------------------------
+    def mdi(self, line: str, timeout: float = 30.0) -> None:
+        """Run one MDI line and wait until it is done."""
+        self._cmd.mdi(line)
+        if self._cmd.wait_complete(timeout) == -1:
+            raise MeasurementError(f"LinuxCNC did not finish {line!r} within {timeout:g} s")
+        self._stat.poll()
+        if self._stat.state != 1:        # linuxcnc.RCS_DONE
+            raise MeasurementError(f"LinuxCNC refused {line!r} (state {self._stat.state})")
+
+    def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
+        """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
+
+        ``approach`` ±1: the last :data:`CREEP` machine units at :data:`CREEP_FEED` per minute
+        (G1), arriving moving that way. LinuxCNC holds, once the joint stops, the trim of the last
+        servo period in which it moved (``compute_screw_comp`` takes the direction from the
+        joint's velocity), computed one step short of the target: at full speed and a high
+        acceleration that step is tenths of a millimetre and the held trim is off by the trim's
+        slope times it; the creep keeps the step ≤ CREEP_FEED/60 × 1 ms.
+        """
+        if approach:
+            self.mdi(f"G0 {self.letter}{position - approach * CREEP:.9f}")
+            self.mdi(f"G1 {self.letter}{position:.9f} F{CREEP_FEED:g}")
+        else:
+            self.mdi(f"G0 {self.letter}{position:.9f}")
+        if dwell > 0:
+            self.mdi(f"G4 P{dwell:g}")
+        return self.read()
+
+    def read(self) -> Reading:
+        """The joint's ``pos-cmd`` and ``motor-pos-cmd`` now (machine units)."""
+        return Reading(float(self._comp["pos-cmd"]), float(self._comp["motor-pos-cmd"]))
+
+
+@dataclass
+class LinuxCNCAxis:
+    """A simulated machine axis driven by LinuxCNC: the procedures' axis interface.
+
+    ``move`` commands the target through LinuxCNC, approaching from ``direction`` (from
+    ``overrun`` beyond when the joint would not otherwise arrive moving that way, as
+    ISO 230-2:2014 §3.1 and Figure 1 approach a target), reads ``motor-pos-cmd`` and returns the
+    position the machine reaches there: ``motor-pos-cmd`` plus the axis's error at it, for the
+    direction the joint last moved (its backlash), with its repeatability noise. Every reading is
+    kept in :attr:`log` as ``(commanded mm, direction, Reading)``.
+
+    Parameters
+    ----------
+    cnc : LinuxCNC
+    axis : LinearAxis
+        The machine behind the drive (SI).
+    overrun : float, machine units
+    dwell : float, seconds
+        G4 after each move (the simulated drive settles at once; a real machine needs the plan's).
+    """
+
+    cnc: LinuxCNC
+    axis: object
+    overrun: float = 5.0
+    dwell: float = 0.0
+    log: list = field(default_factory=list)
+    _here: float = field(default=0.0, init=False)
+    _moving: int = field(default=1, init=False)
+
+    @property
+    def name(self) -> str:
+        """The axis name."""
+        return self.axis.name
+
+    @property
+    def repeatability_sigma(self) -> float:
+        """The machine's repeatability, SI."""
+        return self.axis.repeatability_sigma
+
+    @property
+    def travel(self):
+        """The machine's travel, SI."""
+        return self.axis.travel
+
+    def check_in_travel(self, position) -> None:
+        """Commanded positions (SI) must lie in the machine's travel."""
+        self.axis.check_in_travel(position)
+
+    def move(self, position, direction, rng: np.random.Generator | None = None,
+             time: float = 0.0):
+        """Reach ``position`` (SI) moving in ``direction`` (±1); the actual position, SI."""
+        to_m = _UNITS_MM[self.cnc.units] * 1e-3
+        target = float(position) / to_m
+        d = 1 if direction > 0 else -1
+        if np.sign(target - self._here) != d:
+            self._go(target - d * self.overrun)
+        r = self._go(target, d)
+        self.log.append((target * _UNITS_MM[self.cnc.units], d, r))
+        actual = self.axis.move(r.motor_pos_cmd * to_m, self._moving, rng, time=time)
+        return float(actual)
+
+    def _go(self, target: float, approach: int = 0):
+        r = self.cnc.move(target, self.dwell, approach)
+        if target != self._here:
+            self._moving = 1 if target > self._here else -1
+        self._here = target
+        return r
+
+
+def _wait(ok, timeout: float, what: str) -> None:
+    end = time.monotonic() + timeout
+    while not ok():
+        if time.monotonic() > end:
+            raise MeasurementError(f"gave up waiting {timeout:g} s for {what}")
+        time.sleep(0.02)
