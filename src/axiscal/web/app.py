@@ -145,7 +145,9 @@ def render(request: Request, template: str, title: str, status: int = 200, **con
     s = getattr(request.state, "session", None) or {}
     ctx = {"request": request, "title": title, "csrf": s.get("csrf", ""),
            "user": s.get("name"), "role": s.get("role"),
-           "can_write": s.get("role") == "engineer", **context}
+           "can_write": s.get("role") == "engineer",
+           "accounts": bool(request.app.state.users and request.app.state.users.users),
+           **context}
     return request.app.state.templates.TemplateResponse(request, template, ctx,
                                                         status_code=status)
 
