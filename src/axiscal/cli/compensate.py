@@ -7,7 +7,9 @@ Three uses:
   ``axiscal iso230-2 --json`` result, writes it in the controller's format and prints points,
   spacing, range, reference point, largest correction and what the controller must be told.
 * ``axiscal compensate --verify CONFIG.toml`` runs measure → compensate → re-measure on the
-  simulated machine of the configuration and prints A, E, M, R, B before and after.
+  simulated machine of the configuration and prints A, E, M, R, B before and after; with
+  ``--controller linuxcnc --on-controller`` both tests run through a real, headless LinuxCNC
+  (issue 32) and the table is loaded as its ``[JOINT_0] COMP_FILE``.
 * ``axiscal compensate --read TABLE --controller NAME [DATA_OR_RESULT]`` reads a table back and,
   with a data file or result, compares it with the deviations it should correct; with
   ``--to NAME [--out FILE]`` it writes the table read in another controller's format (a Renishaw
@@ -34,7 +36,11 @@ itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, `
 ``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
 ``B_mean``), ``reduction``, ``budget_E``,
 ``spacing_residual``, ``sigma``, ``between_targets_E``, ``truth_before``, ``truth_after`` (E,
-E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``. Squareness: the
+E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``; with
+``--on-controller`` also ``applied`` (per target and direction: ``target`` mm, ``direction``,
+``table`` and ``applied`` µm, ``difference`` µm, the largest over the runs, ``n``) and
+``on_controller`` (``controller``, ``comp_file_type``, ``linear_units``, ``dwell_s``,
+``applied_unit``, ``largest_applied_difference``, ``n_applied``). Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
 (``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
@@ -79,6 +85,7 @@ def compensate(
     option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001, unit=inch (840D: MD10240 = 0), axis_number=2 and reference_position=15 (reading a Fanuc tape)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
+    on_controller: bool = typer.Option(False, "--on-controller", help="With --verify --controller linuxcnc: run both ISO 230-2:2014 tests through a real LinuxCNC (headless, the machine's errors applied to joint.0.motor-pos-cmd), the file loaded as [JOINT_0] COMP_FILE (-o file_type=0|1, default 1; -o unit=mm|inch, default mm); reports the trim LinuxCNC applied at every target and direction."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
     to: Optional[str] = typer.Option(None, "--to", help="With --read: write the table read in this controller's format (siemens-840d, fanuc, heidenhain, linuxcnc, csv, renishaw-ren), to --out or the terminal."),
     ini: Optional[Path] = typer.Option(None, "--ini", help="With --read of a LinuxCNC file: the INI whose [JOINT_n] COMP_FILE names it (default: the *.ini beside it); its [TRAJ] LINEAR_UNITS or ANGULAR_UNITS, [JOINT_n] UNITS, TYPE and COMP_FILE_TYPE are used (LinuxCNC, INI Configuration)."),
@@ -108,7 +115,8 @@ def compensate(
     _refuse_unused(ctx, "verify" if verify is not None else "read" if read is not None
                    else "squareness" if squareness is not None else "table")
     if verify is not None:
-        return _verify(verify, seed, controller, spacing, opts, out, json_out, plot, report)
+        return _verify(verify, seed, controller, spacing, opts, out, json_out, plot, report,
+                       on_controller)
     if read is not None:
         return _read(read, controller, source, opts, json_out, ini, to=to, out=out)
     if squareness is not None:
@@ -133,7 +141,7 @@ def compensate(
 
 # -- the three actions -----------------------------------------------------------------------
 def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=None,
-            report=None) -> None:
+            report=None, on_controller=False) -> None:
     from axiscal.compensation.loop import run_compensation_loop
     from axiscal.io._files import load_toml
 
@@ -144,7 +152,14 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
         over.update(options=_guessed(opts))
     if spacing is not None:
         over.update(spacing=spacing)
-    r = run_compensation_loop(load_toml(config), seed=seed, **over)
+    extra = {}
+    if on_controller:
+        from axiscal.compensation.on_controller import run_on_linuxcnc, summary
+
+        r, applied, hook = run_on_linuxcnc(load_toml(config), seed=seed, **over)
+        extra = summary(applied, hook)
+    else:
+        r = run_compensation_loop(load_toml(config), seed=seed, **over)
     _write_files(r.controller_file, out)
     if plot is not None:
         from axiscal.report.compensation_plots import save_compensation_plot
@@ -156,7 +171,7 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
              spacing_residual=r.spacing_residual, sigma=r.sigma,
              between_targets_E=r.between_targets_E, truth_before=r.truth_before,
              truth_after=r.truth_after, unit=r.unit, n_points=r.table.n_points,
-             spacing=r.table.spacing, seed=seed, sign=r.sign)
+             spacing=r.table.spacing, seed=seed, sign=r.sign, **extra)
     if report is not None:
         from axiscal.report.compensation_plots import compensation_figure
         from axiscal.report.html import write_result_report
@@ -172,6 +187,8 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
         print_json(d)
         return
     _render_loop(r)
+    if extra:
+        _render_applied(extra)
 
 
 def _read(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None) -> None:
@@ -322,7 +339,8 @@ _USES = {
     "table": ("a table from SOURCE", {"source", "controller", "spacing", "bidirectional",
               "resolution", "start", "end", "extrapolation", "reference", "travel", "axis",
               "option", "out", "json_out"}),
-    "verify": ("--verify", {"verify", "controller", "spacing", "option", "out", "seed", "plot",
+    "verify": ("--verify", {"verify", "on_controller", "controller", "spacing", "option", "out",
+               "seed", "plot",
                "report", "json_out"}),
     "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini", "to", "out"}),
     "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
@@ -530,6 +548,15 @@ def _render_loop(r) -> None:
               f"+ repeatability (σ = {r.sigma:.3f} {u}, {r.n_runs} runs) + rounding.")
     con.print(f"Truth: E {r.truth_before['E']:.3f} → {r.truth_after['E']:.3f} {u} at the targets; "
               f"{r.between_targets_E:.3f} {u} over the whole range.")
+
+
+def _render_applied(extra) -> None:
+    c = extra["on_controller"]
+    typer.echo(f"Measured through {c['controller']}: [JOINT_0] COMP_FILE_TYPE = "
+               f"{c['comp_file_type']}, [TRAJ] LINEAR_UNITS = {c['linear_units']}, dwell "
+               f"{c['dwell_s']:g} s. Trim applied (motor-pos-cmd − pos-cmd) against the table at "
+               f"{c['n_applied']} targets and directions: largest difference "
+               f"{c['largest_applied_difference']:.2g} µm (--json lists each).")
 
 
 def register(app: typer.Typer) -> None:

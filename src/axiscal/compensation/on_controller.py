@@ -144,3 +144,16 @@ def run_on_linuxcnc(config: dict, seed: int = 1, **overrides):
     hook = OnLinuxCNC(file_type=int(opts.get("file_type", 1)), units=units)
     r = run_compensation_loop(config, seed=seed, machine=hook, **overrides)
     return r, applied_trims(hook.logs[-1], r.table, units), hook
+
+
+def summary(applied: list[AppliedTrim], hook: OnLinuxCNC) -> dict:
+    """What the ``--json`` of ``compensate --verify --on-controller`` adds: ``applied`` (each
+    target and direction) and ``on_controller`` (the INI settings used, shown since they move the
+    numbers, and the largest |applied − table|, µm)."""
+    worst = max((a.difference for a in applied), default=float("nan"))
+    return dict(applied=[a.to_dict() for a in applied],
+                on_controller=dict(controller="LinuxCNC (linuxcnc-uspace), headless simulation",
+                                   comp_file_type=hook.file_type, linear_units=hook.units,
+                                   dwell_s=hook.dwell, applied_unit="um",
+                                   largest_applied_difference=worst,
+                                   n_applied=len(applied)))
