@@ -11,7 +11,7 @@ import math
 from axiscal.errors import DataFormatError
 
 __all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit", "nesting_depth",
-           "loads_json", "MAX_NESTING"]
+           "loads_json", "MAX_NESTING", "comment_tokens"]
 
 
 #: Largest magnitude a measured value may have, in any unit (a deviation of 1e308 is a typing
@@ -179,3 +179,33 @@ def loads_json(text: str, source: str | None = None):
         raise DataFormatError(f"not valid JSON: {exc.msg}", source, exc.lineno) from None
     except RecursionError:   # pragma: no cover - the depth check comes first
         raise DataFormatError("brackets nest too deep", source) from None
+
+
+#: Longest ``# key=value ...`` line read for declarations, characters. shlex takes time growing
+#: with the square of a token's length (a 1 MB line: minutes); a metadata line is a few hundred.
+MAX_COMMENT = 8192
+
+
+def comment_tokens(text: str, source: str | None = None, line: int | None = None) -> list[str]:
+    """The shell-like tokens of a comment line's text (``key=value`` and ``key="a b"``); a line
+    without ``=`` declares nothing and is not split; a line of declarations longer than
+    :data:`MAX_COMMENT` is a :class:`DataFormatError`.
+
+    Examples
+    --------
+    >>> comment_tokens(' machine="VMC 800" axis=X')
+    ['machine=VMC 800', 'axis=X']
+    >>> comment_tokens(" " + "x" * 10**6)
+    []
+    """
+    import shlex
+
+    if "=" not in text:
+        return []
+    if len(text) > MAX_COMMENT:
+        raise DataFormatError(f"a comment line of {len(text)} characters holding '=': "
+                              f"declarations (key=value) fit in {MAX_COMMENT}", source, line)
+    try:
+        return shlex.split(text)
+    except ValueError:
+        return []

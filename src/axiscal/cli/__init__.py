@@ -67,6 +67,8 @@ class AxiscalGroup(typer.core.TyperGroup):
         return super().get_command(ctx, name)
 
     def parse_args(self, ctx, args):  # noqa: D401 - click API
+        for arg in args:
+            _text_argument(arg)
         try:
             return super().parse_args(ctx, args)
         except UsageError as exc:
@@ -117,6 +119,23 @@ def _with_source(exc: AxiscalError) -> str:
         if len(sources) == 1 and not any(message.startswith(s) for s in sources):
             return f"{sources[0]}: {message}"
     return message
+
+
+def _text_argument(arg: str) -> None:
+    """Refuse an argument that is not text: bytes that are not UTF-8 (Python keeps them as lone
+    surrogates, which no file, database or report can hold) or a NUL (no path or name has one)."""
+    try:
+        arg.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        bad = arg[:exc.start].encode("utf-8", "replace")[-30:].decode()
+        _refuse(f"an argument is not UTF-8 text (after {bad!r}); give names and paths in UTF-8")
+    if "\x00" in arg:
+        _refuse(f"an argument holds a NUL character ({one_line(repr(arg), 60)})")
+
+
+def _refuse(message: str) -> None:
+    typer.echo(f"axiscal: error: {message}", err=True)
+    raise typer.Exit(EXIT_USER_ERROR)
 
 
 def _usage_error(exc) -> None:

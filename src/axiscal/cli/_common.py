@@ -60,6 +60,10 @@ def out_path(path: Path, what: str, inputs=None) -> Path:
     try:
         if path.exists() and path.is_dir():
             raise InputError(f"{what} {path} is a folder; give a file name")
+        if path.exists() and not path.is_file():   # a FIFO or a device: writing would block
+            raise InputError(f"{what} {path} is not a regular file; give a file name")
+        if path.is_symlink() and not path.exists():
+            raise InputError(f"{what} {path} is a symbolic link to nothing (or a loop of links)")
         if not path.parent.exists():
             raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
         # a read-only or pseudo file system refuses here, before any work is done

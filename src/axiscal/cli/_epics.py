@@ -65,6 +65,8 @@ def is_camonitor_log(path: Path) -> bool:
     """True if ``path`` is a readable file whose first line reads like camonitor's."""
     from axiscal.io.epics import looks_like_camonitor
 
+    if not Path(path).is_file():   # a FIFO would block the open; the reader names the fault
+        return False
     try:
         with open(path, "rb") as fh:
             head = fh.read(4096).decode("utf-8", errors="replace")

@@ -58,6 +58,10 @@ def demo(
 
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out} exists and is not a folder")
+    if db:   # opened (driver, server, schema) before anything is written
+        from axiscal.store import open_store
+
+        open_store(db)
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

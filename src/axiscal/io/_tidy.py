@@ -7,7 +7,6 @@ non-comment line is the header. Used by :mod:`axiscal.io.straightness` and
 
 from __future__ import annotations
 
-import shlex
 
 from axiscal import units
 from axiscal._parse import csv_cells, finite_number
@@ -69,7 +68,7 @@ def header_of(stripped: str, columns: tuple[str, ...], source: str, lineno: int)
 def take_comment(meta: dict, stripped: str, keys: set[str], source: str, lineno: int) -> None:
     """Add a ``# key=value ...`` line's declarations to ``meta``; a key declared twice with two
     values (two files pasted together?) is refused naming the line."""
-    for key, value in _comment(stripped[1:], keys).items():
+    for key, value in _comment(stripped[1:], keys, source, lineno).items():
         if meta.get(key, value) != value:
             raise DataFormatError(f"{key}={value} contradicts {key}={meta[key]} declared above",
                                   source, lineno)
@@ -89,13 +88,11 @@ def length_factor(unit: str, key: str, source: str) -> float:
         raise DataFormatError(f"{key}={unit!r}: {exc}", source) from None
 
 
-def _comment(text: str, keys: set[str]) -> dict[str, str]:
-    try:
-        tokens = shlex.split(text)
-    except ValueError:
-        return {}
+def _comment(text: str, keys: set[str], source=None, lineno=None) -> dict[str, str]:
+    from axiscal._parse import comment_tokens
+
     out = {}
-    for tok in tokens:
+    for tok in comment_tokens(text, source, lineno):
         if "=" in tok:
             k, v = tok.split("=", 1)
             if k.strip().lower() in keys:

@@ -381,12 +381,10 @@ def format_positioning_csv(ds: PositioningDataset) -> str:
 
 
 def _parse_comment(text: str, source: str, lineno: int) -> dict[str, str]:
+    from axiscal._parse import comment_tokens
+
     out = {}
-    try:
-        tokens = shlex.split(text)
-    except ValueError:
-        return out
-    for tok in tokens:
+    for tok in comment_tokens(text, source, lineno):
         if "=" in tok:
             k, v = tok.split("=", 1)
             k = k.strip().lower()

@@ -99,8 +99,8 @@ def make_engine(url: str):
     whole) first; see the module docstring."""
     from sqlalchemy import create_engine, event
 
-    if not url.startswith("sqlite"):
-        return create_engine(url, pool_pre_ping=True), False
+    if url.split(":", 1)[0] not in ("sqlite", "sqlite+pysqlite"):   # another driver (pysqlcipher
+        return create_engine(url, pool_pre_ping=True), False    # ...) is checked before a file
     path = sqlite_path(url)
     read_only = False
     if path is not None:
