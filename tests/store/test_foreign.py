@@ -188,3 +188,10 @@ def test_ids_outside_64_bits_name_no_test(tmp_path, test_id):
         s.get(test_id)
     with pytest.raises(NotFoundError, match="no test"):
         s.add_table(test_id, "csv", "x.csv", "")
+
+
+def test_a_page_beyond_64_bits_is_empty(tmp_path):
+    s = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    s.add(_raw(_dataset(np.random.default_rng(6))), "x.csv")
+    assert s.tests(offset=10**20) == [] and s.tests(offset=2**63, limit=10) == []
+    assert len(s.tests(limit=10**20)) == 1

@@ -238,8 +238,10 @@ class Store:
             q = q.where(Test.kind == kind)
         if since:
             q = q.where(Test.tested_at >= since)
+        if offset >= 2**63:                   # no test that far (SQLite could not even bind it)
+            return []
         if limit:
-            q = q.limit(limit)
+            q = q.limit(min(limit, 2**63 - 1))
         if offset:
             q = q.offset(offset)
         with self._guard("read"), self._session() as s:      # plain rows: fast for thousands
