@@ -86,3 +86,20 @@ def shot(driver, name: str) -> Path:
     p = ARTIFACTS / f"{name}.png"
     driver.save_screenshot(str(p))
     return p
+
+
+@pytest.fixture
+def users(tmp_path):
+    """A users file with an engineer (eng) and a viewer (view)."""
+    from axiscal.web.security import UserFile
+
+    f = UserFile.load(tmp_path / "users.toml")
+    f.add("eng", "engineer", "correct horse battery")
+    f.add("view", "viewer", "staple battery horse")
+    return tmp_path / "users.toml"
+
+
+def log_in(client, name, password, **kw):
+    """POST /login by a TestClient; the answer, not followed."""
+    return client.post("/login", data={"username": name, "password": password, "next": "/"},
+                       follow_redirects=False, **kw)

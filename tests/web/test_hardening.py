@@ -15,6 +15,7 @@ from fastapi.testclient import TestClient
 from axiscal.web.app import create_app
 from axiscal.web.security import UserFile
 from axiscal.web.sessions import FREE_FAILURES, LoginThrottle, Sessions
+from tests.web.conftest import log_in as _login
 
 LOCAL = "http://127.0.0.1"
 
@@ -30,19 +31,6 @@ def _csrf(client, path="/plan", **kw) -> str:
 def _stored(client) -> int:
     """Tests in the history behind the client's application."""
     return len(client.app.state.store.tests(limit=1000))
-
-
-@pytest.fixture
-def users(tmp_path):
-    f = UserFile.load(tmp_path / "users.toml")
-    f.add("eng", "engineer", "correct horse battery")
-    f.add("ann", "engineer", "staple battery horse")
-    return tmp_path / "users.toml"
-
-
-def _login(client, name, password, **kw):
-    return client.post("/login", data={"username": name, "password": password, "next": "/"},
-                       follow_redirects=False, **kw)
 
 
 def _positioning_file() -> bytes:

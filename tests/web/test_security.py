@@ -12,24 +12,12 @@ from fastapi.testclient import TestClient
 
 from axiscal.errors import AxiscalError
 from axiscal.web.app import create_app
-from axiscal.web.security import MAX_UPLOAD_BYTES, UserFile, check_upload, is_loopback
+from axiscal.web.security import MAX_UPLOAD_BYTES, check_upload, is_loopback
+from tests.web.conftest import log_in as _login
 
 
 def _csrf(client, path="/plan") -> str:
     return re.search(r'name="csrf-token" content="([^"]*)"', client.get(path).text).group(1)
-
-
-@pytest.fixture
-def users(tmp_path):
-    f = UserFile.load(tmp_path / "users.toml")
-    f.add("eng", "engineer", "correct horse battery")
-    f.add("view", "viewer", "staple battery horse")
-    return tmp_path / "users.toml"
-
-
-def _login(client, name, password):
-    return client.post("/login", data={"username": name, "password": password, "next": "/"},
-                       follow_redirects=False)
 
 
 def test_serving_beyond_localhost_needs_accounts(tmp_path):
