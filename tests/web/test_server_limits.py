@@ -4,6 +4,7 @@ frees itself; a declared 200 MB upload is refused before its body is sent (issue
 
 from __future__ import annotations
 
+import re
 import socket
 import time
 import urllib.request
@@ -20,7 +21,8 @@ def limited(tmp_path_factory):
     proc, base = start_server(tmp_path_factory.mktemp("limits"),
                               "--header-timeout", str(HEADER_TIMEOUT),
                               "--body-timeout", str(BODY_TIMEOUT),
-                              "--max-connections", str(MAX_CONNECTIONS))
+                              "--max-connections", str(MAX_CONNECTIONS),
+                              "--allowed-host", "Bench.Shop.Local")
     yield base
     stop_server(proc)
 
@@ -89,11 +91,27 @@ def test_a_declared_200_mb_upload_is_refused_before_its_body(limited):
     assert b"200 MiB" in answer and b"at most 21 MiB" in answer
 
 
-def test_the_host_check_holds_on_the_real_server(limited):
-    s = _open(limited, b"GET /plan HTTP/1.1\r\nHost: evil.example\r\nConnection: close\r\n\r\n")
+def _get(base: str, host: bytes) -> bytes:
+    s = _open(base, b"GET /plan HTTP/1.1\r\nHost: " + host + b"\r\nConnection: close\r\n\r\n")
     answer = _closed_within(s, 5)
     s.close()
+    return answer
+
+
+def test_the_host_check_holds_on_the_real_server(limited):
+    answer = _get(limited, b"evil.example")
     assert answer.startswith(b"HTTP/1.1 400") and b'csrf-token" content=""' in answer
+    answer = _get(limited, b"bench.shop.local:" + str(_port(limited)).encode())   # --allowed-host
+    assert answer.startswith(b"HTTP/1.1 200") and re.search(rb'csrf-token" content="\w+', answer)
+
+
+def test_every_interface_answers_to_the_computers_names():
+    from axiscal.web.guards import allowed_hosts
+
+    names = allowed_hosts("0.0.0.0", ["[FE80::1]"])
+    assert socket.gethostname().lower() in names and "fe80::1" in names
+    assert {"127.0.0.1", "::1", "localhost"} <= names and "evil.example" not in names
+    assert allowed_hosts("192.168.1.20") == {"127.0.0.1", "::1", "localhost", "192.168.1.20"}
 
 
 def test_serve_defaults_are_the_library_limits():
