@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 OUT    ?= demo-output
 
-.PHONY: setup sysdeps linuxcnc demo test bench shots clean
+.PHONY: setup sysdeps linuxcnc demo test bench fuzz shots clean
 
 setup: $(STAMP)
 
@@ -56,6 +56,11 @@ test: $(STAMP) sysdeps linuxcnc
 
 bench: $(STAMP) sysdeps
 	$(PY) benchmarks/run.py
+
+# Every hostile case the CLI fuzz harness derives from the interface (make test runs a seeded
+# sample of them); prints the count of cases and commands covered and every fault found.
+fuzz: $(STAMP) sysdeps
+	$(PY) tests/cli/test_cli_fuzz.py --workers 2
 
 # Render the demo report to PNG with headless Chromium (installed from Debian if missing),
 # so a person can look at what a customer would see.

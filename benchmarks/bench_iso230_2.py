@@ -1,7 +1,13 @@
 """Latency of ``axiscal iso230-2 FILE --json`` on a 41-target, 5-run bidirectional file.
 
 Reference, measured in the same run: ``python -c "import numpy"`` (the floor any NumPy tool pays).
-Aim (issue 2): under 2x that reference. Also the in-process evaluation throughput.
+Aim (issue 30): at most 1.5x that reference. Also the in-process evaluation throughput.
+
+Both are timed with Python's bytecode cache written and used, as after ``pip install`` (which
+compiles every module): numpy's is there from its install, axiscal's (an editable checkout) is
+written by a first, untimed run. With ``PYTHONDONTWRITEBYTECODE=1`` in the environment an
+editable axiscal would compile its 90 modules on every start (about 0.12 s) while numpy does not;
+that is no cost a user pays.
 """
 
 from __future__ import annotations
@@ -16,13 +22,18 @@ import numpy as np
 
 
 def _best_wall(cmd: list[str], repeat: int = 15) -> float:
-    """Fastest of ``repeat`` runs: the intrinsic cost, least disturbed by other load."""
+    """Fastest of ``repeat`` runs (after one untimed run that writes the bytecode cache): the
+    intrinsic cost, least disturbed by other load."""
+    import os
+
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     times = []
-    for _ in range(repeat):
+    for _ in range(repeat + 1):
         t0 = time.perf_counter()
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                       env=env)
         times.append(time.perf_counter() - t0)
-    return min(times)
+    return min(times[1:])
 
 
 def _write_file(folder: Path) -> Path:
@@ -47,7 +58,7 @@ def run() -> list[dict]:
         cli = _best_wall([sys.executable, "-m", "axiscal", "iso230-2", str(f), "--json"])
         rows.append(dict(name="iso230-2 --json latency, 41 targets x 5 runs x 2 dirs",
                          value=cli * 1e3, unit="ms", reference=f"python -c 'import numpy' {ref * 1e3:.0f} ms (best of 15 each)",
-                         ratio=cli / ref, aim="ratio < 2"))
+                         ratio=cli / ref, aim="ratio <= 1.5"))
     from axiscal.datasets import PositioningDataset
     from axiscal.standards.iso230_2 import evaluate
 
