@@ -66,8 +66,8 @@ NAMES = ("linuxcnc", "linuxcncsvr", "milltask", "io", "rtapi_app", "halcmd", "re
 #: An unprivileged uid rtapi_app runs as when started by root.
 RTAPI_UID = 65534
 _UNITS_MM = {"mm": 1.0, "inch": 25.4}
-#: The final approach of :meth:`LinuxCNC.move` with ``approach``: distance (machine units) and
-#: feed (machine units per minute); 1 mm/min·60 … a step of at most 1 µm per 1 ms servo period.
+#: The final approach of :meth:`LinuxCNC.move` with ``approach``: distance (mm) and feed
+#: (mm/min): 1 mm/s, a step of at most 1 µm per 1 ms servo period.
 CREEP, CREEP_FEED = 0.01, 60.0
 
 
@@ -330,16 +330,17 @@ class LinuxCNC:
     def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
 
-        ``approach`` ±1: the last :data:`CREEP` machine units at :data:`CREEP_FEED` per minute
-        (G1), arriving moving that way. LinuxCNC holds, once the joint stops, the trim of the last
+        ``approach`` ±1: the last :data:`CREEP` mm at :data:`CREEP_FEED` mm/min (G1, in the
+        machine's unit), arriving moving that way. LinuxCNC holds, once the joint stops, the trim of the last
         servo period in which it moved (``compute_screw_comp`` takes the direction from the
         joint's velocity), computed one step short of the target: at full speed and a high
         acceleration that step is tenths of a millimetre and the held trim is off by the trim's
-        slope times it; the creep keeps the step ≤ CREEP_FEED/60 × 1 ms.
+        slope times it; the creep keeps the step ≤ CREEP_FEED/60 × 1 ms (1 µm).
         """
         if approach:
-            self.mdi(f"G0 {self.letter}{position - approach * CREEP:.9f}")
-            self.mdi(f"G1 {self.letter}{position:.9f} F{CREEP_FEED:g}")
+            k = _UNITS_MM[self.units]
+            self.mdi(f"G0 {self.letter}{position - approach * CREEP / k:.9f}")
+            self.mdi(f"G1 {self.letter}{position:.9f} F{CREEP_FEED / k:.6g}")
         else:
             self.mdi(f"G0 {self.letter}{position:.9f}")
         if dwell > 0:
