@@ -182,9 +182,10 @@ def positioning_certificate(
     Notes
     -----
     Order of the page: verdict, identification, conditions, instruments, uncertainty budget,
-    figure, deviations per target, assumptions and deviations, then one block that is never
-    split across pages: the results with U and k, the statements, the signatory and the end
-    mark (the signature always stands with the results it signs).
+    figure, deviations per target, assumptions and deviations, statements, then one block that
+    is never split across pages: the results with U and k, the signatory and the end mark (the
+    signature always stands with the results it signs). The block is kept under half a page,
+    so the page before it is never left more than half empty.
     """
     from axiscal.report.plots import iso230_2_figure
     from axiscal.standards.iso14253_1 import overall
@@ -219,8 +220,8 @@ def positioning_certificate(
     )
     _per_target(rep, result)
     _assumptions(rep, dataset, result, budget, info)
+    rep.add_html(_statements(info, decisions, rule_text))
     rep.add_html('<div class="closing">' + _results(result, budget, decisions, info)
-                 + _statements(info, decisions, rule_text)
                  + _signatures(info, info.operator or md.operator) + "</div>")
     return rep
 
