@@ -241,7 +241,7 @@ def _validation_words(request: Request, errors) -> tuple[str, int]:
     if where == "path":
         return f"no such page: {request.url.path[:80]!r} names nothing here", 404
     if request.url.path == "/compare":
-        return "choose two tests to compare (tick two boxes in a machine's list)", 400
+        return "choose two tests to compare: a first and a second in a machine's list", 400
     value = str(err.get("input", ""))[:40]
     if err.get("type") == "missing":
         return f"the address lacks {name!r}", 400
