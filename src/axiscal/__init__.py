@@ -6,9 +6,37 @@ instrument and machine.
 
 The package is layered (see the README): ``errors``, ``units``, ``datasets`` -> ``physics`` ->
 ``standards`` -> ``machines`` -> ``instruments`` -> ``procedures`` -> ``compensation`` ->
-``io``/``report``/``store`` -> ``cli``/``web``. A layer imports only from the layers before it.
+``io``/``report``/``store`` -> ``api`` -> ``cli``/``web``. A layer imports only from the layers
+before it.
+
+The public API (:mod:`axiscal.api`, the only stable surface) is at the top: ``axiscal.read``,
+``axiscal.evaluate``, ``axiscal.simulate``, ``axiscal.compensation_table``,
+``axiscal.write_table``, ``axiscal.History``. Its names are imported on first use, so
+``import axiscal`` (and the command line's start-up) stays light.
 """
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__"]
+__all__ = ["__version__", "read", "evaluate", "simulate", "compensation_table", "write_table",
+           "History", "Evaluation", "Simulation"]
+
+if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
+    from axiscal.api import (Evaluation, History, Simulation, compensation_table, evaluate,
+                             read, simulate, write_table)
+
+
+def __getattr__(name: str) -> Any:
+    """The public API's names, imported from :mod:`axiscal.api` when first used (PEP 562)."""
+    if name in __all__[1:]:
+        from axiscal import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'axiscal' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(list(globals()) + __all__[1:])

@@ -23,6 +23,7 @@ import typer
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.io.results import standard_json as _entry_json  # the library builds the JSON
 
 __all__ = ["register"]
 
@@ -154,17 +155,6 @@ def _iso_outputs(ds, plot, report, verdicts, budget) -> None:
         add_uncertainty(rep, budget, verdicts,
                         [p for p, v in result.parameters().items() if v is not None])
         rep.write(report)
-
-
-def _entry_json(std, res) -> dict:
-    evaluated = not isinstance(res, str)
-    params = {} if not evaluated else {
-        name: {"value": v, "unit": u, "description": d}
-        for name, (v, u, d) in res.parameters().items()}
-    return {"standard": std.key, "title": std.title, "evaluated": evaluated, "parameters": params,
-            "not_evaluated": dict(res.not_evaluated) if evaluated else {},
-            "warnings": list(res.warnings) if evaluated else [],
-            "reason": None if evaluated else res}
 
 
 def _render(results, ds, title, verdicts, budget=None) -> None:

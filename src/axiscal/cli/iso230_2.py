@@ -36,6 +36,7 @@ from axiscal.cli._certificate import DRAFT, JOB, PAPER, RULE
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.io.results import result_json, verdicts_json  # the library builds the JSON
 
 __all__ = ["register", "result_json", "render_result"]
 
@@ -178,49 +179,6 @@ def with_uncertainty_options(cfg: dict, items: List[str], drift_check: Path | No
         except ValueError:
             table[name] = value
     return {**cfg, "uncertainty": table} if items or drift_check is not None else cfg
-
-
-def verdicts_json(verdicts) -> dict:
-    """The acceptance part of the JSON output (ISO 14253-1 decisions)."""
-    from axiscal.standards.iso14253_1 import overall
-
-    out = overall(verdicts)
-    from axiscal.standards.iso230_9 import format_uncertainty
-
-    return {"acceptance": [{"parameter": v.parameter, "value": v.value, "tolerance": v.upper,
-                            "U": v.U, "U_display": format_uncertainty(v.U),
-                            "outcome": v.outcome.value if v.outcome else None,
-                            "passed": v.passed} for v in verdicts],
-            "decision_rule": verdicts[0].rule.value if verdicts else None,
-            "accepted": None if out is None else {"conformance proven": True,
-                                                  "non-conformance proven": False}.get(out.value)}
-
-
-def result_json(result, verdicts=(), budget=None) -> dict:
-    """The stable JSON object of an ISO 230-2 result (see the module docstring)."""
-    d = dict(result.parameters())
-    d.update(
-        unit=result.deviation_unit,
-        target_unit=result.target_unit,
-        axis_kind=result.axis_kind.value,
-        n_runs=result.n_runs,
-        missing=result.missing,
-        closure_up=result.closure_up,
-        closure_down=result.closure_down,
-        targets=result.target_table(),
-        warnings=list(result.warnings),
-    )
-    if budget is not None:
-        shown = [p for p, v in result.parameters().items() if v is not None]
-        d["uncertainty"] = {p: budget.U(p) for p in shown}
-        d["uncertainty_display"] = {p: budget.U_text(p) for p in shown}
-        d["uncertainty_budget"] = budget.to_json(shown)
-    if verdicts:
-        from axiscal.standards.iso14253_1 import unprovable
-
-        d.update(verdicts_json(verdicts))
-        d["warnings"] += unprovable(verdicts, _sym(result.deviation_unit))
-    return d
 
 
 def _sym(unit: str) -> str:

@@ -23,7 +23,8 @@ from axiscal import units
 from axiscal.datasets import AxisKind
 from axiscal.errors import DataFormatError, InputError, UnitError
 
-__all__ = ["MeanDeviations", "load_mean_deviations", "parse_result_json"]
+__all__ = ["MeanDeviations", "load_mean_deviations", "parse_result_json", "result_json",
+           "standard_json", "verdicts_json"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -126,3 +127,62 @@ def _unit(d: dict, key: str, kind: AxisKind, source: str) -> str:
         raise DataFormatError(f"{key} = {d[key]!r} is not a {kind.dimension} unit, as a "
                               f"{kind.value} axis needs", source)
     return u
+
+
+# -- out: the stable JSON of ``axiscal iso230-2 --json`` (keys documented in axiscal.cli.iso230_2),
+# built here so the command, the public API (axiscal.api) and the workbench give one answer.
+def verdicts_json(verdicts) -> dict:
+    """The acceptance part of the JSON output (ISO 14253-1 decisions)."""
+    from axiscal.standards.iso14253_1 import overall
+
+    out = overall(verdicts)
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    return {"acceptance": [{"parameter": v.parameter, "value": v.value, "tolerance": v.upper,
+                            "U": v.U, "U_display": format_uncertainty(v.U),
+                            "outcome": v.outcome.value if v.outcome else None,
+                            "passed": v.passed} for v in verdicts],
+            "decision_rule": verdicts[0].rule.value if verdicts else None,
+            "accepted": None if out is None else {"conformance proven": True,
+                                                  "non-conformance proven": False}.get(out.value)}
+
+
+def result_json(result, verdicts=(), budget=None) -> dict:
+    """The stable JSON object of an ISO 230-2 result (keys: ``axiscal iso230-2 --json``)."""
+    d = dict(result.parameters())
+    d.update(
+        unit=result.deviation_unit,
+        target_unit=result.target_unit,
+        axis_kind=result.axis_kind.value,
+        n_runs=result.n_runs,
+        missing=result.missing,
+        closure_up=result.closure_up,
+        closure_down=result.closure_down,
+        targets=result.target_table(),
+        warnings=list(result.warnings),
+    )
+    if budget is not None:
+        shown = [p for p, v in result.parameters().items() if v is not None]
+        d["uncertainty"] = {p: budget.U(p) for p in shown}
+        d["uncertainty_display"] = {p: budget.U_text(p) for p in shown}
+        d["uncertainty_budget"] = budget.to_json(shown)
+    if verdicts:
+        from axiscal.standards.iso14253_1 import unprovable
+
+        d.update(verdicts_json(verdicts))
+        unit = result.deviation_unit
+        d["warnings"] += unprovable(verdicts, {"um": "µm"}.get(unit, unit))
+    return d
+
+
+def standard_json(std, res) -> dict:
+    """One standard's object of ``axiscal evaluate --json`` (``standards``; keys documented in
+    :mod:`axiscal.cli.evaluate`): ``res`` a StandardResult, or the reason it was not evaluated."""
+    evaluated = not isinstance(res, str)
+    params = {} if not evaluated else {
+        name: {"value": v, "unit": u, "description": d}
+        for name, (v, u, d) in res.parameters().items()}
+    return {"standard": std.key, "title": std.title, "evaluated": evaluated, "parameters": params,
+            "not_evaluated": dict(res.not_evaluated) if evaluated else {},
+            "warnings": list(res.warnings) if evaluated else [],
+            "reason": None if evaluated else res}

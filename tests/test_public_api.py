@@ -1,0 +1,132 @@
+"""The public API (axiscal.api) as a notebook uses it: read -> evaluate -> plot -> report ->
+compensation table -> history, through ``axiscal.<name>`` only, with the same numbers as the
+command line's ``--json`` for the same file (the API and the CLI call one library)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+import axiscal
+from axiscal.cli import app
+
+ROOT = Path(__file__).resolve().parents[1]
+DEMO_LINEAR = ROOT / "src" / "axiscal" / "data" / "demo_linear.toml"
+BALLBAR = ROOT / "examples" / "squareness_ballbar_150mm.csv"
+runner = CliRunner()
+
+
+def _cli_json(*args) -> dict:
+    r = runner.invoke(app, [str(a) for a in args] + ["--json"])
+    assert r.exit_code == 0, r.output
+    return json.loads(r.stdout)
+
+
+@pytest.fixture(scope="module")
+def laser_file(tmp_path_factory) -> Path:
+    """A simulated laser test written as the demo writes it (``axiscal simulate --data``)."""
+    p = tmp_path_factory.mktemp("api") / "x_axis.csv"
+    r = runner.invoke(app, ["simulate", str(DEMO_LINEAR), "--data", str(p)])
+    assert r.exit_code == 0, r.output
+    return p
+
+
+def test_notebook_flow_equals_the_cli(laser_file, tmp_path):
+    """read -> evaluate -> plot -> report -> table -> history, each equal to its command."""
+    from matplotlib.figure import Figure
+
+    ds = axiscal.read(laser_file)
+    ev = axiscal.evaluate(ds)
+    assert ev.to_dict() == _cli_json("iso230-2", laser_file)
+    assert ev.standard == "iso230-2:2014" and ev.result.E == ev.to_dict()["E"]
+    assert isinstance(ev.plot(), Figure)
+    html = ev.report(tmp_path / "x.html").read_text("utf-8")
+    assert "ISO 230-2" in html and f"{ev.result.E:.2f}" in html
+    notebook = ev._repr_html_()
+    assert "<table>" in notebook and "<svg" in notebook
+
+    table = axiscal.compensation_table(ev, spacing=10)
+    cf = axiscal.write_table(table, "siemens-840d", tmp_path / "x.ini")
+    cli = _cli_json("compensate", laser_file, "--controller", "siemens-840d", "--spacing", 10,
+                    "--out", tmp_path / "cli.ini")
+    assert (tmp_path / "x.ini").read_text("utf-8") == (tmp_path / "cli.ini").read_text("utf-8")
+    assert cf.text == (tmp_path / "x.ini").read_text("utf-8")
+    assert cf.table.to_dict() == cli["table"] and table.n_points == cli["n_points"]
+
+    with axiscal.History(f"sqlite:///{tmp_path / 'h.sqlite'}") as h:
+        added = h.add(laser_file, machine="VMC-1")
+        assert not added.duplicate and h.add(laser_file, machine="VMC-1").duplicate
+        (stored,) = h.tests()
+        assert stored.parameters["E"][0] == pytest.approx(ev.result.E, rel=1e-12)
+
+
+def test_other_standards_equal_axiscal_evaluate(laser_file, tmp_path):
+    """``standard=KEY`` and ``all`` give ``axiscal evaluate --standard KEY --json``'s object."""
+    for key in ("jis-b6192", "all"):
+        ev = axiscal.evaluate(laser_file, key)
+        assert ev.to_dict() == _cli_json("evaluate", laser_file, "--standard", key)
+    assert ev.report(tmp_path / "all.html").exists()
+
+
+def test_tolerances_decided_as_the_cli(laser_file):
+    """``tolerances=`` decides as ``--tolerance`` (ISO 14253-1:2017 with U of ISO 230-2 Annex A)."""
+    ev = axiscal.evaluate(laser_file, tolerances={"E": 100.0, "R": 0.5})
+    r = runner.invoke(app, ["iso230-2", str(laser_file), "--tolerance", "E=100",
+                            "--tolerance", "R=0.5", "--json"])
+    assert r.exit_code == 1   # R = 0.5 um is not met by the simulated axis
+    assert ev.to_dict() == json.loads(r.stdout)
+    assert ev.to_dict()["accepted"] is False
+
+
+def test_ballbar_file_equals_ballbar_analyze():
+    """A ballbar file read by content, diagnosed as ``axiscal ballbar analyze --json``."""
+    ev = axiscal.evaluate(BALLBAR)
+    cli = _cli_json("ballbar", "analyze", BALLBAR)
+    assert ev.kind == "ballbar"
+    assert ev.to_dict() == {k: v for k, v in cli.items() if k != "file"}
+    same = axiscal.evaluate(axiscal.read(BALLBAR))    # in memory: the same one evaluation
+    assert same.to_dict() == ev.to_dict()
+
+
+def test_simulate_equals_axiscal_simulate():
+    """``axiscal.simulate`` is ``axiscal simulate --json`` for the same seed."""
+    sim = axiscal.simulate(DEMO_LINEAR, seed=3)
+    assert sim.to_dict() == _cli_json("simulate", DEMO_LINEAR, "--seed", 3)
+
+
+def test_errors_name_the_problem(tmp_path):
+    from axiscal.errors import AxiscalError
+
+    bad = tmp_path / "bad.csv"
+    bad.write_text("a,b\n1,2\n", "utf-8")
+    with pytest.raises(AxiscalError, match="not a data file"):
+        axiscal.read(bad)
+    with pytest.raises(AxiscalError, match="standard 'iso9999'"):
+        axiscal.evaluate(_laser(tmp_path), "iso9999")
+
+
+def _laser(tmp_path) -> Path:
+    p = tmp_path / "l.csv"
+    assert runner.invoke(app, ["simulate", str(DEMO_LINEAR), "--data", str(p)]).exit_code == 0
+    return p
+
+
+def test_import_is_light():
+    """``import axiscal`` imports none of the API's modules until a name is used (PEP 562)."""
+    code = ("import sys, axiscal; assert 'axiscal.api' not in sys.modules; "
+            "assert 'numpy' not in sys.modules; axiscal.read; assert 'axiscal.api' in sys.modules")
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_mypy_on_the_public_api():
+    """The public API's type hints hold (mypy on axiscal/api.py and axiscal/__init__.py only)."""
+    files = [str(ROOT / "src" / "axiscal" / f) for f in ("api.py", "__init__.py")]
+    r = subprocess.run([sys.executable, "-m", "mypy", "--follow-imports=silent",
+                        "--ignore-missing-imports", "--no-error-summary", *files],
+                       capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0, r.stdout + r.stderr
