@@ -197,3 +197,25 @@ def test_draft_pdf_is_marked_on_every_page(tmp_path, linear):
     texts = pdf_text(o.path)
     assert all("DRAFT" in t for t in texts) and "not a certificate" in texts[0]
     render_pages(o.path, "certificate_draft")
+
+
+@pytest.mark.parametrize("paper", ["A4", "Letter"])
+def test_rotary_certificate_keeps_its_signature_with_the_results(tmp_path, paper):
+    """The rotary certificate (14 result rows with the closures) on A4 and Letter with a
+    200-character customer name: no page but the last under half full, and the results, the
+    signatory and the end mark on the last page together (issue 28: page 4 once held only the
+    signature lines)."""
+    from axiscal.io.csv import format_positioning_csv
+
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_rotary.toml").read_text())
+    sim = simulate_from_config(cfg, seed=1)
+    c = _without("customer.name", ("Rundtisch-Prüfstand GmbH & Co. KG " * 7)[:200])
+    c["uncertainty"] = {"e_ve": 0.1}
+    c["certificate"]["paper"] = paper
+    rotary = (sim.dataset, sim.result, format_positioning_csv(sim.dataset).encode())
+    o, _ = _issue(tmp_path, rotary, c, name="r.pdf", tol={"E": 12.0, "R": 6.0})
+    assert not o.draft
+    texts = pdf_text(o.path)
+    assert all(k in texts[-1] for k in ("Results", "Authorised by", "End of certificate"))
+    fractions = [used_fraction(p) for p in render_pages(o.path, f"certificate_rotary_long_name_{paper}")]
+    assert all(f >= 0.5 for f in fractions[:-1]), fractions
