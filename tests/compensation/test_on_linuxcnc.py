@@ -20,7 +20,7 @@ from typer.testing import CliRunner
 from axiscal.cli import app
 from axiscal.compensation.on_controller import run_on_linuxcnc
 from axiscal.instruments.linuxcnc_controller import (
-    LINUXCNC_LOCK, leftover_segments, running_processes, unavailable_reason)
+    LINUXCNC_LOCK, leftover_segments, running_processes, session_lock, unavailable_reason)
 
 ROOT = Path(__file__).resolve().parents[2]
 WHY = unavailable_reason()
@@ -56,7 +56,9 @@ def test_shipped_linear_example_E_falls_by_80_percent_through_linuxcnc():
     assert all(a["n"] == 5 for a in d["applied"])
     assert max(a["difference"] for a in d["applied"]) <= 1e-3
     assert max(abs(a["table"]) for a in d["applied"]) > 3.0        # micrometres of trim, applied
-    assert running_processes() == [] and leftover_segments() == [] and not LINUXCNC_LOCK.exists()
+    with session_lock():
+        assert running_processes() == [] and leftover_segments() == []
+        assert not LINUXCNC_LOCK.exists()
 
 
 @live

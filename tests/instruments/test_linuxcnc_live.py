@@ -24,7 +24,8 @@ import pytest
 from axiscal.compensation.controllers import linuxcnc as writer
 from axiscal.compensation.tables import table_from_deviations
 from axiscal.instruments.linuxcnc_controller import (
-    LINUXCNC_LOCK, LinuxCNC, leftover_segments, running_processes, unavailable_reason)
+    LINUXCNC_LOCK, LinuxCNC, clean_leftovers, leftover_segments, running_processes, session_lock,
+    unavailable_reason)
 
 WHY = unavailable_reason()
 pytestmark = pytest.mark.skipif(WHY is not None, reason=f"LinuxCNC cannot run here: {WHY}")
@@ -34,10 +35,12 @@ TOL_MM = 1e-6
 
 
 def _nothing_left():
-    assert running_processes() == []
-    assert running_processes(marked_only=False) == []
-    assert leftover_segments() == []
-    assert not LINUXCNC_LOCK.exists()
+    """Checked holding the session lock: another test process's session may start at any time."""
+    with session_lock():
+        assert running_processes() == []
+        assert running_processes(marked_only=False) == []
+        assert leftover_segments() == []
+        assert not LINUXCNC_LOCK.exists()
 
 
 def _table(spacing, start=0.0, end=800.0):
@@ -101,22 +104,28 @@ def test_beyond_the_ends_linuxcnc_holds_the_end_trims(file_type):
 
 def test_a_killed_session_is_cleaned_up_by_the_next():
     """SIGKILL the process that started LinuxCNC: its LinuxCNC lives on (its own session), with
-    LinuxCNC's lock file and shared memory; the next session removes them and leaves nothing."""
+    LinuxCNC's lock file and shared memory; what a session does first (clean_leftovers) removes
+    them, and a session then runs and leaves nothing. The test holds the session lock throughout
+    (the child's session runs inside it), so no other test process's session interferes."""
     code = textwrap.dedent("""
-        import sys, time
+        import time
         from axiscal.instruments.linuxcnc_controller import LinuxCNC
-        cnc = LinuxCNC((-10.0, 10.0)).__enter__()
+        cnc = LinuxCNC((-10.0, 10.0), take_lock=False).__enter__()
         print("ready", flush=True)
         time.sleep(120)
     """)
-    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
-    try:
-        assert p.stdout.readline().strip() == "ready"
+    with session_lock():
+        p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+        try:
+            assert p.stdout.readline().strip() == "ready"
+        finally:
+            os.kill(p.pid, signal.SIGKILL)
+            p.wait(10)
         assert running_processes() and LINUXCNC_LOCK.exists() and leftover_segments()
-    finally:
-        os.kill(p.pid, signal.SIGKILL)
-        p.wait(10)
-    assert running_processes()                               # left behind by the killed one
+        removed = clean_leftovers()
+        assert running_processes() == [] and leftover_segments() == []
+        assert not LINUXCNC_LOCK.exists()
+    assert any(r.startswith("process") for r in removed) and str(LINUXCNC_LOCK) in removed
     with LinuxCNC((-10.0, 10.0)) as cnc:
         assert abs(cnc.move(5.0).motor_pos_cmd - 5.0) < 1e-9
     _nothing_left()

@@ -41,6 +41,7 @@ import signal
 import subprocess
 import tempfile
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -51,7 +52,8 @@ import numpy as np
 from axiscal.errors import InputError, MeasurementError
 
 __all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "unavailable_reason", "clean_leftovers",
-           "running_processes", "leftover_segments", "SESSION_LOCK", "LINUXCNC_LOCK"]
+           "running_processes", "leftover_segments", "session_lock", "SESSION_LOCK",
+           "LINUXCNC_LOCK"]
 
 #: axiscal's own lock: one LinuxCNC session at a time on this computer (held with fcntl).
 SESSION_LOCK = Path(tempfile.gettempdir()) / "axiscal-linuxcnc.session.lock"
@@ -88,6 +90,18 @@ def unavailable_reason() -> str | None:
     return None
 
 
+@contextmanager
+def session_lock():
+    """Hold axiscal's session lock (no LinuxCNC session starts meanwhile): to look at or clean
+    what is left without racing another process's session."""
+    with open(SESSION_LOCK, "w") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(f, fcntl.LOCK_UN)
+
+
 def running_processes(marked_only: bool = True) -> list[int]:
     """Live (not zombie) LinuxCNC processes: those axiscal started, or any by name."""
     out = []
@@ -122,7 +136,8 @@ def clean_leftovers() -> list[str]:
     """Remove what a killed session left: marked processes, the lock file, unattached segments.
 
     Returns what was removed (for the caller to say). Refuses, with :class:`MeasurementError`,
-    when a LinuxCNC that axiscal did not start is running: one LinuxCNC per computer.
+    when a LinuxCNC that axiscal did not start is running: one LinuxCNC per computer. Call it
+    holding the session lock (:func:`session_lock`, or inside a session).
     """
     done = []
     for pid in running_processes():
@@ -180,6 +195,9 @@ class LinuxCNC:
     velocity, acceleration : float, machine units per s and per s²
         The joint's limits: high, so a test of hundreds of moves takes seconds (the simulated
         drive follows any command).
+    take_lock : bool
+        False only when the caller already holds :func:`session_lock` (a test that kills the
+        session's process on purpose).
     """
 
     limits: tuple
@@ -190,6 +208,7 @@ class LinuxCNC:
     velocity: float = 10000.0
     acceleration: float = 1.0e6
     ready_timeout: float = 30.0
+    take_lock: bool = True
     folder: Path | None = field(default=None, init=False)
     ini_text: str = field(default="", init=False)
     _proc: object = field(default=None, init=False, repr=False)
@@ -208,7 +227,8 @@ class LinuxCNC:
         if why:
             raise MeasurementError(f"LinuxCNC cannot run here: {why}")
         self._lock = open(SESSION_LOCK, "w")
-        fcntl.flock(self._lock, fcntl.LOCK_EX)          # waits for another session to end
+        if self.take_lock:
+            fcntl.flock(self._lock, fcntl.LOCK_EX)      # waits for another session to end
         try:
             clean_leftovers()
             self._write_config()
@@ -244,7 +264,8 @@ class LinuxCNC:
                 shutil.rmtree(self.folder, ignore_errors=True)
                 self.folder = None
             if self._lock is not None:
-                fcntl.flock(self._lock, fcntl.LOCK_UN)
+                if self.take_lock:
+                    fcntl.flock(self._lock, fcntl.LOCK_UN)
                 self._lock.close()
                 self._lock = None
 
