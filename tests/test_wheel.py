@@ -1,0 +1,107 @@
+"""Packaging (issue 33): ``python -m build`` makes a wheel and an sdist; the wheel installs into a
+clean virtual environment (no source tree on its path) and runs the public API and
+``axiscal demo`` from there; its package data is all inside; installing it pulls no development
+dependency.
+
+Offline by design: the wheel is built without build isolation (hatchling comes from the dev
+extra) and installed with ``--no-deps --no-index``; its runtime dependencies come from the project
+venv's site-packages, named in a ``.pth`` file of the clean venv. Lines of a ``.pth`` are added
+to ``sys.path`` as plain folders, so the editable install's own ``.pth`` in that folder (the path
+to ``src/``) is NOT processed: ``axiscal`` can only be imported from the wheel. The wheel is built
+once per run (a module fixture; about a minute with the demo).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import sysconfig
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "src" / "axiscal"
+#: Distributions that only develop axiscal: none may be a requirement of the wheel.
+DEV_ONLY = {"pytest", "pytest-xdist", "pytest-benchmark", "hypothesis", "mypy", "build",
+            "selenium", "httpx", "pypdf", "ref-index", "sphinx", "numpydoc", "hatchling"}
+
+
+def _run(args, **kw) -> subprocess.CompletedProcess:
+    r = subprocess.run([str(a) for a in args], capture_output=True, text=True, **kw)
+    assert r.returncode == 0, f"{args}: {r.stdout}\n{r.stderr}"
+    return r
+
+
+@pytest.fixture(scope="module")
+def dist(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("dist")
+    _run([sys.executable, "-m", "build", "--no-isolation", "--outdir", out, ROOT], cwd=ROOT)
+    return out
+
+
+@pytest.fixture(scope="module")
+def venv(dist, tmp_path_factory) -> Path:
+    """A clean venv with the wheel installed and the project's dependencies by ``.pth``."""
+    env = tmp_path_factory.mktemp("venv") / "env"
+    _run([sys.executable, "-m", "venv", "--without-pip", env])
+    py = env / "bin" / "python"
+    (wheel,) = dist.glob("*.whl")
+    _run([sys.executable, "-m", "pip", "--python", py, "install", "--quiet", "--no-deps",
+          "--no-index", wheel])
+    site = Path(_run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
+                .stdout.strip())
+    (site / "project-deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n", "utf-8")
+    return env
+
+
+def _clean_env() -> dict:
+    return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+
+
+def test_build_makes_a_wheel_and_an_sdist_with_all_package_data(dist):
+    (wheel,) = dist.glob("axiscal-*.whl")
+    (sdist,) = dist.glob("axiscal-*.tar.gz")
+    assert sdist.stat().st_size > 0
+    names = set(zipfile.ZipFile(wheel).namelist())
+    data = {f"axiscal/{p.relative_to(PACKAGE).as_posix()}" for p in PACKAGE.rglob("*")
+            if p.is_file() and p.suffix not in (".py", ".pyc") and "__pycache__" not in p.parts}
+    assert data, "no package data found"
+    assert data <= names, f"missing from the wheel: {sorted(data - names)}"
+    for must in ("axiscal/py.typed", "axiscal/web/static/htmx.min.js",
+                 "axiscal/report/templates/base.html", "axiscal/data/demo_linear.toml",
+                 "axiscal/store/migrations/env.py"):
+        assert must in names
+
+
+def test_wheel_requires_no_development_dependency(dist):
+    (wheel,) = dist.glob("axiscal-*.whl")
+    with zipfile.ZipFile(wheel) as z:
+        meta = z.read(next(n for n in z.namelist() if n.endswith("METADATA"))).decode()
+    required = [line.split(":", 1)[1].strip() for line in meta.splitlines()
+                if line.startswith("Requires-Dist:") and "extra ==" not in line]
+    names = {r.split(";")[0].split("[")[0].split(">")[0].split("<")[0].split("=")[0].strip()
+             .lower() for r in required}
+    assert "numpy" in names and "matplotlib" in names
+    assert not names & DEV_ONLY, f"runtime requirements include {names & DEV_ONLY}"
+
+
+def test_installed_wheel_runs_the_public_api_and_the_demo(venv, tmp_path):
+    """From outside the repository: ``axiscal`` is the wheel's, the API evaluates, the demo runs."""
+    py, exe = venv / "bin" / "python", venv / "bin" / "axiscal"
+    code = ("import json, axiscal; sim = axiscal.simulate(axiscal.__path__[0] + "
+            "'/data/demo_linear.toml'); ev = axiscal.evaluate(sim.dataset); "
+            "print(json.dumps({'file': axiscal.__file__, 'E': ev.to_dict()['E'], "
+            "'sim_E': sim.to_dict()['E'], 'version': axiscal.__version__}))")
+    out = json.loads(_run([py, "-c", code], cwd=tmp_path, env=_clean_env()).stdout)
+    assert Path(out["file"]).resolve().is_relative_to(venv.resolve())
+    assert out["E"] == pytest.approx(out["sim_E"], rel=1e-12) and out["E"] > 0
+    import axiscal
+
+    assert out["version"] == axiscal.__version__
+    _run([exe, "demo", "--out", "demo"], cwd=tmp_path, env=_clean_env())
+    assert (tmp_path / "demo" / "index.html").is_file()
+    assert (tmp_path / "demo" / "linear_report.html").is_file()
