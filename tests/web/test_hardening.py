@@ -113,7 +113,8 @@ def test_wrong_passwords_lock_the_account_and_the_page_says_for_how_long(tmp_pat
         assert _login(c, "eng", "wrong password").status_code == 401
     r = _login(c, "eng", "correct horse battery")      # even the right one, while locked
     assert r.status_code == 429 and "too many wrong passwords" in r.text
-    assert re.search(r"try again in \d+ s", r.text)
+    seconds = int(re.search(r"try again in (\d+) s", r.text).group(1))
+    assert 0 < seconds <= 30 and r.headers["retry-after"] == str(seconds)
 
 
 def test_back_off_grows_per_account_and_per_address():

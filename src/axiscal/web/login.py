@@ -5,6 +5,8 @@ by the server and ended at log-out (:class:`~axiscal.web.sessions.Sessions`)."""
 
 from __future__ import annotations
 
+import math
+
 from fastapi import FastAPI, Request
 from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
@@ -31,10 +33,12 @@ def login_routes(app: FastAPI) -> None:
         name, password = str(form.get("username", "")), str(form.get("password", ""))
         address = request.client.host if request.client else "?"
         wait = throttle.wait(name, address)
-        if wait > 0:
-            return render(request, "login.html", "Log in", 429, next=_local(form.get("next")),
+        if wait > 0:                       # 429 Too Many Requests, Retry-After (RFC 6585 §4)
+            resp = render(request, "login.html", "Log in", 429, next=_local(form.get("next")),
                           error=f"too many wrong passwords for this account or from this "
-                          f"address: try again in {wait:.0f} s")
+                          f"address: try again in {math.ceil(wait)} s")
+            resp.headers["Retry-After"] = str(math.ceil(wait))
+            return resp
         user = await run_in_threadpool(users.check, name, password) if users else None
         if user is None:
             throttle.failed(name, address)
