@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 OUT    ?= demo-output
 
-.PHONY: setup sysdeps linuxcnc demo test bench fuzz shots clean
+.PHONY: setup sysdeps linuxcnc demo test bench fuzz shots docs clean
 
 setup: $(STAMP)
 
@@ -66,6 +66,17 @@ fuzz: $(STAMP) sysdeps
 # so a person can look at what a customer would see.
 shots: demo sysdeps
 	$(PY) tools/screenshot.py $(OUT)
+
+# The documentation site (docs/, Sphinx): the gallery's examples run, the CLI and file-format pages
+# are generated from the program; a warning fails the build (-W); every example must have drawn
+# its figure. Open docs/_build/html/index.html.
+DOCS_STAMP := $(VENV)/.docs-stamp
+$(DOCS_STAMP): pyproject.toml | $(STAMP)
+	$(PY) -m pip install --quiet -e ".[docs]"
+	touch $(DOCS_STAMP)
+docs: $(DOCS_STAMP)
+	MPLBACKEND=Agg $(PY) -m sphinx -W --keep-going -b html docs docs/_build/html
+	$(PY) docs/check_gallery.py docs
 
 clean:
 	rm -rf $(VENV) $(OUT) .pytest_cache .hypothesis

@@ -93,10 +93,13 @@ def test_ballbar_file_equals_ballbar_analyze():
     assert same.to_dict() == ev.to_dict()
 
 
-def test_simulate_equals_axiscal_simulate():
-    """``axiscal.simulate`` is ``axiscal simulate --json`` for the same seed."""
+def test_simulate_equals_axiscal_simulate(tmp_path):
+    """``axiscal.simulate`` is ``axiscal simulate --json`` (and ``--data``) for the same seed."""
     sim = axiscal.simulate(DEMO_LINEAR, seed=3)
-    assert sim.to_dict() == _cli_json("simulate", DEMO_LINEAR, "--seed", 3)
+    assert sim.to_dict() == _cli_json("simulate", DEMO_LINEAR, "--seed", 3, "--data",
+                                      tmp_path / "cli.csv")
+    assert (sim.write_data(tmp_path / "api.csv").read_text("utf-8")
+            == (tmp_path / "cli.csv").read_text("utf-8"))
 
 
 def test_errors_name_the_problem(tmp_path):

@@ -4,11 +4,11 @@ Everything a script or a notebook needs is at the package's top and documented h
 
     import axiscal
 
-    ds = axiscal.read("x_axis.csv")                 # format told by the content, as the CLI does
-    ev = axiscal.evaluate(ds)                       # ISO 230-2:2014 by default
-    ev.to_dict()                                    # the keys of ``axiscal iso230-2 --json``
-    ev.plot()                                       # a matplotlib Figure
-    ev.report("x_axis.html")                        # the HTML report
+    ds = axiscal.read("x_axis.csv")     # format told by the content
+    ev = axiscal.evaluate(ds)           # ISO 230-2:2014 by default
+    ev.to_dict()                        # the keys of ``axiscal iso230-2 --json``
+    ev.plot()                           # a matplotlib Figure
+    ev.report("x_axis.html")            # the HTML report
     table = axiscal.compensation_table(ev, spacing=10)
     axiscal.write_table(table, "siemens-840d", "x.ini")
     with axiscal.History("sqlite:///history.sqlite") as h:
@@ -312,6 +312,22 @@ class Simulation:
         rep = positioning_report(self.test.dataset, self.test.result)
         rep.simulation = True
         return Path(rep.write(path))
+
+    def write_data(self, path: PathLike) -> Path:
+        """Write the simulated readings (``.csv`` tidy CSV or ``.json``), as ``axiscal simulate
+        --data`` does, so they can be read back like a laser's file."""
+        from axiscal.errors import InputError
+        from axiscal.io._files import write_text_atomic
+
+        suffix = Path(path).suffix.lower()
+        if suffix == ".json":
+            from axiscal.io.json import format_positioning_json as fmt
+        elif suffix == ".csv":
+            from axiscal.io.csv import format_positioning_csv as fmt
+        else:
+            raise InputError(f"write_data {path}: give a .csv or .json file")
+        write_text_atomic(path, fmt(self.test.dataset))
+        return Path(path)
 
     def _repr_html_(self) -> str:
         return _html("simulation", DEFAULT_STANDARD, self.to_dict(), self.plot())

@@ -1,0 +1,109 @@
+"""Pages generated from the code itself when the site is built (called by conf.py):
+
+* ``generated/cli.rst``: the command-line reference, walking the click tree of ``axiscal.cli.app``
+  (every command and sub-command, its help, its arguments and options with their defaults);
+* ``generated/formats.rst``: the file-format page, from :data:`axiscal.io.formats.FORMATS`.
+
+So the site cannot say something the program does not do. Run alone:
+``python docs/_generate.py`` writes the same files.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+OUT = HERE / "generated"
+
+
+def _title(text: str, mark: str) -> str:
+    return f"{text}\n{mark * len(text)}\n\n"
+
+
+def _indent(text: str, pad: str = "   ") -> str:
+    return "\n".join(pad + line if line.strip() else "" for line in text.splitlines())
+
+
+def _param_rows(command, ctx) -> list[tuple[str, str]]:
+    rows = []
+    for p in command.params:
+        if getattr(p, "hidden", False):
+            continue
+        option = p.param_type_name == "option"     # typer vendors click: no isinstance
+        name = ", ".join(p.opts + p.secondary_opts) if option else p.human_readable_name
+        help_ = (getattr(p, "help", None) or "").replace("\n", " ")
+        default = p.default
+        if option and not p.is_flag and default not in (None, (), []):
+            help_ += f" [default: {default}]"
+        rows.append((name, help_ or "—"))
+    return rows
+
+
+def _command_rst(path: str, command, ctx, level: str) -> str:
+    out = _title(f"axiscal {path}", level)
+    usage = command.collect_usage_pieces(ctx)
+    out += f".. code-block:: text\n\n   axiscal {path} {' '.join(usage)}\n\n"
+    out += _escape((command.help or "").strip()) + "\n\n"
+    rows = _param_rows(command, ctx)
+    if rows:
+        out += ".. list-table::\n   :header-rows: 1\n   :widths: 25 75\n\n"
+        out += "   * - argument or option\n     - meaning\n"
+        for name, help_ in rows:
+            out += f"   * - ``{name}``\n     - {_escape(help_)}\n"
+        out += "\n"
+    if hasattr(command, "list_commands"):        # a group: its sub-commands
+        sub = command.context_class(command, parent=ctx, info_name=command.name)
+        for name in command.list_commands(sub):
+            out += _command_rst(f"{path} {name}", command.get_command(sub, name), sub, "~")
+    return out
+
+
+def _escape(text: str) -> str:
+    """Text safe in reStructuredText (no role or emphasis from a stray * or `)."""
+    return (text.replace("\\", "\\\\").replace("*", r"\*").replace("`", r"\`")
+            .replace("|", r"\|").replace("_", r"\_"))
+
+
+def cli_page() -> str:
+    import typer
+
+    from axiscal.cli import app
+
+    root = typer.main.get_command(app)
+    ctx = root.context_class(root, info_name="axiscal")
+    out = _title("Command-line reference", "=")
+    out += ("Generated from the program itself when the site is built (``docs/_generate.py`` "
+            "walks the commands of ``axiscal.cli.app``). ``axiscal COMMAND --help`` prints the "
+            "same text.\n\n")
+    for name in root.list_commands(ctx):
+        out += _command_rst(name, root.get_command(ctx, name), ctx, "-")
+    return out
+
+
+def formats_page() -> str:
+    from axiscal.io.formats import FORMATS
+
+    out = _title("File formats", "=")
+    out += ("Every format axiscal reads or writes, generated from the format registry "
+            "(:data:`axiscal.io.formats.FORMATS`, also printed by ``axiscal formats``). "
+            ":func:`axiscal.read` tells a file's format by its content.\n\n")
+    out += ".. list-table::\n   :header-rows: 1\n   :widths: 28 8 8 12 22 22\n\n"
+    out += ("   * - format\n     - read\n     - write\n     - extensions\n     - example\n"
+            "     - described in\n")
+    for f in FORMATS:
+        cells = (f.name, "yes" if f.read else "no", "yes" if f.write else "no",
+                 ", ".join(f.extensions), f.example, f.described_in)
+        out += "   * - " + "\n     - ".join(_escape(c) for c in cells) + "\n"
+    return out + "\n"
+
+
+def generate() -> None:
+    OUT.mkdir(exist_ok=True)
+    for name, text in (("cli.rst", cli_page()), ("formats.rst", formats_page())):
+        p = OUT / name
+        if not p.exists() or p.read_text("utf-8") != text:   # unchanged: no rebuild
+            p.write_text(text, "utf-8")
+
+
+if __name__ == "__main__":
+    generate()
