@@ -28,6 +28,10 @@ from axiscal import __version__
 
 __all__ = ["Report", "figure_svg", "write_positioning_report", "target_label"]
 
+#: A table of more rows than this may continue on the next page (a shorter one is kept whole):
+#: kept whole, a long table leaves the page before it half empty.
+LONG_TABLE = 12
+
 
 def figure_svg(fig) -> str:
     """Render a matplotlib figure as an inline ``<svg>`` string and close the figure."""
@@ -105,10 +109,12 @@ class Report:
         the caption and the ``formulas`` columns (a standard's definitions) write symbols such as
         ``B_i`` with their subscripts."""
         head = "".join(f"<th>{_sym(h)}</th>" for h in headers)
+        rows = list(rows)
         body = "".join("<tr>" + "".join(
             f"<td>{_sym(v) if i in formulas else _cell(v, digits)}</td>" for i, v in enumerate(row))
             + "</tr>" for row in rows)
         cap = f"<caption>{_sym(caption)}</caption>" if caption else ""
+        css_class = f"{css_class} long".strip() if len(rows) > LONG_TABLE else css_class
         cls = f' class="{css_class}"' if css_class else ""
         self._parts.append(f"<table{cls}>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")
 
@@ -474,5 +480,6 @@ def _html_table(caption: str, headers, rows) -> str:
     kv = not any(headers)
     head = "".join(f"<th>{_esc(h)}</th>" for h in headers)
     body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
-    return (f'<table class="{"kv" if kv else "records"}"><caption>{_esc(caption)}</caption>'
+    cls = ("kv" if kv else "records") + (" long" if len(rows) > LONG_TABLE else "")
+    return (f'<table class="{cls}"><caption>{_esc(caption)}</caption>'
             f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")

@@ -69,12 +69,6 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
                  "error motion by ISO 230-7", metadata=metadata or {})
     for n in notes:
         rep.add_text(n)
-    if resolutions is not None:
-        rep.add_heading("Resolution from the parts")
-        rep.add_key_values({"εz, εy [arcsec]": resolutions.angular / ARCSEC,
-                            "εx [arcsec]": resolutions.tilt_x / ARCSEC,
-                            "δy, δz [µm]": resolutions.displacement / UM},
-                           caption="r_PSD/(2 f_1), r_QD/(2h), r_QD/2 (Optics Express 2018, five-DOF rotary axis, eqs. 1-6, §3)")
     if truth:
         rep.add_truth()
     if runs:
@@ -85,6 +79,8 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
                        "tilted or eccentric reference axis shows in εy, εx and δy), the gap is the "
                        "mounting's crosstalk, quantified in the crosstalk table when it is given; "
                        "ISO 230-7 removes it as the fundamental.")
+    if resolutions is not None:
+        _resolution_section(rep, resolutions)
     if result is not None:
         _iso_section(rep, result)
     if repeatability:
@@ -98,6 +94,18 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
     if crosstalk is not None:
         _crosstalk_section(rep, crosstalk)
     return rep
+
+
+def _resolution_section(rep: Report, resolutions) -> None:
+    """The resolution each error has from the parts, with the decimals of its unit."""
+    from axiscal.report.labels import fmt
+
+    rep.add_heading("Resolution from the parts")
+    rep.add_text("r_PSD/(2 f_1), r_QD/(2h) and r_QD/2 (Optics Express 2018, five-DOF rotary axis, "
+                 "eqs. 1-6, §3).")
+    rep.add_key_values({"εz, εy [arcsec]": fmt(resolutions.angular / ARCSEC, "arcsec"),
+                        "εx [arcsec]": fmt(resolutions.tilt_x / ARCSEC, "arcsec"),
+                        "δy, δz [µm]": fmt(resolutions.displacement / UM, "µm")})
 
 
 def _iso_section(rep, result):

@@ -58,7 +58,8 @@ def volumetric_figure(vmap, title: str = "", magnification: float | None = None)
               (mags[ix, :, :].T, gy, gz, "Y", "Z", f"X = {gx[ix]:.0f} mm"))
     for k, (img, h, v, hl, vl, where) in enumerate(slices, start=2):
         a = fig.add_subplot(2, 2, k)
-        im = a.pcolormesh(h, v, img, shading="gouraud", vmin=0, vmax=vmax, cmap="viridis")
+        im = a.pcolormesh(h, v, img, shading="gouraud", vmin=0, vmax=vmax, cmap="viridis",
+                          rasterized=True)   # as vectors: 2 MB of SVG, minutes in WeasyPrint
         a.set_xlabel(f"{hl} [mm]")
         a.set_ylabel(f"{vl} [mm]")
         a.set_title(f"|E| [µm] at {where}", fontsize=9)
