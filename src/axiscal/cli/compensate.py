@@ -38,9 +38,9 @@ itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, `
 ``spacing_residual``, ``sigma``, ``between_targets_E``, ``truth_before``, ``truth_after`` (E,
 E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``; with
 ``--on-controller`` also ``applied`` (per target and direction: ``target`` mm, ``direction``,
-``table`` and ``applied`` µm, ``difference`` µm, the largest over the runs, ``n``) and
-``on_controller`` (``controller``, ``comp_file_type``, ``linear_units``, ``dwell_s``,
-``applied_unit``, ``largest_applied_difference``, ``n_applied``). Squareness: the
+``table`` and ``applied`` µm or arcsec, ``difference``, the largest over the runs, ``n``) and
+``on_controller`` (``controller``, ``comp_file_type``, ``machine_units`` (mm, inch or deg),
+``dwell_s``, ``applied_unit``, ``largest_applied_difference``, ``n_applied``). Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
 (``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
@@ -85,7 +85,7 @@ def compensate(
     option: Optional[List[str]] = typer.Option(None, "--option", "-o", help="Format option KEY=VALUE for the writer/parser (repeatable), e.g. machine_axis=X1, detection_unit=0.0001, unit=inch (840D: MD10240 = 0), axis_number=2 and reference_position=15 (reading a Fanuc tape)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the controller file here: .csv for csv, the table's own name (X.COM) for heidenhain, whose .CMA goes next to it and names it; the format's extension (.INI, .TXT, .comp) or .txt for the others."),
     verify: Optional[Path] = typer.Option(None, "--verify", help="Run measure-compensate-remeasure on the simulated machine of this TOML configuration."),
-    on_controller: bool = typer.Option(False, "--on-controller", help="With --verify --controller linuxcnc: run both ISO 230-2:2014 tests through a real LinuxCNC (headless, the machine's errors applied to joint.0.motor-pos-cmd), the file loaded as [JOINT_0] COMP_FILE (-o file_type=0|1, default 1; -o unit=mm|inch, default mm); reports the trim LinuxCNC applied at every target and direction."),
+    on_controller: bool = typer.Option(False, "--on-controller", help="With --verify --controller linuxcnc: run both ISO 230-2:2014 tests through a real LinuxCNC (headless, the machine's errors applied to joint.0.motor-pos-cmd), the file loaded as [JOINT_0] COMP_FILE (-o file_type=0|1, default 1; -o unit=mm|inch, default mm; a rotary joint in degrees); reports the trim LinuxCNC applied at every target and direction."),
     read: Optional[Path] = typer.Option(None, "--read", help="Read this controller file back (and compare with SOURCE if given)."),
     to: Optional[str] = typer.Option(None, "--to", help="With --read: write the table read in this controller's format (siemens-840d, fanuc, heidenhain, linuxcnc, csv, renishaw-ren), to --out or the terminal."),
     ini: Optional[Path] = typer.Option(None, "--ini", help="With --read of a LinuxCNC file: the INI whose [JOINT_n] COMP_FILE names it (default: the *.ini beside it); its [TRAJ] LINEAR_UNITS or ANGULAR_UNITS, [JOINT_n] UNITS, TYPE and COMP_FILE_TYPE are used (LinuxCNC, INI Configuration)."),
@@ -552,11 +552,12 @@ def _render_loop(r) -> None:
 
 def _render_applied(extra) -> None:
     c = extra["on_controller"]
+    unit = {"um": "µm"}.get(c["applied_unit"], c["applied_unit"])
     typer.echo(f"Measured through {c['controller']}: [JOINT_0] COMP_FILE_TYPE = "
-               f"{c['comp_file_type']}, [TRAJ] LINEAR_UNITS = {c['linear_units']}, dwell "
+               f"{c['comp_file_type']}, machine units {c['machine_units']}, dwell "
                f"{c['dwell_s']:g} s. Trim applied (motor-pos-cmd − pos-cmd) against the table at "
                f"{c['n_applied']} targets and directions: largest difference "
-               f"{c['largest_applied_difference']:.2g} µm (--json lists each).")
+               f"{c['largest_applied_difference']:.2g} {unit} (--json lists each).")
 
 
 def register(app: typer.Typer) -> None:

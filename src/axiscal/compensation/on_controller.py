@@ -22,8 +22,11 @@ from axiscal.errors import ConfigError
 
 __all__ = ["OnLinuxCNC", "AppliedTrim", "applied_trims", "run_on_linuxcnc"]
 
-#: mm per machine unit of LinuxCNC's ``[TRAJ] LINEAR_UNITS``.
-MM_PER_UNIT = {"mm": 1.0, "inch": 25.4}
+#: Table position unit (mm or deg) per machine unit (``[TRAJ] LINEAR_UNITS``; deg: a rotary
+#: joint in ``ANGULAR_UNITS = degree``).
+MM_PER_UNIT = {"mm": 1.0, "inch": 25.4, "deg": 1.0}
+#: Correction unit (µm or arcsec) per table position unit.
+_CORRECTION = {"mm": 1e3, "deg": 3600.0}
 
 
 @dataclass(frozen=True)
@@ -32,13 +35,13 @@ class AppliedTrim:
 
     Attributes
     ----------
-    target : float, mm
+    target : float, mm (deg)
     direction : str
         ``+`` or ``-``.
-    table, applied : float, µm
+    table, applied : float, µm (arcsec)
         The correction of the table read back from the file, and LinuxCNC's trim (mean over the
         runs).
-    difference : float, µm
+    difference : float, µm (arcsec)
         The largest |applied − table| over the runs.
     n : int
         Readings (runs) at this target and direction.
@@ -82,11 +85,13 @@ class OnLinuxCNC:
         from axiscal.instruments.linuxcnc_controller import LinuxCNC, LinuxCNCAxis
         from axiscal.procedures.positioning import simulate_positioning_test
 
-        if plan.target_unit != "mm":
-            raise ConfigError("--on-controller runs a linear axis (mm); a rotary axis on "
-                              "LinuxCNC is not done yet")
         k = MM_PER_UNIT[self.units]
-        lo, hi = (np.asarray(axis.travel) * 1e3) / k
+        if axis.travel is None:                  # a continuous rotary axis: the test's range
+            lo = plan.targets[0] - plan.overrun - 1.0
+            hi = plan.targets[-1] + plan.overrun + 1.0
+        else:
+            lo, hi = np.degrees(axis.travel) if self.units == "deg" else np.asarray(axis.travel) * 1e3
+        lo, hi = lo / k, hi / k
         text = None if controller_file is None else controller_file.text
         with LinuxCNC((lo - 1.0, hi + 1.0), units=self.units, comp_file=text,
                       comp_file_type=self.file_type) as cnc:
@@ -104,11 +109,11 @@ def applied_trims(log, table, units: str = "mm") -> list[AppliedTrim]:
     log : list of (float mm, int, Reading)
         :attr:`LinuxCNCAxis.log` of the compensated test.
     table : CompensationTable
-        The table read back from the file (corrections in µm).
+        The table read back from the file (corrections in µm, or arcsec for a rotary joint).
     units : str
-        The machine's linear unit (the log's readings are in it).
+        The machine's unit (the log's readings are in it): mm, inch or deg.
     """
-    um = MM_PER_UNIT[units] * 1e3
+    um = MM_PER_UNIT[units] * _CORRECTION["deg" if units == "deg" else "mm"]
     groups: dict = {}
     for target, d, r in log:
         groups.setdefault((round(target, 6), d), []).append(r.trim * um)
@@ -137,7 +142,11 @@ def run_on_linuxcnc(config: dict, seed: int = 1, **overrides):
         raise ConfigError(f"--on-controller runs LinuxCNC; the controller is {s['controller']!r}: "
                           "give --controller linuxcnc")
     opts = s["options"]
-    units = str(opts.get("unit", "mm"))
+    rotary = str(config.get("axis", {}).get("kind", "linear")) == "rotary"
+    units = "deg" if rotary else str(opts.get("unit", "mm"))
+    if rotary and "unit" in opts:
+        raise ConfigError("a rotary joint's file is in degrees ([TRAJ] ANGULAR_UNITS = degree): "
+                          "drop the unit option")
     if units not in MM_PER_UNIT:
         raise ConfigError(f"[compensation] options unit = {units!r}: LinuxCNC's LINEAR_UNITS "
                           "here are mm or inch")
@@ -149,11 +158,12 @@ def run_on_linuxcnc(config: dict, seed: int = 1, **overrides):
 def summary(applied: list[AppliedTrim], hook: OnLinuxCNC) -> dict:
     """What the ``--json`` of ``compensate --verify --on-controller`` adds: ``applied`` (each
     target and direction) and ``on_controller`` (the INI settings used, shown since they move the
-    numbers, and the largest |applied − table|, µm)."""
+    numbers, and the largest |applied − table|, µm or arcsec)."""
     worst = max((a.difference for a in applied), default=float("nan"))
     return dict(applied=[a.to_dict() for a in applied],
                 on_controller=dict(controller="LinuxCNC (linuxcnc-uspace), headless simulation",
-                                   comp_file_type=hook.file_type, linear_units=hook.units,
-                                   dwell_s=hook.dwell, applied_unit="um",
+                                   comp_file_type=hook.file_type, machine_units=hook.units,
+                                   dwell_s=hook.dwell,
+                                   applied_unit="arcsec" if hook.units == "deg" else "um",
                                    largest_applied_difference=worst,
                                    n_applied=len(applied)))

@@ -67,7 +67,10 @@ SHM_KEYS = (1001, 1002, 1003, 1004, 1005, 0x48414C32, 0x48484C34)
 NAMES = ("linuxcnc", "linuxcncsvr", "milltask", "io", "rtapi_app", "halcmd", "realtime")
 #: An unprivileged uid rtapi_app runs as when started by root.
 RTAPI_UID = 65534
-_UNITS_MM = {"mm": 1.0, "inch": 25.4}
+#: Table position unit (mm, or deg for a rotary joint) per machine unit.
+_UNITS_MM = {"mm": 1.0, "inch": 25.4, "deg": 1.0}
+#: SI (m or rad) per table position unit.
+_SI = {"mm": 1e-3, "inch": 1e-3, "deg": np.pi / 180.0}
 #: The final approach of :meth:`LinuxCNC.move` with ``approach``: distance (mm) and feed
 #: (mm/min): 1 mm/s, a step of at most 1 µm per 1 ms servo period.
 CREEP, CREEP_FEED = 0.01, 60.0
@@ -185,7 +188,8 @@ class LinuxCNC:
     limits : (float, float), machine units
         The joint's ``MIN_LIMIT`` and ``MAX_LIMIT``.
     units : str
-        ``[TRAJ] LINEAR_UNITS``: ``mm`` or ``inch``.
+        ``[TRAJ] LINEAR_UNITS``: ``mm`` or ``inch``; ``deg`` for a rotary joint (``[JOINT_0]
+        TYPE = ANGULAR``, ``[TRAJ] ANGULAR_UNITS = degree``).
     comp_file : str, optional
         Text of a ``COMP_FILE``; written beside the INI as ``[JOINT_0] COMP_FILE = x.comp``.
     comp_file_type : int
@@ -217,7 +221,8 @@ class LinuxCNC:
 
     def __post_init__(self) -> None:
         if self.units not in _UNITS_MM:
-            raise InputError(f"LinuxCNC LINEAR_UNITS {self.units!r}: use mm or inch")
+            raise InputError(f"LinuxCNC units {self.units!r}: use mm or inch (linear) or deg "
+                             "(rotary)")
         if self.comp_file_type not in (0, 1):
             raise InputError(f"COMP_FILE_TYPE = {self.comp_file_type!r}; LinuxCNC knows 0 and 1")
 
@@ -278,9 +283,11 @@ class LinuxCNC:
             (self.folder / "x.comp").write_text(self.comp_file)
             comp = f"COMP_FILE = x.comp\nCOMP_FILE_TYPE = {self.comp_file_type}"
         self.ini_text = Template((data / "axiscal_sim.ini").read_text()).substitute(
-            letter=self.letter, linear_units=self.units, velocity=repr(float(self.velocity)),
+            letter=self.letter, velocity=repr(float(self.velocity)),
             acceleration=repr(float(self.acceleration)), min_limit=repr(float(self.limits[0])),
-            max_limit=repr(float(self.limits[1])), joint_type="LINEAR", comp_lines=comp)
+            max_limit=repr(float(self.limits[1])), comp_lines=comp,
+            joint_type="ANGULAR" if self.units == "deg" else "LINEAR",
+            linear_units="mm" if self.units == "deg" else self.units)
         (self.folder / "config.ini").write_text(self.ini_text)
         (self.folder / "axiscal_sim.hal").write_text((data / "axiscal_sim.hal").read_text())
         (self.folder / "tool.tbl").write_text("")
@@ -387,8 +394,8 @@ class LinuxCNCAxis:
     Parameters
     ----------
     cnc : LinuxCNC
-    axis : LinearAxis
-        The machine behind the drive (SI).
+    axis : LinearAxis or RotaryAxis
+        The machine behind the drive (SI: metres or radians).
     overrun : float, machine units
     dwell : float, seconds
         G4 after each move (the simulated drive settles at once; a real machine needs the plan's).
@@ -421,10 +428,14 @@ class LinuxCNCAxis:
         """Commanded positions (SI) must lie in the machine's travel."""
         self.axis.check_in_travel(position)
 
+    def systematic_error(self, theta, direction, time: float = 0.0):
+        """A rotary machine's error without noise (what the procedures ask a rotary axis)."""
+        return self.axis.systematic_error(theta, direction, time)
+
     def move(self, position, direction, rng: np.random.Generator | None = None,
              time: float = 0.0):
         """Reach ``position`` (SI) moving in ``direction`` (±1); the actual position, SI."""
-        to_m = _UNITS_MM[self.cnc.units] * 1e-3
+        to_m = _UNITS_MM[self.cnc.units] * _SI[self.cnc.units]     # SI per machine unit
         target = float(position) / to_m
         d = 1 if direction > 0 else -1
         if np.sign(target - self._here) != d:
