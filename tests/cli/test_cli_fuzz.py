@@ -7,7 +7,7 @@ option added later is covered without editing anything here. Each case runs in a
 end as :func:`_fuzz_cases.check` says: success with an output, or ONE line on stderr and exit 2;
 no traceback, no numpy warning, no output left after a failure, every input byte-identical.
 
-``make test`` runs a seeded sample (``AXISCAL_FUZZ_SAMPLE`` cases, 160 by default, at least one per
+``make test`` runs a seeded sample (``AXISCAL_FUZZ_SAMPLE`` cases, 120 by default, at least one per
 command; about a minute on one core); ``make fuzz`` runs every case::
 
     python tests/cli/test_cli_fuzz.py [--workers 2] [COMMAND ...]
@@ -33,7 +33,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 import _fuzz_cases as fc  # noqa: E402
 
 WORKER = Path(__file__).with_name("_fuzz_worker.py")
-SAMPLE = int(os.environ.get("AXISCAL_FUZZ_SAMPLE", "160"))
+SAMPLE = int(os.environ.get("AXISCAL_FUZZ_SAMPLE", "120"))
 CHUNKS = 4
 
 

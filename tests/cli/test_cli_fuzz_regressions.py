@@ -259,3 +259,23 @@ def test_a_one_megabyte_comment_line_is_read_in_linear_time(capture_files):
     plan.write_text("# axis=" + "x" * 2**20 + "\n" + plan.read_text())
     one_error_line(_run("capture", rtx, "--plan", plan, "--out", capture_files / "d.csv"),
                    "comment line", "key=value")
+
+
+# -- found by the interface-derived harness ---------------------------------------------------
+def test_an_irregularity_of_minus_zero_is_zero():
+    r = _run("plan", "linear", "--length", "100", "--irregularity", "-0", "--json")
+    assert r.exit_code == 0, r.output     # numpy's ValueError (high - low < 0) before
+
+
+def test_a_users_file_that_is_a_loop_of_links_is_refused(tmp_path, monkeypatch):
+    monkeypatch.setenv("AXISCAL_PASSWORD", "correct horse battery")
+    loop = tmp_path / "users.toml"
+    loop.symlink_to(loop.name)
+    one_error_line(_run("serve", "--add-user", "bob", "--users", loop), "loop of links")
+    assert loop.is_symlink()
+
+
+def test_demo_checks_its_database_before_writing_anything(tmp_path):
+    one_error_line(_run("demo", "--out", tmp_path / "demo", "--db", "mysql://u@127.0.0.1:1/x"),
+                   "MySQLdb")
+    assert list(tmp_path.iterdir()) == []

@@ -58,15 +58,21 @@ def demo(
 
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out} exists and is not a folder")
-    if db:   # opened (driver, server, schema) before anything is written
-        from axiscal.store import open_store
-
-        open_store(db)
+    created = not out.exists()
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise InputError(f"cannot create the folder --out {out}: {exc.strerror or exc}") from None
     out_path(out / "index.html", "the demonstration")   # writable, before the simulations run
+    if db:   # opened (driver, server, schema) before anything is written
+        from axiscal.store import open_store
+
+        try:
+            open_store(db)
+        except Exception:
+            if created:
+                out.rmdir()
+            raise
     pages = []
     url = db or f"sqlite:///{(out / 'history.sqlite').resolve()}"
     for name, cfg, label in DEMOS:

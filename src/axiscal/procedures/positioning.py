@@ -269,6 +269,7 @@ def plan_linear(
         )
     if not 0 <= irregularity <= 0.45:
         raise InputError(f"irregularity = {irregularity!r} must be between 0 and 0.45")
+    irregularity += 0.0   # -0.0 is 0 (numpy's uniform refuses a high of -0.0 below a low of 0)
     p = length / (n - 1)
     r = np.random.default_rng(seed).uniform(-irregularity, irregularity, n) * p
     r[0] = r[-1] = 0.0

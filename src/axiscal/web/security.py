@@ -60,6 +60,8 @@ class UserFile:
     def load(cls, path) -> "UserFile":
         """Read the users file (an absent file has no accounts)."""
         p = Path(path)
+        if p.is_symlink() and not p.exists():
+            raise ConfigError(f"{p}: a symbolic link to nothing (or a loop of links)")
         if not p.exists():
             return cls(p)
         from axiscal._schema import loads_toml
