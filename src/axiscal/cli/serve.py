@@ -53,27 +53,12 @@ def serve(
 
     Example: axiscal serve --port 8000   (then open http://127.0.0.1:8000 in a browser)
     """
-    import os
-    import sys
-
     from axiscal.errors import InputError
     from axiscal.web.security import UserFile, is_loopback
 
     users_path = users or _default_users()
     if add_user is not None:
-        from axiscal.web.security import ROLES
-
-        if role not in ROLES:   # before the password is asked for, not after
-            raise InputError(f"--role {role[:40]!r}: use {' or '.join(ROLES)}")
-        password = os.environ.get("AXISCAL_PASSWORD")
-        if not password and not sys.stdin.isatty():
-            raise InputError("--add-user: no terminal to ask the password on; set "
-                             "AXISCAL_PASSWORD")
-        password = password or typer.prompt(f"password for {add_user}", hide_input=True,
-                                            confirmation_prompt=True)
-        UserFile.load(users_path).add(add_user, role, password)
-        typer.echo(f"{add_user} ({role}) written to {users_path}")
-        return
+        return _add_user(users_path, add_user, role)
     loopback = is_loopback(host)
     if not loopback and not UserFile.load(users_path).users:
         raise InputError(f"--host {host} is reachable from other computers: add an account "
@@ -91,6 +76,26 @@ def serve(
                f"{session_max:g} h; headers within {header_timeout:g} s, body silences under "
                f"{body_timeout:g} s, {max_connections} connections at once", err=True)
     run(app, host, port, header_timeout, body_timeout, max_connections)
+
+
+def _add_user(users_path: Path, name: str, role: str) -> None:
+    """``--add-user``: the password from AXISCAL_PASSWORD or asked on the terminal."""
+    import os
+    import sys
+
+    from axiscal.errors import InputError
+    from axiscal.web.security import ROLES, UserFile
+
+    if role not in ROLES:   # before the password is asked for, not after
+        raise InputError(f"--role {role[:40]!r}: use {' or '.join(ROLES)}")
+    password = os.environ.get("AXISCAL_PASSWORD")
+    if not password and not sys.stdin.isatty():
+        raise InputError("--add-user: no terminal to ask the password on; set "
+                         "AXISCAL_PASSWORD")
+    password = password or typer.prompt(f"password for {name}", hide_input=True,
+                                        confirmation_prompt=True)
+    UserFile.load(users_path).add(name, role, password)
+    typer.echo(f"{name} ({role}) written to {users_path}")
 
 
 def _url_host(host: str) -> str:

@@ -87,6 +87,15 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     app.state.templates.env.filters["unit"] = lambda u: {"um": "µm", "um/m": "µm/m"}.get(u, u)
     app.mount("/static", StaticFiles(directory=str(HERE / "static")), name="static")
     app.add_middleware(BodyLimit, limit=app.state.upload_limit + FORM_OVERHEAD)
+    _add_guard(app)
+    _add_error_pages(app)
+    pages.add_routes(app)
+    return app
+
+
+def _add_guard(app: FastAPI) -> None:
+    """The middleware every request passes: Host, Origin of a POST, session, and the protective
+    headers of every answer."""
 
     @app.middleware("http")
     async def guard(request: Request, call_next):
@@ -114,6 +123,11 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
                                     "style-src 'self' 'unsafe-inline'; object-src 'none'")
         return response
 
+
+def _add_error_pages(app: FastAPI) -> None:
+    """Every error as a page of the workbench (library errors in their own words, an address
+    FastAPI cannot read, HTTP errors, and anything else as "internal error")."""
+
     @app.exception_handler(AxiscalError)
     async def library_error(request: Request, exc: AxiscalError):
         status = 403 if isinstance(exc, Forbidden) else 404 if isinstance(exc, LookupError) \
@@ -135,9 +149,6 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     async def internal_error(request: Request, exc: Exception):
         LOG.exception("internal error on %s %s", request.method, request.url.path)
         return render_error(request, "internal error: the server's log has the details", 500)
-
-    pages.add_routes(app)
-    return app
 
 
 def render(request: Request, template: str, title: str, status: int = 200, **context):
