@@ -235,6 +235,7 @@ def test_motion_analyze_plots_the_polar_error_motions(tmp_path):
 def test_report_of_a_result_holds_the_method_the_plot_and_every_figure(tmp_path, args, title,
                                                                       simulation):
     """The commands whose result is a few figures and a plot write a report too (issue 11)."""
+    import html as html_lib
     import json
 
     out = tmp_path / "r.html"
@@ -243,10 +244,16 @@ def test_report_of_a_result_holds_the_method_the_plot_and_every_figure(tmp_path,
     page = out.read_text()
     assert f"<h1>{title}" in page and "<svg" in page and "Results" in page
     assert ("simulation report" in page.lower()) == simulation
-    # every number of the --json result is in the page's table
+    # every number of the --json result is in the page's table, under its label with its unit
+    # and with the decimals of that unit (issue 28: one label table, one decimal policy)
+    from axiscal.report.labels import fmt, label, quantity
+
     d = json.loads(runner.invoke(app, [*args, "--json"]).stdout)
-    first = next(v for v in d.values() if isinstance(v, float))
-    assert f"{first:.4f}"[:5] in page
+    for key, value in ((k, v) for k, v in d.items() if isinstance(v, float)):
+        unit = quantity(key, d.get("unit"))[1]
+        shown = f"<td>{label(key, d.get('unit'))}</td><td>{fmt(value, unit)}</td>"
+        assert html_lib.unescape(shown) in html_lib.unescape(page), shown
+    assert "_um" not in page.split("<body>")[1].split("<svg")[0]
 
 
 def test_history_compare_and_trend_write_reports(tmp_path, monkeypatch):
