@@ -98,3 +98,17 @@ def test_on_controller_needs_linuxcnc_and_verify():
     r = runner.invoke(app, ["compensate", str(ROOT / "examples/compensation_linear.toml"),
                             "--on-controller"])
     assert r.exit_code == 2 and "--on-controller" in r.output
+
+
+def test_where_linuxcnc_cannot_run_the_command_says_why(monkeypatch, tmp_path):
+    """Not Debian, not root or not installed: one line naming the reason, exit 2, no traceback."""
+    import axiscal.instruments.linuxcnc_controller as live_module
+
+    monkeypatch.setattr(live_module, "unavailable_reason",
+                        lambda: "not Debian: axiscal runs LinuxCNC from Debian's linuxcnc-uspace package")
+    cfg = tmp_path / "small.toml"
+    cfg.write_text((ROOT / "examples/compensation_linear.toml").read_text())
+    r = runner.invoke(app, ["compensate", "--verify", str(cfg), "--controller", "linuxcnc",
+                            "--on-controller"])
+    assert r.exit_code == 2, r.output
+    assert "LinuxCNC cannot run here: not Debian" in r.output and "Traceback" not in r.output
