@@ -388,16 +388,18 @@ def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]
 
 
 def _record_cell(key: str, value, unit: str, axes) -> str:
-    """One cell of a result that is a table, as HTML: a name with a standard's subscripts, an
-    object as its labelled values."""
+    """One cell (``<td>``) of a result that is a table: a name with a standard's subscripts, an
+    object as its labelled values, text aligned left and numbers right."""
     from axiscal.report.labels import fmt, quantity, symbol_html
 
     u = quantity(key, unit, axes)[1]
     if isinstance(value, dict):
-        return _esc("; ".join(f"{quantity(k, unit, axes)[0]} {fmt(v, unit, True)}"
-                              for k, v in value.items()))
+        parts = "; ".join(f"{quantity(k, unit, axes)[0]} {fmt(v, unit, True)}"
+                          for k, v in value.items())
+        return f'<td class="t">{_esc(parts)}</td>'
     shown = _shown(value, u)
-    return symbol_html(shown) if key.rsplit(".", 1)[-1] in ("name", "") else _esc(shown)
+    text = symbol_html(shown) if key.rsplit(".", 1)[-1] in ("name", "") else _esc(shown)
+    return f'<td class="t">{text}</td>' if isinstance(value, str) else f"<td>{text}</td>"
 
 
 def _shown(value, unit: str) -> str:
@@ -479,7 +481,8 @@ def _html_table(caption: str, headers, rows) -> str:
         return f'<h3>{_esc(caption)}</h3><ul class="statements">{items}</ul>'
     kv = not any(headers)
     head = "".join(f"<th>{_esc(h)}</th>" for h in headers)
-    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    body = "".join("<tr>" + "".join(c if c.startswith("<td") else f"<td>{c}</td>" for c in row)
+                   + "</tr>" for row in rows)
     cls = ("kv" if kv else "records") + (" long" if len(rows) > LONG_TABLE else "")
-    return (f'<table class="{cls}"><caption>{_esc(caption)}</caption>'
+    return (f'<h3>{_esc(caption)}</h3><table class="{cls}">'   # a heading stays with its table
             f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")

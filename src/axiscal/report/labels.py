@@ -92,15 +92,19 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     # squareness (ISO 230-1:2012 §10.3; Chapman, Calibration of machine squareness)
     "iso": ("Squareness by ISO 230-1 (referred axis)", None), "iso_datum": ("ISO datum axis", ""),
     "iso_referred": ("ISO referred axis", ""), "angle_note": ("Angle", ""),
-    "convention": ("Sign convention", ""), "axes": ("Axes", ""), "truth": ("Simulation's truth", None),
+    "convention": ("Sign convention", ""), "axes": ("Axes", ""),
+    "truth": ("Simulation's truth", None),
     "U": ("U (k = 2), expanded uncertainty", None), "u": ("Standard uncertainty u", None),
     "correction": ("Correction", None), "prism_error": ("Prism error", None),
-    "slope_first": ("Slope of the first run", None), "slope_second": ("Slope of the second run", None),
+    "slope_first": ("Slope of the first run", None),
+    "slope_second": ("Slope of the second run", None),
     "straightness_first": ("Straightness of the first run", None),
     "straightness_second": ("Straightness of the second run", None),
     "slope_d1": ("Slope of diagonal D1", None), "slope_d2": ("Slope of diagonal D2", None),
-    "error_d1": ("Length error of diagonal D1", None), "error_d2": ("Length error of diagonal D2", None),
-    "length_x": ("Length along the first axis", None), "length_y": ("Length along the second axis", None),
+    "error_d1": ("Length error of diagonal D1", None),
+    "error_d2": ("Length error of diagonal D2", None),
+    "length_x": ("Length along the first axis", None),
+    "length_y": ("Length along the second axis", None),
     "nominal": ("Nominal length", None), "labels": ("Diagonals", ""), "D1": ("D1", ""),
     "D2": ("D2", ""), "config": ("Configuration", ""), "orientation": ("Orientation", "°"),
     "measurements": ("Measurements", ""), "uncertainty": ("Uncertainty contributions", None),
@@ -109,12 +113,14 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "folded": ("Errors the ISO 230-4 fit folds in", None), "quantity": ("Quantity", ""),
     "iso230_4": ("By the ISO 230-4 fit", None), "diagnosis": ("By the full diagnosis", None),
     "material": ("Material", ""), "statement": ("Statement", ""),
-    "um_per_m": ("Squareness", "µm/m"), "arcsec": ("Squareness", "arcsec"), "results": ("Results per test", None),
+    "um_per_m": ("Squareness", "µm/m"), "arcsec": ("Squareness", "arcsec"),
+    "results": ("Results per test", None),
     "averages": ("Averages", None), "method": ("Method", ""), "group": ("Group", ""),
     "centre": ("Centre", None), "size": ("Size", None), "machine": ("Machine", ""),
     "scope": ("Scope", ""), "readings": ("Readings", ""), "file": ("File", ""),
     # straightness (ISO 230-1:2012 §8.2)
-    "straightness": ("Straightness", None), "slope": ("Slope", None), "intercept": ("Intercept", None),
+    "straightness": ("Straightness", None), "slope": ("Slope", None),
+    "intercept": ("Intercept", None),
     "reference": ("Reference line", ""), "methods": ("By each reference line", None),
     "end_point": ("End-point line", ""), "least_squares": ("Least-squares line", ""),
     "minimum_zone": ("Minimum-zone line", ""),
@@ -141,7 +147,8 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "difference": ("Difference", None),
     # laser scale referencing (Renishaw, Laser scale axis referencing)
     "compensation": ("Compensation factor", None), "laser_count_rate": ("Laser count rate", None),
-    "controller_max_speed": ("Controller's largest speed", None), "count_size": ("Count size", None),
+    "controller_max_speed": ("Controller's largest speed", None),
+    "count_size": ("Count size", None),
     "counts_per_period": ("Counts per period", ""), "events": ("Events", None),
     "controller_count": ("Controller count", "counts"), "counts_beyond_switch":
     ("Beyond the switch", "counts"), "nominal_counts": ("Nominal", "counts"),
@@ -151,13 +158,16 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "power_up_phase": ("Phase at power-up", "counts"), "rephase_periods": ("Rephasing", "periods"),
     "switch_trip": ("Switch trips at", None), "virtual_counts": ("Virtual counts", "counts"),
     "homed": ("Homed", ""), "tracking": ("Tracking after homing", None),
-    "count_uncertainty": ("One laser count", "counts"), "end_controller": ("Controller at the end", None),
+    "count_uncertainty": ("One laser count", "counts"),
+    "end_controller": ("Controller at the end", None),
     "end_part": ("Part at the end", None), "end_true": ("True position at the end", None),
     "end_uncompensated": ("Uncompensated scale at the end", None),
     "max_count_error": ("Largest count error", "counts"),
-    "max_part_error": ("Largest part error", None), "max_pulse_error": ("Largest pulse error", "counts"),
+    "max_part_error": ("Largest part error", None),
+    "max_pulse_error": ("Largest pulse error", "counts"),
     "alarm": ("Alarm", ""), "alarms": ("Alarms", ""), "deskew_move": ("Deskew move", "counts"),
-    "homing_skew_bound": ("Homing skew bound", None), "homing_skew_max": ("Largest homing skew", "counts"),
+    "homing_skew_bound": ("Homing skew bound", None),
+    "homing_skew_max": ("Largest homing skew", "counts"),
     "homing_skew_min": ("Smallest homing skew", "counts"),
     "required_skew_limit": ("Skew limit needed", "counts"), "skew_limit": ("Skew limit", "counts"),
     "skew_after_sync": ("Skew after synchronisation", "counts"),
@@ -256,7 +266,8 @@ def value_text(value: str) -> str:
     return value.replace("_", " ") if _CODE_VALUE.match(value) else value
 
 
-_SYMBOL = re.compile(r"(?<![\w/.])([0-9]*[A-Za-zα-ωΔδεθ][\w̄↑↓]*?)_(\{[^}]*\}|[A-Za-z0-9↑↓]+(?:,[A-Za-z0-9↑↓]+)*)"
+_SYMBOL = re.compile(r"(?<![\w/.])([0-9]*[A-Za-zα-ωΔδεθ][\w̄↑↓]*?)_"
+                     r"(\{[^}]*\}|[A-Za-z0-9↑↓]+(?:,[A-Za-z0-9↑↓]+)*)"
                      r"(?!\w|/[A-Za-z_.]|\.\w)")
 
 

@@ -285,7 +285,8 @@ def _draw_ballbar_trace(ax, machine, r, style) -> None:
 def _summary_panel(ax, machine, comparison, mag) -> None:
     ax.axis("off")
     lines = [str(machine).replace(", ", "\n"), "",
-             f"truth θ0 = {fmt(comparison.truth, 'µm/m', True)} µm/m", f"plane distortion × {mag:g}",
+             f"truth θ0 = {fmt(comparison.truth, 'µm/m', True)} µm/m",
+             f"plane distortion × {mag:g}",
              "red: test path (one orientation of T / L shown;", "     ballbar trace auto-scaled;",
              "     orange dashed: overlapping ballbar row)",
              "", "averages (µm/m):"]
