@@ -59,6 +59,13 @@ def server(tmp_path_factory):
 @pytest.fixture(scope="module")
 def browser(tmp_path_factory):
     """Headless Chromium (Debian's), downloads into a temporary folder (``browser.downloads``)."""
+    driver = make_browser(tmp_path_factory)
+    yield driver
+    driver.quit()
+
+
+def make_browser(tmp_path_factory, *flags: str):
+    """A headless Chromium with these further command-line flags (the caller quits it)."""
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
@@ -69,6 +76,8 @@ def browser(tmp_path_factory):
                  "--no-first-run", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync", "--window-size=1280,1600"):
         opts.add_argument(flag)
+    for flag in flags:
+        opts.add_argument(flag)
     opts.add_argument(f"--user-data-dir={tmp_path_factory.mktemp('profile')}")
     opts.add_experimental_option("prefs", {"download.default_directory": str(downloads),
                                            "download.prompt_for_download": False})
@@ -77,8 +86,7 @@ def browser(tmp_path_factory):
                            {"behavior": "allow", "downloadPath": str(downloads)})
     driver.downloads = downloads
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
-    yield driver
-    driver.quit()
+    return driver
 
 
 def shot(driver, name: str) -> Path:

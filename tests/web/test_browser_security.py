@@ -1,7 +1,8 @@
 """The hardened workbench in a real browser (issue 31): error pages in the workbench's style with
 a way back, a log-out that a copied cookie does not survive, and the lock-out after wrong
-passwords said on the login page. Screenshots in test-artifacts/web/ (error_404.png,
-error_compare.png, login_lockout.png)."""
+passwords said on the login page, a DNS-rebound name and another site's form refused.
+Screenshots in test-artifacts/web/ (error_404.png, error_compare.png, login_lockout.png,
+rebinding.png, cross_site_post.png)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from selenium.webdriver.support.ui import WebDriverWait
 
 from axiscal.web.security import UserFile
 from axiscal.web.sessions import FREE_FAILURES
-from tests.web.conftest import shot, start_server, stop_server
+from tests.web.conftest import make_browser, shot, start_server, stop_server
 
 
 @pytest.fixture(scope="module")
@@ -70,3 +71,36 @@ def test_the_lock_out_is_said_on_the_login_page(login_server, browser):
     assert "too many wrong passwords" in words and "try again in" in words
     assert "/login" in browser.current_url
     shot(browser, "login_lockout")
+
+
+@pytest.fixture(scope="module")
+def rebound(tmp_path_factory):
+    """A browser for which evil.example resolves to 127.0.0.1: what DNS rebinding achieves."""
+    driver = make_browser(tmp_path_factory, "--host-resolver-rules=MAP evil.example 127.0.0.1")
+    yield driver
+    driver.quit()
+
+
+def test_a_rebound_name_gets_no_page_and_no_token(server, rebound):
+    port = server.rsplit(":", 1)[1]
+    for path in ("/", "/upload", "/plan"):
+        rebound.get(f"http://evil.example:{port}{path}")
+        assert "does not answer to that host name" in rebound.find_element(
+            By.CSS_SELECTOR, ".error").text, path
+        token = rebound.find_element(By.CSS_SELECTOR, 'meta[name="csrf-token"]')
+        assert token.get_attribute("content") == "", path
+    assert not rebound.find_elements(By.NAME, "file")          # no upload form
+    shot(rebound, "rebinding")
+
+
+def test_another_sites_form_is_refused(server, browser, tmp_path):
+    """A page elsewhere (here a local file: its Origin is "null") that posts to the workbench."""
+    page = tmp_path / "attack.html"
+    page.write_text(f'<form method="post" action="{server}/plan"><input name="kind" '
+                    'value="linear"><input name="travel" value="800"></form>'
+                    '<script>document.forms[0].submit()</script>')
+    browser.get(page.as_uri())
+    WebDriverWait(browser, 20).until(lambda d: d.current_url.startswith(server))
+    assert "sent from another site" in browser.find_element(By.CSS_SELECTOR, ".error").text
+    assert "HTTP 403" in browser.find_element(By.TAG_NAME, "main").text
+    shot(browser, "cross_site_post")
