@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report.labels import fmt, unit_text
+
 __all__ = ["iso230_2_figure", "save_iso230_2_plot", "save_figure", "UP_COLOR", "DOWN_COLOR"]
 
 UP_COLOR = "#0b5fa5"
@@ -130,11 +132,11 @@ def standard_figure(dataset, standard, result):
     """
     from axiscal.standards.positioning_standards import parameter_label
 
-    u = {"um": "µm", "arcsec": "arcsec"}.get(dataset.deviation_unit, dataset.deviation_unit)
+    u = unit_text(dataset.deviation_unit)
     lines = [f"{standard.title} [{u}]"]
     for name, (v, _unit, _d) in result.parameters().items():
         label = parameter_label(name)
-        lines.append(f"{label:<7}" + ("      —" if v is None else f"{v:9.2f}"))
+        lines.append(f"{label:<7}" + ("      —" if v is None else f"{fmt(v, u):>9}"))
     lines += [f"{name:<7}      —" for name, _ in result.not_evaluated]
     base = per_target(dataset)
     lines.append(f"runs {base.n_runs}, targets {base.targets.size}")
@@ -175,7 +177,7 @@ def _parameter_box(result, u: str) -> str:
         v = getattr(result, key)
         if v is not None:
             pad = 3 - sum(not unicodedata.combining(c) for c in label)  # B̄ is one column wide
-            lines.append(f"{label}{' ' * pad}{v:9.2f}")
+            lines.append(f"{label}{' ' * pad}{fmt(v, u):>9}")   # the tables' decimals
     lines.append(f"runs {result.n_runs}, targets {result.targets.size}")
     return "\n".join(lines)
 
