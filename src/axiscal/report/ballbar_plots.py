@@ -14,7 +14,8 @@ import numpy as np
 from axiscal.report.labels import fmt
 from axiscal.report.squareness_plots import _nice, _pyplot, _save
 
-__all__ = ["diagnosis_figure", "save_diagnosis_plot", "write_diagnosis_report"]
+__all__ = ["RANKING_CAPTION", "RANKING_HEADERS", "diagnosis_figure", "ranking_rows",
+           "save_diagnosis_plot", "write_diagnosis_report"]
 
 _COLOURS = {"ccw": "tab:blue", "cw": "tab:red"}
 
@@ -42,20 +43,13 @@ def write_diagnosis_report(path, runs, diagnosis, title: str = "Ballbar diagnosi
     from axiscal.report.labels import label
 
     c = diagnosis.circular
-    axes = c.squareness.axes
     rep = Report(title, "ISO 230-4:2005 circular test; diagnosis after Renishaw, Calibration of "
                  "machine squareness, Method 4",
                  {"Radius": f"{fmt(c.radius * 1e3, 'mm')} mm", "Arc": f"{fmt(c.arc_deg, '°')}°",
                   "Feed": "—" if diagnosis.feed is None else
                   f"{fmt(diagnosis.feed * 6e4, 'mm/min')} mm/min"})
     rep.add_figure(diagnosis_figure(runs, diagnosis, title))
-    rep.add_table(["Rank", "Term", "Value", "Unit", "Effect [µm]", "Share of G [%]", "Advice"],
-                  [(i, _term_label(t, axes), fmt(t.value, t.unit), t.unit,
-                    fmt(t.ptp * 1e6, "µm"), fmt(t.share * 100, "%"), t.advice)
-                   for i, t in enumerate(diagnosis.terms, 1)],
-                  caption="Ranked diagnosis. Effect: the term's peak-to-valley on the radial "
-                  "deviation; share: effect / G. The terms are not additive, so a share can exceed "
-                  "100 %.")
+    rep.add_table(RANKING_HEADERS, ranking_rows(diagnosis), caption=RANKING_CAPTION)
     rep.add_table(["", ""], [[label(k), fmt(_um(v), "µm")] for k, v in
                              (("G_ccw_um", c.G_ccw), ("G_cw_um", c.G_cw), ("H_um", c.H),
                               ("residual_rms_um", diagnosis.residual_rms))],
@@ -63,6 +57,21 @@ def write_diagnosis_report(path, runs, diagnosis, title: str = "Ballbar diagnosi
     _add_folded(rep, diagnosis)
     rep.add_warnings(diagnosis.warnings)
     return rep.write(path)
+
+
+#: Columns and caption of the ranked diagnosis (the report and the workbench's test page).
+RANKING_HEADERS = ["Rank", "Term", "Value", "Unit", "Effect [µm]", "Share of G [%]", "Advice"]
+RANKING_CAPTION = ("Ranked diagnosis. Effect: the term's peak-to-valley on the radial deviation; "
+                   "share: effect / G. The terms are not additive, so a share can exceed 100 %.")
+
+
+def ranking_rows(diagnosis, number=fmt) -> list[tuple]:
+    """The ranked diagnosis as rows of text under :data:`RANKING_HEADERS` (the order and the
+    numbers ``ballbar analyze`` prints); ``number(value, unit)`` writes each value (by default
+    with its unit's decimals, :func:`axiscal.report.labels.fmt`)."""
+    axes = diagnosis.circular.squareness.axes
+    return [(i, _term_label(t, axes), number(t.value, t.unit), t.unit, number(t.ptp * 1e6, "µm"),
+             number(t.share * 100, "%"), t.advice) for i, t in enumerate(diagnosis.terms, 1)]
 
 
 def _term_label(term, axes) -> str:

@@ -79,7 +79,8 @@ class Test(Base):
                                                          cascade="all, delete-orphan",
                                                          order_by="Parameter.id")
     tables: Mapped[list["Table"]] = relationship(back_populates="test",
-                                                 cascade="all, delete-orphan")
+                                                 cascade="all, delete-orphan",
+                                                 order_by="Table.id")
     certificates: Mapped[list["Certificate"]] = relationship(back_populates="test",
                                                              cascade="all, delete-orphan")
 

@@ -64,6 +64,7 @@ def add_routes(app: FastAPI) -> None:
         more = len(tests) > PAGE
         rows = [(t, _key(t)) for t in tests[:PAGE]]
         return render(request, "machine.html", f"{name}", name=name, rows=rows,
+                      trends=_trend_parameters(st, name, m.axes),
                       axes=list(m.axes), axis=axis, page=page, more=more, total=m.tests,
                       query=query)
 
@@ -74,11 +75,13 @@ def add_routes(app: FastAPI) -> None:
         plot = positioning_plot(ev) if ev.kind == "iso230-2" else None
         budget, decisions = _uncertainty(ev) if ev.kind == "iso230-2" else (None, {})
         from axiscal.compensation.controllers import CONTROLLERS
+        from axiscal.web.kind_pages import kind_view
 
         return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
                       f"{t.summary.axis}", t=t, ev=ev, plot=plot,
                       standards=_other_standards(ev) if ev.kind == "iso230-2" else None,
                       targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
+                      view=kind_view(ev),
                       budget=budget, decisions=decisions,
                       controllers=sorted(CONTROLLERS), others=[
                           o for o in store(request).tests(machine=t.summary.machine,
@@ -90,6 +93,17 @@ def add_routes(app: FastAPI) -> None:
     def raw(request: Request, test_id: TestId):
         t = store(request).get(test_id)
         return download(t.raw, t.summary.filename, "application/octet-stream")
+
+    @app.get("/tests/{test_id}/tables/{number}")
+    def stored_table(request: Request, test_id: TestId, number: Annotated[int, InPath(ge=1,
+                                                                                   le=10**6)]):
+        """A compensation table written from this test, as it was written (the n-th listed)."""
+        t = store(request).get(test_id)
+        if number > len(t.tables):
+            raise _missing(f"test {test_id} has {len(t.tables)} stored compensation tables; "
+                           f"no table {number}")
+        _, filename, text = t.tables[number - 1]
+        return download(text, filename, "text/plain")
 
     @app.get("/tests/{test_id}/result.json")
     def result_json(request: Request, test_id: TestId):
@@ -156,7 +170,7 @@ def add_routes(app: FastAPI) -> None:
         plot = None
         if c.targets is not None:
             plot = {"title": f"change of x̄, test {b} − test {a}", "x_label":
-                    f"target [{c.target_unit}]", "y_label": f"change [{c.unit}]",
+                    f"target [{c.target_unit}]", "y_label": f"change [{unit_text(c.unit)}]",
                     "x": c.targets.tolist(), "series": [{"label": "change",
                                                          "values": c.difference.tolist(),
                                                          "color": _COLORS["up"]}]}
@@ -215,7 +229,7 @@ def add_routes(app: FastAPI) -> None:
 def positioning_plot(ev) -> dict:
     """uPlot spec of an ISO 230-2 test: x̄↑, x̄↓ and x̄ per target, every reading as points."""
     r, ds = ev.evaluation, ev.dataset
-    unit = "µm" if r.deviation_unit == "um" else r.deviation_unit
+    unit = unit_text(r.deviation_unit)
     series = [{"label": "x̄↑", "values": _list(r.mean_up), "color": _COLORS["up"]},
               {"label": "x̄↓", "values": _list(r.mean_down), "color": _COLORS["down"]},
               {"label": "x̄ (bidirectional)", "values": _list(r.mean_bi),
@@ -226,22 +240,45 @@ def positioning_plot(ev) -> dict:
 
 
 def trend_plot(tr) -> dict:
-    """uPlot spec of a trend: the values and the fitted line (x in years since the first)."""
-    t0 = tr.dates[0]
-    years = [(d - t0).total_seconds() / (365.25 * 86400) for d in tr.dates]
-    series = [{"label": tr.parameter, "values": [float(v) for v in tr.values],
+    """uPlot spec of a trend on a date axis (x: seconds since 1970, UTC): the values, the fitted
+    line (ISO/TS 28037:2010 clause 6, as :func:`axiscal.store.trend` fits it) drawn on to the
+    predicted crossing of the tolerance, the tolerance, and the crossing as a point."""
+    def seconds(d):
+        import datetime as dt
+
+        return (d if d.tzinfo else d.replace(tzinfo=dt.timezone.utc)).timestamp()
+
+    x = [seconds(d) for d in tr.dates]
+    values = [float(v) for v in tr.values]
+    crossing = seconds(tr.crossing) if tr.crossing is not None else None
+    if crossing is not None:          # one more x: the fitted line and the tolerance reach it
+        x.append(crossing)
+        values.append(None)
+    order = sorted(range(len(x)), key=x.__getitem__)
+    x = [x[i] for i in order]
+    series = [{"label": tr.parameter, "values": [values[i] for i in order],
                "color": _COLORS["up"], "points": True}]
     if tr.drift is not None:
-        last = years[-1]
+        last = seconds(tr.dates[-1])      # the level is the fitted value at the last test
         series.append({"label": "fitted drift", "values": [
-            tr.level + tr.drift * (y - last) for y in years], "color": _COLORS["line"],
-            "dash": True})
+            tr.level + tr.drift * (t - last) / (365.25 * 86400) for t in x],
+            "color": _COLORS["line"], "dash": True})
     if tr.tolerance is not None:
-        series.append({"label": "tolerance", "values": [tr.tolerance] * len(years),
+        series.append({"label": "tolerance", "values": [tr.tolerance] * len(x),
                        "color": _COLORS["down"], "dash": True})
-    return {"title": f"{tr.parameter} over time", "x_label": f"years since {t0:%Y-%m-%d}",
-            "y_label": f"{tr.parameter} [{'µm' if tr.unit == 'um' else tr.unit}]", "x": years,
+    if crossing is not None:
+        series.append({"label": f"predicted crossing {tr.crossing:%Y-%m-%d}", "values": [
+            tr.tolerance if t == crossing else None for t in x], "color": _COLORS["down"],
+            "points": True})
+    return {"title": f"{tr.parameter} over time", "x_label": "date of the test (UTC)",
+            "x_time": True, "y_label": f"{tr.parameter} [{unit_text(tr.unit)}]", "x": x,
             "series": series}
+
+
+def unit_text(unit: str) -> str:
+    """A unit as the pages write it: ``um`` (the store's spelling) as ``µm``, ``um/m`` as
+    ``µm/m``."""
+    return "µm" + unit[2:] if unit.startswith("um") else unit
 
 
 def _write_table(store, test_id: int, controller: str, spacing: float):
@@ -266,11 +303,25 @@ def _target_rows(ev) -> list:
             zip(r.targets, r.mean_up, r.mean_down, r.mean_bi, r.reversal, r.R_i)]
 
 
+def _trend_parameters(st, machine: str, axes) -> dict:
+    """The parameter a trend of each axis follows: the key parameter of its newest test (E of a
+    positioning test, squareness of a ballbar or diagonal test, ...)."""
+    out = {}
+    for a in axes:
+        newest = st.tests(machine=machine, axis=a, limit=1)
+        key = _key(newest[0]) if newest else None
+        if key:
+            out[a] = key[0]
+    return out
+
+
 def _key(t):
+    """The key parameter of a test: the first of :data:`_KEY` it has, else its first (the
+    total radial error motion of a five-error test)."""
     for k in _KEY:
         if k in t.parameters:
             return k, t.parameters[k]
-    return None
+    return next(iter(t.parameters.items()), None)
 
 
 def _list(a) -> list:

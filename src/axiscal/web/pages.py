@@ -23,7 +23,7 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/plan", response_class=HTMLResponse)
     async def plan_page(request: Request):
-        form = {"travel": "", "targets": "", "step": "", "runs": "5"}
+        form = {"kind": "linear", "travel": "", "targets": "", "step": "", "runs": "5"}
         return render(request, "plan.html", "Plan a test", form=form)
 
     @app.post("/plan", response_class=HTMLResponse)

@@ -1,6 +1,7 @@
 // axiscal workbench: interactive plots (uPlot, vendored) and the CSRF header for htmx requests.
 // Every element with class "uplot-chart" names a <script type="application/json"> holding
-// {"title", "x_label", "y_label", "x": [...], "series": [{"label", "values", "color", "dash", "points"}]}.
+// {"title", "x_label", "y_label", "x": [...], "x_time" (optional: x are dates, seconds since 1970 UTC),
+//  "series": [{"label", "values", "color", "dash", "points"}]}.
 (function () {
   "use strict";
 
@@ -26,10 +27,18 @@
       width: width,
       height: 380,
       series: series,
-      scales: { x: { time: false } },
+      scales: { x: spec.x_time ? { time: true, range: timeRange } : { time: false } },
+      tzDate: function (ts) { return uPlot.tzDate(new Date(ts * 1e3), "Etc/UTC"); },
       axes: [{ label: spec.x_label }, { label: spec.y_label }],
       cursor: { drag: { x: true, y: true } }
     }, data, el);
+  }
+
+  // A date axis (x in seconds since 1970, UTC; "x_time": true) keeps a month in view when
+  // every point shares one date, instead of uPlot's span of decades.
+  function timeRange(u, lo, hi) {
+    var pad = hi - lo < 86400 ? 15 * 86400 : 0.03 * (hi - lo);
+    return [lo - pad, hi + pad];
   }
 
   function init(root) {
