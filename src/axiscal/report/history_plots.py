@@ -49,10 +49,14 @@ def trend_figure(tr, title: str = ""):
                 label=f"drift {tr.drift:+.3g} {tr.unit}/year")
     if tr.tolerance is not None:
         ax.axhline(tr.tolerance, color="tab:red", ls="--", label=f"tolerance {tr.tolerance:g}")
+    if tr.crossing is not None:
+        ax.plot([tr.crossing], [tr.tolerance], "D", color="tab:red", ms=7,
+                label=f"predicted crossing {tr.crossing:%Y-%m-%d}")
     if tr.recalibrate_by is not None:
         ax.axvline(tr.recalibrate_by, color="tab:orange", ls=":",
                    label=f"recalibrate by {tr.recalibrate_by:%Y-%m-%d}")
-    ax.xaxis.set_major_formatter(mdates.DateFormatter("%Y-%m"))
+    ax.xaxis.set_major_formatter(mdates.DateFormatter("%Y-%m-%d"))
+    ax.set_xlabel("date of the test")
     ax.set_ylabel(f"{tr.parameter} [{'µm' if tr.unit == 'um' else tr.unit}]")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
