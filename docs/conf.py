@@ -34,6 +34,7 @@ exclude_patterns = ["_build", "gallery/README.txt", "auto_examples/*.ipynb",
                     "auto_examples/*.py", "auto_examples/*.zip", "auto_examples/*.md5",
                     "auto_examples/*.codeobj.json", "**.ipynb_checkpoints"]
 root_doc = "index"
+smartquotes = False     # option names (--data) must stay two hyphens, not an en dash
 
 # The API reference: numpydoc renders the docstrings' Parameters/Returns/Notes sections.
 autodoc_member_order = "bysource"

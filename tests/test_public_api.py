@@ -133,3 +133,37 @@ def test_mypy_on_the_public_api():
                         "--ignore-missing-imports", "--no-error-summary", *files],
                        capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_straightness_and_diagonal_files_equal_their_commands(tmp_path):
+    """The other kinds through ``axiscal.evaluate(path)``: the history's evaluation object, with
+    the numbers of ``axiscal straightness --json`` and ``axiscal squareness diagonal --json``."""
+    from matplotlib.figure import Figure
+
+    f = ROOT / "examples" / "squareness_L180_x.csv"
+    ev, cli = axiscal.evaluate(f), _cli_json("straightness", f)
+    assert ev.kind == "straightness" and ev.standard == "iso230-1"
+    for method in ("least_squares", "minimum_zone"):
+        assert ev.to_dict()[method] == cli["methods"][method]
+    f = ROOT / "examples" / "squareness_diagonal_600x800.csv"
+    ev, cli = axiscal.evaluate(f), _cli_json("squareness", "diagonal", "--file", f)
+    assert ev.to_dict()["squareness"]["um_per_m"] == cli["squareness"]["um_per_m"]
+    assert isinstance(ev.plot(), Figure)
+    assert "Diagonal squareness" in ev.report(tmp_path / "d.html").read_text("utf-8")
+
+
+def test_motion_file_equals_motion_analyze(tmp_path):
+    """A five-error file (ISO 230-7) evaluated as ``axiscal motion analyze``: the stored totals
+    are SI (m, rad), the command's in µm and arcsec."""
+    from axiscal import units
+
+    f = tmp_path / "motion.csv"
+    cfg = ROOT / "examples" / "motion_indexing_table.toml"
+    assert runner.invoke(app, ["motion", "simulate", str(cfg), "--csv", str(f)]).exit_code == 0
+    ev, cli = axiscal.evaluate(f), _cli_json("motion", "analyze", f)
+    assert ev.kind == "motion" and ev.standard == "iso230-7"
+    shown = {m["name"]: m for m in cli["iso230_7"]["motions"]}
+    for m in ev.to_dict()["motions"]:
+        scale = units.UM if shown[m["name"]]["unit"] == "um" else units.ARCSEC
+        assert m["total"] / scale == pytest.approx(shown[m["name"]]["total"], rel=1e-9)
+    assert ev.report(tmp_path / "m.html").exists() and "<svg" in ev._repr_html_()

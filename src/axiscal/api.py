@@ -255,7 +255,7 @@ class Evaluation:
         return pd.DataFrame(self._json["targets"])
 
     def plot(self) -> "Figure":
-        """The evaluation's figure (matplotlib), as ``--plot`` draws it."""
+        """The evaluation's figure (matplotlib), as its command's ``--plot`` draws it."""
         return _figure(self)
 
     def report(self, path: PathLike) -> Path:
@@ -485,12 +485,41 @@ def _figure(ev: Evaluation) -> "Figure":
         if fig is None:
             raise InputError("plot: no standard evaluates this test, so there is no figure")
         return fig
-    if ev.kind == "ballbar" and hasattr(ev.result, "circular"):
+    return _OTHER_FIGURES[ev.kind](ev.dataset, ev.result)
+
+
+def _ballbar_figure(data: Any, r: Any) -> "Figure":
+    """Both directions: the diagnosis's polar plot and ranked terms; one: the ISO 230-4 plot."""
+    if hasattr(r, "circular"):
         from axiscal.report.ballbar_plots import diagnosis_figure
 
-        return diagnosis_figure(ev.dataset.runs, ev.result)
-    raise InputError(f"plot: the API draws positioning and two-direction ballbar tests; for a "
-                     f"{ev.kind} test use its command's --plot")
+        return diagnosis_figure(data.runs, r)
+    from axiscal.report.squareness_plots import ballbar_figure
+
+    return ballbar_figure(data.runs, r)
+
+
+def _straightness_figure(data: Any, r: Any) -> "Figure":
+    from axiscal.report.squareness_plots import straightness_figure
+
+    return straightness_figure(data, r)
+
+
+def _diagonal_figure(data: Any, r: Any) -> "Figure":
+    from axiscal.report.squareness_plots import diagonal_figure
+
+    return diagonal_figure(data, r)
+
+
+def _motion_figure(data: Any, r: Any) -> "Figure":
+    from axiscal.report.motion_plots import polar_figure
+
+    return polar_figure(r)
+
+
+#: The figure of each kind other than a positioning test: the one its command's --plot draws.
+_OTHER_FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
+                  "diagonal": _diagonal_figure, "motion": _motion_figure}
 
 
 def _write_report(ev: Evaluation, path: Path) -> Path:
@@ -510,7 +539,10 @@ def _write_report(ev: Evaluation, path: Path) -> Path:
         from axiscal.report.ballbar_plots import write_diagnosis_report
 
         return write_diagnosis_report(path, ev.dataset.runs, ev.result)
-    return write_result_report(path, f"{ev.kind} test ({ev.standard})", ev._json)
+    title = {"straightness": "Straightness (ISO 230-1)", "diagonal": "Diagonal squareness "
+             "(ISO 230-6)", "motion": "Error motions of a rotary axis (ISO 230-7)",
+             "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
+    return write_result_report(path, title, ev._json, figure=_figure(ev))
 
 
 def _html(kind: str, standard: str, d: dict, fig: Any) -> str:
