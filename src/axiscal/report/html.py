@@ -350,20 +350,14 @@ def _sym(text: Any) -> str:
 
 
 def _cell(v: Any, digits: int) -> str:
-    import math
+    """A table cell: a number to ``digits`` decimals (:func:`axiscal.report.labels.fixed`),
+    text escaped."""
+    from axiscal.report.labels import fixed
 
-    if v is None:
-        return "—"
-    if isinstance(v, bool):
-        return "yes" if v else "no"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float) or hasattr(v, "dtype"):
-        f = float(v)
-        if math.isnan(f):
-            return "—"
-        return f"{f:.{digits}f}"
-    return _esc(v)
+    if isinstance(v, (str, bytes)) or not (v is None or isinstance(v, (int, float))
+                                           or hasattr(v, "dtype")):
+        return _esc(v)
+    return fixed(v, digits)
 
 
 def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]]:

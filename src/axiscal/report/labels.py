@@ -241,22 +241,29 @@ def fmt(value: Any, unit: str = "", sign: bool = False) -> str:
 
 
 def _fmt(value: Any, unit: str) -> str:
+    if isinstance(value, str):
+        return value_text(value)
+    text = fixed(value, decimals(unit))
+    v = float(value) if isinstance(value, float) or hasattr(value, "dtype") else None
+    if v is None or not math.isfinite(v) or float(text) != 0:
+        return text
+    d = decimals(unit)
+    if v != 0 and abs(v) >= 10.0 ** -(d + 3):
+        text = f"{v:.{1 - math.floor(math.log10(abs(v)))}f}"
+    return text.lstrip("-") if float(text) == 0 else text
+
+
+def fixed(value: Any, digits: int) -> str:
+    """A number to ``digits`` decimals: None and NaN as a dash, flags as yes/no, integers as
+    they are (the cells of every report table)."""
     if value is None:
         return "—"
     if isinstance(value, bool):
         return "yes" if value else "no"
     if isinstance(value, int):
         return str(value)
-    if isinstance(value, str):
-        return value_text(value)
     v = float(value)
-    if math.isnan(v):
-        return "—"
-    d = decimals(unit)
-    text = f"{v:.{d}f}"
-    if v != 0 and float(text) == 0 and abs(v) >= 10.0 ** -(d + 3):
-        text = f"{v:.{1 - math.floor(math.log10(abs(v)))}f}"
-    return text.lstrip("-") if float(text) == 0 else text
+    return "—" if math.isnan(v) else f"{v:.{digits}f}"
 
 
 def value_text(value: str) -> str:
