@@ -49,7 +49,8 @@ def write_diagnosis_report(path, runs, diagnosis, title: str = "Ballbar diagnosi
                   "Feed": "—" if diagnosis.feed is None else
                   f"{fmt(diagnosis.feed * 6e4, 'mm/min')} mm/min"})
     rep.add_figure(diagnosis_figure(runs, diagnosis, title))
-    rep.add_table(RANKING_HEADERS, ranking_rows(diagnosis), caption=RANKING_CAPTION)
+    rep.add_table(RANKING_HEADERS, ranking_rows(diagnosis), caption=RANKING_CAPTION,
+                  css_class="params")   # the advice aligned left
     rep.add_table(["", ""], [[label(k), fmt(_um(v), "µm")] for k, v in
                              (("G_ccw_um", c.G_ccw), ("G_cw_um", c.G_cw), ("H_um", c.H),
                               ("residual_rms_um", diagnosis.residual_rms))],
