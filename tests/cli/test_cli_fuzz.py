@@ -8,7 +8,7 @@ end as :func:`_fuzz_cases.check` says: success with an output, or ONE line on st
 no traceback, no numpy warning, no output left after a failure, every input byte-identical.
 
 ``make test`` runs a seeded sample (``AXISCAL_FUZZ_SAMPLE`` cases, 120 by default, at least one per
-command; about a minute on one core); ``make fuzz`` runs every case::
+command but ``demo``); ``make fuzz`` runs every case::
 
     python tests/cli/test_cli_fuzz.py [--workers 2] [COMMAND ...]
 
