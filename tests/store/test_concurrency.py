@@ -62,3 +62,35 @@ def test_ten_files_of_one_new_machine_at_once(db_url):
     s = open_store(db_url)
     [m] = s.machines()
     assert (m.name, m.axes, m.tests) == ("NEW-5AX", ("X",), WRITERS)
+
+
+def test_a_write_lock_held_past_the_busy_timeout_is_waited_for_again(tmp_path, monkeypatch):
+    """Another writer holds SQLite's write lock longer than the busy timeout (shortened here to
+    0.2 s): the add waits again (LOCKED_RETRIES times) and is stored when the lock goes; held
+    for good, the add fails in one line and nothing is half-stored."""
+    import sqlite3
+    import threading
+
+    import pytest
+
+    import axiscal.store.database as database
+    from axiscal.store import StoreError
+    from axiscal.store.history import LOCKED_RETRIES, prepare
+
+    monkeypatch.setattr(database, "BUSY_TIMEOUT_MS", 200)
+    f = tmp_path / "h.sqlite"
+    s = open_store(f"sqlite:///{f}")
+    rng = np.random.default_rng(8)
+    a, b = (prepare(_raw(_dataset(rng)), name) for name in ("a.csv", "b.csv"))
+    holder = sqlite3.connect(f, isolation_level=None, check_same_thread=False)
+    holder.execute("BEGIN IMMEDIATE")
+    release = threading.Timer(0.5, lambda: holder.execute("COMMIT"))
+    release.start()
+    [r] = s.add_all([a])                                       # 0.2 s, 0.2 s, then free
+    release.join()
+    assert not r.duplicate and len(s.tests()) == 1
+    holder.execute("BEGIN IMMEDIATE")
+    with pytest.raises(StoreError, match="database is locked"):
+        s.add_all([b])
+    holder.execute("ROLLBACK")
+    assert [t.filename for t in s.tests()] == ["a.csv"] and LOCKED_RETRIES >= 2

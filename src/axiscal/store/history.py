@@ -32,6 +32,8 @@ __all__ = ["StoreError", "Store", "open_store", "default_url", "AddResult", "Tes
 
 #: How often a write that collided with another process's is run again.
 ATTEMPTS = 8
+#: How often a SQLite write waits the busy timeout again for a lock others keep holding.
+LOCKED_RETRIES = 3
 
 
 class NotFoundError(AxiscalError, LookupError):
@@ -156,9 +158,12 @@ class Store:
         An error, a full disk or a killed process leaves the database as it was before; a file
         stored before (or twice in ``items``) is reported as a duplicate. When another process
         stores the same file or makes the same new machine at the same moment, the transaction
-        is run again (the rows it collided with are then found), up to :data:`ATTEMPTS` times.
+        is run again (the rows it collided with are then found), up to :data:`ATTEMPTS` times;
+        a SQLite write lock still held by others after the busy timeout (30 s: many writers on
+        a loaded machine) is waited for again, :data:`LOCKED_RETRIES` times.
         """
         now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None)
+        locked = 0
         with self._guard("store"):
             for _ in range(ATTEMPTS):
                 with self._session(write=True) as s:
@@ -168,6 +173,9 @@ class Store:
                         return out
                     except Exception as exc:
                         s.rollback()
+                        if _busy(exc) and locked < LOCKED_RETRIES:
+                            locked += 1
+                            continue
                         if not _collision(exc):
                             raise
         raise StoreError(f"history database: {len(items)} test(s) could not be stored; other "
@@ -467,6 +475,11 @@ def _collision(exc) -> bool:
         return True
     code = getattr(getattr(exc, "orig", None), "sqlstate", None)
     return isinstance(exc, DBAPIError) and code in ("40P01", "40001")
+
+
+def _busy(exc) -> bool:
+    """SQLite's "database is locked" (SQLITE_BUSY, 5) after its busy timeout ran out."""
+    return getattr(getattr(exc, "orig", None), "sqlite_errorcode", None) == 5
 
 
 def _test_id(test_id) -> int:
