@@ -290,6 +290,8 @@ class LinuxCNC:
             linear_units="mm" if self.units == "deg" else self.units)
         (self.folder / "config.ini").write_text(self.ini_text)
         (self.folder / "axiscal_sim.hal").write_text((data / "axiscal_sim.hal").read_text())
+        (self.folder / "axiscal_approach.ngc").write_text(Template(
+            (data / "axiscal_approach.ngc").read_text()).substitute(letter=self.letter))
         (self.folder / "tool.tbl").write_text("")
 
     def _env(self) -> dict:
@@ -359,18 +361,19 @@ class LinuxCNC:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
 
         ``approach`` ±1: the last :data:`CREEP` mm at :data:`CREEP_FEED` mm/min (G1, in the
-        machine's unit), arriving moving that way. LinuxCNC holds, once the joint stops, the trim of the last
-        servo period in which it moved (``compute_screw_comp`` takes the direction from the
-        joint's velocity), computed one step short of the target: at full speed and a high
+        machine's unit), arriving moving that way, in one MDI call of the subroutine
+        ``axiscal_approach.ngc`` (package data). LinuxCNC holds, once the joint stops, the trim of
+        the last servo period in which it moved (``compute_screw_comp`` takes the direction from
+        the joint's velocity), computed one step short of the target: at full speed and a high
         acceleration that step is tenths of a millimetre and the held trim is off by the trim's
         slope times it; the creep keeps the step ≤ CREEP_FEED/60 × 1 ms (1 µm).
         """
         if approach:
             k = _UNITS_MM[self.units]
-            self.mdi(f"G0 {self.letter}{position - approach * CREEP / k:.9f}")
-            self.mdi(f"G1 {self.letter}{position:.9f} F{CREEP_FEED / k:.6g}")
-        else:
-            self.mdi(f"G0 {self.letter}{position:.9f}")
+            self.mdi(f"o<axiscal_approach> call [{position - approach * CREEP / k:.9f}] "
+                     f"[{position:.9f}] [{CREEP_FEED / k:.6g}] [{dwell:g}]")
+            return self.read()
+        self.mdi(f"G0 {self.letter}{position:.9f}")
         if dwell > 0:
             self.mdi(f"G4 P{dwell:g}")
         return self.read()
