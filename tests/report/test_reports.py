@@ -124,7 +124,7 @@ def test_rotary_error_plot_keeps_an_error_beyond_the_budget_on_the_plot(rotary_r
     err = bad.result.mean_up - truth.mean_up - common_offset(bad)
     assert err.min() < -4.0
     assert lo < err.min() and hi > err.max()
-    assert f"{common_offset(bad):+.3f} arcsec" in ax.get_title(loc="left")
+    assert f"{common_offset(bad):+.2f} arcsec" in ax.get_title(loc="left")  # arcsec to 0.01
     plt.close(fig)
 
 
@@ -132,7 +132,7 @@ def test_rotary_report_explains_the_common_offset_and_signs_the_difference(rotar
     from axiscal.report.rotary import common_offset, rotary_report
 
     html = rotary_report(rotary_result).html()
-    assert f"common mean ({common_offset(rotary_result):+.3f} arcsec)" in html
+    assert f"common mean ({common_offset(rotary_result):+.2f} arcsec)" in html
     assert "Measured − true [arcsec]" in html
     assert re.search(r"<td>[+-]\d\.\d\d</td>", html)
     assert "x̄↑ [arcsec]" in html

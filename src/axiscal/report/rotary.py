@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.report.html import Report, target_label
+from axiscal.report.labels import fmt
 from axiscal.standards.positioning_standards import parameter_label
 from axiscal.units import ARCSEC
 
@@ -37,7 +38,7 @@ def rotary_error_figure(r):
     off = common_offset(r)
     fig, ax = plt.subplots(figsize=(10, 4.2), dpi=110)
     wc = r.budget.worst_case / ARCSEC
-    ax.axhspan(-wc, wc, color="#27ae60", alpha=0.08, label=f"budget ± {wc:.2f} arcsec (worst case)")
+    ax.axhspan(-wc, wc, color="#27ae60", alpha=0.08, label=f"budget ± {fmt(wc, 'arcsec')} arcsec (worst case)")
     up = r.result.mean_up - r.truth_result.mean_up - off
     ax.plot(t, up, "o-", color=UP_COLOR, ms=3.5, lw=1.3, label="measured − true, positive ↑")
     shown = [up]
@@ -63,7 +64,7 @@ def rotary_error_figure(r):
     ax.set_ylim(-lim, lim)
     ax.grid(True, color="#e3e7ec", lw=0.7)
     ax.set_title(f"Measurement error per target: measured minus true mean deviation, less their "
-                 f"mean ({off:+.3f} arcsec)", loc="left", fontsize=10.5)
+                 f"mean ({fmt(off, 'arcsec', True)} arcsec)", loc="left", fontsize=10.5)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
     fig.tight_layout()
     return fig
@@ -98,17 +99,18 @@ def rotary_report(r, title: str | None = None) -> Report:
     verdict = "within" if summary["within_budget"] else "OUTSIDE"
     rep.add_text(
         f"Largest per-target error of the measured mean deviation against the truth: "
-        f"{summary['max_mean_error_arcsec']:.3f} arcsec (single readings: "
-        f"{summary['max_reading_error_arcsec']:.3f} arcsec), {verdict} the stated budget of "
-        f"±{r.budget.worst_case / ARCSEC:.2f} arcsec (worst case; RSS "
-        f"±{r.budget.rss / ARCSEC:.2f} arcsec). The errors are taken less their common mean "
-        f"({common_offset(r):+.3f} arcsec): an angle calibration is defined up to a constant "
+        f"{fmt(summary['max_mean_error_arcsec'], 'arcsec')} arcsec (single readings: "
+        f"{fmt(summary['max_reading_error_arcsec'], 'arcsec')} arcsec), {verdict} the stated "
+        f"budget of ±{fmt(r.budget.worst_case / ARCSEC, 'arcsec')} arcsec (worst case; RSS "
+        f"±{fmt(r.budget.rss / ARCSEC, 'arcsec')} arcsec). The errors are taken less their "
+        f"common mean ({fmt(common_offset(r), 'arcsec', True)} arcsec): an angle calibration is "
+        "defined up to a constant "
         "and no ISO 230-2 parameter depends on it.")
     rows = []
     for k in _PARAMS:
         m, t = summary["measured"][k], summary["truth"][k]
         rows.append([parameter_label(k), m, t,
-                     None if m is None or t is None else f"{m - t:+.2f}"])
+                     None if m is None or t is None else fmt(m - t, "arcsec", True)])
     rep.add_table(["Parameter", "Measured [arcsec]", "True [arcsec]", "Measured − true [arcsec]"],
                   rows, caption="ISO 230-2:2014 parameters of the measured and of the true "
                                 "deviations (both relative to the datum at 0°).", digits=2)
@@ -155,7 +157,7 @@ def _setup_section(rep: Report, r) -> None:
              "β (true)": f"{s.beam_tilt * 1e3:.3f} mrad",
              "ω (true)": f"{s.reflector_twist * 1e3:.3f} mrad",
              "counter-rotation": "on" if s.counter_rotation else "off",
-             "largest laser angle": f"{r.capture.max_laser_angle / ARCSEC:.2f} arcsec"}
+             "largest laser angle": f"{fmt(r.capture.max_laser_angle / ARCSEC, 'arcsec')} arcsec"}
     if r.optics is not None:
         items["optics self-calibration"] = str(r.optics).removeprefix("optics self-calibration ")
     else:
@@ -168,12 +170,12 @@ def _budget_section(rep: Report, r) -> None:
     rows = [[i.name, i.value / ARCSEC, i.source] for i in r.budget.items]
     rows.append(["worst case (sum)", r.budget.worst_case / ARCSEC, ""])
     rows.append(["root sum of squares", r.budget.rss / ARCSEC, ""])
-    rep.add_table(["Contribution", "± arcsec", "Source"], rows, digits=3, css_class="params")
+    rep.add_table(["Contribution", "± arcsec", "Source"], _arcsec(rows), css_class="params")
     from axiscal.standards.iso230_9 import chain_budget
 
     gum = chain_budget(r.budget)
     rows = [[c.name, c.u, c.distribution] for c in gum.contributors]
-    rep.add_table(["Contribution", "u [arcsec]", "Distribution"], rows, digits=3,
+    rep.add_table(["Contribution", "u [arcsec]", "Distribution"], _arcsec(rows),
                   caption="The same budget in GUM form (ISO/TR 230-9): each ± bound a rectangular "
                           f"distribution, u = a/√3, combined with {gum.method}.", css_class="params")
     res = r.result.parameters()
@@ -184,6 +186,11 @@ def _budget_section(rep: Report, r) -> None:
                           "R and B carry the reading noise only.")
 
 
+def _arcsec(rows):
+    """Rows with every number in arcsec written with the decimals of arcsec (report.labels)."""
+    return [[fmt(v, "arcsec") if isinstance(v, float) else v for v in row] for row in rows]
+
+
 def _offaxis_section(rep: Report, r) -> None:
     o = r.offaxis
     rep.add_heading("Off-axis calibration")
@@ -192,7 +199,7 @@ def _offaxis_section(rep: Report, r) -> None:
         "yaw profile": f"{o.profile.positions.size} points, moving optic {o.profile.moving_optic}, "
                        f"laser direction {o.profile.direction_sign:+d}",
         "yaw subtracted with sign": f"{o.sign:+d} (checked against both records)",
-        "largest yaw correction": f"{o.yaw_removed / ARCSEC:.2f} arcsec",
+        "largest yaw correction": f"{fmt(o.yaw_removed / ARCSEC, 'arcsec')} arcsec",
     })
     head = "\n".join(o.program.splitlines()[:12])
     rep.add_html("<pre>" + _esc(head) + "\n…</pre>")
