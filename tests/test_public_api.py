@@ -167,3 +167,14 @@ def test_motion_file_equals_motion_analyze(tmp_path):
         scale = units.UM if shown[m["name"]]["unit"] == "um" else units.ARCSEC
         assert m["total"] / scale == pytest.approx(shown[m["name"]]["total"], rel=1e-9)
     assert ev.report(tmp_path / "m.html").exists() and "<svg" in ev._repr_html_()
+
+
+def test_rotary_calibration_equals_rotary_simulate(tmp_path):
+    """A configuration with a [calibrator] is a rotary calibration: ``axiscal rotary simulate
+    --json`` for the same seed (Renishaw, "Interferometric calibration of rotary axes")."""
+    cfg = ROOT / "src" / "axiscal" / "data" / "rotary_turntable.toml"
+    sim = axiscal.simulate(cfg, seed=4)
+    assert sim.kind == "rotary-calibration"
+    assert sim.to_dict() == _cli_json("rotary", "simulate", cfg, "--seed", 4)
+    assert sim.dataset.axis_kind.value == "rotary"
+    assert sim.report(tmp_path / "r.html").exists() and "<svg" in sim._repr_html_()

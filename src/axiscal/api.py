@@ -107,24 +107,34 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
     return _other(data)
 
 
-def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int = 1) -> "Simulation":
-    """Simulate the ISO 230-2 positioning test of a configured axis and evaluate it.
+def simulate(config: Union[PathLike, Mapping[str, Any]],
+             seed: int | None = None) -> "Simulation":
+    """Simulate a configured test and evaluate it by ISO 230-2:2014.
 
     Parameters
     ----------
     config : str, Path or mapping
-        A TOML configuration (``[axis]``, ``[test]``, ``[meta]``; see ``axiscal simulate``) or
-        the same as a dict.
-    seed : int
-        Seed of ``numpy.random.default_rng``; the same seed gives the same readings.
+        A TOML configuration, or the same as a dict: a positioning test of a simulated axis
+        (``[axis]``, ``[test]``, ``[meta]``; as ``axiscal simulate``) or, with a
+        ``[calibrator]`` table, a rotary-axis calibration with an angular interferometer and a
+        counter-rotating reference calibrator (as ``axiscal rotary simulate``; Renishaw,
+        "Interferometric calibration of rotary axes").
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``; the same seed gives the same readings. Default
+        as the commands: 1 for a positioning test, the configuration's for a rotary calibration.
 
     Returns
     -------
     Simulation
     """
+    cfg = _load_config(config)
+    if "calibrator" in cfg:
+        from axiscal.procedures.rotary_config import run_rotary_config
+
+        return Simulation(run_rotary_config(cfg, seed), seed, "rotary-calibration")
     from axiscal.procedures.positioning import simulate_from_config
 
-    cfg = _load_config(config)
+    seed = 1 if seed is None else seed
     return Simulation(simulate_from_config(cfg, seed=seed), seed)
 
 
@@ -272,32 +282,59 @@ class Evaluation:
 
 @dataclass(frozen=True, eq=False)
 class Simulation:
-    """A simulated ISO 230-2 test: ``test`` (the library's SimulatedTest: ``dataset``,
-    ``result``, ``truth``) and the ``seed`` it ran with."""
+    """A simulated test with the truth it was built from.
+
+    Attributes
+    ----------
+    test : object
+        The library's record: a positioning ``SimulatedTest`` (``dataset``, ``result``,
+        ``truth``) or a ``RotaryCalibrationResult`` (``capture``, ``result``,
+        ``truth_result``, ``budget`` ...).
+    seed : int or None
+        The seed it ran with (None: the configuration's).
+    kind : str
+        ``positioning`` or ``rotary-calibration``.
+    """
 
     test: Any
-    seed: int
+    seed: int | None
+    kind: str = "positioning"
 
     @property
     def dataset(self) -> Any:
-        return self.test.dataset
+        """The simulated readings (a PositioningDataset)."""
+        return self.test.capture.dataset if self._rotary else self.test.dataset
 
     @property
     def result(self) -> Any:
+        """Their ISO 230-2:2014 evaluation."""
         return self.test.result
 
+    @property
+    def _rotary(self) -> bool:
+        return self.kind == "rotary-calibration"
+
     def to_dict(self) -> dict:
-        """The object of ``axiscal simulate --json``: the ISO 230-2 keys, ``truth``, ``seed``."""
+        """The object of the command's ``--json``: ``axiscal simulate`` (the ISO 230-2 keys,
+        ``truth``, ``seed``) or ``axiscal rotary simulate``."""
         import json
 
+        from axiscal._json import jsonable
         from axiscal.io.results import result_json
 
+        if self._rotary:
+            return json.loads(json.dumps(jsonable(self.test.summary())))
         d = result_json(self.test.result)
         d.update(truth=self.test.truth, seed=self.seed)
         return json.loads(json.dumps(d))
 
     def plot(self) -> "Figure":
-        """The ISO 230-2 figure with the simulation's truth drawn."""
+        """The ISO 230-2 figure with the simulation's truth drawn (a rotary calibration: the
+        measured error beside the truth and the budget, as ``rotary simulate --plot``)."""
+        if self._rotary:
+            from axiscal.report.rotary import rotary_error_figure
+
+            return rotary_error_figure(self.test)
         from axiscal.report.plots import iso230_2_figure
 
         s = self.test
@@ -306,7 +343,11 @@ class Simulation:
         return iso230_2_figure(s.result, s.dataset, truth=truth)
 
     def report(self, path: PathLike) -> Path:
-        """Write the simulation report (HTML), as ``axiscal simulate --report``."""
+        """Write the simulation report (HTML), as the command's ``--report``."""
+        if self._rotary:
+            from axiscal.report.rotary import write_rotary_report
+
+            return Path(write_rotary_report(path, self.test))
         from axiscal.report.html import positioning_report
 
         rep = positioning_report(self.test.dataset, self.test.result)
@@ -326,11 +367,14 @@ class Simulation:
             from axiscal.io.csv import format_positioning_csv as fmt
         else:
             raise InputError(f"write_data {path}: give a .csv or .json file")
-        write_text_atomic(path, fmt(self.test.dataset))
+        write_text_atomic(path, fmt(self.dataset))
         return Path(path)
 
     def _repr_html_(self) -> str:
-        return _html("simulation", DEFAULT_STANDARD, self.to_dict(), self.plot())
+        return _html(self.kind, DEFAULT_STANDARD, self.to_dict(), self.plot())
+
+    def __str__(self) -> str:
+        return str(self.test if self._rotary else self.test.result)
 
 
 class History:
