@@ -130,7 +130,7 @@ def test_budget_plot_and_report(tmp_path):
     assert "Interferometric calibration of rotary axes, eq. 1" in page and "<svg" in page
     fig22 = page.split("Figure 22 [± arcsec]</caption>")[1].split("</table>")[0]
     assert "<td>4</td><td>1.30</td><td>1.80</td>" in fig22
-    assert "peak_arcsec" in page
+    assert "<td>Peak of eq. 1 [arcsec]</td>" in page and "peak_arcsec" not in page  # issue 28
     bad = runner.invoke(app, ["rotary", "budget", "--alpha", "1", "--beta", "1", "--plot",
                               str(tmp_path / "b.txt")])
     assert bad.exit_code == 2 and not (tmp_path / "b.txt").exists()
