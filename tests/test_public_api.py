@@ -178,3 +178,19 @@ def test_rotary_calibration_equals_rotary_simulate(tmp_path):
     assert sim.to_dict() == _cli_json("rotary", "simulate", cfg, "--seed", 4)
     assert sim.dataset.axis_kind.value == "rotary"
     assert sim.report(tmp_path / "r.html").exists() and "<svg" in sim._repr_html_()
+
+
+def test_per_target_table_as_a_dataframe(laser_file):
+    """``to_dataframe``: the ``targets`` rows of the JSON; without pandas (optional), one error
+    that says how to get it."""
+    from axiscal.errors import AxiscalError
+
+    ev = axiscal.evaluate(laser_file)
+    try:
+        import pandas  # noqa: F401
+    except ImportError:
+        with pytest.raises(AxiscalError, match="pip install pandas"):
+            ev.to_dataframe()
+        return
+    df = ev.to_dataframe()
+    assert list(df["target"]) == [t["target"] for t in ev.to_dict()["targets"]]

@@ -8,13 +8,15 @@ extra) and installed with ``--no-deps --no-index``; its runtime dependencies com
 venv's site-packages, named in a ``.pth`` file of the clean venv. Lines of a ``.pth`` are added
 to ``sys.path`` as plain folders, so the editable install's own ``.pth`` in that folder (the path
 to ``src/``) is NOT processed: ``axiscal`` can only be imported from the wheel. The wheel is built
-once per run (a module fixture; about a minute with the demo).
+once per run: ONE test builds and checks it, so ``pytest -n 2`` (whose workers would each run a
+module fixture) does not build it twice; about a minute with the demo.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 import sysconfig
@@ -36,36 +38,41 @@ def _run(args, **kw) -> subprocess.CompletedProcess:
     return r
 
 
-@pytest.fixture(scope="module")
-def dist(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("dist")
+def _build(out: Path) -> None:
     _run([sys.executable, "-m", "build", "--no-isolation", "--outdir", out, ROOT], cwd=ROOT)
-    return out
 
 
-@pytest.fixture(scope="module")
-def venv(dist, tmp_path_factory) -> Path:
-    """A clean venv with the wheel installed and the project's dependencies by ``.pth``."""
-    env = tmp_path_factory.mktemp("venv") / "env"
+def _install(wheel: Path, env: Path) -> Path:
+    """A clean venv at ``env`` with the wheel installed and the project's dependencies by
+    ``.pth``; returns its python."""
     _run([sys.executable, "-m", "venv", "--without-pip", env])
     py = env / "bin" / "python"
-    (wheel,) = dist.glob("*.whl")
     _run([sys.executable, "-m", "pip", "--python", py, "install", "--quiet", "--no-deps",
           "--no-index", wheel])
     site = Path(_run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
                 .stdout.strip())
     (site / "project-deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n", "utf-8")
-    return env
+    return py
 
 
 def _clean_env() -> dict:
     return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
 
 
-def test_build_makes_a_wheel_and_an_sdist_with_all_package_data(dist):
+def test_wheel_builds_installs_clean_and_runs(tmp_path):
+    """Build; the wheel holds all package data and requires no development tool; installed in a
+    clean venv it runs the public API and ``axiscal demo`` from outside the repository."""
+    dist = tmp_path / "dist"
+    _build(dist)
     (wheel,) = dist.glob("axiscal-*.whl")
     (sdist,) = dist.glob("axiscal-*.tar.gz")
     assert sdist.stat().st_size > 0
+    _check_package_data(wheel)
+    _check_requirements(wheel)
+    _check_installed(_install(wheel, tmp_path / "env"), tmp_path / "env", tmp_path / "work")
+
+
+def _check_package_data(wheel: Path) -> None:
     names = set(zipfile.ZipFile(wheel).namelist())
     data = {f"axiscal/{p.relative_to(PACKAGE).as_posix()}" for p in PACKAGE.rglob("*")
             if p.is_file() and p.suffix not in (".py", ".pyc") and "__pycache__" not in p.parts}
@@ -77,31 +84,28 @@ def test_build_makes_a_wheel_and_an_sdist_with_all_package_data(dist):
         assert must in names
 
 
-def test_wheel_requires_no_development_dependency(dist):
-    (wheel,) = dist.glob("axiscal-*.whl")
+def _check_requirements(wheel: Path) -> None:
     with zipfile.ZipFile(wheel) as z:
         meta = z.read(next(n for n in z.namelist() if n.endswith("METADATA"))).decode()
     required = [line.split(":", 1)[1].strip() for line in meta.splitlines()
                 if line.startswith("Requires-Dist:") and "extra ==" not in line]
-    names = {r.split(";")[0].split("[")[0].split(">")[0].split("<")[0].split("=")[0].strip()
-             .lower() for r in required}
+    names = {re.split(r"[\s;\[<>=!~]", r, maxsplit=1)[0].lower() for r in required}
     assert "numpy" in names and "matplotlib" in names
     assert not names & DEV_ONLY, f"runtime requirements include {names & DEV_ONLY}"
 
 
-def test_installed_wheel_runs_the_public_api_and_the_demo(venv, tmp_path):
-    """From outside the repository: ``axiscal`` is the wheel's, the API evaluates, the demo runs."""
-    py, exe = venv / "bin" / "python", venv / "bin" / "axiscal"
+def _check_installed(py: Path, env: Path, work: Path) -> None:
+    work.mkdir()
     code = ("import json, axiscal; sim = axiscal.simulate(axiscal.__path__[0] + "
             "'/data/demo_linear.toml'); ev = axiscal.evaluate(sim.dataset); "
             "print(json.dumps({'file': axiscal.__file__, 'E': ev.to_dict()['E'], "
             "'sim_E': sim.to_dict()['E'], 'version': axiscal.__version__}))")
-    out = json.loads(_run([py, "-c", code], cwd=tmp_path, env=_clean_env()).stdout)
-    assert Path(out["file"]).resolve().is_relative_to(venv.resolve())
+    out = json.loads(_run([py, "-c", code], cwd=work, env=_clean_env()).stdout)
+    assert Path(out["file"]).resolve().is_relative_to(env.resolve())
     assert out["E"] == pytest.approx(out["sim_E"], rel=1e-12) and out["E"] > 0
     import axiscal
 
     assert out["version"] == axiscal.__version__
-    _run([exe, "demo", "--out", "demo"], cwd=tmp_path, env=_clean_env())
-    assert (tmp_path / "demo" / "index.html").is_file()
-    assert (tmp_path / "demo" / "linear_report.html").is_file()
+    _run([env / "bin" / "axiscal", "demo", "--out", "demo"], cwd=work, env=_clean_env())
+    assert (work / "demo" / "index.html").is_file()
+    assert (work / "demo" / "linear_report.html").is_file()
