@@ -9,6 +9,10 @@
 
 Either way the result has what :func:`~axiscal.compensation.tables.table_from_result` reads:
 ``axis_kind``, ``target_unit``, ``deviation_unit``, ``targets``, ``mean_up``, ``mean_down``.
+
+The other way, :func:`result_json`, :func:`verdicts_json` and :func:`standard_json` build the
+stable JSON objects of ``axiscal iso230-2 --json`` and ``axiscal evaluate --json``, for the
+commands and the public API (:mod:`axiscal.api`) alike.
 """
 
 from __future__ import annotations
