@@ -51,6 +51,7 @@ def test_shipped_linear_example_E_falls_by_80_percent_through_linuxcnc():
     assert d["before"]["E"] > 8.0
     assert d["reduction"] >= 0.80, (d["before"]["E"], d["after"]["E"])
     assert d["on_controller"]["comp_file_type"] == 1 and d["on_controller"]["machine_units"] == "mm"
+    assert d["on_controller"]["dwell_s"] == 0.0 and d["on_controller"]["plan_dwell_s"] == 1.0
     assert len(d["applied"]) == 162 == d["on_controller"]["n_applied"]
     assert {a["direction"] for a in d["applied"]} == {"+", "-"}
     assert all(a["n"] == 5 for a in d["applied"])

@@ -40,7 +40,8 @@ E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``; wi
 ``--on-controller`` also ``applied`` (per target and direction: ``target`` mm, ``direction``,
 ``table`` and ``applied`` µm or arcsec, ``difference``, the largest over the runs, ``n``) and
 ``on_controller`` (``controller``, ``comp_file_type``, ``machine_units`` (mm, inch or deg),
-``dwell_s``, ``applied_unit``, ``largest_applied_difference``, ``n_applied``). Squareness: the
+``dwell_s``, ``plan_dwell_s``, ``applied_unit``, ``largest_applied_difference``,
+``n_applied``). Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
 (``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
@@ -555,7 +556,8 @@ def _render_applied(extra) -> None:
     unit = {"um": "µm"}.get(c["applied_unit"], c["applied_unit"])
     typer.echo(f"Measured through {c['controller']}: [JOINT_0] COMP_FILE_TYPE = "
                f"{c['comp_file_type']}, machine units {c['machine_units']}, dwell "
-               f"{c['dwell_s']:g} s. Trim applied (motor-pos-cmd − pos-cmd) against the table at "
+               f"{c['dwell_s']:g} s (the plan's {c['plan_dwell_s']:g} s is for a real machine "
+               "to settle; the simulated drive settles at once). Trim applied (motor-pos-cmd − pos-cmd) against the table at "
                f"{c['n_applied']} targets and directions: largest difference "
                f"{c['largest_applied_difference']:.2g} {unit} (--json lists each).")
 

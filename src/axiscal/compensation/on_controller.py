@@ -70,7 +70,8 @@ class OnLinuxCNC:
     units : str
         ``[TRAJ] LINEAR_UNITS`` (``mm`` or ``inch``), the file's unit.
     dwell : float, s
-        G4 after each move on the simulated drive (0: it settles at once).
+        G4 after each move on the simulated drive (0: it settles at once; the plan's dwell, for a
+        real machine's settling, is kept in ``plan_dwell`` and shown beside it).
     logs : list
         One reading log per test (:attr:`LinuxCNCAxis.log`).
     """
@@ -79,6 +80,7 @@ class OnLinuxCNC:
     units: str = "mm"
     dwell: float = 0.0
     logs: list = field(default_factory=list)
+    plan_dwell: float | None = None
 
     def measure(self, plan, axis, rng, measurement_sigma, controller_file):
         """Run ``plan`` through LinuxCNC on ``axis`` and return the dataset."""
@@ -86,6 +88,7 @@ class OnLinuxCNC:
         from axiscal.procedures.positioning import simulate_positioning_test
 
         k = MM_PER_UNIT[self.units]
+        self.plan_dwell = plan.dwell
         if axis.travel is None:                  # a continuous rotary axis: the test's range
             lo = plan.targets[0] - plan.overrun - 1.0
             hi = plan.targets[-1] + plan.overrun + 1.0
@@ -163,7 +166,7 @@ def summary(applied: list[AppliedTrim], hook: OnLinuxCNC) -> dict:
     return dict(applied=[a.to_dict() for a in applied],
                 on_controller=dict(controller="LinuxCNC (linuxcnc-uspace), headless simulation",
                                    comp_file_type=hook.file_type, machine_units=hook.units,
-                                   dwell_s=hook.dwell,
+                                   dwell_s=hook.dwell, plan_dwell_s=hook.plan_dwell,
                                    applied_unit="arcsec" if hook.units == "deg" else "um",
                                    largest_applied_difference=worst,
                                    n_applied=len(applied)))
