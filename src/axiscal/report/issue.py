@@ -27,7 +27,7 @@ from typing import Any
 from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
-           "reissue_certificate", "CertificateOutcome", "number_format"]
+           "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,6 +76,68 @@ def decisions_for(values, budget, tolerances: dict, cfg: dict, rule: str | None)
     tol = {**cfg.get("tolerance", {}), **tolerances}
     r = _rule(rule or cfg.get("certificate", {}).get("rule", "iso14253-1"))
     return (decide_all(values, budget, tol, r) if tol else ()), r, RULE_TEXT[r]
+
+
+@dataclasses.dataclass(frozen=True)
+class SignOff:
+    """The ISO 14253-1 verdict of one positioning test against its tolerances.
+
+    Attributes
+    ----------
+    budget : UncertaintyBudget
+        ISO 230-2:2014 Annex A budget with the configuration's (and job's) inputs.
+    decisions : tuple of Decision
+        One per toleranced parameter, in the result's order.
+    overall : Outcome or None
+        :func:`axiscal.standards.iso14253_1.overall` of the decisions (None: no tolerance).
+    rule_text : str
+        How the rule is stated on a certificate.
+    warnings : tuple of str
+        Tolerances whose conformance can never be proven (ISO 14253-1:2017 §5.2,
+        :func:`axiscal.standards.iso14253_1.unprovable`).
+    """
+
+    budget: Any
+    decisions: tuple
+    overall: Any
+    rule_text: str
+    warnings: tuple[str, ...]
+
+    def __str__(self) -> str:
+        lines = [str(d) for d in self.decisions] + list(self.warnings)
+        verdict = self.overall.value if self.overall else "no tolerance given"
+        return "\n".join([f"overall: {verdict} ({self.rule_text})", *lines])
+
+
+def sign_off(dataset, result, cfg: dict, tolerances: dict | None = None,
+             rule: str | None = None) -> SignOff:
+    """Budget and ISO 14253-1 decisions of a positioning test, as ``axiscal iso230-2
+    --tolerance`` prints them and :func:`write_certificate` states them.
+
+    Parameters
+    ----------
+    dataset, result : PositioningDataset, Iso230_2Result
+    cfg : dict
+        The configuration with the job on top (its ``[tolerance]`` and ``[conditions]``).
+    tolerances : dict of str to float, deviation unit
+        Over the configuration's ``[tolerance]`` (as ``--tolerance NAME=VALUE``).
+    rule : str, optional
+        ``iso14253-1`` (default, or the configuration's ``[certificate] rule``) or ``simple``.
+
+    Raises
+    ------
+    InputError
+        A tolerance names no parameter of the result, or is not a positive number.
+    """
+    from axiscal.standards.iso230_2 import check_tolerances
+    from axiscal.standards.iso14253_1 import overall, unprovable
+
+    check_tolerances(result, {**cfg.get("tolerance", {}), **(tolerances or {})})
+    budget = budget_for(dataset, result, cfg)
+    decisions, _, text = decisions_for(result.parameters(), budget, tolerances or {}, cfg, rule)
+    unit = {"um": "µm"}.get(result.deviation_unit, result.deviation_unit)
+    return SignOff(budget, tuple(decisions), overall(decisions), text,
+                   tuple(unprovable(decisions, unit)))
 
 
 def number_format(cfg: dict, issued: str):

@@ -72,7 +72,9 @@ def add_routes(app: FastAPI) -> None:
     def test_page(request: Request, test_id: TestId):
         t = store(request).get(test_id)
         ev = t.evaluate_again()
-        plot = positioning_plot(ev) if ev.kind == "iso230-2" else None
+        from axiscal.web.signoff_pages import signoff_context, signoff_plot
+
+        plot = signoff_plot(ev) if ev.kind == "iso230-2" else None
         budget, decisions = _uncertainty(ev) if ev.kind == "iso230-2" else (None, {})
         from axiscal.compensation.controllers import CONTROLLERS
         from axiscal.web.kind_pages import kind_view
@@ -83,6 +85,7 @@ def add_routes(app: FastAPI) -> None:
                       targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
                       view=kind_view(ev),
                       budget=budget, decisions=decisions,
+                      signoff=signoff_context(store(request), t, ev),
                       controllers=sorted(CONTROLLERS), others=[
                           o for o in store(request).tests(machine=t.summary.machine,
                                                           axis=t.summary.axis,

@@ -20,6 +20,9 @@ def add_routes(app: FastAPI) -> None:
     from axiscal.web import history_pages
 
     history_pages.add_routes(app)
+    from axiscal.web import signoff_pages
+
+    signoff_pages.add_routes(app)
 
     @app.get("/plan", response_class=HTMLResponse)
     async def plan_page(request: Request):
