@@ -189,6 +189,10 @@ class Comparison:
 def compare_tests(first, second) -> Comparison:
     """Compare two :class:`~axiscal.store.history.StoredTest` of the same kind and axis."""
     s1, s2 = first.summary, second.summary
+    for s in (s1, s2):        # a withdrawn test leaves compares (axiscal.store.corrections)
+        if getattr(s, "withdrawn", ""):
+            raise InputError(f"test {s.id} is withdrawn ({s.withdrawn}); reinstate it to "
+                             "compare it")
     if s1.kind != s2.kind:
         raise InputError(f"test {s1.id} is {s1.kind}, test {s2.id} is {s2.kind}: compare tests "
                          "of one kind")

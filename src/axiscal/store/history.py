@@ -63,6 +63,7 @@ class MachineSummary:
     model: str = ""
     serial: str = ""
     location: str = ""
+    id: int = 0
 
 
 @dataclass(frozen=True)
@@ -78,6 +79,8 @@ class TestSummary:
     filename: str
     parameters: dict          # name -> (value, unit)
     note: str = ""
+    withdrawn: str = ""       # why it was withdrawn (axiscal.store.corrections); "" counts
+    machine_id: int = 0
 
 
 @dataclass(frozen=True)
@@ -209,22 +212,24 @@ class Store:
         with self._guard("read"), self._session() as s:
             rows = s.execute(select(Machine.name, Axis.name, func.count(Test.id),
                                     func.max(Test.tested_at), Machine.maker, Machine.model,
-                                    Machine.serial, Machine.location)
+                                    Machine.serial, Machine.location, Machine.id)
                              .join(Axis, Axis.machine_id == Machine.id, isouter=True)
                              .join(Test, Test.axis_id == Axis.id, isouter=True)
                              .group_by(Machine.id, Axis.id).order_by(Machine.name, Axis.name)
                              ).all()
         out: dict[str, dict] = {}
-        for name, axis, n, last, maker, model, serial, location in rows:
+        for name, axis, n, last, maker, model, serial, location, mid in rows:
             m = out.setdefault(name, {"axes": [], "tests": 0, "last": None, "maker": maker,
-                                      "model": model, "serial": serial, "location": location})
+                                      "model": model, "serial": serial, "location": location,
+                                      "id": mid})
             if axis:
                 m["axes"].append(axis)
             m["tests"] += n
             if last and (m["last"] is None or last > m["last"]):
                 m["last"] = last
         return [MachineSummary(k, tuple(v["axes"]), v["tests"], v["last"], v["maker"],
-                               v["model"], v["serial"], v["location"]) for k, v in out.items()]
+                               v["model"], v["serial"], v["location"], v["id"])
+                for k, v in out.items()]
 
     def tests(self, machine: str | None = None, axis: str | None = None,
               kind: str | None = None, since: dt.datetime | None = None,
@@ -235,7 +240,7 @@ class Store:
         from axiscal.store.models import Axis, Machine, Parameter, Test
 
         q = (select(Test.id, Machine.name, Axis.name, Test.kind, Test.tested_at,
-                    Test.date_known, Test.filename, Test.note)
+                    Test.date_known, Test.filename, Test.note, Test.withdrawn, Machine.id)
              .join(Axis, Test.axis_id == Axis.id).join(Machine, Axis.machine_id == Machine.id)
              .order_by(Test.tested_at.desc(), Test.id.desc()))
         if machine:
@@ -263,8 +268,8 @@ class Store:
                                Parameter.unit).where(Parameter.test_id.in_(chunk))
                         .order_by(Parameter.id)):
                     params[tid][name] = (value, unit)
-        return [TestSummary(i, m, a, k, t, bool(dk), f, params[i], n or "")
-                for i, m, a, k, t, dk, f, n in rows]
+        return [TestSummary(i, m, a, k, t, bool(dk), f, params[i], n or "", w or "", mid)
+                for i, m, a, k, t, dk, f, n, w, mid in rows]
 
     def get(self, test_id: int) -> StoredTest:
         """One stored test, all of it."""
@@ -289,7 +294,8 @@ class Store:
         q = (select(Test.tested_at, Parameter.value, Parameter.unit, Test.id)
              .join(Parameter, Parameter.test_id == Test.id).join(Axis).join(Machine)
              .where(Machine.name == machine, Axis.name == axis.upper(),
-                    Parameter.name == parameter).order_by(Test.tested_at, Test.id))
+                    Parameter.name == parameter, Test.withdrawn == "")   # withdrawn: out
+             .order_by(Test.tested_at, Test.id))
         if kind:
             q = q.where(Test.kind == kind)
         with self._guard("read"), self._session() as s:
@@ -526,4 +532,5 @@ def _date(text: str) -> tuple[dt.datetime, bool]:
 def _summary(t) -> TestSummary:
     return TestSummary(t.id, t.axis.machine.name, t.axis.name, t.kind, t.tested_at,
                        t.date_known, t.filename,
-                       {p.name: (p.value, p.unit) for p in t.parameters}, t.note)
+                       {p.name: (p.value, p.unit) for p in t.parameters}, t.note,
+                       t.withdrawn or "", t.axis.machine_id)

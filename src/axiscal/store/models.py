@@ -17,7 +17,7 @@ import datetime as dt
 from sqlalchemy import (Double, ForeignKey, Index, LargeBinary, String, Text, UniqueConstraint)
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
-__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table", "Certificate"]
+__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table", "Certificate", "Audit"]
 
 
 class Base(DeclarativeBase):
@@ -74,6 +74,9 @@ class Test(Base):
     result_json: Mapped[str] = mapped_column(Text)
     environment_json: Mapped[str] = mapped_column(Text, default="{}")
     axiscal_version: Mapped[str] = mapped_column(String(40))
+    #: Why the test was withdrawn ("" while it counts): a withdrawn test stays, marked, but
+    #: leaves trends and compares (axiscal.store.corrections).
+    withdrawn: Mapped[str] = mapped_column(Text, default="")
     axis: Mapped[Axis] = relationship(back_populates="tests")
     parameters: Mapped[list["Parameter"]] = relationship(back_populates="test",
                                                          cascade="all, delete-orphan",
@@ -143,3 +146,26 @@ class Certificate(Base):
     inputs_json: Mapped[str] = mapped_column(Text, default="{}")
     created: Mapped[dt.datetime] = mapped_column()
     test: Mapped[Test] = relationship(back_populates="certificates")
+
+
+class Audit(Base):
+    """One change to the history: who, when, what, why, and the values before and after (JSON).
+
+    Rows are only ever added (ISO/IEC 17025:2017 §7.5.2, §8.4.2); ``machine_id``, ``axis_id``
+    and ``test_id`` name what was changed, without a foreign key, so an entry outlives a machine
+    merged into another. Written by :mod:`axiscal.store.corrections`.
+    """
+
+    __tablename__ = "audit"
+    __table_args__ = (Index("ix_audit_machine", "machine_id"), Index("ix_audit_test", "test_id"))
+    id: Mapped[int] = mapped_column(primary_key=True)
+    at: Mapped[dt.datetime] = mapped_column()
+    by: Mapped[str] = mapped_column(String(200))
+    action: Mapped[str] = mapped_column(String(40))
+    what: Mapped[str] = mapped_column(Text)
+    reason: Mapped[str] = mapped_column(Text)
+    machine_id: Mapped[int | None] = mapped_column(nullable=True)
+    axis_id: Mapped[int | None] = mapped_column(nullable=True)
+    test_id: Mapped[int | None] = mapped_column(nullable=True)
+    old_json: Mapped[str] = mapped_column(Text)
+    new_json: Mapped[str] = mapped_column(Text)
