@@ -11,8 +11,9 @@ Library API (the ``axiscal history`` commands and the web workbench are thin lay
     export_history(store, "vmc.zip"); import_history(store, "vmc.zip")
     store.certificates(); store.certificate("PM-2026-00001")   # the certificate register
 
-Modules: :mod:`~axiscal.store.history` (the database), :mod:`~axiscal.store.kinds` (what a file
-is and its evaluation), :mod:`~axiscal.store.analysis` (compare, trend),
+Modules: :mod:`~axiscal.store.history` (the database), :mod:`~axiscal.store.database` (opening
+it: recognised, created whole, upgraded under a lock, read-only), :mod:`~axiscal.store.kinds`
+(what a file is and its evaluation), :mod:`~axiscal.store.analysis` (compare, trend),
 :mod:`~axiscal.store.archive` (export, import), :mod:`~axiscal.store.register` (certificate
 numbers, issued documents, amendments; issued by :mod:`axiscal.report.issue`),
 :mod:`~axiscal.store.models` and the Alembic ``migrations``.

@@ -11,7 +11,7 @@ What is opened
 
 A new SQLite history
     A path where no file exists is created whole: the schema is made in a temporary file
-    beside it (``.NAME.PID.creating``), which is then linked to the path in one step (a hard
+    beside it (``.NAME.PID-RANDOM.creating``), which is then linked to the path in one step (a hard
     link fails when the path exists, so two processes creating one history at once both end up
     using the one linked first). Axiscal therefore never leaves a zero-byte or half-made file at
     a history's path, and a zero-byte file found there was made by someone else (``touch``, a
@@ -218,7 +218,9 @@ def _create_sqlite(url: str, path: Path) -> None:
     except OSError as exc:
         raise StoreError(f"history database {shown(url)}: cannot make its folder "
                          f"({exc.strerror or exc})") from None
-    tmp = path.parent / f".{path.name}.{os.getpid()}.creating"
+    import uuid
+
+    tmp = path.parent / f".{path.name}.{os.getpid()}-{uuid.uuid4().hex[:8]}.creating"
     engine = create_engine(f"sqlite:///{tmp}")
     event.listen(engine, "connect", _sqlite_connect)
     event.listen(engine, "begin", _sqlite_begin)

@@ -3,15 +3,21 @@
 :func:`open_store` opens (and creates or upgrades, by the Alembic migrations) the database at a
 SQLAlchemy URL: SQLite by default (``history.sqlite`` in the user's data folder, platformdirs),
 PostgreSQL through psycopg 3 for a shop or a fleet (``postgresql+psycopg://user@host/db``); the
-``AXISCAL_DB`` environment variable names it too. The same code serves both.
+``AXISCAL_DB`` environment variable names it too. The same code serves both. What is opened is
+recognised before anything is written (a file that is not an axiscal history is refused, not
+converted), a new SQLite history is created whole, upgrades run under an exclusive lock and a
+read-only history is listed and shown: :mod:`axiscal.store.database`.
 
-Every change is one transaction: a file that fails to read or evaluate leaves nothing, a killed
-process leaves the database as it was before the interrupted test (SQLite's WAL journal,
-PostgreSQL's MVCC), and an import can be run again (files already stored are recognised by
-their SHA-256 and skipped). Two processes may add at once: SQLite writers wait for the write lock
-(``BEGIN IMMEDIATE`` with a 30 s busy timeout; readers never wait in WAL mode), PostgreSQL's unique index on the hash lets one
-of two identical files in. Certificates issued for a test are kept in the register
-(:mod:`axiscal.store.register`) with numbers unique per laboratory.
+Every change is one transaction: a file is evaluated before the transaction (one that fails
+leaves nothing), and :meth:`Store.add_all` stores many files (an archive import) in one, so a
+killed process leaves the database exactly as it was (SQLite's WAL journal, PostgreSQL's MVCC).
+Many processes may add at once: SQLite writers take the write lock at once (``BEGIN
+IMMEDIATE``) and wait for it (a 30 s busy timeout, waited again :data:`LOCKED_RETRIES` times;
+readers never wait in WAL mode); a new machine or axis is made by ``INSERT ... ON CONFLICT DO
+NOTHING`` then read, so two processes making it at once both use the one row; a write that
+still collides (the same file stored by another process at that moment, a PostgreSQL deadlock)
+is run again and then finds the other's rows. Certificates issued for a test are kept in the
+register (:mod:`axiscal.store.register`) with numbers unique per laboratory.
 """
 
 from __future__ import annotations
