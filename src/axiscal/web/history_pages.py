@@ -272,7 +272,7 @@ def trend_plot(tr) -> dict:
     if crossing is not None:
         series.append({"label": f"predicted crossing {tr.crossing:%Y-%m-%d}", "values": [
             tr.tolerance if t == crossing else None for t in x], "color": _COLORS["down"],
-            "points": True})
+            "points": True, "size": 11})
     return {"title": f"{tr.parameter} over time", "x_label": "date of the test (UTC)",
             "x_time": True, "y_label": f"{tr.parameter} [{unit_text(tr.unit)}]", "x": x,
             "series": series}

@@ -1,7 +1,7 @@
 // axiscal workbench: interactive plots (uPlot, vendored) and the CSRF header for htmx requests.
 // Every element with class "uplot-chart" names a <script type="application/json"> holding
 // {"title", "x_label", "y_label", "x": [...], "x_time" (optional: x are dates, seconds since 1970 UTC),
-//  "series": [{"label", "values", "color", "dash", "points"}]}.
+//  "series": [{"label", "values", "color", "dash", "points", "size" (of the points, px)}]}.
 (function () {
   "use strict";
 
@@ -15,19 +15,19 @@
         stroke: s.color || "#1f77b4",
         width: s.points ? 0 : 1.5,
         dash: s.dash ? [6, 4] : undefined,
-        points: { show: !!s.points, size: 5, fill: s.color },
+        points: { show: !!s.points, size: s.size || 5, fill: s.color },
         spanGaps: true,
         value: function (u, v) { return v == null ? "—" : v.toFixed(3); }
       });
       data.push(s.values);
     });
     var width = Math.max(320, Math.min(el.clientWidth || 900, 1100));
-    new uPlot({
+    el.uplot = new uPlot({     // kept on the element: the browser tests read its scales
       title: spec.title,
       width: width,
       height: 380,
       series: series,
-      scales: { x: spec.x_time ? { time: true, range: timeRange } : { time: false } },
+      scales: { x: spec.x_time ? { time: true, range: timeRange(spec.x) } : { time: false } },
       tzDate: function (ts) { return uPlot.tzDate(new Date(ts * 1e3), "Etc/UTC"); },
       axes: [{ label: spec.x_label }, { label: spec.y_label }],
       cursor: { drag: { x: true, y: true } }
@@ -36,9 +36,14 @@
 
   // A date axis (x in seconds since 1970, UTC; "x_time": true) keeps a month in view when
   // every point shares one date, instead of uPlot's span of decades.
-  function timeRange(u, lo, hi) {
-    var pad = hi - lo < 86400 ? 15 * 86400 : 0.03 * (hi - lo);
-    return [lo - pad, hi + pad];
+  // uPlot asks for the whole data (auto range: answered with the data's own span, padded) or
+  // for a zoom (answered as asked).
+  function timeRange(x) {
+    var first = Math.min.apply(null, x), last = Math.max.apply(null, x);
+    var pad = last - first < 86400 ? 15 * 86400 : 0.03 * (last - first);
+    return function (u, lo, hi) {
+      return lo <= first && hi >= last ? [first - pad, last + pad] : [lo, hi];
+    };
   }
 
   function init(root) {
