@@ -17,7 +17,7 @@ The public API (:mod:`axiscal.api`, the only stable surface) is at the top: ``ax
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing (start-up time)
 
 __version__ = "0.1.0"
 
@@ -25,6 +25,8 @@ __all__ = ["__version__", "read", "evaluate", "simulate", "compensation_table", 
            "History", "Evaluation", "Simulation"]
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
+    from typing import Any
+
     from axiscal.api import (Evaluation, History, Simulation, compensation_table, evaluate,
                              read, simulate, write_table)
 
