@@ -21,6 +21,9 @@ JSON output (``--json``), stable keys:
   ``drift_per_year``, ``u_drift_per_year``, ``level``, ``tolerance``, ``crossing``,
   ``u_crossing_days``, ``recalibrate_by``.
 * ``export``/``import``: ``archive``, ``tests`` / ``added``, ``duplicates``.
+* ``list`` also ``withdrawn`` (the reason, or null). Corrections (``rename-machine``,
+  ``rename-axis``, ``merge``, ``edit``, ``withdraw``, ``reinstate``, ``audit``):
+  :mod:`axiscal.cli.history_corrections`.
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ from typing import Optional
 
 import typer
 
+from axiscal.cli import history_corrections as _corrections
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
 
 __all__ = ["register", "store_run"]
@@ -142,7 +146,7 @@ def list_(
         main = f"{key} {t.parameters[key][0]:.3f} {t.parameters[key][1]}" if key else ""
         date = f"{t.tested_at:%Y-%m-%d}" + ("" if t.date_known else "?")
         typer.echo(f"{t.id:>6}  {date:<11} {t.machine:<20} {t.axis:<4} {t.kind:<13} {main:<22} "
-                   f"{t.filename}")
+                   f"{t.filename}" + (f"  WITHDRAWN: {t.withdrawn}" if t.withdrawn else ""))
 
 
 @app.command("show")
@@ -337,7 +341,8 @@ def import_(
 def _row(t) -> dict:
     return {"id": t.id, "machine": t.machine, "axis": t.axis, "kind": t.kind,
             "date": t.tested_at.isoformat(), "date_known": t.date_known, "file": t.filename,
-            "parameters": {k: {"value": v, "unit": u} for k, (v, u) in t.parameters.items()}}
+            "parameters": {k: {"value": v, "unit": u} for k, (v, u) in t.parameters.items()},
+            "withdrawn": t.withdrawn or None}
 
 
 def _figures(ev, plot, report, stored) -> None:
@@ -381,3 +386,6 @@ def _figures(ev, plot, report, stored) -> None:
 def register(root: typer.Typer) -> None:
     """Add the ``history`` command group to the application."""
     root.add_typer(app, name="history")
+
+
+_corrections.add_commands(app)       # rename-machine ... audit (axiscal.cli.history_corrections)
