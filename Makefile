@@ -26,7 +26,8 @@ sysdeps:
 	fi
 
 # LinuxCNC (issue 32): the real controller the compensation loop is proven on, run headless in
-# simulation by the tests (tests/controllers/test_linuxcnc_live.py). From Debian WITHOUT its
+# simulation by the tests (tests/instruments/test_linuxcnc_live.py,
+# tests/compensation/test_on_linuxcnc.py). From Debian WITHOUT its
 # recommends (they pull a real-time kernel); about 3 minutes and 1.3 GB once. Its Python modules
 # (linuxcnc, hal) live in /usr/lib/python3/dist-packages: a .pth file in the venv names a shim
 # folder holding links to those modules only, so nothing else of the system's Python leaks in.
