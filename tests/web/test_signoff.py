@@ -103,7 +103,7 @@ def test_verdict_is_the_libraries(client):
     plot = re.search(r'<script type="application/json" id="signoff-plot-1">(.*?)</script>',
                      r.text, re.S).group(1)
     assert "tolerance E = 15 (PASS), upper" in plot and "tolerance A = 2 (FAIL), lower" in plot
-    assert "#2ca02c" in plot and "#d62728" in plot and "readings" in plot and "+ 2s" in plot
+    assert "#1e7b34" in plot and "#d62728" in plot and "readings" in plot and "+ 2s" in plot
 
 
 def test_a_bad_tolerance_is_named_on_the_page(client):

@@ -85,7 +85,8 @@ def add_routes(app: FastAPI) -> None:
                       targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
                       view=kind_view(ev),
                       budget=budget, decisions=decisions,
-                      signoff=signoff_context(store(request), t, ev),
+                      signoff=signoff_context(store(request), t, ev, None,
+                                              request.query_params.get("certificate", "")),
                       controllers=sorted(CONTROLLERS), others=[
                           o for o in store(request).tests(machine=t.summary.machine,
                                                           axis=t.summary.axis,

@@ -42,7 +42,7 @@ _JOB_FIELDS = {"customer_name": ("customer", "name"), "customer_address": ("cust
 _TEMPERATURES = ("air_temperature", "material_temperature")
 _INSTRUMENT_KEYS = ("name", "serial", "certificate", "due")
 #: Colours of the verdicts (table cells and the tolerance envelope of the plot).
-VERDICT_COLORS = {"PASS": "#2ca02c", "FAIL": "#d62728", "ZONE": "#ff7f0e"}
+VERDICT_COLORS = {"PASS": "#1e7b34", "FAIL": "#d62728", "ZONE": "#ff7f0e"}
 
 
 def add_routes(app: FastAPI) -> None:
@@ -79,20 +79,31 @@ def add_routes(app: FastAPI) -> None:
         return download(rec.document, f"{rec.number}{ext}", rec.media_type)
 
 
-def signoff_context(st, t, ev, values: dict | None = None) -> dict | None:
+def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "") -> dict | None:
     """What the test page's sign-off section shows: the form (prefilled from the user
-    configuration) and the certificates of this test in the register; None for a test that is
-    not a positioning test."""
+    configuration, or from the inputs kept with ``certificate`` of this test, whose verdict is
+    then shown) and the certificates of this test in the register; None for a test that is not
+    a positioning test."""
     if ev.kind != "iso230-2":
         return None
     from axiscal.report.issue import load_config
 
-    cfg = load_config(None)
     params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
-    form = _defaults(cfg, params) if values is None else values
-    return {"test_id": t.summary.id, "form": form, "parameters": params, "instruments": range(1, INSTRUMENTS + 1),
-            "unit": _unit(ev.evaluation.deviation_unit),
-            "certificates": [c for c in st.certificates() if c.test_id == t.summary.id]}
+    records = [c for c in st.certificates() if c.test_id == t.summary.id]
+    ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
+           "instruments": range(1, INSTRUMENTS + 1),
+           "unit": _unit(ev.evaluation.deviation_unit)}
+    issued = next((c for c in records if c.number == certificate), None)
+    if issued is not None:
+        inputs = st.certificate(issued.number, issued.laboratory).inputs
+        tolerances = inputs.get("tolerances") or {}
+        cfg = inputs["config"]
+        ctx["form"] = {**_defaults(cfg, params),
+                       **{f"tol_{p}": f"{v:g}" for p, v in tolerances.items()}}
+        _verdict(ctx, ev, cfg, tolerances, inputs.get("rule"))
+    else:
+        ctx["form"] = _defaults(load_config(None), params) if values is None else values
+    return ctx
 
 
 def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str]:
@@ -160,8 +171,10 @@ def signoff_plot(ev, so=None, tolerances: dict | None = None) -> dict:
                     "dash": True, "thin": True},
                    {"label": f"x̄{arrow} − 2s", "values": _list(mean - 2 * s), "color": color,
                     "dash": True, "thin": True}]
-        series += [{"label": f"readings{arrow} run {j + 1}", "values": _list(arr[:, j]),
-                    "color": color, "points": True} for j in range(arr.shape[1])]
+        runs = arr.shape[1]      # one legend entry for every run's readings of a direction
+        series += [{"label": f"readings{arrow} (runs 1–{runs})" if j == 0 else
+                    f"readings{arrow} run {j + 1}", "values": _list(arr[:, j]), "color": color,
+                    "points": True, "legend": j == 0} for j in range(runs)]
     if so is not None:
         series += _envelopes(r, so, tolerances or {})
         if so.overall is not None:
@@ -201,18 +214,25 @@ def _evaluate(st, test_id: int, values: dict, issue: bool) -> dict:
     try:
         job, tolerances, rule, paper = job_from_form(values, ctx["parameters"])
         from axiscal.io.user_config import config_problem, merge
-        from axiscal.report.issue import load_config, sign_off
+        from axiscal.report.issue import load_config
 
         cfg = merge(load_config(None), job)
-        so = sign_off(ev.dataset, ev.evaluation, cfg, tolerances, rule)
-        ctx.update(result=so, plot=signoff_plot(ev, so, tolerances),
-                   rows=_rows(ev.evaluation, so, cfg, tolerances), budget=so.budget)
+        _verdict(ctx, ev, cfg, tolerances, rule)
         if issue:
             out = _issue(st, t, ev, cfg, tolerances, rule, paper, config_problem())
             ctx.update(missing=out.missing, number=out.number)
     except AxiscalError as exc:
         ctx["error"] = str(exc)
     return ctx
+
+
+def _verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
+    """The sign-off's verdict, verdict table and plot into ``ctx``."""
+    from axiscal.report.issue import sign_off
+
+    so = sign_off(ev.dataset, ev.evaluation, cfg, tolerances, rule)
+    ctx.update(result=so, plot=signoff_plot(ev, so, tolerances),
+               rows=_rows(ev.evaluation, so, tolerances), budget=so.budget)
 
 
 def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note):
@@ -228,12 +248,12 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note):
                                  customer_supplied=())
 
 
-def _rows(result, so, cfg: dict, tolerances: dict) -> list:
+def _rows(result, so, tolerances: dict) -> list:
     """(parameter, value, U text, tolerance, where the tolerance comes from, outcome, short)."""
     params = result.parameters()
     out = []
     for d in so.decisions:
-        source = "this form" if d.parameter in tolerances else "user configuration"
+        source = "the sign-off" if d.parameter in tolerances else "user configuration"
         value = params[d.parameter]
         out.append((d.parameter, value, so.budget.U_text(d.parameter), d.upper, source,
                     d.outcome.value if d.outcome else "does not apply",

@@ -1,7 +1,8 @@
 // axiscal workbench: interactive plots (uPlot, vendored) and the CSRF header for htmx requests.
 // Every element with class "uplot-chart" names a <script type="application/json"> holding
 // {"title", "x_label", "y_label", "x": [...], "x_time" (optional: x are dates, seconds since 1970 UTC),
-//  "series": [{"label", "values", "color", "dash", "points", "size" (of the points, px)}]}.
+//  "series": [{"label", "values", "color", "dash", "points", "size" (of the points, px), "thin" (a 1 px line),
+//   "legend" (false: no legend row)}]}.
 (function () {
   "use strict";
 
@@ -13,7 +14,7 @@
       series.push({
         label: s.label,
         stroke: s.color || "#1f77b4",
-        width: s.points ? 0 : 1.5,
+        width: s.points ? 0 : (s.thin ? 1 : 1.5),
         dash: s.dash ? [6, 4] : undefined,
         points: { show: !!s.points, size: s.size || 5, fill: s.color },
         spanGaps: true,
@@ -32,6 +33,11 @@
       axes: [{ label: spec.x_label }, { label: spec.y_label }],
       cursor: { drag: { x: true, y: true } }
     }, data, el);
+    // A series with "legend": false (every run's readings after the first) has no legend row.
+    var rows = el.querySelectorAll(".u-legend .u-series");
+    spec.series.forEach(function (s, i) {
+      if (s.legend === false && rows[i + 1]) { rows[i + 1].style.display = "none"; }
+    });
   }
 
   // A date axis (x in seconds since 1970, UTC; "x_time": true) keeps a month in view when

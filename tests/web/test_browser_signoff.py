@@ -1,0 +1,88 @@
+"""A full sign-off in a real browser (issue 31): upload, tolerances and the job typed into the
+test page, the ISO 14253-1 verdict with the interactive plot, a certificate issued through the
+register (not a DRAFT), listed with its SHA-256 and downloaded byte for byte."""
+
+from __future__ import annotations
+
+import hashlib
+import time
+
+import pytest
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import WebDriverWait
+
+from tests.web.conftest import shot, start_server, stop_server
+from tests.web.test_signoff import JOB, LAB, data_file
+
+
+@pytest.fixture(scope="module")
+def lab_server(tmp_path_factory):
+    """The workbench with a laboratory's user configuration (name, address, code PM, E_VE)."""
+    d = tmp_path_factory.mktemp("signoff")
+    (d / "config.toml").write_text(LAB, encoding="utf-8")
+    proc, base = start_server(d, env={"AXISCAL_CONFIG": str(d / "config.toml")})
+    yield base, d
+    stop_server(proc)
+
+
+def _type(browser, name: str, text: str) -> None:
+    el = browser.find_element(By.NAME, name)
+    el.clear()
+    el.send_keys(text)
+
+
+def test_full_signoff_from_upload_to_an_issued_certificate(lab_server, browser):
+    base, d = lab_server
+    (d / "x_axis.csv").write_bytes(data_file())
+    browser.get(base + "/upload")
+    browser.find_element(By.NAME, "file").send_keys(str(d / "x_axis.csv"))
+    browser.find_element(By.CSS_SELECTOR, "form button").click()
+    WebDriverWait(browser, 30).until(lambda b: "/tests/1" in b.current_url)
+    assert browser.find_element(By.ID, "no-certificates")
+
+    for name, value in {"tol_A": "20", "tol_E": "15", "tol_R": "5.5", **JOB}.items():
+        _type(browser, name, value)
+    browser.find_element(By.ID, "show-verdict").click()
+    WebDriverWait(browser, 30).until(lambda b: b.find_elements(By.ID, "verdicts"))
+    cells = {r.find_elements(By.TAG_NAME, "td")[0].text: r.find_elements(By.TAG_NAME, "td")[-1]
+             .text for r in browser.find_elements(By.CSS_SELECTOR, "#verdicts tbody tr")}
+    assert cells == {"A": "PASS: conformance proven", "E": "PASS: conformance proven",
+                     "R": "ZONE: uncertainty zone"}
+    assert "ZONE: uncertainty zone" in browser.find_element(By.ID, "overall").text
+    chart = browser.find_element(By.CSS_SELECTOR, "#signoff-body .uplot-chart")
+    WebDriverWait(browser, 10).until(lambda b: chart.find_elements(By.TAG_NAME, "canvas"))
+    legend = chart.text
+    assert "tolerance A = 20 (PASS), upper" in legend and "readings↑ (runs 1–5)" in legend
+    assert "x̄↑ + 2s" in legend
+    browser.execute_script("document.getElementById('signoff-body').scrollIntoView()")
+    shot(browser, "signoff_verdict")
+
+    browser.find_element(By.ID, "issue-certificate").click()     # the form kept every field
+    WebDriverWait(browser, 60).until(lambda b: b.find_elements(By.ID, "certificates"))
+    assert "certificate=PM-2026-00001" in browser.current_url
+    assert "Certificate PM-2026-00001 issued" in browser.find_element(By.ID, "issued").text
+    row = browser.find_element(By.CSS_SELECTOR, "#certificates tbody tr")
+    tds = [td.text for td in row.find_elements(By.TAG_NAME, "td")]
+    assert tds[:3] == ["PM-2026-00001", time.strftime("%Y-%m-%d", time.gmtime()), "issued"]
+    sha = tds[4]
+    cells = [r.find_elements(By.TAG_NAME, "td")[-1].text     # the verdict it was issued with
+             for r in browser.find_elements(By.CSS_SELECTOR, "#verdicts tbody tr")]
+    assert cells == ["PASS: conformance proven", "PASS: conformance proven",
+                     "ZONE: uncertainty zone"]
+    assert browser.find_element(By.NAME, "customer_name").get_attribute("value") == \
+        JOB["customer_name"]
+    browser.execute_script("document.getElementById('signoff').scrollIntoView()")
+    shot(browser, "signoff_issued")
+    row.find_element(By.LINK_TEXT, "download").click()
+    pdf = browser.downloads / "PM-2026-00001.pdf"
+    WebDriverWait(browser, 30).until(lambda b: pdf.exists() and pdf.stat().st_size > 0)
+    time.sleep(0.5)
+    data = pdf.read_bytes()
+    assert data.startswith(b"%PDF") and hashlib.sha256(data).hexdigest() == sha
+    import io
+
+    from pypdf import PdfReader
+
+    text = "".join(p.extract_text() for p in PdfReader(io.BytesIO(data)).pages)
+    assert "PM-2026-00001" in text and "DRAFT" not in text and "Example Machining AG" in text
+    assert "VMC8-0042" in text
