@@ -144,6 +144,11 @@ ALL = fc.all_cases()
 COMMANDS = fc.commands()
 
 
+def _commands() -> list:
+    """(name, click command) of every leaf command (test_cli_outputs' audit walks them too)."""
+    return list(COMMANDS.items())
+
+
 def test_every_command_and_parameter_has_cases():
     """The cases come from the interface: every command, and every parameter of each."""
     covered = {c.command for c in ALL}
