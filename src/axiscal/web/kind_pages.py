@@ -167,7 +167,7 @@ def _motion(ev) -> dict:
             "lead": f"{r.n_runs} run{'s' if r.n_runs != 1 else ''}",
             "tables": [("ISO 230-7 error motion values", "motion",
                         ["motion", "total", "synchronous", "asynchronous", "fundamental",
-                         "fundamental", "unit"], rows)],
+                         "fundamental in the values", "unit"], rows)],
             "statements": [], "warnings": []}
 
 
