@@ -83,6 +83,16 @@ def test_tolerances_decided_as_the_cli(laser_file):
     assert ev.to_dict()["accepted"] is False
 
 
+def test_uncertainty_inputs_as_the_cli(laser_file):
+    """``uncertainty=`` is ``--uncertainty NAME=VALUE``: E_VE declared (ISO 230-2:2014 Annex A.5)
+    enters U of every parameter, as in ``axiscal iso230-2 --uncertainty e_ve=0.3 --json``."""
+    ev = axiscal.evaluate(laser_file, uncertainty={"e_ve": 0.3})
+    cli = _cli_json("iso230-2", laser_file, "--uncertainty", "e_ve=0.3")
+    assert ev.to_dict() == cli
+    without = axiscal.evaluate(laser_file).to_dict()["uncertainty"]
+    assert ev.to_dict()["uncertainty"]["R"] > without["R"]
+
+
 def test_ballbar_file_equals_ballbar_analyze():
     """A ballbar file read by content, diagnosed as ``axiscal ballbar analyze --json``."""
     ev = axiscal.evaluate(BALLBAR)

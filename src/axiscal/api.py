@@ -72,7 +72,8 @@ def read(path: PathLike, *, target_unit: str | None = None,
 
 def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
              tolerances: Mapping[str, float] | None = None,
-             rule: str | None = None) -> "Evaluation":
+             rule: str | None = None,
+             uncertainty: Mapping[str, float | str] | None = None) -> "Evaluation":
     """Evaluate a dataset (or a data file) by its standard.
 
     Parameters
@@ -89,6 +90,11 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
         decided by ISO 14253-1:2017 with U of ISO 230-2:2014 Annex A, as ``--tolerance`` does.
     rule : str, optional
         Decision rule, ``iso14253-1`` (default) or ``simple``.
+    uncertainty : mapping, optional
+        Inputs of the ISO 230-2:2014 Annex A uncertainty budget by name, over the user
+        configuration's ``[uncertainty]`` table, as ``--uncertainty NAME=VALUE`` (e.g.
+        ``{"e_ve": 0.3}``: the environmental variation error of a drift check, Annex A.5). Every
+        input not given is shown as assumed in ``to_dict()["uncertainty_budget"]``.
 
     Returns
     -------
@@ -103,7 +109,8 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
             return Evaluation(kind, _KIND_STANDARD[kind], ev.dataset, ev.evaluation, ev.result)
         data = read(data)
     if isinstance(data, PositioningDataset):
-        return _positioning(data, standard.strip().lower(), dict(tolerances or {}), rule)
+        return _positioning(data, standard.strip().lower(), dict(tolerances or {}), rule,
+                            dict(uncertainty or {}))
     return _other(data)
 
 
@@ -444,12 +451,13 @@ def _evaluated(path: PathLike, kind: str) -> Any:
     return evaluate_file(Path(path).read_bytes(), Path(path).name, kind)
 
 
-def _positioning(ds: Any, key: str, tolerances: dict, rule: str | None) -> Evaluation:
+def _positioning(ds: Any, key: str, tolerances: dict, rule: str | None,
+                 uncertainty: dict) -> Evaluation:
     from axiscal.errors import InputError
     from axiscal.standards import positioning_standards as ps
 
     if key == DEFAULT_STANDARD:
-        return _iso230_2(ds, tolerances, rule)
+        return _iso230_2(ds, tolerances, rule, uncertainty)
     if key != "all" and key not in ps.STANDARDS:
         raise InputError(f"standard {key!r}: one of {', '.join(ps.STANDARDS)} or all")
     if key == "all" and tolerances:
@@ -461,7 +469,8 @@ def _positioning(ds: Any, key: str, tolerances: dict, rule: str | None) -> Evalu
     if tolerances:
         if isinstance(first, str):
             raise InputError(f"tolerances: {key} was not evaluated: {first}")
-        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule, None))
+        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule,
+                                             uncertainty or None))
     from axiscal.io.results import standard_json, verdicts_json
 
     d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
@@ -476,7 +485,7 @@ def _positioning(ds: Any, key: str, tolerances: dict, rule: str | None) -> Evalu
                       _results=tuple(results))
 
 
-def _iso230_2(ds: Any, tolerances: dict, rule: str | None) -> Evaluation:
+def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict) -> Evaluation:
     """As ``axiscal iso230-2 FILE --json`` (the user configuration's uncertainty inputs)."""
     from axiscal.io.results import result_json
     from axiscal.report.issue import budget_for, decisions_for, load_config
@@ -485,6 +494,8 @@ def _iso230_2(ds: Any, tolerances: dict, rule: str | None) -> Evaluation:
 
     result = iso_evaluate(ds)
     cfg = load_config(None)
+    if uncertainty:
+        cfg = {**cfg, "uncertainty": {**(cfg.get("uncertainty") or {}), **uncertainty}}
     check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})
     budget = budget_for(ds, result, cfg)
     verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
