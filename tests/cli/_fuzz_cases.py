@@ -91,6 +91,7 @@ BASES = {
     "history import": ["{d}/history.zip", "--db", "{db}"],
     "history list": ["--db", "{db}"],
     "history machines": ["--db", "{db}"],
+    "history rename-machine": ["VMC-900", "VMC-901", "--db", "{db}"],
     "history show": ["1", "--db", "{db}"],
     "history trend": ["--machine", MACHINE, "--axis", "X", "--db", "{db}"],
     "iso230-2": ["{d}/pos.csv"],
@@ -182,9 +183,9 @@ def _label(param) -> str:
     return param.opts[0] if param.param_type_name == "option" else param.name.upper()
 
 
-def _replace(base: list, param, value) -> list | None:
+def _replace(base: list, param, value) -> list:
     """``base`` with ``param`` set to ``value`` (an argument replaced in place, an option's value
-    replaced or appended); None where an argument's place cannot be told."""
+    replaced or appended)."""
     if param.param_type_name == "option":
         args, i = list(base), 0
         out = []
@@ -201,7 +202,7 @@ def _replace(base: list, param, value) -> list | None:
     if index < len(positional):
         args[positional[index]] = value
         return args
-    return args + [value] if index == len(positional) else None
+    return args + ["x"] * (index - len(positional)) + [value]   # earlier arguments: any word
 
 
 def _arguments(param):
@@ -269,8 +270,6 @@ def parameter_cases(name: str, cmd) -> list[Case]:
                     prepare = ((what, values[0]),)
             for v in values:
                 args = _replace(base, param, v)
-                if args is None:
-                    continue
                 if getattr(param, "multiple", False) and param.param_type_name == "option":
                     args = args + [param.opts[0], v, param.opts[0], v]
                 shown = v if len(v) < 40 else f"{len(v)}-character string"
