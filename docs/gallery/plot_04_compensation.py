@@ -33,7 +33,8 @@ for controller, path in (("siemens-840d", "x_840d.ini"), ("fanuc", "x_fanuc.txt"
 fig, ax = plt.subplots(figsize=(8, 4))
 ax.step(table.positions, table.up, where="mid", label="correction, + direction")
 ax.step(table.positions, table.down, where="mid", label="correction, − direction")
-ax.plot(ev.result.targets, -ev.result.mean_up, "o", ms=3, label="− mean deviation ↑ (ISO 230-2)")
+ax.plot(ev.result.targets, -ev.result.mean_up, "o", ms=3,
+        label="− mean deviation ↑ (ISO 230-2)")
 ax.set_xlabel(f"position [{table.position_unit}]")
 ax.set_ylabel(f"correction [{table.correction_unit}]")
 ax.grid(alpha=0.3)

@@ -281,7 +281,9 @@ class Evaluation:
         return Path(_write_report(self, Path(path)))
 
     def _repr_html_(self) -> str:
-        return _html(self.kind, self.standard, self._json, self.plot())
+        from axiscal.report.evaluations import notebook_html
+
+        return notebook_html(self.kind, self.standard, self._json, self.plot())
 
     def __str__(self) -> str:
         return str(self.result)
@@ -378,7 +380,9 @@ class Simulation:
         return Path(path)
 
     def _repr_html_(self) -> str:
-        return _html(self.kind, DEFAULT_STANDARD, self.to_dict(), self.plot())
+        from axiscal.report.evaluations import notebook_html
+
+        return notebook_html(self.kind, DEFAULT_STANDARD, self.to_dict(), self.plot())
 
     def __str__(self) -> str:
         return str(self.test if self._rotary else self.test.result)
@@ -540,41 +544,9 @@ def _figure(ev: Evaluation) -> "Figure":
         if fig is None:
             raise InputError("plot: no standard evaluates this test, so there is no figure")
         return fig
-    return _OTHER_FIGURES[ev.kind](ev.dataset, ev.result)
+    from axiscal.report.evaluations import kind_figure
 
-
-def _ballbar_figure(data: Any, r: Any) -> "Figure":
-    """Both directions: the diagnosis's polar plot and ranked terms; one: the ISO 230-4 plot."""
-    if hasattr(r, "circular"):
-        from axiscal.report.ballbar_plots import diagnosis_figure
-
-        return diagnosis_figure(data.runs, r)
-    from axiscal.report.squareness_plots import ballbar_figure
-
-    return ballbar_figure(data.runs, r)
-
-
-def _straightness_figure(data: Any, r: Any) -> "Figure":
-    from axiscal.report.squareness_plots import straightness_figure
-
-    return straightness_figure(data, r)
-
-
-def _diagonal_figure(data: Any, r: Any) -> "Figure":
-    from axiscal.report.squareness_plots import diagonal_figure
-
-    return diagonal_figure(data, r)
-
-
-def _motion_figure(data: Any, r: Any) -> "Figure":
-    from axiscal.report.motion_plots import polar_figure
-
-    return polar_figure(r)
-
-
-#: The figure of each kind other than a positioning test: the one its command's --plot draws.
-_OTHER_FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
-                  "diagonal": _diagonal_figure, "motion": _motion_figure}
+    return kind_figure(ev.kind, ev.dataset, ev.result)
 
 
 def _write_report(ev: Evaluation, path: Path) -> Path:
@@ -598,19 +570,3 @@ def _write_report(ev: Evaluation, path: Path) -> Path:
              "(ISO 230-6)", "motion": "Error motions of a rotary axis (ISO 230-7)",
              "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
     return write_result_report(path, title, ev._json, figure=_figure(ev))
-
-
-def _html(kind: str, standard: str, d: dict, fig: Any) -> str:
-    """A notebook's view: the scalar results as a table, then the figure (SVG)."""
-    from html import escape
-
-    from axiscal.report.html import figure_svg
-
-    rows = "".join(f"<tr><th>{escape(str(k))}</th><td>{escape(_cell(v))}</td></tr>"
-                   for k, v in d.items() if isinstance(v, (int, float, str)) or v is None)
-    return (f"<div><p><b>{escape(kind)}</b> by {escape(standard)}</p>"
-            f"<table>{rows}</table>{figure_svg(fig)}</div>")
-
-
-def _cell(v: Any) -> str:
-    return "—" if v is None else f"{v:.4g}" if isinstance(v, float) else str(v)
