@@ -45,7 +45,7 @@ def add_commands(app: typer.Typer) -> None:
                        json_out: bool = _JSON) -> None:
         """Rename a machine (its tests stay; the old name is kept in the audit trail).
 
-        Example: axiscal history rename-machine "DMU 50" "DMU 50 S/N 1234" --by "A. Ng" --reason "serial added"
+        Example: axiscal history rename-machine "DMU 50" "DMU 50 S/N 1234" --by Ng --reason serial
         """
         _done(c.rename_machine(_store(db), old, new, by=by, reason=reason), json_out)
 
@@ -89,7 +89,7 @@ def add_commands(app: typer.Typer) -> None:
              json_out: bool = _JSON) -> None:
         """Edit a test's metadata (its readings never change); old values kept in the trail.
 
-        Example: axiscal history edit 12 --date 2025-03-01 --by "A. Ng" --reason "date of the file was wrong"
+        Example: axiscal history edit 12 --date 2025-03-01 --by "A. Ng" --reason "log book"
         """
         _done(c.edit_test(_store(db), test_id, by=by, reason=reason, date=date,
                           operator=operator, instrument=instrument, note=note_), json_out)

@@ -68,7 +68,7 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     session_idle, session_max : float, seconds
         A login ends after this long without a request, and this long after the login.
     """
-    from axiscal.web import pages
+    from axiscal.web import correction_pages, pages
 
     users = UserFile.load(users_file) if users_file else None
     if require_login and (users is None or not users.users):
@@ -90,6 +90,7 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     _add_guard(app)
     _add_error_pages(app)
     pages.add_routes(app)
+    correction_pages.add_routes(app)       # rename, merge, edit, withdraw; the audit trail
     return app
 
 

@@ -52,18 +52,29 @@ def add_routes(app: FastAPI) -> None:
     def machines(request: Request):
         return render(request, "machines.html", "Machines", machines=store(request).machines())
 
-    @app.get("/machines/{name}", response_class=HTMLResponse)
-    def machine(request: Request, name: str, axis: str = "", kind: str = "", page: Page = 1):
+    @app.get("/machines/{name:path}")
+    def machine_by_name(request: Request, name: str, page: Page = 1):   # page: checked here too
+        """An old link (a machine by name, "/" in it or not; a name since renamed or merged)
+        leads to the machine's page by id."""
+        from axiscal.store.corrections import machine_id
+
+        q = request.url.query
+        return RedirectResponse(f"/machine/{machine_id(store(request), name)}"
+                                + (f"?{q}" if q else ""), 303)
+
+    @app.get("/machine/{machine_id}", response_class=HTMLResponse)
+    def machine(request: Request, machine_id: TestId, axis: str = "", kind: str = "",
+                page: Page = 1):
         st = store(request)
-        m = next((x for x in st.machines() if x.name == name), None)
+        m = next((x for x in st.machines() if x.id == machine_id), None)
         if m is None:
-            raise _missing(f"no machine {name!r} in the history")
-        page = max(1, page)
+            raise _missing(f"no machine {machine_id} in the history")
+        name, page = m.name, max(1, page)
         tests = st.tests(machine=name, axis=axis or None, kind=kind or None,
                          limit=PAGE + 1, offset=(page - 1) * PAGE)
         more = len(tests) > PAGE
         rows = [(t, _key(t)) for t in tests[:PAGE]]
-        return render(request, "machine.html", f"{name}", name=name, rows=rows,
+        return render(request, "machine.html", f"{name}", name=name, machine_id=m.id, rows=rows,
                       trends=_trend_parameters(st, name, m.axes),
                       axes=list(m.axes), axis=axis, page=page, more=more, total=m.tests,
                       query=query)

@@ -1,0 +1,97 @@
+"""Corrections in the workbench (issue 31): a machine of any name (a "/" in it) reachable by id,
+rename, merge, edit, withdraw and reinstate through forms with the CSRF token, every change in
+the audit trail on the page; a withdrawn test marked and out of the trend."""
+
+from __future__ import annotations
+
+import html
+import re
+
+import numpy as np
+from fastapi.testclient import TestClient
+
+from axiscal.web.app import create_app
+from tests.store.test_history import _dataset, _raw
+
+SLASH = "DMU 50 S/N 1234"
+
+
+def _client(tmp_path):
+    from axiscal.store import open_store
+
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    s = open_store(url)
+    rng = np.random.default_rng(4)
+    for k in range(3):
+        s.add(_raw(_dataset(rng, machine=SLASH, date=f"202{k}-05-01", offset=k)), f"{k}.csv")
+    s.add(_raw(_dataset(rng, machine="DMU 50", axis="Y")), "y.csv")
+    c = TestClient(create_app(url), base_url="http://127.0.0.1")
+    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    return c, tok
+
+
+def _post(c, path, **data):
+    return c.post(path, data=data, follow_redirects=True)
+
+
+def test_a_machine_with_a_slash_is_reachable_from_every_link(tmp_path):
+    c, _ = _client(tmp_path)
+    home = c.get("/").text
+    link = re.search(r'<a href="(/machine/\d+)">DMU 50 S/N 1234</a>', home).group(1)
+    page = c.get(link)
+    assert page.status_code == 200 and "<h1>DMU 50 S/N 1234</h1>" in page.text
+    for href in set(re.findall(r'href="(/(?:machine|tests|trend)[^"]*)"', page.text)):
+        assert c.get(href.replace("&amp;", "&")).status_code == 200, href
+    test = c.get("/tests/1").text
+    axis_link = re.search(r'<a href="([^"]+)">the axis\'s history</a>', test).group(1)
+    assert c.get(axis_link.replace("&amp;", "&")).status_code == 200
+    old = c.get("/machines/DMU 50 S%2FN 1234?axis=X")          # an old link, by name
+    assert old.status_code == 200 and str(old.url).endswith(f"{link}?axis=X")
+
+
+def test_rename_merge_withdraw_with_the_audit_trail_on_the_page(tmp_path):
+    c, tok = _client(tmp_path)
+    mid = int(re.search(r'/machine/(\d+)">DMU 50 S/N 1234', c.get("/").text).group(1))
+    other = int(re.search(r'/machine/(\d+)">DMU 50<', c.get("/").text).group(1))
+    r = _post(c, f"/machine/{mid}/rename", csrf=tok, name="DMU 50 / 1234", by="A. Ng",
+              reason="serial written as on the plate")
+    assert r.status_code == 200 and "<h1>DMU 50 / 1234</h1>" in r.text
+    trail = r.text.split('id="audit"')[1].split("</table>")[0]
+    assert "A. Ng" in trail and "serial written as on the plate" in trail
+    assert "name: DMU 50 S/N 1234" in trail and "name: DMU 50 / 1234" in trail
+    r = _post(c, "/tests/2/withdraw", csrf=tok, by="A. Ng", reason="beam clipped")
+    assert 'id="withdrawn"' in r.text and "beam clipped" in r.text
+    machine = c.get(f"/machine/{mid}").text
+    assert machine.count('class="withdrawn"') == 1 and "WITHDRAWN</strong>: beam clipped" in machine
+    trend = c.get("/trend", params={"machine": "DMU 50 / 1234", "axis": "X"})
+    assert trend.status_code == 200 and "E over 2 tests" in trend.text
+    assert c.get("/compare?a=1&b=2").status_code == 400
+    r = _post(c, "/tests/1/edit", csrf=tok, date="2019-01-02", operator="K. Ng",
+              instrument="", note="", by="A. Ng", reason="date from the log book")
+    assert "operator: K. Ng" in r.text and "date: 2019-01-02T00:00:00" in r.text
+    r = _post(c, f"/machine/{other}/merge", csrf=tok, into=str(mid), by="A. Ng",
+              reason="one machine")
+    assert r.status_code == 200 and str(r.url).endswith(f"/machine/{mid}")
+    assert "merged into" in r.text and "Y" in r.text.split("Axes:")[1].split("</p>")[0]
+    assert c.get("/machines/DMU 50").url.path == f"/machine/{mid}"   # the merged name leads on
+    audit = html.unescape(c.get("/audit").text)
+    whats = re.findall(r"<td>(?:<a href=\"[^\"]+\">)?(machine '[^<]*|test \d[^<]*)<", audit)
+    assert whats == [f"machine 'DMU 50' (id {other}) merged into 'DMU 50 / 1234'",
+                     "test 1: date, operator edited", "test 2 withdrawn",
+                     "machine 'DMU 50 S/N 1234' renamed 'DMU 50 / 1234'"], whats
+    assert c.get("/tests/2").status_code == 200      # nothing deleted
+
+
+def test_refusals_are_pages_and_change_nothing(tmp_path):
+    c, tok = _client(tmp_path)
+    r = _post(c, "/tests/1/withdraw", csrf=tok, by="A. Ng", reason="")
+    assert r.status_code == 400 and "say why" in r.text
+    r = _post(c, "/tests/1/withdraw", csrf="nope", by="A. Ng", reason="x")
+    assert r.status_code == 403
+    r = _post(c, "/tests/1/edit", csrf=tok, date="2020-05-01", by="A. Ng", reason="x")
+    assert r.status_code == 400 and "nothing to change" in r.text
+    assert _post(c, "/machine/1/merge", csrf=tok, into="abc", by="A", reason="x"
+                 ).status_code == 400
+    assert c.get("/machine/99").status_code == 404
+    assert c.get("/machines/nothing here").status_code == 404
+    assert "No change recorded" in c.get("/audit").text
