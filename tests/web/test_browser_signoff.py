@@ -42,6 +42,8 @@ def test_full_signoff_from_upload_to_an_issued_certificate(lab_server, browser):
 
     for name, value in {"tol_A": "20", "tol_E": "15", "tol_R": "5.5", **JOB}.items():
         _type(browser, name, value)
+    browser.execute_script("document.getElementById('signoff-form').scrollIntoView()")
+    shot(browser, "signoff_form")
     browser.find_element(By.ID, "show-verdict").click()
     WebDriverWait(browser, 30).until(lambda b: b.find_elements(By.ID, "verdicts"))
     cells = {r.find_elements(By.TAG_NAME, "td")[0].text: r.find_elements(By.TAG_NAME, "td")[-1]

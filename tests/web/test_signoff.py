@@ -149,3 +149,24 @@ def test_signoff_needs_the_csrf_token(client):
     r = client.post("/tests/1/signoff", data={"csrf": "wrong", "action": "issue", **JOB})
     assert r.status_code == 403 and "CSRF" in r.text
     assert 'id="no-certificates"' in client.get("/tests/1").text
+
+
+def test_a_viewer_sees_certificates_but_cannot_sign_off(tmp_path, monkeypatch, users):
+    from tests.web.conftest import log_in
+
+    cfg = tmp_path / "config.toml"
+    cfg.write_text(LAB, encoding="utf-8")
+    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", users, require_login=True),
+                   base_url="http://127.0.0.1")
+    log_in(c, "eng", "correct horse battery")
+    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", data_file(), "text/csv")})
+    c.cookies.clear()
+    log_in(c, "view", "staple battery horse")
+    page = c.get("/tests/1").text
+    assert 'id="no-certificates"' in page and 'id="signoff-form"' not in page
+    tok = re.search(r'csrf-token" content="([^"]+)"', page).group(1)
+    r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", **JOB})
+    assert r.status_code == 403 and "viewer" in r.text
+    assert 'id="no-certificates"' in c.get("/tests/1").text
