@@ -149,7 +149,7 @@ def test_gantry_plot_and_report(tmp_path):
     d = json.loads(res.stdout)
     page = html.read_text()
     assert png.stat().st_size > 1000 and "Laser scale axis referencing" in page
-    assert "simulation" in page.lower() and "required_skew_limit" in page
+    assert "simulation" in page.lower() and "<td>Skew limit needed [counts]</td>" in page
     assert f"<td>{d['required_skew_limit']}</td>" in page
 
 

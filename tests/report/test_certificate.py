@@ -191,4 +191,4 @@ def test_targets_are_right_aligned_like_the_other_numbers(linear):
     css = _certificate(*linear, {})[0].html()
     assert "table.targets td:first-child, table.targets th:first-child { text-align: right; }" in css
     assert "table.kv td { text-align: left; }" in css
-    assert 'class="targets"' in css
+    assert re.search(r'class="targets[" ]', css)   # "targets long": it may continue overleaf

@@ -142,7 +142,7 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "amplitude": ("Amplitude", None), "peak_hz": ("Peak frequency", "Hz"),
     "overruns": ("Overruns", ""), "target_unit": ("Target unit", ""), "targets": ("Targets", None),
     "n": ("Readings", ""), "axis": ("Axis", ""), "direction": ("Direction", ""),
-    "offset": ("Offset", ""), "air_temperature": ("Air temperature", "°C"),
+    "offset": ("Offset", "counts"), "air_temperature": ("Air temperature", "°C"),
     "material_temperature": ("Material temperature", "°C"), "bounds": ("Bounds", ""),
     "difference": ("Difference", None),
     # laser scale referencing (Renishaw, Laser scale axis referencing)
