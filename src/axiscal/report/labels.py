@@ -8,12 +8,13 @@ the decimals of its unit (:data:`DECIMALS`); tables, the annotation boxes of plo
 all call it, so a figure and a table show the same digits. :func:`symbol_html` writes a symbol of a
 standard (``u_E,MACHINE``, ``B_i``) with its subscript, as the standards print it.
 
-Decimal policy (the resolution each unit is reported to): µm to 0.01 (ISO 230-2:2014 results are
-given to 0.01 µm in practice; the instruments resolve 1 nm), µm/m to 0.01, arcsec to 0.01,
-mm to 0.001, degrees to 0.001, seconds to 0.001, ms to 0.01, Hz to 0.1, percent to 0.1. A non-zero
-value that would round to zero keeps two significant digits instead, down to a thousandth of the
-unit's resolution (an uncertainty of 0.00058 µm is not shown as 0.00: JCGM 100:2008 §7.2.6 gives
-an uncertainty to at most two significant digits; a fit's 1e-17 µm stays 0.00).
+Decimal policy (the resolution each unit is reported to; axiscal's rule, as no standard fixes the
+decimals of a report: it keeps the digits the terminal and the plots already showed): µm to 0.01,
+µm/m to 0.01, arcsec to 0.01, mm to 0.001, degrees to 0.001, seconds to 0.001, ms to 0.01, Hz to
+0.1, percent to 0.1. A non-zero value that would round to zero keeps two significant digits
+instead, down to a thousandth of the unit's resolution (an uncertainty of 0.00058 µm is not shown
+as 0.00: JCGM 100:2008 §7.2.6 gives an uncertainty to at most two significant digits; a fit's
+1e-17 µm stays 0.00).
 
 Examples
 --------
