@@ -14,8 +14,6 @@ names each missing item, as the command line's DRAFT does.
 
 from __future__ import annotations
 
-import math
-
 from fastapi import FastAPI, Request
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 from starlette.concurrency import run_in_threadpool
@@ -23,6 +21,7 @@ from starlette.concurrency import run_in_threadpool
 from axiscal.errors import AxiscalError, InputError
 from axiscal.web.app import checked_form, download, query, render, require_engineer
 from axiscal.web.history_pages import TestId
+from axiscal.web.pages import _number
 
 __all__ = ["add_routes", "job_from_form", "signoff_context", "signoff_plot", "INSTRUMENTS"]
 
@@ -279,16 +278,6 @@ def _defaults(cfg: dict, params) -> dict:
     out["rule"] = str(cfg.get("certificate", {}).get("rule", "iso14253-1"))
     out["paper"] = str(cfg.get("certificate", {}).get("paper", "A4"))
     return out
-
-
-def _number(text: str, what: str, low: float, high: float) -> float:
-    try:
-        v = float(str(text).replace(",", "."))
-    except ValueError:
-        raise InputError(f"{what} = {text!r}: not a number") from None
-    if not math.isfinite(v) or not low <= v <= high:
-        raise InputError(f"{what} = {text}: give a number from {low:g} to {high:g}")
-    return v
 
 
 def _unit(unit: str) -> str:
