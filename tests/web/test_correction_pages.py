@@ -95,3 +95,25 @@ def test_refusals_are_pages_and_change_nothing(tmp_path):
     assert c.get("/machine/99").status_code == 404
     assert c.get("/machines/nothing here").status_code == 404
     assert "No change recorded" in c.get("/audit").text
+
+
+def test_a_viewer_cannot_correct_and_an_engineer_is_the_one_recorded(tmp_path, users):
+    from tests.web.conftest import log_in
+
+    _client(tmp_path)                                           # the history, filled
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", users, require_login=True),
+                   base_url="http://127.0.0.1")
+    log_in(c, "view", "staple battery horse")
+    page = c.get("/tests/1").text
+    assert 'id="withdraw-test"' not in page and 'id="audit"' in page   # the trail: readable
+    tok = re.search(r'csrf-token" content="([^"]+)"', page).group(1)
+    r = _post(c, "/tests/1/withdraw", csrf=tok, reason="x")
+    assert r.status_code == 403 and "viewer" in r.text
+    c.cookies.clear()
+    log_in(c, "eng", "correct horse battery")
+    page = c.get("/tests/1").text
+    assert 'name="by"' not in page                         # the account is who, not a field
+    tok = re.search(r'csrf-token" content="([^"]+)"', page).group(1)
+    r = _post(c, "/tests/1/withdraw", csrf=tok, by="someone else", reason="beam clipped")
+    trail = r.text.split('id="audit"')[1].split("</table>")[0]
+    assert "<td style=\"white-space: nowrap\">eng</td>" in trail and "someone else" not in trail
