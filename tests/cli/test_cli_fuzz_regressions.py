@@ -279,3 +279,12 @@ def test_demo_checks_its_database_before_writing_anything(tmp_path):
     one_error_line(_run("demo", "--out", tmp_path / "demo", "--db", "mysql://u@127.0.0.1:1/x"),
                    "MySQLdb")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_rotary_configuration_value_of_1e308_is_refused_not_overflowed(tmp_path):
+    text = (EXAMPLES / "rotary_turntable.toml").read_text()
+    assert re.search(r"(?m)^resolution_arcsec\s*=", text)
+    (tmp_path / "r.toml").write_text(re.sub(r"(?m)^(resolution_arcsec\s*=).*$", r"\1 1e308",
+                                            text))
+    one_error_line(_run("rotary", "simulate", tmp_path / "r.toml"), "resolution_arcsec",
+                   "out of range")

@@ -296,8 +296,12 @@ def _make(where: str, fn, kw: dict):
 
 
 def _num(v: Any, where: str, positive: bool = False) -> float:
+    from axiscal._schema import MAX_MAGNITUDE
+
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
         raise ConfigError(f"{where} = {v!r} must be a finite number")
+    if abs(v) > MAX_MAGNITUDE:   # no set-up comes near it; squaring it would overflow
+        raise ConfigError(f"{where} = {v!r} is out of range (beyond ±{MAX_MAGNITUDE:g})")
     if positive and not v > 0:
         raise ConfigError(f"{where} = {v!r} must be positive")
     return float(v)
