@@ -106,8 +106,11 @@ class StoredTest:
     tables: tuple             # (controller, filename, text)
 
     def evaluate_again(self) -> Evaluated:
-        """Evaluate the stored bytes again with this version of axiscal."""
-        return evaluate_file(self.raw, self.summary.filename, self.summary.kind)
+        """The evaluation of the stored bytes by this version of axiscal: evaluated once and
+        kept (:mod:`axiscal.store.cache`), since it is a function of the bytes and the version."""
+        from axiscal.store.cache import evaluated
+
+        return evaluated(self.raw, self.sha256, self.summary.filename, self.summary.kind)
 
 
 def default_url() -> str:
@@ -402,6 +405,10 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
     from axiscal._json import jsonable
 
     ev = evaluate_file(raw, filename, kind)
+    if Path(filename).name[:300] == filename:     # as a view evaluates it: kept for the views
+        from axiscal.store.cache import remember
+
+        remember(raw, hashlib.sha256(raw).hexdigest(), ev)
     when, known = _date(date or ev.date)
     return Prepared(
         hashlib.sha256(raw).hexdigest(), raw, Path(filename).name[:300],

@@ -1,0 +1,203 @@
+"""What a stored test gives (its evaluation, reports, certificates) computed once and kept.
+
+An evaluation of a stored test is a function of two things only: the test's stored bytes and the
+version of axiscal that evaluates them (``StoredTest.evaluate_again`` is
+:func:`axiscal.store.kinds.evaluate_file` on the stored bytes). So it is kept under the key
+``(SHA-256 of the stored bytes, axiscal version, what)`` (the version with a fingerprint of
+the installed source files, so an edited development checkout counts as another version) and a second view is a look-up, not a
+second evaluation (after one 19.6 MB upload a view of its page took 2.85 s and its report 14.5 s
+and 116 MB, every time). A new version of axiscal reads and writes another folder, so it never
+serves what an older version computed (invalidation by version); a product that also depends on
+other inputs (a certificate on the user configuration, the paper) carries their digest in
+``what``.
+
+Where: files under ``AXISCAL_CACHE``, else the user's cache folder (platformdirs
+``user_cache_dir("axiscal")``), ``artifacts/<version>/<sha[:2]>/<sha>.<what>``. Every file is
+written whole to a temporary name in the same folder and renamed over the final one
+(``os.replace``, atomic on POSIX and Windows), so a reader sees the old file, the new one or
+none, never half of one, whichever process of a multi-worker server wrote it. A cache that cannot
+be written (a read-only home) is not an error: the product is returned uncached.
+
+The evaluation itself (an :class:`~axiscal.store.kinds.Evaluated` with its dataset and result
+objects) is kept as a pickle in that same folder, which only this user writes (the trust of a
+pickle is that of the folder, as for the user's own virtual environment), and, in each process,
+the most recently used ones in memory, bounded by :data:`MEMORY_BYTES` of stored bytes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+import tempfile
+import threading
+from collections import OrderedDict
+from pathlib import Path
+
+__all__ = ["cache_folder", "read", "write", "kept", "evaluated", "remember", "MEMORY_BYTES",
+           "MEMORY_ENTRIES"]
+
+#: Stored bytes whose evaluations one process keeps in memory (the rest are read from disk).
+MEMORY_BYTES = 32 * 2**20
+#: Evaluations one process keeps in memory at most.
+MEMORY_ENTRIES = 256
+_memory: OrderedDict = OrderedDict()        # (sha, version) -> (Evaluated, size)
+_memory_lock = threading.Lock()
+_key_locks: dict = {}
+_key_locks_lock = threading.Lock()
+
+
+_VERSION: list = []
+
+
+def _version() -> str:
+    """The axiscal version, with a fingerprint of its source files (names, sizes, modification
+    times) so that an edited checkout of one version never reads what its older code kept."""
+    if not _VERSION:
+        from axiscal import __version__
+
+        root = Path(__file__).resolve().parents[1]
+        h = hashlib.sha256()
+        for p in sorted(root.rglob("*.py")):
+            st = p.stat()
+            h.update(f"{p.relative_to(root)}|{st.st_size}|{st.st_mtime_ns}\n".encode())
+        _VERSION.append(f"{__version__}-{h.hexdigest()[:12]}")
+    return _VERSION[0]
+
+
+def cache_folder() -> Path:
+    """``AXISCAL_CACHE``, else ``artifacts`` in the user's cache folder; one sub-folder per
+    axiscal version."""
+    env = os.environ.get("AXISCAL_CACHE")
+    if env:
+        base = Path(env)
+    else:
+        from platformdirs import user_cache_dir
+
+        base = Path(user_cache_dir("axiscal")) / "artifacts"
+    return base / _safe(_version())
+
+
+def _path(sha: str, what: str) -> Path:
+    if len(sha) != 64 or not all(c in "0123456789abcdef" for c in sha):
+        raise ValueError(f"not a SHA-256: {sha[:70]!r}")
+    return cache_folder() / sha[:2] / f"{sha}.{_safe(what)}"
+
+
+def _safe(text: str) -> str:
+    return "".join(c if c.isalnum() or c in "._-" else "_" for c in text)[:120]
+
+
+def read(sha: str, what: str) -> bytes | None:
+    """The kept bytes of ``what`` for the test with stored-bytes digest ``sha``, else None."""
+    try:
+        return _path(sha, what).read_bytes()
+    except OSError:
+        return None
+
+
+def write(sha: str, what: str, data: bytes) -> bool:
+    """Keep ``data`` (atomically: a temporary file renamed over the final name); False if the
+    cache folder cannot be written."""
+    path = _path(sha, what)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+        try:
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+            os.replace(tmp, path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+    except OSError:
+        return False
+    return True
+
+
+def _lock_for(key) -> threading.Lock:
+    with _key_locks_lock:
+        if len(_key_locks) > 4096:
+            _key_locks.clear()
+        return _key_locks.setdefault(key, threading.Lock())
+
+
+def kept(sha: str, what: str, make) -> bytes:
+    """The kept bytes of ``what``, else ``make()`` (bytes or str) computed, kept and returned.
+
+    Within a process, concurrent requests for the same product wait for the one computing it
+    (and then read it), so six requests for one report compute it once."""
+    data = read(sha, what)
+    if data is not None:
+        return data
+    with _lock_for((sha, what)):
+        data = read(sha, what)
+        if data is None:
+            data = make()
+            data = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+            write(sha, what, data)
+    return data
+
+
+def digest(*parts) -> str:
+    """A short digest of further inputs a product depends on (for ``what``)."""
+    return hashlib.sha256(repr(parts).encode("utf-8", "surrogatepass")).hexdigest()[:16]
+
+
+def evaluated(raw: bytes, sha: str, filename: str, kind: str | None):
+    """The evaluation of stored bytes ``raw`` (digest ``sha``): from memory, else the disk, else
+    :func:`~axiscal.store.kinds.evaluate_file` once (then kept)."""
+    key = (sha, _version())
+    with _memory_lock:
+        hit = _memory.get(key)
+        if hit is not None:
+            _memory.move_to_end(key)
+            return hit[0]
+    with _lock_for(key):
+        with _memory_lock:
+            if key in _memory:
+                return _memory[key][0]
+        data = read(sha, "evaluated.pickle")
+        ev = None
+        if data is not None:
+            try:
+                ev = pickle.loads(data)
+            except Exception:                 # noqa: BLE001 - a damaged entry: evaluate again
+                ev = None
+        if ev is None:
+            from axiscal.store.kinds import evaluate_file
+
+            ev = evaluate_file(raw, filename, kind)
+            _keep_on_disk(sha, ev)
+        _hold(key, ev, len(raw))
+    return ev
+
+
+def remember(raw: bytes, sha: str, ev) -> None:
+    """Keep an evaluation just made (at upload), so the first view is already a look-up."""
+    _keep_on_disk(sha, ev)
+    _hold((sha, _version()), ev, len(raw))
+
+
+def _keep_on_disk(sha: str, ev) -> None:
+    try:
+        data = pickle.dumps(ev, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception:                         # noqa: BLE001 - not picklable: memory only
+        return
+    write(sha, "evaluated.pickle", data)
+
+
+def _hold(key, ev, size: int) -> None:
+    if size > MEMORY_BYTES:
+        return
+    with _memory_lock:
+        _memory[key] = (ev, size)
+        _memory.move_to_end(key)
+        while len(_memory) > MEMORY_ENTRIES or sum(s for _, s in _memory.values()) > MEMORY_BYTES:
+            _memory.popitem(last=False)
+
+
+def forget_memory() -> None:
+    """Empty this process's in-memory evaluations (tests; the disk keeps them)."""
+    with _memory_lock:
+        _memory.clear()
