@@ -25,6 +25,17 @@ def lab_server(tmp_path_factory):
     stop_server(proc)
 
 
+def _press(browser, button: str, then: str, timeout: float = 60) -> None:
+    """Click ``button`` and wait until htmx has swapped the sign-off in (the old one gone) and
+    the element ``then`` is there (or the page has changed, for a redirect)."""
+    from selenium.webdriver.support import expected_conditions as EC
+
+    old = browser.find_element(By.ID, "signoff-body")
+    browser.find_element(By.ID, button).click()
+    WebDriverWait(browser, timeout).until(EC.staleness_of(old))
+    WebDriverWait(browser, timeout).until(lambda b: b.find_elements(By.ID, then))
+
+
 def _type(browser, name: str, text: str) -> None:
     el = browser.find_element(By.NAME, name)
     el.clear()
@@ -42,12 +53,19 @@ def test_full_signoff_from_upload_to_an_issued_certificate(lab_server, browser):
         "return !!window.htmx"))
     assert browser.find_element(By.ID, "no-certificates")
 
+    _type(browser, "tol_E", "15")                      # no job yet: a DRAFT, no number
+    _press(browser, "issue-certificate", "draft")
+    draft = browser.find_element(By.ID, "draft").text
+    assert "customer name ([customer] name)" in draft
+    assert "name of the person authorising the certificate" in draft
+    assert "/tests/1" in browser.current_url and "certificate=" not in browser.current_url
+    browser.execute_script("document.getElementById('draft').scrollIntoView()")
+    shot(browser, "signoff_draft")
     for name, value in {"tol_A": "20", "tol_E": "15", "tol_R": "5.5", **JOB}.items():
         _type(browser, name, value)
     browser.execute_script("document.getElementById('signoff-form').scrollIntoView()")
     shot(browser, "signoff_form")
-    browser.find_element(By.ID, "show-verdict").click()
-    WebDriverWait(browser, 30).until(lambda b: b.find_elements(By.ID, "verdicts"))
+    _press(browser, "show-verdict", "verdicts")
     cells = {r.find_elements(By.TAG_NAME, "td")[0].text: r.find_elements(By.TAG_NAME, "td")[-1]
              .text for r in browser.find_elements(By.CSS_SELECTOR, "#verdicts tbody tr")}
     assert cells == {"A": "PASS: conformance proven", "E": "PASS: conformance proven",
@@ -61,8 +79,7 @@ def test_full_signoff_from_upload_to_an_issued_certificate(lab_server, browser):
     browser.execute_script("document.getElementById('signoff-body').scrollIntoView()")
     shot(browser, "signoff_verdict")
 
-    browser.find_element(By.ID, "issue-certificate").click()     # the form kept every field
-    WebDriverWait(browser, 60).until(lambda b: b.find_elements(By.ID, "certificates"))
+    _press(browser, "issue-certificate", "certificates")       # the form kept every field
     assert "certificate=PM-2026-00001" in browser.current_url
     assert "Certificate PM-2026-00001 issued" in browser.find_element(By.ID, "issued").text
     row = browser.find_element(By.CSS_SELECTOR, "#certificates tbody tr")
