@@ -68,3 +68,17 @@ def test_corrections_refused_in_one_line(tmp_path, files):  # noqa: F811
     assert _fails("history", "merge", "X", "Y", "--machine", "VMC-800", *WHO, "--db", db) == \
         "axiscal: error: machine 'VMC-800' has no axis 'Y'"
     assert json.loads(_run("history", "audit", "--db", db, "--json").stdout) == []
+
+
+def test_a_note_typed_on_a_duplicate_is_said_not_stored(tmp_path, files):  # noqa: F811
+    db = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    _run("history", "add", str(files[0]), "--db", db)
+    r = _run("history", "add", str(files[0]), "--db", db, "--note", "after the crash",
+             "--json")
+    assert json.loads(r.stdout)["duplicate"] is True
+    assert r.stderr.strip() == (
+        "not stored: --note 'after the crash' (test 1 keeps what it was stored with); to "
+        "change it: axiscal history edit 1 --note 'after the crash' --by NAME --reason TEXT")
+    assert json.loads(_run("history", "list", "--db", db, "--json").stdout)[0]["withdrawn"] \
+        is None
+    assert "not stored" not in _run("history", "add", str(files[0]), "--db", db).stderr

@@ -117,3 +117,24 @@ def test_a_viewer_cannot_correct_and_an_engineer_is_the_one_recorded(tmp_path, u
     r = _post(c, "/tests/1/withdraw", csrf=tok, by="someone else", reason="beam clipped")
     trail = r.text.split('id="audit"')[1].split("</table>")[0]
     assert "<td style=\"white-space: nowrap\">eng</td>" in trail and "someone else" not in trail
+
+
+def test_what_is_typed_on_a_duplicate_upload_is_offered_as_a_correction(tmp_path):
+    from axiscal.store import open_store
+
+    c, tok = _client(tmp_path)
+    raw = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}").get(1).raw
+    r = c.post("/upload", data={"csrf": tok, "note": "after the crash", "instrument": "XL-80"},
+               files={"file": ("again.csv", raw, "text/csv")})
+    assert r.status_code == 200 and r.url.path == "/tests/1"
+    said = html.unescape(r.text.split('id="stored-again">')[1].split("</div>")[0])
+    assert 'What you typed with it was not stored: instrument "XL-80"; note "after the crash".' \
+        in said
+    form = r.text.split('id="edit-test"')[1].split("</form>")[0]
+    assert 'value="after the crash"' in form and 'value="XL-80"' in form
+    assert '<details class="card" id="corrections" open>' in r.text
+    r = _post(c, "/tests/1/edit", csrf=tok, date="", instrument="XL-80",
+              note="after the crash", operator="", by="A. Ng", reason="typed on the upload")
+    t = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}").get(1)
+    assert (t.summary.note, t.instrument, t.summary.tested_at.year) == \
+        ("after the crash", "XL-80", 2020)

@@ -88,6 +88,14 @@ def add(
                    "same file content")
     else:
         typer.echo(f"stored as test {r.id}: {r.machine} {r.axis}, {r.kind}")
+    from shlex import quote
+
+    typed = [f"--{k} {quote(v)}" for k, v in (("date", date), ("instrument", instrument),
+                                         ("note", note_)) if v]
+    if r.duplicate and typed:      # not stored with the old test: said, with the correction
+        note(f"not stored: {' '.join(typed)} (test {r.id} keeps what it was stored with); "
+             f"to change it: axiscal history edit {r.id} {' '.join(typed)} --by NAME "
+             "--reason TEXT")
 
 
 def store_run(file: Path, db, machine=None, axis=None) -> None:

@@ -146,6 +146,8 @@ def edit_test(store, test_id, *, by: str, reason: str, **changes) -> AuditRecord
         old, new = {}, {}
         for k, v in changes.items():
             if k == "date":
+                if not v:
+                    raise InputError("date: give it as YYYY-MM-DD")
                 when, _ = _date(v)
                 old[k], new[k] = _iso(t.tested_at, t.date_known), when.isoformat()
                 t.tested_at, t.date_known = when, True

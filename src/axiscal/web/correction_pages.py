@@ -80,7 +80,8 @@ def add_routes(app: FastAPI) -> None:
         old = store(request).get(test_id)
         shown = {"date": old.summary.tested_at.strftime("%Y-%m-%d"), "operator": old.operator,
                  "instrument": old.instrument, "note": old.summary.note}
-        changes = {k: v for k, v in changes.items() if v != shown[k]}   # the fields changed
+        changes = {k: v for k, v in changes.items()        # the fields changed (a date left
+                   if v != shown[k] and (v or k != "date")}  # empty by the browser: unchanged
         return await change(request, c.edit_test, test_id, back=f"/tests/{test_id}",
                             **changes)
 

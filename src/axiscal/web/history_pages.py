@@ -237,8 +237,10 @@ def add_routes(app: FastAPI) -> None:
                 raise
             return render(request, "upload.html", "Upload a test", 400, form=fields,
                           error=str(exc))
-        return RedirectResponse(f"/tests/{r.id}?stored={'again' if r.duplicate else 'new'}",
-                                303)
+        typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
+            if r.duplicate else {}        # not stored: shown, offered as a correction
+        return RedirectResponse(f"/tests/{r.id}?" + query(
+            stored="again" if r.duplicate else "new", **typed), 303)
 
 
 def positioning_plot(ev) -> dict:
