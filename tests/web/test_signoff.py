@@ -113,6 +113,14 @@ def test_a_bad_tolerance_is_named_on_the_page(client):
     assert "air temperature [°C] = 900: give a number from -50 to 100" in r.text
 
 
+def test_htmx_gets_the_section_alone_with_its_error(client):
+    """htmx swaps only 2xx answers: the section comes back 200 with the error in it."""
+    r = client.post("/tests/1/signoff", data={"csrf": client.token, "tol_Q": "1",
+                                              "tol_E": "-3"}, headers={"HX-Request": "true"})
+    assert r.status_code == 200 and "<html" not in r.text and 'id="signoff-body"' in r.text
+    assert 'id="signoff-error"' in r.text and "tolerance E = -3: give a number from 0" in r.text
+
+
 def test_incomplete_job_is_not_numbered_and_names_what_is_missing(client):
     r = _sign(client, "issue", tol_E="15", customer_name="Example Machining AG")
     assert r.status_code == 200 and 'id="draft"' in r.text

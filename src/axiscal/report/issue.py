@@ -128,6 +128,16 @@ def sign_off(dataset, result, cfg: dict, tolerances: dict | None = None,
     ------
     InputError
         A tolerance names no parameter of the result, or is not a positive number.
+
+    Examples
+    --------
+    >>> from axiscal.datasets import PositioningDataset
+    >>> from axiscal.standards.iso230_2 import evaluate
+    >>> ds = PositioningDataset.from_arrays("linear", [0, 100, 200], [[1, 2], [0, 1], [2, 2]],
+    ...                                     [[3, 3], [2, 1], [4, 5]], "mm", "um")
+    >>> so = sign_off(ds, evaluate(ds), {"uncertainty": {"e_ve": 0.3}}, {"E": 10})
+    >>> so.overall.value, str(so.decisions[0])
+    ('conformance proven', 'E: 4 ± 1 (≤ 10) conformance proven')
     """
     from axiscal.standards.iso230_2 import check_tolerances
     from axiscal.standards.iso14253_1 import overall, unprovable
