@@ -34,6 +34,12 @@ def _done(entry, json_out: bool) -> None:
 
 def add_commands(app: typer.Typer) -> None:
     """Add the correction commands to the ``history`` group ``app``."""
+    _renames(app)
+    _merge_and_edit(app)
+    _withdrawals(app)
+
+
+def _renames(app: typer.Typer) -> None:
     from axiscal.cli.history import _DB as db_opt
     from axiscal.cli.history import _store
     from axiscal.store import corrections as c
@@ -60,6 +66,13 @@ def add_commands(app: typer.Typer) -> None:
         Example: axiscal history rename-axis VMC-800 X1 X --by "A. Ng" --reason "typo"
         """
         _done(c.rename_axis(_store(db), machine, axis, new, by=by, reason=reason), json_out)
+
+
+
+def _merge_and_edit(app: typer.Typer) -> None:
+    from axiscal.cli.history import _DB as db_opt
+    from axiscal.cli.history import _store
+    from axiscal.store import corrections as c
 
     @app.command("merge")
     def merge(source: str = typer.Argument(..., help="The machine (or, with --machine, the "
@@ -93,6 +106,13 @@ def add_commands(app: typer.Typer) -> None:
         """
         _done(c.edit_test(_store(db), test_id, by=by, reason=reason, date=date,
                           operator=operator, instrument=instrument, note=note_), json_out)
+
+
+
+def _withdrawals(app: typer.Typer) -> None:
+    from axiscal.cli.history import _DB as db_opt
+    from axiscal.cli.history import _store
+    from axiscal.store import corrections as c
 
     @app.command("withdraw")
     def withdraw(test_id: int = typer.Argument(..., help="Test id."), by: str = _BY,

@@ -29,74 +29,87 @@ SHOWN = 50
 
 
 def add_routes(app: FastAPI) -> None:
-    """Add the correction routes and the ``trail`` template global to ``app``."""
+    """Add the correction routes, the audit trail page and the templates' two globals."""
     from axiscal.store import corrections as c
 
-    def store(request: Request):
-        return request.app.state.store
-
     def trail(request: Request, machine: int | None = None, test: int | None = None):
-        return c.audit(store(request), machine=machine, test_id=test, limit=SHOWN)
+        return c.audit(_store(request), machine=machine, test_id=test, limit=SHOWN)
 
     app.state.templates.env.globals["trail"] = trail
-    app.state.templates.env.globals["all_machines"] = lambda request: store(request).machines()
+    app.state.templates.env.globals["all_machines"] = lambda r: _store(r).machines()
+    _machine_routes(app)
+    _test_routes(app)
 
-    async def change(request: Request, fn, *args, fields=(), back: str, **kw):
-        """Read the form, check the token and the role, make the change, go back."""
-        form = await checked_form(request)
-        require_engineer(request)
-        values = {k: str(form.get(k, "") or "").strip() for k in fields}
-        by = request.state.session.get("name") or str(form.get("by", "") or "").strip()
-        await run_in_threadpool(fn, store(request), *args, *values.values(), by=by,
-                                reason=str(form.get("reason", "") or ""), **kw)
-        return RedirectResponse(back, 303)
+
+def _store(request: Request):
+    return request.app.state.store
+
+
+async def _change(request: Request, fn, *args, fields=(), back: str, **kw):
+    """Read the form, check the token and the role, make the change, go back."""
+    form = await checked_form(request)
+    require_engineer(request)
+    values = {k: str(form.get(k, "") or "").strip() for k in fields}
+    by = request.state.session.get("name") or str(form.get("by", "") or "").strip()
+    await run_in_threadpool(fn, _store(request), *args, *values.values(), by=by,
+                            reason=str(form.get("reason", "") or ""), **kw)
+    return RedirectResponse(back, 303)
+
+
+def _machine_routes(app: FastAPI) -> None:
+    from axiscal.store import corrections as c
 
     @app.post("/machine/{machine_id}/rename")
     async def rename_machine(request: Request, machine_id: Id):
-        return await change(request, c.rename_machine, machine_id, fields=("name",),
+        return await _change(request, c.rename_machine, machine_id, fields=("name",),
                             back=f"/machine/{machine_id}")
 
     @app.post("/machine/{machine_id}/rename-axis")
     async def rename_axis(request: Request, machine_id: Id):
-        return await change(request, c.rename_axis, machine_id, fields=("axis", "name"),
+        return await _change(request, c.rename_axis, machine_id, fields=("axis", "name"),
                             back=f"/machine/{machine_id}")
 
     @app.post("/machine/{machine_id}/merge")
     async def merge_machine(request: Request, machine_id: Id):
         form = await checked_form(request)
         into = _id(form.get("into"), "the machine to merge into")
-        return await change(request, c.merge_machines, machine_id, into,
+        return await _change(request, c.merge_machines, machine_id, into,
                             back=f"/machine/{into}")
 
     @app.post("/machine/{machine_id}/merge-axes")
     async def merge_axes(request: Request, machine_id: Id):
-        return await change(request, c.merge_axes, machine_id, fields=("axis", "into"),
+        return await _change(request, c.merge_axes, machine_id, fields=("axis", "into"),
                             back=f"/machine/{machine_id}")
+
+
+
+def _test_routes(app: FastAPI) -> None:
+    from axiscal.store import corrections as c
 
     @app.post("/tests/{test_id}/edit")
     async def edit(request: Request, test_id: Id):
         form = await checked_form(request)
         changes = {k: str(form.get(k)).strip() for k in c.EDITABLE if form.get(k) is not None}
-        old = store(request).get(test_id)
+        old = _store(request).get(test_id)
         shown = {"date": old.summary.tested_at.strftime("%Y-%m-%d"), "operator": old.operator,
                  "instrument": old.instrument, "note": old.summary.note}
         changes = {k: v for k, v in changes.items()        # the fields changed (a date left
                    if v != shown[k] and (v or k != "date")}  # empty by the browser: unchanged
-        return await change(request, c.edit_test, test_id, back=f"/tests/{test_id}",
+        return await _change(request, c.edit_test, test_id, back=f"/tests/{test_id}",
                             **changes)
 
     @app.post("/tests/{test_id}/withdraw")
     async def withdraw(request: Request, test_id: Id):
-        return await change(request, c.withdraw, test_id, back=f"/tests/{test_id}")
+        return await _change(request, c.withdraw, test_id, back=f"/tests/{test_id}")
 
     @app.post("/tests/{test_id}/reinstate")
     async def reinstate(request: Request, test_id: Id):
-        return await change(request, c.reinstate, test_id, back=f"/tests/{test_id}")
+        return await _change(request, c.reinstate, test_id, back=f"/tests/{test_id}")
 
     @app.get("/audit", response_class=HTMLResponse)
     def audit_page(request: Request):
         return render(request, "audit.html", "Audit trail: every change to the history",
-                      entries=c.audit(store(request), limit=1000))
+                      entries=c.audit(_store(request), limit=1000))
 
 
 def _id(text, what: str) -> int:
