@@ -27,6 +27,8 @@ def start_server(folder: Path, *args: str, env: dict | None = None):
     (process, base URL) once it answers."""
     port = _free_port()
     env = {**os.environ, "AXISCAL_DB": f"sqlite:///{folder / 'history.sqlite'}", **(env or {})}
+    if "--workers" not in args:      # one process: the per-process limits the tests count
+        args = ("--workers", "1", *args)
     proc = subprocess.Popen([sys.executable, "-m", "axiscal", "serve", "--port", str(port), *args],
                             env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     base = f"http://127.0.0.1:{port}"

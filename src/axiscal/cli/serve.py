@@ -48,6 +48,9 @@ def serve(
                                        help="Seconds of silence allowed within a request body."),
     max_connections: int = typer.Option(100, "--max-connections", min=1, max=10_000,
                                         help="Connections served at once; more get 503."),
+    workers: Optional[int] = typer.Option(None, "--workers", min=1, max=64,
+                                          help="Worker processes (default: the number of "
+                                          "cores); logins are shared by them."),
 ) -> None:
     """Serve the web workbench: machines, history, upload, compare, trend, tables, plans.
 
@@ -68,14 +71,34 @@ def serve(
     from axiscal.web.server import run
 
     hosts = allowed_hosts(host, allowed_host or ())
-    app = create_app(db, users_path if (not loopback or users) else None,
-                     require_login=not loopback, hosts=hosts, session_idle=session_idle * 60,
-                     session_max=session_max * 3600)
+    settings = dict(db_url=db, users_file=str(users_path) if (not loopback or users) else None,
+                    require_login=not loopback, hosts=sorted(hosts),
+                    session_idle=session_idle * 60, session_max=session_max * 3600)
+    app = create_app(**settings)     # checked (and the database upgraded) once, before workers
+    n = workers or _cores()
     typer.echo(f"axiscal workbench on http://{_url_host(host)}:{port}/ (Ctrl+C stops it); answers "
                f"to {', '.join(sorted(hosts))}; logins end after {session_idle:g} min idle or "
                f"{session_max:g} h; headers within {header_timeout:g} s, body silences under "
-               f"{body_timeout:g} s, {max_connections} connections at once", err=True)
-    run(app, host, port, header_timeout, body_timeout, max_connections)
+               f"{body_timeout:g} s, {max_connections} connections at once; {n} worker "
+               f"process{'es' if n > 1 else ''}{'' if workers else ' (default: the cores)'}",
+               err=True)
+    if n == 1:
+        return run(app, host, port, header_timeout, body_timeout, max_connections)
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="axiscal-sessions-") as folder:   # mode 0700
+        run(None, host, port, header_timeout, body_timeout, max_connections, workers=n,
+            settings={**settings, "sessions_folder": folder})
+
+
+def _cores() -> int:
+    """Processor cores this process may use (2 if unknown)."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 2
 
 
 def _add_user(users_path: Path, name: str, role: str) -> None:

@@ -4,8 +4,8 @@ An evaluation of a stored test is a function of two things only: the test's stor
 version of axiscal that evaluates them (``StoredTest.evaluate_again`` is
 :func:`axiscal.store.kinds.evaluate_file` on the stored bytes). So it is kept under the key
 ``(SHA-256 of the stored bytes, axiscal version, what)`` (the version with a fingerprint of
-the installed source files, so an edited development checkout counts as another version) and a second view is a look-up, not a
-second evaluation (after one 19.6 MB upload a view of its page took 2.85 s and its report 14.5 s
+the installed source files, so an edited development checkout counts as another version) and a
+second view is a look-up, not a second evaluation (after one 19.6 MB upload a view of its page took 2.85 s and its report 14.5 s
 and 116 MB, every time). A new version of axiscal reads and writes another folder, so it never
 serves what an older version computed (invalidation by version); a product that also depends on
 other inputs (a certificate on the user configuration, the paper) carries their digest in

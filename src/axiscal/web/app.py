@@ -32,6 +32,7 @@ from axiscal.web.guards import (FORM_OVERHEAD, BodyLimit, TooLarge, allowed_host
 from axiscal.web.login import COOKIE
 from axiscal.web.security import MAX_UPLOAD_BYTES, UserFile
 from axiscal.web.sessions import ABSOLUTE_SECONDS, IDLE_SECONDS, LoginThrottle, Sessions
+from axiscal.web.workers import WORKER_ID
 
 __all__ = ["create_app", "Forbidden", "MAX_ID"]
 
@@ -49,7 +50,7 @@ class Forbidden(AxiscalError, PermissionError):
 def create_app(db_url: str | None = None, users_file=None, require_login: bool = False,
                upload_limit: int = MAX_UPLOAD_BYTES, hosts=None,
                session_idle: float = IDLE_SECONDS, session_max: float = ABSOLUTE_SECONDS,
-               ) -> FastAPI:
+               sessions_folder=None) -> FastAPI:
     """The workbench over the history database ``db_url`` (default: the user's database).
 
     Parameters
@@ -67,6 +68,9 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
         of 127.0.0.1); a request naming another host gets a 400 page.
     session_idle, session_max : float, seconds
         A login ends after this long without a request, and this long after the login.
+    sessions_folder : path, optional
+        Keep the sessions there, shared by several worker processes
+        (:class:`~axiscal.web.workers.SharedSessions`); default: in this process's memory.
     """
     from axiscal.web import correction_pages, pages
 
@@ -75,8 +79,14 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
         raise InputError("serving beyond this computer needs accounts: add one with "
                          "'axiscal serve --add-user NAME --role engineer' (and --users FILE)")
     app = FastAPI(title="axiscal workbench", docs_url=None, redoc_url=None, openapi_url=None)
-    app.state.sessions = Sessions(session_idle, session_max)
-    app.state.throttle = LoginThrottle()
+    if sessions_folder:
+        from axiscal.web.workers import SharedSessions, SharedThrottle
+
+        app.state.sessions = SharedSessions(sessions_folder, session_idle, session_max)
+        app.state.throttle = SharedThrottle(app.state.sessions)
+    else:
+        app.state.sessions = Sessions(session_idle, session_max)
+        app.state.throttle = LoginThrottle()
     app.state.hosts = frozenset(h.lower() for h in hosts) if hosts else allowed_hosts("127.0.0.1")
     app.state.users = users
     app.state.require_login = require_login
@@ -100,6 +110,11 @@ def _add_guard(app: FastAPI) -> None:
 
     @app.middleware("http")
     async def guard(request: Request, call_next):
+        response = await _checked(request, call_next)
+        response.headers["X-Axiscal-Worker"] = WORKER_ID     # which process answered (opaque)
+        return response
+
+    async def _checked(request: Request, call_next):
         if not host_allowed(request.headers.get("host"), request.app.state.hosts):
             return render_error(request, "this server does not answer to that host name "
                                 "(Host header); open it by the address it was started on", 400)

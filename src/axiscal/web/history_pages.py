@@ -39,15 +39,6 @@ def add_routes(app: FastAPI) -> None:
     def store(request: Request):
         return request.app.state.store
 
-    def positioning_test(request: Request, test_id: int, what: str):
-        """The stored test and its evaluation; a download only a positioning test has is
-        refused for the others with one line."""
-        t = store(request).get(test_id)
-        ev = t.evaluate_again()
-        if ev.kind != "iso230-2":
-            raise InputError(f"a {ev.kind} test has no {what} here; download its JSON")
-        return t, ev
-
     @app.get("/", response_class=HTMLResponse)
     def machines(request: Request):
         return render(request, "machines.html", "Machines", machines=store(request).machines())
@@ -133,38 +124,30 @@ def add_routes(app: FastAPI) -> None:
         return download(json.dumps(body, indent=2), f"test_{test_id}.json", "application/json")
 
     @app.get("/tests/{test_id}/report.html")
-    def report(request: Request, test_id: TestId):
-        _, ev = positioning_test(request, test_id, "HTML report")
-        from axiscal.report.html import positioning_report
-
-        html = positioning_report(ev.dataset, ev.evaluation).html()
+    async def report(request: Request, test_id: TestId):
+        html = await _product(request, test_id, "HTML report", "report.html", _report_html)
         return download(html, f"test_{test_id}_report.html", "text/html")
 
     @app.get("/tests/{test_id}/standards.html")
-    def standards(request: Request, test_id: TestId):
-        _, ev = positioning_test(request, test_id, "report by every standard")
-        from axiscal.report.html import standards_report
-        from axiscal.standards.positioning_standards import evaluate_all
-
-        html = standards_report(ev.dataset, evaluate_all(ev.dataset),
-                                f"Test {test_id} by every positioning standard").html()
+    async def standards(request: Request, test_id: TestId):
+        html = await _product(request, test_id, "report by every standard",
+                              f"standards-{test_id}.html",
+                              _standards_html)
         return download(html, f"test_{test_id}_standards.html", "text/html")
 
     @app.get("/tests/{test_id}/certificate.pdf")
-    def certificate(request: Request, test_id: TestId, paper: str = "A4"):
-        t, ev = positioning_test(request, test_id, "certificate")
+    async def certificate(request: Request, test_id: TestId, paper: str = "A4"):
         if paper not in ("A4", "Letter"):
             raise InputError(f"paper {paper!r}: A4 or Letter")
-        import tempfile
-        from pathlib import Path
+        import datetime as dt
 
-        from axiscal.report.issue import load_config, write_certificate
+        from axiscal.report.issue import load_config
+        from axiscal.store.cache import digest
 
-        with tempfile.TemporaryDirectory() as d:
-            path = Path(d) / "certificate.pdf"
-            write_certificate(path, ev.dataset, ev.evaluation, load_config(None), t.raw,
-                              paper=paper)
-            pdf = path.read_bytes()
+        cfg = load_config(None)     # the draft depends on it, the paper and the day of issue
+        what = f"certificate-{digest(cfg, paper, dt.date.today().isoformat())}.pdf"
+        pdf = await _product(request, test_id, "certificate", what,
+                             lambda t, ev: _certificate_pdf(t, ev, cfg, paper))
         return download(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
 
     @app.post("/tests/{test_id}/compensation")
@@ -241,6 +224,52 @@ def add_routes(app: FastAPI) -> None:
             if r.duplicate else {}        # not stored: shown, offered as a correction
         return RedirectResponse(f"/tests/{r.id}?" + query(
             stored="again" if r.duplicate else "new", **typed), 303)
+
+
+async def _product(request: Request, test_id: int, words: str, what: str, make) -> bytes:
+    """A report or certificate of a stored positioning test: kept, once made, under the test's
+    stored-bytes SHA-256 and the axiscal version (:func:`axiscal.store.cache.kept`); made off the
+    event loop, one at a time per worker (:func:`axiscal.web.workers.heavy`)."""
+    from axiscal.store.cache import read
+    from axiscal.web.workers import heavy
+
+    t = await run_in_threadpool(request.app.state.store.get, test_id)
+    if t.summary.kind != "iso230-2":
+        raise InputError(f"a {t.summary.kind} test has no {words} here; download its JSON")
+    data = await run_in_threadpool(read, t.sha256, what)
+    return data if data is not None else await heavy(_make, t, what, make)
+
+
+def _make(t, what: str, make) -> bytes:
+    from axiscal.store.cache import kept
+
+    return kept(t.sha256, what, lambda: make(t, t.evaluate_again()))
+
+
+def _report_html(t, ev) -> str:
+    from axiscal.report.html import positioning_report
+
+    return positioning_report(ev.dataset, ev.evaluation).html()
+
+
+def _standards_html(t, ev) -> str:
+    from axiscal.report.html import standards_report
+    from axiscal.standards.positioning_standards import evaluate_all
+
+    return standards_report(ev.dataset, evaluate_all(ev.dataset),
+                            f"Test {t.summary.id} by every positioning standard").html()
+
+
+def _certificate_pdf(t, ev, cfg: dict, paper: str) -> bytes:
+    import tempfile
+    from pathlib import Path
+
+    from axiscal.report.issue import write_certificate
+
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "certificate.pdf"
+        write_certificate(path, ev.dataset, ev.evaluation, cfg, t.raw, paper=paper)
+        return path.read_bytes()
 
 
 def positioning_plot(ev) -> dict:

@@ -18,7 +18,7 @@ import asyncio
 import h11
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
-__all__ = ["LIMITS", "TimedH11Protocol", "protocol", "run"]
+__all__ = ["LIMITS", "TimedH11Protocol", "app_from_env", "protocol", "run"]
 
 #: Defaults: seconds to send the request headers; seconds of silence within a body; connections
 #: served at once (more get 503); seconds an idle keep-alive connection is kept; header bytes.
@@ -75,11 +75,42 @@ def protocol(header_timeout: float, body_timeout: float) -> type:
 
 
 def run(app, host: str, port: int, header_timeout: float, body_timeout: float,
-        max_connections: int) -> None:
-    """Serve ``app`` with uvicorn under the limits above (one process)."""
+        max_connections: int, workers: int = 1, settings: dict | None = None) -> None:
+    """Serve ``app`` with uvicorn under the limits above.
+
+    With ``workers`` > 1, uvicorn starts that many processes on one listening socket, each
+    building the application from ``settings`` (the keyword arguments of
+    :func:`~axiscal.web.app.create_app`, handed over in the environment, :func:`app_from_env`);
+    ``max_connections`` is shared out among them.
+    """
     import uvicorn
 
-    uvicorn.run(app, host=host, port=port, log_level="warning",
-                http=protocol(header_timeout, body_timeout),
-                timeout_keep_alive=LIMITS["keep_alive"], limit_concurrency=max_connections,
-                h11_max_incomplete_event_size=LIMITS["max_header_bytes"])
+    common = dict(host=host, port=port, log_level="warning",
+                  timeout_keep_alive=LIMITS["keep_alive"],
+                  h11_max_incomplete_event_size=LIMITS["max_header_bytes"])
+    if workers <= 1:
+        uvicorn.run(app, http=protocol(header_timeout, body_timeout),
+                    limit_concurrency=max_connections, **common)
+        return
+    import json
+    import os
+
+    from axiscal.web.workers import ENV
+
+    os.environ[ENV] = json.dumps({"app": settings or {}, "header_timeout": header_timeout,
+                                  "body_timeout": body_timeout})
+    uvicorn.run("axiscal.web.server:app_from_env", factory=True, workers=workers,
+                http=TimedH11Protocol, limit_concurrency=max(1, -(-max_connections // workers)),
+                **common)
+
+
+def app_from_env():
+    """The application of one worker process of ``axiscal serve --workers N`` (a uvicorn
+    factory): :func:`~axiscal.web.app.create_app` with the settings the server handed over."""
+    from axiscal.web.app import create_app
+    from axiscal.web.workers import settings_from_env
+
+    s = settings_from_env()
+    TimedH11Protocol.header_timeout = float(s["header_timeout"])
+    TimedH11Protocol.body_timeout = float(s["body_timeout"])
+    return create_app(**s["app"])

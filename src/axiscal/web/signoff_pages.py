@@ -56,7 +56,10 @@ def add_routes(app: FastAPI) -> None:
         require_engineer(request)
         values = {k: str(v).strip() for k, v in form.items() if isinstance(v, str)}
         issue = values.get("action") == "issue"
-        ctx = await run_in_threadpool(_evaluate, store(request), test_id, values, issue)
+        from axiscal.web.workers import heavy     # a certificate: one at a time per worker
+
+        ctx = await (heavy if issue else run_in_threadpool)(_evaluate, store(request), test_id,
+                                                            values, issue)
         partial = request.headers.get("hx-request") == "true"
         if ctx.get("number"):                  # issued: the test page lists it (POST-redirect-GET)
             url = f"/tests/{test_id}?{query(certificate=ctx['number'])}#signoff"
