@@ -138,3 +138,15 @@ def test_what_is_typed_on_a_duplicate_upload_is_offered_as_a_correction(tmp_path
     t = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}").get(1)
     assert (t.summary.note, t.instrument, t.summary.tested_at.year) == \
         ("after the crash", "XL-80", 2020)
+
+
+def test_hostile_names_and_reasons_are_text_in_the_trail(tmp_path):
+    c, tok = _client(tmp_path)
+    evil = '<script>alert("x")</script> & "/"'
+    r = _post(c, "/machine/1/rename", csrf=tok, name=evil, by="<b>me</b>", reason="<i>why</i>")
+    assert r.status_code == 200 and "<script>alert" not in r.text
+    for page in (r.text, c.get("/audit").text):
+        assert "&lt;script&gt;alert(&#34;x&#34;)&lt;/script&gt; &amp; &#34;/&#34;" in page
+        assert "&lt;b&gt;me&lt;/b&gt;" in page and "&lt;i&gt;why&lt;/i&gt;" in page
+    home = c.get("/").text                                   # the name and its axis, by id
+    assert 'href="/machine/1">&lt;script&gt;' in home and 'href="/machine/1?axis=X"' in home
