@@ -3,6 +3,7 @@ file that is not a database, an old schema, two writers at once."""
 
 from __future__ import annotations
 
+import hashlib
 import os
 import signal
 import sqlite3
@@ -168,7 +169,8 @@ def test_an_old_schema_is_upgraded_with_its_data(db_url):
             "insert into test (id, axis_id, kind, tested_at, date_known, stored_at, instrument, "
             "operator, note, filename, sha256, raw, dataset_json, result_json, environment_json, "
             "axiscal_version) values (1, 1, 'iso230-2', '2020-01-02', true, '2020-01-02', '', '',"
-            " '', 'old.csv', 'abc', :raw, '', '{}', '{}', '0.0.1')"), {"raw": raw})
+            " '', 'old.csv', :sha, :raw, '', '{}', '{}', '0.0.1')"),
+            {"raw": raw, "sha": hashlib.sha256(raw).hexdigest()})
     engine.dispose()
     s = open_store(db_url)
     assert [t.filename for t in s.tests()] == ["old.csv"]
