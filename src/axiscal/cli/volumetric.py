@@ -16,7 +16,11 @@ JSON output (``--json``), stable keys, units in the key names:
   ``mapped_minus_true_um`` (largest |mapped − true| over the grid).
 * ``compensate``: ``controller``, ``receiving``, ``files`` (names written), ``left_by_tables_um``;
   with ``--verify`` also ``verify``: ``figures`` (name -> ``before_um``, ``after_um``,
-  ``reduction``), ``spindle_tilt_um_per_m``, ``left_by_tables_um``.
+  ``reduction``), ``spindle_tilt_um_per_m``, ``left_by_tables_um``. With ``--controller
+  linuxcnc --on-controller`` (measured through LinuxCNC) each figure has also ``tables_um`` and
+  ``tables_reduction`` (tables alone; ``after_um`` is with the 3-D correction), and ``verify``
+  has ``moves``, ``largest_applied_difference_um`` and ``on_controller`` (settings); the files
+  are the COMP_FILEs, ``volcomp.json`` and the HAL component (``grid_spacing_mm``).
 * ``simulate``: ``seed``, ``chain``, ``squareness_um_per_m`` (true ``xy``, ``yz``, ``zx``),
   ``measured_squareness_um_per_m``, ``largest_um`` (true), ``mapped_minus_true_um``, ``config``
   (the written configuration, or null).
@@ -159,7 +163,9 @@ def map_(
 @app.command("compensate")
 def compensate(
     config: Path = typer.Argument(..., help="Volumetric configuration (TOML)."),
-    controller: str = typer.Option(..., "--controller", help="siemens-840d, heidenhain or csv."),
+    controller: str = typer.Option(..., "--controller", help="siemens-840d, heidenhain, csv, "
+                                   "or linuxcnc (a COMP_FILE per joint and the 3-D correction "
+                                   "through external offsets, docs/linuxcnc.md)."),
     out: Optional[Path] = typer.Option(None, "--out", help="Folder for the tables (created if "
                                        "missing)."),
     receiving: list[str] = typer.Option([], "--receiving", help="Axis receiving a squareness "
@@ -169,6 +175,10 @@ def compensate(
                                   help="Table spacing, mm."),
     verify: bool = typer.Option(False, "--verify", help="Apply the tables to the simulated "
                                 "machine and re-measure (a simulated configuration only)."),
+    on_controller: bool = typer.Option(False, "--on-controller", help="With --controller "
+                                       "linuxcnc --verify: measure through a real LinuxCNC "
+                                       "(headless simulation): bare, tables alone, tables + "
+                                       "the 3-D correction, in one run."),
     as_json: bool = _JSON,
 ):
     """Positioning and cross-axis tables that remove what tables can, in the order of the
@@ -199,6 +209,8 @@ def compensate(
     tables = volumetric_tables(cfg.errors, tool_offset=cfg.tool_offset, receiving=rec,
                                spacing=float(c.get("spacing_mm", spacing)),
                                resolution=float(c.get("resolution_um", 0.1)))
+    if controller == "linuxcnc" or on_controller:
+        return _linuxcnc(cfg, tables, controller, verify, on_controller, out, as_json)
     travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in cfg.errors.travel.items()}
     files = write_tables(tables, controller, travel_mm)
     result = None
@@ -223,6 +235,50 @@ def compensate(
         note(n)
     if written:
         typer.echo(f"wrote {', '.join(written)} in {out}")
+    if result is not None:
+        typer.echo(str(result))
+
+
+def _linuxcnc(cfg, tables, controller, verify, on_controller, out, as_json):
+    """``compensate --controller linuxcnc [--verify --on-controller]``."""
+    import numpy as np
+
+    from axiscal.compensation.on_controller_volumetric import (linuxcnc_compensation,
+                                                               linuxcnc_outputs,
+                                                               verify_on_linuxcnc)
+    from axiscal.errors import InputError
+    from axiscal.io._files import write_text_atomic
+
+    if controller != "linuxcnc":
+        raise InputError(f"--on-controller runs LinuxCNC; the controller is {controller!r}: "
+                         "give --controller linuxcnc")
+    if verify != on_controller:
+        raise InputError("--controller linuxcnc verifies through LinuxCNC itself: give both "
+                         "--verify and --on-controller, or neither")
+    comp = linuxcnc_compensation(cfg.errors, tables)
+    files = linuxcnc_outputs(comp)
+    result = None
+    if verify:
+        machine, _ = _simulated(cfg)
+        result = verify_on_linuxcnc(machine, cfg.errors, tables, np.random.default_rng(
+            int(cfg.simulation.get("seed", 1)) + 1))
+    for name, text in files.items() if out is not None else ():
+        write_text_atomic(out / name, text)
+    written = list(files) if out is not None else []
+    if as_json:
+        d = {"controller": controller, "receiving": tables.receiving, "files": written,
+             "left_by_tables_um": tables.uncompensable * 1e6,
+             "grid_spacing_mm": comp.spacing}
+        if result is not None:
+            d["verify"] = result.to_dict()
+        print_json(d)
+        return
+    typer.echo(f"linuxcnc volumetric compensation of {cfg.name}: a COMP_FILE per joint, "
+               f"{len(comp.cross)} cross-axis tables and the 3-D grid (every ≤ "
+               f"{comp.spacing:g} mm) for axiscal_volcomp.py through external offsets")
+    typer.echo(str(tables))
+    if written:
+        typer.echo(f"wrote {', '.join(written)} in {out} (docs/linuxcnc.md: INI and HAL lines)")
     if result is not None:
         typer.echo(str(result))
 

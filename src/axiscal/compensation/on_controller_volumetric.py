@@ -34,8 +34,8 @@ import numpy as np
 from axiscal.errors import InputError
 from axiscal.standards.volumetric import AXES, GeometricErrors, volumetric_error
 
-__all__ = ["LinuxCNCCompensation", "linuxcnc_compensation", "ThroughLinuxCNC",
-           "OnControllerResult", "verify_on_linuxcnc", "STATES"]
+__all__ = ["LinuxCNCCompensation", "linuxcnc_compensation", "linuxcnc_outputs",
+           "ThroughLinuxCNC", "OnControllerResult", "verify_on_linuxcnc", "STATES"]
 
 #: The three measurements of one run: (key, label).
 STATES = (("before", "bare"), ("tables", "tables alone"), ("volumetric", "tables + 3-D"))
@@ -102,6 +102,21 @@ def linuxcnc_compensation(errors: GeometricErrors, tables, *, grid_spacing: floa
     grid = {a.lower(): [float(v) for v in n] for a, n in zip(AXES, nodes)}
     grid["values"] = np.round(corr, 9).tolist()
     return LinuxCNCCompensation(files, cross, grid, float(grid_spacing))
+
+
+def linuxcnc_outputs(comp: LinuxCNCCompensation) -> dict:
+    """The files a LinuxCNC machine is given (name -> text): the three COMP_FILEs, the map
+    ``volcomp.json`` (cross-axis tables and 3-D grid), the component ``axiscal_volcomp.py`` and
+    its HAL file ``axiscal_volcomp.hal`` (docs/linuxcnc.md says where each goes)."""
+    import json
+    from importlib import resources
+
+    data = resources.files("axiscal.data") / "linuxcnc"
+    out = {f"{a.lower()}.comp": f.text for a, f in zip(AXES, comp.files)}
+    out["volcomp.json"] = json.dumps(comp.volcomp(True)) + "\n"
+    for name in ("axiscal_volcomp.py", "axiscal_volcomp.hal"):
+        out[name] = (data / name).read_text()
+    return out
 
 
 @dataclass
@@ -183,7 +198,7 @@ class OnControllerResult:
         s = self.settings
         lines.append(f"LinuxCNC moves per measurement: "
                      f"{', '.join(f'{k} {v}' for k, v in self.moves.items())} "
-                     f"({s['points']} points per line and diagonal, map {s['grid']}³)")
+                     f"({s['points']} points per diagonal, tool point measured on a {s['grid']}³ grid)")
         lines.append(f"3-D grid every ≤ {s['grid_spacing_mm']:g} mm, OFFSET_AV_RATIO "
                      f"{s['offset_av_ratio']:g}, COMP_FILE_TYPE {s['comp_file_type']}; largest "
                      f"|applied − expected| correction {self.applied * 1e6:.3f} µm")
@@ -195,16 +210,27 @@ def _pct(b, a) -> str:
 
 
 def verify_on_linuxcnc(machine, errors: GeometricErrors, tables, rng: np.random.Generator, *,
-                       points: int = 6, grid: int = 4, grid_spacing: float = 50.0,
+                       points: int = 6, grid: int = 5, grid_spacing: float = 50.0,
                        file_type: int = 1, noise=None) -> OnControllerResult:
     """Measure bare → tables alone → tables + 3-D, each through a fresh LinuxCNC (one run).
 
-    ``points``: targets per measuring line and body diagonal (each a LinuxCNC move; the datum
-    lines of :func:`~axiscal.procedures.volumetric.datum_frame` take 21 on X and Y); ``grid``:
-    the map's points per axis (figures as :func:`axiscal.compensation.volumetric.verify`).
+    ``points``: targets per body diagonal (each a LinuxCNC move; the datum lines of
+    :func:`~axiscal.procedures.volumetric.datum_frame` take 21 on X and Y); ``grid``: the map's
+    nodes per axis, the tool point's error measured at each (the largest error and the ranges as
+    :class:`~axiscal.standards.volumetric.VolumetricMap` defines them). After a 3-D correction
+    the 21 error motions no longer describe the tool point (the offsets translate it, the angular
+    errors stay), so the map is measured at the tool point, not rebuilt from re-measured errors
+    as :func:`axiscal.compensation.volumetric.verify` does. The defaults (5 and 6) put every node
+    on a target of the 21-target measurement the correction was built from, as the 11³ map of
+    ``verify`` does: between them the measured error functions are interpolated.
     """
+    from axiscal.errors import MeasurementError
+    from axiscal.instruments.linuxcnc_controller import unavailable_reason
     from axiscal.procedures.volumetric import MeasurementNoise
 
+    why = unavailable_reason()
+    if why:
+        raise MeasurementError(f"LinuxCNC cannot run here: {why}")
     noise = noise or MeasurementNoise()
     comp = linuxcnc_compensation(errors, tables, grid_spacing=grid_spacing, file_type=file_type)
     travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in errors.travel.items()}
@@ -254,25 +280,36 @@ def _measure(travel_mm, file_type, cfg, machine, kw, grid, rng):
 
 def _in_fresh_process(fn, *args):
     """``fn(*args)`` (a function of this module) in a new Python process, arguments and result
-    pickled through its stdin and stdout. LinuxCNC's ``hal`` module stays attached to the HAL
+    pickled through its stdin and a file. LinuxCNC's ``hal`` module stays attached to the HAL
     shared memory of the first session in a process, so a second session in the same process
     reads its pins as 0 (tried: linuxcnc-uspace 2.9, a second ``hal.component`` after the
     first's ``exit()``); one process per session avoids it."""
     import pickle
     import subprocess
     import sys
+    import tempfile
+    from pathlib import Path
 
-    code = ("import pickle, sys; from axiscal.compensation import on_controller_volumetric as m; "
-            "a = pickle.load(sys.stdin.buffer); r = getattr(m, a[0])(*a[1]); "
-            "sys.stdout.buffer.write(pickle.dumps(r))")
-    p = subprocess.run([sys.executable, "-c", code], input=pickle.dumps((fn.__name__, args)),
-                       capture_output=True)
+    from axiscal.errors import MeasurementError
+
+    code = ("import pickle, sys\nfrom axiscal.errors import AxiscalError\n"
+            "from axiscal.compensation import on_controller_volumetric as m\n"
+            "a = pickle.load(sys.stdin.buffer)\n"
+            "try:\n    r = (True, getattr(m, a[0])(*a[1]))\n"
+            "except AxiscalError as exc:\n    r = (False, exc)\n"
+            "with open(sys.argv[1], 'wb') as f:\n    pickle.dump(r, f)\n")
+    with tempfile.TemporaryDirectory(prefix="axiscal-lcnc-") as d:
+        result = Path(d) / "result.pickle"
+        p = subprocess.run([sys.executable, "-c", code, str(result)],
+                           input=pickle.dumps((fn.__name__, args)), capture_output=True)
+        ok, r = pickle.loads(result.read_bytes()) if p.returncode == 0 else (None, None)
     if p.returncode != 0:
-        from axiscal.errors import MeasurementError
-
         tail = p.stderr.decode(errors="replace").strip().splitlines()
-        raise MeasurementError(f"the LinuxCNC measurement failed: {tail[-1] if tail else p.returncode}")
-    return pickle.loads(p.stdout)
+        raise MeasurementError("the LinuxCNC measurement ended: "
+                               f"{tail[-1] if tail else f'exit status {p.returncode}'}")
+    if not ok:
+        raise r
+    return r
 
 
 def _applied_difference(log: dict, tables, comp: LinuxCNCCompensation) -> float:
