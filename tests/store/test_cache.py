@@ -121,3 +121,18 @@ def test_memory_is_bounded_by_stored_bytes(counted, monkeypatch):
     assert len(cache._memory) == 3 and ("4", "v") in cache._memory
     cache._hold(("big", "v"), object(), 4000)                 # over the bound: never held
     assert ("big", "v") not in cache._memory
+
+
+def test_derived_parts_are_made_once_and_read_back_in_another_process(counted):
+    made = []
+
+    def make():
+        made.append(1)
+        return {"plot": [1.0, 2.0], "rows": ("a", "b")}
+
+    sha = "ef" * 32
+    first = cache.derived(sha, "test-page-x", make)
+    cache.forget_memory()                                       # another worker: from disk
+    again = cache.derived(sha, "test-page-x", make)
+    other = cache.derived(sha, "test-page-y", make)             # another configuration
+    assert first == again == other and len(made) == 2

@@ -98,3 +98,27 @@ def test_heavy_work_runs_one_at_a_time_per_worker():
 
     assert asyncio.run(six()) == list(range(6))
     assert most[0] == workers.HEAVY_AT_ONCE == 1
+
+
+def test_a_report_is_made_once_then_read_from_the_cache(tmp_path, monkeypatch):
+    from fastapi.testclient import TestClient
+
+    import axiscal.web.history_pages as pages
+    from axiscal.store import cache, open_store
+    from axiscal.web.app import create_app
+    from tests.store.test_cache import _file
+
+    monkeypatch.setenv("AXISCAL_CACHE", str(tmp_path / "cache"))
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    test_id = open_store(url).add(_file(7), "r.csv").id
+    made = []
+    real = pages._report_html
+    monkeypatch.setattr(pages, "_report_html", lambda t, ev: (made.append(1), real(t, ev))[1])
+    client = TestClient(create_app(url), base_url="http://127.0.0.1")
+    first = client.get(f"/tests/{test_id}/report.html")
+    cache.forget_memory()
+    second = client.get(f"/tests/{test_id}/report.html")
+    assert first.status_code == second.status_code == 200
+    assert first.content == second.content and b"ISO 230-2" in first.content
+    assert len(made) == 1
+    assert len(list(cache.cache_folder().rglob("*.report.html"))) == 1

@@ -34,10 +34,11 @@ import threading
 from collections import OrderedDict
 from pathlib import Path
 
-__all__ = ["cache_folder", "read", "write", "kept", "evaluated", "remember", "MEMORY_BYTES",
-           "MEMORY_ENTRIES"]
+__all__ = ["cache_folder", "read", "write", "kept", "evaluated", "derived", "remember",
+           "MEMORY_BYTES", "MEMORY_ENTRIES"]
 
-#: Stored bytes whose evaluations one process keeps in memory (the rest are read from disk).
+#: Stored bytes whose evaluations one process keeps in memory, with the pickled size of the page
+#: parts derived from them (the rest are read from disk).
 MEMORY_BYTES = 32 * 2**20
 #: Evaluations one process keeps in memory at most.
 MEMORY_ENTRIES = 256
@@ -173,18 +174,43 @@ def evaluated(raw: bytes, sha: str, filename: str, kind: str | None):
     return ev
 
 
+def derived(sha: str, what: str, make):
+    """A value computed from a stored test's evaluation (a page's plot, tables, figures; plain
+    data): kept like the evaluation, in memory and as a pickle on disk, under ``what``."""
+    key = (sha, _version(), what)
+    with _memory_lock:
+        hit = _memory.get(key)
+        if hit is not None:
+            _memory.move_to_end(key)
+            return hit[0]
+    with _lock_for(key):
+        value = None
+        data = read(sha, f"{what}.pickle")
+        if data is not None:
+            try:
+                value = pickle.loads(data)
+            except Exception:                 # noqa: BLE001 - a damaged entry: make it again
+                value = None
+        if value is None:
+            value = make()
+            data = _keep_on_disk(sha, value, f"{what}.pickle")
+        _hold(key, value, len(data or b""))      # bounded by the size of its pickle
+    return value
+
+
 def remember(raw: bytes, sha: str, ev) -> None:
     """Keep an evaluation just made (at upload), so the first view is already a look-up."""
     _keep_on_disk(sha, ev)
     _hold((sha, _version()), ev, len(raw))
 
 
-def _keep_on_disk(sha: str, ev) -> None:
+def _keep_on_disk(sha: str, value, what: str = "evaluated.pickle") -> bytes | None:
     try:
-        data = pickle.dumps(ev, protocol=pickle.HIGHEST_PROTOCOL)
+        data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
     except Exception:                         # noqa: BLE001 - not picklable: memory only
-        return
-    write(sha, "evaluated.pickle", data)
+        return None
+    write(sha, what, data)
+    return data
 
 
 def _hold(key, ev, size: int) -> None:

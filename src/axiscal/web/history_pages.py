@@ -74,19 +74,16 @@ def add_routes(app: FastAPI) -> None:
     def test_page(request: Request, test_id: TestId):
         t = store(request).get(test_id)
         ev = t.evaluate_again()
-        from axiscal.web.signoff_pages import signoff_context, signoff_plot
+        from axiscal.report.issue import load_config
+        from axiscal.store.cache import derived, digest
+        from axiscal.web.signoff_pages import signoff_context
 
-        plot = signoff_plot(ev) if ev.kind == "iso230-2" else None
-        budget, decisions = _uncertainty(ev) if ev.kind == "iso230-2" else (None, {})
+        parts = derived(t.sha256, f"test-page-{digest(load_config(None))}",
+                        lambda: _test_parts(ev))          # computed once, then a look-up
         from axiscal.compensation.controllers import CONTROLLERS
-        from axiscal.web.kind_pages import kind_view
 
         return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
-                      f"{t.summary.axis}", t=t, ev=ev, plot=plot,
-                      standards=_other_standards(ev) if ev.kind == "iso230-2" else None,
-                      targets=_target_rows(ev) if ev.kind == "iso230-2" else [],
-                      view=kind_view(ev),
-                      budget=budget, decisions=decisions,
+                      f"{t.summary.axis}", t=t, ev=ev, **parts,
                       signoff=signoff_context(store(request), t, ev, None,
                                               request.query_params.get("certificate", "")),
                       controllers=sorted(CONTROLLERS), others=[
@@ -341,6 +338,22 @@ def _write_table(store, test_id: int, controller: str, spacing: float):
     f = mod.write(table)
     store.add_table(test_id, mod.NAME, f.filename, f.text)
     return f
+
+
+def _test_parts(ev) -> dict:
+    """The parts of a test's page that are functions of its evaluation and the user
+    configuration only (kept by :func:`axiscal.store.cache.derived`): the plot, the ISO 230-2
+    Annex A budget and decisions, the other standards, the per-target rows, the kind's view."""
+    from axiscal.web.kind_pages import kind_view
+    from axiscal.web.signoff_pages import signoff_plot
+
+    if ev.kind != "iso230-2":
+        return {"plot": None, "budget": None, "decisions": {}, "standards": None,
+                "targets": [], "view": kind_view(ev)}
+    budget, decisions = _uncertainty(ev)
+    return {"plot": signoff_plot(ev), "budget": budget, "decisions": decisions,
+            "standards": _other_standards(ev), "targets": _target_rows(ev),
+            "view": kind_view(ev)}
 
 
 def _target_rows(ev) -> list:

@@ -34,6 +34,7 @@ class TimedH11Protocol(H11Protocol):
 
     def connection_made(self, transport: asyncio.Transport) -> None:
         super().connection_made(transport)
+        _no_delay(transport)
         self._timer: asyncio.TimerHandle | None = None
         self._arm(self.header_timeout)
 
@@ -66,6 +67,21 @@ class TimedH11Protocol(H11Protocol):
             self.logger.warning("closed a connection from %s: request too slow",
                                 self.client[0] if self.client else "?")
             self.transport.close()
+
+
+def _no_delay(transport) -> None:
+    """Send small answers at once (TCP_NODELAY). asyncio sets it only on a socket whose ``proto``
+    is IPPROTO_TCP; the listening socket uvicorn hands to its worker processes reports 0, so
+    without this every answer of a worker waited for the client's delayed ACK (Nagle's
+    algorithm, RFC 896; RFC 1122 §4.2.3.2): a static file took 44 ms instead of 2 ms."""
+    import socket
+
+    sock = transport.get_extra_info("socket")
+    if sock is not None and sock.family in (socket.AF_INET, socket.AF_INET6):
+        try:
+            sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        except OSError:
+            pass
 
 
 def protocol(header_timeout: float, body_timeout: float) -> type:
