@@ -50,6 +50,7 @@ import numpy as np
 
 from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
+from axiscal.standards._parameters import described_parameters
 
 __all__ = ["JisB6192Result", "evaluate", "PARAMETERS"]
 
@@ -88,8 +89,6 @@ class JisB6192Result:
 
     def parameters(self) -> dict[str, tuple[float, str, str]]:
         """Axis parameters: name -> (value, unit, description with its clause)."""
-        from axiscal.standards.positioning_standards import described_parameters
-
         return described_parameters(self, PARAMETERS)
 
 

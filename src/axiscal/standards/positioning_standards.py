@@ -42,16 +42,11 @@ from typing import Callable
 
 from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
+from axiscal.standards._parameters import described_parameters, parameter_label
 
 __all__ = ["Standard", "StandardResult", "STANDARDS", "evaluate", "evaluate_all",
            "check_tolerances", "NotAvailableError", "described_parameters", "parameter_label",
            "table_rows"]
-
-
-def parameter_label(name: str) -> str:
-    """How a parameter name is shown: ``R_up`` -> ``R↑``, ``R_down`` -> ``R↓``, ``U_mean`` ->
-    ``U mean``."""
-    return name.replace("_up", "↑").replace("_down", "↓").replace("_mean", " mean")
 
 
 def table_rows(std: "Standard", result: "StandardResult") -> list[tuple]:
@@ -61,13 +56,6 @@ def table_rows(std: "Standard", result: "StandardResult") -> list[tuple]:
     rows = [(parameter_label(n), v, d, True) for n, (v, _u, d) in result.parameters().items()]
     rows += [(parameter_label(n), None, why, False) for n, why in result.not_evaluated]
     return [(std.title if i == 0 else "", *r) for i, r in enumerate(rows)]
-
-
-def described_parameters(result, table: dict[str, tuple[str, str]]):
-    """name -> (value, unit, "description (source)") of ``result``'s attributes named in ``table``
-    (name -> (description, clause or source)), in the table's order and ``deviation_unit``."""
-    return {name: (getattr(result, name), result.deviation_unit, f"{desc} ({src})")
-            for name, (desc, src) in table.items()}
 
 
 class NotAvailableError(InputError):

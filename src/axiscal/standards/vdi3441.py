@@ -61,6 +61,7 @@ import numpy as np
 
 from axiscal.datasets import PositioningDataset
 from axiscal.errors import InputError
+from axiscal.standards._parameters import described_parameters
 
 __all__ = ["Vdi3441Result", "evaluate", "PARAMETERS", "NOT_EVALUATED"]
 
@@ -113,8 +114,6 @@ class Vdi3441Result:
     def parameters(self) -> dict[str, tuple[float, str, str]]:
         """Pa, U, U_mean: name -> (value, unit, description with its source); P and Ps are in
         :data:`NOT_EVALUATED`."""
-        from axiscal.standards.positioning_standards import described_parameters
-
         return described_parameters(self, PARAMETERS)
 
 
