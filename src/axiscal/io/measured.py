@@ -39,13 +39,14 @@ dynamic capture is read by :mod:`axiscal.io.rtx`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from axiscal import units
 from axiscal._parse import csv_cells, finite_number
 from axiscal.errors import AxiscalError, DataFormatError
+from axiscal.procedures.capture import Record
 from axiscal.procedures.environment import EnvironmentLog, RawReadings
 
 __all__ = ["RawReadings", "EnvironmentLog", "PlanRows", "Record", "parse_raw_readings",
@@ -76,21 +77,6 @@ class PlanRows:
         out = np.empty(int(idx.max()) + 1)
         out[idx] = self.position[m]
         return out
-
-
-@dataclass(frozen=True, eq=False)
-class Record:
-    """A continuous record: readings at a constant (or given) sample rate."""
-
-    times: np.ndarray            # s
-    readings: np.ndarray         # m (linear) or rad (rotary)
-    kind: str                    # "linear" or "rotary"
-    commanded: np.ndarray | None = None
-    sample_rate: float = 0.0
-    header: dict = field(default_factory=dict)
-    unit: str = "mm"
-    source: str = "<text>"
-    notes: tuple = ()            # what the reader noted (an .rtx count unlike its header)
 
 
 def read_raw_readings(path) -> RawReadings:

@@ -61,6 +61,7 @@ import numpy as np
 
 from axiscal import units
 from axiscal.errors import AxiscalError, DataFormatError, MissingFileError
+from axiscal.procedures.capture import Record
 
 __all__ = ["read_rtx", "format_rtx", "parse_rtx_header"]
 
@@ -89,7 +90,7 @@ def parse_rtx_header(head: bytes, source: str = "<rtx>") -> tuple[dict, int]:
 
 
 def read_rtx(path, unit: str | None = None):
-    """Read a ``.rtx`` file as a :class:`~axiscal.io.measured.Record` (readings in SI).
+    """Read a ``.rtx`` file as a :class:`~axiscal.procedures.capture.Record` (readings in SI).
 
     Parameters
     ----------
@@ -98,8 +99,6 @@ def read_rtx(path, unit: str | None = None):
         Unit of the readings: ``um`` (default, as the public converter labels them), ``mm``,
         ``nm``; ``arcsec`` or ``urad`` for an angular capture.
     """
-    from axiscal.io.measured import Record
-
     p = Path(path)
     if not p.is_file():
         raise MissingFileError(p)

@@ -22,7 +22,7 @@ analysis with the discrete Fourier transform", Proc. IEEE 66 (1978)).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -30,11 +30,27 @@ from axiscal import units
 from axiscal.datasets import Metadata, PositioningDataset
 from axiscal.errors import InputError, MeasurementError
 
-__all__ = ["Stop", "CaptureResult", "find_stops", "capture_test", "match_stops", "plan_dataset",
+__all__ = ["Record", "Stop", "CaptureResult", "find_stops", "capture_test", "match_stops", "plan_dataset",
            "SMOOTHING_S"]
 
 #: Moving-average length applied before looking for stops, seconds.
 SMOOTHING_S = 0.01
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """A continuous record: readings at a constant (or given) sample rate, as the readers of
+    :mod:`axiscal.io.measured` (CSV) and :mod:`axiscal.io.rtx` give it."""
+
+    times: np.ndarray            # s
+    readings: np.ndarray         # m (linear) or rad (rotary)
+    kind: str                    # "linear" or "rotary"
+    commanded: np.ndarray | None = None
+    sample_rate: float = 0.0
+    header: dict = field(default_factory=dict)
+    unit: str = "mm"
+    source: str = "<text>"
+    notes: tuple = ()            # what the reader noted (an .rtx count unlike its header)
 
 
 @dataclass(frozen=True)
