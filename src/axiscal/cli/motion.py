@@ -32,6 +32,7 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
+from axiscal.io.simulation_results import MOTION_CHANNELS as _KEYS
 
 __all__ = ["register", "iso_json"]
 
@@ -41,7 +42,6 @@ app = typer.Typer(help="Five motion errors of a rotary axis at once (Optics Expr
 _MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' crosstalk: an eccentric or "
                   "tilted reference axis shows as a once-per-turn term in δy, εx and εy (see the "
                   "crosstalk table), which ISO 230-7 removes as the fundamental.")
-_KEYS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um", "dz": "dz_um"}
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs).")
 _REPORT = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint).")
 _PLOT = typer.Option(None, "--plot", help="Write the plot (PNG, SVG or PDF by extension).")
@@ -49,42 +49,16 @@ _SEED = typer.Option(None, "--seed", min=0, max=2**63 - 1, help="Random seed of 
 
 
 def _five(errors, i=None) -> dict:
-    from axiscal.units import ARCSEC, UM
+    from axiscal.io.simulation_results import five_channels
 
-    out = {}
-    for ch, key in _KEYS.items():
-        v = getattr(errors, ch) if i is None else getattr(errors, ch)[i]
-        out[key] = v / (ARCSEC if ch[0] == "e" else UM)
-    return out
+    return five_channels(errors, i)
 
 
 def iso_json(result) -> dict:
     """The stable JSON object of an ISO 230-7 result (see the module docstring)."""
-    import math
+    from axiscal.io.simulation_results import iso230_7_json
 
-    import numpy as np
-
-    from axiscal.units import ARCSEC, UM
-
-    def k(kind):
-        return (UM, "um") if kind == "length" else (ARCSEC, "arcsec")
-
-    motions = [{"name": m.name, "unit": k(m.kind)[1], "total": m.total / k(m.kind)[0],
-                "synchronous": m.synchronous / k(m.kind)[0],
-                "asynchronous": None if math.isnan(m.asynchronous) else m.asynchronous / k(m.kind)[0],
-                "fundamental": m.fundamental / k(m.kind)[0], "fundamental_removed": m.fundamental_removed}
-               for m in result.motions]
-    loc, pos = result.location, result.positioning
-    return {
-        "n_runs": result.n_runs, "angles_deg": np.round(np.degrees(result.theta), 9), "motions": motions,
-        "location": {"x0_um": None if math.isnan(loc.x0) else loc.x0 / UM, "y0_um": loc.y0 / UM,
-                     "a0_arcsec": loc.a0 / ARCSEC, "b0_arcsec": loc.b0 / ARCSEC},
-        "positioning": {"range_arcsec": pos.range / ARCSEC,
-                        "repeatability_arcsec": None if math.isnan(pos.repeatability)
-                        else pos.repeatability / ARCSEC, "mean_arcsec": pos.mean / ARCSEC},
-        "closure": {c: v / (ARCSEC if c[0] == "e" else UM) for c, v in result.closure.items()},
-        "warnings": list(result.warnings),
-    }
+    return iso230_7_json(result)
 
 
 @app.command("simulate")
@@ -103,22 +77,14 @@ def simulate(
 
     Example: axiscal motion simulate examples/motion_indexing_table.toml --csv motion.csv
     """
-    import numpy as np
-
     from axiscal.io.motion import format_motion_errors, read_motion_config
-    from axiscal.procedures.motion_errors import crosstalk, indexing_test, to_motion_data
-    from axiscal.standards.iso230_7 import evaluate
+    from axiscal.io.simulation_results import motion_simulation
 
     paths = _check_outputs(report=report, csv=csv, plot=plot)
     cfg = read_motion_config(config)
-    run = indexing_test(cfg.axis, cfg.system, np.random.default_rng(_seed(cfg, seed)), cfg.step_deg,
-                        cfg.reference, cfg.drift, cfg.dwell, samples=cfg.samples)
-    which = "uncompensated" if no_compensation else "measured"
-    measured = getattr(run, which)
-    data = to_motion_data([run], which, title=cfg.machine)
-    result = evaluate(data)
-    ct = crosstalk(cfg.system)
-    res = cfg.system.resolutions()
+    sim = motion_simulation(cfg, seed, not no_compensation, str(config))
+    run, measured, data, result = sim.record, sim.parts["measured"], sim.parts["data"], sim.parts["result"]
+    ct, res = sim.parts["crosstalk"], sim.parts["resolutions"]
     if paths.get("csv"):
         from axiscal.io._files import write_text_atomic
 
@@ -137,21 +103,8 @@ def simulate(
         save_figure(five_errors_figure([measured], [run.truth],
                                        title=f"Five motion errors — {cfg.machine or config.name}"),
                     plot)
-    diff = measured - run.truth
     if json_out:
-        from axiscal.procedures.motion_errors import INPUTS
-
-        print_json({
-            "config": str(config), "compensated": not no_compensation,
-            "positions": [{"angle_deg": round(float(np.degrees(t)), 9), "measured": _five(measured, i),
-                           "truth": _five(run.truth, i)} for i, t in enumerate(measured.theta)],
-            "max_abs_error": {k: float(np.max(np.abs(v))) for k, v in _five(diff).items()},
-            "resolutions": {"angular_arcsec": res.angular / _arcsec(), "tilt_x_arcsec": res.tilt_x / _arcsec(),
-                            "displacement_um": res.displacement * 1e6},
-            "crosstalk": {"inputs": list(INPUTS), "outputs": list(_KEYS), "matrix": ct.table(),
-                          "spurious": _five_dict(ct.spurious), "residual": _five_dict(ct.residual)},
-            "iso230_7": iso_json(result),
-        })
+        print_json(sim.json)
     else:
         _render_positions(measured, run.truth, cfg.machine or str(config))
         typer.echo(_MOUNTING_NOTE)
@@ -348,16 +301,10 @@ def _wrote(paths: dict) -> None:
         note(f"wrote {what} {p}")
 
 
-def _arcsec() -> float:
-    from axiscal.units import ARCSEC
-
-    return ARCSEC
-
-
 def _five_dict(values: dict) -> dict:
-    from axiscal.units import ARCSEC, UM
+    from axiscal.io.simulation_results import channel_dict
 
-    return {_KEYS[c]: v / (ARCSEC if c[0] == "e" else UM) for c, v in values.items()}
+    return channel_dict(values)
 
 
 def _render_positions(measured, truth, title: str) -> None:

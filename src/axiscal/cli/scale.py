@@ -72,26 +72,15 @@ def home(
 
     Example: axiscal scale home examples/scale_single.toml --plot home.png
     """
-    from axiscal.io.scale_config import axis_from_config, homing_from_config, read_scale_config
-    from axiscal.procedures.referencing import simulate_referencing
+    from axiscal.io.scale_config import read_scale_config
+    from axiscal.io.simulation_results import scale_homing
 
     if plot is not None:
         plot_path(plot)
     if report is not None:
         report_path(report)
-    cfg = _with_seed(read_scale_config(config), "homing", seed)
-    axis = axis_from_config(cfg)
-    kwargs = homing_from_config(cfg, axis)
-    run = simulate_referencing(axis, **kwargs)
-    air = axis.air
-    ppm = float(axis.compensator.correction_ppm(air.temperature, air.pressure, air.humidity,
-                                                air.material_temperature))
-    rate = axis.laser.count_rate(kwargs["homing_speed"])
-    d = run.to_dict()
-    d.update(compensation_ppm=ppm, laser_count_rate_hz=rate,
-             controller_max_speed_m_per_s=axis.controller.max_speed())
-    if kwargs["moves"] and run.homed:
-        d["tracking"] = run.tracking()
+    sim = scale_homing(_with_seed(read_scale_config(config), "homing", seed))
+    run, d, axis, ppm = sim.record, sim.json, sim.parts["axis"], sim.parts["compensation_ppm"]
     if plot is not None:
         from axiscal.report.scale_plot import save_referencing_plot
 
@@ -143,23 +132,15 @@ def gantry(
 
     Example: axiscal scale gantry examples/scale_gantry.toml
     """
-    from axiscal.io.scale_config import read_scale_config, twin_axis_from_config
-    from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
-                                              worst_case_runs)
+    from axiscal.io.scale_config import read_scale_config
+    from axiscal.io.simulation_results import gantry_homing
 
     for p, check in ((plot, plot_path), (report, report_path)):
         if p is not None:
             check(p)
-    cfg = _with_seed(read_scale_config(config, gantry=True), "gantry", seed)
-    g, run_kwargs, sigma = twin_axis_from_config(cfg)
-    run = simulate_twin_homing(g, **run_kwargs)
-    worst = worst_case_runs(g)
-    spread = int(round(3.0 * sigma * 2 ** 0.5))
-    d = run.to_dict()
-    d["required_skew_limit"] = required_skew_limit(g, spread)
-    d["switch_sigma_counts"] = sigma
-    d["worst_case"] = [{"virtual_1": w.virtual_1, "virtual_2": w.virtual_2,
-                        "skew_before_sync": w.skew_check.skew, "alarm": w.alarm} for w in worst]
+    sim = gantry_homing(_with_seed(read_scale_config(config, gantry=True), "gantry", seed))
+    run, d = sim.record, sim.json
+    g, worst, spread = sim.parts["gantry"], sim.parts["worst"], sim.parts["spread"]
     if plot is not None or report is not None:
         from axiscal.report.scale_plot import gantry_figure
 

@@ -1,0 +1,256 @@
+"""The simulations of an instrument or a machine run from their configuration, with the stable
+``--json`` object of their command, for the commands and the public API (:mod:`axiscal.api`)
+alike.
+
+* :func:`scale_homing` — ``axiscal scale home``: referencing of one laser-scale axis through the
+  environmental compensator (Renishaw, "Laser scale axis referencing": events A, B, Z, C).
+* :func:`gantry_homing` — ``axiscal scale gantry``: twin-axis homing, skew and deskew (Renishaw,
+  "Laser scale axis referencing", twin-axis sequence).
+* :func:`motion_simulation` — ``axiscal motion simulate``: five motion errors of a rotary axis
+  measured at once (Optics Express 2018, "Five-DOF motion errors of a rotary axis", eqs. 1-6 and
+  the beam-drift compensation), evaluated by ISO 230-7:2015 (:func:`iso230_7_json`).
+* :func:`volumetric_map` — ``axiscal volumetric map``: the volumetric error field of the 21
+  geometric errors (ISO 230-1:2012 §3, rigid-body model of ISO/TR 16907:2015) and the body
+  diagonals (ISO 230-6:2002).
+* :func:`environment_json` — ``axiscal compensate-environment``: what the compensation of raw
+  laser readings for the air (Ciddor 1996) and the material (ISO 1:2016, 20 °C) did.
+
+Each returns a :class:`SimulationRun`: the library's record, the parts a figure or a report
+needs, and the ``--json`` object (the keys are documented in each command's module).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation", "iso230_7_json",
+           "volumetric_map", "simulated_volumetric_machine", "environment_json",
+           "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M"]
+
+#: The five channels of the five-DOF system and their JSON keys (units in the names).
+MOTION_CHANNELS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um",
+                   "dz": "dz_um"}
+#: Squareness of ``axiscal volumetric simulate``'s machine (xy, yz, zx), µm/m: a configuration
+#: written without ``[simulation] squareness_um_per_m`` was simulated with these.
+TRUE_SQUARENESS_UM_PER_M = (25.0, -15.0, 30.0)
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationRun:
+    """One simulation's record and its command's ``--json`` object.
+
+    Attributes
+    ----------
+    kind : str
+        ``scale-homing``, ``gantry-homing``, ``five-dof`` or ``volumetric-map``.
+    record : object
+        The library's record (``ReferencingRun``, ``TwinAxisRun``, ``IndexingRun``,
+        ``VolumetricMap``).
+    json : dict
+        The ``--json`` object of the command.
+    parts : dict
+        What the figure and the report need beside the record (the axis, the ISO 230-7
+        result, the truth ...).
+    """
+
+    kind: str
+    record: Any
+    json: dict
+    parts: dict = field(default_factory=dict)
+
+
+def scale_homing(cfg: dict) -> SimulationRun:
+    """``axiscal scale home``: referencing of one axis (a configuration read by
+    :func:`axiscal.io.scale_config.read_scale_config`)."""
+    from axiscal.io.scale_config import axis_from_config, homing_from_config
+    from axiscal.procedures.referencing import simulate_referencing
+
+    axis = axis_from_config(cfg)
+    kwargs = homing_from_config(cfg, axis)
+    run = simulate_referencing(axis, **kwargs)
+    air = axis.air
+    ppm = float(axis.compensator.correction_ppm(air.temperature, air.pressure, air.humidity,
+                                                air.material_temperature))
+    d = run.to_dict()
+    d.update(compensation_ppm=ppm, laser_count_rate_hz=axis.laser.count_rate(kwargs["homing_speed"]),
+             controller_max_speed_m_per_s=axis.controller.max_speed())
+    if kwargs["moves"] and run.homed:
+        d["tracking"] = run.tracking()
+    return SimulationRun("scale-homing", run, d, {"axis": axis, "compensation_ppm": ppm})
+
+
+def gantry_homing(cfg: dict) -> SimulationRun:
+    """``axiscal scale gantry``: twin-axis homing (a configuration read by
+    ``read_scale_config(path, gantry=True)``); the skew limit needed adds 3 sigma of the
+    difference of the two switches (3·σ·√2, counts)."""
+    from axiscal.io.scale_config import twin_axis_from_config
+    from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
+                                              worst_case_runs)
+
+    g, run_kwargs, sigma = twin_axis_from_config(cfg)
+    run = simulate_twin_homing(g, **run_kwargs)
+    worst = worst_case_runs(g)
+    spread = int(round(3.0 * sigma * 2 ** 0.5))
+    d = run.to_dict()
+    d["required_skew_limit"] = required_skew_limit(g, spread)
+    d["switch_sigma_counts"] = sigma
+    d["worst_case"] = [{"virtual_1": w.virtual_1, "virtual_2": w.virtual_2,
+                        "skew_before_sync": w.skew_check.skew, "alarm": w.alarm} for w in worst]
+    return SimulationRun("gantry-homing", run, d, {"gantry": g, "worst": worst, "spread": spread})
+
+
+def motion_simulation(cfg: Any, seed: int | None = None, compensated: bool = True,
+                      config_name: str = "") -> SimulationRun:
+    """``axiscal motion simulate``: one indexing test (a ``MotionConfig``), measured beside the
+    truth and evaluated by ISO 230-7:2015; ``seed`` None is the configuration's."""
+    from axiscal.units import ARCSEC, UM
+
+    import numpy as np
+
+    from axiscal.procedures.motion_errors import INPUTS, crosstalk, indexing_test, to_motion_data
+    from axiscal.standards.iso230_7 import evaluate
+
+    rng = np.random.default_rng(cfg.seed if seed is None else seed)
+    run = indexing_test(cfg.axis, cfg.system, rng, cfg.step_deg, cfg.reference, cfg.drift,
+                        cfg.dwell, samples=cfg.samples)
+    which = "measured" if compensated else "uncompensated"
+    measured = getattr(run, which)
+    data = to_motion_data([run], which, title=cfg.machine)
+    result = evaluate(data)
+    ct = crosstalk(cfg.system)
+    res = cfg.system.resolutions()
+    diff = measured - run.truth
+    d = {
+        "config": config_name, "compensated": compensated,
+        "positions": [{"angle_deg": round(float(np.degrees(t)), 9),
+                       "measured": five_channels(measured, i), "truth": five_channels(run.truth, i)}
+                      for i, t in enumerate(measured.theta)],
+        "max_abs_error": {k: float(np.max(np.abs(v))) for k, v in five_channels(diff).items()},
+        "resolutions": {"angular_arcsec": res.angular / ARCSEC, "tilt_x_arcsec": res.tilt_x / ARCSEC,
+                        "displacement_um": res.displacement * 1e6},
+        "crosstalk": {"inputs": list(INPUTS), "outputs": list(MOTION_CHANNELS),
+                      "matrix": ct.table(), "spurious": channel_dict(ct.spurious),
+                      "residual": channel_dict(ct.residual)},
+        "iso230_7": iso230_7_json(result),
+    }
+    return SimulationRun("five-dof", run, d, {"measured": measured, "data": data, "result": result,
+                                              "crosstalk": ct, "resolutions": res,
+                                              "machine": cfg.machine, "axis": cfg.axis_name})
+
+
+def five_channels(errors: Any, i: int | None = None) -> dict:
+    """The five errors (all positions, or position ``i``) in arcsec and µm by their JSON keys."""
+    from axiscal.units import ARCSEC, UM
+
+
+    out = {}
+    for ch, key in MOTION_CHANNELS.items():
+        v = getattr(errors, ch) if i is None else getattr(errors, ch)[i]
+        out[key] = v / (ARCSEC if ch[0] == "e" else UM)
+    return out
+
+
+def channel_dict(values: dict) -> dict:
+    """A value per channel (radians, metres) in arcsec and µm by the channels' JSON keys."""
+    from axiscal.units import ARCSEC, UM
+
+    return {MOTION_CHANNELS[c]: v / (ARCSEC if c[0] == "e" else UM) for c, v in values.items()}
+
+
+def iso230_7_json(result: Any) -> dict:
+    """The stable JSON object of an ISO 230-7:2015 result (``iso230_7`` of ``axiscal motion
+    simulate``, ``repeatability`` and ``analyze``; keys in :mod:`axiscal.cli.motion`)."""
+    from axiscal.units import ARCSEC, UM
+
+    import numpy as np
+
+    def k(kind):
+        return (UM, "um") if kind == "length" else (ARCSEC, "arcsec")
+
+    def opt(v, unit):
+        return None if math.isnan(v) else v / unit
+
+    motions = [{"name": m.name, "unit": k(m.kind)[1], "total": m.total / k(m.kind)[0],
+                "synchronous": m.synchronous / k(m.kind)[0],
+                "asynchronous": opt(m.asynchronous, k(m.kind)[0]),
+                "fundamental": m.fundamental / k(m.kind)[0],
+                "fundamental_removed": m.fundamental_removed}
+               for m in result.motions]
+    loc, pos = result.location, result.positioning
+    return {
+        "n_runs": result.n_runs, "angles_deg": np.round(np.degrees(result.theta), 9),
+        "motions": motions,
+        "location": {"x0_um": opt(loc.x0, UM), "y0_um": loc.y0 / UM,
+                     "a0_arcsec": loc.a0 / ARCSEC, "b0_arcsec": loc.b0 / ARCSEC},
+        "positioning": {"range_arcsec": pos.range / ARCSEC,
+                        "repeatability_arcsec": opt(pos.repeatability, ARCSEC),
+                        "mean_arcsec": pos.mean / ARCSEC},
+        "closure": {c: v / (ARCSEC if c[0] == "e" else UM) for c, v in result.closure.items()},
+        "warnings": list(result.warnings),
+    }
+
+
+def volumetric_map(cfg: Any, grid: int = 11) -> SimulationRun:
+    """``axiscal volumetric map``: the error field on a ``grid``³ grid and the four body
+    diagonals of a ``VolumetricConfig``; a simulated configuration adds the truth and the
+    largest |mapped − true| over the grid."""
+    import numpy as np
+
+    from axiscal.standards.volumetric import body_diagonals, map_volume
+
+    e = cfg.errors
+    vmap = map_volume(e, grid, tool_offset=cfg.tool_offset)
+    diags = body_diagonals(e, tool_offset=cfg.tool_offset)
+    truth = _truth_map(cfg, grid) if cfg.simulation else None
+    out = {"machine": cfg.name, "chain": str(e.chain),
+           "tool_offset_mm": [v * 1e3 for v in cfg.tool_offset], **vmap.summary(),
+           "diagonals": [{"name": d.name, "start_mm": d.start * 1e3, "end_mm": d.end * 1e3,
+                          "range_um": d.range * 1e6} for d in diags],
+           "missing": list(e.missing)}
+    if truth is not None:
+        out["truth"] = {"largest_um": truth.largest * 1e6,
+                        "range_um": {a: v * 1e6 for a, v in truth.ranges.items()}}
+        out["mapped_minus_true_um"] = float(np.abs(vmap.error - truth.error).max()) * 1e6
+    return SimulationRun("volumetric-map", vmap, out,
+                         {"diagonals": diags, "truth": truth, "config": cfg, "grid": grid})
+
+
+def _truth_map(cfg: Any, grid: int) -> Any:
+    from axiscal.procedures.volumetric import true_field
+    from axiscal.standards.volumetric import map_volume
+
+    machine, _ = simulated_volumetric_machine(cfg)
+    return map_volume(cfg.errors, grid, tool_offset=cfg.tool_offset,
+                      field=true_field(machine, cfg.errors.reference, cfg.tool_offset,
+                                       cfg.errors.measured_tool_offset))
+
+
+def simulated_volumetric_machine(cfg: Any) -> tuple:
+    """The simulated machine a volumetric configuration was measured on (regenerated from its
+    ``[simulation]`` seed and squareness) and the random generator after it."""
+    import numpy as np
+
+    from axiscal.errors import ConfigError
+    from axiscal.machines.three_axis import simulated_machine
+
+    seed = cfg.simulation.get("seed", 1)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ConfigError(f"{cfg.path}: [simulation] seed = {seed!r}: a whole number >= 0")
+    sq = cfg.simulation.get("squareness_um_per_m", list(TRUE_SQUARENESS_UM_PER_M))
+    travel = tuple((lo * 1e3, hi * 1e3) for lo, hi in (cfg.errors.travel[a] for a in "XYZ"))
+    rng = np.random.default_rng(seed)
+    return simulated_machine(rng, chain=str(cfg.errors.chain), travel_mm=travel,
+                             squareness_um_per_m=tuple(sq)), rng
+
+
+def environment_json(ds: Any, readings: int, out: Any) -> dict:
+    """The ``--json`` of ``axiscal compensate-environment``: where the compensated test went,
+    how many readings, what was applied (the metadata's words) and the air and material
+    temperatures over the test (``[min, max]``, °C; the material null without its
+    compensation)."""
+    env = ds.metadata.environment
+    return {"out": None if out is None else str(out), "readings": int(readings),
+            "applied": ds.metadata.notes, "air_temperature_c": env.air_temperature,
+            "material_temperature_c": env.mean_material_temperature}
