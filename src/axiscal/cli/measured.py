@@ -95,10 +95,9 @@ def compensate_environment(
         material_temperature=material_temperature,
         expansion_coefficient=None if expansion_ppm is None else expansion_ppm * 1e-6)
     write_text_atomic(out, format_positioning_csv(ds))
-    env = ds.metadata.environment
-    d = {"out": str(out), "readings": int(raw_data.readings.size),
-         "applied": ds.metadata.notes, "air_temperature_c": env.air_temperature,
-         "material_temperature_c": env.mean_material_temperature}
+    from axiscal.io.simulation_results import environment_json
+
+    d = environment_json(ds, raw_data.readings.size, out)
     if plot is not None or report is not None:
         from axiscal.report.capture_plots import environment_figure
 
