@@ -34,6 +34,7 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import note, plot_path, print_json, report_path
+from axiscal.io.simulation_results import TRUE_SQUARENESS_UM_PER_M
 
 __all__ = ["register"]
 
@@ -43,7 +44,7 @@ app = typer.Typer(help="Volumetric accuracy of a three-axis machine: the 21 geom
                   "'Volumetric configuration'.", no_args_is_help=True)
 
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
-_TRUE_SQUARENESS = (25.0, -15.0, 30.0)
+_TRUE_SQUARENESS = TRUE_SQUARENESS_UM_PER_M
 
 
 @app.command("simulate")
@@ -116,27 +117,15 @@ def map_(
 
     Example: axiscal volumetric map vol/volumetric.toml --plot vol.png --report vol.html
     """
-    import numpy as np
-
+    from axiscal.io.simulation_results import volumetric_map
     from axiscal.io.volumetric import read_volumetric_config
-    from axiscal.standards.volumetric import body_diagonals, map_volume
 
     plot = plot_path(plot) if plot else None
     report = report_path(report) if report else None
     cfg = read_volumetric_config(config)
     e = cfg.errors
-    vmap = map_volume(e, grid, tool_offset=cfg.tool_offset)
-    diags = body_diagonals(e, tool_offset=cfg.tool_offset)
-    truth = _truth_map(cfg, grid) if cfg.simulation else None
-    out = {"machine": cfg.name, "chain": str(e.chain),
-           "tool_offset_mm": [v * 1e3 for v in cfg.tool_offset], **vmap.summary(),
-           "diagonals": [{"name": d.name, "start_mm": d.start * 1e3, "end_mm": d.end * 1e3,
-                          "range_um": d.range * 1e6} for d in diags],
-           "missing": list(e.missing)}
-    if truth is not None:
-        out["truth"] = {"largest_um": truth.largest * 1e6,
-                        "range_um": {a: v * 1e6 for a, v in truth.ranges.items()}}
-        out["mapped_minus_true_um"] = float(np.abs(vmap.error - truth.error).max()) * 1e6
+    sim = volumetric_map(cfg, grid)
+    vmap, diags, truth, out = sim.record, sim.parts["diagonals"], sim.parts["truth"], sim.json
     if plot:
         from axiscal.report.volumetric_plots import volumetric_figure
 
@@ -283,31 +272,11 @@ def _linuxcnc(cfg, tables, controller, verify, on_controller, out, as_json):
         typer.echo(str(result))
 
 
-def _truth_map(cfg, grid):
-    from axiscal.procedures.volumetric import true_field
-    from axiscal.standards.volumetric import map_volume
-
-    machine, _ = _simulated(cfg)
-    return map_volume(cfg.errors, grid, tool_offset=cfg.tool_offset,
-                      field=true_field(machine, cfg.errors.reference, cfg.tool_offset,
-                                       cfg.errors.measured_tool_offset))
-
-
 def _simulated(cfg):
     """The simulated machine a configuration was measured on (regenerated from its seed)."""
-    import numpy as np
+    from axiscal.io.simulation_results import simulated_volumetric_machine
 
-    from axiscal.errors import ConfigError
-    from axiscal.machines.three_axis import simulated_machine
-
-    seed = cfg.simulation.get("seed", 1)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ConfigError(f"{cfg.path}: [simulation] seed = {seed!r}: a whole number >= 0")
-    sq = cfg.simulation.get("squareness_um_per_m", list(_TRUE_SQUARENESS))
-    travel = tuple((lo * 1e3, hi * 1e3) for lo, hi in (cfg.errors.travel[a] for a in "XYZ"))
-    rng = np.random.default_rng(seed)
-    return simulated_machine(rng, chain=str(cfg.errors.chain), travel_mm=travel,
-                             squareness_um_per_m=tuple(sq)), rng
+    return simulated_volumetric_machine(cfg)
 
 
 def _folder(out: Path) -> None:
