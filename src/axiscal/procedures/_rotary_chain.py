@@ -2,7 +2,8 @@
 
 :class:`Rig` holds the machine, the set-up and the two instruments, and performs the steps of
 :func:`axiscal.procedures.rotary_calibration.simulate_rotary_calibration`: the set-up readings,
-the datum, the optics self-calibration and the capture. Every reading is computed from the
+the datum, the optics self-calibration and the capture, whose records it returns
+(:class:`RotaryCapture`, :class:`OffAxisRecord`, re-exported by ``rotary_calibration``). Every reading is computed from the
 physical state (axis angle, calibrator shaft angle, reflector pose, beam directions); no error
 formula of the paper is added on top, so equation 1 and the read-head cancellation are results.
 
@@ -26,7 +27,9 @@ from axiscal.errors import SignalLossError
 from axiscal.physics.interferometry import optics_self_calibration
 from axiscal.physics.misalignment import reflector_pose
 from axiscal.procedures.rotary_offaxis import (
-    YawProfile, part_program, subtract_linear_yaw, three_point_alignment, yaw_subtraction_sign)
+    OffAxisAlignment, YawProfile, part_program, subtract_linear_yaw, three_point_alignment,
+    yaw_subtraction_sign)
+from axiscal.procedures.rotary_setup import setup_checks
 from axiscal.units import ARCSEC, DEG
 
 TWO_PI = 2.0 * math.pi
@@ -34,10 +37,50 @@ TWO_PI = 2.0 * math.pi
 MOVE_CHECK_STEP = 0.25 * DEG
 
 
+@dataclass(frozen=True, eq=False)
+class RotaryCapture:
+    """What the capture measured, reading by reading (in the order of the plan's steps).
+
+    Attributes
+    ----------
+    dataset : PositioningDataset
+        Measured deviations, deg / arcsec.
+    truth : PositioningDataset
+        True deviations relative to the datum, same layout.
+    commanded, laser, calibrator : ndarray, radians
+        Target, laser reading and calibrator angle (sense of the axis under test) per reading.
+    time : ndarray, seconds
+    linear_positions : ndarray or None, metres
+        Off axis: the linear axis's commanded position per reading.
+    """
+
+    dataset: PositioningDataset
+    truth: PositioningDataset
+    commanded: np.ndarray
+    laser: np.ndarray
+    calibrator: np.ndarray
+    time: np.ndarray
+    linear_positions: np.ndarray | None = None
+
+    @property
+    def max_laser_angle(self) -> float:
+        """Largest |laser reading| during the capture, radians."""
+        return float(np.max(np.abs(self.laser)))
+
+
+@dataclass(frozen=True, eq=False)
+class OffAxisRecord:
+    """Off-axis by-products: the alignment fit, the part program and the yaw correction."""
+
+    alignment: OffAxisAlignment
+    program: str
+    profile: YawProfile
+    sign: int
+    yaw_removed: float  # largest |correction| applied, radians
+
+
 def read_setup(setup, rng: np.random.Generator, offaxis=None):
     """Simulated readings of the set-up checks (dial gauge, shutter, centring) -> SetupCheck."""
-    from axiscal.procedures.rotary_calibration import setup_checks
-
     tir = abs(2.0 * setup.tir_radius * setup.mount_tilt + rng.normal(0.0, setup.dial_noise))
     ret = abs(2.0 * setup.laser_distance * (setup.beam_tilt + setup.target_misalignment)
               + rng.normal(0.0, setup.shutter_noise))
@@ -166,8 +209,6 @@ class Rig:
     def capture(self, plan, datum: Datum, rng: np.random.Generator, speed: float,
                 metadata: Metadata | None):
         """Execute the plan; return (RotaryCapture, OffAxisRecord or None)."""
-        from axiscal.procedures.rotary_calibration import RotaryCapture
-
         self.check_moves(plan, datum)
         steps = plan.steps()
         pos = np.array([s.position for s in steps])
@@ -198,8 +239,6 @@ class Rig:
         return RotaryCapture(ds, tr, target, laser, calib, time, y), record
 
     def _remove_yaw(self, plan, dev, y, datum, rng):
-        from axiscal.procedures.rotary_calibration import OffAxisRecord
-
         off = self.off
         lo, hi = float(np.min(y)) - 5e-3, float(np.max(y)) + 5e-3
         grid = np.linspace(lo, hi, 41)
