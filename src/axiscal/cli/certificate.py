@@ -24,7 +24,8 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import note, print_json
-from axiscal.cli.history import _DB, _JSON   # the history's --db and --json, the same options
+from axiscal.cli._history_store import DB as _DB      # the history's --db and --json,
+from axiscal.cli._history_store import JSON as _JSON  # the same options
 
 __all__ = ["register", "record_json"]
 

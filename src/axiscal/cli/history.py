@@ -35,24 +35,16 @@ import typer
 
 from axiscal.cli import history_corrections as _corrections
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.cli._history_store import DB as _DB
+from axiscal.cli._history_store import JSON as _JSON
+from axiscal.cli._history_store import open_db as _store
+from axiscal.cli._history_store import store_run
 
 __all__ = ["register", "store_run"]
 
 app = typer.Typer(help="Calibration history: every machine, axis, test, result and table kept, "
                   "compared and trended (SQLite by default, PostgreSQL with --db).",
                   no_args_is_help=True)
-
-_DB = typer.Option(None, "--db", help="Database URL (default: AXISCAL_DB, else SQLite in the "
-                   "user's data folder), e.g. postgresql+psycopg://user@host/axiscal. A file "
-                   "that is not an axiscal history is refused, not converted; a read-only one "
-                   "is listed and shown.")
-_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
-
-
-def _store(db):
-    from axiscal.store import open_store
-
-    return open_store(db)
 
 
 @app.command("add")
@@ -96,15 +88,6 @@ def add(
         note(f"not stored: {' '.join(typed)} (test {r.id} keeps what it was stored with); "
              f"to change it: axiscal history edit {r.id} {' '.join(typed)} --by NAME "
              "--reason TEXT")
-
-
-def store_run(file: Path, db, machine=None, axis=None) -> None:
-    """The ``--history`` step of an evaluating command: store the file just evaluated."""
-    from axiscal.io._files import read_bytes
-
-    r = _store(db).add(read_bytes(file), file.name, machine=machine, axis=axis)
-    note(f"history: {'already stored as' if r.duplicate else 'stored as'} test {r.id} "
-         f"({r.machine} {r.axis})")
 
 
 @app.command("machines")

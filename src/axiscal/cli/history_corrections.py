@@ -16,6 +16,8 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import print_json
+from axiscal.cli._history_store import DB as db_opt
+from axiscal.cli._history_store import open_db as _store
 
 __all__ = ["add_commands"]
 
@@ -40,8 +42,6 @@ def add_commands(app: typer.Typer) -> None:
 
 
 def _renames(app: typer.Typer) -> None:
-    from axiscal.cli.history import _DB as db_opt
-    from axiscal.cli.history import _store
     from axiscal.store import corrections as c
 
     @app.command("rename-machine")
@@ -70,8 +70,6 @@ def _renames(app: typer.Typer) -> None:
 
 
 def _merge_and_edit(app: typer.Typer) -> None:
-    from axiscal.cli.history import _DB as db_opt
-    from axiscal.cli.history import _store
     from axiscal.store import corrections as c
 
     @app.command("merge")
@@ -110,8 +108,6 @@ def _merge_and_edit(app: typer.Typer) -> None:
 
 
 def _withdrawals(app: typer.Typer) -> None:
-    from axiscal.cli.history import _DB as db_opt
-    from axiscal.cli.history import _store
     from axiscal.store import corrections as c
 
     @app.command("withdraw")

@@ -125,7 +125,7 @@ def iso230_2(
     if plot is not None:
         note(f"wrote plot {plot}")
     if history:
-        from axiscal.cli.history import store_run
+        from axiscal.cli._history_store import store_run
 
         store_run(file, db, machine=machine)
     if outcome is not None:
