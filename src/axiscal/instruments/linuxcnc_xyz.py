@@ -11,8 +11,9 @@ OFFSET_AV_RATIO``, ``axis.L.eoffset-enable``, ``-scale``, ``-counts``).
 :meth:`LinuxCNCXYZ.move` reaches a target with the slow final approach of the one-joint driver
 (LinuxCNC holds, once a joint stops, the trim of the last servo period in which it moved), waits
 until the external offsets have settled on the correction of the final commanded position
-(``axis.L.eoffset`` equal to ``axis.L.eoffset-request``: the offset ramps, limited by
-OFFSET_AV_RATIO of the axis's velocity and acceleration) and reads the three joints'
+(the component has run two cycles since the move ended, so it evaluated the final position, even
+on a loaded computer; then ``axis.L.eoffset`` equal to ``axis.L.eoffset-request``: the offset
+ramps, limited by OFFSET_AV_RATIO of the axis's velocity and acceleration) and reads the three joints'
 ``motor-pos-cmd`` (command + offset + trim: what reaches the drives) through an in-process HAL
 component (``axiscal-xyz``).
 """
@@ -121,6 +122,9 @@ class LinuxCNCXYZ(LinuxCNC):
                 comp.newpin(f"{a}-request", hal.HAL_FLOAT, hal.HAL_IN)
                 nets += [(f"vc-{a}-eoffset", f"axis.{a}.eoffset", f"axiscal-xyz.{a}-eoffset"),
                          (f"vc-{a}-request", f"axiscal-xyz.{a}-request")]
+        if self.volcomp is not None:
+            comp.newpin("cycles", hal.HAL_U32, hal.HAL_IN)
+            nets.append(("vc-cycles", "axiscal-volcomp.cycles", "axiscal-xyz.cycles"))
         comp.ready()
         self._comp = comp
         for net in nets:
@@ -152,7 +156,10 @@ class LinuxCNCXYZ(LinuxCNC):
         end = " ".join(f"[{v:.9f}]" for v in t)
         self.mdi(f"o<axiscal_approach_xyz> call {start} {end} [{CREEP_FEED:g}]")
         if self.volcomp is not None:
+            c0 = self._comp["cycles"]
             try:
+                _wait(lambda: (self._comp["cycles"] - c0) % 2 ** 31 >= 2, self.settle_timeout,
+                      "axiscal-volcomp to evaluate the final position")
                 _wait(self._settled, self.settle_timeout, "the external offsets to settle")
             except MeasurementError as exc:
                 c = self._comp
@@ -168,14 +175,15 @@ class LinuxCNCXYZ(LinuxCNC):
 
     def _settled(self) -> bool:
         """The offsets are where the component asks, within :data:`SETTLED`, and did not move
-        for 3 ms."""
+        for 10 ms (ten servo periods: the request follows the counts at the next one)."""
         c = self._comp
         now = [c[f"{a}-eoffset"] for a in "xyz"]
         want = [c[f"{a}-request"] for a in "xyz"]
         if any(abs(v - w) > SETTLED for v, w in zip(now, want)):
             return False
-        time.sleep(0.003)
-        return now == [c[f"{a}-eoffset"] for a in "xyz"]
+        time.sleep(0.01)
+        return now == [c[f"{a}-eoffset"] for a in "xyz"] and all(
+            abs(c[f"{a}-eoffset"] - c[f"{a}-request"]) <= SETTLED for a in "xyz")
 
     def move(self, *args, **kwargs):
         raise MeasurementError("LinuxCNCXYZ moves three joints: use move_to")
