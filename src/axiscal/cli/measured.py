@@ -80,7 +80,7 @@ def compensate_environment(
     from axiscal.io._files import write_text_atomic
     from axiscal.io.csv import format_positioning_csv
     from axiscal.io.measured import read_environment_log, read_raw_readings
-    from axiscal.procedures.environment import compensate_raw_readings
+    from axiscal.io.simulation_results import environment_compensation
 
     typed_path(out, "positioning CSV", (".csv",))
     if plot is not None:
@@ -89,33 +89,24 @@ def compensate_environment(
         report_path(report)
     raw_data = read_raw_readings(raw)
     log = read_environment_log(environment) if environment else None
-    ds, detail = compensate_raw_readings(
-        raw_data, log, equation=equation, normalise_material=not air_only, max_gap=max_gap,
-        detail=True, air_temperature=air_temperature, pressure=pressure, humidity=humidity,
+    sim = environment_compensation(
+        raw_data, log, out=out, equation=equation, normalise_material=not air_only,
+        max_gap=max_gap, air_temperature=air_temperature, pressure=pressure, humidity=humidity,
         material_temperature=material_temperature,
         expansion_coefficient=None if expansion_ppm is None else expansion_ppm * 1e-6)
+    ds, d = sim.parts["dataset"], sim.json
     write_text_atomic(out, format_positioning_csv(ds))
-    from axiscal.io.simulation_results import environment_json
+    if plot is not None:
+        from axiscal.report.plots import save_figure
+        from axiscal.report.simulation_views import simulation_figure
 
-    d = environment_json(ds, raw_data.readings.size, out)
-    if plot is not None or report is not None:
-        from axiscal.report.capture_plots import environment_figure
+        save_figure(simulation_figure(sim, raw.name), plot)
+        note(f"wrote plot {plot}")
+    if report is not None:
+        from axiscal.report.simulation_views import write_simulation_report
 
-        title = f"Environmental compensation of {raw.name}"
-        if plot is not None:
-            from axiscal.report.plots import save_figure
-
-            save_figure(environment_figure(detail, title), plot)
-            note(f"wrote plot {plot}")
-        if report is not None:
-            from axiscal.report.html import write_result_report
-
-            write_result_report(report, title, d, figure=environment_figure(detail, title),
-                                method="Each raw reading corrected for the refractive index of "
-                                       "the air at its time (the equation named below) and the "
-                                       "dead path, and the axis referred to 20 °C by ISO 1:2016 "
-                                       "with the material temperature at its time.")
-            note(f"wrote report {report}")
+        write_simulation_report(sim, report, raw.name)
+        note(f"wrote report {report}")
     if json_out:
         print_json(d)
         return

@@ -33,15 +33,13 @@ import typer
 
 from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
 from axiscal.io.simulation_results import MOTION_CHANNELS as _KEYS
+from axiscal.report.simulation_views import MOUNTING_NOTE as _MOUNTING_NOTE
 
 __all__ = ["register", "iso_json"]
 
 app = typer.Typer(help="Five motion errors of a rotary axis at once (Optics Express 2018, Five-DOF motion errors of a rotary axis) and ISO 230-7 "
                   "error motion evaluation.", no_args_is_help=True)
 
-_MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' crosstalk: an eccentric or "
-                  "tilted reference axis shows as a once-per-turn term in δy, εx and εy (see the "
-                  "crosstalk table), which ISO 230-7 removes as the fundamental.")
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs).")
 _REPORT = typer.Option(None, "--report", help="Write a self-contained report: HTML (.html) or PDF (.pdf, WeasyPrint).")
 _PLOT = typer.Option(None, "--plot", help="Write the plot (PNG, SVG or PDF by extension).")
@@ -90,19 +88,14 @@ def simulate(
 
         write_text_atomic(csv, format_motion_errors(data))
     if paths.get("report"):
-        from axiscal.report.motion_report import motion_report
+        from axiscal.report.simulation_views import write_simulation_report
 
-        motion_report(f"Five motion errors — {cfg.machine or config.name}", result=result,
-                      runs=[measured], truth=[run.truth], crosstalk=ct, resolutions=res,
-                      metadata={"Configuration": config.name, "Axis": cfg.axis_name,
-                                "Drift compensation": not no_compensation},
-                      notes=[_MOUNTING_NOTE]).write(report)
+        write_simulation_report(sim, report, config.name)
     if paths.get("plot"):
-        from axiscal.report.motion_plots import five_errors_figure, save_figure
+        from axiscal.report.motion_plots import save_figure
+        from axiscal.report.simulation_views import simulation_figure
 
-        save_figure(five_errors_figure([measured], [run.truth],
-                                       title=f"Five motion errors — {cfg.machine or config.name}"),
-                    plot)
+        save_figure(simulation_figure(sim, config.name), plot)
     if json_out:
         print_json(sim.json)
     else:

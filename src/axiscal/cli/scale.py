@@ -86,15 +86,9 @@ def home(
 
         save_referencing_plot(run, plot)
     if report is not None:
-        from axiscal.report.html import write_result_report
-        from axiscal.report.scale_plot import referencing_figure
+        from axiscal.report.simulation_views import write_simulation_report
 
-        write_result_report(report, f"Laser scale referencing — {config.name}", d,
-                            figure=referencing_figure(run), simulation=True,
-                            method="Referencing of one axis through the environmental "
-                                   "compensator: switch, rephasing of the sine and cosine "
-                                   "outputs and the reference mark at events A, B, Z and C "
-                                   "(Renishaw, Laser scale axis referencing).")
+        write_simulation_report(sim, report, config.name)
     if json_out:
         print_json(d)
     else:
@@ -141,25 +135,15 @@ def gantry(
     sim = gantry_homing(_with_seed(read_scale_config(config, gantry=True), "gantry", seed))
     run, d = sim.record, sim.json
     g, worst, spread = sim.parts["gantry"], sim.parts["worst"], sim.parts["spread"]
-    if plot is not None or report is not None:
-        from axiscal.report.scale_plot import gantry_figure
+    if plot is not None:
+        from axiscal.report.plots import save_figure
+        from axiscal.report.simulation_views import simulation_figure
 
-        if plot is not None:
-            from axiscal.report.plots import save_figure
+        save_figure(simulation_figure(sim), plot)
+    if report is not None:
+        from axiscal.report.simulation_views import write_simulation_report
 
-            save_figure(gantry_figure(run, d["required_skew_limit"]), plot)
-        if report is not None:
-            from axiscal.report.html import write_result_report
-
-            write_result_report(
-                report, f"Twin-axis homing — {config.name}", d, simulation=True,
-                figure=gantry_figure(run, d["required_skew_limit"]),
-                caption="Real skew X1 − X2 at each command step of the homing sequence, with "
-                        "the controller's skew limit and the limit this configuration needs.",
-                method="Homing of a gantry driven by two laser-scale axes through their "
-                       "environmental compensators: each rephases at its own switch, the "
-                       "controller checks the skew before synchronisation and deskews X2 "
-                       "(Renishaw, Laser scale axis referencing).")
+        write_simulation_report(sim, report, config.name)
     if json_out:
         print_json(d)
     else:

@@ -127,13 +127,13 @@ def map_(
     sim = volumetric_map(cfg, grid)
     vmap, diags, truth, out = sim.record, sim.parts["diagonals"], sim.parts["truth"], sim.json
     if plot:
-        from axiscal.report.volumetric_plots import volumetric_figure
+        from axiscal.report.simulation_views import simulation_figure
 
-        volumetric_figure(vmap, f"Volumetric error map — {cfg.name}").savefig(plot, dpi=110)
+        simulation_figure(sim).savefig(plot, dpi=110)
     if report:
-        from axiscal.report.volumetric_plots import volumetric_report
+        from axiscal.report.simulation_views import write_simulation_report
 
-        volumetric_report(vmap, diags, e, name=cfg.name, truth=truth).write(report)
+        write_simulation_report(sim, report)
     if as_json:
         print_json(out)
         return

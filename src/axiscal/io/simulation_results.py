@@ -12,7 +12,7 @@ alike.
 * :func:`volumetric_map` — ``axiscal volumetric map``: the volumetric error field of the 21
   geometric errors (ISO 230-1:2012 §3, rigid-body model of ISO/TR 16907:2015) and the body
   diagonals (ISO 230-6:2002).
-* :func:`environment_json` — ``axiscal compensate-environment``: what the compensation of raw
+* :func:`environment_compensation` — ``axiscal compensate-environment``: what the compensation of raw
   laser readings for the air (Ciddor 1996) and the material (ISO 1:2016, 20 °C) did.
 
 Each returns a :class:`SimulationRun`: the library's record, the parts a figure or a report
@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation", "iso230_7_json",
-           "volumetric_map", "simulated_volumetric_machine", "environment_json",
+           "volumetric_map", "simulated_volumetric_machine", "environment_compensation",
+           "environment_json",
            "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M"]
 
 #: The five channels of the five-DOF system and their JSON keys (units in the names).
@@ -44,10 +45,11 @@ class SimulationRun:
     Attributes
     ----------
     kind : str
-        ``scale-homing``, ``gantry-homing``, ``five-dof`` or ``volumetric-map``.
+        ``scale-homing``, ``gantry-homing``, ``five-dof``, ``volumetric-map`` or
+        ``environment``.
     record : object
-        The library's record (``ReferencingRun``, ``TwinAxisRun``, ``IndexingRun``,
-        ``VolumetricMap``).
+        The library's record (``ReferencingRun``, ``TwinHomingResult``, ``MotionRun``,
+        ``VolumetricMap``, ``ReadingCorrections``).
     json : dict
         The ``--json`` object of the command.
     parts : dict
@@ -243,6 +245,19 @@ def simulated_volumetric_machine(cfg: Any) -> tuple:
     rng = np.random.default_rng(seed)
     return simulated_machine(rng, chain=str(cfg.errors.chain), travel_mm=travel,
                              squareness_um_per_m=tuple(sq)), rng
+
+
+def environment_compensation(raw: Any, log: Any = None, *, out: Any = None,
+                             **options: Any) -> SimulationRun:
+    """``axiscal compensate-environment``: raw laser readings (``RawReadings``) compensated for
+    the air at each reading's time and referred to 20 °C
+    (:func:`axiscal.procedures.environment.compensate_raw_readings`, whose keyword options these
+    are); ``out`` is where the command writes the compensated test (only named in the JSON)."""
+    from axiscal.procedures.environment import compensate_raw_readings
+
+    ds, detail = compensate_raw_readings(raw, log, detail=True, **options)
+    return SimulationRun("environment", detail, environment_json(ds, raw.readings.size, out),
+                         {"dataset": ds})
 
 
 def environment_json(ds: Any, readings: int, out: Any) -> dict:
