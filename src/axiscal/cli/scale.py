@@ -51,13 +51,6 @@ _SEED = typer.Option(None, "--seed", min=0, max=2**63 - 1, help="Random seed of 
                      "random error and the power-up phase is the configuration's).")
 
 
-def _with_seed(cfg: dict, table: str, seed: int | None) -> dict:
-    """The configuration with ``[table] seed`` set from ``--seed`` (if given)."""
-    if seed is not None:
-        cfg.setdefault(table, {})["seed"] = seed
-    return cfg
-
-
 @scale_app.command("home")
 def home(
     config: Path = typer.Argument(..., help="Laser-scale configuration (TOML, see examples/)."),
@@ -79,7 +72,7 @@ def home(
         plot_path(plot)
     if report is not None:
         report_path(report)
-    sim = scale_homing(_with_seed(read_scale_config(config), "homing", seed))
+    sim = scale_homing(read_scale_config(config), seed)
     run, d, axis, ppm = sim.record, sim.json, sim.parts["axis"], sim.parts["compensation_ppm"]
     if plot is not None:
         from axiscal.report.scale_plot import save_referencing_plot
@@ -132,7 +125,7 @@ def gantry(
     for p, check in ((plot, plot_path), (report, report_path)):
         if p is not None:
             check(p)
-    sim = gantry_homing(_with_seed(read_scale_config(config, gantry=True), "gantry", seed))
+    sim = gantry_homing(read_scale_config(config, gantry=True), seed)
     run, d = sim.record, sim.json
     g, worst, spread = sim.parts["gantry"], sim.parts["worst"], sim.parts["spread"]
     if plot is not None:

@@ -63,12 +63,14 @@ class SimulationRun:
     parts: dict = field(default_factory=dict)
 
 
-def scale_homing(cfg: dict) -> SimulationRun:
+def scale_homing(cfg: dict, seed: int | None = None) -> SimulationRun:
     """``axiscal scale home``: referencing of one axis (a configuration read by
-    :func:`axiscal.io.scale_config.read_scale_config`)."""
+    :func:`axiscal.io.scale_config.read_scale_config`); ``seed`` (``--seed``) replaces
+    ``[homing] seed``."""
     from axiscal.io.scale_config import axis_from_config, homing_from_config
     from axiscal.procedures.referencing import simulate_referencing
 
+    cfg = _with_seed(cfg, "homing", seed)
     axis = axis_from_config(cfg)
     kwargs = homing_from_config(cfg, axis)
     run = simulate_referencing(axis, **kwargs)
@@ -83,15 +85,15 @@ def scale_homing(cfg: dict) -> SimulationRun:
     return SimulationRun("scale-homing", run, d, {"axis": axis, "compensation_ppm": ppm})
 
 
-def gantry_homing(cfg: dict) -> SimulationRun:
+def gantry_homing(cfg: dict, seed: int | None = None) -> SimulationRun:
     """``axiscal scale gantry``: twin-axis homing (a configuration read by
-    ``read_scale_config(path, gantry=True)``); the skew limit needed adds 3 sigma of the
-    difference of the two switches (3·σ·√2, counts)."""
+    ``read_scale_config(path, gantry=True)``; ``seed`` replaces ``[gantry] seed``); the skew
+    limit needed adds 3 sigma of the difference of the two switches (3·σ·√2, counts)."""
     from axiscal.io.scale_config import twin_axis_from_config
     from axiscal.procedures.twin_axis import (required_skew_limit, simulate_twin_homing,
                                               worst_case_runs)
 
-    g, run_kwargs, sigma = twin_axis_from_config(cfg)
+    g, run_kwargs, sigma = twin_axis_from_config(_with_seed(cfg, "gantry", seed))
     run = simulate_twin_homing(g, **run_kwargs)
     worst = worst_case_runs(g)
     spread = int(round(3.0 * sigma * 2 ** 0.5))
@@ -101,6 +103,13 @@ def gantry_homing(cfg: dict) -> SimulationRun:
     d["worst_case"] = [{"virtual_1": w.virtual_1, "virtual_2": w.virtual_2,
                         "skew_before_sync": w.skew_check.skew, "alarm": w.alarm} for w in worst]
     return SimulationRun("gantry-homing", run, d, {"gantry": g, "worst": worst, "spread": spread})
+
+
+def _with_seed(cfg: dict, table: str, seed: int | None) -> dict:
+    """The configuration with ``[table] seed`` set from ``seed`` (if given)."""
+    if seed is not None:
+        cfg = {**cfg, table: {**cfg.get(table, {}), "seed": seed}}
+    return cfg
 
 
 def motion_simulation(cfg: Any, seed: int | None = None, compensated: bool = True,
