@@ -79,7 +79,7 @@ Renishaw, Interferometric calibration of rotary axes: Renishaw, "Interferometric
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
 import numpy as np
@@ -94,6 +94,7 @@ from axiscal.standards.iso230_9_inputs import (
     resolve_rotary,
     runs_statement,
 )
+from axiscal.standards.uncertainty_reporting import format_uncertainty, round_up
 
 __all__ = [
     "Contributor",
@@ -253,48 +254,6 @@ class UncertaintyBudget:
         ]
         lines += [f"  U({p}) = {self.U_text(p)}" for p in self.expanded]
         return "\n".join(lines)
-
-
-def round_up(U: float, digits: int = 2) -> float:
-    """``U`` rounded up to ``digits`` significant digits (JCGM 100:2008 §7.2.6).
-
-    A value already at ``digits`` digits stays (2.4 stays 2.4, not 2.5, in spite of its binary
-    representation); 0 stays 0; NaN and infinities are returned as they are.
-
-    Examples
-    --------
-    >>> round_up(0.000577), round_up(2.41), round_up(3.52), round_up(12.01), round_up(2.4)
-    (0.00058, 2.5, 3.6, 13.0, 2.4)
-    """
-    if not math.isfinite(U) or U <= 0:
-        return U
-    e = math.floor(math.log10(U)) - (digits - 1)
-    scaled = U / 10.0**e
-    whole = round(scaled)
-    n = whole if abs(scaled - whole) <= 1e-9 * scaled else math.ceil(scaled)
-    return round(n * 10.0**e, max(0, -e))
-
-
-def format_uncertainty(U: float | None, digits: int = 2) -> str:
-    """U as displayed everywhere: :func:`round_up` to two significant digits, never "0.00".
-
-    None or NaN (not covered, not estimated) is a dash; an exact 0 (a budget with no
-    contributor for the parameter) is "0".
-
-    Examples
-    --------
-    >>> format_uncertainty(0.000577), format_uncertainty(2.41), format_uncertainty(0.998)
-    ('0.00058', '2.5', '1.0')
-    >>> format_uncertainty(123.4), format_uncertainty(None)
-    ('130', '—')
-    """
-    if U is None or (isinstance(U, float) and math.isnan(U)):
-        return "—"
-    if U == 0 or not math.isfinite(U):
-        return f"{U:g}"
-    r = round_up(float(U), digits)
-    decimals = max(0, digits - 1 - math.floor(math.log10(r)))
-    return f"{r:.{decimals}f}"
 
 
 def combine(
