@@ -45,10 +45,10 @@ def demo(tmp_path_factory):
 def test_3d_correction_through_linuxcnc_removes_80_percent_of_every_figure(demo, tmp_path):
     """One run, three LinuxCNC sessions (each about 180 moves: the 21-point datum lines, a 5³
     grid, four 6-point diagonals). With the tables alone the largest error falls by about
-    half (PNP diagonal about −40 %: the Abbe products stay, ISSUE 32's −38…−83 %); with the 3-D
-    correction every figure falls by ≥ 80 %. LinuxCNC applied at every point what axiscal asked
-    (COMP_FILE trim + cross-axis tables + grid) within 0.05 µm (the offset planner stops ≤ 20 nm
-    short)."""
+    half (PNP diagonal about −40 %: the Abbe products stay, issue 32's −38…−83 %); with the
+    3-D correction every figure falls by ≥ 80 %. LinuxCNC applied at every point what axiscal
+    asked (COMP_FILE trim + cross-axis tables + grid) within 0.05 µm (the offset planner stops
+    ≤ 20 nm short)."""
     r = runner.invoke(app, ["volumetric", "compensate", str(demo), "--controller", "linuxcnc",
                             "--verify", "--on-controller", "--json", "--out", str(tmp_path)])
     assert r.exit_code == 0, r.output

@@ -198,7 +198,8 @@ class OnControllerResult:
         s = self.settings
         lines.append(f"LinuxCNC moves per measurement: "
                      f"{', '.join(f'{k} {v}' for k, v in self.moves.items())} "
-                     f"({s['points']} points per diagonal, tool point measured on a {s['grid']}³ grid)")
+                     f"({s['points']} points per diagonal, tool point measured on a "
+                     f"{s['grid']}³ grid)")
         lines.append(f"3-D grid every ≤ {s['grid_spacing_mm']:g} mm, OFFSET_AV_RATIO "
                      f"{s['offset_av_ratio']:g}, COMP_FILE_TYPE {s['comp_file_type']}; largest "
                      f"|applied − expected| correction {self.applied * 1e6:.3f} µm")

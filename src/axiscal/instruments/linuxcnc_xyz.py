@@ -13,8 +13,8 @@ OFFSET_AV_RATIO``, ``axis.L.eoffset-enable``, ``-scale``, ``-counts``).
 until the external offsets have settled on the correction of the final commanded position
 (the component has run two cycles since the move ended, so it evaluated the final position, even
 on a loaded computer; then ``axis.L.eoffset`` equal to ``axis.L.eoffset-request``: the offset
-ramps, limited by OFFSET_AV_RATIO of the axis's velocity and acceleration) and reads the three joints'
-``motor-pos-cmd`` (command + offset + trim: what reaches the drives) through an in-process HAL
+ramps, limited by OFFSET_AV_RATIO of the axis's velocity and acceleration) and reads the three
+joints' ``motor-pos-cmd`` (command + offset + trim: what reaches the drives) through an in-process HAL
 component (``axiscal-xyz``).
 """
 
