@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report._figures import nice_step, polar_frame, polar_rings, pyplot, save_figure
 from axiscal.report.labels import fmt
-from axiscal.report.squareness_plots import _nice, _pyplot, _save
 
 __all__ = ["RANKING_CAPTION", "RANKING_HEADERS", "diagnosis_figure", "ranking_rows",
            "save_diagnosis_plot", "write_diagnosis_report"]
@@ -22,7 +22,7 @@ _COLOURS = {"ccw": "tab:blue", "cw": "tab:red"}
 
 def diagnosis_figure(runs, diagnosis, title: str = "Ballbar diagnosis"):
     """Polar plot (left) and ranked diagnostic bar chart (right)."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(15, 7.4), gridspec_kw={"width_ratios": [1, 1.1]})
     _polar(ax, runs, diagnosis)
     _bars(bx, diagnosis)
@@ -33,7 +33,7 @@ def diagnosis_figure(runs, diagnosis, title: str = "Ballbar diagnosis"):
 
 def save_diagnosis_plot(runs, diagnosis, path, title: str = "Ballbar diagnosis") -> Path:
     """Write :func:`diagnosis_figure` to ``path``."""
-    return _save(diagnosis_figure(runs, diagnosis, title), path)
+    return save_figure(diagnosis_figure(runs, diagnosis, title), path, dpi=110, tight=False)
 
 
 def write_diagnosis_report(path, runs, diagnosis, title: str = "Ballbar diagnosis") -> Path:
@@ -99,12 +99,8 @@ def _polar(ax, runs, d) -> None:
     c = d.circular
     devs = np.concatenate([r.deviations for r in runs])
     g = max(v for v in (c.G_ccw, c.G_cw, 1e-9) if v is not None)
-    ring = _nice(max(float(np.max(np.abs(devs))), g / 2, 1e-9))
-    base, k = 1.0, 0.45 / ring
-    t = np.linspace(0, 2 * np.pi, 361)
-    for v, style in ((-ring, ":"), (0.0, "-"), (ring, ":")):
-        ax.plot((base + k * v) * np.cos(t), (base + k * v) * np.sin(t), color="0.6", ls=style,
-                lw=0.8)
+    ring = nice_step(max(float(np.max(np.abs(devs))), g / 2, 1e-9))
+    base, k, t = polar_rings(ax, ring)
     inner, outer = base - k * g / 2, base + k * g / 2
     ax.fill(np.r_[outer * np.cos(t), inner * np.cos(t[::-1])],
             np.r_[outer * np.sin(t), inner * np.sin(t[::-1])], color="tab:green", alpha=0.12,
@@ -121,16 +117,8 @@ def _polar(ax, runs, d) -> None:
             p0 = np.array([rr * np.cos(a[i]), rr * np.sin(a[i])])
             tang = sense * np.array([-np.sin(a[i]), np.cos(a[i])]) * 0.15
             ax.annotate("", p0 + tang, p0, arrowprops=dict(arrowstyle="->", color=col, lw=1.5))
-    ax.set_aspect("equal")
-    ax.set_xlim(-1.7, 1.7)
-    ax.set_ylim(-1.7, 1.7)
-    ax.axhline(0, color="0.85", lw=0.6)
-    ax.axvline(0, color="0.85", lw=0.6)
-    a0, a1 = c.squareness.axes
-    ax.set_xlabel(f"+{a0} →   ({ring * 1e6:.3g} µm per dotted ring; ○ start point)")
-    ax.set_ylabel(f"+{a1} →")
-    ax.set_xticks([])
-    ax.set_yticks([])
+    polar_frame(ax, c.squareness.axes, (-1.7, 1.7), (-1.7, 1.7),
+                f"({ring * 1e6:.3g} µm per dotted ring; ○ start point)")
     ax.legend(loc="upper right", fontsize=9)
     ax.set_title(f"R = {fmt(c.radius * 1e3, 'mm')} mm, {fmt(c.arc_deg, '°')}°, G ccw {_fmt(c.G_ccw)}, "
                  f"G cw {_fmt(c.G_cw)}, H {_fmt(c.H)}", fontsize=10)

@@ -10,10 +10,10 @@ Each returns a matplotlib figure; :func:`save_figure` writes one atomically by e
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
+from axiscal.report._figures import pyplot as _pyplot
+from axiscal.report._figures import save_figure
 from axiscal.units import ARCSEC, UM
 
 __all__ = ["five_errors_figure", "stability_figure", "polar_figure", "save_figure", "LABELS"]
@@ -27,15 +27,6 @@ LABELS = {
     "dz": ("δz axial [µm]", UM),
 }
 _COLOURS = ["#1f5fa8", "#d1601f", "#2f8f46", "#8a3ea8", "#a82f3e"]
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def five_errors_figure(runs, truth=None, title: str = "Five motion errors against angle"):
@@ -147,10 +138,3 @@ def ring_step(peak: float) -> float:
         if peak / (m * k) <= 2.0:
             return float(m * k)
     return float(10.0 * k)
-
-
-def save_figure(fig, path) -> Path:
-    """Write a figure atomically (format from the extension: png, svg, pdf) and close it."""
-    from axiscal.report.plots import save_figure as _save
-
-    return _save(fig, path)

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report._figures import pyplot as _pyplot
+from axiscal.report._figures import save_figure
 from axiscal.report.labels import fmt, unit_text
 
 __all__ = ["iso230_2_figure", "save_iso230_2_plot", "save_figure", "UP_COLOR", "DOWN_COLOR"]
@@ -19,15 +21,6 @@ __all__ = ["iso230_2_figure", "save_iso230_2_plot", "save_figure", "UP_COLOR", "
 UP_COLOR = "#0b5fa5"
 DOWN_COLOR = "#c0392b"
 BI_COLOR = "#2d3436"
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def iso230_2_figure(result, dataset=None, title: str | None = None, truth=None, *,
@@ -180,25 +173,6 @@ def _parameter_box(result, u: str) -> str:
             lines.append(f"{label}{' ' * pad}{fmt(v, u):>9}")   # the tables' decimals
     lines.append(f"runs {result.n_runs}, targets {result.targets.size}")
     return "\n".join(lines)
-
-
-def save_figure(fig, path) -> Path:
-    """Save a figure by the file's extension (png, svg, pdf) atomically and close it."""
-    import io
-
-    from axiscal.errors import InputError
-    from axiscal.io._files import write_bytes_atomic
-
-    plt = _pyplot()
-    p = Path(path)
-    fmt = p.suffix.lower().lstrip(".") or "png"
-    if fmt not in {"png", "svg", "pdf"}:
-        plt.close(fig)
-        raise InputError(f"plot file {p.name}: use a .png, .svg or .pdf extension")
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, bbox_inches="tight", dpi=150 if fmt == "png" else None)
-    plt.close(fig)
-    return write_bytes_atomic(p, buf.getvalue())
 
 
 def save_iso230_2_plot(result, dataset, path, title: str | None = None, truth=None) -> Path:

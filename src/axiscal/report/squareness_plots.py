@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report._figures import nice_step, polar_frame, polar_rings, pyplot, save_figure
 from axiscal.report.labels import fmt
 
 __all__ = ["comparison_figure", "save_comparison_plot", "ballbar_figure", "save_ballbar_plot",
@@ -38,7 +39,7 @@ def magnification(machine, target: float = 0.04) -> float:
 
 def comparison_figure(machine, comparison):
     """Chapman, Calibration of machine squareness Figure 13-26 style: one panel per method, distorted plane, paths, results."""
-    plt = _pyplot()
+    plt = pyplot()
     mag = magnification(machine)
     aspect = machine.length_y / machine.length_x
     fig, axes = plt.subplots(2, 3, figsize=(15, 2 + 8.6 * max(aspect, 0.45)))
@@ -57,25 +58,17 @@ def comparison_figure(machine, comparison):
 
 def save_comparison_plot(machine, comparison, path) -> Path:
     """Write :func:`comparison_figure` to ``path``."""
-    return _save(comparison_figure(machine, comparison), path)
+    return save_figure(comparison_figure(machine, comparison), path, dpi=110, tight=False)
 
 
 def ballbar_figure(runs, result, title: str = "Ballbar test"):
     """Polar plot of a ballbar test: deviations magnified about the nominal circle."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 8.4))
     devs = np.concatenate([r.deviations for r in runs])
     span = max(float(np.max(np.abs(devs))), 1e-9)
-    ring = _nice(span)  # µm-scale rings at ±ring around the nominal circle
-    base, k = 1.0, 0.45 / ring
-    t = np.linspace(0, 2 * np.pi, 361)
-    for v, style in ((-ring, ":"), (0.0, "-"), (ring, ":")):
-        ax.plot((base + k * v) * np.cos(t), (base + k * v) * np.sin(t), color="0.6", ls=style,
-                lw=0.8)
-        c, sn = np.cos(np.radians(62)), np.sin(np.radians(62))
-        ax.annotate(f"{v * 1e6:+.3g} µm" if v else "nominal", ((base + k * v) * c,
-                    (base + k * v) * sn), fontsize=8, color="0.35", xytext=(4, 0),
-                    textcoords="offset points", va="center")
+    ring = nice_step(span)  # µm-scale rings at ±ring around the nominal circle
+    base, k, _t = polar_rings(ax, ring, labelled=True)
     colours = {"ccw": "tab:blue", "cw": "tab:red"}
     for r in runs:
         order = np.argsort(r.angles)
@@ -84,16 +77,8 @@ def ballbar_figure(runs, result, title: str = "Ballbar test"):
             a, d = np.r_[a, a[:1] + 2 * np.pi], np.r_[d, d[:1]]
         ax.plot((base + k * d) * np.cos(a), (base + k * d) * np.sin(a), color=colours[r.direction],
                 lw=1.4, label=r.direction.upper())
-    ax.set_aspect("equal")
-    ax.set_xlim(-1.75, 1.75)
-    ax.set_ylim(-2.25, 1.6)
-    ax.axhline(0, color="0.85", lw=0.6)
-    ax.axvline(0, color="0.85", lw=0.6)
-    a0, a1 = result.squareness.axes
-    ax.set_xlabel(f"+{a0} →   (radial scale: {ring * 1e6:.3g} µm per dotted ring)")
-    ax.set_ylabel(f"+{a1} →")
-    ax.set_xticks([])
-    ax.set_yticks([])
+    polar_frame(ax, result.squareness.axes, (-1.75, 1.75), (-2.25, 1.6),
+                f"(radial scale: {ring * 1e6:.3g} µm per dotted ring)")
     ax.legend(loc="upper right")
     ax.text(-1.7, -2.2, _ballbar_text(result), fontsize=9, family="monospace", va="bottom",
             bbox=dict(boxstyle="round", fc="white", ec="0.7"))
@@ -104,12 +89,12 @@ def ballbar_figure(runs, result, title: str = "Ballbar test"):
 
 def save_ballbar_plot(runs, result, path, title: str = "Ballbar test") -> Path:
     """Write :func:`ballbar_figure` to ``path``."""
-    return _save(ballbar_figure(runs, result, title), path)
+    return save_figure(ballbar_figure(runs, result, title), path, dpi=110, tight=False)
 
 
 def straightness_figure(data, result):
     """Readings, reference line and the band of a straightness measurement."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(9, 4.8))
     x, y = data.positions * 1e3, data.deviations * 1e6
     line = result.line
@@ -132,7 +117,7 @@ def straightness_figure(data, result):
 def biaxial_figure(one, two, r, title: str = "Bi-axial squareness"):
     """The two trajectories of a bi-axial test, each with its reference line, and the
     squareness in the title (ISO 230-1 §3.6.7)."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
     for ax, data, res in ((axes[0], one, r.first), (axes[1], two, r.second)):
         x, y = data.positions * 1e3, data.deviations * 1e6
@@ -153,7 +138,7 @@ def biaxial_figure(one, two, r, title: str = "Bi-axial squareness"):
 
 def diagonal_figure(d, r, title: str = "Diagonal squareness"):
     """The length errors along the two diagonals of a multi-point diagonal test (ISO 230-6)."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(9, 4.4))
     ax.plot(d.positions_d1 * 1e3, d.errors_d1 * 1e6, "o-", color="tab:red", ms=3,
             label="D1 (along -X +Y, from corner +X -Y)")
@@ -171,43 +156,13 @@ def diagonal_figure(d, r, title: str = "Diagonal squareness"):
 
 def save_straightness_plot(data, result, path) -> Path:
     """Write :func:`straightness_figure` to ``path``."""
-    return _save(straightness_figure(data, result), path)
+    return save_figure(straightness_figure(data, result), path, dpi=110, tight=False)
 
 
 # --- helpers -------------------------------------------------------------------------------------
 
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _save(fig, path) -> Path:
-    import io
-
-    from axiscal.io._files import write_bytes_atomic
-
-    p = Path(path)
-    fmt = p.suffix.lstrip(".").lower() or "png"
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, dpi=110)
-    _pyplot().close(fig)
-    return write_bytes_atomic(p, buf.getvalue())
-
-
 def _kind(method: str) -> str:
     return method.split()[0] if method[0] in "TL" else method
-
-
-def _nice(v: float) -> float:
-    step = 10 ** np.floor(np.log10(v))
-    for m in (1, 2, 5, 10):
-        if m * step >= v:
-            return float(m * step)
-    return float(10 * step)  # pragma: no cover
 
 
 def _warp(machine, x, y, mag):
