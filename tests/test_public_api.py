@@ -204,3 +204,82 @@ def test_per_target_table_as_a_dataframe(laser_file):
         return
     df = ev.to_dataframe()
     assert list(df["target"]) == [t["target"] for t in ev.to_dict()["targets"]]
+
+
+SCALE_SINGLE = ROOT / "examples" / "scale_single.toml"
+SCALE_GANTRY = ROOT / "examples" / "scale_gantry.toml"
+MOTION = ROOT / "examples" / "motion_indexing_table.toml"
+RAW = ROOT / "examples" / "raw_readings_vmc800_x.csv"
+ENV_LOG = ROOT / "examples" / "environment_log_vmc800_x.csv"
+
+
+def _figure_and_report(sim, path: Path, title: str) -> None:
+    from matplotlib.figure import Figure
+
+    assert isinstance(sim.plot(), Figure)
+    assert title in sim.report(path).read_text("utf-8")
+    assert "<svg" in sim._repr_html_()
+
+
+def test_scale_homing_equals_scale_home(tmp_path):
+    """A configuration with [laser], [compensator], [switch], [homing]: referencing of one
+    laser-scale axis, as 'axiscal scale home --json' (with and without --seed)."""
+    sim = axiscal.simulate(SCALE_SINGLE)
+    assert sim.kind == "scale-homing"
+    d = sim.to_dict()
+    assert d == _cli_json("scale", "home", SCALE_SINGLE)
+    assert d["homed"] is True and "tracking" in d
+    assert axiscal.simulate(SCALE_SINGLE, seed=7).to_dict() == _cli_json(
+        "scale", "home", SCALE_SINGLE, "--seed", 7)
+    _figure_and_report(sim, tmp_path / "home.html", "Laser scale referencing")
+
+
+def test_gantry_homing_equals_scale_gantry(tmp_path):
+    sim = axiscal.simulate(SCALE_GANTRY)
+    assert sim.kind == "gantry-homing"
+    assert sim.to_dict() == _cli_json("scale", "gantry", SCALE_GANTRY)
+    assert sim.to_dict()["required_skew_limit"] > 256   # above one period of counts
+    _figure_and_report(sim, tmp_path / "gantry.html", "Twin-axis homing")
+
+
+def test_five_dof_equals_motion_simulate(tmp_path):
+    """Five motion errors and ISO 230-7, as 'axiscal motion simulate --json'."""
+    sim = axiscal.simulate(str(MOTION))
+    assert sim.kind == "five-dof"
+    d = sim.to_dict()
+    assert d == _cli_json("motion", "simulate", str(MOTION))
+    assert sim.result.n_runs == 1 and d["iso230_7"]["n_runs"] == 1
+    assert len(sim.dataset.theta) == len(d["positions"]) == 13   # 0° to 360° by 30° (closure)
+    _figure_and_report(sim, tmp_path / "motion.html", "Five motion errors")
+
+
+def test_volumetric_map_equals_volumetric_map_command(tmp_path):
+    r = runner.invoke(app, ["volumetric", "simulate", "--out", str(tmp_path / "vol")])
+    assert r.exit_code == 0, r.output
+    cfg = tmp_path / "vol" / "volumetric.toml"
+    vm = axiscal.volumetric_map(cfg, grid=6)
+    d = vm.to_dict()
+    assert d == _cli_json("volumetric", "map", cfg, "--grid", 6)
+    assert d["grid_points"] == 6 ** 3 and len(d["diagonals"]) == 4
+    assert d["mapped_minus_true_um"] < d["largest_um"]
+    _figure_and_report(vm, tmp_path / "vol.html", "olumetric")
+    with pytest.raises(axiscal.errors.InputError, match="grid"):
+        axiscal.volumetric_map(cfg, grid=1)
+
+
+def test_compensate_environment_equals_the_cli(tmp_path):
+    """Raw readings + environment log: the same JSON, the same compensated file, and its
+    ISO 230-2 evaluation equal to 'axiscal iso230-2' of the file the command wrote."""
+    comp = axiscal.compensate_environment(RAW, ENV_LOG, out=tmp_path / "api.csv")
+    cli = _cli_json("compensate-environment", RAW, "--environment", ENV_LOG, "--out",
+                    tmp_path / "cli.csv")
+    d = comp.to_dict()
+    assert d.pop("out") == str(tmp_path / "api.csv") and cli.pop("out") == str(tmp_path / "cli.csv")
+    assert d == cli and d["readings"] == 30
+    assert (tmp_path / "api.csv").read_text("utf-8") == (tmp_path / "cli.csv").read_text("utf-8")
+    ev = axiscal.evaluate(axiscal.read(tmp_path / "api.csv"))
+    assert ev.to_dict() == _cli_json("iso230-2", tmp_path / "cli.csv")
+    assert "Ciddor" in str(comp)
+    _figure_and_report(comp, tmp_path / "env.html", "Environmental compensation")
+    with pytest.raises(axiscal.errors.InputError, match="unknown condition"):
+        axiscal.compensate_environment(RAW, ENV_LOG, temperature=20.0)

@@ -32,7 +32,7 @@ if TYPE_CHECKING:   # pragma: no cover - typing only
     from matplotlib.figure import Figure
 
 __all__ = ["Evaluation", "Simulation", "History", "read", "evaluate", "simulate",
-           "compensation_table", "write_table"]
+           "volumetric_map", "compensate_environment", "compensation_table", "write_table"]
 
 PathLike = Union[str, Path]
 
@@ -109,40 +109,140 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
             return Evaluation(kind, _KIND_STANDARD[kind], ev.dataset, ev.evaluation, ev.result)
         data = read(data)
     if isinstance(data, PositioningDataset):
-        return _positioning(data, standard.strip().lower(), dict(tolerances or {}), rule,
-                            dict(uncertainty or {}))
-    return _other(data)
+        from axiscal.report.evaluations import positioning_evaluation
+
+        return Evaluation(**positioning_evaluation(data, standard.strip().lower(),
+                                                   dict(tolerances or {}), rule,
+                                                   dict(uncertainty or {})))
+    from axiscal.report.evaluations import ballbar_evaluation
+
+    return Evaluation(**ballbar_evaluation(data))
 
 
-def simulate(config: Union[PathLike, Mapping[str, Any]],
-             seed: int | None = None) -> "Simulation":
-    """Simulate a configured test and evaluate it by ISO 230-2:2014.
+def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None, *,
+             kind: str | None = None) -> "Simulation":
+    """Simulate an instrument or a machine from its configuration.
 
     Parameters
     ----------
     config : str, Path or mapping
-        A TOML configuration, or the same as a dict: a positioning test of a simulated axis
-        (``[axis]``, ``[test]``, ``[meta]``; as ``axiscal simulate``) or, with a
-        ``[calibrator]`` table, a rotary-axis calibration with an angular interferometer and a
-        counter-rotating reference calibrator (as ``axiscal rotary simulate``; Renishaw,
-        "Interferometric calibration of rotary axes").
+        A TOML configuration (a positioning test or a rotary calibration also as a dict),
+        its kind told by its tables, in this order: ``[calibrator]`` a rotary calibration
+        with the reference calibrator (``axiscal rotary simulate``; Renishaw,
+        "Interferometric calibration of rotary axes"); ``[gantry]`` twin-axis homing
+        (``scale gantry``); ``[laser]``, ``[compensator]``, ``[switch]`` or ``[homing]``
+        referencing of one laser-scale axis (``scale home``; Renishaw, "Laser scale axis
+        referencing"); ``[instrument]``, ``[mounting]``, ``[reference]``, ``[drift]`` or
+        ``[axis.positioning]`` ... the five motion errors of a rotary axis and ISO 230-7:2015
+        (``motion simulate``; Optics Express 2018, "Five-DOF motion errors of a rotary
+        axis"); otherwise a positioning test by ISO 230-2:2014 (``axiscal simulate``).
     seed : int, optional
-        Seed of ``numpy.random.default_rng``; the same seed gives the same readings. Default
-        as the commands: 1 for a positioning test, the configuration's for a rotary calibration.
+        Seed of the simulation; the same seed gives the same readings. Default as the
+        commands: 1 for a positioning test, otherwise the configuration's.
+    kind : str, optional
+        ``positioning``, ``rotary-calibration``, ``scale-homing``, ``gantry-homing`` or
+        ``five-dof``, instead of telling it from the tables.
 
     Returns
     -------
     Simulation
     """
+    from axiscal.errors import InputError
+
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
+        raise InputError(f"seed {seed!r}: a whole number >= 0")
+    from axiscal.io import simulation_results as sr
+
     cfg = _load_config(config)
-    if "calibrator" in cfg:
+    kind = kind or sr.simulation_kind(cfg)
+    if kind in ("scale-homing", "gantry-homing", "five-dof"):
+        if isinstance(config, Mapping):
+            raise InputError(f"simulate: a {kind} configuration is read from its TOML file; "
+                             "give its path")
+        return Simulation(sr.run_configured(kind, config, seed), seed, kind, Path(config).name)
+    if kind == "rotary-calibration":
         from axiscal.procedures.rotary_config import run_rotary_config
 
         return Simulation(run_rotary_config(cfg, seed), seed, "rotary-calibration")
+    if kind != "positioning":
+        raise InputError(f"kind {kind!r}: one of {', '.join(sr.SIMULATION_KINDS)}")
     from axiscal.procedures.positioning import simulate_from_config
 
     seed = 1 if seed is None else seed
     return Simulation(simulate_from_config(cfg, seed=seed), seed)
+
+
+def volumetric_map(config: PathLike, grid: int = 11) -> "Simulation":
+    """The volumetric error of a three-axis machine from its 21 measured geometric errors.
+
+    The errors of ISO 230-1:2012 combined by the rigid-body model of ISO/TR 16907:2015 over the
+    working volume, and the body diagonals of ISO 230-6:2002 (``axiscal volumetric map --json``;
+    a simulated configuration adds ``truth`` and ``mapped_minus_true_um``).
+
+    Parameters
+    ----------
+    config : str or Path
+        The volumetric configuration (TOML; format in the README, "Volumetric configuration").
+    grid : int
+        Grid points per axis, 2 to 100 (default 11, as the command).
+
+    Returns
+    -------
+    Simulation
+        ``kind`` ``volumetric-map``; ``result`` the ``VolumetricMap``.
+    """
+    from axiscal.errors import InputError
+    from axiscal.io.simulation_results import volumetric_map as run_map
+    from axiscal.io.volumetric import read_volumetric_config
+
+    if isinstance(grid, bool) or not isinstance(grid, int) or not 2 <= grid <= 100:
+        raise InputError(f"grid {grid!r}: a whole number of points per axis, 2 to 100")
+    return Simulation(run_map(read_volumetric_config(config), grid), None, "volumetric-map",
+                      Path(config).name)
+
+
+def compensate_environment(raw: PathLike, environment: PathLike | None = None, *,
+                           out: PathLike | None = None, equation: str = "ciddor",
+                           air_only: bool = False, max_gap: float = 300.0,
+                           **conditions: float) -> "Simulation":
+    """Raw laser readings compensated for the air at each reading's time and referred to 20 °C.
+
+    As ``axiscal compensate-environment RAW --environment ENV --out OUT --json``: the air's
+    refractive index by the named equation and the dead path at each reading, the axis referred
+    to 20 °C by ISO 1:2016. Evaluate the test with ``axiscal.evaluate(result.dataset)``.
+
+    Parameters
+    ----------
+    raw : str or Path
+        Raw readings (CSV ``time_s,target,direction,run,reading``; :mod:`axiscal.io.measured`).
+    environment : str or Path, optional
+        The environment log over the test (CSV or JSON).
+    out : str or Path, optional
+        Write the compensated positioning CSV there (named in ``to_dict()["out"]``).
+    equation : str
+        ``ciddor`` (default), ``edlen`` or ``birch-downs``.
+    air_only : bool
+        Compensate the air only, not the material.
+    max_gap : float, s
+        Longest gap in the log a reading may fall into (default 300 s, as the command).
+    **conditions : float
+        Instead of the log's: ``air_temperature`` (°C), ``pressure`` (Pa), ``humidity`` (%),
+        ``material_temperature`` (°C), ``expansion_ppm`` (ppm/K).
+
+    Returns
+    -------
+    Simulation
+        ``kind`` ``environment``; ``dataset`` the compensated test.
+    """
+    from axiscal.io.measured import read_environment_log, read_raw_readings
+    from axiscal.io.simulation_results import environment_compensation, environment_options
+
+    options = environment_options(conditions)
+    raw_data = read_raw_readings(raw)
+    log = read_environment_log(environment) if environment is not None else None
+    run = environment_compensation(raw_data, log, out=out, equation=equation,
+                                   normalise_material=not air_only, max_gap=max_gap, **options)
+    return Simulation(run, None, "environment", Path(raw).name)
 
 
 def compensation_table(source: Any, spacing: float | None = None, *,
@@ -273,12 +373,16 @@ class Evaluation:
 
     def plot(self) -> "Figure":
         """The evaluation's figure (matplotlib), as its command's ``--plot`` draws it."""
-        return _figure(self)
+        from axiscal.report.evaluations import evaluation_figure
+
+        return evaluation_figure(self)
 
     def report(self, path: PathLike) -> Path:
         """Write the HTML report (``.html``) of the evaluation, as ``--report`` (``axiscal
         evaluate``, ``ballbar analyze``) does; returns the path."""
-        return Path(_write_report(self, Path(path)))
+        from axiscal.report.evaluations import write_evaluation_report
+
+        return Path(write_evaluation_report(self, Path(path)))
 
     def _repr_html_(self) -> str:
         from axiscal.report.evaluations import notebook_html
@@ -291,46 +395,67 @@ class Evaluation:
 
 @dataclass(frozen=True, eq=False)
 class Simulation:
-    """A simulated test with the truth it was built from.
+    """A simulated test with the truth it was built from, or a run computed from a
+    configuration or raw readings (volumetric map, environmental compensation).
 
     Attributes
     ----------
     test : object
         The library's record: a positioning ``SimulatedTest`` (``dataset``, ``result``,
-        ``truth``) or a ``RotaryCalibrationResult`` (``capture``, ``result``,
-        ``truth_result``, ``budget`` ...).
+        ``truth``), a ``RotaryCalibrationResult`` (``capture``, ``result``, ``truth_result``,
+        ``budget`` ...), or for the other kinds an
+        :class:`axiscal.io.simulation_results.SimulationRun` (``record``, ``json``, ``parts``).
     seed : int or None
         The seed it ran with (None: the configuration's).
     kind : str
-        ``positioning`` or ``rotary-calibration``.
+        ``positioning``, ``rotary-calibration``, ``scale-homing``, ``gantry-homing``,
+        ``five-dof``, ``volumetric-map`` or ``environment``.
+    name : str
+        The configuration's (or raw file's) name, in the figure's and the report's titles.
     """
 
     test: Any
     seed: int | None
     kind: str = "positioning"
+    name: str = ""
 
     @property
     def dataset(self) -> Any:
-        """The simulated readings (a PositioningDataset)."""
+        """The simulated readings (a PositioningDataset; five-DOF: the MotionErrorData; an
+        environmental compensation: the compensated test; scale homing and a volumetric map:
+        None)."""
+        if self._run:
+            return self.test.parts.get("dataset", self.test.parts.get("data"))
         return self.test.capture.dataset if self._rotary else self.test.dataset
 
     @property
     def result(self) -> Any:
-        """Their ISO 230-2:2014 evaluation."""
+        """Their evaluation: ISO 230-2:2014 (positioning, rotary), ISO 230-7:2015 (five-DOF);
+        the library's record for the other kinds (``ReferencingRun``, ``TwinHomingResult``,
+        ``VolumetricMap``, ``ReadingCorrections``)."""
+        if self._run:
+            return self.test.parts.get("result", self.test.record)
         return self.test.result
 
     @property
     def _rotary(self) -> bool:
         return self.kind == "rotary-calibration"
 
+    @property
+    def _run(self) -> bool:
+        return self.kind not in ("positioning", "rotary-calibration")
+
     def to_dict(self) -> dict:
         """The object of the command's ``--json``: ``axiscal simulate`` (the ISO 230-2 keys,
-        ``truth``, ``seed``) or ``axiscal rotary simulate``."""
+        ``truth``, ``seed``), ``rotary simulate``, ``scale home``, ``scale gantry``, ``motion
+        simulate``, ``volumetric map`` or ``compensate-environment``."""
         import json
 
         from axiscal._json import jsonable
         from axiscal.io.results import result_json
 
+        if self._run:
+            return json.loads(json.dumps(jsonable(self.test.json)))
         if self._rotary:
             return json.loads(json.dumps(jsonable(self.test.summary())))
         d = result_json(self.test.result)
@@ -338,8 +463,14 @@ class Simulation:
         return json.loads(json.dumps(d))
 
     def plot(self) -> "Figure":
-        """The ISO 230-2 figure with the simulation's truth drawn (a rotary calibration: the
-        measured error beside the truth and the budget, as ``rotary simulate --plot``)."""
+        """The figure of the command's ``--plot``: the ISO 230-2 figure with the simulation's
+        truth drawn; a rotary calibration's measured error beside the truth and the budget; the
+        referencing signals; the gantry's skew; the five errors against angle; the volumetric
+        grid and slices; the air, material and corrections over the test."""
+        if self._run:
+            from axiscal.report.simulation_views import simulation_figure
+
+            return simulation_figure(self.test, self.name)
         if self._rotary:
             from axiscal.report.rotary import rotary_error_figure
 
@@ -352,7 +483,12 @@ class Simulation:
         return iso230_2_figure(s.result, s.dataset, truth=truth)
 
     def report(self, path: PathLike) -> Path:
-        """Write the simulation report (HTML), as the command's ``--report``."""
+        """Write the report (HTML, or PDF by extension where the command allows), as the
+        command's ``--report``."""
+        if self._run:
+            from axiscal.report.simulation_views import write_simulation_report
+
+            return Path(write_simulation_report(self.test, path, self.name))
         if self._rotary:
             from axiscal.report.rotary import write_rotary_report
 
@@ -369,6 +505,8 @@ class Simulation:
         from axiscal.errors import InputError
         from axiscal.io._files import write_text_atomic
 
+        if self.kind != "positioning" and not self._rotary:
+            raise InputError(f"write_data: a {self.kind} run has no positioning readings")
         suffix = Path(path).suffix.lower()
         if suffix == ".json":
             from axiscal.io.json import format_positioning_json as fmt
@@ -382,10 +520,15 @@ class Simulation:
     def _repr_html_(self) -> str:
         from axiscal.report.evaluations import notebook_html
 
-        return notebook_html(self.kind, DEFAULT_STANDARD, self.to_dict(), self.plot())
+        from axiscal.io.simulation_results import DOCUMENTS
+
+        return notebook_html(self.kind, DOCUMENTS.get(self.kind, DEFAULT_STANDARD),
+                             self.to_dict(), self.plot())
 
     def __str__(self) -> str:
-        return str(self.test if self._rotary else self.test.result)
+        if self.kind == "environment":
+            return str(self.test.json["applied"])
+        return str(self.test if self._rotary else self.result)
 
 
 class History:
@@ -455,118 +598,9 @@ def _evaluated(path: PathLike, kind: str) -> Any:
     return evaluate_file(Path(path).read_bytes(), Path(path).name, kind)
 
 
-def _positioning(ds: Any, key: str, tolerances: dict, rule: str | None,
-                 uncertainty: dict) -> Evaluation:
-    from axiscal.errors import InputError
-    from axiscal.standards import positioning_standards as ps
-
-    if key == DEFAULT_STANDARD:
-        return _iso230_2(ds, tolerances, rule, uncertainty)
-    if key != "all" and key not in ps.STANDARDS:
-        raise InputError(f"standard {key!r}: one of {', '.join(ps.STANDARDS)} or all")
-    if key == "all" and tolerances:
-        raise InputError("tolerances need one standard (parameter names differ between them)")
-    results = (ps.evaluate_all(ds) if key == "all"
-               else ((ps.STANDARDS[key], ps.evaluate(key, ds)),))
-    first = results[0][1]
-    verdicts: tuple = ()
-    if tolerances:
-        if isinstance(first, str):
-            raise InputError(f"tolerances: {key} was not evaluated: {first}")
-        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule,
-                                             uncertainty or None))
-    from axiscal.io.results import standard_json, verdicts_json
-
-    d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
-         "standards": [standard_json(std, res) for std, res in results]}
-    if verdicts:
-        from axiscal.standards.iso14253_1 import unprovable
-
-        d.update(verdicts_json(verdicts))
-        d["warnings"] = unprovable(verdicts, {"um": "µm"}.get(ds.deviation_unit,
-                                                             ds.deviation_unit))
-    return Evaluation("iso230-2", key, ds, results[0][1], d, _verdicts=tuple(verdicts),
-                      _results=tuple(results))
-
-
-def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict) -> Evaluation:
-    """As ``axiscal iso230-2 FILE --json`` (the user configuration's uncertainty inputs)."""
-    from axiscal.io.results import result_json
-    from axiscal.report.issue import budget_for, decisions_for, load_config
-    from axiscal.standards.iso230_2 import check_tolerances
-    from axiscal.standards.iso230_2 import evaluate as iso_evaluate
-
-    result = iso_evaluate(ds)
-    cfg = load_config(None)
-    if uncertainty:
-        cfg = {**cfg, "uncertainty": {**(cfg.get("uncertainty") or {}), **uncertainty}}
-    check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})
-    budget = budget_for(ds, result, cfg)
-    verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
-    d = {**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
-         "axis": ds.metadata.axis, "notes": ds.metadata.notes}
-    return Evaluation("iso230-2", DEFAULT_STANDARD, ds, result, d, budget, tuple(verdicts))
-
-
-def _other(data: Any) -> Evaluation:
-    """A ballbar dataset evaluated in memory; the other kinds are evaluated from their file."""
-    from axiscal.errors import InputError
-    from axiscal.io.ballbar import BallbarData
-    from axiscal.store.kinds import evaluate_ballbar
-    from axiscal._json import jsonable
-
-    if not isinstance(data, BallbarData):
-        raise InputError(f"evaluate: give the file's path for a {type(data).__name__} "
-                         "(a positioning or ballbar dataset is evaluated in memory)")
-    r = evaluate_ballbar(data)
-    return Evaluation("ballbar", "iso230-4", data, r,
-                      jsonable({"plane": "".join(data.axes), **r.as_dict()}))
-
-
 def _load_config(config: Union[PathLike, Mapping[str, Any]]) -> dict:
     if isinstance(config, Mapping):
         return dict(config)
     from axiscal.io._files import load_toml
 
     return load_toml(Path(config))
-
-
-def _figure(ev: Evaluation) -> "Figure":
-    from axiscal.errors import InputError
-
-    if ev.kind == "iso230-2":
-        from axiscal.report import plots
-
-        if ev.standard == DEFAULT_STANDARD:
-            return plots.iso230_2_figure(ev.result, ev.dataset)
-        fig = (plots.standards_figure(ev.dataset, ev._results) if ev.standard == "all"
-               else plots.standard_figure(ev.dataset, *ev._results[0]))
-        if fig is None:
-            raise InputError("plot: no standard evaluates this test, so there is no figure")
-        return fig
-    from axiscal.report.evaluations import kind_figure
-
-    return kind_figure(ev.kind, ev.dataset, ev.result)
-
-
-def _write_report(ev: Evaluation, path: Path) -> Path:
-    from axiscal.report.html import positioning_report, standards_report, write_result_report
-
-    if ev.kind == "iso230-2" and ev.standard == DEFAULT_STANDARD:
-        from axiscal.report.uncertainty import add_uncertainty
-
-        rep = positioning_report(ev.dataset, ev.result, verdicts=ev._verdicts)
-        add_uncertainty(rep, ev._budget, ev._verdicts,
-                        [p for p, v in ev.result.parameters().items() if v is not None])
-        return rep.write(path)
-    if ev.kind == "iso230-2":
-        return standards_report(ev.dataset, ev._results, f"Positioning test by {ev.standard}",
-                                ev._verdicts).write(path)
-    if ev.kind == "ballbar" and hasattr(ev.result, "circular"):
-        from axiscal.report.ballbar_plots import write_diagnosis_report
-
-        return write_diagnosis_report(path, ev.dataset.runs, ev.result)
-    title = {"straightness": "Straightness (ISO 230-1)", "diagonal": "Diagonal squareness "
-             "(ISO 230-6)", "motion": "Error motions of a rotary axis (ISO 230-7)",
-             "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
-    return write_result_report(path, title, ev._json, figure=_figure(ev))

@@ -77,8 +77,6 @@ def compensate_environment(
 
     Example: axiscal compensate-environment raw.csv --environment env.csv --out data.csv
     """
-    from axiscal.io._files import write_text_atomic
-    from axiscal.io.csv import format_positioning_csv
     from axiscal.io.measured import read_environment_log, read_raw_readings
     from axiscal.io.simulation_results import environment_compensation
 
@@ -95,7 +93,6 @@ def compensate_environment(
         material_temperature=material_temperature,
         expansion_coefficient=None if expansion_ppm is None else expansion_ppm * 1e-6)
     ds, d = sim.parts["dataset"], sim.json
-    write_text_atomic(out, format_positioning_csv(ds))
     if plot is not None:
         from axiscal.report.plots import save_figure
         from axiscal.report.simulation_views import simulation_figure

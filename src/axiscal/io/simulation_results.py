@@ -27,8 +27,9 @@ from typing import Any
 
 __all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation", "iso230_7_json",
            "volumetric_map", "simulated_volumetric_machine", "environment_compensation",
-           "environment_json",
-           "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M"]
+           "environment_options", "environment_json",
+           "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M", "SIMULATION_KINDS", "DOCUMENTS",
+           "simulation_kind", "run_configured"]
 
 #: The five channels of the five-DOF system and their JSON keys (units in the names).
 MOTION_CHANNELS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um",
@@ -36,6 +37,51 @@ MOTION_CHANNELS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy"
 #: Squareness of ``axiscal volumetric simulate``'s machine (xy, yz, zx), µm/m: a configuration
 #: written without ``[simulation] squareness_um_per_m`` was simulated with these.
 TRUE_SQUARENESS_UM_PER_M = (25.0, -15.0, 30.0)
+
+
+#: What :func:`axiscal.simulate` runs, by the name of its kind.
+SIMULATION_KINDS = ("positioning", "rotary-calibration", "scale-homing", "gantry-homing",
+                    "five-dof")
+#: The document each kind of run follows, shown with its results in a notebook.
+DOCUMENTS = {"rotary-calibration": 'Renishaw, "Interferometric calibration of rotary axes"',
+             "scale-homing": 'Renishaw, "Laser scale axis referencing"',
+             "gantry-homing": 'Renishaw, "Laser scale axis referencing"',
+             "five-dof": "ISO 230-7:2015",
+             "volumetric-map": "ISO/TR 16907:2015 and ISO 230-6:2002",
+             "environment": "Ciddor 1996 and ISO 1:2016"}
+_SCALE_TABLES = ("laser", "compensator", "switch", "homing")
+_MOTION_TABLES = ("instrument", "mounting", "reference", "drift")
+_MOTION_AXIS = ("positioning", "tilt_x", "tilt_y", "radial_x", "radial_y", "axial")
+
+
+def simulation_kind(cfg: dict) -> str:
+    """The kind of simulation a configuration's tables ask for (the order of
+    :func:`axiscal.simulate`'s documentation)."""
+    axis = cfg.get("axis")
+    if "calibrator" in cfg:
+        return "rotary-calibration"
+    if "gantry" in cfg:
+        return "gantry-homing"
+    if any(t in cfg for t in _SCALE_TABLES):
+        return "scale-homing"
+    if any(t in cfg for t in _MOTION_TABLES) or (
+            isinstance(axis, dict) and any(isinstance(axis.get(k), dict) for k in _MOTION_AXIS)):
+        return "five-dof"
+    return "positioning"
+
+
+def run_configured(kind: str, path: Any, seed: int | None = None) -> "SimulationRun":
+    """Run a ``scale-homing``, ``gantry-homing`` or ``five-dof`` configuration file, as
+    ``axiscal scale home``, ``scale gantry`` and ``motion simulate`` do."""
+    from axiscal.io.scale_config import read_scale_config
+
+    if kind == "five-dof":
+        from axiscal.io.motion import read_motion_config
+
+        return motion_simulation(read_motion_config(path), seed, True, str(path))
+    if kind == "gantry-homing":
+        return gantry_homing(read_scale_config(path, gantry=True), seed)
+    return scale_homing(read_scale_config(path), seed)
 
 
 @dataclass(frozen=True, eq=False)
@@ -261,12 +307,32 @@ def environment_compensation(raw: Any, log: Any = None, *, out: Any = None,
     """``axiscal compensate-environment``: raw laser readings (``RawReadings``) compensated for
     the air at each reading's time and referred to 20 °C
     (:func:`axiscal.procedures.environment.compensate_raw_readings`, whose keyword options these
-    are); ``out`` is where the command writes the compensated test (only named in the JSON)."""
+    are); the compensated test is written to ``out`` (positioning CSV) if given."""
+    from axiscal.io._files import write_text_atomic
+    from axiscal.io.csv import format_positioning_csv
     from axiscal.procedures.environment import compensate_raw_readings
 
     ds, detail = compensate_raw_readings(raw, log, detail=True, **options)
+    if out is not None:
+        write_text_atomic(out, format_positioning_csv(ds))
     return SimulationRun("environment", detail, environment_json(ds, raw.readings.size, out),
                          {"dataset": ds})
+
+
+def environment_options(conditions: dict) -> dict:
+    """The conditions given instead of the log's (``air_temperature`` °C, ``pressure`` Pa,
+    ``humidity`` %, ``material_temperature`` °C, ``expansion_ppm`` ppm/K) as the keywords of
+    :func:`environment_compensation` (ppm/K to 1/K)."""
+    from axiscal.errors import InputError
+
+    known = ("air_temperature", "pressure", "humidity", "material_temperature", "expansion_ppm")
+    unknown = sorted(set(conditions) - set(known))
+    if unknown:
+        raise InputError(f"compensate_environment: unknown condition {unknown[0]!r} "
+                         f"(one of {', '.join(known)})")
+    opts = dict(conditions)
+    ppm = opts.pop("expansion_ppm", None)
+    return {**opts, "expansion_coefficient": None if ppm is None else ppm * 1e-6}
 
 
 def environment_json(ds: Any, readings: int, out: Any) -> dict:

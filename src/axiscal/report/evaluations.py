@@ -1,4 +1,8 @@
-"""The figure and the notebook view of one evaluation of any kind of test (public API).
+"""The evaluation, figure, report and notebook view of one test of any kind (public API).
+
+:func:`positioning_evaluation` and :func:`ballbar_evaluation` give the fields of
+:class:`axiscal.api.Evaluation` (the ``--json`` built by :mod:`axiscal.io.results`);
+:func:`evaluation_figure` and :func:`write_evaluation_report` its ``plot()`` and ``report()``.
 
 :func:`kind_figure` draws what the kind's command draws with ``--plot`` (``ballbar analyze``,
 ``straightness``, ``squareness diagonal --file``, ``motion analyze``); :func:`notebook_html` is
@@ -7,9 +11,14 @@ the ``_repr_html_`` of :class:`axiscal.api.Evaluation`: its scalar results, then
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
-__all__ = ["FIGURES", "kind_figure", "notebook_html"]
+__all__ = ["FIGURES", "kind_figure", "notebook_html", "positioning_evaluation",
+           "ballbar_evaluation", "evaluation_figure", "write_evaluation_report"]
+
+#: The key of ISO 230-2:2014, the standard of a positioning test unless another is named.
+ISO230_2 = "iso230-2:2014"
 
 
 def kind_figure(kind: str, dataset: Any, result: Any) -> Any:
@@ -66,3 +75,118 @@ def notebook_html(kind: str, standard: str, d: dict, fig: Any) -> str:
 
 def _cell(v: Any) -> str:
     return "—" if v is None else f"{v:.4g}" if isinstance(v, float) else str(v)
+
+
+def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None,
+                           uncertainty: dict) -> dict:
+    """The fields of :class:`axiscal.api.Evaluation` of a positioning test by the standard
+    ``key`` of :data:`axiscal.standards.positioning_standards.STANDARDS` (or ``all``), as
+    ``axiscal evaluate --standard KEY --json``; ISO 230-2:2014 as ``axiscal iso230-2``."""
+    from axiscal.errors import InputError
+    from axiscal.standards import positioning_standards as ps
+
+    if key == ISO230_2:
+        return _iso230_2(ds, tolerances, rule, uncertainty)
+    if key != "all" and key not in ps.STANDARDS:
+        raise InputError(f"standard {key!r}: one of {', '.join(ps.STANDARDS)} or all")
+    if key == "all" and tolerances:
+        raise InputError("tolerances need one standard (parameter names differ between them)")
+    results = (ps.evaluate_all(ds) if key == "all"
+               else ((ps.STANDARDS[key], ps.evaluate(key, ds)),))
+    first = results[0][1]
+    verdicts: tuple = ()
+    if tolerances:
+        if isinstance(first, str):
+            raise InputError(f"tolerances: {key} was not evaluated: {first}")
+        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule,
+                                             uncertainty or None))
+    from axiscal.io.results import standard_json, verdicts_json
+
+    d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
+         "standards": [standard_json(std, res) for std, res in results]}
+    if verdicts:
+        from axiscal.standards.iso14253_1 import unprovable
+
+        d.update(verdicts_json(verdicts))
+        d["warnings"] = unprovable(verdicts, {"um": "µm"}.get(ds.deviation_unit,
+                                                             ds.deviation_unit))
+    return dict(kind="iso230-2", standard=key, dataset=ds, result=results[0][1], _json=d,
+                _verdicts=tuple(verdicts), _results=tuple(results))
+
+
+def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict) -> dict:
+    """As ``axiscal iso230-2 FILE --json`` (the user configuration's uncertainty inputs)."""
+    from axiscal.io.results import result_json
+    from axiscal.report.issue import budget_for, decisions_for, load_config
+    from axiscal.standards.iso230_2 import check_tolerances
+    from axiscal.standards.iso230_2 import evaluate as iso_evaluate
+
+    result = iso_evaluate(ds)
+    cfg = load_config(None)
+    if uncertainty:
+        cfg = {**cfg, "uncertainty": {**(cfg.get("uncertainty") or {}), **uncertainty}}
+    check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})
+    budget = budget_for(ds, result, cfg)
+    verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
+    d = {**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
+         "axis": ds.metadata.axis, "notes": ds.metadata.notes}
+    return dict(kind="iso230-2", standard=ISO230_2, dataset=ds, result=result, _json=d,
+                _budget=budget, _verdicts=tuple(verdicts))
+
+
+def ballbar_evaluation(data: Any) -> dict:
+    """The fields of :class:`axiscal.api.Evaluation` of a ballbar dataset evaluated in memory
+    (ISO 230-4:2005 and the diagnosis); the other kinds are evaluated from their file."""
+    from axiscal.errors import InputError
+    from axiscal.io.ballbar import BallbarData
+    from axiscal.store.kinds import evaluate_ballbar
+    from axiscal._json import jsonable
+
+    if not isinstance(data, BallbarData):
+        raise InputError(f"evaluate: give the file's path for a {type(data).__name__} "
+                         "(a positioning or ballbar dataset is evaluated in memory)")
+    r = evaluate_ballbar(data)
+    return dict(kind="ballbar", standard="iso230-4", dataset=data, result=r,
+                _json=jsonable({"plane": "".join(data.axes), **r.as_dict()}))
+
+
+def evaluation_figure(ev: Any) -> Any:
+    """The figure of an :class:`axiscal.api.Evaluation`, as its command's ``--plot`` draws it."""
+    from axiscal.errors import InputError
+
+    if ev.kind == "iso230-2":
+        from axiscal.report import plots
+
+        if ev.standard == ISO230_2:
+            return plots.iso230_2_figure(ev.result, ev.dataset)
+        fig = (plots.standards_figure(ev.dataset, ev._results) if ev.standard == "all"
+               else plots.standard_figure(ev.dataset, *ev._results[0]))
+        if fig is None:
+            raise InputError("plot: no standard evaluates this test, so there is no figure")
+        return fig
+    return kind_figure(ev.kind, ev.dataset, ev.result)
+
+
+def write_evaluation_report(ev: Any, path: Path) -> Path:
+    """Write the HTML report of an :class:`axiscal.api.Evaluation`, as the command's
+    ``--report``; returns the path."""
+    from axiscal.report.html import positioning_report, standards_report, write_result_report
+
+    if ev.kind == "iso230-2" and ev.standard == ISO230_2:
+        from axiscal.report.uncertainty import add_uncertainty
+
+        rep = positioning_report(ev.dataset, ev.result, verdicts=ev._verdicts)
+        add_uncertainty(rep, ev._budget, ev._verdicts,
+                        [p for p, v in ev.result.parameters().items() if v is not None])
+        return rep.write(path)
+    if ev.kind == "iso230-2":
+        return standards_report(ev.dataset, ev._results, f"Positioning test by {ev.standard}",
+                                ev._verdicts).write(path)
+    if ev.kind == "ballbar" and hasattr(ev.result, "circular"):
+        from axiscal.report.ballbar_plots import write_diagnosis_report
+
+        return write_diagnosis_report(path, ev.dataset.runs, ev.result)
+    title = {"straightness": "Straightness (ISO 230-1)", "diagonal": "Diagonal squareness "
+             "(ISO 230-6)", "motion": "Error motions of a rotary axis (ISO 230-7)",
+             "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
+    return write_result_report(path, title, ev._json, figure=evaluation_figure(ev))
