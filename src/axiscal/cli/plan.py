@@ -20,6 +20,14 @@ from axiscal.cli._common import note, print_json, typed_path
 MAX_TARGETS, MAX_RUNS = 10_000, 100
 MAX_LENGTH_MM, MAX_TRAVEL_DEG = 1e6, 36_000.0
 
+# The options both plans take, the same for a linear and a rotary axis.
+_RUNS = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5).")
+_CYCLE = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step).")
+_UNIDIRECTIONAL = typer.Option(False, "--unidirectional", help="Approach in the positive direction only.")
+_DWELL = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s.")
+_CSV = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv).")
+_JSON = typer.Option(False, "--json", help="Print the plan as JSON.")
+
 plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
                        no_args_is_help=True)
 
@@ -31,14 +39,14 @@ def plan_linear_cmd(
     n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of targets (default: the ISO 230-2 minimum, 5 per metre and 5 at least)."),
     irregularity: float = typer.Option(0.25, "--irregularity", help="Random offset of each target as a fraction of the interval (0 = even spacing)."),
     seed: int = typer.Option(0, "--seed", min=0, help="Seed of the random offsets, a whole number >= 0 (plans are reproducible)."),
-    runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
-    cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
-    unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
+    runs: int = _RUNS,
+    cycle: str = _CYCLE,
+    unidirectional: bool = _UNIDIRECTIONAL,
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
-    dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
+    dwell: float = _DWELL,
     axis: str = typer.Option("X", "--axis", help="Axis name."),
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
-    json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
+    csv: Optional[Path] = _CSV,
+    json_out: bool = _JSON,
 ) -> None:
     """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2).
 
@@ -58,14 +66,14 @@ def plan_rotary_cmd(
     start: float = typer.Option(0.0, "--start", help="First target in degrees."),
     step: Optional[float] = typer.Option(None, "--step", help="Interval between targets in degrees (default 45)."),
     n_targets: Optional[int] = typer.Option(None, "--targets", min=2, max=MAX_TARGETS, help="Number of evenly spaced targets (instead of --step)."),
-    runs: int = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5)."),
-    cycle: str = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step)."),
-    unidirectional: bool = typer.Option(False, "--unidirectional", help="Approach in the positive direction only."),
+    runs: int = _RUNS,
+    cycle: str = _CYCLE,
+    unidirectional: bool = _UNIDIRECTIONAL,
     overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (Yüksel et al., Position accuracy and repeatability calibration of turn tables: 5)."),
-    dwell: float = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s."),
+    dwell: float = _DWELL,
     axis: str = typer.Option("C", "--axis", help="Axis name."),
-    csv: Optional[Path] = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv)."),
-    json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON."),
+    csv: Optional[Path] = _CSV,
+    json_out: bool = _JSON,
 ) -> None:
     """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included).
 
