@@ -43,7 +43,7 @@ from pathlib import Path
 
 from axiscal.errors import AxiscalError
 
-__all__ = ["StoreError", "Guard", "sqlite_path", "make_engine", "upgrade", "shown"]
+__all__ = ["StoreError", "NotFoundError", "Guard", "sqlite_path", "make_engine", "upgrade", "shown"]
 
 #: The key of PostgreSQL's advisory lock around a schema upgrade ("axiscal" in ASCII, 6 bytes).
 ADVISORY_KEY = 0x61786973_63616C
@@ -54,6 +54,10 @@ _OWN_TABLES = {"machine", "axis", "test"}
 
 class StoreError(AxiscalError, RuntimeError):
     """The history database cannot be used as asked (not a database, full, unreachable)."""
+
+
+class NotFoundError(AxiscalError, LookupError):
+    """No such test, machine or axis in the history."""
 
 
 class Guard:

@@ -29,8 +29,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from axiscal.errors import AxiscalError, InputError
-from axiscal.store.database import Guard, StoreError
+from axiscal.errors import InputError
+from axiscal.store.database import Guard, NotFoundError, StoreError
 from axiscal.store.kinds import Evaluated, evaluate_file
 
 __all__ = ["StoreError", "Store", "open_store", "default_url", "AddResult", "TestSummary",
@@ -40,10 +40,6 @@ __all__ = ["StoreError", "Store", "open_store", "default_url", "AddResult", "Tes
 ATTEMPTS = 8
 #: How often a SQLite write waits the busy timeout again for a lock others keep holding.
 LOCKED_RETRIES = 3
-
-
-class NotFoundError(AxiscalError, LookupError):
-    """No such test, machine or axis in the history."""
 
 
 @dataclass(frozen=True)
@@ -508,12 +504,6 @@ def _test_id(test_id) -> int:
     if not 0 < n < 2**63:
         raise NotFoundError(f"no test {test_id} in the history")
     return n
-
-
-def _integrity_error():
-    from sqlalchemy.exc import IntegrityError
-
-    return IntegrityError
 
 
 def _name(value: str, what: str, filename: str) -> str:

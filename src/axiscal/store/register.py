@@ -133,7 +133,7 @@ def fetch(store, number: str, laboratory: str | None = None) -> CertificateRecor
     """One certificate with its document; the document's SHA-256 is checked against the one kept."""
     from sqlalchemy import select
 
-    from axiscal.store import NotFoundError, StoreError
+    from axiscal.store.database import NotFoundError, StoreError
     from axiscal.store.models import Certificate
 
     q = select(Certificate).where(Certificate.number == number)
@@ -168,9 +168,9 @@ def _commit(store, row, laboratory: str, replaces: str) -> bool:
     """Insert ``row`` (and supersede ``replaces``) in one transaction; False if the counter or
     number was taken meanwhile."""
     from sqlalchemy import select
+    from sqlalchemy.exc import IntegrityError
 
-    from axiscal.store import NotFoundError
-    from axiscal.store.history import _integrity_error
+    from axiscal.store.database import NotFoundError
     from axiscal.store.models import Certificate
 
     with store._guard("store"), store._session(write=True) as s:
@@ -188,7 +188,7 @@ def _commit(store, row, laboratory: str, replaces: str) -> bool:
             s.add(row)
             s.commit()
             return True
-        except _integrity_error():
+        except IntegrityError:
             s.rollback()
             return False
 
