@@ -251,6 +251,10 @@ def test_five_dof_equals_motion_simulate(tmp_path):
     assert sim.result.n_runs == 1 and d["iso230_7"]["n_runs"] == 1
     assert len(sim.dataset.theta) == len(d["positions"]) == 13   # 0° to 360° by 30° (closure)
     _figure_and_report(sim, tmp_path / "motion.html", "Five motion errors")
+    runner.invoke(app, ["motion", "simulate", str(MOTION), "--csv", str(tmp_path / "cli.csv")])
+    api_csv = sim.write_data(tmp_path / "api.csv")
+    assert api_csv.read_text("utf-8") == (tmp_path / "cli.csv").read_text("utf-8")
+    assert axiscal.evaluate(api_csv).kind == "motion"
 
 
 def test_volumetric_map_equals_volumetric_map_command(tmp_path):

@@ -500,15 +500,20 @@ class Simulation:
         return Path(rep.write(path))
 
     def write_data(self, path: PathLike) -> Path:
-        """Write the simulated readings (``.csv`` tidy CSV or ``.json``), as ``axiscal simulate
-        --data`` does, so they can be read back like a laser's file."""
+        """Write the simulated readings as ``axiscal simulate --data`` does (``.csv`` tidy CSV
+        or ``.json``; five-DOF: the ``.csv`` of ``motion simulate --csv``), so they can be read
+        back like an instrument's file."""
         from axiscal.errors import InputError
         from axiscal.io._files import write_text_atomic
 
-        if self.kind != "positioning" and not self._rotary:
-            raise InputError(f"write_data: a {self.kind} run has no positioning readings")
         suffix = Path(path).suffix.lower()
-        if suffix == ".json":
+        fmt: Any
+        if self.kind == "five-dof" and suffix == ".csv":
+            from axiscal.io.motion import format_motion_errors as fmt
+        elif self._run:
+            raise InputError(f"write_data {path}: a {self.kind} run writes no readings here"
+                             + (" (give a .csv file)" if self.kind == "five-dof" else ""))
+        elif suffix == ".json":
             from axiscal.io.json import format_positioning_json as fmt
         elif suffix == ".csv":
             from axiscal.io.csv import format_positioning_csv as fmt
