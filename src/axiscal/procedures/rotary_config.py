@@ -200,10 +200,7 @@ def _setup(t: dict[str, Any]) -> RotarySetup:
     extra = {"lateral_offset_mm", "counter_rotation", "self_calibration"}
     kw = _convert("[setup]", t, _SETUP, extra)
     if "lateral_offset_mm" in t:
-        pair = t["lateral_offset_mm"]
-        if not (isinstance(pair, list) and len(pair) == 2):
-            raise ConfigError(f"[setup] lateral_offset_mm = {pair!r} must be [x, y] in mm")
-        kw["lateral_offset"] = tuple(_num(v, "[setup] lateral_offset_mm") * MM for v in pair)
+        kw["lateral_offset"] = _numbers("[setup]", t, "lateral_offset_mm", 2, "be [x, y] in mm", MM)
     for key in ("counter_rotation", "self_calibration"):
         if key in t:
             kw[key] = _bool(t[key], f"[setup] {key}")
@@ -229,10 +226,8 @@ def _offaxis(t: dict[str, Any]) -> OffAxisSetup:
         raise ConfigError("[offaxis] must be a table")
     kw = _convert("[offaxis]", t, _OFFAXIS, _OFFAXIS_OTHER)
     if "alignment_angles_deg" in t:
-        a = t["alignment_angles_deg"]
-        if not (isinstance(a, list) and len(a) == 3):
-            raise ConfigError(f"[offaxis] alignment_angles_deg = {a!r} must list 3 angles")
-        kw["alignment_angles"] = tuple(_num(v, "[offaxis] alignment_angles_deg") * DEG for v in a)
+        kw["alignment_angles"] = _numbers("[offaxis]", t, "alignment_angles_deg", 3,
+                                          "list 3 angles", DEG)
     slope = _num(t.get("yaw_arcsec_per_100mm", 0.0), "[offaxis] yaw_arcsec_per_100mm") * ARCSEC / 0.1
     amp = _num(t.get("yaw_amplitude_arcsec", 0.0), "[offaxis] yaw_amplitude_arcsec") * ARCSEC
     period = _num(t.get("yaw_period_mm", 100.0), "[offaxis] yaw_period_mm", positive=True) * MM
@@ -293,6 +288,14 @@ def _make(where: str, fn, kw: dict):
     except (InputError, TypeError, ValueError) as exc:
         raise ConfigError(f"{where}: {exc}") from None
 
+
+
+def _numbers(where: str, t: dict, key: str, n: int, shape: str, scale: float) -> tuple:
+    """``t[key]``, a list of ``n`` finite numbers, each times ``scale`` (to SI)."""
+    v = t[key]
+    if not (isinstance(v, list) and len(v) == n):
+        raise ConfigError(f"{where} {key} = {v!r} must {shape}")
+    return tuple(_num(x, f"{where} {key}") * scale for x in v)
 
 
 def _num(v: Any, where: str, positive: bool = False) -> float:
