@@ -30,8 +30,9 @@ __all__ = [
 ]
 
 #: Longest message shown, characters: a message quotes at most an excerpt of the input (a
-#: 200 MB one-line file once gave a 200 MB "one-line" error).
-MAX_MESSAGE = 500
+#: 200 MB one-line file once gave a 200 MB "one-line" error). Room for a long path and the list
+#: of a configuration table's known keys, which a message should not cut.
+MAX_MESSAGE = 800
 
 
 def one_line(message: str, limit: int = MAX_MESSAGE) -> str:

@@ -74,7 +74,7 @@ def test_output_file_of_the_wrong_kind(work, args, words):
     (["compensate", "--verify", LOOP_TOML, "--bidirectional"], ["--verify does not use --bidirectional"]),
     (["compensate", "--verify", LOOP_TOML, "d.csv", "--resolution", "1"],
      ["--verify does not use SOURCE, --resolution; drop them"]),
-    (["compensate", "--read", "d.csv", "--out", "o.csv"], ["--read does not use --out"]),
+    (["compensate", "--read", "d.csv", "--out", "o.csv"], ["--read writes --out only with --to NAME"]),
     (["compensate", "--squareness", "40", "--axes", "XZ", "--aligned", "Z", "--start", "0",
       "--end", "100", "--spacing", "10", "--bidirectional"], ["--squareness does not use --bidirectional"]),
     (["compensate", "d.csv", "-c", "fanuc", "-o", "detection_unit=abc"],

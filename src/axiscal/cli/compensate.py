@@ -119,6 +119,9 @@ def compensate(
         return _verify(verify, seed, controller, spacing, opts, out, json_out, plot, report,
                        on_controller)
     if read is not None:
+        if out is not None and to is None:
+            raise InputError("--read writes --out only with --to NAME (the controller format to "
+                             "convert the table to); give --to or drop --out")
         return _read(read, controller, source, opts, json_out, ini, to=to, out=out)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
