@@ -41,4 +41,8 @@ print(f"skew before synchronisation {g['skew_before_sync']} counts, limit "
 for w in g["worst_case"]:
     print(f"  worst case v1={w['virtual_1']}, v2={w['virtual_2']}: skew "
           f"{w['skew_before_sync']} counts, alarm: {w['alarm']}")
+
+# %%
+# The real skew X1 − X2 at each step of the homing sequence, with the controller's skew limit
+# and the limit this configuration needs.
 fig = gantry.plot()
