@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from axiscal.report._figures import pyplot as _pyplot
 from axiscal.units import ARCSEC
 
 __all__ = ["dynamic_figure", "save_dynamic_view", "environment_figure"]
@@ -13,10 +14,7 @@ _MAX_POINTS = 200_000
 
 def dynamic_figure(record, result):
     """Four panels: position with the stops, velocity, acceleration, settling and spectrum."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     lin = record.kind == "linear"
     scale, unit = (1e3, "mm") if lin else (180 / np.pi, "deg")
@@ -62,10 +60,7 @@ def environment_figure(detail, title: str = "Environmental compensation"):
     """Two panels against the time of the test: the air and material temperatures (pressure on
     the right axis), and what the compensation changed at each reading (compensated minus raw
     deviation, µm)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     c = detail.conditions
     t = detail.times

@@ -2,18 +2,16 @@
 
 from __future__ import annotations
 
+from axiscal.report._figures import pyplot as _pyplot
 
 __all__ = ["comparison_figure", "trend_figure"]
 
 
 def comparison_figure(c):
     """Per-target change of the mean bidirectional deviation (second − first test)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from axiscal.errors import InputError
+
+    plt = _pyplot()
 
     if c.targets is None:
         raise InputError("a per-target comparison needs two ISO 230-2 tests with common targets")
@@ -33,11 +31,9 @@ def comparison_figure(c):
 
 def trend_figure(tr, title: str = ""):
     """The parameter over time, the fitted line and the tolerance with its predicted crossing."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.dates as mdates
-    import matplotlib.pyplot as plt
+
+    plt = _pyplot()
 
     fig, ax = plt.subplots(figsize=(8, 4))
     ax.plot(tr.dates, tr.values, "o", color="tab:blue", label=tr.parameter)

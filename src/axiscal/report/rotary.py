@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report._figures import pyplot as _pyplot
 from axiscal.report.html import Report, target_label
 from axiscal.report.labels import fmt
 from axiscal.standards.positioning_standards import parameter_label
@@ -26,13 +27,10 @@ _PARAMS = ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_do
 def rotary_error_figure(r):
     """Measured minus true per-target mean deviation (each direction), with the ± budget band and
     the equation-1 curve the true misalignments predict (both less their mean), arcsec."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from axiscal.physics.misalignment import misalignment_terms
     from axiscal.report.plots import DOWN_COLOR, UP_COLOR
+
+    plt = _pyplot()
 
     t = r.plan.targets
     off = common_offset(r)
@@ -219,12 +217,9 @@ def budget_figure(data: dict):
     JSON result, mrad), with the expected accuracy (± arcsec, the more cautious of eq. 1 + base
     and the fitted Figure 22) as a band.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from axiscal.physics.misalignment import misalignment_terms
+
+    plt = _pyplot()
 
     deg = np.linspace(0, 360, 721)
     a, b, w = (data[k] * 1e-3 for k in ("alpha_mrad", "beta_mrad", "omega_mrad"))

@@ -12,15 +12,14 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.report._figures import pyplot as _pyplot
+
 __all__ = ["referencing_figure", "save_referencing_plot"]
 
 
 def referencing_figure(run, before_counts: float | None = None, after_counts: float | None = None):
     """A matplotlib Figure of a :class:`~axiscal.procedures.referencing.ReferencingRun`."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     out = run.axis.output
     n = out.counts_per_period
@@ -109,10 +108,7 @@ def gantry_figure(run, required_limit: int | None = None):
     referencing: the twin-axis sequence), with the controller's skew limit and the limit this
     configuration needs (``required_limit``, counts). ``run`` is a
     :class:`~axiscal.procedures.twin_axis.TwinHomingResult`."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     g = run.gantry
     q = g.output.count_size * 1e6

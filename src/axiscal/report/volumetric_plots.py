@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from axiscal.report._figures import pyplot as _pyplot
 from axiscal.standards.volumetric import AXES
 
 __all__ = ["volumetric_figure", "diagonals_figure", "volumetric_report"]
@@ -17,10 +18,7 @@ __all__ = ["volumetric_figure", "diagonals_figure", "volumetric_report"]
 
 def volumetric_figure(vmap, title: str = "", magnification: float | None = None):
     """3-D distorted grid (magnified) and three |E| slices, µm; returns a matplotlib Figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     gx, gy, gz = (g * 1e3 for g in vmap.grid)
     e = vmap.error * 1e3                                # mm
@@ -72,10 +70,7 @@ def volumetric_figure(vmap, title: str = "", magnification: float | None = None)
 
 def diagonals_figure(predicted, measured=None, title: str = ""):
     """Displacement error along the four body diagonals, µm: predicted, and measured if given."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
 
     fig, ax = plt.subplots(figsize=(8, 4.2))
     colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
