@@ -175,10 +175,8 @@ def compensate(
 
     Example: axiscal volumetric compensate vol/volumetric.toml --controller siemens-840d --verify
     """
-    import numpy as np
-
-    from axiscal.compensation.volumetric import volumetric_tables, write_tables
     from axiscal.errors import InputError
+    from axiscal.io.simulation_results import volumetric_compensation, volumetric_tables_for
     from axiscal.io.volumetric import read_volumetric_config
 
     rec = {}
@@ -190,32 +188,13 @@ def compensate(
     if out is not None:
         _folder(out)
     cfg = read_volumetric_config(config)
-    if verify and not cfg.simulation:
-        raise InputError(f"{config}: --verify needs a simulated machine (a configuration "
-                         "written by 'axiscal volumetric simulate --out')")
-    c = cfg.compensation
-    rec = {**c.get("receiving", {}), **rec}
-    tables = volumetric_tables(cfg.errors, tool_offset=cfg.tool_offset, receiving=rec,
-                               spacing=float(c.get("spacing_mm", spacing)),
-                               resolution=float(c.get("resolution_um", 0.1)))
+    tables = volumetric_tables_for(cfg, rec, spacing, verify)
     if controller == "linuxcnc" or on_controller:
         return _linuxcnc(cfg, tables, controller, verify, on_controller, out, as_json)
-    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in cfg.errors.travel.items()}
-    files = write_tables(tables, controller, travel_mm)
-    result = None
-    if verify:
-        from axiscal.compensation.volumetric import verify as run_verify
-
-        machine, _ = _simulated(cfg)
-        result = run_verify(machine, cfg.errors, tables, controller,
-                            np.random.default_rng(int(cfg.simulation.get("seed", 1)) + 1))
-    written = _write_files(files, out) if out is not None else []
+    sim = volumetric_compensation(cfg, tables, controller, verify=verify, out=out)
+    files, result, written = sim.parts["files"], sim.parts["verify"], sim.json["files"]
     if as_json:
-        d = {"controller": controller, "receiving": tables.receiving, "files": written,
-             "left_by_tables_um": tables.uncompensable * 1e6}
-        if result is not None:
-            d["verify"] = result.to_dict()
-        print_json(d)
+        print_json(sim.json)
         return
     typer.echo(f"{controller} volumetric compensation of {cfg.name}: "
                f"{len(files)} tables (3 positioning, {len(files) - 3} cross-axis)")
@@ -286,20 +265,6 @@ def _folder(out: Path) -> None:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise InputError(f"cannot create folder {out}: {exc.strerror or exc}") from None
-
-
-def _write_files(files, out: Path) -> list[str]:
-    from axiscal.io._files import write_text_atomic
-
-    names = []
-    for f in files:
-        write_text_atomic(out / f.filename, f.text)
-        names.append(f.filename)
-        for name, text in f.extra_files.items():
-            extra = name if name not in names else f"{Path(f.filename).stem}_{name}"
-            write_text_atomic(out / extra, text)
-            names.append(extra)
-    return names
 
 
 def register(root: typer.Typer) -> None:

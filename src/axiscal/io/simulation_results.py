@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation", "iso230_7_json",
-           "volumetric_map", "simulated_volumetric_machine", "environment_compensation",
+           "volumetric_map", "simulated_volumetric_machine", "volumetric_tables_for",
+           "volumetric_compensation", "write_controller_files", "environment_compensation",
            "environment_options", "environment_json",
            "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M", "SIMULATION_KINDS", "DOCUMENTS",
            "simulation_kind", "run_configured"]
@@ -48,6 +49,7 @@ DOCUMENTS = {"rotary-calibration": 'Renishaw, "Interferometric calibration of ro
              "gantry-homing": 'Renishaw, "Laser scale axis referencing"',
              "five-dof": "ISO 230-7:2015",
              "volumetric-map": "ISO/TR 16907:2015 and ISO 230-6:2002",
+             "volumetric-compensation": "ISO 230-1:2012 and ISO 230-6:2002",
              "environment": "Ciddor 1996 and ISO 1:2016"}
 _SCALE_TABLES = ("laser", "compensator", "switch", "homing")
 _MOTION_TABLES = ("instrument", "mounting", "reference", "drift")
@@ -272,6 +274,71 @@ def volumetric_map(cfg: Any, grid: int = 11) -> SimulationRun:
         out["mapped_minus_true_um"] = float(np.abs(vmap.error - truth.error).max()) * 1e6
     return SimulationRun("volumetric-map", vmap, out,
                          {"diagonals": diags, "truth": truth, "config": cfg, "grid": grid})
+
+
+def volumetric_tables_for(cfg: Any, receiving: dict | None = None, spacing: float = 20.0,
+                          verify: bool = False) -> Any:
+    """The positioning and cross-axis tables of a ``VolumetricConfig`` in the order of the
+    squareness document's Appendix II (``[compensation]`` ``receiving``, ``spacing_mm`` and
+    ``resolution_um`` over the arguments' defaults); ``verify`` needs a simulated
+    configuration (checked first)."""
+    from axiscal.compensation.volumetric import volumetric_tables
+    from axiscal.errors import InputError
+
+    if verify and not cfg.simulation:
+        raise InputError(f"{cfg.path}: --verify needs a simulated machine (a configuration "
+                         "written by 'axiscal volumetric simulate --out')")
+    c = cfg.compensation
+    return volumetric_tables(cfg.errors, tool_offset=cfg.tool_offset,
+                             receiving={**c.get("receiving", {}), **(receiving or {})},
+                             spacing=float(c.get("spacing_mm", spacing)),
+                             resolution=float(c.get("resolution_um", 0.1)))
+
+
+def volumetric_compensation(cfg: Any, tables: Any, controller: str, *, verify: bool = False,
+                            out: Any = None) -> SimulationRun:
+    """``axiscal volumetric compensate CONFIG --controller C [--verify] [--out DIR]`` (a
+    controller of tables: ``siemens-840d``, ``heidenhain``, ``csv``): the tables written for
+    the controller (into the folder ``out`` if given), and with ``verify`` the simulated
+    machine re-measured with them applied (:func:`axiscal.compensation.volumetric.verify`,
+    its random stream the configuration's seed + 1)."""
+    import numpy as np
+
+    from axiscal.compensation.volumetric import verify as run_verify
+    from axiscal.compensation.volumetric import write_tables
+
+    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in cfg.errors.travel.items()}
+    files = write_tables(tables, controller, travel_mm)
+    result = None
+    if verify:
+        machine, _ = simulated_volumetric_machine(cfg)
+        result = run_verify(machine, cfg.errors, tables, controller,
+                            np.random.default_rng(int(cfg.simulation.get("seed", 1)) + 1))
+    written = write_controller_files(files, out) if out is not None else []
+    d = {"controller": controller, "receiving": tables.receiving, "files": written,
+         "left_by_tables_um": tables.uncompensable * 1e6}
+    if result is not None:
+        d["verify"] = result.to_dict()
+    return SimulationRun("volumetric-compensation", tables, d,
+                         {"files": files, "verify": result, "config": cfg})
+
+
+def write_controller_files(files: list, out: Any) -> list[str]:
+    """Write controller files (and their companions, renamed after their table when two
+    tables have one) into the folder ``out``; the names written, in order."""
+    from pathlib import Path
+
+    from axiscal.io._files import write_text_atomic
+
+    names: list[str] = []
+    for f in files:
+        write_text_atomic(Path(out) / f.filename, f.text)
+        names.append(f.filename)
+        for name, text in f.extra_files.items():
+            extra = name if name not in names else f"{Path(f.filename).stem}_{name}"
+            write_text_atomic(Path(out) / extra, text)
+            names.append(extra)
+    return names
 
 
 def _truth_map(cfg: Any, grid: int) -> Any:
