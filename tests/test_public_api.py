@@ -270,6 +270,17 @@ def test_volumetric_map_equals_volumetric_map_command(tmp_path):
     with pytest.raises(axiscal.errors.InputError, match="grid"):
         axiscal.volumetric_map(cfg, grid=1)
 
+    comp = axiscal.volumetric_compensation(cfg, "siemens-840d", out=tmp_path / "api",
+                                           receiving={"zx": "X"}, verify=True)
+    cli = _cli_json("volumetric", "compensate", cfg, "--controller", "siemens-840d", "--out",
+                    tmp_path / "cli", "--receiving", "zx=X", "--verify")
+    assert comp.to_dict() == cli and cli["receiving"]["zx"] == "X"
+    for name in cli["files"]:
+        assert (tmp_path / "api" / name).read_text("utf-8") == (
+            tmp_path / "cli" / name).read_text("utf-8")
+    assert cli["verify"]["figures"]["largest volumetric error"]["reduction"] > 0
+    _figure_and_report(comp, tmp_path / "comp.html", "Volumetric compensation")
+
 
 def test_compensate_environment_equals_the_cli(tmp_path):
     """Raw readings + environment log: the same JSON, the same compensated file, and its

@@ -11,6 +11,7 @@ before it.
 
 The public API (:mod:`axiscal.api`, the only stable surface) is at the top: ``axiscal.read``,
 ``axiscal.evaluate``, ``axiscal.simulate``, ``axiscal.volumetric_map``,
+``axiscal.volumetric_compensation``,
 ``axiscal.compensate_environment``, ``axiscal.compensation_table``,
 ``axiscal.write_table``, ``axiscal.History``. Its names are imported on first use, so
 ``import axiscal`` (and the command line's start-up) stays light.
@@ -23,15 +24,15 @@ TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing (sta
 __version__ = "0.1.0"
 
 __all__ = ["__version__", "read", "evaluate", "simulate", "volumetric_map",
-           "compensate_environment", "compensation_table", "write_table", "History",
-           "Evaluation", "Simulation"]
+           "volumetric_compensation", "compensate_environment", "compensation_table",
+           "write_table", "History", "Evaluation", "Simulation"]
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from typing import Any
 
     from axiscal.api import (Evaluation, History, Simulation, compensate_environment,
-                             compensation_table, evaluate, read, simulate, volumetric_map,
-                             write_table)
+                             compensation_table, evaluate, read, simulate,
+                             volumetric_compensation, volumetric_map, write_table)
 
 
 def __getattr__(name: str) -> Any:

@@ -32,7 +32,8 @@ if TYPE_CHECKING:   # pragma: no cover - typing only
     from matplotlib.figure import Figure
 
 __all__ = ["Evaluation", "Simulation", "History", "read", "evaluate", "simulate",
-           "volumetric_map", "compensate_environment", "compensation_table", "write_table"]
+           "volumetric_map", "volumetric_compensation", "compensate_environment",
+           "compensation_table", "write_table"]
 
 PathLike = Union[str, Path]
 
@@ -62,12 +63,14 @@ def read(path: PathLike, *, target_unit: str | None = None,
     axiscal.errors.DataFormatError
         A file of no kind axiscal knows, or one that does not parse.
     """
-    kind = _kind_of(path)
+    from axiscal.report.evaluations import evaluated_file, kind_of_file
+
+    kind = kind_of_file(path)
     if kind == "iso230-2":
         from axiscal.io import read_positioning
 
         return read_positioning(path, target_unit=target_unit, deviation_unit=deviation_unit)
-    return _evaluated(path, kind).dataset
+    return evaluated_file(path, kind).dataset
 
 
 def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
@@ -103,10 +106,12 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
     from axiscal.datasets import PositioningDataset
 
     if isinstance(data, (str, Path)):
-        kind = _kind_of(data)
+        from axiscal.report.evaluations import KIND_STANDARD, evaluated_file, kind_of_file
+
+        kind = kind_of_file(data)
         if kind != "iso230-2":
-            ev = _evaluated(data, kind)
-            return Evaluation(kind, _KIND_STANDARD[kind], ev.dataset, ev.evaluation, ev.result)
+            ev = evaluated_file(data, kind)
+            return Evaluation(kind, KIND_STANDARD[kind], ev.dataset, ev.evaluation, ev.result)
         data = read(data)
     if isinstance(data, PositioningDataset):
         from axiscal.report.evaluations import positioning_evaluation
@@ -199,6 +204,53 @@ def volumetric_map(config: PathLike, grid: int = 11) -> "Simulation":
         raise InputError(f"grid {grid!r}: a whole number of points per axis, 2 to 100")
     return Simulation(run_map(read_volumetric_config(config), grid), None, "volumetric-map",
                       Path(config).name)
+
+
+def volumetric_compensation(config: PathLike, controller: str, *, out: PathLike | None = None,
+                            receiving: Mapping[str, str] | None = None, spacing: float = 20.0,
+                            verify: bool = False) -> "Simulation":
+    """Positioning and cross-axis tables that remove what tables can of a volumetric map.
+
+    As ``axiscal volumetric compensate CONFIG --controller C [--verify] [--out DIR] --json``:
+    the tables in the order of Chapman, "Calibration of machine squareness", Appendix II;
+    ``verify`` re-measures the simulated machine with them applied (volumetric map and body
+    diagonals before and after; a configuration of ``volumetric simulate`` only).
+
+    Parameters
+    ----------
+    config : str or Path
+        The volumetric configuration (TOML).
+    controller : str
+        ``siemens-840d``, ``heidenhain`` or ``csv`` (LinuxCNC's 3-D correction: the command).
+    out : str or Path, optional
+        Folder for the tables (created if missing).
+    receiving : mapping, optional
+        Axis receiving each squareness correction, e.g. ``{"zx": "Z"}`` (default: the axis
+        aligned to the spindle).
+    spacing : float, mm
+        Table spacing (default 20 mm, as the command), under the configuration's.
+    verify : bool
+        Re-measure the simulated machine with the tables applied.
+
+    Returns
+    -------
+    Simulation
+        ``kind`` ``volumetric-compensation``; ``result`` the ``VolumetricTables``.
+    """
+    from axiscal.errors import InputError
+    from axiscal.io import simulation_results as sr
+    from axiscal.io.volumetric import read_volumetric_config
+
+    if controller == "linuxcnc":
+        raise InputError("volumetric_compensation: LinuxCNC's 3-D correction is 'axiscal "
+                         "volumetric compensate --controller linuxcnc'")
+    if out is not None:
+        Path(out).mkdir(parents=True, exist_ok=True)
+    cfg = read_volumetric_config(config)
+    rec = {k.lower(): v for k, v in (receiving or {}).items()}
+    tables = sr.volumetric_tables_for(cfg, rec, spacing, verify)
+    return Simulation(sr.volumetric_compensation(cfg, tables, controller, verify=verify, out=out),
+                      None, "volumetric-compensation", Path(config).name)
 
 
 def compensate_environment(raw: PathLike, environment: PathLike | None = None, *,
@@ -448,84 +500,40 @@ class Simulation:
     def to_dict(self) -> dict:
         """The object of the command's ``--json``: ``axiscal simulate`` (the ISO 230-2 keys,
         ``truth``, ``seed``), ``rotary simulate``, ``scale home``, ``scale gantry``, ``motion
-        simulate``, ``volumetric map`` or ``compensate-environment``."""
-        import json
+        simulate``, ``volumetric map``, ``volumetric compensate`` or
+        ``compensate-environment``."""
+        from axiscal.io.simulation_results import simulation_dict
 
-        from axiscal._json import jsonable
-        from axiscal.io.results import result_json
-
-        if self._run:
-            return json.loads(json.dumps(jsonable(self.test.json)))
-        if self._rotary:
-            return json.loads(json.dumps(jsonable(self.test.summary())))
-        d = result_json(self.test.result)
-        d.update(truth=self.test.truth, seed=self.seed)
-        return json.loads(json.dumps(d))
+        return simulation_dict(self.kind, self.test, self.seed)
 
     def plot(self) -> "Figure":
         """The figure of the command's ``--plot``: the ISO 230-2 figure with the simulation's
         truth drawn; a rotary calibration's measured error beside the truth and the budget; the
         referencing signals; the gantry's skew; the five errors against angle; the volumetric
-        grid and slices; the air, material and corrections over the test."""
-        if self._run:
-            from axiscal.report.simulation_views import simulation_figure
+        grid and slices; a verified compensation's figures before and after; the air, material
+        and corrections over the test."""
+        from axiscal.report.simulation_views import any_simulation_figure
 
-            return simulation_figure(self.test, self.name)
-        if self._rotary:
-            from axiscal.report.rotary import rotary_error_figure
-
-            return rotary_error_figure(self.test)
-        from axiscal.report.plots import iso230_2_figure
-
-        s = self.test
-        truth = (s.plan.targets, 0.5 * (s.truth_up + s.truth_down)
-                 if s.plan.bidirectional else s.truth_up)
-        return iso230_2_figure(s.result, s.dataset, truth=truth)
+        return any_simulation_figure(self.kind, self.test, self.name)
 
     def report(self, path: PathLike) -> Path:
         """Write the report (HTML, or PDF by extension where the command allows), as the
         command's ``--report``."""
-        if self._run:
-            from axiscal.report.simulation_views import write_simulation_report
+        from axiscal.report.simulation_views import write_any_simulation_report
 
-            return Path(write_simulation_report(self.test, path, self.name))
-        if self._rotary:
-            from axiscal.report.rotary import write_rotary_report
-
-            return Path(write_rotary_report(path, self.test))
-        from axiscal.report.html import positioning_report
-
-        rep = positioning_report(self.test.dataset, self.test.result)
-        rep.simulation = True
-        return Path(rep.write(path))
+        return Path(write_any_simulation_report(self.kind, self.test, path, self.name))
 
     def write_data(self, path: PathLike) -> Path:
         """Write the simulated readings as ``axiscal simulate --data`` does (``.csv`` tidy CSV
         or ``.json``; five-DOF: the ``.csv`` of ``motion simulate --csv``), so they can be read
         back like an instrument's file."""
-        from axiscal.errors import InputError
-        from axiscal.io._files import write_text_atomic
+        from axiscal.io.simulation_results import write_simulated_data
 
-        suffix = Path(path).suffix.lower()
-        fmt: Any
-        if self.kind == "five-dof" and suffix == ".csv":
-            from axiscal.io.motion import format_motion_errors as fmt
-        elif self._run:
-            raise InputError(f"write_data {path}: a {self.kind} run writes no readings here"
-                             + (" (give a .csv file)" if self.kind == "five-dof" else ""))
-        elif suffix == ".json":
-            from axiscal.io.json import format_positioning_json as fmt
-        elif suffix == ".csv":
-            from axiscal.io.csv import format_positioning_csv as fmt
-        else:
-            raise InputError(f"write_data {path}: give a .csv or .json file")
-        write_text_atomic(path, fmt(self.dataset))
-        return Path(path)
+        return write_simulated_data(self.kind, self.dataset, path)
 
     def _repr_html_(self) -> str:
-        from axiscal.report.evaluations import notebook_html
-
         from axiscal.io.simulation_results import DOCUMENTS
+        from axiscal.report.evaluations import notebook_html
 
         return notebook_html(self.kind, DOCUMENTS.get(self.kind, DEFAULT_STANDARD),
                              self.to_dict(), self.plot())
@@ -586,23 +594,6 @@ class History:
 
 
 # -- helpers -----------------------------------------------------------------------------------
-_KIND_STANDARD = {"iso230-2": DEFAULT_STANDARD, "straightness": "iso230-1", "ballbar": "iso230-4",
-                  "diagonal": "iso230-6", "motion": "iso230-7"}
-
-
-def _kind_of(path: PathLike) -> str:
-    from axiscal.io import read_text
-    from axiscal.store.kinds import detect_kind
-
-    return detect_kind(read_text(path))
-
-
-def _evaluated(path: PathLike, kind: str) -> Any:
-    from axiscal.store.kinds import evaluate_file
-
-    return evaluate_file(Path(path).read_bytes(), Path(path).name, kind)
-
-
 def _load_config(config: Union[PathLike, Mapping[str, Any]]) -> dict:
     if isinstance(config, Mapping):
         return dict(config)

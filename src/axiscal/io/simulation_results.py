@@ -30,7 +30,7 @@ __all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation"
            "volumetric_compensation", "write_controller_files", "environment_compensation",
            "environment_options", "environment_json",
            "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M", "SIMULATION_KINDS", "DOCUMENTS",
-           "simulation_kind", "run_configured"]
+           "simulation_kind", "run_configured", "simulation_dict", "write_simulated_data"]
 
 #: The five channels of the five-DOF system and their JSON keys (units in the names).
 MOTION_CHANNELS = {"ez": "ez_arcsec", "ey": "ey_arcsec", "ex": "ex_arcsec", "dy": "dy_um",
@@ -278,10 +278,10 @@ def volumetric_map(cfg: Any, grid: int = 11) -> SimulationRun:
 
 def volumetric_tables_for(cfg: Any, receiving: dict | None = None, spacing: float = 20.0,
                           verify: bool = False) -> Any:
-    """The positioning and cross-axis tables of a ``VolumetricConfig`` in the order of the
-    squareness document's Appendix II (``[compensation]`` ``receiving``, ``spacing_mm`` and
-    ``resolution_um`` over the arguments' defaults); ``verify`` needs a simulated
-    configuration (checked first)."""
+    """The positioning and cross-axis tables of a ``VolumetricConfig`` in the order of Chapman,
+    "Calibration of machine squareness", Appendix II (``[compensation]`` ``receiving``,
+    ``spacing_mm`` and ``resolution_um`` over the arguments' defaults); ``verify`` needs a
+    simulated configuration (checked first)."""
     from axiscal.compensation.volumetric import volumetric_tables
     from axiscal.errors import InputError
 
@@ -411,3 +411,47 @@ def environment_json(ds: Any, readings: int, out: Any) -> dict:
     return {"out": None if out is None else str(out), "readings": int(readings),
             "applied": ds.metadata.notes, "air_temperature_c": env.air_temperature,
             "material_temperature_c": env.mean_material_temperature}
+
+
+def simulation_dict(kind: str, test: Any, seed: int | None) -> dict:
+    """The ``--json`` object of any :class:`axiscal.api.Simulation`, as plain JSON types:
+    ``axiscal simulate`` (the ISO 230-2 keys, ``truth``, ``seed``), ``rotary simulate``'s
+    summary, or a :class:`SimulationRun`'s ``json``."""
+    import json
+
+    from axiscal._json import jsonable
+    from axiscal.io.results import result_json
+
+    if kind == "rotary-calibration":
+        d = test.summary()
+    elif kind == "positioning":
+        d = {**result_json(test.result), "truth": test.truth, "seed": seed}
+    else:
+        d = test.json
+    return json.loads(json.dumps(jsonable(d)))
+
+
+def write_simulated_data(kind: str, dataset: Any, path: Any) -> Any:
+    """Write simulated readings as an instrument's file: a positioning test as tidy CSV
+    (``.csv``) or axiscal JSON (``.json``), as ``axiscal simulate --data``; a five-DOF run as
+    the ``.csv`` of ``motion simulate --csv``. Returns the path."""
+    from pathlib import Path
+
+    from axiscal.errors import InputError
+    from axiscal.io._files import write_text_atomic
+
+    suffix = Path(path).suffix.lower()
+    fmt: Any
+    if kind == "five-dof" and suffix == ".csv":
+        from axiscal.io.motion import format_motion_errors as fmt
+    elif kind not in ("positioning", "rotary-calibration"):
+        raise InputError(f"write_data {path}: a {kind} run writes no readings here"
+                         + (" (give a .csv file)" if kind == "five-dof" else ""))
+    elif suffix == ".json":
+        from axiscal.io.json import format_positioning_json as fmt
+    elif suffix == ".csv":
+        from axiscal.io.csv import format_positioning_csv as fmt
+    else:
+        raise InputError(f"write_data {path}: give a .csv or .json file")
+    write_text_atomic(path, fmt(dataset))
+    return Path(path)

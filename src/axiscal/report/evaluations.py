@@ -15,10 +15,29 @@ from pathlib import Path
 from typing import Any
 
 __all__ = ["FIGURES", "kind_figure", "notebook_html", "positioning_evaluation",
-           "ballbar_evaluation", "evaluation_figure", "write_evaluation_report"]
+           "ballbar_evaluation", "evaluation_figure", "write_evaluation_report", "KIND_STANDARD",
+           "kind_of_file", "evaluated_file"]
 
 #: The key of ISO 230-2:2014, the standard of a positioning test unless another is named.
 ISO230_2 = "iso230-2:2014"
+#: The standard of each kind of test file (:func:`axiscal.store.kinds.detect_kind`).
+KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "iso230-4",
+                 "diagonal": "iso230-6", "motion": "iso230-7"}
+
+
+def kind_of_file(path: Any) -> str:
+    """The kind of test a data file holds, told by its content (as the history does)."""
+    from axiscal.io import read_text
+    from axiscal.store.kinds import detect_kind
+
+    return detect_kind(read_text(path))
+
+
+def evaluated_file(path: Any, kind: str) -> Any:
+    """A data file of ``kind`` evaluated as the history evaluates it (one evaluation per kind)."""
+    from axiscal.store.kinds import evaluate_file
+
+    return evaluate_file(Path(path).read_bytes(), Path(path).name, kind)
 
 
 def kind_figure(kind: str, dataset: Any, result: Any) -> Any:

@@ -10,6 +10,8 @@
   Optics Express 2018, "Five-DOF motion errors of a rotary axis"), the report with ISO 230-7:2015.
 * ``volumetric-map`` — the distorted grid and the |E| slices (``axiscal volumetric map``;
   ISO/TR 16907:2015 rigid-body model, body diagonals of ISO 230-6:2002).
+* ``volumetric-compensation`` — each verified figure before and after the tables
+  (``axiscal volumetric compensate --verify``; ISO 230-1:2012 errors, ISO 230-6:2002 diagonals).
 * ``environment`` — the air and material over the test and the correction of each reading
   (``axiscal compensate-environment``; Ciddor 1996, ISO 1:2016).
 
@@ -21,7 +23,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-__all__ = ["simulation_figure", "write_simulation_report", "MOUNTING_NOTE"]
+__all__ = ["simulation_figure", "write_simulation_report", "any_simulation_figure",
+           "write_any_simulation_report", "MOUNTING_NOTE"]
 
 #: Said beside a five-DOF simulation's measured-minus-true errors (terminal and report).
 MOUNTING_NOTE = ("Measured minus truth is noise plus the mounting errors' crosstalk: an eccentric "
@@ -41,6 +44,45 @@ _ENVIRONMENT_METHOD = ("Each raw reading corrected for the refractive index of t
                        "time (the equation named below) and the dead path, and the axis referred "
                        "to 20 °C by ISO 1:2016 with the material temperature at its time.")
 
+_VOLUMETRIC_METHOD = ("Positioning and cross-axis tables computed from the 21 measured errors "
+                      "(ISO 230-1:2012) in the order of Chapman, 'Calibration of machine "
+                      "squareness', Appendix II, the squareness put on the receiving axis; "
+                      "verified by re-measuring the simulated machine with the tables applied: "
+                      "the volumetric map (ISO/TR 16907:2015) and the body diagonals "
+                      "(ISO 230-6:2002).")
+
+
+def any_simulation_figure(kind: str, test: Any, name: str = "") -> Any:
+    """The figure of any :class:`axiscal.api.Simulation`: a positioning test's ISO 230-2 figure
+    with the simulation's truth (the mean of both directions when bidirectional), a rotary
+    calibration's error beside its truth and budget, or :func:`simulation_figure`."""
+    if kind == "rotary-calibration":
+        from axiscal.report.rotary import rotary_error_figure
+
+        return rotary_error_figure(test)
+    if kind != "positioning":
+        return simulation_figure(test, name)
+    from axiscal.report.plots import iso230_2_figure
+
+    truth = (test.plan.targets, 0.5 * (test.truth_up + test.truth_down)
+             if test.plan.bidirectional else test.truth_up)
+    return iso230_2_figure(test.result, test.dataset, truth=truth)
+
+
+def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "") -> Path:
+    """The report of any :class:`axiscal.api.Simulation`, as its command's ``--report``."""
+    if kind == "rotary-calibration":
+        from axiscal.report.rotary import write_rotary_report
+
+        return Path(write_rotary_report(path, test))
+    if kind != "positioning":
+        return write_simulation_report(test, path, name)
+    from axiscal.report.html import positioning_report
+
+    rep = positioning_report(test.dataset, test.result)
+    rep.simulation = True
+    return Path(rep.write(path))
+
 
 def simulation_figure(run: Any, name: str = "") -> Any:
     """The matplotlib Figure of a run, as its command's ``--plot`` draws it."""
@@ -57,6 +99,8 @@ def simulation_figure(run: Any, name: str = "") -> Any:
 
         return five_errors_figure([run.parts["measured"]], [run.record.truth],
                                   title=f"Five motion errors — {run.parts['machine'] or name}")
+    if run.kind == "volumetric-compensation":
+        return _verify_figure(run, name)
     if run.kind == "volumetric-map":
         from axiscal.report.volumetric_plots import volumetric_figure
 
@@ -86,6 +130,11 @@ def write_simulation_report(run: Any, path: Any, name: str = "") -> Path:
         cfg = run.parts["config"]
         return volumetric_report(run.record, run.parts["diagonals"], cfg.errors, name=cfg.name,
                                  truth=run.parts["truth"]).write(path)
+    if run.kind == "volumetric-compensation":
+        fig = _verify_figure(run, name) if run.parts["verify"] is not None else None
+        return write_result_report(path, f"Volumetric compensation — {name}", run.json,
+                                   figure=fig, simulation=fig is not None,
+                                   method=_VOLUMETRIC_METHOD)
     fig = simulation_figure(run, name)
     if run.kind == "scale-homing":
         return write_result_report(path, f"Laser scale referencing — {name}", run.json,
@@ -95,3 +144,34 @@ def write_simulation_report(run: Any, path: Any, name: str = "") -> Path:
                                    simulation=True, caption=_GANTRY_CAPTION, method=_GANTRY_METHOD)
     return write_result_report(path, f"Environmental compensation of {name}", run.json,
                                figure=fig, method=_ENVIRONMENT_METHOD)
+
+
+def _verify_figure(run: Any, name: str) -> Any:
+    """Each figure of a volumetric compensation's verification before and after the tables
+    (µm, as re-measured on the simulated machine)."""
+    from axiscal.errors import InputError
+
+    result = run.parts["verify"]
+    if result is None:
+        raise InputError("plot: a volumetric compensation has a figure when verified "
+                         "(verify=True, a simulated configuration)")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    names = [n for n, _, _ in result.rows]
+    y = np.arange(len(names))
+    fig, ax = plt.subplots(figsize=(8, 0.45 * len(names) + 1.4))
+    ax.barh(y + 0.2, [b * 1e6 for _, b, _ in result.rows], 0.4, label="before", color="tab:red")
+    ax.barh(y - 0.2, [a * 1e6 for _, _, a in result.rows], 0.4, label="after the tables",
+            color="tab:blue")
+    ax.set_yticks(y, names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("µm (re-measured)")
+    ax.grid(axis="x", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(f"Volumetric compensation for {result.controller} — {name}", fontsize=10)
+    fig.tight_layout()
+    return fig
