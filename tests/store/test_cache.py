@@ -136,3 +136,18 @@ def test_derived_parts_are_made_once_and_read_back_in_another_process(counted):
     again = cache.derived(sha, "test-page-x", make)
     other = cache.derived(sha, "test-page-y", make)             # another configuration
     assert first == again == other and len(made) == 2
+
+
+def test_two_processes_make_one_product_once(counted, tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    code = ("import pathlib, time\nfrom axiscal.store import cache\n"
+            "def make():\n"
+            f"    with open({str(tmp_path / 'made')!r}, 'a') as f: f.write('x')\n"
+            "    time.sleep(2.0)\n    return 'report'\n"
+            "assert cache.kept('12' * 32, 'r.html', make) == b'report'\n")
+    procs = [subprocess.Popen([sys.executable, "-c", code], env=os.environ) for _ in range(2)]
+    assert [p.wait(60) for p in procs] == [0, 0]
+    assert (tmp_path / "made").read_text() == "x"

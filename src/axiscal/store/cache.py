@@ -34,7 +34,7 @@ import threading
 from collections import OrderedDict
 from pathlib import Path
 
-__all__ = ["cache_folder", "read", "write", "kept", "evaluated", "derived", "remember",
+__all__ = ["cache_folder", "read", "write", "kept", "kept_file", "evaluated", "derived", "remember",
            "MEMORY_BYTES", "MEMORY_ENTRIES"]
 
 #: Stored bytes whose evaluations one process keeps in memory, with the pickled size of the page
@@ -126,18 +126,48 @@ def _lock_for(key) -> threading.Lock:
 def kept(sha: str, what: str, make) -> bytes:
     """The kept bytes of ``what``, else ``make()`` (bytes or str) computed, kept and returned.
 
-    Within a process, concurrent requests for the same product wait for the one computing it
-    (and then read it), so six requests for one report compute it once."""
+    Concurrent requests for the same product wait for the one computing it (and then read it),
+    in this process (a lock) and in the other worker processes (an exclusive ``flock`` on a lock
+    file beside it, POSIX), so six requests for one report compute it once."""
     data = read(sha, what)
     if data is not None:
         return data
-    with _lock_for((sha, what)):
+    with _lock_for((sha, what)), _file_lock(_path(sha, what)):
         data = read(sha, what)
         if data is None:
             data = make()
             data = data.encode("utf-8") if isinstance(data, str) else bytes(data)
             write(sha, what, data)
     return data
+
+
+def kept_file(sha: str, what: str) -> Path | None:
+    """The file holding the kept ``what`` (to be sent as it is, never read whole), else None."""
+    path = _path(sha, what)
+    return path if path.is_file() else None
+
+
+class _file_lock:
+    """An exclusive lock on ``path + '.lock'`` across processes (no lock where there is no
+    ``fcntl`` or the folder cannot be written: then only the in-process lock holds)."""
+
+    def __init__(self, path: Path):
+        self.path, self.fd = path.with_name(path.name + ".lock"), None
+
+    def __enter__(self):
+        try:
+            import fcntl
+
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
+            fcntl.flock(self.fd, fcntl.LOCK_EX)
+        except (ImportError, OSError):
+            self.fd = None
+        return self
+
+    def __exit__(self, *exc):
+        if self.fd is not None:
+            os.close(self.fd)                 # closing releases the flock
 
 
 def digest(*parts) -> str:

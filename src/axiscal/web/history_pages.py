@@ -123,14 +123,14 @@ def add_routes(app: FastAPI) -> None:
     @app.get("/tests/{test_id}/report.html")
     async def report(request: Request, test_id: TestId):
         html = await _product(request, test_id, "HTML report", "report.html", _report_html)
-        return download(html, f"test_{test_id}_report.html", "text/html")
+        return _sent(html, f"test_{test_id}_report.html", "text/html")
 
     @app.get("/tests/{test_id}/standards.html")
     async def standards(request: Request, test_id: TestId):
         html = await _product(request, test_id, "report by every standard",
                               f"standards-{test_id}.html",
                               _standards_html)
-        return download(html, f"test_{test_id}_standards.html", "text/html")
+        return _sent(html, f"test_{test_id}_standards.html", "text/html")
 
     @app.get("/tests/{test_id}/certificate.pdf")
     async def certificate(request: Request, test_id: TestId, paper: str = "A4"):
@@ -145,7 +145,7 @@ def add_routes(app: FastAPI) -> None:
         what = f"certificate-{digest(cfg, paper, dt.date.today().isoformat())}.pdf"
         pdf = await _product(request, test_id, "certificate", what,
                              lambda t, ev: _certificate_pdf(t, ev, cfg, paper))
-        return download(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
+        return _sent(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
 
     @app.post("/tests/{test_id}/compensation")
     async def compensation(request: Request, test_id: TestId):
@@ -223,24 +223,39 @@ def add_routes(app: FastAPI) -> None:
             stored="again" if r.duplicate else "new", **typed), 303)
 
 
-async def _product(request: Request, test_id: int, words: str, what: str, make) -> bytes:
+async def _product(request: Request, test_id: int, words: str, what: str, make):
     """A report or certificate of a stored positioning test: kept, once made, under the test's
     stored-bytes SHA-256 and the axiscal version (:func:`axiscal.store.cache.kept`); made off the
     event loop, one at a time per worker (:func:`axiscal.web.workers.heavy`)."""
-    from axiscal.store.cache import read
+    from axiscal.store.cache import kept_file
     from axiscal.web.workers import heavy
 
     t = await run_in_threadpool(request.app.state.store.get, test_id)
     if t.summary.kind != "iso230-2":
         raise InputError(f"a {t.summary.kind} test has no {words} here; download its JSON")
-    data = await run_in_threadpool(read, t.sha256, what)
-    return data if data is not None else await heavy(_make, t, what, make)
+    path = kept_file(t.sha256, what)
+    return path if path is not None else await heavy(_make, t, what, make)
 
 
-def _make(t, what: str, make) -> bytes:
-    from axiscal.store.cache import kept
+def _sent(content, filename: str, media_type: str):
+    """A download of a kept product: its file streamed from the cache (never read whole into
+    memory), or the bytes when the cache could not keep it."""
+    if isinstance(content, bytes):
+        return download(content, filename, media_type)
+    from fastapi.responses import FileResponse
 
-    return kept(t.sha256, what, lambda: make(t, t.evaluate_again()))
+    safe = download(b"", filename, media_type).headers["content-disposition"]
+    return FileResponse(content, media_type=media_type, headers={"Content-Disposition": safe})
+
+
+def _make(t, what: str, make):
+    from axiscal.store.cache import kept, kept_file
+
+    path = kept_file(t.sha256, what)          # made while this request waited its turn
+    if path is not None:
+        return path
+    data = kept(t.sha256, what, lambda: make(t, t.evaluate_again()))
+    return kept_file(t.sha256, what) or data
 
 
 def _report_html(t, ev) -> str:
