@@ -1,8 +1,9 @@
 """Shared parser of the tidy CSV files of axiscal (one reading per line, ``#`` comments).
 
 A comment line may declare metadata as ``key=value`` pairs (shell quoting allowed); the first
-non-comment line is the header. Used by :mod:`axiscal.io.straightness` and
-:mod:`axiscal.io.ballbar`.
+non-comment line is the header. Used by :mod:`axiscal.io.straightness`,
+:mod:`axiscal.io.ballbar` and the raw readings of :mod:`axiscal.io.measured` (streamed line by
+line through :func:`data_lines`).
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from axiscal import units
 from axiscal._parse import csv_cells, finite_number
 from axiscal.errors import AxiscalError, DataFormatError
 
-__all__ = ["parse_tidy", "header_of", "take_comment", "number", "length_factor"]
+__all__ = ["parse_tidy", "data_lines", "no_data", "header_of", "take_comment", "number",
+           "length_factor"]
 
 
 def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source: str):
@@ -31,9 +33,27 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         No header, a missing column, a short row, or no data.
     """
     meta: dict[str, str] = {}
-    header: list[str] | None = None
     rows: list[tuple[int, dict[str, str]]] = []
-    for lineno, line in enumerate(text.splitlines(), start=1):
+    for lineno, stripped, header in data_lines(enumerate(text.splitlines(), start=1), columns,
+                                               meta_keys, source, meta):
+        cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
+        if len(cells) < len(header):
+            raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
+                                  source, lineno)
+        rows.append((lineno, {c: cells[header.index(c)] for c in columns}))
+    if not rows:
+        raise no_data(columns, source)
+    return meta, rows
+
+
+def data_lines(numbered_lines, columns: tuple[str, ...], meta_keys: set[str], source: str,
+               meta: dict):
+    """The data lines of a tidy CSV as ``(lineno, stripped line, header)``, read one at a time
+    from ``(lineno, line)`` pairs: blank lines skipped, each comment's ``key=value`` declarations
+    added to ``meta`` (:func:`take_comment`), the first other line taken as the header
+    (:func:`header_of`)."""
+    header: list[str] | None = None
+    for lineno, line in numbered_lines:
         stripped = line.strip()
         if not stripped:
             continue
@@ -43,15 +63,12 @@ def parse_tidy(text: str, columns: tuple[str, ...], meta_keys: set[str], source:
         if header is None:
             header = header_of(stripped, columns, source, lineno)
             continue
-        cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
-        if len(cells) < len(header):
-            raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
-                                  source, lineno)
-        rows.append((lineno, {c: cells[header.index(c)] for c in columns}))
-    if header is None or not rows:
-        raise DataFormatError(f"no data: expected a header {','.join(columns)} and readings",
-                              source)
-    return meta, rows
+        yield lineno, stripped, header
+
+
+def no_data(columns: tuple[str, ...], source: str) -> DataFormatError:
+    """The error of a file with no header or no data line."""
+    return DataFormatError(f"no data: expected a header {','.join(columns)} and readings", source)
 
 
 def header_of(stripped: str, columns: tuple[str, ...], source: str, lineno: int) -> list[str]:

@@ -107,23 +107,14 @@ def _raw_readings(lines, source: str) -> RawReadings:
     from array import array
 
     from axiscal._parse import MAX_MAGNITUDE, csv_cells
-    from axiscal.io._tidy import header_of, take_comment
+    from axiscal.io._tidy import data_lines, no_data
 
     meta: dict[str, str] = {}
-    header: list[str] | None = None
     cols: dict = {c: array("d") for c in ("time_s", "target", "run", "reading")}
     signs, where = array("b"), array("q")
-    for lineno, line in lines:
-        stripped = line.strip()
-        if not stripped:
-            continue
-        if stripped.startswith("#"):
-            take_comment(meta, stripped, _RAW_KEYS, source, lineno)
-            continue
-        if header is None:
-            header = header_of(stripped, _RAW_COLUMNS, source, lineno)
-            idx = [header.index(c) for c in _RAW_COLUMNS]
-            continue
+    idx: list[int] = []
+    for lineno, stripped, header in data_lines(lines, _RAW_COLUMNS, _RAW_KEYS, source, meta):
+        idx = idx or [header.index(c) for c in _RAW_COLUMNS]
         cells = stripped.split(",")
         row = None
         if len(cells) >= len(header) and '"' not in stripped:
@@ -153,9 +144,8 @@ def _raw_readings(lines, source: str) -> RawReadings:
         cols["run"].append(row[3])
         cols["reading"].append(row[4])
         where.append(lineno)
-    if header is None or not where:
-        raise DataFormatError(f"no data: expected a header {','.join(_RAW_COLUMNS)} and readings",
-                              source)
+    if not where:
+        raise no_data(_RAW_COLUMNS, source)
     ru, tu = meta.get("reading_unit", "mm"), meta.get("target_unit", "mm")
     try:
         fr = units.factor(ru, "length")
