@@ -155,12 +155,11 @@ def _verify_figure(run: Any, name: str) -> Any:
     if result is None:
         raise InputError("plot: a volumetric compensation has a figure when verified "
                          "(verify=True, a simulated configuration)")
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     import numpy as np
 
+    from axiscal.report._figures import pyplot
+
+    plt = pyplot()
     names = [n for n, _, _ in result.rows]
     y = np.arange(len(names))
     fig, ax = plt.subplots(figsize=(8, 0.45 * len(names) + 1.4))
