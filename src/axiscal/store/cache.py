@@ -42,7 +42,7 @@ __all__ = ["cache_folder", "read", "write", "kept", "kept_file", "evaluated", "d
 MEMORY_BYTES = 32 * 2**20
 #: Evaluations one process keeps in memory at most.
 MEMORY_ENTRIES = 256
-_memory: OrderedDict = OrderedDict()        # (sha, version) -> (Evaluated, size)
+_memory: OrderedDict = OrderedDict()        # (sha, version, what) -> (value, size)
 _memory_lock = threading.Lock()
 _key_locks: dict = {}
 _key_locks_lock = threading.Lock()
@@ -178,7 +178,19 @@ def digest(*parts) -> str:
 def evaluated(raw: bytes, sha: str, filename: str, kind: str | None):
     """The evaluation of stored bytes ``raw`` (digest ``sha``): from memory, else the disk, else
     :func:`~axiscal.store.kinds.evaluate_file` once (then kept)."""
-    key = (sha, _version())
+    def make():
+        from axiscal.store.kinds import evaluate_file
+
+        return evaluate_file(raw, filename, kind)
+
+    return derived(sha, "evaluated", make, size=len(raw))
+
+
+def derived(sha: str, what: str, make, size: int | None = None):
+    """A value computed from a stored test (its evaluation; a page's plot, tables, figures):
+    kept in memory and as a pickle on disk under ``what``, made by ``make()`` once. In memory it
+    counts ``size`` bytes (default: its pickle's size) against :data:`MEMORY_BYTES`."""
+    key = (sha, _version(), what)
     with _memory_lock:
         hit = _memory.get(key)
         if hit is not None:
@@ -188,32 +200,6 @@ def evaluated(raw: bytes, sha: str, filename: str, kind: str | None):
         with _memory_lock:
             if key in _memory:
                 return _memory[key][0]
-        data = read(sha, "evaluated.pickle")
-        ev = None
-        if data is not None:
-            try:
-                ev = pickle.loads(data)
-            except Exception:                 # noqa: BLE001 - a damaged entry: evaluate again
-                ev = None
-        if ev is None:
-            from axiscal.store.kinds import evaluate_file
-
-            ev = evaluate_file(raw, filename, kind)
-            _keep_on_disk(sha, ev)
-        _hold(key, ev, len(raw))
-    return ev
-
-
-def derived(sha: str, what: str, make):
-    """A value computed from a stored test's evaluation (a page's plot, tables, figures; plain
-    data): kept like the evaluation, in memory and as a pickle on disk, under ``what``."""
-    key = (sha, _version(), what)
-    with _memory_lock:
-        hit = _memory.get(key)
-        if hit is not None:
-            _memory.move_to_end(key)
-            return hit[0]
-    with _lock_for(key):
         value = None
         data = read(sha, f"{what}.pickle")
         if data is not None:
@@ -224,17 +210,17 @@ def derived(sha: str, what: str, make):
         if value is None:
             value = make()
             data = _keep_on_disk(sha, value, f"{what}.pickle")
-        _hold(key, value, len(data or b""))      # bounded by the size of its pickle
+        _hold(key, value, len(data or b"") if size is None else size)
     return value
 
 
 def remember(raw: bytes, sha: str, ev) -> None:
     """Keep an evaluation just made (at upload), so the first view is already a look-up."""
-    _keep_on_disk(sha, ev)
-    _hold((sha, _version()), ev, len(raw))
+    _keep_on_disk(sha, ev, "evaluated.pickle")
+    _hold((sha, _version(), "evaluated"), ev, len(raw))
 
 
-def _keep_on_disk(sha: str, value, what: str = "evaluated.pickle") -> bytes | None:
+def _keep_on_disk(sha: str, value, what: str) -> bytes | None:
     try:
         data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
     except Exception:                         # noqa: BLE001 - not picklable: memory only
