@@ -191,19 +191,23 @@ def test_rotary_calibration_equals_rotary_simulate(tmp_path):
 
 
 def test_per_target_table_as_a_dataframe(laser_file):
-    """``to_dataframe``: the ``targets`` rows of the JSON; without pandas (optional), one error
-    that says how to get it."""
+    """``to_dataframe``: the ``targets`` rows of the JSON, one row a target, every column."""
+    ev = axiscal.evaluate(laser_file)
+    df = ev.to_dataframe()
+    rows = ev.to_dict()["targets"]
+    assert len(df) == len(rows) and list(df.columns) == list(rows[0])
+    assert df.to_dict("records") == rows
+
+
+def test_dataframe_without_pandas_says_how_to_get_it(laser_file, monkeypatch):
+    """pandas is optional: without it, one error that says how to install it."""
+    import sys
+
     from axiscal.errors import AxiscalError
 
-    ev = axiscal.evaluate(laser_file)
-    try:
-        import pandas  # noqa: F401
-    except ImportError:
-        with pytest.raises(AxiscalError, match="pip install pandas"):
-            ev.to_dataframe()
-        return
-    df = ev.to_dataframe()
-    assert list(df["target"]) == [t["target"] for t in ev.to_dict()["targets"]]
+    monkeypatch.setitem(sys.modules, "pandas", None)     # import pandas raises ImportError
+    with pytest.raises(AxiscalError, match="pip install pandas"):
+        axiscal.evaluate(laser_file).to_dataframe()
 
 
 SCALE_SINGLE = ROOT / "examples" / "scale_single.toml"
