@@ -22,7 +22,8 @@ table = axiscal.compensation_table(ev, spacing=25, bidirectional=True)
 print(table)
 
 for controller, path in (("siemens-840d", "x_840d.ini"), ("fanuc", "x_fanuc.txt"),
-                         ("heidenhain", "X.COM"), ("linuxcnc", "x.comp")):
+                         ("heidenhain", "X.COM"), ("linuxcnc", "x.comp"),
+                         ("renishaw-ren", "x.ren"), ("csv", "x_compensation.csv")):
     cf = axiscal.write_table(table, controller, OUT / path)
     print(f"\n{controller}: {path}, {len(cf.text.splitlines())} lines")
     for line in cf.enable[:2]:
