@@ -208,8 +208,8 @@ def add_routes(app: FastAPI) -> None:
                 axis=fields["axis"] or None, note=fields["note"],
                 instrument=fields["instrument"], date=fields["date"] or None)
         except InputError as exc:
-            return render(request, "upload.html", "Upload a test", 400, form=fields,
-                          error=str(exc))
+            return render(request, "upload.html", "Upload a test", getattr(exc, "status", 400),
+                          form=fields, error=str(exc))
         except Exception as exc:                  # noqa: BLE001 - shown, never a traceback
             from axiscal.errors import AxiscalError
 

@@ -153,8 +153,10 @@ def check_upload(filename: str, content_type: str, size: int,
         raise InputError(f"file {name!r} was sent as {base!r}; a data file is text "
                          "(CSV, JSON) or an instrument's binary record")
     if size > limit:
-        raise InputError(f"file {name!r} is larger than the workbench takes: at most "
-                         f"{limit / 2**20:.3g} MiB")
+        from axiscal.web.guards import TooLarge       # HTTP 413, as a body over the limit
+
+        raise TooLarge(f"file {name!r} is larger than the workbench takes: at most "
+                       f"{limit / 2**20:.3g} MiB")
     if size == 0:
         raise InputError(f"file {name!r} is empty")
     return suffix
