@@ -23,6 +23,9 @@ def add_routes(app: FastAPI) -> None:
     from axiscal.web import signoff_pages
 
     signoff_pages.add_routes(app)
+    from axiscal.web import measured_pages
+
+    measured_pages.add_routes(app)        # a capture, raw readings + log, an archive
 
     @app.get("/plan", response_class=HTMLResponse)
     async def plan_page(request: Request):

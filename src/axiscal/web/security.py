@@ -141,15 +141,17 @@ def is_loopback(host: str) -> bool:
 
 
 def check_upload(filename: str, content_type: str, size: int,
-                 limit: int = MAX_UPLOAD_BYTES) -> str:
-    """The upload's suffix if acceptable; else an :class:`InputError` naming the problem."""
+                 limit: int = MAX_UPLOAD_BYTES, suffixes: tuple = UPLOAD_SUFFIXES,
+                 types: tuple = UPLOAD_TYPES) -> str:
+    """The upload's suffix if acceptable (one of ``suffixes``, sent as one of ``types``); else
+    an :class:`InputError` naming the problem."""
     name = Path(filename or "").name
     suffix = Path(name).suffix.lower()
-    if not name or suffix not in UPLOAD_SUFFIXES:
+    if not name or suffix not in suffixes:
         raise InputError(f"file {name or '(none)'!r}: upload a data file ending in "
-                         f"{', '.join(UPLOAD_SUFFIXES)}")
+                         f"{', '.join(suffixes)}")
     base = (content_type or "").split(";")[0].strip().lower()
-    if base not in UPLOAD_TYPES:
+    if base not in types:
         raise InputError(f"file {name!r} was sent as {base!r}; a data file is text "
                          "(CSV, JSON) or an instrument's binary record")
     if size > limit:
