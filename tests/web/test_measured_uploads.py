@@ -140,3 +140,18 @@ def test_archive_uploads_keep_the_guards(tmp_path):
     assert _post(c, "/upload/archive", files).status_code == 413 and _stored(c) == 0
     r = c.post("/upload/archive", files=files)                    # no CSRF token
     assert r.status_code == 403 and _stored(c) == 0
+
+
+def test_a_viewer_uploads_nothing(tmp_path, users):
+    from tests.web.conftest import log_in
+
+    archive = make_archive(tmp_path, 1)
+    c = _client(tmp_path, users_file=users, require_login=True)
+    assert log_in(c, "view", "staple battery horse").status_code == 303
+    token = _csrf(c, "/")
+    for path, files in (("/upload/archive", {"archive": ("a.zip", archive.read_bytes(),
+                                                         "application/zip")}),
+                        ("/upload/measured", {"file": ("r.csv", b"x", "text/csv")})):
+        r = c.post(path, data={"csrf": token, "kind": "raw"}, files=files)
+        assert r.status_code == 403 and "your role is viewer" in r.text, path
+    assert _stored(c) == 0
