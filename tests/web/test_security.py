@@ -76,7 +76,8 @@ def test_upload_size_limit_on_the_server(tmp_path):
     tok = _csrf(c)
     r = c.post("/upload", data={"csrf": tok},
                files={"file": ("x.csv", b"#" * 5000, "text/csv")})
-    assert r.status_code == 400 and "at most" in r.text
+    assert r.status_code == 413 and "at most" in r.text      # RFC 9110 §15.5.14 Content Too Large
+    assert "Data file" in r.text                               # the form is shown again
     assert c.get("/").text.count("<tr>") == 0
 
 
