@@ -18,18 +18,20 @@ from __future__ import annotations
 import logging
 import secrets
 from pathlib import Path
-from urllib.parse import quote, urlencode
+from urllib.parse import quote
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import RedirectResponse, Response
+from fastapi.responses import RedirectResponse
 from fastapi.staticfiles import StaticFiles
 from fastapi.templating import Jinja2Templates
 
 from axiscal.errors import AxiscalError, InputError
-from axiscal.web.guards import (FORM_OVERHEAD, BodyLimit, TooLarge, allowed_hosts, check_fields,
-                                host_allowed, origin_allowed)
+from axiscal.web.guards import FORM_OVERHEAD, BodyLimit, allowed_hosts, host_allowed, origin_allowed
+from axiscal.web.inputs import MAX_ID
 from axiscal.web.login import COOKIE
+from axiscal.web.rendering import Forbidden, query, render_error
+from axiscal.web.rendering import download  # noqa: F401  (callers import it from here too)
 from axiscal.web.security import MAX_UPLOAD_BYTES, UserFile
 from axiscal.web.sessions import ABSOLUTE_SECONDS, IDLE_SECONDS, LoginThrottle, Sessions
 from axiscal.web.workers import WORKER_ID
@@ -39,12 +41,6 @@ __all__ = ["create_app", "Forbidden", "MAX_ID"]
 HERE = Path(__file__).parent
 LOG = logging.getLogger("axiscal.web")
 ANON = "axiscal_anon"
-#: Largest id a test can have (SQLite's and PostgreSQL's 64-bit integer keys).
-MAX_ID = 2**63 - 1
-
-
-class Forbidden(AxiscalError, PermissionError):
-    """The user's role may not do this (or a form's CSRF token is wrong)."""
 
 
 def create_app(db_url: str | None = None, users_file=None, require_login: bool = False,
@@ -167,81 +163,6 @@ def _add_error_pages(app: FastAPI) -> None:
         return render_error(request, "internal error: the server's log has the details", 500)
 
 
-def render(request: Request, template: str, title: str, status: int = 200, **context):
-    """A page with the common context (user, role, CSRF token, may the user write)."""
-    s = getattr(request.state, "session", None) or {}
-    ctx = {"request": request, "title": title, "csrf": s.get("csrf", ""),
-           "user": s.get("name"), "role": s.get("role"),
-           "can_write": s.get("role") == "engineer",
-           "accounts": bool(request.app.state.users and request.app.state.users.users),
-           **context}
-    return request.app.state.templates.TemplateResponse(request, template, ctx,
-                                                        status_code=status)
-
-
-def render_error(request: Request, message: str, status: int):
-    """The error page: the message in plain words (escaped), never a traceback."""
-    if getattr(request.state, "session", None) is None:
-        request.state.session = {}
-    from http import HTTPStatus
-
-    back = _came_from(request)
-    return render(request, "error.html", "Something needs attention", status, error=message,
-                  code=status, meaning=HTTPStatus(status).phrase, back=back)
-
-
-def _came_from(request: Request) -> str | None:
-    """The page of this site the user came from (Referer of an allowed host), to go back to."""
-    from urllib.parse import urlsplit
-
-    ref = request.headers.get("referer") or ""
-    try:
-        parts = urlsplit(ref)
-    except ValueError:
-        return None
-    hosts = getattr(request.app.state, "hosts", frozenset())
-    if not parts.hostname or parts.hostname.lower() not in hosts or \
-            not host_allowed(request.headers.get("host"), hosts):
-        return None
-    back = parts.path + (f"?{parts.query}" if parts.query else "")
-    return back if back.startswith("/") and not back.startswith("//") and \
-        back != request.url.path else None
-
-
-async def checked_form(request: Request, csrf: bool = True):
-    """The POSTed form, after its CSRF token (field ``csrf`` or header ``X-CSRF-Token``) is
-    checked against the session's (OWASP synchronizer-token pattern) and its text fields against
-    their bound (:func:`~axiscal.web.guards.check_fields`)."""
-    try:
-        form = await request.form(max_files=4, max_fields=64,
-                                  max_part_size=request.app.state.upload_limit + FORM_OVERHEAD)
-    except TooLarge:
-        raise
-    except Exception:                      # a malformed body: say so, never a trace
-        raise InputError("the form could not be read") from None
-    check_fields(form)
-    if not csrf:
-        return form
-    token = request.headers.get("x-csrf-token") or form.get("csrf")
-    if not token or not secrets.compare_digest(str(token), request.state.session["csrf"]):
-        raise Forbidden("the form is out of date (CSRF token); reload the page and send it again")
-    return form
-
-
-def require_engineer(request: Request) -> None:
-    """Refuse a viewer's attempt to change something."""
-    if request.state.session.get("role") != "engineer":
-        raise Forbidden("your role is viewer: uploading, storing and writing tables need an "
-                        "engineer's account")
-
-
-def download(content, filename: str, media_type: str) -> Response:
-    """A file download with a safe name (letters, digits, '.', '-', '_' only)."""
-    safe = "".join(c if c.isalnum() or c in "._-" else "_" for c in filename) or "download"
-    return Response(content, media_type=media_type,
-                    headers={"Content-Disposition": f'attachment; filename="{safe}"'})
-
-
 def _session(request: Request) -> dict | None:
     app = request.app
     sessions: Sessions = app.state.sessions
@@ -253,11 +174,6 @@ def _session(request: Request) -> dict | None:
         anon = secrets.token_hex(16)
     return {"name": None, "role": "engineer", "csrf": sessions.csrf_for(anon), "anon": anon,
             "new_anon": new}
-
-
-def query(**params) -> str:
-    """A URL query string of the non-empty parameters."""
-    return urlencode({k: v for k, v in params.items() if v not in (None, "")})
 
 
 def _validation_words(request: Request, errors) -> tuple[str, int]:

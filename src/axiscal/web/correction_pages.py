@@ -19,7 +19,8 @@ from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
 from axiscal.errors import InputError
-from axiscal.web.app import MAX_ID, checked_form, render, require_engineer
+from axiscal.web.inputs import MAX_ID, checked_form, require_engineer
+from axiscal.web.rendering import render
 
 __all__ = ["add_routes"]
 

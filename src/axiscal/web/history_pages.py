@@ -9,25 +9,23 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from fastapi import FastAPI, Query, Request
+from fastapi import FastAPI, Request
 from fastapi import Path as InPath
 from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
 from axiscal.errors import InputError
-from axiscal.web.app import MAX_ID, checked_form, download, query, render, require_engineer
+from axiscal.web.inputs import Page, QueryId, TestId, checked_form, require_engineer
+from axiscal.web.plot_specs import COLORS as _COLORS
+from axiscal.web.plot_specs import positioning_plot, trend_plot, unit_text
+from axiscal.web.rendering import download, query, render
 
-#: A test's id in a path, a query, and a page number: out of range is an error page, not a 500.
-TestId = Annotated[int, InPath(ge=1, le=MAX_ID)]
-QueryId = Annotated[int, Query(ge=1, le=MAX_ID)]
-Page = Annotated[int, Query(ge=1, le=10**9)]
 
 __all__ = ["add_routes", "positioning_plot", "trend_plot"]
 
 _KEY = ("E", "A", "R", "B", "squareness", "straightness")
 #: Tests shown on one page of a machine's history (newest first).
 PAGE = 100
-_COLORS = {"up": "#1f77b4", "down": "#d62728", "bi": "#2ca02c", "line": "#555"}
 
 
 def add_routes(app: FastAPI) -> None:
@@ -284,61 +282,6 @@ def _certificate_pdf(t, ev, cfg: dict, paper: str) -> bytes:
         return path.read_bytes()
 
 
-def positioning_plot(ev) -> dict:
-    """uPlot spec of an ISO 230-2 test: x̄↑, x̄↓ and x̄ per target, every reading as points."""
-    r, ds = ev.evaluation, ev.dataset
-    unit = unit_text(r.deviation_unit)
-    series = [{"label": "x̄↑", "values": _list(r.mean_up), "color": _COLORS["up"]},
-              {"label": "x̄↓", "values": _list(r.mean_down), "color": _COLORS["down"]},
-              {"label": "x̄ (bidirectional)", "values": _list(r.mean_bi),
-               "color": _COLORS["bi"], "dash": True}]
-    return {"title": f"ISO 230-2:2014 positioning deviations, {ds.metadata.axis or ''} axis",
-            "x_label": f"target [{r.target_unit}]", "y_label": f"deviation [{unit}]",
-            "x": _list(r.targets), "series": series}
-
-
-def trend_plot(tr) -> dict:
-    """uPlot spec of a trend on a date axis (x: seconds since 1970, UTC): the values, the fitted
-    line (ISO/TS 28037:2010 clause 6, as :func:`axiscal.store.trend` fits it) drawn on to the
-    predicted crossing of the tolerance, the tolerance, and the crossing as a point."""
-    def seconds(d):
-        import datetime as dt
-
-        return (d if d.tzinfo else d.replace(tzinfo=dt.timezone.utc)).timestamp()
-
-    x = [seconds(d) for d in tr.dates]
-    values = [float(v) for v in tr.values]
-    crossing = seconds(tr.crossing) if tr.crossing is not None else None
-    if crossing is not None:          # one more x: the fitted line and the tolerance reach it
-        x.append(crossing)
-        values.append(None)
-    order = sorted(range(len(x)), key=x.__getitem__)
-    x = [x[i] for i in order]
-    series = [{"label": tr.parameter, "values": [values[i] for i in order],
-               "color": _COLORS["up"], "points": True}]
-    if tr.drift is not None:
-        last = seconds(tr.dates[-1])      # the level is the fitted value at the last test
-        series.append({"label": "fitted drift", "values": [
-            tr.level + tr.drift * (t - last) / (365.25 * 86400) for t in x],
-            "color": _COLORS["line"], "dash": True})
-    if tr.tolerance is not None:
-        series.append({"label": "tolerance", "values": [tr.tolerance] * len(x),
-                       "color": _COLORS["down"], "dash": True})
-    if crossing is not None:
-        series.append({"label": f"predicted crossing {tr.crossing:%Y-%m-%d}", "values": [
-            tr.tolerance if t == crossing else None for t in x], "color": _COLORS["down"],
-            "points": True, "size": 11})
-    return {"title": f"{tr.parameter} over time", "x_label": "date of the test (UTC)",
-            "x_time": True, "y_label": f"{tr.parameter} [{unit_text(tr.unit)}]", "x": x,
-            "series": series}
-
-
-def unit_text(unit: str) -> str:
-    """A unit as the pages write it: ``um`` (the store's spelling) as ``µm``, ``um/m`` as
-    ``µm/m``."""
-    return "µm" + unit[2:] if unit.startswith("um") else unit
-
-
 def _write_table(store, test_id: int, controller: str, spacing: float):
     from axiscal.compensation.controllers import controller as controller_module
     from axiscal.compensation.tables import table_from_result
@@ -396,13 +339,6 @@ def _key(t):
         if k in t.parameters:
             return k, t.parameters[k]
     return next(iter(t.parameters.items()), None)
-
-
-def _list(a) -> list:
-    import math
-
-    return [None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
-            for v in a]
 
 
 def _f(v):

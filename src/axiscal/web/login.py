@@ -11,6 +11,9 @@ from fastapi import FastAPI, Request
 from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
+from axiscal.web.inputs import checked_form
+from axiscal.web.rendering import render
+
 __all__ = ["login_routes", "COOKIE"]
 
 COOKIE = "axiscal_session"
@@ -18,8 +21,6 @@ COOKIE = "axiscal_session"
 
 def login_routes(app: FastAPI) -> None:
     """Add ``/login`` and ``/logout`` to ``app``."""
-    from axiscal.web.app import checked_form, render
-
     @app.get("/login", response_class=HTMLResponse)
     async def login_form(request: Request, next: str = "/"):
         request.state.session = request.state.session or {}

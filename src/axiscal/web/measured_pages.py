@@ -32,7 +32,8 @@ from fastapi.responses import RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
 from axiscal.errors import AxiscalError, InputError
-from axiscal.web.app import checked_form, query, render, require_engineer
+from axiscal.web.inputs import checked_form, require_engineer
+from axiscal.web.rendering import query, render
 
 __all__ = ["add_routes", "capture_csv", "raw_csv"]
 

@@ -6,7 +6,8 @@ from fastapi import FastAPI, Request
 from fastapi.responses import HTMLResponse
 
 from axiscal.errors import InputError
-from axiscal.web.app import checked_form, download, query, render
+from axiscal.web.inputs import checked_form, form_number
+from axiscal.web.rendering import download, query, render
 from axiscal.web.login import login_routes
 
 __all__ = ["add_routes", "plan_from_form"]
@@ -60,38 +61,18 @@ def plan_from_form(values: dict):
     if kind not in ("linear", "rotary"):
         raise InputError(f"axis kind {kind!r}: linear or rotary")
     limit = MAX_LENGTH_MM if kind == "linear" else MAX_TRAVEL_DEG
-    travel = _number(values.get("travel"), "length or travel", 0.0, limit, required=True)
-    runs = int(_number(values.get("runs") or "5", "runs", 1, MAX_RUNS, whole=True))
+    travel = form_number(values.get("travel"), "length or travel", 0.0, limit, required=True)
+    runs = int(form_number(values.get("runs") or "5", "runs", 1, MAX_RUNS, whole=True))
     if kind == "linear":
         n = values.get("targets")
-        n = int(_number(n, "targets", 2, MAX_TARGETS, whole=True)) if n else None
+        n = int(form_number(n, "targets", 2, MAX_TARGETS, whole=True)) if n else None
         return plan_linear(travel, n_targets=n, runs=runs)
     step = values.get("step")
-    step = _number(step, "step", 1e-6, 360.0) if step else None
+    step = form_number(step, "step", 1e-6, 360.0) if step else None
     if step and travel / step > MAX_TARGETS:
         raise InputError(f"a step of {step:g} deg over {travel:g} deg gives more than "
                          f"{MAX_TARGETS} targets")
     return plan_rotary(travel, step=step, runs=runs)
-
-
-def _number(text, what: str, low: float, high: float, required: bool = False,
-            whole: bool = False) -> float:
-    import math
-
-    if text in (None, ""):
-        if required:
-            raise InputError(f"{what}: give a number")
-        return low
-    try:
-        v = float(str(text).replace(",", "."))
-    except ValueError:
-        raise InputError(f"{what} = {text!r}: not a number") from None
-    if not math.isfinite(v) or not low <= v <= high or (whole and v != int(v)):
-        kind = "a whole number" if whole else "a number"
-        raise InputError(f"{what} = {text}: give {kind} from {low:g} to {high:g}")
-    if v <= 0 and what == "length or travel":
-        raise InputError(f"{what} = {text}: must be positive")
-    return v
 
 
 def _describe(plan) -> str:

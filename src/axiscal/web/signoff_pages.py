@@ -19,9 +19,9 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 from starlette.concurrency import run_in_threadpool
 
 from axiscal.errors import AxiscalError, InputError
-from axiscal.web.app import checked_form, download, query, render, require_engineer
-from axiscal.web.history_pages import TestId
-from axiscal.web.pages import _number
+from axiscal.web.inputs import TestId, checked_form, form_number, require_engineer
+from axiscal.web.plot_specs import COLORS, as_list, positioning_plot, unit_text
+from axiscal.web.rendering import download, query, render
 
 __all__ = ["add_routes", "job_from_form", "signoff_context", "signoff_plot", "INSTRUMENTS"]
 
@@ -127,7 +127,7 @@ def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str
             continue
         value: object = text
         if field in _TEMPERATURES:
-            value = _number(text, field.replace("_", " ") + " [°C]", -50.0, 100.0)
+            value = form_number(text, field.replace("_", " ") + " [°C]", -50.0, 100.0)
         elif field == "customer_address":
             value = [line.strip() for line in text.splitlines() if line.strip()]
         job.setdefault(table, {})[key] = value
@@ -139,7 +139,7 @@ def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str
             raise InputError("an instrument row without a name: give the instrument's name")
     if rows:
         job["instrument"] = rows
-    tolerances = {p: _number(values[f"tol_{p}"], f"tolerance {p}", 0.0, 1e6)
+    tolerances = {p: form_number(values[f"tol_{p}"], f"tolerance {p}", 0.0, 1e6)
                   for p in parameters if values.get(f"tol_{p}")}
     rule = values.get("rule") or None
     if rule not in (None, "iso14253-1", "simple"):
@@ -160,22 +160,20 @@ def signoff_plot(ev, so=None, tolerances: dict | None = None) -> dict:
     its tolerance exactly when its curves fit between the two lines. Where to draw a band of that
     width is not said by the standard; the centred position is this page's choice.
     """
-    from axiscal.web.history_pages import _COLORS, _list, positioning_plot
-
     spec = positioning_plot(ev)
     r, ds = ev.evaluation, ev.dataset
     series = spec["series"]
-    for arrow, mean, s, arr, color in (("↑", r.mean_up, r.s_up, ds.up, _COLORS["up"]),
-                                       ("↓", r.mean_down, r.s_down, ds.down, _COLORS["down"])):
+    for arrow, mean, s, arr, color in (("↑", r.mean_up, r.s_up, ds.up, COLORS["up"]),
+                                       ("↓", r.mean_down, r.s_down, ds.down, COLORS["down"])):
         if arr.shape[1] == 0:
             continue
-        series += [{"label": f"x̄{arrow} + 2s", "values": _list(mean + 2 * s), "color": color,
+        series += [{"label": f"x̄{arrow} + 2s", "values": as_list(mean + 2 * s), "color": color,
                     "dash": True, "thin": True},
-                   {"label": f"x̄{arrow} − 2s", "values": _list(mean - 2 * s), "color": color,
+                   {"label": f"x̄{arrow} − 2s", "values": as_list(mean - 2 * s), "color": color,
                     "dash": True, "thin": True}]
         runs = arr.shape[1]      # one legend entry for every run's readings of a direction
         series += [{"label": f"readings{arrow} (runs 1–{runs})" if j == 0 else
-                    f"readings{arrow} run {j + 1}", "values": _list(arr[:, j]), "color": color,
+                    f"readings{arrow} run {j + 1}", "values": as_list(arr[:, j]), "color": color,
                     "points": True, "legend": j == 0} for j in range(runs)]
     if so is not None:
         series += _envelopes(r, so, tolerances or {})
@@ -284,6 +282,4 @@ def _defaults(cfg: dict, params) -> dict:
 
 
 def _unit(unit: str) -> str:
-    from axiscal.web.history_pages import unit_text
-
     return unit_text(unit)
