@@ -53,7 +53,8 @@ def evaluate(
 
     Example: axiscal evaluate x.csv --standard all
     """
-    from axiscal.cli.iso230_2 import parse_tolerances, verdicts_json, with_uncertainty_options
+    from axiscal.cli.iso230_2 import parse_tolerances, with_uncertainty_options
+    from axiscal.io.results import verdicts_json
     from axiscal.errors import InputError
     from axiscal.io import read_positioning
     from axiscal.standards import positioning_standards as ps
