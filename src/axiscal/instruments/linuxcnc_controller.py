@@ -329,6 +329,13 @@ class LinuxCNC:
         for sig, pin in (("j0-motor-pos-cmd", "motor-pos-cmd"), ("j0-pos-cmd", "pos-cmd")):
             subprocess.run(["halcmd", "net", sig, f"axiscal-laser.{pin}"], env=self._env(),
                            check=True, capture_output=True)
+        self._switch_on_and_home(1)
+
+    def _switch_on_and_home(self, joints: int) -> None:
+        """Out of e-stop, machine on, every joint homed in joint mode, then MDI (the order
+        LinuxCNC's Python interface, ``linuxcnc.command``, takes them in)."""
+        import linuxcnc
+
         c = self._cmd
         c.state(linuxcnc.STATE_ESTOP_RESET)
         c.state(linuxcnc.STATE_ON)
@@ -341,9 +348,10 @@ class LinuxCNC:
 
         def homed():
             self._stat.poll()
-            return bool(self._stat.homed[0])
+            return all(self._stat.homed[:joints])
 
-        _wait(homed, 10.0, "LinuxCNC to home the joint")
+        _wait(homed, 10.0, "LinuxCNC to home the joint" if joints == 1 else
+              f"LinuxCNC to home the {joints} joints")
         c.mode(linuxcnc.MODE_MDI)
         c.wait_complete()
 

@@ -130,23 +130,7 @@ class LinuxCNCXYZ(LinuxCNC):
         for net in nets:
             subprocess.run(["halcmd", "net", *net], env=self._env(), check=True,
                            capture_output=True)
-        c = self._cmd
-        c.state(linuxcnc.STATE_ESTOP_RESET)
-        c.state(linuxcnc.STATE_ON)
-        c.wait_complete()
-        c.mode(linuxcnc.MODE_MANUAL)
-        c.wait_complete()
-        c.teleop_enable(0)
-        c.wait_complete()
-        c.home(-1)
-
-        def homed():
-            self._stat.poll()
-            return all(self._stat.homed[:3])
-
-        _wait(homed, 10.0, "LinuxCNC to home the three joints")
-        c.mode(linuxcnc.MODE_MDI)
-        c.wait_complete()
+        self._switch_on_and_home(len(AXES))
 
     def move_to(self, target) -> np.ndarray:
         """Reach ``target`` (x, y, z mm), arriving moving + on every axis at the creep feed;
