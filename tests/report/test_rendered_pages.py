@@ -28,7 +28,6 @@ from axiscal.cli import app
 
 from pdf_pages import pdf_text, render_pages, used_fraction
 
-pytest.importorskip("weasyprint")
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 DPI = 40
 BANNER = "SIMULATION REPORT"
