@@ -51,8 +51,8 @@ import numpy as np
 
 from axiscal.errors import InputError, MeasurementError
 
-__all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "unavailable_reason", "clean_leftovers",
-           "running_processes", "leftover_segments", "session_lock", "SESSION_LOCK",
+__all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "platform_reason", "unavailable_reason",
+           "clean_leftovers", "running_processes", "leftover_segments", "session_lock", "SESSION_LOCK",
            "LINUXCNC_LOCK"]
 
 #: axiscal's own lock: one LinuxCNC session at a time on this computer (held with fcntl).
@@ -76,13 +76,22 @@ _SI = {"mm": 1e-3, "inch": 1e-3, "deg": np.pi / 180.0}
 CREEP, CREEP_FEED = 0.01, 60.0
 
 
-def unavailable_reason() -> str | None:
-    """Why LinuxCNC cannot run here (one sentence), or None when it can."""
+def platform_reason() -> str | None:
+    """Why this machine cannot host LinuxCNC at all (not Debian, not root), or None: what no
+    install step can change. A Debian machine run as root that lacks the package is a missing
+    install (``make linuxcnc``), said by :func:`unavailable_reason`."""
     if not Path("/etc/debian_version").exists():
         return "not Debian: axiscal runs LinuxCNC from Debian's linuxcnc-uspace package"
     if os.geteuid() != 0:
         return ("not root: axiscal starts LinuxCNC as root with RTAPI_UID (the way it was "
                 "tried); run as root")
+    return None
+
+
+def unavailable_reason() -> str | None:
+    """Why LinuxCNC cannot run here (one sentence), or None when it can."""
+    if (why := platform_reason()) is not None:
+        return why
     if shutil.which("linuxcnc") is None:
         return "linuxcnc-uspace is not installed: run 'make linuxcnc'"
     try:
