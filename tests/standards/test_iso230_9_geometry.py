@@ -95,3 +95,33 @@ def test_bad_inputs():
         squareness_budget("square", square_length=0)
     with pytest.raises(InputError, match="channel"):
         five_dof_budget({"ez3": 1}, {})
+
+
+def test_diagonal_budget_is_the_method_budget_with_its_inputs_shown():
+    """ISO 230-6:2002 §4 (squareness = D0 (D1 − D2)/(2XY)): a 600 × 800 mm test, D0 = 1 m.
+    diagonal_budget gives the ``diagonal`` budget of the measured travels and errors; the
+    configuration's inputs sit under the measured ones; every input is listed, the defaults
+    marked assumed with their rule, and said in words in the notes."""
+    from axiscal.errors import ConfigError
+    from axiscal.standards.iso230_6 import diagonal_squareness
+    from axiscal.standards.iso230_9_geometry import diagonal_budget
+
+    r = diagonal_squareness(0.6, 0.8, 20e-6, 5e-6)
+    b = diagonal_budget(r, {"laser_ppm": 1.0, "length_x": 9.0})       # a travel is measured
+    by_hand = squareness_budget("diagonal", length_x=0.6, length_y=0.8, laser_ppm=1.0,
+                                diagonal_d1=20.0, diagonal_d2=5.0)
+    assert b.U("squareness") == pytest.approx(by_hand.U("squareness"), rel=1e-12)
+    # u_D = 1 ppm/2 × 1 m = 0.5 µm, × D0/(2XY) = 1/0.96 per m; u_D0 = 15 µm/0.96 m² × 10 µm
+    assert b.rows("squareness")[0][1] == pytest.approx(0.5 / 0.96, rel=1e-12)
+    assert b.rows("squareness")[2][1] == pytest.approx(15 / 0.96 * 1e-6 * 10, rel=1e-12)
+    inputs = {i.name: i for i in b.inputs}
+    assert inputs["length_x"].value == 0.6 and not inputs["length_x"].assumed
+    assert inputs["laser_ppm"].rule == "given in the user configuration"
+    assert inputs["e_ve"].assumed and inputs["diagonal_length_u"].assumed
+    assert [n.split(" (")[0] for n in b.notes] == [
+        "assumed: environmental variation error E_VE 0 µm",
+        "assumed: standard uncertainty of the diagonal length D0 10 µm"]
+    with pytest.raises(ConfigError, match="probe: no such input"):
+        diagonal_budget(r, {"probe": 1.0})
+    with pytest.raises(ConfigError, match="laser_ppm = 'a lot': give a number"):
+        diagonal_budget(r, {"laser_ppm": "a lot"})

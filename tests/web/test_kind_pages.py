@@ -184,8 +184,52 @@ def test_diagonal_page_as_squareness_diagonal(site):
     rows = _table(page, "diagonal")
     assert rows[0] == ["squareness", _n(j["squareness"]["um_per_m"]), "µm/m"]
     assert rows[1] == ["squareness", _n(j["squareness"]["arcsec"]), "arcsec"]
-    assert rows[5][1:] == [_n(j["error_d1_um"]), "µm"] and rows[6][1:] == [_n(j["error_d2_um"]),
+    assert rows[6][1:] == [_n(j["error_d1_um"]), "µm"] and rows[7][1:] == [_n(j["error_d2_um"]),
                                                                           "µm"]
+    _page_U_is_the_cli_U(page, j)
+
+
+def _page_U_is_the_cli_U(page: str, j: dict) -> None:
+    """The page's U (k = 2), contributors and inputs are those ``squareness diagonal --json``
+    prints (ISO/TR 230-9 budget of :func:`axiscal.standards.iso230_9_geometry.diagonal_budget`);
+    U written as the command line writes it (two significant digits, rounded up)."""
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    rows = _table(page, "diagonal")
+    assert rows[2] == ["U (k = 2) of the squareness", format_uncertainty(j["U_um_per_m"]),
+                       "µm/m"]
+    budget = _table(page, "budget")
+    assert [(r[0], r[2]) for r in budget] == [(c["name"], f'{c["u_um_per_m"]:.3g}')
+                                              for c in j["uncertainty"]]
+    assert all(r[5] for r in budget)                                  # every clause named
+    inputs = {r[0]: r[1:3] for r in _table(page, "budget-inputs")}
+    assert inputs["X travel"] == ["0.6 m", "given"]
+    assert 'id="budget-notes"' in page
+
+
+def test_diagonal_page_U_follows_the_user_configuration(tmp_path, monkeypatch):
+    """With ``[squareness_uncertainty]`` inputs declared (laser 2 ppm, E_VE 1 µm), the page's
+    U is the command line's U under the same configuration, and the declared inputs are shown
+    given, not assumed; the undeclared D0 uncertainty stays assumed, in words."""
+    cfg = tmp_path / "config.toml"
+    cfg.write_text("[squareness_uncertainty]\nlaser_ppm = 2.0\ne_ve = 1.0\n")
+    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
+    monkeypatch.setenv("AXISCAL_CACHE", str(tmp_path / "cache"))
+    f = EXAMPLES / "squareness_diagonal_600x800.csv"
+    j = _cli("squareness", "diagonal", "--file", f)
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"), base_url="http://127.0.0.1")
+    token = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    r = c.post("/upload", data={"csrf": token, "machine": "DMU 50"},
+               files={"file": (f.name, f.read_bytes(), "text/csv")})
+    assert r.status_code == 200 and "/tests/" in str(r.url)
+    _page_U_is_the_cli_U(r.text, j)
+    inputs = {row[0]: row[1:3] for row in _table(r.text, "budget-inputs")}
+    assert inputs["laser accuracy (k = 2)"] == ["2 ppm", "given"]
+    assert inputs["environmental variation error E_VE"] == ["1 µm", "given"]
+    notes = html.unescape(r.text.split('id="budget-notes">')[1].split("</p>")[0])
+    assert "assumed: standard uncertainty of the diagonal length D0 10 µm" in notes
+    assert "laser accuracy" not in notes
+    assert j["U_um_per_m"] > 2 * 0.737       # 2 ppm and E_VE move U well above the defaults'
 
 
 def test_motion_page_as_motion_analyze(site):

@@ -210,17 +210,18 @@ def biaxial(
 
 
 def _budget(method: str, **measured):
-    """The squareness budget with the user configuration's inputs under the measured ones."""
+    """The squareness budget with the user configuration's inputs under the measured ones
+    (:func:`axiscal.standards.iso230_9_geometry.squareness_budget_with_inputs`)."""
+    from axiscal.standards.iso230_9_geometry import squareness_budget_with_inputs
+
+    return squareness_budget_with_inputs(method, _uncertainty_table(), **measured)
+
+
+def _uncertainty_table() -> dict:
+    """The user configuration's ``[squareness_uncertainty]`` table."""
     from axiscal.io.user_config import load_user_config
-    from axiscal.standards.iso230_9_geometry import squareness_budget
 
-    cfg = dict(load_user_config().get("squareness_uncertainty", {}))
-    try:
-        return squareness_budget(method, **{**cfg, **measured})
-    except TypeError as exc:     # an unknown key in the configuration
-        from axiscal.errors import ConfigError
-
-        raise ConfigError(f"[squareness_uncertainty]: {exc}") from None
+    return dict(load_user_config().get("squareness_uncertainty", {}))
 
 
 def _budget_json(b) -> dict:
@@ -294,8 +295,9 @@ def diagonal(
                              "errors, or --file")
         r = diagonal_squareness(x_length * 1e-3, y_length * 1e-3, d1 * 1e-6, d2 * 1e-6,  # type: ignore[operator]
                                 datum=datum)
-    budget = _budget("diagonal", length_x=r.length_x, length_y=r.length_y,
-                     diagonal_d1=r.error_d1 * 1e6, diagonal_d2=r.error_d2 * 1e6)
+    from axiscal.standards.iso230_9_geometry import diagonal_budget
+
+    budget = diagonal_budget(r, _uncertainty_table())
     um = (lambda v: None if v is None else v * 1e6)
     out = {**_budget_json(budget), "squareness": r.squareness.as_dict(), "length_x_mm": r.length_x * 1e3,
            "length_y_mm": r.length_y * 1e3, "nominal_mm": r.nominal * 1e3,

@@ -32,6 +32,14 @@ set-up leaves after removing once per turn (a ± bound, rectangular) and the res
 the common-path compensation (its standard deviation, normal).
 
 Each contributor's ``clause`` names the document and clause it comes from.
+
+:func:`squareness_budget_with_inputs` is the budget every front end shows: the user
+configuration's ``[squareness_uncertainty]`` table under the values measured from the data, and
+every input as a :class:`~axiscal.standards.iso230_9_inputs.BudgetInput` (measured, given, or
+assumed with the rule of its default) with the assumed ones in plain words in ``notes``.
+:func:`diagonal_budget` is that budget for a diagonal test (ISO 230-6:2002; ISO 230-1:2012
+§10.3.2.6), the one ``axiscal squareness diagonal`` prints and the workbench page of a stored
+diagonal test shows.
 """
 
 from __future__ import annotations
@@ -39,11 +47,14 @@ from __future__ import annotations
 import math
 from typing import Mapping
 
-from axiscal.errors import InputError
+from axiscal.errors import ConfigError, InputError
 from axiscal.standards.iso230_9 import COVERAGE_FACTOR, Contributor, UncertaintyBudget, combine
+from axiscal.standards.iso230_9_inputs import BudgetInput
 
 __all__ = [
     "squareness_budget",
+    "squareness_budget_with_inputs",
+    "diagonal_budget",
     "five_dof_budget",
     "slope_uncertainty",
     "SQUARENESS_METHODS",
@@ -301,6 +312,163 @@ def _diagonal(
         )
     )
     return out
+
+
+#: How a user sets an input of a squareness budget.
+SQUARENESS_SET_WITH = "[squareness_uncertainty] {key} in the user configuration (axiscal config)"
+_OWN = "axiscal's default, no document fixes it: declare your instrument's"
+_XL80 = "Renishaw XL-80 laser system specification, linear measurement accuracy"
+#: Every input of :func:`squareness_budget`: label, unit and the rule of its default.
+SQUARENESS_INPUTS = {
+    "length_x": ("X travel", "m", _OWN), "length_y": ("Y travel", "m", _OWN),
+    "optics_accuracy": ("straightness optics slope accuracy", "µm/m", _OWN),
+    "optics_k": ("coverage factor of the optics accuracy", "", "a certificate's k = 2"),
+    "square_error": ("error of the square", "µm", _OWN),
+    "square_length": ("length of the square", "m", _OWN),
+    "probe_accuracy": ("probe (indicator) accuracy, ± half-width", "µm", _OWN),
+    "slope_fit_x": ("standard uncertainty of the X slope fit", "µm/m", "not fitted: 0"),
+    "slope_fit_y": ("standard uncertainty of the Y slope fit", "µm/m", "not fitted: 0"),
+    "e_ve": ("environmental variation error E_VE", "µm", "not given, taken as 0 so U leaves it "
+             "out: measure it by a drift check over the test (ISO 230-2:2014 Annex A.5) or "
+             "declare it"),
+    "reposition": ("repeatability of placing the square again", "µm", _OWN),
+    "ballbar_radius": ("ballbar radius", "m", _OWN),
+    "transducer_accuracy": ("ballbar transducer accuracy, ± half-width", "µm", _OWN),
+    "laser_ppm": ("laser accuracy (k = 2)", "ppm", _XL80),
+    "diagonal_d1": ("length error of diagonal D1", "µm", "not measured: 0"),
+    "diagonal_d2": ("length error of diagonal D2", "µm", "not measured: 0"),
+    "diagonal_length_u": ("standard uncertainty of the diagonal length D0", "µm", _OWN),
+    "k": ("coverage factor", "", "ISO/TR 230-9 and ISO 230-2:2014 Annex A: k = 2"),
+}
+#: The inputs each method's budget reads (the others do not move its U).
+METHOD_INPUTS = {
+    "optics": ("length_x", "length_y", "optics_accuracy", "optics_k", "square_error",
+               "slope_fit_x", "slope_fit_y", "e_ve", "k"),
+    "square": ("length_x", "length_y", "square_error", "square_length", "probe_accuracy",
+               "slope_fit_x", "slope_fit_y", "e_ve", "k"),
+    "reversal": ("length_x", "length_y", "reposition", "square_length", "probe_accuracy",
+                 "slope_fit_x", "slope_fit_y", "e_ve", "k"),
+    "ballbar": ("ballbar_radius", "transducer_accuracy", "e_ve", "k"),
+    "diagonal": ("length_x", "length_y", "diagonal_d1", "diagonal_d2", "laser_ppm", "e_ve",
+                 "diagonal_length_u", "k"),
+}
+
+
+def squareness_budget_with_inputs(
+    method: str,
+    table: Mapping[str, float] | None = None,
+    *,
+    set_with: str = SQUARENESS_SET_WITH,
+    **measured: float,
+) -> UncertaintyBudget:
+    """:func:`squareness_budget` of ``method`` with every input it read, and where it came from.
+
+    Parameters
+    ----------
+    method : str
+        One of :data:`SQUARENESS_METHODS`.
+    table : mapping, optional
+        The user configuration's ``[squareness_uncertainty]`` table (keys of
+        :func:`squareness_budget`, in its units); inputs absent from it and from ``measured``
+        take the documented defaults and are marked assumed.
+    set_with : str
+        How a user sets an input, ``{key}`` replaced by its name.
+    **measured : float
+        Inputs measured from the data (travels, slopes' fit uncertainty, diagonal errors ...):
+        they override ``table``.
+
+    Returns
+    -------
+    UncertaintyBudget
+        Unit ``um/m``, parameter ``squareness``, with ``inputs`` (the inputs of ``method``,
+        :data:`METHOD_INPUTS`) and ``notes`` (each assumed input with its rule).
+
+    Raises
+    ------
+    ConfigError
+        A key of ``table`` that is no input, or a value that is not a number.
+
+    Examples
+    --------
+    >>> b = squareness_budget_with_inputs("diagonal", {"laser_ppm": 1.0}, length_x=0.6,
+    ...                                   length_y=0.8)
+    >>> round(b.U("squareness"), 3), [i.name for i in b.assumed][:2]
+    (1.474, ['diagonal_d1', 'diagonal_d2'])
+    """
+    import inspect
+
+    table = dict(table or {})
+    defaults = {n: p.default for n, p in inspect.signature(squareness_budget).parameters.items()
+                if n != "method"}
+    for key, value in table.items():
+        if key not in defaults:
+            raise ConfigError(f"[squareness_uncertainty] {key}: no such input; use "
+                              f"{', '.join(defaults)}")
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ConfigError(f"[squareness_uncertainty] {key} = {value!r}: give a number")
+    b = squareness_budget(method, **{**table, **measured})
+    records = tuple(_input_record(method, key, defaults[key], table, measured, set_with)
+                    for key in METHOD_INPUTS[method])
+    notes = tuple(f"assumed: {r.label} {r.value_text} ({r.rule}); set with {r.set_with}"
+                  for r in records if r.assumed and r.name not in ("k", "optics_k"))
+    from dataclasses import replace
+
+    return replace(b, inputs=records, notes=notes)
+
+
+def _input_record(method, key, default, table, measured, set_with) -> BudgetInput:
+    label, unit, rule = SQUARENESS_INPUTS[key]
+    if key == "square_error" and method == "optics":
+        label, unit = "optical square error (k = 2)", "arcsec"
+    if key in measured:
+        value, assumed, rule = measured[key], False, "measured from the data"
+        set_with = "the data file"
+    elif key in table:
+        value, assumed, rule = table[key], False, "given in the user configuration"
+    else:
+        value, assumed = default, True
+    return BudgetInput(key, label, float(value), unit, assumed,
+                       set_with.format(key=key), rule)
+
+
+def diagonal_budget(result, table: Mapping[str, float] | None = None, *,
+                    set_with: str = SQUARENESS_SET_WITH) -> UncertaintyBudget:
+    """The uncertainty of a diagonal test's squareness (µm/m), with its inputs.
+
+    Parameters
+    ----------
+    result : axiscal.standards.iso230_6.DiagonalResult
+        Supplies the travels X, Y (m) and the diagonals' length errors D1, D2 (m), measured.
+    table : mapping, optional
+        The user configuration's ``[squareness_uncertainty]`` table (laser accuracy, E_VE,
+        uncertainty of D0, k); absent inputs take the documented defaults, marked assumed.
+    set_with : str
+
+    Returns
+    -------
+    UncertaintyBudget
+        Contributors u_D1, u_D2 (laser ppm over D0 and E_VE, sensitivity D0/(2XY) each) and
+        u_D0 (sensitivity (D1 − D2)/(2XY)); ``inputs`` and ``notes`` as
+        :func:`squareness_budget_with_inputs`.
+
+    Notes
+    -----
+    Squareness = D0 (D1 − D2)/(2XY) (ISO 230-6:2002 §4; ISO 230-1:2012 §10.3.2.6; M.A.V.
+    Chapman, "Calibration of machine squareness", Method 5), its uncertainty by the law of
+    propagation (ISO/TR 230-9:2005; GUM eq. 10), expanded with k = 2.
+
+    Examples
+    --------
+    >>> from axiscal.standards.iso230_6 import diagonal_squareness
+    >>> r = diagonal_squareness(0.6, 0.8, 6e-6, -3e-6)
+    >>> b = diagonal_budget(r)
+    >>> round(b.U("squareness"), 3), len(b.notes)   # 2·√2·0.25 µm/(0.96 m); u_D0 ≈ 1e-4
+    (0.737, 4)
+    """
+    return squareness_budget_with_inputs(
+        "diagonal", table, set_with=set_with, length_x=result.length_x,
+        length_y=result.length_y, diagonal_d1=result.error_d1 * 1e6,
+        diagonal_d2=result.error_d2 * 1e6)
 
 
 def five_dof_budget(

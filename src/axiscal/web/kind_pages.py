@@ -10,7 +10,11 @@ write them (a share in % with one). Nothing is computed here.
   figures, the ranked diagnosis with its advice (Renishaw, "Calibration of machine squareness",
   Method 4), what the ISO 230-4 fit folds together; one direction: the ISO 230-4 evaluation;
 - straightness: both ISO 230-1:2012 reference lines (§3.4.8 least squares, §3.4.9 minimum zone);
-- diagonal: squareness from two diagonals (ISO 230-6:2002; Chapman, Method 5);
+- diagonal: squareness from two diagonals (ISO 230-6:2002; Chapman, Method 5) with its U (k = 2),
+  the budget ``squareness diagonal`` prints
+  (:func:`axiscal.standards.iso230_9_geometry.diagonal_budget`, ISO/TR 230-9; the user
+  configuration's ``[squareness_uncertainty]`` inputs), its contributors, its inputs and each
+  assumed one in words;
 - motion: the ISO 230-7:2015 error motion values and their polar plots.
 """
 
@@ -134,6 +138,7 @@ def _straightness(ev) -> dict:
 
 def _diagonal(ev) -> dict:
     from axiscal.report.squareness_plots import diagonal_figure
+    from axiscal.standards.iso230_9_geometry import diagonal_budget
 
     r, sq = ev.evaluation, ev.evaluation.squareness
     rows = [("squareness", fmt(sq.um_per_m, "µm/m"), "µm/m"),
@@ -143,14 +148,40 @@ def _diagonal(ev) -> dict:
             ("diagonal nominal D0", fmt(r.nominal * 1e3, "mm"), "mm"),
             ("length error of D1 (along -X +Y)", fmt(r.error_d1 * 1e6, "µm"), "µm"),
             ("length error of D2 (along +X +Y)", fmt(r.error_d2 * 1e6, "µm"), "µm")]
+    budget = diagonal_budget(r, _squareness_table())
+    rows.insert(2, ("U (k = 2) of the squareness", budget.U_text("squareness"), "µm/m"))
     return {"figure": _figure(diagonal_figure, ev.dataset, r),
             "alt": "Length errors along the two diagonals",
             "source": "ISO 230-6:2002 diagonal displacement; Chapman, \"Calibration of machine "
                       "squareness\", Method 5: squareness = D0 (D1 − D2) / (2XY)",
             "lead": sq.angle_note,
             "tables": [("Squareness from two diagonals", "diagonal", ["quantity", "value",
-                                                                       "unit"], rows)],
-            "statements": [], "warnings": []}
+                                                                       "unit"], rows),
+                       *_budget_tables(budget, "µm/m")],
+            "notes": list(budget.notes), "statements": [], "warnings": []}
+
+
+def _squareness_table() -> dict:
+    """The user configuration's ``[squareness_uncertainty]`` table, as the squareness commands
+    read it."""
+    from axiscal.io.user_config import load_user_config
+
+    return dict(load_user_config().get("squareness_uncertainty", {}))
+
+
+def _budget_tables(budget, unit: str) -> list:
+    """An uncertainty budget as two tables: its contributors (ISO/TR 230-9 form; u with three
+    significant digits, a small one is not a zero) and every input with where it came from
+    (measured, given, assumed with its rule)."""
+    contributors = [(c.name, c.quantity, f"{c.u:.3g}", c.distribution, c.basis, c.clause)
+                    for c in budget.contributors]
+    inputs = [(i.label, i.value_text, "assumed" if i.assumed else "given", i.rule, i.set_with)
+              for i in budget.inputs]
+    return [(f"Uncertainty budget ({budget.method}, k = {budget.k:g})", "budget",
+             ["contributor", "quantity", f"u [{unit}]", "distribution", "basis", "clause"],
+             contributors),
+            ("Inputs of the budget", "budget-inputs",
+             ["input", "value", "", "rule or source", "set with"], inputs)]
 
 
 def _motion(ev) -> dict:
