@@ -28,12 +28,13 @@ import numpy as np
 from axiscal import units
 from axiscal.compensation.tables import CompensationTable
 from axiscal.errors import InputError
+from axiscal.machines.seen_through import AxisSeenThrough
 
 __all__ = ["CompensatedAxis"]
 
 
 @dataclass(frozen=True)
-class CompensatedAxis:
+class CompensatedAxis(AxisSeenThrough):
     """A simulated axis seen through a controller that applies ``table``.
 
     Attributes
@@ -68,25 +69,6 @@ class CompensatedAxis:
                              f"{'linear' if dim == 'length' else 'rotary'} axis")
         if self.sign not in (1.0, -1.0):
             raise InputError(f"sign = {self.sign!r}; use +1 or -1")
-
-    @property
-    def name(self) -> str:
-        """The axis name."""
-        return self.axis.name
-
-    @property
-    def repeatability_sigma(self) -> float:
-        """The axis's repeatability (compensation does not change it), SI."""
-        return self.axis.repeatability_sigma
-
-    @property
-    def travel(self):
-        """The axis's travel, SI (None for a continuous rotary axis)."""
-        return self.axis.travel
-
-    def check_in_travel(self, position) -> None:
-        """Commanded positions must lie in the axis's travel (the table adds micrometres)."""
-        self.axis.check_in_travel(position)
 
     def correction(self, position, direction):
         """Correction the controller adds, SI, at commanded positions (SI)."""

@@ -31,7 +31,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from axiscal.compensation.volumetric import fall, fall_text, figure_row, figure_rows
 from axiscal.errors import InputError
+from axiscal.machines.seen_through import MachineSeenThrough
 from axiscal.standards.volumetric import AXES, GeometricErrors, volumetric_error
 
 __all__ = ["LinuxCNCCompensation", "linuxcnc_compensation", "linuxcnc_outputs",
@@ -82,7 +84,7 @@ def linuxcnc_compensation(errors: GeometricErrors, tables, *, grid_spacing: floa
 
     if not 1.0 <= grid_spacing <= 10_000.0:
         raise InputError(f"grid spacing = {grid_spacing!r} mm: between 1 and 10000")
-    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in errors.travel.items()}
+    travel_mm = errors.travel_mm
     files = [linuxcnc.write(tables.positioning[a], travel_mm[a], file_type=file_type, joint=j)
              for j, a in enumerate(AXES)]
     cross = []
@@ -120,7 +122,7 @@ def linuxcnc_outputs(comp: LinuxCNCCompensation) -> dict:
 
 
 @dataclass
-class ThroughLinuxCNC:
+class ThroughLinuxCNC(MachineSeenThrough):
     """A simulated three-axis machine moved by LinuxCNC: what the procedures' ``pose`` asks.
 
     Every commanded point (m) is a move of :class:`~axiscal.instruments.linuxcnc_xyz.
@@ -132,14 +134,6 @@ class ThroughLinuxCNC:
     cnc: object
     machine: object
     log: dict = field(default_factory=dict)
-
-    @property
-    def chain(self):
-        return self.machine.chain
-
-    @property
-    def travel(self):
-        return self.machine.travel
 
     def pose(self, x, y, z, tool_offset=(0.0, 0.0, 0.0)):
         """Tool pose (see ``ThreeAxisMachine.pose``) with the joints where LinuxCNC drives them."""
@@ -172,19 +166,13 @@ class OnControllerResult:
 
     def reduction(self, name: str, key: str = "volumetric") -> float:
         """Fraction by which a figure fell from bare to ``key`` (``tables`` or ``volumetric``)."""
-        for n, b, t, v in self.rows:
-            if n == name:
-                a = t if key == "tables" else v
-                return 1.0 - a / b if b else 0.0
-        raise KeyError(name)
+        b, t, v = figure_row(self.rows, name)
+        return fall(b, t if key == "tables" else v)
 
     def to_dict(self) -> dict:
-        def red(b, a):
-            return 1.0 - a / b if b else 0.0
-
         return {"figures": {n: {"before_um": b * 1e6, "tables_um": t * 1e6,
-                                "tables_reduction": red(b, t), "after_um": v * 1e6,
-                                "reduction": red(b, v)} for n, b, t, v in self.rows},
+                                "tables_reduction": fall(b, t), "after_um": v * 1e6,
+                                "reduction": fall(b, v)} for n, b, t, v in self.rows},
                 "moves": dict(self.moves), "largest_applied_difference_um": self.applied * 1e6,
                 "on_controller": dict(self.settings)}
 
@@ -193,8 +181,8 @@ class OnControllerResult:
                  "as external offsets), tables + 3-D correction (external offsets)",
                  f"{'figure':<26}{'before':>9}{'tables':>9}{'fall':>8}{'+ 3-D':>9}{'fall':>8}"]
         for n, b, t, v in self.rows:
-            lines.append(f"{n:<26}{b * 1e6:>9.2f}{t * 1e6:>9.2f}{_pct(b, t):>8}"
-                         f"{v * 1e6:>9.2f}{_pct(b, v):>8}")
+            lines.append(f"{n:<26}{b * 1e6:>9.2f}{t * 1e6:>9.2f}{fall_text(b, t):>8}"
+                         f"{v * 1e6:>9.2f}{fall_text(b, v):>8}")
         s = self.settings
         lines.append(f"LinuxCNC moves per measurement: "
                      f"{', '.join(f'{k} {v}' for k, v in self.moves.items())} "
@@ -204,10 +192,6 @@ class OnControllerResult:
                      f"{s['offset_av_ratio']:g}, COMP_FILE_TYPE {s['comp_file_type']}; largest "
                      f"|applied − expected| correction {self.applied * 1e6:.3f} µm")
         return "\n".join(lines)
-
-
-def _pct(b, a) -> str:
-    return f"{(1 - a / b) * 100:.1f} %" if b else "—"
 
 
 def verify_on_linuxcnc(machine, errors: GeometricErrors, tables, rng: np.random.Generator, *,
@@ -234,7 +218,7 @@ def verify_on_linuxcnc(machine, errors: GeometricErrors, tables, rng: np.random.
         raise MeasurementError(f"LinuxCNC cannot run here: {why}")
     noise = noise or MeasurementNoise()
     comp = linuxcnc_compensation(errors, tables, grid_spacing=grid_spacing, file_type=file_type)
-    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in errors.travel.items()}
+    travel_mm = errors.travel_mm
     kw = dict(points=points, reference=errors.reference, tool_offset=errors.measured_tool_offset,
               noise=noise)
     maps, diags, moves, applied = [], [], {}, 0.0
@@ -248,14 +232,11 @@ def verify_on_linuxcnc(machine, errors: GeometricErrors, tables, rng: np.random.
         moves[key] = len(log)
         if key == "volumetric":
             applied = _applied_difference(log, tables, comp)
-    rows = [("largest volumetric error", *(mp.largest for mp in maps))]
-    rows += [(f"range {a}", *(mp.ranges[a] for mp in maps)) for a in AXES]
-    rows += [(f"body diagonal {d[0].name}", *(x.range for x in d)) for d in zip(*diags)]
     settings = {"controller": "LinuxCNC (linuxcnc-uspace), headless simulation",
                 "points": int(points), "grid": int(grid), "grid_spacing_mm": comp.spacing,
                 "comp_file_type": int(file_type), "offset_av_ratio": 0.2,
                 "eoffset_scale_mm": 1e-6}
-    return OnControllerResult(tuple(rows), moves, applied, settings)
+    return OnControllerResult(figure_rows(maps, diags), moves, applied, settings)
 
 
 def _measure(travel_mm, file_type, cfg, machine, kw, grid, rng):

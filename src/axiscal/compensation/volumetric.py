@@ -33,12 +33,13 @@ from axiscal.compensation.controllers import controller as controller_module
 from axiscal.compensation.cross_axis import CrossAxisTable, parse_cross_axis, write_cross_axis
 from axiscal.compensation.tables import table_from_deviations
 from axiscal.errors import ConfigError, InputError
+from axiscal.machines.seen_through import MachineSeenThrough
 from axiscal.standards.volumetric import (AXES, PAIRS, GeometricErrors, map_volume, table_part,
                                           volumetric_error)
 
 __all__ = ["VOLUMETRIC_CONTROLLERS", "DEFAULT_RECEIVING", "VolumetricTables",
            "volumetric_tables", "write_tables", "read_back", "CompensatedMachine",
-           "VerifyResult", "verify"]
+           "VerifyResult", "verify", "figure_rows", "figure_row", "fall", "fall_text"]
 
 #: Controllers with both positioning and cross-axis table formats here.
 VOLUMETRIC_CONTROLLERS = ("siemens-840d", "heidenhain", "csv")
@@ -187,19 +188,11 @@ def read_back(files: list, controller: str, receiving: dict, tool_offset) -> Vol
 
 
 @dataclass(frozen=True, eq=False)
-class CompensatedMachine:
+class CompensatedMachine(MachineSeenThrough):
     """A simulated machine whose controller adds ``tables``' corrections to every command."""
 
     machine: object
     tables: VolumetricTables
-
-    @property
-    def chain(self):
-        return self.machine.chain
-
-    @property
-    def travel(self):
-        return self.machine.travel
 
     def pose(self, x, y, z, tool_offset=(0.0, 0.0, 0.0)):
         """Tool pose for commanded (x, y, z), m (see ``ThreeAxisMachine.pose``)."""
@@ -225,15 +218,12 @@ class VerifyResult:
 
     def reduction(self, name: str) -> float:
         """Fraction by which a figure fell (1 = removed)."""
-        for n, b, a in self.rows:
-            if n == name:
-                return 1.0 - a / b if b else 0.0
-        raise KeyError(name)
+        b, a = figure_row(self.rows, name)
+        return fall(b, a)
 
     def to_dict(self) -> dict:
         return {"controller": self.controller, "receiving": self.receiving,
-                "figures": {n: {"before_um": b * 1e6, "after_um": a * 1e6,
-                                "reduction": 1.0 - a / b if b else 0.0}
+                "figures": {n: {"before_um": b * 1e6, "after_um": a * 1e6, "reduction": fall(b, a)}
                             for n, b, a in self.rows},
                 "spindle_tilt_um_per_m": self.spindle_tilt * 1e6,
                 "left_by_tables_um": self.residual_predicted * 1e6}
@@ -241,8 +231,7 @@ class VerifyResult:
     def __str__(self) -> str:
         lines = [f"{'figure':<26}{'before':>10}{'after':>10}{'reduction':>11}"]
         for n, b, a in self.rows:
-            red = f"{(1 - a / b) * 100:.1f} %" if b else "—"
-            lines.append(f"{n:<26}{b * 1e6:>9.2f} {a * 1e6:>9.2f} {red:>10}")
+            lines.append(f"{n:<26}{b * 1e6:>9.2f} {a * 1e6:>9.2f} {fall_text(b, a):>10}")
         lines.append(f"compensated Z motion against the spindle axis: "
                      f"{self.spindle_tilt * 1e6:.2f} µm/m")
         lines.append(f"left by tables (two-axis Abbe products, model): "
@@ -266,24 +255,49 @@ def verify(machine, errors: GeometricErrors, tables: VolumetricTables, controlle
     from axiscal.procedures.volumetric import MeasurementNoise, measure_diagonals, measure_errors
 
     noise = noise or MeasurementNoise()
-    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in errors.travel.items()}
-    files = write_tables(tables, controller, travel_mm)
+    files = write_tables(tables, controller, errors.travel_mm)
     held = read_back(files, controller, tables.receiving, tables.tool_offset)
     comp = CompensatedMachine(machine, held)
     kw = dict(reference=errors.reference, tool_offset=errors.measured_tool_offset, noise=noise)
-    rows = []
     maps, diags = [], []
     for m in (machine, comp):
         e = errors if m is machine else measure_errors(m, rng, **kw)
         maps.append(map_volume(e, grid, tool_offset=tables.tool_offset))
         diags.append(measure_diagonals(m, rng, **kw))
-    rows.append(("largest volumetric error", maps[0].largest, maps[1].largest))
-    for a in AXES:
-        rows.append((f"range {a}", maps[0].ranges[a], maps[1].ranges[a]))
-    for b, a in zip(*diags):
-        rows.append((f"body diagonal {b.name}", b.range, a.range))
     tilt = _spindle_tilt(machine, comp, errors)
-    return VerifyResult(tuple(rows), tilt, tables.uncompensable, controller, dict(tables.receiving))
+    return VerifyResult(figure_rows(maps, diags), tilt, tables.uncompensable, controller, dict(tables.receiving))
+
+
+def figure_rows(maps, diagonals) -> tuple:
+    """The figures of measurements of one machine, one column per measurement (lengths m).
+
+    Rows ``(figure, value, value, ...)``: the volumetric map's largest error and its three
+    per-direction ranges (:class:`~axiscal.standards.volumetric.VolumetricMap`), then the range of
+    each body diagonal (ISO 230-6:2002, the diagonal displacement test), in the order of
+    ``maps`` and ``diagonals`` (one map and one list of diagonals per measurement).
+    """
+    rows = [("largest volumetric error", *(m.largest for m in maps))]
+    rows += [(f"range {a}", *(m.ranges[a] for m in maps)) for a in AXES]
+    rows += [(f"body diagonal {d[0].name}", *(x.range for x in d)) for d in zip(*diagonals)]
+    return tuple(rows)
+
+
+def figure_row(rows, name: str) -> tuple:
+    """The values of figure ``name`` in ``rows`` of :func:`figure_rows`; KeyError if absent."""
+    for n, *values in rows:
+        if n == name:
+            return tuple(values)
+    raise KeyError(name)
+
+
+def fall(before: float, after: float) -> float:
+    """Fraction by which a figure fell from ``before`` to ``after`` (1 = removed; 0 if before is 0)."""
+    return 1.0 - after / before if before else 0.0
+
+
+def fall_text(before: float, after: float) -> str:
+    """:func:`fall` as a percentage with one decimal, or a dash where ``before`` is 0."""
+    return f"{fall(before, after) * 100:.1f} %" if before else "—"
 
 
 def _spindle_tilt(machine, comp, errors) -> float:

@@ -50,6 +50,7 @@ from string import Template
 import numpy as np
 
 from axiscal.errors import InputError, MeasurementError
+from axiscal.machines.seen_through import AxisSeenThrough
 
 __all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "platform_reason", "unavailable_reason",
            "clean_leftovers", "running_processes", "leftover_segments", "session_lock", "SESSION_LOCK",
@@ -401,7 +402,7 @@ class LinuxCNC:
 
 
 @dataclass
-class LinuxCNCAxis:
+class LinuxCNCAxis(AxisSeenThrough):
     """A simulated machine axis driven by LinuxCNC: the procedures' axis interface.
 
     ``move`` commands the target through LinuxCNC, approaching from ``direction`` (from
@@ -428,25 +429,6 @@ class LinuxCNCAxis:
     log: list = field(default_factory=list)
     _here: float = field(default=0.0, init=False)
     _moving: int = field(default=1, init=False)
-
-    @property
-    def name(self) -> str:
-        """The axis name."""
-        return self.axis.name
-
-    @property
-    def repeatability_sigma(self) -> float:
-        """The machine's repeatability, SI."""
-        return self.axis.repeatability_sigma
-
-    @property
-    def travel(self):
-        """The machine's travel, SI."""
-        return self.axis.travel
-
-    def check_in_travel(self, position) -> None:
-        """Commanded positions (SI) must lie in the machine's travel."""
-        self.axis.check_in_travel(position)
 
     def systematic_error(self, theta, direction, time: float = 0.0):
         """A rotary machine's error without noise (what the procedures ask a rotary axis)."""

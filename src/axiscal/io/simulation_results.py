@@ -27,7 +27,8 @@ from typing import Any
 
 __all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation", "iso230_7_json",
            "volumetric_map", "simulated_volumetric_machine", "volumetric_tables_for",
-           "volumetric_compensation", "write_controller_files", "environment_compensation",
+           "volumetric_compensation", "volumetric_linuxcnc", "write_controller_files",
+           "environment_compensation",
            "environment_options", "environment_json",
            "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M", "SIMULATION_KINDS", "DOCUMENTS",
            "simulation_kind", "run_configured", "simulation_dict", "write_simulated_data"]
@@ -72,18 +73,24 @@ def simulation_kind(cfg: dict) -> str:
     return "positioning"
 
 
-def run_configured(kind: str, path: Any, seed: int | None = None) -> "SimulationRun":
+def run_configured(kind: str, path: Any, seed: int | None = None,
+                   text: str | None = None) -> "SimulationRun":
     """Run a ``scale-homing``, ``gantry-homing`` or ``five-dof`` configuration file, as
-    ``axiscal scale home``, ``scale gantry`` and ``motion simulate`` do."""
-    from axiscal.io.scale_config import read_scale_config
-
+    ``axiscal scale home``, ``scale gantry`` and ``motion simulate`` do; ``text``: the
+    configuration's TOML instead of the file's (``path`` then only names it in messages), read
+    by the same schema."""
     if kind == "five-dof":
-        from axiscal.io.motion import read_motion_config
+        from axiscal.io.motion import parse_motion_config, read_motion_config
 
-        return motion_simulation(read_motion_config(path), seed, True, str(path))
-    if kind == "gantry-homing":
-        return gantry_homing(read_scale_config(path, gantry=True), seed)
-    return scale_homing(read_scale_config(path), seed)
+        cfg = read_motion_config(path) if text is None else parse_motion_config(text, str(path))
+        return motion_simulation(cfg, seed, True, str(path))
+    from axiscal.io.scale_config import (GANTRY_SCHEMA, SCHEMA, parse_scale_config,
+                                         read_scale_config)
+
+    gantry = kind == "gantry-homing"
+    scale = (read_scale_config(path, gantry=gantry) if text is None else
+             parse_scale_config(text, str(path), GANTRY_SCHEMA if gantry else SCHEMA))
+    return gantry_homing(scale, seed) if gantry else scale_homing(scale, seed)
 
 
 @dataclass(frozen=True, eq=False)
@@ -307,7 +314,7 @@ def volumetric_compensation(cfg: Any, tables: Any, controller: str, *, verify: b
     from axiscal.compensation.volumetric import verify as run_verify
     from axiscal.compensation.volumetric import write_tables
 
-    travel_mm = {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in cfg.errors.travel.items()}
+    travel_mm = cfg.errors.travel_mm
     files = write_tables(tables, controller, travel_mm)
     result = None
     if verify:
@@ -321,6 +328,41 @@ def volumetric_compensation(cfg: Any, tables: Any, controller: str, *, verify: b
         d["verify"] = result.to_dict()
     return SimulationRun("volumetric-compensation", tables, d,
                          {"files": files, "verify": result, "config": cfg})
+
+
+def volumetric_linuxcnc(cfg: Any, tables: Any, *, verify: bool = False,
+                        out: Any = None) -> SimulationRun:
+    """``axiscal volumetric compensate CONFIG --controller linuxcnc [--verify --on-controller]
+    [--out DIR]``: a COMP_FILE per joint, the cross-axis tables and the 3-D grid for LinuxCNC
+    (:func:`axiscal.compensation.on_controller_volumetric.linuxcnc_compensation`), written into
+    ``out`` if given; ``verify`` measures the simulated machine through a real, headless
+    LinuxCNC bare, with the tables alone and with the 3-D correction (its random stream the
+    configuration's seed + 1)."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from axiscal.compensation.on_controller_volumetric import (linuxcnc_compensation,
+                                                               linuxcnc_outputs,
+                                                               verify_on_linuxcnc)
+    from axiscal.io._files import write_text_atomic
+
+    comp = linuxcnc_compensation(cfg.errors, tables)
+    files = linuxcnc_outputs(comp)
+    result = None
+    if verify:
+        machine, _ = simulated_volumetric_machine(cfg)
+        result = verify_on_linuxcnc(machine, cfg.errors, tables, np.random.default_rng(
+            int(cfg.simulation.get("seed", 1)) + 1))
+    for name, text in files.items() if out is not None else ():
+        write_text_atomic(Path(out) / name, text)
+    d = {"controller": "linuxcnc", "receiving": tables.receiving,
+         "files": list(files) if out is not None else [],
+         "left_by_tables_um": tables.uncompensable * 1e6, "grid_spacing_mm": comp.spacing}
+    if result is not None:
+        d["verify"] = result.to_dict()
+    return SimulationRun("volumetric-compensation", tables, d,
+                         {"files": files, "verify": result, "config": cfg, "linuxcnc": comp})
 
 
 def write_controller_files(files: list, out: Any) -> list[str]:
@@ -433,7 +475,8 @@ def simulation_dict(kind: str, test: Any, seed: int | None) -> dict:
 
 def write_simulated_data(kind: str, dataset: Any, path: Any) -> Any:
     """Write simulated readings as an instrument's file: a positioning test as tidy CSV
-    (``.csv``) or axiscal JSON (``.json``), as ``axiscal simulate --data``; a five-DOF run as
+    (``.csv``), axiscal JSON (``.json``) or Renishaw ``.rtl``/``.rta``, as ``axiscal simulate
+    --data``; a five-DOF run as
     the ``.csv`` of ``motion simulate --csv``. Returns the path."""
     from pathlib import Path
 
@@ -451,7 +494,11 @@ def write_simulated_data(kind: str, dataset: Any, path: Any) -> Any:
         from axiscal.io.json import format_positioning_json as fmt
     elif suffix == ".csv":
         from axiscal.io.csv import format_positioning_csv as fmt
+    elif suffix in (".rtl", ".rta"):
+        from axiscal.io import renishaw
+
+        fmt = renishaw.format_rtl if suffix == ".rtl" else renishaw.format_rta
     else:
-        raise InputError(f"write_data {path}: give a .csv or .json file")
+        raise InputError(f"write_data {path}: give a .csv, .json, .rtl or .rta file")
     write_text_atomic(path, fmt(dataset))
     return Path(path)

@@ -225,6 +225,11 @@ class GeometricErrors:
                            _vector(self.measured_tool_offset, "measured tool offset"))
 
     @property
+    def travel_mm(self) -> dict:
+        """:attr:`travel` in mm (what controller tables and files are written in)."""
+        return {a: (lo * 1e3, hi * 1e3) for a, (lo, hi) in self.travel.items()}
+
+    @property
     def missing(self) -> tuple[str, ...]:
         """Error motions not given (taken as zero)."""
         return tuple(n for n in ERROR_NAMES if n not in self.functions)
