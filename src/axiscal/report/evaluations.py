@@ -97,19 +97,39 @@ def _cell(v: Any) -> str:
 
 
 def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None,
-                           uncertainty: dict) -> dict:
+                           uncertainty: dict, *, form: str = "iso230-2", job: Any = None,
+                           drift_check: Any = None, full_turn: str = "separate") -> dict:
     """The fields of :class:`axiscal.api.Evaluation` of a positioning test by the standard
-    ``key`` of :data:`axiscal.standards.positioning_standards.STANDARDS` (or ``all``), as
-    ``axiscal evaluate --standard KEY --json``; ISO 230-2:2014 as ``axiscal iso230-2``."""
+    ``key`` of :data:`axiscal.standards.positioning_standards.STANDARDS` (or ``all``): in the
+    ``standards`` form as ``axiscal evaluate --standard KEY --json``, in the ``iso230-2`` form
+    (ISO 230-2:2014 only) as ``axiscal iso230-2 --json``."""
     from axiscal.errors import InputError
     from axiscal.standards import positioning_standards as ps
 
-    if key == ISO230_2:
-        return _iso230_2(ds, tolerances, rule, uncertainty)
     if key != "all" and key not in ps.STANDARDS:
         raise InputError(f"standard {key!r}: one of {', '.join(ps.STANDARDS)} or all")
+    if form == "iso230-2":
+        if key != ISO230_2:
+            raise InputError(f"form iso230-2 is the object of 'axiscal iso230-2', ISO 230-2:2014's"
+                             f"; {key} gives the standards form")
+        return _iso230_2(ds, tolerances, rule, uncertainty, job, drift_check, full_turn)
+    if job is not None or drift_check is not None or full_turn != "separate":
+        raise InputError("job, drift_check and full_turn are those of 'axiscal iso230-2': "
+                         "ISO 230-2:2014 in the iso230-2 form")
     if key == "all" and tolerances:
         raise InputError("tolerances need one standard (parameter names differ between them)")
+    return _by_standards(ds, key, tolerances, rule, uncertainty or None)
+
+
+def _by_standards(ds: Any, key: str, tolerances: dict, rule: str | None, table: Any) -> dict:
+    """As ``axiscal evaluate --standard KEY --json``: each standard's parameters, the decisions
+    and, where they have a U (ISO 230-2:2014 only), its Annex A budget."""
+    import math
+
+    from axiscal.errors import InputError
+    from axiscal.io.results import standard_json, verdicts_json
+    from axiscal.standards import positioning_standards as ps
+
     results = (ps.evaluate_all(ds) if key == "all"
                else ((ps.STANDARDS[key], ps.evaluate(key, ds)),))
     first = results[0][1]
@@ -117,10 +137,7 @@ def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None
     if tolerances:
         if isinstance(first, str):
             raise InputError(f"tolerances: {key} was not evaluated: {first}")
-        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule,
-                                             uncertainty or None))
-    from axiscal.io.results import standard_json, verdicts_json
-
+        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule, table))
     d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
          "standards": [standard_json(std, res) for std, res in results]}
     if verdicts:
@@ -129,33 +146,62 @@ def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None
         d.update(verdicts_json(verdicts))
         d["warnings"] = unprovable(verdicts, {"um": "µm"}.get(ds.deviation_unit,
                                                              ds.deviation_unit))
-    return dict(kind="iso230-2", standard=key, dataset=ds, result=results[0][1], _json=d,
-                _verdicts=tuple(verdicts), _results=tuple(results))
+    result, budget = first, None
+    if key == ISO230_2:   # its own result and Annex A budget: the figure and the report's
+        from axiscal.standards.iso230_2 import evaluate as iso_evaluate
+        from axiscal.standards.iso230_9 import positioning_budget
+
+        result = iso_evaluate(ds)
+        budget = positioning_budget(ds, result, table)
+        if any(not math.isnan(v.U) for v in verdicts):
+            d["uncertainty_budget"] = budget.to_json([v.parameter for v in verdicts])
+    return dict(kind="iso230-2", standard=key, dataset=ds, result=result, _json=d,
+                _budget=budget, _verdicts=verdicts, _results=tuple(results))
 
 
-def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict) -> dict:
-    """As ``axiscal iso230-2 FILE --json`` (the user configuration's uncertainty inputs)."""
+def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict, job: Any,
+              drift_check: Any, full_turn: str) -> dict:
+    """As ``axiscal iso230-2 FILE --json``: the user configuration, the job file over it, then
+    E_VE measured by a drift check (ISO 230-2:2014 Annex A.5) and the uncertainty inputs."""
     from axiscal.io.results import result_json
     from axiscal.report.issue import budget_for, decisions_for, load_config
     from axiscal.standards.iso230_2 import check_tolerances
     from axiscal.standards.iso230_2 import evaluate as iso_evaluate
 
-    result = iso_evaluate(ds)
-    cfg = load_config(None)
-    if uncertainty:
-        cfg = {**cfg, "uncertainty": {**(cfg.get("uncertainty") or {}), **uncertainty}}
+    result = iso_evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
+    cfg = load_config(None if job is None else Path(job))
+    if uncertainty or drift_check is not None:
+        table = dict(cfg.get("uncertainty") or {})
+        if drift_check is not None:
+            table.update(_drift_e_ve(drift_check, uncertainty))
+        cfg = {**cfg, "uncertainty": {**table, **uncertainty}}
     check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})
     budget = budget_for(ds, result, cfg)
     verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
     d = {**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
          "axis": ds.metadata.axis, "notes": ds.metadata.notes}
     return dict(kind="iso230-2", standard=ISO230_2, dataset=ds, result=result, _json=d,
-                _budget=budget, _verdicts=tuple(verdicts))
+                _budget=budget, _verdicts=tuple(verdicts), _config=cfg)
 
 
-def ballbar_evaluation(data: Any) -> dict:
+def _drift_e_ve(drift_check: Any, uncertainty: dict) -> dict:
+    """E_VE, the range of a drift check's readings (ISO 230-2:2014 Annex A.5), as inputs."""
+    from axiscal.errors import InputError
+    from axiscal.io.drift import read_drift_check
+    from axiscal.standards.iso230_9 import environmental_variation
+
+    if "e_ve" in uncertainty:
+        raise InputError("E_VE is given twice: by the drift check (--drift-check) and by the "
+                         "uncertainty input e_ve (--uncertainty e_ve); give one")
+    return {"e_ve": environmental_variation(read_drift_check(drift_check)),
+            "e_ve_source": "drift check"}
+
+
+def ballbar_evaluation(data: Any, *, feed: float | None = None,
+                       plane: str | None = None) -> dict:
     """The fields of :class:`axiscal.api.Evaluation` of a ballbar dataset evaluated in memory
-    (ISO 230-4:2005 and the diagnosis); the other kinds are evaluated from their file."""
+    (ISO 230-4:2005 and the diagnosis; ``feed`` mm/min and ``plane`` over the file's, as
+    ``axiscal ballbar analyze --feed --plane``); the other kinds are evaluated from their file."""
     from axiscal.errors import InputError
     from axiscal.io.ballbar import BallbarData
     from axiscal.store.kinds import evaluate_ballbar
@@ -164,9 +210,16 @@ def ballbar_evaluation(data: Any) -> dict:
     if not isinstance(data, BallbarData):
         raise InputError(f"evaluate: give the file's path for a {type(data).__name__} "
                          "(a positioning or ballbar dataset is evaluated in memory)")
-    r = evaluate_ballbar(data)
+    if feed is not None and not feed > 0:
+        raise InputError(f"feed {feed:g}: must be a positive feed in mm/min")
+    axes = data.axes
+    if plane is not None:
+        if plane.upper() not in ("XY", "YZ", "ZX"):
+            raise InputError(f"plane {plane!r}: choose XY, YZ or ZX")
+        axes = (plane.upper()[0], plane.upper()[1])
+    r = evaluate_ballbar(data, feed=None if feed is None else feed / 6e4, axes=axes)
     return dict(kind="ballbar", standard="iso230-4", dataset=data, result=r,
-                _json=jsonable({"plane": "".join(data.axes), **r.as_dict()}))
+                _json=jsonable({"plane": "".join(axes), **r.as_dict()}))
 
 
 def evaluation_figure(ev: Any) -> Any:
@@ -186,7 +239,7 @@ def evaluation_figure(ev: Any) -> Any:
     return kind_figure(ev.kind, ev.dataset, ev.result)
 
 
-def write_evaluation_report(ev: Any, path: Path) -> Path:
+def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Path:
     """Write the HTML report of an :class:`axiscal.api.Evaluation`, as the command's
     ``--report``; returns the path."""
     from axiscal.report.html import positioning_report, standards_report, write_result_report
@@ -199,13 +252,16 @@ def write_evaluation_report(ev: Any, path: Path) -> Path:
                         [p for p, v in ev.result.parameters().items() if v is not None])
         return rep.write(path)
     if ev.kind == "iso230-2":
-        return standards_report(ev.dataset, ev._results, f"Positioning test by {ev.standard}",
+        what = ("every positioning standard" if ev.standard == "all"
+                else ev._results[0][0].title)
+        return standards_report(ev.dataset, ev._results, title or f"Positioning test by {what}",
                                 ev._verdicts).write(path)
     if ev.kind == "ballbar" and hasattr(ev.result, "circular"):
         from axiscal.report.ballbar_plots import write_diagnosis_report
 
-        return write_diagnosis_report(path, ev.dataset.runs, ev.result)
-    title = {"straightness": "Straightness (ISO 230-1)", "diagonal": "Diagonal squareness "
-             "(ISO 230-6)", "motion": "Error motions of a rotary axis (ISO 230-7)",
-             "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
+        kw = {} if title is None else {"title": title}
+        return write_diagnosis_report(path, ev.dataset.runs, ev.result, **kw)
+    title = title or {"straightness": "Straightness (ISO 230-1)", "diagonal": "Diagonal "
+                      "squareness (ISO 230-6)", "motion": "Error motions of a rotary axis "
+                      "(ISO 230-7)", "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
     return write_result_report(path, title, ev._json, figure=evaluation_figure(ev))

@@ -1,0 +1,112 @@
+"""The calibration history of the public API: :class:`History`.
+
+``axiscal history add``, the ``--history`` step of ``axiscal iso230-2`` and the workbench's
+upload store a test through :meth:`History.add`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:   # pragma: no cover - typing only
+    from axiscal.api._results import Evaluation, PathLike
+
+__all__ = ["History"]
+
+
+class History:
+    """The calibration history (:class:`axiscal.store.Store`): SQLite or PostgreSQL by URL.
+
+    Parameters
+    ----------
+    url : str, optional
+        ``sqlite:///path.sqlite`` or ``postgresql+psycopg://...``; default ``AXISCAL_DB``, else
+        the user's SQLite file (as ``axiscal history``).
+    store : axiscal.store.Store, optional
+        A history already open (the workbench's), instead of opening ``url``; :meth:`close`
+        then leaves it open for its owner.
+    """
+
+    def __init__(self, url: str | None = None, *, store: Any = None) -> None:
+        if store is not None and url is not None:
+            from axiscal.errors import InputError
+
+            raise InputError("History: give a url or an open store, not both")
+        self._owned = store is None
+        if store is None:
+            from axiscal.store import open_store
+
+            store = open_store(url)
+        self.store = store
+
+    def add(self, source: PathLike | bytes, *, filename: str | None = None,
+            **metadata: Any) -> Any:
+        """Evaluate and store a data file; a file stored before is reported, not stored again.
+
+        Parameters
+        ----------
+        source : str, Path or bytes
+            The data file, or its bytes as they came (an upload).
+        filename : str, optional
+            The file's name as stored (required with bytes; default the path's name).
+        **metadata
+            ``machine``, ``axis``, ``kind`` (default: from the content), ``instrument``,
+            ``operator``, ``note``, ``date`` (``YYYY-MM-DD``; default the file's, else today,
+            marked as unknown).
+
+        Returns
+        -------
+        axiscal.store.history.AddResult
+            ``id``, ``duplicate``, ``kind``, ``machine``, ``axis``.
+        """
+        if isinstance(source, (bytes, bytearray)):
+            if not filename:
+                from axiscal.errors import InputError
+
+                raise InputError("History.add: give the filename of the bytes")
+            return self.store.add(bytes(source), filename, **metadata)
+        from axiscal.io._files import read_bytes
+
+        return self.store.add(read_bytes(source), filename or Path(source).name, **metadata)
+
+    def tests(self, machine: str | None = None, axis: str | None = None) -> list:
+        """The stored tests, newest first (TestSummary records)."""
+        return self.store.tests(machine, axis)
+
+    def machines(self) -> list:
+        """The machines with their axes and test counts (MachineSummary records)."""
+        return self.store.machines()
+
+    def get(self, test_id: int) -> Any:
+        """One stored test (StoredTest: its file, metadata and evaluation)."""
+        return self.store.get(test_id)
+
+    def evaluation(self, test_id: int) -> "Evaluation":
+        """A stored test evaluated again from its stored bytes by this version of axiscal
+        (kept once made, :mod:`axiscal.store.cache`), as :func:`axiscal.evaluate` evaluates a
+        file of its kind; ``to_dict()`` is the history's evaluation object."""
+        from axiscal.api._results import Evaluation
+        from axiscal.report.evaluations import KIND_STANDARD
+
+        t = self.store.get(test_id)
+        ev = t.evaluate_again()
+        return Evaluation(ev.kind, KIND_STANDARD[ev.kind], ev.dataset, ev.evaluation, ev.result)
+
+    def trend(self, machine: str, axis: str, parameter: str,
+              tolerance: float | None = None) -> Any:
+        """The trend of one parameter of one axis (axiscal.store.analysis.Trend)."""
+        from axiscal.store import trend
+
+        return trend(self.store, machine, axis, parameter, tolerance)
+
+    def close(self) -> None:
+        """Close the database (a store given open is left to its owner)."""
+        if self._owned:
+            self.store.close()
+
+    def __enter__(self) -> "History":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
