@@ -224,11 +224,7 @@ def refractive_index(
             f"is not above absolute zero ({-ABSOLUTE_ZERO_C:g} °C)")
     # Validity first (check="raise" names the range), then what no equation can compute at all.
     _check_validity(name, check, vacuum_wavelength=lam, temperature=t, pressure=p, co2=x_co2)
-    if humidity is None and dew_point is None and vapour_pressure is None:
-        pv = np.zeros_like(t)
-    else:
-        pv = np.asarray(water_vapour_pressure(t, humidity, dew_point=dew_point,
-                                              vapour_pressure=vapour_pressure))
+    pv = _vapour_pressure(t, humidity, dew_point, vapour_pressure)
     with np.errstate(over="ignore", invalid="ignore"):   # refused below if it overflows
         xv = np.asarray(enhancement_factor(p, t)) * pv / p
     _refuse("water_mole_fraction", xv, ~(xv < 1), "",
@@ -417,11 +413,7 @@ def air_conditions(
             raise InputError(f"{name} must be a single number here; use refractive_index() "
                              "for arrays")
     n = float(refractive_index(temperature, pressure, humidity, **kw))
-    if humidity is None and dew_point is None and vapour_pressure is None:
-        pv = 0.0
-    else:
-        pv = float(water_vapour_pressure(temperature, humidity, dew_point=dew_point,
-                                         vapour_pressure=vapour_pressure))
+    pv = float(_vapour_pressure(temperature, humidity, dew_point, vapour_pressure))
     rh = 0.0 if pv == 0.0 else float(relative_humidity(temperature, pv))
     return AirResult(n=n, wavelength=float(vacuum_wavelength) / n,
                      vacuum_wavelength=float(vacuum_wavelength), equation=_equation(equation),
@@ -514,6 +506,16 @@ def _equation(equation) -> str:
     if key not in EQUATIONS:
         raise InputError(f"equation {equation!r} is not one of {', '.join(EQUATIONS)}")
     return key
+
+
+def _vapour_pressure(t, humidity, dew_point, vapour_pressure) -> np.ndarray:
+    """Partial pressure of water vapour (Pa) at ``t`` (°C) from whichever humidity is given
+    (:func:`~axiscal.physics.humidity.water_vapour_pressure`, NIST A-I/A-II); 0 (dry air) when
+    none is."""
+    if humidity is None and dew_point is None and vapour_pressure is None:
+        return np.zeros_like(np.asarray(t, dtype=float))
+    return np.asarray(water_vapour_pressure(t, humidity, dew_point=dew_point,
+                                            vapour_pressure=vapour_pressure))
 
 
 def _check_validity(name: str, check: str, **values) -> None:
