@@ -109,6 +109,22 @@ def users(tmp_path):
     return tmp_path / "users.toml"
 
 
+def positioning_file() -> bytes:
+    """A bidirectional ISO 230-2 test of an 800 mm axis of machine VMC-800 as tidy CSV bytes
+    (9 targets, 5 runs, seeded: E about 10.6 µm), the file the page and sign-off tests upload."""
+    import numpy as np
+
+    from axiscal.datasets import Metadata, PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(9)
+    t = np.linspace(0, 800, 9)
+    up = rng.normal(1.0, 0.5, (9, 5)) + t[:, None] * 0.01
+    return format_positioning_csv(PositioningDataset(
+        "linear", t, up, up - 2.0, "mm", "um",
+        Metadata(machine="VMC-800", axis="X", date="2026-03-01"))).encode()
+
+
 def log_in(client, name, password, **kw):
     """POST /login by a TestClient; the answer, not followed."""
     return client.post("/login", data={"username": name, "password": password, "next": "/"},

@@ -34,9 +34,9 @@ def _stored(client) -> int:
 
 
 def _positioning_file() -> bytes:
-    from tests.web.test_pages import _file
+    from tests.web.conftest import positioning_file
 
-    return _file()
+    return positioning_file()
 
 
 def test_dns_rebinding_gets_neither_the_token_nor_a_stored_upload(tmp_path):

@@ -5,23 +5,12 @@ from __future__ import annotations
 import io
 import re
 
-import numpy as np
 from fastapi.testclient import TestClient
 
-from axiscal.datasets import Metadata, PositioningDataset
-from axiscal.io.csv import format_positioning_csv
 from axiscal.standards.iso230_2 import evaluate
 from axiscal.standards.iso230_9 import positioning_budget, round_up
 from axiscal.web.app import create_app
-
-
-def _file() -> bytes:
-    rng = np.random.default_rng(9)
-    t = np.linspace(0, 800, 9)
-    up = rng.normal(1.0, 0.5, (9, 5)) + t[:, None] * 0.01
-    return format_positioning_csv(PositioningDataset(
-        "linear", t, up, up - 2.0, "mm", "um",
-        Metadata(machine="VMC-800", axis="X", date="2026-03-01"))).encode()
+from tests.web.conftest import positioning_file as _file
 
 
 def test_test_page_shows_U_and_the_pdf_certificate_downloads(tmp_path, monkeypatch):

@@ -7,13 +7,11 @@ from __future__ import annotations
 import hashlib
 import re
 
-import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from axiscal.datasets import Metadata, PositioningDataset
-from axiscal.io.csv import format_positioning_csv
 from axiscal.web.app import create_app
+from tests.web.conftest import positioning_file as data_file   # E about 10.6 µm
 
 LAB = """\
 [company]
@@ -35,16 +33,6 @@ JOB = {"customer_name": "Example Machining AG",
        "operator": "A. Operator", "signatory": "B. Signatory",
        "signatory_role": "Head of laboratory",
        "specification": "Purchase order 4711 (positioning tolerances of the VMC-800 acceptance)"}
-
-
-def data_file() -> bytes:
-    """A bidirectional 800 mm test (E about 10.6 µm, see test_verdict_is_the_libraries)."""
-    rng = np.random.default_rng(9)
-    t = np.linspace(0, 800, 9)
-    up = rng.normal(1.0, 0.5, (9, 5)) + t[:, None] * 0.01
-    return format_positioning_csv(PositioningDataset(
-        "linear", t, up, up - 2.0, "mm", "um",
-        Metadata(machine="VMC-800", axis="X", date="2026-03-01"))).encode()
 
 
 @pytest.fixture

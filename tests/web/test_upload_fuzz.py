@@ -23,9 +23,9 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def _bases() -> dict:
-    from tests.web.test_pages import _file
+    from tests.web.conftest import positioning_file
 
-    return {"positioning.csv": _file(),
+    return {"positioning.csv": positioning_file(),
             "ballbar.csv": (EXAMPLES / "squareness_ballbar_150mm.csv").read_bytes(),
             "straightness.csv": (EXAMPLES / "squareness_L180_x.csv").read_bytes()}
 
