@@ -258,6 +258,9 @@ class PositioningDataset:
         for name, arr in (("up", up), ("down", down)):
             if arr.shape[1] and np.all(np.isnan(arr)):
                 raise InputError(f"every reading of direction {name} is missing")
+        if kind is AxisKind.LINEAR:
+            _refuse_inch_slip(targets * units.factor(tu), up * units.factor(du),
+                              down * units.factor(du), tu)
         for a in (targets, up, down):
             a.flags.writeable = False
         object.__setattr__(self, "targets", targets)
@@ -420,6 +423,134 @@ class PositioningDataset:
             f"{self.targets[0]:g} to {self.targets[-1]:g} {self.target_unit}, {self.n_runs} runs, "
             f"deviations in {self.deviation_unit}, {self.missing_count} missing readings"
         )
+
+
+# -- the inch read as a millimetre ----------------------------------------------------------
+#: The international inch in millimetres, exact by definition (International Yard and Pound
+#: Agreement, 1959).
+INCH_MM = 25.4
+#: Relative window around 25.4 and 1/25.4 in which a ratio of measured to target positions is the
+#: inch's signature (see :func:`inch_signature`).
+INCH_TOLERANCE = 0.01
+
+
+def inch_signature(targets, positions) -> float | None:
+    """25.4 or 1/25.4 when measured positions are the targets scaled by the inch, else None.
+
+    Parameters
+    ----------
+    targets, positions : array_like, metres
+        Target positions and the measured positions at them (same shape; NaNs are left out).
+
+    Returns
+    -------
+    float or None
+        ``INCH_MM`` if the positions are 25.4 × the targets (targets in inches read as mm),
+        ``1 / INCH_MM`` if they are 1/25.4 of them (positions in inches read as mm), else None.
+
+    Notes
+    -----
+    The ratio ``r`` is the least-squares slope of the positions against the targets (an offset
+    is allowed: a datum or a constant deviation moves nothing). A machine axis follows its targets
+    to far better than 1 %: its deviation is actual minus target (ISO 230-2:2014 §3.1), and
+    the causes of it are all in parts per million: scale and pitch errors (tens of µm/m), thermal
+    expansion (11.5 ppm/K for steel; even 100 ppm/K over the whole 0-40 °C band of the air
+    equations is 4 mm/m) and the air's refractive index (n − 1 ≈ 0.27 mm/m; Stone and Zimmerman,
+    NIST "Engineering metrology toolbox"). ``r`` within ±1 % of 25.4 or 1/25.4, and the positions
+    on that line to within 1 % of the travel's scaled span, can only be the inch (exactly 25.4 mm;
+    the positions' own errors scale with them, r = 25.4 (1 + e) with e < 1e-3: ten times inside
+    the window). An axis that does not move (r ≈ 0, deviations = −target) is not accused. Slips
+    that keep targets and positions in one unit (a whole file in inches declared mm, deviations
+    in µin declared µm) leave no such signature, as every ratio in the file is unchanged, and are
+    not detectable from the numbers alone.
+
+    Examples
+    --------
+    >>> t = np.array([0.0, 0.1, 0.2, 0.3])                 # metres
+    >>> inch_signature(t, 25.4 * t), inch_signature(t, t * (1 + 20e-6))
+    (25.4, None)
+    """
+    t = np.asarray(targets, dtype=float).reshape(-1)
+    p = np.asarray(positions, dtype=float).reshape(-1)
+    ok = np.isfinite(t) & np.isfinite(p)
+    t, p = t[ok], p[ok]
+    if t.size < 2 or np.ptp(t) == 0:
+        return None
+    tc, pc = t - t.mean(), p - p.mean()
+    r = float(tc @ pc / (tc @ tc))
+    for k in (INCH_MM, 1.0 / INCH_MM):
+        if abs(r / k - 1.0) <= INCH_TOLERANCE:
+            spread = float(np.sqrt(np.mean((pc - r * tc) ** 2)))
+            return k if spread <= INCH_TOLERANCE * abs(r) * np.ptp(t) else None
+    return None
+
+
+def inch_reading(k: float, target_unit: str, measured_unit: str | None = None,
+                 measured: str = "measured positions") -> tuple[str, str, str]:
+    """The plausible reading of :func:`inch_signature`'s ``k``, for a one-line message.
+
+    Parameters
+    ----------
+    k : float
+        ``INCH_MM`` or ``1 / INCH_MM``.
+    target_unit, measured_unit : str
+        The units the targets and the measured positions were declared in (``measured_unit``
+        defaults to ``target_unit``).
+    measured : str
+        What the measured positions are called in the file (``readings``, ``actual`` ...).
+
+    Returns
+    -------
+    (text, which, unit)
+        ``text``: "measured positions are 25.4 × the targets: the targets look like inches read
+        as mm"; ``which`` (``"target"`` or ``"measured"``) and ``unit`` (e.g. ``"in"``): the
+        declaration that reads the file right, where a length unit 25.4 times the declared one
+        exists (else the other side's).
+    """
+    mu = measured_unit or target_unit
+    if k > 1:
+        ratio = f"{measured} are {INCH_MM:g} × the targets"
+        fixes = [("target", _rescaled(target_unit, INCH_MM)),
+                 ("measured", _rescaled(mu, 1 / INCH_MM))]
+    else:
+        ratio = f"{measured} are 1/{INCH_MM:g} of the targets"
+        fixes = [("measured", _rescaled(mu, INCH_MM)),
+                 ("target", _rescaled(target_unit, 1 / INCH_MM))]
+    which, unit = next(((w, u) for w, u in fixes if u is not None), fixes[0])
+    declared = target_unit if which == "target" else mu
+    whose = "the targets" if which == "target" else f"the {measured}"
+    said = _UNIT_WORDS.get(declared, declared)
+    scale = INCH_MM if (which == "target") == (k > 1) else 1 / INCH_MM
+    look = _UNIT_WORDS.get(unit) or f"units of {scale:.4g} {said}"
+    return f"{ratio}: {whose} look like {look} read as {said}", which, unit
+
+
+#: Length units in words, for :func:`inch_reading`.
+_UNIT_WORDS = {"m": "metres", "mm": "mm", "um": "µm", "nm": "nm", "in": "inches",
+               "uin": "microinches"}
+
+
+def _rescaled(unit: str, k: float) -> str | None:
+    """The length unit ``k`` times ``unit``, or None."""
+    size = units.factor(unit, "length") * k
+    return next((n for n, v in units.LENGTH_UNITS.items() if abs(v / size - 1) < 1e-9), None)
+
+
+def _refuse_inch_slip(targets, up, down, unit: str) -> None:
+    """Refuse a dataset whose deviations carry the inch's 25.4 (:func:`inch_signature`); the
+    deviation at a target is the mean of its readings (both directions)."""
+    total, n = np.zeros(targets.size), np.zeros(targets.size)
+    for arr in (up, down):   # no copy of the readings: a file of millions stays lean
+        seen = ~np.isnan(arr)
+        total += np.add.reduce(arr, axis=1, where=seen, initial=0.0)
+        n += np.count_nonzero(seen, axis=1)
+    dev = np.where(n > 0, total / np.maximum(n, 1), np.nan)
+    k = inch_signature(targets, targets + dev)
+    if k is not None:
+        raise InputError(f"{inch_reading(k, unit)[0]} (the deviations, actual minus target by "
+                         f"ISO 230-2:2014 §3.1, grow by {k - 1:+.4g} {unit} per {unit} of "
+                         "travel where a machine axis errs by parts per million): give the "
+                         "targets and the measured positions in one unit")
 
 
 # -- helpers ------------------------------------------------------------------------------

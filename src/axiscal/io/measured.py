@@ -161,6 +161,7 @@ def _raw_readings(lines, source: str) -> RawReadings:
         i = int(np.argmax(np.diff(t) < 0))
         raise DataFormatError(f"time_s goes back from {t[i]:g} to {t[i + 1]:g} s",
                               source, int(where[i + 1]))
+    _inch_slip(tg * units.factor(tu), x, tu, ru, source)
     dead = _meta_number(meta, "dead_path_mm", 0.0, 0.0, 1e5, source) * 1e-3
     index = _meta_number(meta, "index", 1.0, 0.99, 1.01, source)
     datum = _meta_number(meta, "datum", float(tg[0]), -1e9, 1e9, source)
@@ -325,6 +326,22 @@ def parse_record_csv(text: str, source: str = "<text>") -> Record:
 
 
 # -- helpers ---------------------------------------------------------------------------------
+def _inch_slip(targets, readings, tu: str, ru: str, source: str) -> None:
+    """Refuse laser readings that travel 25.4 × or 1/25.4 of the targets: an inch read as a mm
+    (:func:`axiscal.datasets.inch_signature` for the rule and its physical grounds), naming the
+    declaration of the leading comment that reads the file right."""
+    from axiscal.datasets import inch_reading, inch_signature
+
+    k = inch_signature(targets, readings)
+    if k is None:
+        return
+    text, which, unit = inch_reading(k, tu, ru, "laser readings")
+    key = "target_unit" if which == "target" else "reading_unit"
+    fix = f"give {key}={unit}" if unit else f"declare the {key} the file was written in"
+    raise DataFormatError(f"{text} (a machine axis follows its targets to parts per million, "
+                          f"ISO 230-2:2014 §3.1): {fix}", source)
+
+
 def _direction(text: str, source: str, n: int) -> str:
     t = text.strip().lower()
     if t in ("+", "up", "fwd", "forward", "positive"):
