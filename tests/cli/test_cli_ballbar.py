@@ -1,6 +1,7 @@
 """``axiscal ballbar analyze|volumetric`` through typer's CliRunner."""
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -37,7 +38,9 @@ def test_analyze_plot_and_report(tmp_path):
     res = runner.invoke(app, ["ballbar", "analyze", str(EXAMPLE), "--plot", str(png),
                               "--report", str(html)])
     assert res.exit_code == 0, res.output
-    assert "backlash_x" in res.stdout and "residual" in res.stdout
+    # the terms by the reports' labels (report/labels.py), never the JSON keys
+    assert "Backlash X" in res.stdout and "Residual (not modelled)" in res.stdout
+    assert not re.search(r"\b[a-z]+(_[a-z]+)+\b", res.stdout.split("effect", 1)[1]), res.stdout
     assert png.stat().st_size > 10_000 and "Ranked diagnosis" in html.read_text()
 
 

@@ -52,35 +52,28 @@ def analyze(
 
     Example: axiscal ballbar analyze examples/squareness_ballbar_150mm.csv --feed 1000
     """
-    from axiscal.errors import InputError
-    from axiscal.io.ballbar import read_ballbar
+    from axiscal import api
 
     if plot is not None:
         plot_path(plot)
     if report is not None:
         report_path(report)
-    if feed is not None and not feed > 0:
-        raise InputError(f"--feed {feed:g}: must be a positive feed in mm/min")
-    data = read_ballbar(file)
-    axes = data.axes
-    if plane is not None:
-        p = plane.upper()
-        if p not in ("XY", "YZ", "ZX"):
-            raise InputError(f"--plane {plane!r}: choose XY, YZ or ZX")
-        axes = (p[0], p[1])
-    result = _diagnosis(file, data, feed=None if feed is None else feed / 6e4, axes=axes)
+    data = api.read(file, kind="ballbar")
+    _two_directions(file, data)
+    ev = api.evaluate(data, feed=feed, plane=plane)
+    result, axes = ev.result, tuple(ev.to_dict()["plane"])
     if plot is not None:
         from axiscal.report.ballbar_plots import save_diagnosis_plot
 
         save_diagnosis_plot(data.runs, result, plot, title=f"Ballbar {''.join(axes)} — {file.name}")
     if report is not None:
-        from axiscal.report.ballbar_plots import write_diagnosis_report
-
-        write_diagnosis_report(report, data.runs, result, title=f"Ballbar diagnosis {file.name}")
+        ev.report(report, title=f"Ballbar diagnosis {file.name}")
     if json_out:
-        print_json({"file": str(file), "plane": "".join(axes), **result.as_dict()})
+        print_json({"file": str(file), **ev.to_dict()})
         return
-    typer.echo(str(result))
+    from axiscal.report.labels import quantity
+
+    typer.echo(result.text(lambda key, ax: quantity(key, axes=ax)[0]))
     for path in (plot, report):
         if path is not None:
             note(f"wrote {path}")
@@ -94,13 +87,14 @@ def volumetric(
 
     Example: axiscal ballbar volumetric xy.csv yz.csv zx.csv
     """
+    from axiscal import api
     from axiscal.errors import InputError
-    from axiscal.io.ballbar import read_ballbar
 
     rows = []
     for file in files:
-        data = read_ballbar(file)
-        v = _diagnosis(file, data).values
+        data = api.read(file, kind="ballbar")
+        _two_directions(file, data)
+        v = api.evaluate(data).result.values
         rows.append({"plane": "".join(data.axes), "file": str(file),
                      "squareness_um_per_m": v["squareness_um_per_m"],
                      "scale_mismatch_um_per_m": v["scale_mismatch_um_per_m"],
@@ -121,17 +115,14 @@ def volumetric(
                    f"{r['backlash_x_um']:+.2f} / {r['backlash_y_um']:+.2f} µm")
 
 
-def _diagnosis(file, data, feed=None, axes=None):
-    """The library's one ballbar evaluation (the history and the workbench store the same);
-    a one-direction test refused in one line, since only the diagnosis is shown here."""
+def _two_directions(file, data) -> None:
+    """Only the diagnosis is shown here: a one-direction test is refused in one line."""
     from axiscal.errors import InputError
-    from axiscal.store.kinds import evaluate_ballbar
 
     if len(data.runs) != 2:
         raise InputError(f"{file}: one direction ({data.runs[0].direction}) only; the diagnosis "
                          "needs one CCW and one CW run ('axiscal squareness circular' evaluates "
                          "one direction by ISO 230-4)")
-    return evaluate_ballbar(data, feed=feed, axes=axes)
 
 
 def register(app: typer.Typer) -> None:

@@ -231,10 +231,11 @@ def _budget_json(b) -> dict:
 
 
 def _budget_line(b) -> str:
-    names = ", ".join(c.name for c in b.contributors)
+    """U and what it holds, named as the report's budget table names each contribution."""
     from axiscal.standards.iso230_9 import format_uncertainty
 
-    return f"U (k = 2) = {format_uncertainty(b.U('squareness'))} µm/m ({names}; ISO/TR 230-9)"
+    names = "; ".join(c.quantity for c in b.contributors)
+    return f"U (k = 2) = {format_uncertainty(b.U('squareness'))} µm/m (ISO/TR 230-9) from: {names}"
 
 
 def _check_crossed(one, two, axes) -> None:

@@ -195,15 +195,27 @@ class BallbarDiagnosis:
         return d
 
     def __str__(self) -> str:
+        return self.text()
+
+    def text(self, name=None) -> str:
+        """The diagnosis as a ranked table for a person.
+
+        ``name(key, axes)`` names each term: the commands pass the reports' labels
+        (:func:`axiscal.report.labels.quantity`); by default the key in words with the plane's
+        axes (``backlash_x`` → ``backlash X``), never the code key.
+        """
         c = self.circular
+        axes = c.squareness.axes
+        names = [(name or _words)(t.key, axes) for t in self.terms]
+        w = max([19, *map(len, names)])
         lines = [f"ballbar diagnosis R = {c.radius * 1e3:g} mm over {c.arc_deg:.0f}°"
                  + ("" if self.feed is None else f", feed {self.feed * 6e4:g} mm/min"),
                  f"  ISO 230-4:2005 §3: G ccw {_um(c.G_ccw)}, G cw {_um(c.G_cw)}, "
                  f"H {_um(c.H)}, F max {_um(c.F_max)}, F min {_um(c.F_min)}",
                  *self.folded_lines(),
-                 "  rank  term                 value            effect   share  advice"]
-        for i, t in enumerate(self.terms, 1):
-            lines.append(f"  {i:>4}  {t.key:<19} {t.value:>+9.3f} {t.unit:<6} "
+                 f"  rank  {'term':<{w}}  value            effect   share  advice"]
+        for i, (t, n) in enumerate(zip(self.terms, names), 1):
+            lines.append(f"  {i:>4}  {n:<{w}} {t.value:>+9.3f} {t.unit:<6} "
                          f"{t.ptp * 1e6:>7.3f} µm {t.share * 100:>5.0f} %  {t.advice}")
         lines.append(f"  residual after the model: {self.residual_rms * 1e6:.3f} µm rms, "
                      f"{self.residual_ptp * 1e6:.3f} µm peak-to-valley")
@@ -213,6 +225,11 @@ class BallbarDiagnosis:
     def folded_lines(self) -> list[str]:
         """The statements of :attr:`folded` whose difference the readings resolve."""
         return [f"  {f}" for f in self.folded if f.material]
+
+
+def _words(key: str, axes) -> str:
+    """A term's key in words with the plane's axes: ``backlash_x`` → ``backlash X``."""
+    return " ".join({"x": axes[0], "y": axes[1]}.get(p, p) for p in key.split("_"))
 
 
 def diagnose(runs, radius: float, *, feed: float | None = None,
@@ -403,8 +420,8 @@ def _assemble(circ, phi, y, fit: _Fit, radius, feed, axes) -> BallbarDiagnosis:
     if feed is not None:
         v["servo_mismatch_ms"] = c["servo"] / feed * 1e3   # column s sin 2φ / 2: coef v Δτ
     else:
-        warnings.append("no feed given: servo mismatch stays in µm (servo_term_um), not ms, "
-                        "and vibration has no frequency")
+        warnings.append("no feed given: servo mismatch stays a length (the servo term, µm), "
+                        "not ms, and vibration has no frequency")
     for k in ("spike_x", "spike_y", "backlash_x", "backlash_y"):
         if not fit.observable[k]:
             warnings.append(f"{k}: its reversal point lies outside the arc; not observable")
