@@ -299,13 +299,46 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
 
     warn: list[str] = []
     unit = dataset.deviation_unit
-    tu = dataset.target_unit
-    n_up, mean_up, s_up = _direction_stats(targets, up, tu, "+")
-    n_down, mean_down, s_down = _direction_stats(targets, down, tu, "-")
-    has_up, has_down = up.shape[1] > 0, down.shape[1] > 0
+    n_up, mean_up, s_up = _direction_stats(targets, up, dataset.target_unit, "+")
+    n_down, mean_down, s_down = _direction_stats(targets, down, dataset.target_unit, "-")
+    n_runs, missing, distinct = _test_extent(dataset, targets, warn)
+    per_target, params = _axis_parameters(mean_up, s_up, mean_down, s_down,
+                                          up.shape[1] > 0, down.shape[1] > 0, warn)
 
-    # runs and missing readings of the test as measured: pooling 360° into 0° (full_turn="merge")
-    # widens the arrays with padding that is neither a run nor a missing reading
+    closure_up = closure_down = None
+    if is_full_turn and full_turn == "separate":
+        span = float(np.max(np.abs(targets))) * _deg_to(unit) / _deg_to(dataset.target_unit)
+        closure_up, closure_down = _closure(mean_up, s_up, n_up, mean_down, s_down, n_down,
+                                            unit, warn, span)
+
+    return Iso230_2Result(
+        axis_kind=dataset.axis_kind,
+        target_unit=dataset.target_unit,
+        deviation_unit=unit,
+        targets=_frozen(targets),
+        n_up=_frozen(n_up),
+        n_down=_frozen(n_down),
+        mean_up=_frozen(mean_up),
+        mean_down=_frozen(mean_down),
+        s_up=_frozen(s_up),
+        s_down=_frozen(s_down),
+        **{k: _frozen(v) for k, v in per_target.items()},
+        n_runs=n_runs,
+        missing=missing,
+        distinct_positions=distinct,
+        closure_up=closure_up,
+        closure_down=closure_down,
+        warnings=tuple(warn),
+        **params,
+    )
+
+
+# -- helpers ------------------------------------------------------------------------------
+def _test_extent(dataset: PositioningDataset, targets: np.ndarray, warn: list) -> tuple:
+    """Runs, missing readings and distinct target positions of the test as measured, with a
+    warning where ISO 230-2:2014 asks for more (5 runs, §5.3; targets, Table 1): (n_runs,
+    missing, distinct). Pooling 360° into 0° (``full_turn="merge"``) widens the arrays with
+    padding that is neither a run nor a missing reading, so they are counted on ``dataset``."""
     n_runs = int(max(dataset.up.shape[1], dataset.down.shape[1]))
     if n_runs < RECOMMENDED_RUNS:
         warn.append(
@@ -328,7 +361,14 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
         rule = f"a linear travel of {travel_mm:g} mm (5 per metre, 5 at least)"
     if distinct < need:
         warn.append(f"{distinct} target positions; ISO 230-2 asks for at least {need} over {rule}")
+    return n_runs, missing, distinct
 
+
+def _axis_parameters(mean_up, s_up, mean_down, s_down, has_up: bool, has_down: bool,
+                     warn: list) -> tuple[dict, dict]:
+    """The per-target values (mean_bi, reversal, R_up_i, R_down_i, R_i: equations (4), (5),
+    (10)-(12) of the module docstring) and the axis parameters A↑ ... B̄ (equations (6), (7),
+    (13)-(21)), None for a direction not measured: (per-target dict, parameter dict)."""
     with _warnings.catch_warnings():
         _warnings.simplefilter("ignore", RuntimeWarning)
         R_up_i = 4.0 * s_up
@@ -338,75 +378,37 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
             reversal = mean_up - mean_down
             R_i = np.maximum.reduce([2 * s_up + 2 * s_down + np.abs(reversal), R_up_i, R_down_i])
         else:
-            nan = np.full(targets.size, np.nan)
+            nan = np.full(mean_up.size, np.nan)
             mean_bi, reversal, R_i = nan, nan.copy(), nan.copy()
+    per_target = dict(mean_bi=mean_bi, reversal=reversal, R_up_i=R_up_i, R_down_i=R_down_i,
+                      R_i=R_i)
 
     def span(hi, lo):
         return float(np.max(hi) - np.min(lo))
 
-    up_params = dict(A_up=None, E_up=None, R_up=None)
-    down_params = dict(A_down=None, E_down=None, R_down=None)
+    params: dict[str, float | None] = dict(A_up=None, E_up=None, R_up=None, A_down=None,
+                                           E_down=None, R_down=None)
     if has_up:
-        up_params = dict(A_up=span(mean_up + 2 * s_up, mean_up - 2 * s_up),
-                         E_up=span(mean_up, mean_up), R_up=float(np.max(R_up_i)))
+        params.update(A_up=span(mean_up + 2 * s_up, mean_up - 2 * s_up),
+                      E_up=span(mean_up, mean_up), R_up=float(np.max(R_up_i)))
     if has_down:
-        down_params = dict(A_down=span(mean_down + 2 * s_down, mean_down - 2 * s_down),
-                           E_down=span(mean_down, mean_down), R_down=float(np.max(R_down_i)))
-    bi_params: dict[str, float | None] = dict(A=None, E=None, M=None, R=None, B=None, B_mean=None)
-    if has_up and has_down:
-        both_hi = np.concatenate([mean_up + 2 * s_up, mean_down + 2 * s_down])
-        both_lo = np.concatenate([mean_up - 2 * s_up, mean_down - 2 * s_down])
-        both = np.concatenate([mean_up, mean_down])
-        bi_params = dict(
-            A=span(both_hi, both_lo),
-            E=span(both, both),
-            M=span(mean_bi, mean_bi),
-            R=float(np.max(R_i)),
-            B=float(np.max(np.abs(reversal))),
-            B_mean=float(np.mean(reversal)),
-        )
-    else:
+        params.update(A_down=span(mean_down + 2 * s_down, mean_down - 2 * s_down),
+                      E_down=span(mean_down, mean_down), R_down=float(np.max(R_down_i)))
+    if not (has_up and has_down):
         which = "positive (↑)" if has_up else "negative (↓)"
         warn.append(
             f"unidirectional test, {which} direction only: A, E, M, R, B and the mean reversal "
             "do not apply"
         )
-
-    closure_up = closure_down = None
-    if is_full_turn and full_turn == "separate":
-        span = float(np.max(np.abs(targets))) * _deg_to(unit) / _deg_to(dataset.target_unit)
-        closure_up, closure_down = _closure(mean_up, s_up, n_up, mean_down, s_down, n_down,
-                                            unit, warn, span)
-
-    return Iso230_2Result(
-        axis_kind=dataset.axis_kind,
-        target_unit=dataset.target_unit,
-        deviation_unit=unit,
-        targets=_frozen(targets),
-        n_up=_frozen(n_up),
-        n_down=_frozen(n_down),
-        mean_up=_frozen(mean_up),
-        mean_down=_frozen(mean_down),
-        mean_bi=_frozen(mean_bi),
-        reversal=_frozen(reversal),
-        s_up=_frozen(s_up),
-        s_down=_frozen(s_down),
-        R_up_i=_frozen(R_up_i),
-        R_down_i=_frozen(R_down_i),
-        R_i=_frozen(R_i),
-        n_runs=n_runs,
-        missing=missing,
-        distinct_positions=distinct,
-        closure_up=closure_up,
-        closure_down=closure_down,
-        warnings=tuple(warn),
-        **up_params,
-        **down_params,
-        **bi_params,
-    )
+        return per_target, dict(params, A=None, E=None, M=None, R=None, B=None, B_mean=None)
+    both_hi = np.concatenate([mean_up + 2 * s_up, mean_down + 2 * s_down])
+    both_lo = np.concatenate([mean_up - 2 * s_up, mean_down - 2 * s_down])
+    both = np.concatenate([mean_up, mean_down])
+    return per_target, dict(params, A=span(both_hi, both_lo), E=span(both, both),
+                            M=span(mean_bi, mean_bi), R=float(np.max(R_i)),
+                            B=float(np.max(np.abs(reversal))), B_mean=float(np.mean(reversal)))
 
 
-# -- helpers ------------------------------------------------------------------------------
 def _direction_stats(targets: np.ndarray, arr: np.ndarray, target_unit: str, sign: str):
     """Counts, means (eq. 2/3) and estimators s (eq. 8/9) of one direction; NaN if not measured."""
     m = targets.size
