@@ -20,7 +20,23 @@ __all__ = ["referencing_figure", "save_referencing_plot"]
 def referencing_figure(run, before_counts: float | None = None, after_counts: float | None = None):
     """A matplotlib Figure of a :class:`~axiscal.procedures.referencing.ReferencingRun`."""
     plt = _pyplot()
+    lo, hi, sl, xk = _window(run, before_counts, after_counts)
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 7.5),
+                             gridspec_kw={"height_ratios": [1.0, 0.6, 2.0, 0.8]})
+    _signal_panels(axes, run, sl, xk)
+    _events_and_stages(axes, run, lo, hi)
+    ev = {e.name: e for e in run.events}
+    z = (f"Z measured {ev['Z'].counts_beyond_switch:.1f} ± {ev['Z'].uncertainty_counts:.1f} "
+         f"output counts beyond the switch, design {ev['Z'].nominal_counts}") if "Z" in ev \
+        else "no home found"
+    fig.suptitle(f"Single-axis referencing with a compensated laser scale ({z})", fontsize=11)
+    fig.tight_layout()
+    return fig
 
+
+def _window(run, before_counts, after_counts):
+    """The part of the run drawn: (lo, hi) in output counts beyond the switch, the slice of the
+    samples and their abscissa (true position beyond the switch's trip point, output counts)."""
     out = run.axis.output
     n = out.counts_per_period
     d = run.axis.direction
@@ -37,9 +53,13 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
     sl = slice(first, max(last, first + 2))
     # abscissa: the true position beyond the switch's trip point, in output-count lengths
     xk = d * (run.position[sl] - run.switch_trip) / out.count_size
+    return lo, hi, sl, xk
 
-    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 7.5),
-                             gridspec_kw={"height_ratios": [1.0, 0.6, 2.0, 0.8]})
+
+def _signal_panels(axes, run, sl, xk) -> None:
+    """The four signals: laser quadrature, switch, synthesised sine/cosine, reference mark."""
+    out = run.axis.output
+    n = out.counts_per_period
     a, b = run.axis.laser.quadrature(run.laser_counts[sl])
     axes[0].step(xk, a + 1.6, where="post", lw=0.9, color="tab:blue", label="A")
     axes[0].step(xk, b + 0.0, where="post", lw=0.9, color="tab:orange", label="B")
@@ -66,6 +86,11 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
     axes[3].set_xlabel("true position beyond the switch's trip point [lengths of one output "
                        f"count, {out.count_size * 1e9:.3f} nm]")
 
+
+def _events_and_stages(axes, run, lo, hi) -> None:
+    """Events A, B, Z, C as dashed lines, the three stages, and the µm scale below."""
+    out = run.axis.output
+    d = run.axis.direction
     marks = {e.name: d * (e.position - run.switch_trip) / out.count_size for e in run.events}
     for name, k in marks.items():
         for ax in axes:
@@ -86,13 +111,6 @@ def referencing_figure(run, before_counts: float | None = None, after_counts: fl
                              lambda m: m / (out.count_size * 1e6)))
     sec.spines["bottom"].set_position(("outward", 38))
     sec.set_xlabel("µm beyond the switch")
-    ev = {e.name: e for e in run.events}
-    z = (f"Z measured {ev['Z'].counts_beyond_switch:.1f} ± {ev['Z'].uncertainty_counts:.1f} "
-         f"output counts beyond the switch, design {ev['Z'].nominal_counts}") if "Z" in ev \
-        else "no home found"
-    fig.suptitle(f"Single-axis referencing with a compensated laser scale ({z})", fontsize=11)
-    fig.tight_layout()
-    return fig
 
 
 def save_referencing_plot(run, path) -> Path:
