@@ -53,15 +53,14 @@ def evaluate(
 
     Example: axiscal evaluate x.csv --standard all
     """
-    from axiscal.cli.iso230_2 import parse_tolerances, with_uncertainty_options
-    from axiscal.io.results import verdicts_json
+    from axiscal import api
+    from axiscal.cli.iso230_2 import parse_tolerances, parse_uncertainty
     from axiscal.errors import InputError
-    from axiscal.io import read_positioning
     from axiscal.standards import positioning_standards as ps
 
     key = standard.strip().lower()
     tolerances = parse_tolerances(tolerance)
-    table = with_uncertainty_options({}, uncertainty).get("uncertainty")
+    table = parse_uncertainty(uncertainty)
     if key == "all" and tolerances:
         raise InputError("--tolerance needs one --standard (parameter names differ between "
                          "standards)")
@@ -71,91 +70,35 @@ def evaluate(
         if p is not None:
             check(p)
     with progress_bar(f"reading {file.name}") as bar:
-        ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
-                              progress=bar, epics=epics_options(
-                                  setpoint_pv, reference_pv, targets, reference_scale,
-                                  reference_offset, rest_window))
+        ds = api.read(file, kind="iso230-2", target_unit=target_unit,
+                      deviation_unit=deviation_unit, progress=bar, epics=epics_options(
+                          setpoint_pv, reference_pv, targets, reference_scale,
+                          reference_offset, rest_window))
     show_notes(ds)
-    if key == "all":
-        results = ps.evaluate_all(ds)
-    else:
-        results = ((ps.STANDARDS[key], ps.evaluate(key, ds)),)
-    verdicts = (ps.check_tolerances(key, ds, results[0][1], tolerances, rule, table)
-                if tolerances else ())
-    budget = _budget(ds, verdicts, table)
-    if key == "iso230-2:2014":
-        _iso_outputs(ds, plot, report, verdicts, budget or _budget_of(ds, table))
-    elif plot is not None:
-        from axiscal.report.plots import save_figure, standard_figure, standards_figure
+    ev = api.evaluate(ds, key, tolerances=tolerances, rule=rule, uncertainty=table,
+                      form="standards")
+    if plot is not None:
+        from axiscal.report.plots import save_figure
 
-        fig = standards_figure(ds, results) if key == "all" else standard_figure(ds, *results[0])
-        if fig is None:
+        try:
+            fig = ev.plot()
+        except InputError:
             raise InputError("--plot: no standard evaluates this test, so there is no figure; "
-                             "the reasons are in the table without --plot")
+                             "the reasons are in the table without --plot") from None
         save_figure(fig, plot)
-    if report is not None and key != "iso230-2:2014":
-        from axiscal.report.html import standards_report
-
-        what = "every positioning standard" if key == "all" else results[0][0].title
-        standards_report(ds, results, f"Positioning test {file.name} by {what}",
-                         verdicts).write(report)
+    if report is not None:
+        what = "every positioning standard" if key == "all" else ev.results[0][0].title
+        ev.report(report, title=f"Positioning test {file.name} by {what}")
     if json_out:
-        d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
-             "standards": [_entry_json(std, res) for std, res in results]}
-        if verdicts:
-            from axiscal.standards.iso14253_1 import unprovable
-
-            d.update(verdicts_json(verdicts))
-            d["warnings"] = unprovable(verdicts, _sym(ds.deviation_unit))
-        if budget is not None:
-            d["uncertainty_budget"] = budget.to_json([v.parameter for v in verdicts])
-        print_json(d)
+        print_json(ev.to_dict())
     else:
-        _render(results, ds, str(file), verdicts, budget)
+        budget = ev.budget if "uncertainty_budget" in ev.to_dict() else None
+        _render(ev.results, ds, str(file), ev.verdicts, budget)
     for p, what in ((plot, "plot"), (report, "report")):
         if p is not None:
             note(f"wrote {what} {p}")
-    if any(v.passed is not True for v in verdicts if v.value is not None):
+    if ev.conformance_proven is False:
         raise typer.Exit(1)
-
-
-def _budget(ds, verdicts, table=None):
-    """The ISO 230-2:2014 Annex A budget behind the verdicts' U (None when no verdict has one:
-    the other standards' parameters have no published budget)."""
-    import math
-
-    if not any(not math.isnan(v.U) for v in verdicts):
-        return None
-    return _budget_of(ds, table)
-
-
-def _budget_of(ds, table):
-    from axiscal.standards.iso230_2 import evaluate as iso_evaluate
-    from axiscal.standards.iso230_9 import positioning_budget
-
-    return positioning_budget(ds, iso_evaluate(ds), table)
-
-
-def _sym(unit: str) -> str:
-    return {"um": "µm"}.get(unit, unit)
-
-
-def _iso_outputs(ds, plot, report, verdicts, budget) -> None:
-    from axiscal.standards.iso230_2 import evaluate as iso_evaluate
-
-    result = iso_evaluate(ds)
-    if plot is not None:
-        from axiscal.report.plots import save_iso230_2_plot
-
-        save_iso230_2_plot(result, ds, plot)
-    if report is not None:
-        from axiscal.report.html import positioning_report
-        from axiscal.report.uncertainty import add_uncertainty
-
-        rep = positioning_report(ds, result, verdicts=verdicts)
-        add_uncertainty(rep, budget, verdicts,
-                        [p for p, v in result.parameters().items() if v is not None])
-        rep.write(report)
 
 
 def _render(results, ds, title, verdicts, budget=None) -> None:

@@ -71,8 +71,7 @@ def iso230_2(
 
     Example: axiscal iso230-2 x_axis.csv --tolerance E=10 --report certificate.pdf
     """
-    from axiscal.io import read_positioning
-    from axiscal.standards.iso230_2 import check_tolerances, evaluate
+    from axiscal import api
 
     tolerances = parse_tolerances(tolerance)
 
@@ -89,39 +88,33 @@ def iso230_2(
                          f"--{next(iter(epics)).replace('_', '-')}: write the test to CSV "
                          "first (axiscal capture LOG --plan PLAN --out x.csv) and store that")
     with progress_bar(f"reading {file.name}") as bar:
-        ds = read_positioning(file, target_unit=target_unit, deviation_unit=deviation_unit,
-                              progress=bar, epics=epics)
+        ds = api.read(file, kind="iso230-2", target_unit=target_unit,
+                      deviation_unit=deviation_unit, progress=bar, epics=epics)
     show_notes(ds)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
 
         raise InputError(f"--full-turn {full_turn} pools 0 and 360 deg of a rotary test; {file} "
                          f"is a {ds.axis_kind.value} axis")
-    result = evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
-    from axiscal.report.issue import budget_for, decisions_for, load_config
-
-    cfg = with_uncertainty_options(load_config(job), uncertainty, drift_check)
-    check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})   # names and values
-    budget = budget_for(ds, result, cfg)
-    verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
+    ev = api.evaluate(ds, tolerances=tolerances, rule=rule, job=job, full_turn=full_turn,
+                      uncertainty=parse_uncertainty(uncertainty), drift_check=drift_check)
     if plot is not None:
-        from axiscal.report.plots import save_iso230_2_plot
+        from axiscal.report.plots import save_figure
 
-        save_iso230_2_plot(result, ds, plot)
+        save_figure(ev.plot(), plot)
     outcome = None
     if report is not None:
         from axiscal.io.user_config import config_problem
         from axiscal.report.issue import write_certificate
         from axiscal.store import open_store
 
-        outcome = write_certificate(report, ds, result, cfg, Path(file).read_bytes(), tolerances,
-                                    rule, paper, job, store=lambda: open_store(db),
+        outcome = write_certificate(report, ds, ev.result, ev.config, Path(file).read_bytes(),
+                                    tolerances, rule, paper, job, store=lambda: open_store(db),
                                     filename=file.name, config_note=config_problem())
     if json_out:
-        print_json({**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
-                    "axis": ds.metadata.axis, "notes": ds.metadata.notes})
+        print_json(ev.to_dict())
     else:
-        render_result(result, ds, title=str(file), verdicts=verdicts, budget=budget)
+        render_result(ev.result, ds, title=str(file), verdicts=ev.verdicts, budget=ev.budget)
     if plot is not None:
         note(f"wrote plot {plot}")
     if history:
@@ -132,7 +125,7 @@ def iso230_2(
         from axiscal.cli._certificate import tell_outcome
 
         tell_outcome(outcome, draft)
-    if any(v.passed is not True for v in verdicts if v.value is not None):
+    if ev.conformance_proven is False:
         raise typer.Exit(1)
 
 
@@ -154,22 +147,12 @@ def parse_tolerances(items: List[str]) -> dict:
     return out
 
 
-def with_uncertainty_options(cfg: dict, items: List[str], drift_check: Path | None = None) -> dict:
-    """``cfg`` with ``--uncertainty NAME=VALUE`` items over its ``[uncertainty]`` table (a number
-    where the value is one, else text: ``reference=encoder``; the budget checks the names), and
-    E_VE measured from a ``--drift-check`` file."""
+def parse_uncertainty(items: List[str]) -> dict:
+    """``--uncertainty NAME=VALUE`` items as the inputs of the uncertainty budget: a number
+    where the value is one, else text (``reference=encoder``; the budget checks the names)."""
     from axiscal.errors import InputError
 
-    table = dict(cfg.get("uncertainty") or {})
-    if drift_check is not None and any(i.partition("=")[0].strip() == "e_ve" for i in items):
-        raise InputError("E_VE is given twice: by --drift-check and by --uncertainty e_ve; "
-                         "give one")
-    if drift_check is not None:
-        from axiscal.io.drift import read_drift_check
-        from axiscal.standards.iso230_9 import environmental_variation
-
-        table.update(e_ve=environmental_variation(read_drift_check(drift_check)),
-                     e_ve_source="drift check")
+    table: dict = {}
     for item in items:
         name, sep, value = (x.strip() for x in item.partition("="))
         if not sep or not name or not value:
@@ -178,7 +161,7 @@ def with_uncertainty_options(cfg: dict, items: List[str], drift_check: Path | No
             table[name] = float(value)
         except ValueError:
             table[name] = value
-    return {**cfg, "uncertainty": table} if items or drift_check is not None else cfg
+    return table
 
 
 def _sym(unit: str) -> str:

@@ -211,11 +211,11 @@ def ballbar_evaluation(data: Any, *, feed: float | None = None,
         raise InputError(f"evaluate: give the file's path for a {type(data).__name__} "
                          "(a positioning or ballbar dataset is evaluated in memory)")
     if feed is not None and not feed > 0:
-        raise InputError(f"feed {feed:g}: must be a positive feed in mm/min")
+        raise InputError(f"feed (--feed) {feed:g}: must be a positive feed in mm/min")
     axes = data.axes
     if plane is not None:
         if plane.upper() not in ("XY", "YZ", "ZX"):
-            raise InputError(f"plane {plane!r}: choose XY, YZ or ZX")
+            raise InputError(f"plane (--plane) {plane!r}: choose XY, YZ or ZX")
         axes = (plane.upper()[0], plane.upper()[1])
     r = evaluate_ballbar(data, feed=None if feed is None else feed / 6e4, axes=axes)
     return dict(kind="ballbar", standard="iso230-4", dataset=data, result=r,
