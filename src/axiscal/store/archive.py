@@ -1,9 +1,14 @@
 """Export and import of the history as a portable archive.
 
 The archive is a ZIP file holding ``history.jsonl`` (one JSON object a line: first the header,
-``{"format": "axiscal.history/1", "tests": N}``, then one record a test: the machine, the axis,
-the test's fields, its parameters and compensation tables, and the name of its raw file) and
-``raw/<sha256>-<filename>``, the files as they came.
+``{"format": "axiscal.history/2", "tests": N, "audit": A, "certificates": C}``, then one record a
+test: the machine, the axis, the test's fields, why it was withdrawn ("" if it counts), its
+parameters and compensation tables, and the name of its raw file),
+``raw/<sha256>-<filename>``, the files as they came, and the records kept beside them (ISO/IEC
+17025:2017 §7.5, §8.4): ``audit.jsonl`` (the audit trail of the corrections),
+``certificates.jsonl`` and ``certificates/<sha256>`` (the certificate register and its issued
+documents), :mod:`axiscal.store.archive_records`. An archive of ``axiscal.history/1`` (written
+before those records) imports as before, without them.
 
 Export writes a temporary file beside the archive and renames it into place, so a full disk or
 an error leaves no partial archive; the archive gets the mode a plain write gives (0666 less the
@@ -22,11 +27,16 @@ Import is all or nothing. The archive is distrusted and checked whole before the
   JSON object with every field present and of its type, every table ``[controller, filename,
   text]``, every raw file present and matching its SHA-256;
 * every raw file not stored before evaluated again (one that no longer evaluates refuses the
-  archive).
+  archive);
+* ``audit.jsonl`` and ``certificates.jsonl``: the counts the header announces, every entry of
+  its fields and types, every test it names in the archive, every document present and matching
+  its SHA-256.
 
-Then every test is stored in one transaction (:meth:`~axiscal.store.history.Store.add_all`): a
-damaged archive, an error or a killed process leaves the database exactly as it was; files
-already stored (same SHA-256) are counted, not stored again, so an import can be run again.
+Then every test is stored in one transaction (:meth:`~axiscal.store.history.Store.add_all`),
+with the withdrawals, the audit trail and the certificates in the same transaction: a damaged
+archive, an error, a certificate number the register gave another document, or a killed process
+leaves the database exactly as it was; files already stored (same SHA-256), audit entries and
+certificates already kept are counted, not stored again, so an import can be run again.
 """
 
 from __future__ import annotations
@@ -43,7 +53,9 @@ from axiscal.errors import AxiscalError, DataFormatError, InputError, one_line
 __all__ = ["FORMAT", "export_history", "import_history", "MAX_ENTRIES", "MAX_ENTRY_BYTES",
            "MAX_TOTAL_BYTES", "MAX_RATIO"]
 
-FORMAT = "axiscal.history/1"
+FORMAT = "axiscal.history/2"
+#: The formats an import reads (/1: before the audit trail and the register were carried).
+FORMATS = ("axiscal.history/1", FORMAT)
 #: At most this many entries in an archive's ZIP directory.
 MAX_ENTRIES = 200_000
 #: No entry larger than a file axiscal reads (``axiscal.io._files.MAX_TEXT_BYTES``, 256 MiB).
@@ -60,11 +72,12 @@ _FIELDS = {"machine": (str, None), "axis": (str, None), "kind": (str, None),
            "tested_at": (str, None), "filename": (str, None), "sha256": (str, None),
            "raw": (str, None), "date_known": (bool, True), "instrument": (str, ""),
            "operator": (str, ""), "note": (str, ""), "parameters": (dict, {}),
-           "tables": (list, [])}
+           "tables": (list, []), "withdrawn": (str, "")}
 
 
 def export_history(store, path, machine: str | None = None) -> int:
-    """Write the history (or one machine's) to the ZIP archive ``path``; returns the count."""
+    """Write the history (or one machine's) to the ZIP archive ``path``, with its audit trail and
+    certificates (:mod:`axiscal.store.archive_records`); returns the count of tests."""
     import tempfile
 
     from axiscal.io._files import _mode_for
@@ -78,19 +91,7 @@ def export_history(store, path, machine: str | None = None) -> int:
     os.close(fd)
     try:
         with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
-            lines = [json.dumps({"format": FORMAT, "tests": len(tests)})]
-            for summary in reversed(tests):                       # oldest first
-                t = store.get(summary.id)
-                raw_name = f"raw/{t.sha256}-{Path(summary.filename).name}"
-                z.writestr(raw_name, t.raw)
-                lines.append(json.dumps({
-                    "machine": summary.machine, "axis": summary.axis, "kind": summary.kind,
-                    "tested_at": summary.tested_at.isoformat(), "date_known": summary.date_known,
-                    "filename": summary.filename, "sha256": t.sha256, "raw": raw_name,
-                    "instrument": t.instrument, "operator": t.operator, "note": summary.note,
-                    "parameters": {k: list(v) for k, v in summary.parameters.items()},
-                    "tables": [list(x) for x in t.tables]}))
-            z.writestr("history.jsonl", "\n".join(lines) + "\n")
+            _write(z, store, tests, machine)
         os.chmod(tmp, _mode_for(p))
         os.replace(tmp, p)
     except BaseException as exc:
@@ -102,11 +103,44 @@ def export_history(store, path, machine: str | None = None) -> int:
     return len(tests)
 
 
+def _write(z: zipfile.ZipFile, store, tests, machine) -> None:
+    """The tests' records and raw files, then the audit trail and the certificates."""
+    from axiscal.store.archive_records import AUDIT, CERTIFICATES, export_records
+
+    lines, shas = [], {}
+    for summary in reversed(tests):                       # oldest first
+        t = store.get(summary.id)
+        shas[summary.id] = t.sha256
+        raw_name = f"raw/{t.sha256}-{Path(summary.filename).name}"
+        z.writestr(raw_name, t.raw)
+        lines.append(json.dumps({
+            "machine": summary.machine, "axis": summary.axis, "kind": summary.kind,
+            "tested_at": summary.tested_at.isoformat(), "date_known": summary.date_known,
+            "filename": summary.filename, "sha256": t.sha256, "raw": raw_name,
+            "instrument": t.instrument, "operator": t.operator, "note": summary.note,
+            "withdrawn": summary.withdrawn,
+            "parameters": {k: list(v) for k, v in summary.parameters.items()},
+            "tables": [list(x) for x in t.tables]}))
+    audit, certs = export_records(store, shas, machine)
+    head = {"format": FORMAT, "tests": len(tests), "audit": len(audit),
+            "certificates": len(certs)}
+    z.writestr("history.jsonl", "\n".join([json.dumps(head)] + lines) + "\n")
+    z.writestr(AUDIT, "".join(json.dumps(e, ensure_ascii=False) + "\n" for e in audit))
+    for entry, doc in certs:
+        if entry["document"] not in z.namelist():
+            z.writestr(entry["document"], doc)
+    z.writestr(CERTIFICATES, "".join(json.dumps(e, ensure_ascii=False) + "\n"
+                                     for e, _ in certs))
+
+
 def import_history(store, path, progress=None) -> tuple[int, int]:
-    """Store every test of the archive ``path``, all or nothing; returns (added, already stored).
+    """Store every test of the archive ``path`` with its audit trail and certificates, all or
+    nothing; returns (added, already stored).
 
     ``progress(done, total)`` is called as the records are checked and evaluated.
     """
+    from axiscal.store.archive_records import restore
+
     p = Path(path)
     try:
         z = zipfile.ZipFile(p)
@@ -115,13 +149,14 @@ def import_history(store, path, progress=None) -> tuple[int, int]:
                               str(p)) from None
     with z:
         _check_directory(z, p)
-        records = _records(_jsonl_text(z, p), p)
+        head, records = _records(_jsonl_text(z, p, "history.jsonl"), p)
         names = set(z.namelist())
         for n, rec in records:
             if rec["raw"] not in names:
                 raise DataFormatError(f"history.jsonl line {n} ({rec['filename']}): its raw file "
                                       f"{rec['raw']} is missing from the archive; nothing was "
                                       "imported", str(p))
+        audit, certs = _kept_records(z, p, head, {rec["sha256"] for _, rec in records})
         known = store.stored([rec["sha256"] for _, rec in records])
         items = []
         for k, (n, rec) in enumerate(records, start=1):
@@ -129,9 +164,39 @@ def import_history(store, path, progress=None) -> tuple[int, int]:
                 items.append(_prepared(z, p, n, rec))
             if progress:
                 progress(k, len(records))
-    results = store.add_all(items) if items else []
+    withdrawn = {rec["sha256"]: rec["withdrawn"] for _, rec in records if rec["withdrawn"]}
+    new = {i.sha256 for i in items}
+
+    def then(s, _results):
+        restore(s, withdrawn, new, audit, certs, p)
+
+    results = store.add_all(items, then=then) if items or audit or certs else []
     added = sum(not r.duplicate for r in results)
     return added, len(records) - added
+
+
+def _kept_records(z: zipfile.ZipFile, p: Path, head: dict, tests: set) -> tuple[list, list]:
+    """The audit entries and certificates of an ``axiscal.history/2`` archive, checked whole
+    (none in one of /1)."""
+    from axiscal.store.archive_records import (AUDIT, CERTIFICATES, check_audit,
+                                               check_certificates)
+
+    if head["format"] == FORMATS[0]:
+        return [], []
+    parts = []
+    for name, key in ((AUDIT, "audit"), (CERTIFICATES, "certificates")):
+        if name not in z.namelist():
+            raise DataFormatError(f"no {name} inside: the archive is truncated or altered",
+                                  str(p))
+        lines = [(n, _json_object(line, n, p, "an entry", name)) for n, line in
+                 enumerate(_jsonl_text(z, p, name).splitlines(), start=1) if line.strip()]
+        if head.get(key) != len(lines):
+            raise DataFormatError(f"history.jsonl announces {head.get(key)!r} {key} entries and "
+                                  f"{name} holds {len(lines)}: the archive is truncated or "
+                                  "altered", str(p))
+        parts.append(lines)
+    return (check_audit(parts[0], tests, p),
+            check_certificates(parts[1], tests, lambda n: _read_entry(z, p, n), p))
 
 
 # -- checking ----------------------------------------------------------------------------------
@@ -187,47 +252,48 @@ def _read_entry(z: zipfile.ZipFile, p: Path, name: str) -> bytes:
     return b"".join(parts)
 
 
-def _jsonl_text(z: zipfile.ZipFile, p: Path) -> str:
+def _jsonl_text(z: zipfile.ZipFile, p: Path, name: str) -> str:
     try:
-        data = _read_entry(z, p, "history.jsonl")
+        data = _read_entry(z, p, name)
     except KeyError:
-        raise DataFormatError("no history.jsonl inside: not an axiscal history archive",
+        raise DataFormatError(f"no {name} inside: not an axiscal history archive",
                               str(p)) from None
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise DataFormatError(f"history.jsonl is not UTF-8 text (byte {exc.start} is "
+        raise DataFormatError(f"{name} is not UTF-8 text (byte {exc.start} is "
                               f"0x{data[exc.start]:02X})", str(p)) from None
 
 
-def _records(text: str, p: Path) -> list[tuple[int, dict]]:
-    """(line number, record) of every record, each checked; the header checked first."""
+def _records(text: str, p: Path) -> tuple[dict, list[tuple[int, dict]]]:
+    """The header and (line number, record) of every record, each checked; the header first."""
     lines = [(n, line) for n, line in enumerate(text.splitlines(), start=1) if line.strip()]
     if not lines:
         raise DataFormatError("history.jsonl is empty: not an axiscal history archive", str(p))
     head = _json_object(lines[0][1], lines[0][0], p, "the archive's header")
-    if head.get("format") != FORMAT:
+    if head.get("format") not in FORMATS:
         raise DataFormatError(f"history.jsonl line {lines[0][0]}: format "
-                              f"{str(head.get('format'))[:60]!r}; expected {FORMAT}", str(p))
+                              f"{str(head.get('format'))[:60]!r}; expected "
+                              f"{' or '.join(FORMATS)}", str(p))
     out = [(n, _record(_json_object(line, n, p, "a test record"), n, p)) for n, line in lines[1:]]
     count = head.get("tests")
     if isinstance(count, int) and not isinstance(count, bool) and count != len(out):
         raise DataFormatError(f"history.jsonl announces {count} tests and holds {len(out)}: "
                               "the archive is truncated or altered", str(p))
-    return out
+    return head, out
 
 
-def _json_object(line: str, n: int, p: Path, what: str) -> dict:
+def _json_object(line: str, n: int, p: Path, what: str, name: str = "history.jsonl") -> dict:
     try:
         value = json.loads(line)
     except RecursionError:
-        raise DataFormatError(f"history.jsonl line {n}: JSON nested too deeply to be {what}",
+        raise DataFormatError(f"{name} line {n}: JSON nested too deeply to be {what}",
                               str(p)) from None
     except ValueError as exc:
-        raise DataFormatError(f"history.jsonl line {n} is not JSON ({one_line(str(exc))[:80]})",
+        raise DataFormatError(f"{name} line {n} is not JSON ({one_line(str(exc))[:80]})",
                               str(p)) from None
     if not isinstance(value, dict):
-        raise DataFormatError(f"history.jsonl line {n}: a JSON {type(value).__name__}, not "
+        raise DataFormatError(f"{name} line {n}: a JSON {type(value).__name__}, not "
                               f"{what} (a JSON object)", str(p))
     return value
 

@@ -26,7 +26,8 @@ import datetime as dt
 import hashlib
 import json
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 from axiscal.errors import InputError
@@ -87,10 +88,11 @@ class TestSummary:
 
 @dataclass(frozen=True)
 class StoredTest:
-    """A stored test, all of it."""
+    """A stored test, all of it. Its bytes (``raw``) are read from the database when first
+    asked for: a page that shows what was kept of the test (its evaluation, by SHA-256) never
+    reads them."""
 
     summary: TestSummary
-    raw: bytes
     sha256: str
     result: dict
     dataset_json: str
@@ -100,13 +102,21 @@ class StoredTest:
     stored_at: dt.datetime
     axiscal_version: str
     tables: tuple             # (controller, filename, text)
+    size: int = 0             # bytes of the stored file
+    _read_raw: object = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def raw(self) -> bytes:
+        """The file's bytes, as they came."""
+        return self._read_raw()
 
     def evaluate_again(self) -> Evaluated:
         """The evaluation of the stored bytes by this version of axiscal: evaluated once and
         kept (:mod:`axiscal.store.cache`), since it is a function of the bytes and the version."""
         from axiscal.store.cache import evaluated
 
-        return evaluated(self.raw, self.sha256, self.summary.filename, self.summary.kind)
+        return evaluated(lambda: self.raw, self.sha256, self.summary.filename,
+                         self.summary.kind, self.size)
 
 
 def default_url() -> str:
@@ -160,8 +170,11 @@ class Store:
                                      instrument=instrument, operator=operator, note=note,
                                      date=date, tables=tables)])[0]
 
-    def add_all(self, items) -> list[AddResult]:
+    def add_all(self, items, then=None) -> list[AddResult]:
         """Store every :class:`Prepared` file in ONE transaction: all or nothing.
+
+        ``then(session, results)``, if given, runs in the same transaction after the tests are
+        inserted (an archive's withdrawals, audit trail and certificates): its error undoes all.
 
         An error, a full disk or a killed process leaves the database as it was before; a file
         stored before (or twice in ``items``) is reported as a duplicate. When another process
@@ -177,6 +190,8 @@ class Store:
                 with self._session(write=True) as s:
                     try:
                         out = self._insert_all(s, list(items), now)
+                        if then is not None:
+                            then(s, out)
                         s.commit()
                         return out
                     except Exception as exc:
@@ -238,11 +253,15 @@ class Store:
 
     def tests(self, machine: str | None = None, axis: str | None = None,
               kind: str | None = None, since: dt.datetime | None = None,
-              limit: int | None = None, offset: int = 0) -> list[TestSummary]:
-        """Tests, newest first, filtered (``limit`` and ``offset`` page through them)."""
+              limit: int | None = None, offset: int = 0,
+              parameters: tuple | None = None) -> list[TestSummary]:
+        """Tests, newest first, filtered (``limit`` and ``offset`` page through them).
+
+        ``parameters`` (names) narrows what each summary's ``parameters`` holds to those names
+        and the test's first parameter (what a listing shows of it); default: all of them."""
         from sqlalchemy import select
 
-        from axiscal.store.models import Axis, Machine, Parameter, Test
+        from axiscal.store.models import Axis, Machine, Test
 
         q = (select(Test.id, Machine.name, Axis.name, Test.kind, Test.tested_at,
                     Test.date_known, Test.filename, Test.note, Test.withdrawn, Machine.id)
@@ -264,30 +283,42 @@ class Store:
             q = q.offset(offset)
         with self._guard("read"), self._session() as s:      # plain rows: fast for thousands
             rows = s.execute(q).all()
-            params: dict[int, dict] = {r[0]: {} for r in rows}
-            ids = list(params)
-            for k in range(0, len(ids), 900):                 # SQLite's bound-parameter limit
-                chunk = ids[k:k + 900]
-                for tid, name, value, unit in s.execute(
-                        select(Parameter.test_id, Parameter.name, Parameter.value,
-                               Parameter.unit).where(Parameter.test_id.in_(chunk))
-                        .order_by(Parameter.id)):
-                    params[tid][name] = (value, unit)
+            params = _parameters(s, [r[0] for r in rows], parameters)
         return [TestSummary(i, m, a, k, t, bool(dk), f, params[i], n or "", w or "", mid)
                 for i, m, a, k, t, dk, f, n, w, mid in rows]
 
     def get(self, test_id: int) -> StoredTest:
-        """One stored test, all of it."""
+        """One stored test, all of it (its bytes read when first asked for)."""
+        from sqlalchemy import func, select
+        from sqlalchemy.orm import defer, joinedload, selectinload
+
+        from axiscal.store.models import Axis, Test
+
+        tid = _test_id(test_id)
+        q = (select(Test, func.length(Test.raw)).where(Test.id == tid)
+             .options(defer(Test.raw), joinedload(Test.axis).joinedload(Axis.machine),
+                      selectinload(Test.parameters), selectinload(Test.tables)))
+        with self._guard("read"), self._session() as s:
+            row = s.execute(q).first()
+            if row is None:
+                raise NotFoundError(f"no test {test_id} in the history")
+            t, size = row
+            return StoredTest(_summary(t), t.sha256, json.loads(t.result_json),
+                              t.dataset_json, json.loads(t.environment_json), t.instrument,
+                              t.operator, t.stored_at, t.axiscal_version,
+                              tuple((x.controller, x.filename, x.text) for x in t.tables),
+                              int(size or 0), lambda: self._raw(tid))
+
+    def _raw(self, test_id: int) -> bytes:
+        from sqlalchemy import select
+
         from axiscal.store.models import Test
 
         with self._guard("read"), self._session() as s:
-            t = s.get(Test, _test_id(test_id))
-            if t is None:
-                raise NotFoundError(f"no test {test_id} in the history")
-            return StoredTest(_summary(t), t.raw, t.sha256, json.loads(t.result_json),
-                              t.dataset_json, json.loads(t.environment_json), t.instrument,
-                              t.operator, t.stored_at, t.axiscal_version,
-                              tuple((x.controller, x.filename, x.text) for x in t.tables))
+            raw = s.scalar(select(Test.raw).where(Test.id == test_id))
+        if raw is None:
+            raise NotFoundError(f"no test {test_id} in the history")
+        return bytes(raw)
 
     def parameter_series(self, machine: str, axis: str, parameter: str,
                          kind: str | None = None) -> list[tuple[dt.datetime, float, str, int]]:
@@ -350,15 +381,7 @@ class Store:
         upgrade(self.engine, self.url, self.read_only, allow_empty)
 
     def _find_hash(self, digest: str) -> AddResult | None:
-        from sqlalchemy import select
-
-        from axiscal.store.models import Test
-
-        with self._guard("read"), self._session() as s:
-            t = s.scalars(select(Test).where(Test.sha256 == digest)).first()
-            if t is None:
-                return None
-            return AddResult(t.id, True, t.kind, t.axis.machine.name, t.axis.name)
+        return self.stored([digest]).get(digest)
 
     def _insert_all(self, s, items: list, now) -> list[AddResult]:
         from axiscal import __version__
@@ -437,6 +460,27 @@ class Prepared:
     environment_json: str
     parameters: tuple          # (name, value, unit)
     tables: tuple              # (controller, filename, text)
+
+
+def _parameters(s, ids: list, names: tuple | None) -> dict[int, dict]:
+    """{test id: {name: (value, unit)}} of tests ``ids``, in the order they were stored: all
+    their parameters, or those named in ``names`` and each test's first."""
+    from sqlalchemy import func, or_, select
+
+    from axiscal.store.models import Parameter
+
+    params: dict[int, dict] = {i: {} for i in ids}
+    for k in range(0, len(ids), 900):                         # SQLite's bound-parameter limit
+        chunk = ids[k:k + 900]
+        q = select(Parameter.test_id, Parameter.name, Parameter.value, Parameter.unit
+                   ).where(Parameter.test_id.in_(chunk)).order_by(Parameter.id)
+        if names is not None:
+            first = (select(func.min(Parameter.id)).where(Parameter.test_id.in_(chunk))
+                     .group_by(Parameter.test_id))
+            q = q.where(or_(Parameter.name.in_(list(names)), Parameter.id.in_(first)))
+        for tid, name, value, unit in s.execute(q):
+            params[tid][name] = (value, unit)
+    return params
 
 
 def _stored(s, digests: list) -> dict:
