@@ -77,9 +77,9 @@ class AxiscalGroup(typer.core.TyperGroup):
     def invoke(self, ctx):  # noqa: D401 - click API
         import warnings
 
-        from axiscal._schema import forget_documents
-
-        forget_documents()
+        schema = sys.modules.get("axiscal._schema")   # imported only by commands that read TOML
+        if schema is not None:
+            schema.forget_documents()   # a document an earlier command of this process read
         try:
             with warnings.catch_warnings():
                 # a numpy overflow or invalid value means an absurd input got past a check:

@@ -8,7 +8,6 @@ from __future__ import annotations
 import json
 import os
 import sys
-import tempfile
 import time
 from contextlib import contextmanager
 from pathlib import Path
@@ -66,6 +65,8 @@ def out_path(path: Path, what: str, inputs=None) -> Path:
             raise InputError(f"{what} {path} is a symbolic link to nothing (or a loop of links)")
         if not path.parent.exists():
             raise InputError(f"cannot write {what} {path}: folder {path.parent} does not exist")
+        import tempfile   # only where an output is written (start-up of the other commands)
+
         # a read-only or pseudo file system refuses here, before any work is done
         tempfile.TemporaryFile(dir=path.parent).close()
         if path.exists() and not os.access(path, os.W_OK):

@@ -55,7 +55,7 @@ def epics_options(setpoint_pv=None, reference_pv=None, targets=None, scale=None,
 def show_notes(ds) -> None:
     """Print (stderr) what the reader of a camonitor log found and assumed."""
     from axiscal.cli._common import note
-    from axiscal.io.epics import NOTES_START
+    from axiscal.io.detect import NOTES_START   # not the reader: no EPICS import for a CSV
 
     if ds.metadata.notes.startswith(NOTES_START):
         note(ds.metadata.notes)
@@ -63,7 +63,7 @@ def show_notes(ds) -> None:
 
 def is_camonitor_log(path: Path) -> bool:
     """True if ``path`` is a readable file whose first line reads like camonitor's."""
-    from axiscal.io.epics import looks_like_camonitor
+    from axiscal.io.detect import looks_like_camonitor
 
     if not Path(path).is_file():   # a FIFO would block the open; the reader names the fault
         return False

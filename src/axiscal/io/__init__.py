@@ -57,13 +57,11 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
 
 def _whole_file_format(text: str, source: str) -> bool:
     """True for a JSON, Renishaw or ecmc positioning file (told by the name or the content)."""
-    from axiscal.io import ecmc as _ecmc
-    from axiscal.io import epics as _epics
-    from axiscal.io import renishaw as _renishaw
+    from axiscal.io import detect
 
     return (Path(source).suffix.lower() == ".json" or text.lstrip("\ufeff \t\r\n").startswith("{")
-            or _ecmc.looks_like_ecmc(text) or _renishaw.looks_like_renishaw(text)
-            or _epics.looks_like_camonitor(text))
+            or detect.looks_like_ecmc(text) or detect.looks_like_renishaw(text)
+            or detect.looks_like_camonitor(text))
 
 
 def parse_positioning(text: str, source: str = "<text>", target_unit: str | None = None,
@@ -73,32 +71,37 @@ def parse_positioning(text: str, source: str = "<text>", target_unit: str | None
 
     JSON (``.json`` or text starting with ``{``), Renishaw ``.rtl``/``.rta`` (a ``HEADER::``
     line first), EPICS ecmc (``TGT_DATA[`` keys), an EPICS camonitor log (``PV time stamp
-    value`` lines; ``epics`` holds its options) or tidy CSV.
+    value`` lines; ``epics`` holds its options) or tidy CSV. Only the reader the file needs is
+    imported (:mod:`axiscal.io.detect` tells which).
     """
-    from axiscal.io import epics as _epics
+    from axiscal.io import detect
 
-    if _epics.looks_like_camonitor(text):
+    if detect.looks_like_camonitor(text):
+        from axiscal.io import epics as _epics
+
         return _epics.parse_epics(text, target_unit=target_unit, deviation_unit=deviation_unit,
                                   axis_kind=axis_kind, source=source, **(epics or {}))
     if epics:
         raise DataFormatError(f"--{next(iter(epics)).replace('_', '-')} applies to an EPICS "
                               "camonitor log; this file is not one", source)
-    from axiscal.io import csv as _csv
-    from axiscal.io import ecmc as _ecmc
-    from axiscal.io import json as _json
-
     if Path(source).suffix.lower() == ".json" or text.lstrip().startswith("{"):
         if target_unit or deviation_unit:
             raise DataFormatError("a JSON dataset carries its own units; drop the unit options",
                                   source)
-        return _json.parse_positioning_json(text, source=source)
-    from axiscal.io import renishaw as _renishaw
+        from axiscal.io import json as _json
 
-    if _renishaw.looks_like_renishaw(text):
+        return _json.parse_positioning_json(text, source=source)
+    if detect.looks_like_renishaw(text):
+        from axiscal.io import renishaw as _renishaw
+
         return _renishaw.parse_renishaw(text, source=source, target_unit=target_unit,
                                         deviation_unit=deviation_unit, axis_kind=axis_kind)
-    if _ecmc.looks_like_ecmc(text):
+    if detect.looks_like_ecmc(text):
+        from axiscal.io import ecmc as _ecmc
+
         return _ecmc.parse_ecmc(text, target_unit=target_unit, deviation_unit=deviation_unit,
                                 axis_kind=axis_kind, source=source)
+    from axiscal.io import csv as _csv
+
     return _csv.parse_positioning_csv(text, target_unit=target_unit, deviation_unit=deviation_unit,
                                       axis_kind=axis_kind, source=source)

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import io
 import math
-import shlex
 from array import array
 from typing import Callable, Iterable, Iterator
 
@@ -368,6 +367,8 @@ class _Readings:
 
 def format_positioning_csv(ds: PositioningDataset) -> str:
     """Write a dataset as tidy CSV with a units comment (missing readings are left out)."""
+    import shlex   # the writer's only (start-up of the readers)
+
     buf = io.StringIO()
     meta = {k: getattr(ds.metadata, k) for k in sorted(_META_KEYS) if getattr(ds.metadata, k)}
     head = f"target_unit={ds.target_unit} deviation_unit={ds.deviation_unit} axis_kind={ds.axis_kind.value}"

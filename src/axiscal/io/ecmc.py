@@ -32,15 +32,11 @@ from axiscal import units
 from axiscal._parse import agreed_unit, check_run_number, finite_number
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
+from axiscal.io.detect import looks_like_ecmc
 
 __all__ = ["looks_like_ecmc", "parse_ecmc", "read_ecmc", "format_ecmc"]
 
 _INDEXED = re.compile(r"^(TGT_DATA|REF_DATA_FWD|REF_DATA_BWD)\[\s*(\d+)\s*(?:,\s*(\d+)\s*)?\]$")
-
-
-def looks_like_ecmc(text: str) -> bool:
-    """True if the text has ``TGT_DATA[`` keys outside comments."""
-    return any(line.strip().startswith("TGT_DATA[") for line in text.splitlines())
 
 
 def read_ecmc(path, **kwargs) -> PositioningDataset:

@@ -84,22 +84,20 @@ import numpy as np
 from axiscal import units
 from axiscal.datasets import AxisKind, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError
+from axiscal.io.detect import CLOCK as _CLOCK
+from axiscal.io.detect import DATE as _DATE
+from axiscal.io.detect import NOTES_START, looks_like_camonitor
+from axiscal.io.detect import OFFSET as _OFFSET
 
 __all__ = ["NOTES_START", "PvSeries", "CamonitorLog", "Dwell", "EpicsCapture",
            "looks_like_camonitor", "parse_camonitor", "read_camonitor", "find_dwells",
            "capture_epics", "parse_epics", "read_epics"]
 
-_DATE = r"\d{4}-\d{2}-\d{2}[ T]\d{2}:\d{2}:\d{2}(?:\.\d+)?"
-_CLOCK = r"\d{1,2}:\d{2}:\d{2}(?:\.\d+)?"
-_OFFSET = r"[+-]\d+\.\d+"
 _STAMP = rf"(?:{_DATE}|{_CLOCK}|<undefined>|{_OFFSET})"
 _LINE = re.compile(rf"^(?P<name>\S+)\s+(?:(?P<server>{_STAMP})\s*)?"
                    rf"(?:\((?P<client>{_STAMP})\)\s*)?(?P<rest>.*)$")
 _OFFSET_RE, _DATE_RE = re.compile(_OFFSET), re.compile(_DATE)
-_FIRST = re.compile(rf"^\S+\s+(?:{_DATE}|{_CLOCK}|<undefined>|\({_DATE}\))\s")
 _SEVERITIES = {"NO_ALARM", "MINOR", "MAJOR", "INVALID"}
-#: How the notes of a dataset read from a camonitor log begin.
-NOTES_START = "EPICS camonitor log"
 #: ``offsets``: how a signed offset after a PV's first line is read (camonitor -tr, -ti, -tI).
 OFFSETS = ("relative", "incremental", "by-channel")
 
@@ -148,16 +146,6 @@ class Dwell:
     departure: int         # +1 left upwards, -1 downwards, 0 the log ends in it
     line: int              # the setpoint's line that starts it
     came_from: float = math.nan   # the setpoint's value before it
-
-
-def looks_like_camonitor(text: str) -> bool:
-    """True if the first line that is not blank, a ``#`` comment or a lost channel's
-    ``PV *** ...`` reads ``PV <time stamp> value``."""
-    for line in text[:4096].splitlines():
-        line = line.strip()
-        if line and not line.startswith("#") and "***" not in line:
-            return bool(_FIRST.match(line + " "))
-    return False
 
 
 def read_camonitor(path, offsets: str = "relative") -> CamonitorLog:

@@ -119,6 +119,7 @@ from axiscal import units
 from axiscal._parse import finite_number
 from axiscal.datasets import AxisKind, Environment, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
+from axiscal.io.detect import looks_like_renishaw
 
 __all__ = ["looks_like_renishaw", "parse_renishaw", "read_renishaw", "parse_rtl", "read_rtl",
            "parse_rta", "read_rta", "format_renishaw", "format_rtl", "format_rta"]
@@ -137,11 +138,6 @@ NO_SENSOR = -10.0
 _SECTION = re.compile(r"^([A-Z][A-Z0-9 \-]*)::$")
 _REQUIRED = ("HEADER", "TARGET DATA", "RUNS", "DEVIATIONS")
 _TARGETS_PER_LINE = 5
-
-
-def looks_like_renishaw(text: str) -> bool:
-    """True if the text opens with a ``HEADER::`` line (then a truncated file is named as one)."""
-    return text.lstrip("\ufeff \t\r\n").startswith("HEADER::")
 
 
 def read_renishaw(path, **kwargs) -> PositioningDataset:

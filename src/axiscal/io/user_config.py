@@ -13,7 +13,6 @@ certificate names that reason among its missing items (ISO/IEC 17025:2017 §7.8.
 
 from __future__ import annotations
 
-import base64
 import os
 from pathlib import Path
 from typing import Any
@@ -152,4 +151,6 @@ def logo_data_uri(config: dict[str, Any], where: Path | None = None) -> str:
         data = p.read_bytes()
     except OSError as exc:
         raise ConfigError(f"[company] logo {p}: {exc.strerror or exc}") from None
+    import base64
+
     return f"data:{mime};base64,{base64.b64encode(data).decode('ascii')}"

@@ -142,10 +142,11 @@ def _check_inputs(inputs, signed: tuple, k: str) -> None:
 
 def _known_keys(cls, d: Mapping[str, Any]) -> dict:
     """``d`` as keyword arguments of ``cls``, an unknown key refused by name."""
-    from axiscal._schema import refuse_unknown
+    known = {f.name for f in fields(cls)}
+    if any(k not in known for k in d):   # the schema's refusal (and its import) for a stray key
+        from axiscal._schema import refuse_unknown
 
-    refuse_unknown(dict(d) if not isinstance(d, dict) else d, {f.name for f in fields(cls)},
-                   "[uncertainty]")
+        refuse_unknown(dict(d) if not isinstance(d, dict) else d, known, "[uncertainty]")
     return dict(d)
 
 

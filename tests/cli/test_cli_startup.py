@@ -1,0 +1,91 @@
+"""What ``axiscal iso230-2 FILE --json`` loads on its way (issue 30: start-up at most 1.5x
+``python -c "import numpy"``).
+
+The time itself is measured in ``benchmarks/bench_iso230_2.py`` as a ratio to that reference,
+never asserted here (CONVENTIONS habit 12). What is pinned is deterministic: the modules a run
+imports. A heavy library or another command's module appearing on this path is a regression of
+start-up that no timing on a shared machine would show reliably.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+#: Runs the command line as ``python -m axiscal`` does, then writes every imported module's name.
+_RUN = """
+import atexit, runpy, sys
+out = sys.argv[1]
+atexit.register(lambda: open(out, "w").write("\\n".join(sorted(sys.modules))))
+sys.argv = ["axiscal", *sys.argv[2:]]
+runpy.run_module("axiscal", run_name="__main__", alter_sys=True)
+"""
+
+#: Libraries the JSON of a positioning test never needs: plots, reports, tables, the history
+#: database, the workbench, GTC.
+HEAVY = ("matplotlib", "scipy", "GTC", "jinja2", "sqlalchemy", "alembic", "rich", "fastapi",
+         "starlette", "weasyprint", "pandas", "pygments", "markdown_it")
+
+#: axiscal's own modules that serve other formats, other commands or other outputs.
+NOT_FOR_A_CSV = ("axiscal._schema", "axiscal.io.epics", "axiscal.io.ecmc", "axiscal.io.renishaw",
+                 "axiscal.io.json", "axiscal.report.plots", "axiscal.report.html",
+                 "axiscal.store", "axiscal.web", "axiscal.procedures", "axiscal.machines",
+                 "axiscal.instruments", "axiscal.compensation")
+
+
+def _csv(folder) -> str:
+    """Five targets, three runs each way; deviations in µm (ISO 230-2:2014 §4: each target
+    approached from both directions)."""
+    lines = ["# target_unit=mm deviation_unit=um", "target,direction,run,deviation"]
+    for i, t in enumerate((0, 100, 200, 300, 400)):
+        for d, off in (("+", 0.0), ("-", -2.0)):
+            lines += [f"{t},{d},{r},{0.5 * i + off + 0.1 * r}" for r in (1, 2, 3)]
+    p = folder / "x.csv"
+    p.write_text("\n".join(lines) + "\n")
+    return str(p)
+
+
+def _modules(tmp_path, *args) -> tuple[set[str], subprocess.CompletedProcess]:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("AXISCAL_")}
+    env["XDG_CONFIG_HOME"] = str(tmp_path / "no-config")   # no user configuration
+    out = tmp_path / "modules.txt"
+    r = subprocess.run([sys.executable, "-c", _RUN, str(out), *args], capture_output=True,
+                       text=True, env=env, timeout=120)
+    return set(out.read_text().split()), r
+
+
+def _loaded(modules: set[str], names) -> list[str]:
+    return sorted(m for m in modules if any(m == n or m.startswith(n + ".") for n in names))
+
+
+def test_iso230_2_json_loads_no_heavy_library(tmp_path):
+    """The JSON of a CSV test is computed and printed without any heavy library, without the
+    readers of the other formats and without the TOML schema (no configuration file read)."""
+    modules, r = _modules(tmp_path, "iso230-2", _csv(tmp_path), "--json")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["n_runs"] == 3            # the run did evaluate the file
+    assert {"numpy", "typer", "axiscal.standards.iso230_2", "axiscal.io.csv"} <= modules
+    assert _loaded(modules, HEAVY) == []
+    assert _loaded(modules, NOT_FOR_A_CSV) == []
+
+
+def test_a_command_loads_only_its_own_command_module(tmp_path):
+    """Commands are registered lazily (``axiscal.cli.COMMANDS``): running one imports its module
+    and the shared ``cli._*`` helpers, no other command's."""
+    modules, r = _modules(tmp_path, "iso230-2", _csv(tmp_path), "--json")
+    assert r.returncode == 0, r.stderr
+    commands = [m for m in modules if m.startswith("axiscal.cli.")
+                and not m.rpartition(".")[2].startswith("_")]
+    assert commands == ["axiscal.cli.iso230_2"]
+
+
+@pytest.mark.parametrize("args", [["--version"]])
+def test_version_and_help_load_no_numpy(tmp_path, args):
+    """``--version`` computes nothing: NumPy is not loaded."""
+    modules, r = _modules(tmp_path, *args)
+    assert r.returncode == 0, r.stderr
+    assert "numpy" not in modules
