@@ -32,9 +32,11 @@ def open_db(db):
 
 
 def store_run(file: Path, db, machine=None, axis=None) -> None:
-    """The ``--history`` step of an evaluating command: store the file just evaluated."""
-    from axiscal.io._files import read_bytes
+    """The ``--history`` step of an evaluating command: store the file just evaluated
+    (:meth:`axiscal.api.History.add`)."""
+    from axiscal import api
 
-    r = open_db(db).add(read_bytes(file), file.name, machine=machine, axis=axis)
+    with api.History(db) as h:
+        r = h.add(file, machine=machine, axis=axis)
     note(f"history: {'already stored as' if r.duplicate else 'stored as'} test {r.id} "
          f"({r.machine} {r.axis})")

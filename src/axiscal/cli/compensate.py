@@ -128,17 +128,15 @@ def compensate(
                            resolution, travel, opts, out, json_out)
     if source is None:
         raise InputError("give a data file or ISO 230-2 result (or --verify CONFIG.toml, --read FILE)")
+    from axiscal import api
     from axiscal.compensation.controllers import controller as get_controller
-    from axiscal.io.results import load_mean_deviations
-    from axiscal.compensation.tables import table_from_result
 
     mod = get_controller(controller or "csv")
-    result, file_axis = load_mean_deviations(source)
-    step = spacing if spacing is not None else _mean_step(result.targets)
-    table = table_from_result(result, step, start=start, end=end, bidirectional=bidirectional,
-                              resolution=resolution, extrapolation=extrapolation,  # type: ignore[arg-type]
-                              reference=reference, axis=axis or file_axis)
-    cf = mod.write(table, _travel(travel), **_typed(mod.write, opts, f"--option for {mod.NAME}"))
+    table = api.compensation_table(source, spacing, bidirectional=bidirectional,
+                                   resolution=resolution, start=start, end=end,
+                                   extrapolation=extrapolation, home=reference, axis=axis)
+    cf = api.write_table(table, mod.NAME, travel=_travel(travel),
+                         **_typed(mod.write, opts, f"--option for {mod.NAME}"))
     _write_files(cf, out)
     _render_table(cf, out, json_out)
 
@@ -477,10 +475,6 @@ def _travel(travel):
     if len(travel) != 2 or not travel[1] > travel[0]:
         raise InputError(f"--travel needs two values, low then high; got {list(travel)}")
     return (travel[0], travel[1])
-
-
-def _mean_step(targets) -> float:
-    return float((targets[-1] - targets[0]) / (len(targets) - 1))
 
 
 def _write_files(cf, out) -> None:

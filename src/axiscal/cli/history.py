@@ -67,11 +67,11 @@ def add(
 
     Example: axiscal history add demo-output/linear_data.csv --machine VMC-800 --axis X
     """
-    from axiscal.io._files import read_bytes
+    from axiscal import api
 
-    raw = read_bytes(file)
-    r = _store(db).add(raw, file.name, machine=machine, axis=axis, kind=kind,
-                       instrument=instrument, note=note_, date=date)
+    with api.History(db) as h:
+        r = h.add(file, machine=machine, axis=axis, kind=kind, instrument=instrument,
+                  note=note_, date=date)
     if json_out:
         print_json({"id": r.id, "duplicate": r.duplicate, "kind": r.kind, "machine": r.machine,
                     "axis": r.axis})
