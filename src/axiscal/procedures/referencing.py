@@ -421,17 +421,8 @@ def simulate_referencing(
                          f"switch at {trip * 1e3:g} mm in the homing direction")
     if not homing_speed > 0:
         raise InputError(f"homing speed {homing_speed!r} m/s must be positive")
-    k2 = axis.compensator.rephase_periods
-    over = (k2 + 1) * n_per if overtravel_counts is None else int(overtravel_counts)
-    # enough real motion for `over` output counts, whatever the air and the work-piece
-    end = trip + d * over * q * 1.001 * _max_growth(axis)
-    x, t = _homing_path(start, end, homing_speed, max_step_counts * q)
-    step_moves = (n_per / 8 if move_step_counts is None else move_step_counts) * q
-    for mv in moves:
-        xm, tm = _trapezoid(float(x[-1]), mv.target, mv.speed, mv.acceleration, step_moves)
-        x = np.concatenate((x, xm[1:]))
-        t = np.concatenate((t, t[-1] + tm[1:]))
-
+    x, t = _motion(axis, start, trip, homing_speed, moves, overtravel_counts, max_step_counts,
+                   move_step_counts)
     if rng is not None:
         phi = int(rng.integers(n_per)) if power_up_phase is None else int(power_up_phase)
         fphase = float(rng.random()) if fringe_phase is None else float(fringe_phase)
@@ -468,6 +459,25 @@ def simulate_referencing(
 
 
 # -- helpers ------------------------------------------------------------------------------
+def _motion(axis, start, trip, homing_speed, moves, overtravel_counts, max_step_counts,
+            move_step_counts):
+    """Positions (m) and times (s) of the homing move (``overtravel_counts`` output counts past
+    the switch at ``trip``, default (k + 1)·N) and of the ``moves`` after it (trapezoids)."""
+    n_per = axis.output.counts_per_period
+    q = axis.output.count_size
+    k2 = axis.compensator.rephase_periods
+    over = (k2 + 1) * n_per if overtravel_counts is None else int(overtravel_counts)
+    # enough real motion for `over` output counts, whatever the air and the work-piece
+    end = trip + axis.direction * over * q * 1.001 * _max_growth(axis)
+    x, t = _homing_path(start, end, homing_speed, max_step_counts * q)
+    step_moves = (n_per / 8 if move_step_counts is None else move_step_counts) * q
+    for mv in moves:
+        xm, tm = _trapezoid(float(x[-1]), mv.target, mv.speed, mv.acceleration, step_moves)
+        x = np.concatenate((x, xm[1:]))
+        t = np.concatenate((t, t[-1] + tm[1:]))
+    return x, t
+
+
 def _max_growth(axis: ScaleAxis) -> float:
     """Upper bound of true length per compensated length (air and work-piece), >= 1."""
     alpha = abs(axis.compensator.expansion_coefficient)
