@@ -67,6 +67,9 @@ def test_simulate_then_analyze(tmp_path):
     out = tmp_path / "t.csv"
     res = runner.invoke(app, ["ballbar", "simulate", str(cfg), "--out", str(out), "--seed", "2"])
     assert res.exit_code == 0, res.output
+    # the truth told in the reports' labels, not as a dict of the configuration's keys
+    assert "Backlash X 5.00 µm" in res.output and "Position-loop gain kv Y 33.0 1/s" in res.output
+    assert "{" not in res.output and "_um" not in res.output
     d = _json("ballbar", "analyze", out)
     assert d["servo_mismatch_ms"] == pytest.approx(1e3 * (1 / 30 - 1 / 33), abs=0.02)
     assert d["squareness_um_per_m"] == pytest.approx(20.0, abs=0.3)

@@ -89,7 +89,17 @@ def simulate(
         typer.echo(text, nl=False)
     else:
         note(f"wrote {out} ({len(runs[0].angles)} samples per direction; simulation truth: "
-             f"{cfg})")
+             f"{_truth_text({**cfg['machine'], **cfg['servo']}, (axes[0], axes[1]))})")
+
+
+def _truth_text(truth: dict, axes) -> str:
+    """The simulated machine's errors and servo as the reports name them (``Backlash X 5.00
+    µm``), not as the configuration's keys (``--json`` gives those)."""
+    from axiscal.report.labels import fmt, quantity
+
+    parts = (quantity(k, axes=axes) for k in truth)
+    return ", ".join(f"{name} {fmt(v, unit)} {unit}".rstrip()
+                     for (name, unit), v in zip(parts, truth.values()))
 
 
 def _load(path: Path) -> dict:

@@ -37,6 +37,10 @@ from axiscal.report.simulation_views import MOUNTING_NOTE as _MOUNTING_NOTE
 
 __all__ = ["register", "iso_json"]
 
+#: The five errors as the terminal heads them (the symbols of Optics Express 2018, Five-DOF
+#: motion errors of a rotary axis), not their JSON keys.
+_HEADS = {"ez": "εz [″]", "ey": "εy [″]", "ex": "εx [″]", "dy": "δy [µm]", "dz": "δz [µm]"}
+
 app = typer.Typer(help="Five motion errors of a rotary axis at once (Optics Express 2018, Five-DOF motion errors of a rotary axis) and ISO 230-7 "
                   "error motion evaluation.", no_args_is_help=True)
 
@@ -158,8 +162,8 @@ def stability(
     else:
         typer.echo(f"stability: {run.time.size} readings over {duration / 60:g} min, every {interval:g} s")
         typer.echo(f"{'error':<10}{'σ':>10}{'σ uncomp.':>12}{'published':>11}")
-        for k in _KEYS.values():
-            typer.echo(f"{k:<10}{std[k]:10.3f}{raw[k]:12.3f}{seed[k]:10.2f}")
+        for c, k in _KEYS.items():
+            typer.echo(f"{_HEADS[c]:<10}{std[k]:10.3f}{raw[k]:12.3f}{seed[k]:10.2f}")
     _wrote(paths)
 
 
@@ -310,9 +314,8 @@ def _render_positions(measured, truth, title: str) -> None:
     t = Table(title=f"Five errors per position, measured (truth) — {title}", title_justify="left",
               box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False, padding=(0, 0))
     t.add_column("θ°", justify="right", no_wrap=True)
-    heads = {"ez": "εz [″]", "ey": "εy [″]", "ex": "εx [″]", "dy": "δy [µm]", "dz": "δz [µm]"}
     for c in _KEYS:
-        t.add_column(heads[c], justify="right", no_wrap=True)
+        t.add_column(_HEADS[c], justify="right", no_wrap=True)
     m, tr = _five(measured), _five(truth)
     for i, th in enumerate(measured.theta):
         cells = [f"{float(th) * 57.29577951308232:.0f}"]

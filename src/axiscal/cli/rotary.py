@@ -115,8 +115,10 @@ def budget(
 
     con = console()
     con.print(f"α = {alpha:g} mrad, β = {beta:g} mrad, ω = {omega:g} mrad ({_DOC}, eq. 1)")
-    for k, v in data["terms_arcsec"].items():
-        con.print(f"  term {k:<12} ±{v:.3f} arcsec")
+    from axiscal.report.labels import quantity
+
+    for k, v in data["terms_arcsec"].items():   # named as the report names them
+        con.print(f"  {quantity(k)[0]:<22} ±{v:.3f} arcsec")
     con.print(f"  peak |E| over a turn   {data['peak_arcsec']:.3f} arcsec (half range "
               f"{data['half_range_arcsec']:.3f})")
     con.print(f"  relative to the 0° datum {data['datum_relative_arcsec']:.3f} arcsec at most "

@@ -124,11 +124,13 @@ def straightness(
     if json_out:
         print_json(d)
     else:
+        from axiscal.report.labels import value_text
+
         what = f"{data.axis or '?'} axis, deviation along {data.direction or '?'}"
         typer.echo(f"straightness of {file} ({what}, {chosen.n} readings)")
         for m, r in results.items():
             mark = "*" if m == method else " "
-            typer.echo(f" {mark} {m:<14} straightness {r.deviation * 1e6:9.3f} µm   "
+            typer.echo(f" {mark} {value_text(m):<14} straightness {r.deviation * 1e6:9.3f} µm   "
                        f"slope {r.line.slope * 1e6:+10.3f} µm/m")
     _wrote(plot, report)
 

@@ -11,10 +11,10 @@ standard (``u_E,MACHINE``, ``B_i``) with its subscript, as the standards print i
 Decimal policy (the resolution each unit is reported to; axiscal's rule, as no standard fixes the
 decimals of a report: it keeps the digits the terminal and the plots already showed): µm to 0.01,
 µm/m to 0.01, arcsec to 0.01, mm to 0.001, degrees to 0.001, seconds to 0.001, ms to 0.01, Hz to
-0.1, percent to 0.1. A non-zero value that would round to zero keeps two significant digits
-instead, down to a thousandth of the unit's resolution (an uncertainty of 0.00058 µm is not shown
-as 0.00: JCGM 100:2008 §7.2.6 gives an uncertainty to at most two significant digits; a fit's
-1e-17 µm stays 0.00).
+0.1, percent to 0.1, a loop gain in 1/s to 0.1. A non-zero value that would round to zero keeps two
+significant digits instead, down to a thousandth of the unit's resolution (an uncertainty of
+0.00058 µm is not shown as 0.00: JCGM 100:2008 §7.2.6 gives an uncertainty to at most two
+significant digits; a fit's 1e-17 µm stays 0.00).
 
 Examples
 --------
@@ -49,7 +49,7 @@ SUFFIX_UNITS = (
 #: Decimals shown for each unit (the module docstring gives the policy).
 DECIMALS = {"µm": 2, "µm/m": 2, "arcsec": 2, "mm": 3, "°": 3, "s": 3, "ms": 2, "Hz": 1, "kHz": 2,
             "%": 1, "ppm": 2, "mrad": 2, "nm": 1, "m/s": 3, "mm/min": 0, "°C": 2, "counts": 1,
-            "Pa": 0, "%RH": 1, "1/K": 8, "": 3}
+            "Pa": 0, "%RH": 1, "1/K": 8, "1/s": 1, "": 3}
 
 #: Key (without its unit suffix) → (label, unit). ``None`` as unit: the suffix's or the result's
 #: own ``unit``. ``{x}`` and ``{y}`` stand for the plane's first and second axis.
@@ -71,6 +71,10 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     # ballbar and circular tests (ISO 230-4:2005; Chapman, Calibration of machine squareness)
     "servo_mismatch": ("Servo mismatch", "ms"), "servo_term": ("Servo term", "µm"),
     "scale_mismatch": ("Scale mismatch", "µm/m"), "squareness": ("Squareness", "µm/m"),
+    "scale_x": ("Scale error {x}", "µm/m"), "scale_y": ("Scale error {y}", "µm/m"),
+    "kv_x_per_s": ("Position-loop gain kv {x}", "1/s"),
+    "kv_y_per_s": ("Position-loop gain kv {y}", "1/s"),
+    "reversal_gap_x": ("Reversal gap {x}", "µm"), "reversal_gap_y": ("Reversal gap {y}", "µm"),
     "backlash_x": ("Backlash {x}", "µm"), "backlash_y": ("Backlash {y}", "µm"),
     "lateral_play_x": ("Lateral play {x}", "µm"), "lateral_play_y": ("Lateral play {y}", "µm"),
     "straightness_x": ("Straightness {x}", "µm"), "straightness_y": ("Straightness {y}", "µm"),
