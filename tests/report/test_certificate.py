@@ -171,7 +171,7 @@ def test_rotary_certificate_pdf(tmp_path):
 
 def test_simulation_report_pdf_is_marked_on_every_page(tmp_path):
     """A simulation report (truth shown) says so on every printed page."""
-    from axiscal.cli.simulate import add_truth_section
+    from axiscal.report.simulation_views import add_truth_section
     from axiscal.report.html import positioning_report
 
     cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_linear.toml").read_text())

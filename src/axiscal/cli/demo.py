@@ -52,9 +52,9 @@ def demo(
     import tomllib
     from importlib import resources
 
+    from axiscal import api
     from axiscal.cli.simulate import render_simulation, write_outputs
     from axiscal.errors import InputError
-    from axiscal.procedures.positioning import simulate_from_config
 
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out} exists and is not a folder")
@@ -77,12 +77,12 @@ def demo(
     url = db or f"sqlite:///{(out / 'history.sqlite').resolve()}"
     for name, cfg, label in DEMOS:
         config = tomllib.loads(resources.files("axiscal.data").joinpath(cfg).read_text("utf-8"))
-        sim = simulate_from_config(config, seed=seed)
+        sim = api.simulate(config, seed, kind="positioning")
         typer.echo("")
-        render_simulation(sim)
+        render_simulation(sim.test)
         write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
                       out / f"{name}_data.csv")
-        _certificate(out / f"{name}_certificate.pdf", sim, name, url)
+        _certificate(out / f"{name}_certificate.pdf", sim.test, name, url)
         pages.append((label, f"{name}_report.html", sim.result))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)

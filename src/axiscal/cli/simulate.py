@@ -32,8 +32,7 @@ def simulate(
 
     Example: axiscal simulate src/axiscal/data/demo_linear.toml --data x.csv
     """
-    from axiscal.io._files import load_toml
-    from axiscal.procedures.positioning import simulate_from_config
+    from axiscal import api
 
     if plot is not None:
         plot_path(plot)
@@ -41,61 +40,28 @@ def simulate(
         report_path(report)
     if data is not None:
         typed_path(data, "data", (".csv", ".json", ".rtl", ".rta"))
-    sim = simulate_from_config(load_toml(config), seed=seed)
+    sim = api.simulate(config, seed, kind="positioning")
     write_outputs(sim, plot, report, data)
     if json_out:
-        from axiscal.cli.iso230_2 import result_json
-
-        d = result_json(sim.result)
-        d.update(truth=sim.truth, seed=seed)
-        print_json(d)
+        print_json(sim.to_dict())
     else:
-        render_simulation(sim)
+        render_simulation(sim.test)
 
 
 def write_outputs(sim, plot=None, report=None, data=None) -> None:
-    """Write the plot, the report and the data file of a simulated test, where asked."""
-    truth = (sim.plan.targets, 0.5 * (sim.truth_up + sim.truth_down)
-             if sim.plan.bidirectional else sim.truth_up)
+    """Write the plot, the report and the data file of a simulated test (an
+    :class:`axiscal.api.Simulation`), where asked."""
     if plot is not None:
-        from axiscal.report.plots import save_iso230_2_plot
+        from axiscal.report.plots import save_figure
 
-        save_iso230_2_plot(sim.result, sim.dataset, plot, truth=truth)
+        save_figure(sim.plot(), plot)
         note(f"wrote plot {plot}")
     if report is not None:
-        from axiscal.report.html import positioning_report
-
-        rep = positioning_report(sim.dataset, sim.result)
-        rep.simulation = True
-        add_truth_section(rep, sim)
-        rep.write(report)
+        sim.report(report)
         note(f"wrote report {report}")
     if data is not None:
-        from axiscal.io._files import write_text_atomic
-
-        if Path(data).suffix.lower() == ".json":
-            from axiscal.io.json import format_positioning_json as fmt
-        elif Path(data).suffix.lower() in (".rtl", ".rta"):
-            from axiscal.io.renishaw import format_rtl, format_rta
-
-            fmt = format_rtl if Path(data).suffix.lower() == ".rtl" else format_rta
-        else:
-            from axiscal.io.csv import format_positioning_csv as fmt
-        write_text_atomic(data, fmt(sim.dataset))
+        sim.write_data(data)
         note(f"wrote data {data}")
-
-
-def add_truth_section(rep, sim) -> None:
-    """Add 'evaluation beside the truth' to a report."""
-    rep.add_heading("Evaluation beside the truth of the simulation")
-    rep.add_text("The simulated axis's injected errors imply the figures below without noise; "
-                 "the measured figures differ by the repeatability noise of a 5-run test.")
-    from axiscal.report.html import _PARAM_LABEL
-
-    rows = [[_PARAM_LABEL[k], sim.result.parameters()[k], v]
-            for k, v in sim.truth.items() if k != "R_expected"]
-    rows.append(["R (4σ + |b|)", sim.result.R, sim.truth.get("R_expected")])
-    rep.add_table(["Parameter", "Measured", "Truth"], rows, digits=2)
 
 
 def render_simulation(sim) -> None:
