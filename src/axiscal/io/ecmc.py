@@ -67,39 +67,7 @@ def parse_ecmc(
     >>> ds.up.round(6).tolist()
     [[1.0, 2.0], [2.0, 1.0]]
     """
-    scalars: dict[str, str] = {}
-    targets: dict[int, float] = {}
-    ref: dict[str, dict[tuple[int, int], float]] = {"FWD": {}, "BWD": {}}
-    for lineno, raw in enumerate(text.splitlines(), start=1):
-        line = raw.split("#", 1)[0].strip()
-        if not line:
-            continue
-        if "=" not in line:
-            raise DataFormatError(f"expected KEY=value, got {line!r}", source, lineno)
-        key, value = (s.strip() for s in line.split("=", 1))
-        m = _INDEXED.match(key)
-        if not m:
-            scalars[key.upper()] = value
-            continue
-        name, i, j = m.group(1), int(m.group(2)), m.group(3)
-        number = finite_number(value, key, source, lineno)
-        if name == "TGT_DATA":
-            if j is not None:
-                raise DataFormatError(f"{key} takes one index", source, lineno)
-            if i in targets:
-                raise DataFormatError(f"{key} is given twice", source, lineno)
-            targets[i] = number
-        else:
-            if j is None:
-                raise DataFormatError(f"{key} needs two indices [position,cycle]", source, lineno)
-            d = ref[name[-3:]]
-            if (i, int(j)) in d:
-                raise DataFormatError(f"{key} is given twice", source, lineno)
-            d[(i, int(j))] = number
-    if not targets:
-        raise DataFormatError("no TGT_DATA[i]= lines", source)
-    if not ref["FWD"] and not ref["BWD"]:
-        raise DataFormatError("no REF_DATA_FWD[i,j]= or REF_DATA_BWD[i,j]= lines", source)
+    scalars, targets, ref = _entries(text, source)
 
     unit_text = agreed_unit(target_unit, scalars.get("UNIT"), "UNIT", source) or "mm"
     tu = units.canonical(unit_text)
@@ -133,6 +101,46 @@ def parse_ecmc(
         raise
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
+
+
+def _entries(text: str, source: str) -> tuple[dict, dict, dict]:
+    """The file's ``KEY=value`` lines: (scalars by upper-case key, TGT_DATA by position index,
+    REF_DATA by direction ``FWD``/``BWD`` and (position, cycle)); a line that is none of them,
+    a repeated index or no data at all is a :class:`DataFormatError` naming the line."""
+    scalars: dict[str, str] = {}
+    targets: dict[int, float] = {}
+    ref: dict[str, dict[tuple[int, int], float]] = {"FWD": {}, "BWD": {}}
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        if "=" not in line:
+            raise DataFormatError(f"expected KEY=value, got {line!r}", source, lineno)
+        key, value = (s.strip() for s in line.split("=", 1))
+        m = _INDEXED.match(key)
+        if not m:
+            scalars[key.upper()] = value
+            continue
+        name, i, j = m.group(1), int(m.group(2)), m.group(3)
+        number = finite_number(value, key, source, lineno)
+        if name == "TGT_DATA":
+            if j is not None:
+                raise DataFormatError(f"{key} takes one index", source, lineno)
+            if i in targets:
+                raise DataFormatError(f"{key} is given twice", source, lineno)
+            targets[i] = number
+        else:
+            if j is None:
+                raise DataFormatError(f"{key} needs two indices [position,cycle]", source, lineno)
+            d = ref[name[-3:]]
+            if (i, int(j)) in d:
+                raise DataFormatError(f"{key} is given twice", source, lineno)
+            d[(i, int(j))] = number
+    if not targets:
+        raise DataFormatError("no TGT_DATA[i]= lines", source)
+    if not ref["FWD"] and not ref["BWD"]:
+        raise DataFormatError("no REF_DATA_FWD[i,j]= or REF_DATA_BWD[i,j]= lines", source)
+    return scalars, targets, ref
 
 
 def format_ecmc(ds: PositioningDataset) -> str:
