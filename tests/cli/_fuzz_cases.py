@@ -14,7 +14,8 @@ its click type, bounds, ``is_flag`` and ``multiple`` decide the hostile values
 
 Each command runs from a valid invocation (:data:`BASES`) with one parameter made hostile. Every
 input file of a base is also mutated (:func:`file_mutations`): truncated, its header numbers set
-to nan, 1e308 and −1, its units swapped, its first two columns swapped, one byte of every class
+to nan, 1e308 and −1, its units swapped, its targets written in inches (a ``target`` column
+divided by 25.4), its first two columns swapped, one byte of every class
 inserted (NUL, control, DEL, invalid UTF-8, BOM, right-to-left mark, encoded surrogate, CR),
 and, for a TOML configuration, every ``key = value`` line set to hostile values, deleted, an
 unknown key added, and three bombs (arrays nested 3,000 deep, a dotted key of 200,000 parts, a
@@ -291,6 +292,9 @@ def _mutate_text(text: str) -> dict[str, str]:
     swaps = {"mm": "um", "um": "mm", "deg": "mm", "arcsec": "um"}
     out["units swapped"] = re.sub(r"\b(mm|um|deg|arcsec)\b", lambda m: swaps[m.group(1)], text)
     out["units inch"] = re.sub(r"\bmm\b", "inch", text)
+    # what a unit slip leaves: the targets in inches, the rest in mm (a file without a target
+    # column unchanged, so that the name does not depend on the content)
+    out["targets in inches"] = _targets_in_inches(lines) or text
 
     def swap(ln):
         cells = ln.split(",")
@@ -300,6 +304,21 @@ def _mutate_text(text: str) -> dict[str, str]:
                                        for ln in lines) + "\n"
     out["1 MB header line"] = "# " + "x" * 2**20 + "\n" + text
     return out
+
+
+def _targets_in_inches(lines: list[str]) -> str | None:
+    """The file with its ``target`` column divided by 25.4, or None without such a column."""
+    head = next((i for i, ln in enumerate(lines) if ln and not ln.startswith("#")), None)
+    cells = [c.strip() for c in lines[head].split(",")] if head is not None else []
+    if "target" not in cells:
+        return None
+    col, out = cells.index("target"), list(lines)
+    for i in range(head + 1, len(out)):
+        row = out[i].split(",")
+        if len(row) > col and re.fullmatch(r"-?\d+(\.\d*)?", row[col].strip()):
+            row[col] = f"{float(row[col]) / 25.4:.9f}"
+            out[i] = ",".join(row)
+    return "\n".join(out) + "\n"
 
 
 def _mutate_toml(text: str) -> dict[str, str]:

@@ -168,6 +168,97 @@ def test_pressure_in_kpa_or_hpa_under_the_pascal_column_is_named(pressure, unit,
                         tmp_path / "d.csv", "--air-only"), unit, "101325")
 
 
+# -- an inch read as a millimetre (datasets.inch_signature: 25.4 mm exactly) ----------------
+def _cells(path: Path, column: int, scale: float, digits: int = 9) -> None:
+    """Scale one column of a raw readings CSV (its data lines) in place."""
+    lines = path.read_text().splitlines()
+    out = []
+    for ln in lines:
+        cells = ln.split(",")
+        if ln.startswith("#") or not cells[0][:1].isdigit():
+            out.append(ln)
+            continue
+        cells[column] = f"{float(cells[column]) * scale:.{digits}f}"
+        out.append(",".join(cells))
+    path.write_text("\n".join(out) + "\n")
+
+
+@pytest.mark.parametrize("column, words", [
+    (1, ("laser readings are 25.4 × the targets", "targets look like inches read as mm",
+         "give target_unit=in")),
+    (4, ("laser readings are 1/25.4 of the targets", "laser readings look like inches read as mm",
+         "give reading_unit=in")),
+])
+def test_raw_readings_with_inches_under_a_mm_declaration_are_named(column, words, tmp_path):
+    # the example's targets (column 1) or readings (column 4) written in inches, declared mm
+    raw = tmp_path / "raw.csv"
+    raw.write_text((EXAMPLES / "raw_readings_vmc800_x.csv").read_text())
+    _cells(raw, column, 1 / 25.4)
+    one_error_line(_run("compensate-environment", raw, "--environment",
+                        EXAMPLES / "environment_log_vmc800_x.csv", "--out", tmp_path / "d.csv"),
+                   "inch", *words)
+    assert not (tmp_path / "d.csv").exists()
+
+
+def test_the_named_reading_reads_the_file_right(tmp_path):
+    """Declaring target_unit=in, as the message says, gives the example's own deviations back
+    (the targets in inches to 1e-9 in: 2.5e-5 µm)."""
+    raw, env = tmp_path / "raw.csv", EXAMPLES / "environment_log_vmc800_x.csv"
+    raw.write_text((EXAMPLES / "raw_readings_vmc800_x.csv").read_text())
+    assert _run("compensate-environment", raw, "--environment", env, "--out",
+                tmp_path / "mm.csv").exit_code == 0
+    _cells(raw, 1, 1 / 25.4)
+    raw.write_text(raw.read_text().replace("target_unit=mm", "target_unit=in", 1))
+    r = _run("compensate-environment", raw, "--environment", env, "--out", tmp_path / "in.csv")
+    assert r.exit_code == 0, r.output
+
+    def deviations(p):
+        return np.array([float(ln.split(",")[3]) for ln in p.read_text().splitlines()
+                         if ln[:1].isdigit()])
+
+    assert deviations(tmp_path / "in.csv") == pytest.approx(deviations(tmp_path / "mm.csv"),
+                                                             abs=1e-3)
+
+
+def _inch_positioning_files(tmp_path) -> dict:
+    """A tidy CSV (actual column), an ecmc file (PSI's real one) and a Renishaw .rtl, each with
+    its targets written in inches and its measured positions in mm."""
+    import re
+
+    from axiscal.io import parse_positioning
+    from axiscal.io.renishaw import format_rtl
+
+    rows = [ln.split(",") for ln in POS.splitlines()[2:]]
+    (tmp_path / "a.csv").write_text(
+        "# target_unit=mm axis=X\ntarget,direction,run,actual\n" + "".join(
+            f"{float(t) / 25.4:.9f},{d},{r},{float(t) + float(x) / 1e3:.6f}\n"
+            for t, d, r, x in rows))
+    ecmc = (Path(__file__).resolve().parents[1] / "data" / "ecmc" / "sls_fat_sat_ISO230.dat")
+    (tmp_path / "e.dat").write_text(re.sub(
+        r"(?m)^(TGT_DATA\[\d+\])=(\S+)", lambda m: f"{m[1]}={float(m[2]) / 25.4:.9f}",
+        ecmc.read_text()))
+    rtl = format_rtl(parse_positioning(POS))
+    head, tail = rtl.split("Targets :\r\n", 1)
+    targets, rest = tail.split("\r\n", 1)
+    t = [float(v) for v in targets.split()]
+    dev = re.sub(r"(?m)^(\d+)(\s+)(\d+)(\s+)(\S+)\r$", lambda m: (
+        f"{m[1]}{m[2]}{m[3]}{m[4]}"
+        f"{float(m[5]) + (t[int(m[3]) - 1] * (1 - 1 / 25.4)) * 1e3:.4f}\r"), rest)
+    (tmp_path / "r.rtl").write_text(head + "Targets :\r\n"
+                                    + " ".join(f"{v / 25.4:.9f}" for v in t) + "\r\n" + dev,
+                                    newline="")
+    return {k: tmp_path / k for k in ("a.csv", "e.dat", "r.rtl")}
+
+
+@pytest.mark.parametrize("name", ["a.csv", "e.dat", "r.rtl"])
+def test_positioning_files_with_inch_targets_are_named(name, tmp_path):
+    f = _inch_positioning_files(tmp_path)[name]
+    one_error_line(_run("iso230-2", f), "inch", "measured positions are 25.4 × the targets",
+                   "the targets look like inches read as mm", "+24.4 mm per mm")
+    one_error_line(_run("history", "add", f, "--db", f"sqlite:///{tmp_path / 'h.sqlite'}"),
+                   "inches read as mm")
+
+
 # -- no command writes over one of its inputs -----------------------------------------------
 def _overwrite_cases(tmp_path):
     (tmp_path / "x.csv").write_text(POS)
