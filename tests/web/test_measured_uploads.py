@@ -155,3 +155,76 @@ def test_a_viewer_uploads_nothing(tmp_path, users):
         r = c.post(path, data={"csrf": token, "kind": "raw"}, files=files)
         assert r.status_code == 403 and "your role is viewer" in r.text, path
     assert _stored(c) == 0
+
+
+def _epics_log(tmp_path):
+    """The camonitor log of tests/data/ecmc/mcu1025_fat_sat_ISO230.dat's steps (ecmccfg,
+    GPL-3.0; tests/io/test_epics.py builds it) and its plan."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parents[1] / "io"))
+    from test_epics import DATA, REF, SP, _ecmc_log, _plan_csv
+
+    ref_ds, text = _ecmc_log(DATA / "mcu1025_fat_sat_ISO230.dat")
+    (tmp_path / "axis1.log").write_text(text)
+    (tmp_path / "plan.csv").write_text(_plan_csv(ref_ds.targets, ref_ds.n_runs))
+    return tmp_path / "axis1.log", SP, REF
+
+
+def test_an_epics_log_with_its_settings_gives_the_numbers_of_iso230_2(tmp_path):
+    """The measured upload of a camonitor log with the settings named as ``axiscal iso230-2
+    LOG``'s options: the stored test's A, E, M, R, B are the command's, and every setting not
+    given is named in the note with the default that acted."""
+    log, sp, ref = _epics_log(tmp_path)
+    cli = _cli("iso230-2", log, "--setpoint-pv", sp, "--reference-pv", ref, "--rest-window", 2,
+               "--json")
+    c = _client(tmp_path)
+    r = _post(c, "/upload/measured", {"file": ("axis1.log", log.read_bytes(), "text/x-log")},
+              kind="epics", machine="MCU1025", axis="X", setpoint_pv=sp, reference_pv=ref,
+              rest_window="2")
+    t = _stored_test(c, r)
+    _same_numbers(t, cli)
+    note = t.summary.note
+    assert note.startswith(f"from iso230-2 of axis1.log: {cli['notes']}")   # what was found
+    for words in ("--targets not given: the setpoint values passed through",
+                  "--reference-scale not given: 1 (ecmc's REF_GR)",
+                  "--reference-offset not given: 0 (ecmc's REF_OFF)"):
+        assert words in note
+    assert "--rest-window not given" not in note and "within 2 µm" in note
+    page = unescape(c.get(f"/tests/{t.summary.id}").text)
+    assert "--reference-scale not given: 1" in page                  # beside the result
+
+
+def test_an_epics_log_with_its_plan_is_the_capture_of_the_cli(tmp_path, monkeypatch):
+    """With the plan: the stored bytes are those ``axiscal capture LOG --plan PLAN --out``
+    writes (run where the files are, so the notes name them as the upload does)."""
+    log, sp, ref = _epics_log(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    found = _cli("capture", "axis1.log", "--plan", "plan.csv", "--out", "d.csv",
+                 "--setpoint-pv", sp, "--reference-pv", ref, "--json")
+    c = _client(tmp_path)
+    r = _post(c, "/upload/measured", {
+        "file": ("axis1.log", log.read_bytes(), "application/octet-stream"),
+        "second": ("plan.csv", (tmp_path / "plan.csv").read_bytes(), "text/csv")},
+        kind="epics", machine="MCU1025", axis="X", setpoint_pv=sp, reference_pv=ref)
+    t = _stored_test(c, r)
+    assert t.raw == (tmp_path / "d.csv").read_bytes()                # the CLI's --out
+    assert found["notes"] in t.summary.note and "--targets" not in t.summary.note
+
+
+@pytest.mark.parametrize("settings, words", [
+    ({"reference_scale": "two"}, "--reference-scale 'two': give a number"),
+    ({"targets": "15,x"}, "--targets '15,x'"),
+    ({"setpoint_pv": "IOC:none"}, "PV 'IOC:none' is not in the log"),
+])
+def test_a_bad_epics_setting_is_one_message_and_stores_nothing(tmp_path, settings, words):
+    log, sp, ref = _epics_log(tmp_path)
+    c = _client(tmp_path)
+    r = _post(c, "/upload/measured", {"file": ("axis1.log", log.read_bytes(), "text/plain")},
+              kind="epics", machine="kept", **{"setpoint_pv": sp, "reference_pv": ref,
+                                               **settings})
+    assert r.status_code == 400 and words in unescape(r.text), unescape(r.text)[-400:]
+    assert 'value="kept"' in r.text and _stored(c) == 0
+    for name, value in settings.items():                             # the settings kept
+        assert f'name="{name}" value="{value}"' in unescape(r.text)

@@ -1,5 +1,6 @@
 """The options of an EPICS camonitor log, shared by ``iso230-2``, ``evaluate`` and ``capture``
-(the reader: :mod:`axiscal.io.epics`)."""
+(the reader: :mod:`axiscal.io.epics`; the settings, shared with the workbench:
+:mod:`axiscal.io.epics_options`)."""
 
 from __future__ import annotations
 
@@ -33,23 +34,17 @@ REST_WINDOW: Optional[float] = typer.Option(
 
 def epics_options(setpoint_pv=None, reference_pv=None, targets=None, scale=None, offset=None,
                   window=None, plan: Path | None = None, dwell=None) -> dict:
-    """The options given, as :func:`axiscal.io.epics.parse_epics` takes them (none: ``{}``)."""
-    from axiscal.errors import InputError
+    """The options given, as :func:`axiscal.io.epics.parse_epics` takes them (none: ``{}``):
+    :func:`axiscal.io.epics_options.epics_options`, the plan read from its CSV."""
+    from axiscal.io import epics_options as settings
 
-    d: dict = {k: v for k, v in (("setpoint_pv", setpoint_pv), ("reference_pv", reference_pv),
-                                 ("reference_scale", scale), ("reference_offset", offset),
-                                 ("window", window), ("dwell", dwell)) if v is not None}
-    if targets is not None:
-        try:
-            d["targets"] = [float(x) for x in targets.split(",") if x.strip()]
-        except ValueError:
-            raise InputError(f"--targets {targets!r}: give numbers separated by commas, "
-                             "e.g. 0,100,200") from None
+    rows = None
     if plan is not None:
         from axiscal.io.measured import read_plan_csv
 
-        d["plan"] = read_plan_csv(plan)
-    return d
+        rows = read_plan_csv(plan)
+    return settings.epics_options(setpoint_pv, reference_pv, targets, scale, offset, window,
+                                  plan=rows, dwell=dwell)
 
 
 def show_notes(ds) -> None:

@@ -1,5 +1,6 @@
 """Uploads that are more than one data file: a capture (a continuous record and the plan the
-machine ran), raw laser readings with an environment log, and a history archive.
+machine ran), raw laser readings with an environment log, an EPICS camonitor log with its
+settings (and the plan, if any), and a history archive.
 
 The same library calls as the command line, nothing computed here:
 
@@ -10,10 +11,14 @@ The same library calls as the command line, nothing computed here:
   :func:`~axiscal.io.measured.read_environment_log` and
   :func:`axiscal.io.simulation_results.environment_compensation` with the defaults of
   ``axiscal compensate-environment RAW --environment LOG`` (Ciddor 1996, material referred to
-  20 °C by ISO 1:2022, longest gap 300 s). The positioning test either gives is stored through
-  ``store.add`` as the CSV bytes the command writes with ``--out``
+  20 °C by ISO 1:2022, longest gap 300 s); ``kind=epics``: :func:`axiscal.io.epics_options.
+  capture_log` with the settings of :func:`~axiscal.io.epics_options.epics_options` from form
+  fields named as the options of ``axiscal iso230-2 LOG`` (``setpoint_pv``, ``reference_pv``,
+  ``targets``, ``reference_scale``, ``reference_offset``, ``rest_window``; a plan as the second
+  file), every setting not given named with the default that acted. The positioning test each
+  gives is stored through ``store.add`` as the CSV bytes the command writes with ``--out``
   (:func:`axiscal.io.csv.format_positioning_csv`); the note names the raw inputs and what was
-  applied.
+  applied or assumed.
 * ``POST /upload/archive``: :func:`axiscal.store.archive.import_history`, as
   ``axiscal history import ARCHIVE`` (all or nothing).
 
@@ -32,14 +37,20 @@ from fastapi.responses import RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
 from axiscal.errors import AxiscalError, InputError
+from axiscal.io.epics_options import SETTINGS
 from axiscal.web.inputs import checked_form, require_engineer
 from axiscal.web.rendering import query, render
 
-__all__ = ["add_routes", "capture_csv", "raw_csv"]
+__all__ = ["add_routes", "capture_csv", "raw_csv", "epics_csv"]
 
 #: What each kind of measured upload takes: (first file's endings, second file's endings).
 SUFFIXES = {"capture": ((".rtx", ".csv"), (".csv",)),
-            "raw": ((".csv",), (".csv", ".json"))}
+            "raw": ((".csv",), (".csv", ".json")),
+            "epics": ((".log", ".txt", ".dat", ".csv"), (".csv",))}
+#: How browsers send a camonitor log (besides the types of every upload).
+LOG_TYPES = ("text/x-log",)
+#: The settings of an EPICS log: form fields named as ``axiscal iso230-2 LOG``'s options.
+EPICS_FIELDS = tuple(name for name, _, _ in SETTINGS)
 #: How browsers send a .zip (besides the types of every upload).
 ZIP_TYPES = ("application/zip", "application/x-zip-compressed", "application/x-zip")
 _TITLE = "Upload a test"
@@ -53,16 +64,18 @@ def add_routes(app: FastAPI) -> None:
     async def upload_measured(request: Request):
         form = await checked_form(request)
         require_engineer(request)
-        fields = {k: str(form.get(k, "") or "").strip() for k in _FIELDS + ("kind",)}
+        fields = {k: str(form.get(k, "") or "").strip()
+                  for k in _FIELDS + ("kind",) + EPICS_FIELDS}
         try:
             kind = fields["kind"]
             if kind not in SUFFIXES:
-                raise InputError(f"kind {kind!r}: capture (record + plan) or raw (raw readings "
-                                 "+ environment log)")
-            first = await _file(request, form.get("file"), SUFFIXES[kind][0], "the data file")
+                raise InputError(f"kind {kind!r}: capture (record + plan), raw (raw readings "
+                                 "+ environment log) or epics (camonitor log [+ plan])")
+            first = await _file(request, form.get("file"), SUFFIXES[kind][0], "the data file",
+                                types=LOG_TYPES if kind == "epics" else ())
             second = await _file(request, form.get("second"), SUFFIXES[kind][1],
-                                 "the plan" if kind == "capture" else "the environment log",
-                                 optional=kind == "raw")
+                                 "the environment log" if kind == "raw" else "the plan",
+                                 optional=kind != "capture")
             r = await run_in_threadpool(_store_measured, request.app.state.store, kind,
                                         first, second, fields)
         except AxiscalError as exc:
@@ -153,13 +166,34 @@ def raw_csv(raw: Path, log: Path | None) -> tuple[str, str]:
     return format_positioning_csv(sim.parts["dataset"]), sim.json["applied"]
 
 
+def epics_csv(log: Path, plan: Path | None, settings: dict) -> tuple[str, str]:
+    """``axiscal capture LOG [--plan PLAN]`` of a camonitor log with the settings of ``axiscal
+    iso230-2 LOG`` (:func:`axiscal.io.epics_options.capture_log`): the positioning CSV and
+    what was found, with every setting not given and the default that acted."""
+    from axiscal.io._files import read_text
+    from axiscal.io.csv import format_positioning_csv
+    from axiscal.io.epics_options import capture_log, epics_options
+
+    rows = None
+    if plan is not None:            # named as uploaded: the notes kept with the test say it
+        from axiscal.io.measured import parse_plan_csv
+
+        rows = parse_plan_csv(read_text(plan), source=plan.name)
+    cap, words = capture_log(read_text(log), log.name, epics_options(**settings, plan=rows))
+    return format_positioning_csv(cap.dataset), words
+
+
 def _store_measured(store, kind: str, first, second, fields: dict):
     with _folder() as d:
         a = _saved(d, *first)
         b = _saved(d, *second) if second else None
-        text, words = capture_csv(a, b) if kind == "capture" else raw_csv(a, b)
+        if kind == "epics":
+            text, words = epics_csv(a, b, {k: fields[k] for k in EPICS_FIELDS})
+        else:
+            text, words = capture_csv(a, b) if kind == "capture" else raw_csv(a, b)
     inputs = f"{first[0]} + {second[0]}" if second else first[0]
-    what = "capture" if kind == "capture" else "compensate-environment"
+    what = {"capture": "capture", "raw": "compensate-environment",
+            "epics": "iso230-2"}[kind]
     note = "; ".join(x for x in (fields["note"], f"from {what} of {inputs}: {words}") if x)
     return store.add(text.encode(), f"{Path(first[0]).stem}_{kind}.csv",
                      machine=fields["machine"] or None, axis=fields["axis"] or None,
