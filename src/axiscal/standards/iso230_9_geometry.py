@@ -51,15 +51,8 @@ from axiscal.errors import ConfigError, InputError
 from axiscal.standards.iso230_9 import COVERAGE_FACTOR, Contributor, UncertaintyBudget, combine
 from axiscal.standards.iso230_9_inputs import BudgetInput
 
-__all__ = [
-    "squareness_budget",
-    "squareness_budget_with_inputs",
-    "diagonal_budget",
-    "five_dof_budget",
-    "slope_uncertainty",
-    "SQUARENESS_METHODS",
-    "FIVE_DOF_CHANNELS",
-]
+__all__ = ["squareness_budget", "squareness_budget_with_inputs", "diagonal_budget",
+           "five_dof_budget", "slope_uncertainty", "SQUARENESS_METHODS", "FIVE_DOF_CHANNELS"]
 
 SQUARENESS_METHODS = ("optics", "square", "reversal", "ballbar", "diagonal")
 FIVE_DOF_CHANNELS = ("ez", "ey", "ex", "dy", "dz")
@@ -142,15 +135,21 @@ def squareness_budget(
         raise InputError(
             f"squareness method {method!r}: use one of {', '.join(SQUARENESS_METHODS)}"
         )
-    for name, v in (
-        ("length_x", length_x),
-        ("length_y", length_y),
-        ("square_length", square_length),
-        ("ballbar_radius", ballbar_radius),
-    ):
+    for name, v in (("length_x", length_x), ("length_y", length_y),
+                    ("square_length", square_length), ("ballbar_radius", ballbar_radius)):
         if not (math.isfinite(v) and v > 0):
             raise InputError(f"squareness budget: {name} = {v!r} m must be > 0")
     L = min(length_x, length_y)
+    eve, fits = _eve_and_fits(L, e_ve, slope_fit_x, slope_fit_y)
+    make = {"optics": _optics, "square": _square, "reversal": _reversal, "ballbar": _ballbar,
+            "diagonal": _diagonal}[method]
+    c = make(**locals())
+    return combine(c, "um/m", k, _P)
+
+
+def _eve_and_fits(L, e_ve, slope_fit_x, slope_fit_y):
+    """The contributors every squareness method shares: E_VE over the shorter length ``L`` (m)
+    and the line fit of each slope (µm/m)."""
     eve = Contributor(
         "u_EVE",
         "environmental variation over the test",
@@ -172,15 +171,7 @@ def squareness_budget(
         )
         for a, u in (("X", slope_fit_x), ("Y", slope_fit_y))
     ]
-    make = {
-        "optics": _optics,
-        "square": _square,
-        "reversal": _reversal,
-        "ballbar": _ballbar,
-        "diagonal": _diagonal,
-    }[method]
-    c = make(**locals())
-    return combine(c, "um/m", k, _P)
+    return eve, fits
 
 
 def _optics(optics_accuracy, optics_k, square_error, fits, eve, **_):
@@ -516,54 +507,60 @@ def five_dof_budget(
         if ch not in FIVE_DOF_CHANNELS:
             raise InputError(f"five-DOF channel {ch!r}: use one of {', '.join(FIVE_DOF_CHANNELS)}")
         unit = "arcsec" if ch.startswith("e") else "um"
-        p = (ch,)
-        sec = "Optics Express 2018 (five DOF of a rotary axis)"
-        c = [
-            Contributor(
-                "u_RESOLUTION",
-                "detector resolution",
-                res / (2 * _SQ3),
-                "rectangular",
-                f"{sec}, §3 (eqs. 1-6)",
-                f"{res:g} {unit}",
-                p,
-            ),
-            Contributor(
-                "u_CALIBRATION",
-                "detector scale calibration",
-                calibration * abs(ranges.get(ch, 0.0)),
-                "normal",
-                f"{sec}, §3; ISO/TR 230-9 §5",
-                f"{calibration * 100:g} % of {ranges.get(ch, 0.0):g} {unit}",
-                p,
-            ),
-        ]
-        if ch in crosstalk:
-            c.append(
-                Contributor(
-                    "u_CROSSTALK",
-                    "crosstalk of the mounting errors",
-                    crosstalk[ch] / 2 / _SQ3,
-                    "rectangular",
-                    f"{sec}, mounting errors (as simulated)",
-                    f"± {crosstalk[ch] / 2:g} {unit}",
-                    p,
-                )
-            )
-        if ch in drift:
-            c.append(
-                Contributor(
-                    "u_DRIFT",
-                    "residual drift after compensation",
-                    drift[ch],
-                    "normal",
-                    f"{sec}, §3.2 (eqs. 7-9)",
-                    f"σ = {drift[ch]:g} {unit}",
-                    p,
-                )
-            )
-        out[ch] = combine(c, unit, k, p)
+        out[ch] = combine(_five_dof_contributors(ch, unit, res, ranges, calibration, crosstalk,
+                                                 drift), unit, k, (ch,))
     return out
+
+
+def _five_dof_contributors(ch, unit, res, ranges, calibration, crosstalk, drift) -> list:
+    """Resolution, scale calibration and, where given, crosstalk and drift of channel ``ch``."""
+    p = (ch,)
+    sec = "Optics Express 2018 (five DOF of a rotary axis)"
+    c = [
+        Contributor(
+            "u_RESOLUTION",
+            "detector resolution",
+            res / (2 * _SQ3),
+            "rectangular",
+            f"{sec}, §3 (eqs. 1-6)",
+            f"{res:g} {unit}",
+            p,
+        ),
+        Contributor(
+            "u_CALIBRATION",
+            "detector scale calibration",
+            calibration * abs(ranges.get(ch, 0.0)),
+            "normal",
+            f"{sec}, §3; ISO/TR 230-9 §5",
+            f"{calibration * 100:g} % of {ranges.get(ch, 0.0):g} {unit}",
+            p,
+        ),
+    ]
+    if ch in crosstalk:
+        c.append(
+            Contributor(
+                "u_CROSSTALK",
+                "crosstalk of the mounting errors",
+                crosstalk[ch] / 2 / _SQ3,
+                "rectangular",
+                f"{sec}, mounting errors (as simulated)",
+                f"± {crosstalk[ch] / 2:g} {unit}",
+                p,
+            )
+        )
+    if ch in drift:
+        c.append(
+            Contributor(
+                "u_DRIFT",
+                "residual drift after compensation",
+                drift[ch],
+                "normal",
+                f"{sec}, §3.2 (eqs. 7-9)",
+                f"σ = {drift[ch]:g} {unit}",
+                p,
+            )
+        )
+    return c
 
 
 def slope_uncertainty(positions, deviations) -> float:
