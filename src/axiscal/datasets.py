@@ -259,8 +259,7 @@ class PositioningDataset:
             if arr.shape[1] and np.all(np.isnan(arr)):
                 raise InputError(f"every reading of direction {name} is missing")
         if kind is AxisKind.LINEAR:
-            _refuse_inch_slip(targets * units.factor(tu), up * units.factor(du),
-                              down * units.factor(du), tu)
+            _refuse_inch_slip(targets, up, down, tu, du)
         for a in (targets, up, down):
             a.flags.writeable = False
         object.__setattr__(self, "targets", targets)
@@ -536,7 +535,7 @@ def _rescaled(unit: str, k: float) -> str | None:
     return next((n for n, v in units.LENGTH_UNITS.items() if abs(v / size - 1) < 1e-9), None)
 
 
-def _refuse_inch_slip(targets, up, down, unit: str) -> None:
+def _refuse_inch_slip(targets, up, down, unit: str, deviation_unit: str) -> None:
     """Refuse a dataset whose deviations carry the inch's 25.4 (:func:`inch_signature`); the
     deviation at a target is the mean of its readings (both directions)."""
     total, n = np.zeros(targets.size), np.zeros(targets.size)
@@ -544,8 +543,9 @@ def _refuse_inch_slip(targets, up, down, unit: str) -> None:
         seen = ~np.isnan(arr)
         total += np.add.reduce(arr, axis=1, where=seen, initial=0.0)
         n += np.count_nonzero(seen, axis=1)
-    dev = np.where(n > 0, total / np.maximum(n, 1), np.nan)
-    k = inch_signature(targets, targets + dev)
+    dev = np.where(n > 0, total / np.maximum(n, 1), np.nan) * units.factor(deviation_unit)
+    at = targets * units.factor(unit)
+    k = inch_signature(at, at + dev)
     if k is not None:
         raise InputError(f"{inch_reading(k, unit)[0]} (the deviations, actual minus target by "
                          f"ISO 230-2:2014 §3.1, grow by {k - 1:+.4g} {unit} per {unit} of "
