@@ -117,23 +117,19 @@ def map_(
 
     Example: axiscal volumetric map vol/volumetric.toml --plot vol.png --report vol.html
     """
-    from axiscal.io.simulation_results import volumetric_map
-    from axiscal.io.volumetric import read_volumetric_config
+    from axiscal import api
 
     plot = plot_path(plot) if plot else None
     report = report_path(report) if report else None
-    cfg = read_volumetric_config(config)
+    mapped = api.volumetric_map(config, grid)
+    sim = mapped.test
+    cfg = sim.parts["config"]
     e = cfg.errors
-    sim = volumetric_map(cfg, grid)
     vmap, diags, truth, out = sim.record, sim.parts["diagonals"], sim.parts["truth"], sim.json
     if plot:
-        from axiscal.report.simulation_views import simulation_figure
-
-        simulation_figure(sim).savefig(plot, dpi=110)
+        mapped.plot().savefig(plot, dpi=110)
     if report:
-        from axiscal.report.simulation_views import write_simulation_report
-
-        write_simulation_report(sim, report)
+        mapped.report(report)
     if as_json:
         print_json(out)
         return
@@ -175,9 +171,8 @@ def compensate(
 
     Example: axiscal volumetric compensate vol/volumetric.toml --controller siemens-840d --verify
     """
+    from axiscal import api
     from axiscal.errors import InputError
-    from axiscal.io.simulation_results import volumetric_compensation, volumetric_tables_for
-    from axiscal.io.volumetric import read_volumetric_config
 
     rec = {}
     for item in receiving:
@@ -185,77 +180,36 @@ def compensate(
             raise InputError(f"--receiving {item!r}: write PAIR=AXIS, e.g. zx=Z")
         k, v = item.split("=", 1)
         rec[k.strip().lower()] = v.strip()
-    if out is not None:
-        _folder(out)
-    cfg = read_volumetric_config(config)
-    tables = volumetric_tables_for(cfg, rec, spacing, verify)
-    if controller == "linuxcnc" or on_controller:
-        return _linuxcnc(cfg, tables, controller, verify, on_controller, out, as_json)
-    sim = volumetric_compensation(cfg, tables, controller, verify=verify, out=out)
-    files, result, written = sim.parts["files"], sim.parts["verify"], sim.json["files"]
-    if as_json:
-        print_json(sim.json)
-        return
-    typer.echo(f"{controller} volumetric compensation of {cfg.name}: "
-               f"{len(files)} tables (3 positioning, {len(files) - 3} cross-axis)")
-    typer.echo(str(tables))
-    for n in tables.notes:
-        note(n)
-    if written:
-        typer.echo(f"wrote {', '.join(written)} in {out}")
-    if result is not None:
-        typer.echo(str(result))
-
-
-def _linuxcnc(cfg, tables, controller, verify, on_controller, out, as_json):
-    """``compensate --controller linuxcnc [--verify --on-controller]``."""
-    import numpy as np
-
-    from axiscal.compensation.on_controller_volumetric import (linuxcnc_compensation,
-                                                               linuxcnc_outputs,
-                                                               verify_on_linuxcnc)
-    from axiscal.errors import InputError
-    from axiscal.io._files import write_text_atomic
-
-    if controller != "linuxcnc":
+    if on_controller and controller != "linuxcnc":
         raise InputError(f"--on-controller runs LinuxCNC; the controller is {controller!r}: "
                          "give --controller linuxcnc")
-    if verify != on_controller:
+    if controller == "linuxcnc" and verify != on_controller:
         raise InputError("--controller linuxcnc verifies through LinuxCNC itself: give both "
                          "--verify and --on-controller, or neither")
-    comp = linuxcnc_compensation(cfg.errors, tables)
-    files = linuxcnc_outputs(comp)
-    result = None
-    if verify:
-        machine, _ = _simulated(cfg)
-        result = verify_on_linuxcnc(machine, cfg.errors, tables, np.random.default_rng(
-            int(cfg.simulation.get("seed", 1)) + 1))
-    for name, text in files.items() if out is not None else ():
-        write_text_atomic(out / name, text)
-    written = list(files) if out is not None else []
+    sim = api.volumetric_compensation(config, controller, out=out, receiving=rec,
+                                      spacing=spacing, verify=verify)
     if as_json:
-        d = {"controller": controller, "receiving": tables.receiving, "files": written,
-             "left_by_tables_um": tables.uncompensable * 1e6,
-             "grid_spacing_mm": comp.spacing}
-        if result is not None:
-            d["verify"] = result.to_dict()
-        print_json(d)
+        print_json(sim.to_dict())
         return
-    typer.echo(f"linuxcnc volumetric compensation of {cfg.name}: a COMP_FILE per joint, "
-               f"{len(comp.cross)} cross-axis tables and the 3-D grid (every ≤ "
-               f"{comp.spacing:g} mm) for axiscal_volcomp.py through external offsets")
+    run, tables = sim.test, sim.result
+    name, written, result = run.parts["config"].name, run.json["files"], run.parts["verify"]
+    comp = run.parts.get("linuxcnc")
+    if comp is None:
+        files = run.parts["files"]
+        typer.echo(f"{controller} volumetric compensation of {name}: "
+                   f"{len(files)} tables (3 positioning, {len(files) - 3} cross-axis)")
+    else:
+        typer.echo(f"linuxcnc volumetric compensation of {name}: a COMP_FILE per joint, "
+                   f"{len(comp.cross)} cross-axis tables and the 3-D grid (every ≤ "
+                   f"{comp.spacing:g} mm) for axiscal_volcomp.py through external offsets")
     typer.echo(str(tables))
+    for n in tables.notes if comp is None else ():
+        note(n)
     if written:
-        typer.echo(f"wrote {', '.join(written)} in {out} (docs/linuxcnc.md: INI and HAL lines)")
+        where = "" if comp is None else " (docs/linuxcnc.md: INI and HAL lines)"
+        typer.echo(f"wrote {', '.join(written)} in {out}{where}")
     if result is not None:
         typer.echo(str(result))
-
-
-def _simulated(cfg):
-    """The simulated machine a configuration was measured on (regenerated from its seed)."""
-    from axiscal.io.simulation_results import simulated_volumetric_machine
-
-    return simulated_volumetric_machine(cfg)
 
 
 def _folder(out: Path) -> None:

@@ -175,17 +175,23 @@ def _verify_figure(run: Any, name: str) -> Any:
     from axiscal.report._figures import pyplot
 
     plt = pyplot()
-    names = [n for n, _, _ in result.rows]
+    names = [row[0] for row in result.rows]
+    series = ([("before", "tab:red"), ("after the tables", "tab:blue")]
+              if len(result.rows[0]) == 3 else     # through LinuxCNC: bare, tables, + 3-D
+              [("bare", "tab:red"), ("tables alone", "tab:orange"),
+               ("tables + 3-D correction", "tab:blue")])
     y = np.arange(len(names))
+    width = 0.8 / len(series)
     fig, ax = plt.subplots(figsize=(8, 0.45 * len(names) + 1.4))
-    ax.barh(y + 0.2, [b * 1e6 for _, b, _ in result.rows], 0.4, label="before", color="tab:red")
-    ax.barh(y - 0.2, [a * 1e6 for _, _, a in result.rows], 0.4, label="after the tables",
-            color="tab:blue")
+    for i, (label, color) in enumerate(series):
+        ax.barh(y + 0.4 - width * (i + 0.5), [row[i + 1] * 1e6 for row in result.rows], width,
+                label=label, color=color)
     ax.set_yticks(y, names, fontsize=8)
     ax.invert_yaxis()
     ax.set_xlabel("µm (re-measured)")
     ax.grid(axis="x", alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(f"Volumetric compensation for {result.controller} — {name}", fontsize=10)
+    ax.set_title(f"Volumetric compensation for {getattr(result, 'controller', 'linuxcnc')} — "
+                 f"{name}", fontsize=10)
     fig.tight_layout()
     return fig
