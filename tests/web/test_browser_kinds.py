@@ -110,3 +110,21 @@ def test_trend_draws_the_predicted_crossing(server, browser, tmp_path):
     summary = browser.find_element(By.ID, "trend-summary").text
     assert f"reaches the tolerance 30 µm on {crossing.split()[-1]}" in summary
     _full_page_shot(browser, "trend_crossing")
+
+
+def test_diagonal_page_in_a_browser_shows_the_cli_U(server, browser):
+    """The diagonal test's page: squareness and its U (k = 2) as ``squareness diagonal``
+    prints them (ISO 230-6:2002; ISO/TR 230-9 budget), with the budget's contributors."""
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    path = EXAMPLES / "squareness_diagonal_600x800.csv"
+    assert "/tests/" in _upload(browser, server, path)
+    j = json.loads(runner.invoke(app, ["squareness", "diagonal", "--file", str(path),
+                                       "--json"]).stdout)
+    rows = {r.find_elements(By.TAG_NAME, "td")[0].text: r.find_elements(By.TAG_NAME, "td")[1].text
+            for r in browser.find_elements(By.CSS_SELECTOR, "#diagonal tbody tr")}
+    assert rows["U (k = 2) of the squareness"] == format_uncertainty(j["U_um_per_m"])
+    names = [r.find_element(By.TAG_NAME, "td").text
+             for r in browser.find_elements(By.CSS_SELECTOR, "#budget tbody tr")]
+    assert names == [c["name"] for c in j["uncertainty"]]
+    _full_page_shot(browser, "diagonal_page")

@@ -47,8 +47,10 @@ __all__ = ["add_routes", "capture_csv", "raw_csv", "epics_csv"]
 SUFFIXES = {"capture": ((".rtx", ".csv"), (".csv",)),
             "raw": ((".csv",), (".csv", ".json")),
             "epics": ((".log", ".txt", ".dat", ".csv"), (".csv",))}
-#: How browsers send a camonitor log (besides the types of every upload).
-LOG_TYPES = ("text/x-log",)
+#: How browsers send a camonitor log or a Renishaw .rtx record (besides the types of every
+#: upload): .rtx is "rich text" (text/richtext) in the freedesktop.org shared MIME database
+#: (shared-mime-info, freedesktop.org.xml: glob ``*.rtx``), by which Chromium on Linux types it.
+EXTRA_TYPES = {"epics": ("text/x-log",), "capture": ("text/richtext",), "raw": ()}
 #: The settings of an EPICS log: form fields named as ``axiscal iso230-2 LOG``'s options.
 EPICS_FIELDS = tuple(name for name, _, _ in SETTINGS)
 #: How browsers send a .zip (besides the types of every upload).
@@ -72,7 +74,7 @@ def add_routes(app: FastAPI) -> None:
                 raise InputError(f"kind {kind!r}: capture (record + plan), raw (raw readings "
                                  "+ environment log) or epics (camonitor log [+ plan])")
             first = await _file(request, form.get("file"), SUFFIXES[kind][0], "the data file",
-                                types=LOG_TYPES if kind == "epics" else ())
+                                types=EXTRA_TYPES[kind])
             second = await _file(request, form.get("second"), SUFFIXES[kind][1],
                                  "the environment log" if kind == "raw" else "the plan",
                                  optional=kind != "capture")
