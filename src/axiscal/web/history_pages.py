@@ -201,9 +201,11 @@ def add_routes(app: FastAPI) -> None:
             from axiscal.web.security import check_upload
 
             check_upload(f.filename, f.content_type, len(raw), request.app.state.upload_limit)
+            from axiscal import api   # the one way a file is stored: History.add
+
             r = await run_in_threadpool(
-                store(request).add, raw, f.filename, machine=fields["machine"] or None,
-                axis=fields["axis"] or None, note=fields["note"],
+                api.History(store=store(request)).add, raw, filename=f.filename,
+                machine=fields["machine"] or None, axis=fields["axis"] or None, note=fields["note"],
                 instrument=fields["instrument"], date=fields["date"] or None)
         except InputError as exc:
             return render(request, "upload.html", "Upload a test", getattr(exc, "status", 400),
