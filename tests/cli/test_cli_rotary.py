@@ -73,6 +73,8 @@ def test_budget_text():
     assert res.exit_code == 0, res.output
     assert "Figure 22 [± arcsec]" in res.output and "Interferometric calibration of" in res.output
     assert "peak |E|" in res.output and "seed" not in res.output.lower()
+    # eq. 1's terms as the report names them (report/labels.py), not their JSON keys
+    assert "α·β term" in res.output and "alpha_beta" not in res.output
 
 
 def test_budget_gives_the_published_table_where_it_is_more_cautious():

@@ -63,6 +63,8 @@ def test_stability_json_of_seed_order(tmp_path):
     assert "Stability" in rep.read_text()
     short = _ok(["motion", "stability", EXAMPLE, "--duration-min", "5", "--interval-s", "10"])
     assert "31 readings" in short.stdout
+    # the errors by their symbols on the terminal (the JSON keys stay in --json)
+    assert "εz [″]" in short.stdout and "δz [µm]" in short.stdout and "_arcsec" not in short.stdout
 
 
 def test_repeatability_json_and_files(tmp_path):
@@ -75,7 +77,8 @@ def test_repeatability_json_and_files(tmp_path):
     a = json.loads(_ok(["motion", "analyze", str(csv), "--json"]).stdout)
     assert a["iso230_7"]["n_runs"] == 3
     assert "Repeatability" in rep.read_text()
-    assert "±" in _ok(["motion", "repeatability", EXAMPLE, "--runs", "2"]).stdout
+    text = _ok(["motion", "repeatability", EXAMPLE, "--runs", "2"]).stdout
+    assert "±" in text and "εx [″]" in text and "dy_um" not in text
 
 
 @pytest.mark.parametrize("content,needle", [

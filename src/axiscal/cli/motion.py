@@ -225,7 +225,8 @@ def repeatability(
     else:
         typer.echo(f"repeatability over {n} runs (± largest half-range at one angle):")
         for c, k in _KEYS.items():
-            typer.echo(f"  {k:<10} ±{_five_dict(rep)[k]:.2f}   (published: ±{REPEATABILITY_SEED[c]})")
+            typer.echo(f"  {_HEADS[c]:<10} ±{_five_dict(rep)[k]:.2f}   "
+                       f"(published: ±{REPEATABILITY_SEED[c]})")
         typer.echo(str(result))
     _wrote(paths)
 
