@@ -106,7 +106,7 @@ def _raw_readings(lines, source: str) -> RawReadings:
     cells is converted directly, anything else through the checked cells (same messages)."""
     from array import array
 
-    from axiscal._parse import MAX_MAGNITUDE, csv_cells
+    from axiscal._parse import MAX_MAGNITUDE
     from axiscal.io._tidy import data_lines, no_data
 
     meta: dict[str, str] = {}
@@ -128,16 +128,7 @@ def _raw_readings(lines, source: str) -> RawReadings:
                                            for v in (row[0], row[1], row[3], row[4])):
                 row = None
         if row is None:   # the checked path: the one-line error naming the cell and the line
-            cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
-            if len(cells) < len(header):
-                raise DataFormatError(f"{len(cells)} cells where the header has {len(header)}",
-                                      source, lineno)
-            c = [cells[i] for i in idx]
-            row = (finite_number(c[0], "time_s", source, lineno),
-                   finite_number(c[1], "target", source, lineno),
-                   1 if _direction(c[2], source, lineno) == "+" else -1,
-                   finite_number(c[3], "run", source, lineno),
-                   finite_number(c[4], "reading", source, lineno))
+            row = _checked_row(stripped, len(header), idx, source, lineno)
         cols["time_s"].append(row[0])
         cols["target"].append(row[1])
         signs.append(row[2])
@@ -166,6 +157,21 @@ def _raw_readings(lines, source: str) -> RawReadings:
     index = _meta_number(meta, "index", 1.0, 0.99, 1.01, source)
     datum = _meta_number(meta, "datum", float(tg[0]), -1e9, 1e9, source)
     return RawReadings(t, tg, d, run, x, tu, dead, index, datum, meta, source)
+
+
+def _checked_row(stripped: str, n_header: int, idx: list, source: str, lineno: int) -> tuple:
+    """One line of raw readings read cell by cell (quoted cells, a bad number or direction):
+    (time_s, target, ±1, run, reading), or the one-line error naming the cell and the line."""
+    cells = [c.strip() for c in csv_cells(stripped, source, lineno)]
+    if len(cells) < n_header:
+        raise DataFormatError(f"{len(cells)} cells where the header has {n_header}", source,
+                              lineno)
+    c = [cells[i] for i in idx]
+    return (finite_number(c[0], "time_s", source, lineno),
+            finite_number(c[1], "target", source, lineno),
+            1 if _direction(c[2], source, lineno) == "+" else -1,
+            finite_number(c[3], "run", source, lineno),
+            finite_number(c[4], "reading", source, lineno))
 
 
 def format_raw_readings(raw: RawReadings, header: str = "") -> str:
