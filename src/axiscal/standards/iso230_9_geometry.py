@@ -454,7 +454,7 @@ def diagonal_budget(result, table: Mapping[str, float] | None = None, *,
     >>> r = diagonal_squareness(0.6, 0.8, 6e-6, -3e-6)
     >>> b = diagonal_budget(r)
     >>> round(b.U("squareness"), 3), len(b.notes)   # 2·√2·0.25 µm/(0.96 m); u_D0 ≈ 1e-4
-    (0.737, 4)
+    (0.737, 3)
     """
     return squareness_budget_with_inputs(
         "diagonal", table, set_with=set_with, length_x=result.length_x,
