@@ -151,3 +151,30 @@ def test_an_archive_of_format_1_still_imports(tmp_path):
     assert import_history(dst, old) == (5, 0)
     assert cx.audit(dst) == [] and dst.certificates() == []
     assert all(t.withdrawn == "" for t in dst.tests())
+
+
+def test_corrections_arriving_for_tests_stored_before_are_applied(tmp_path):
+    """The tests are in the history already (from an archive of format 1, without records);
+    the full archive then brings the trail, and the tests it names take their corrected
+    metadata, so the trail and the tests agree: t1 withdrawn, t0's note edited."""
+    src, sha = _history(tmp_path)
+    export_history(src, tmp_path / "h.zip")
+    with zipfile.ZipFile(tmp_path / "h.zip") as z:
+        extra = [n for n in z.namelist() if not n.startswith("raw/") and n != "history.jsonl"]
+
+    def old_lines(lines):
+        recs = [json.loads(x) for x in lines[1:]]
+        for r in recs:
+            r.update(withdrawn="", note="")
+        return [json.dumps({"format": "axiscal.history/1", "tests": 5})] + [json.dumps(r)
+                                                                         for r in recs]
+
+    old = rewrite(tmp_path / "h.zip", tmp_path / "old.zip", jsonl=old_lines, drop=extra)
+    dst = open_store(f"sqlite:///{tmp_path / 'dst.sqlite'}")
+    assert import_history(dst, old) == (5, 0)
+    assert all(t.withdrawn == "" and t.note == "" for t in dst.tests())
+    assert import_history(dst, tmp_path / "h.zip") == (0, 5)
+    by_sha = {dst.get(t.id).sha256: t for t in dst.tests()}
+    assert by_sha[sha["t1"]].withdrawn == "laser misaligned"
+    assert by_sha[sha["t0"]].note == "after the spindle change"
+    assert _trail(dst) == _trail(src) and _register(dst) == _register(src)

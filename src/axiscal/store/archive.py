@@ -164,11 +164,11 @@ def import_history(store, path, progress=None) -> tuple[int, int]:
                 items.append(_prepared(z, p, n, rec))
             if progress:
                 progress(k, len(records))
-    withdrawn = {rec["sha256"]: rec["withdrawn"] for _, rec in records if rec["withdrawn"]}
+    by_sha = {rec["sha256"]: rec for _, rec in records}
     new = {i.sha256 for i in items}
 
     def then(s, _results):
-        restore(s, withdrawn, new, audit, certs, p)
+        restore(s, by_sha, new, audit, certs, p)
 
     results = store.add_all(items, then=then) if items or audit or certs else []
     added = sum(not r.duplicate for r in results)

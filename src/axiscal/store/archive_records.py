@@ -28,7 +28,10 @@ Import restores them in the transaction that stores the tests (all or nothing):
 * certificates keep their numbers, counters, status and amendments; one whose number the
   laboratory has already given to another document refuses the archive; one already in the
   register (same number, same document) is counted, not stored again;
-* a test stored by this import and withdrawn in the archive is withdrawn here with its reason.
+* a test stored by this import and withdrawn in the archive is withdrawn here with its reason;
+  a test stored before whose corrections arrive with this import (new audit entries naming it)
+  takes its record's corrected metadata (withdrawal, note, operator, instrument, date), so the
+  trail and the test agree.
 
 An archive of format ``axiscal.history/1`` (before these records) has none of them and imports
 as before.
@@ -196,21 +199,41 @@ def _when(text: str, name: str, n: int, p) -> dt.datetime:
 
 
 # -- restoring (in the import's transaction) ---------------------------------------------------
-def restore(s, withdrawn: dict[str, str], new: set[str], audit: list[dict],
+def restore(s, records: dict[str, dict], new: set[str], audit: list[dict],
             certificates: list[tuple[dict, bytes]], p) -> tuple[int, int]:
     """Withdraw the new tests withdrawn in the archive, add the audit entries and the
-    certificates not already kept; returns (audit entries added, certificates added)."""
+    certificates not already kept; returns (audit entries added, certificates added).
+
+    ``records`` are the archive's test records by SHA-256. A test stored before whose
+    corrections (edits, withdrawal) come with this import's new audit entries takes the
+    corrected metadata of its record, so the trail and the test agree.
+    """
     from sqlalchemy import select
 
     from axiscal.store.models import Test
 
-    for sha in sorted(set(withdrawn) & new):
-        s.scalars(select(Test).where(Test.sha256 == sha)).one().withdrawn = withdrawn[sha]
+    for sha in sorted(new):
+        if records[sha]["withdrawn"]:
+            s.scalars(select(Test).where(Test.sha256 == sha)).one().withdrawn = \
+                records[sha]["withdrawn"]
     s.flush()
-    return _restore_audit(s, audit), _restore_certificates(s, certificates, p)
+    added, touched = _restore_audit(s, audit)
+    for sha in sorted(touched - new):
+        _corrected(s.scalars(select(Test).where(Test.sha256 == sha)).one(), records[sha])
+    s.flush()
+    return added, _restore_certificates(s, certificates, p)
 
 
-def _restore_audit(s, entries: list[dict]) -> int:
+def _corrected(t, rec: dict) -> None:
+    """A stored test given the metadata its archive record holds after the corrections."""
+    t.withdrawn, t.note = rec["withdrawn"], rec["note"]
+    t.operator, t.instrument = rec["operator"], rec["instrument"]
+    if rec["date_known"]:
+        t.tested_at, t.date_known = dt.datetime.fromisoformat(rec["tested_at"]), True
+
+
+def _restore_audit(s, entries: list[dict]) -> tuple[int, set[str]]:
+    """Add the entries not in the trail; returns their count and the tests they name."""
     from sqlalchemy import func, select
 
     from axiscal.store.models import Audit, Axis, Machine, Test
@@ -222,7 +245,7 @@ def _restore_audit(s, entries: list[dict]) -> int:
                                                 func.min(Audit.axis_id))).one() if v is not None)])
     gone = _Gone(low)
     have = set(s.execute(select(Audit.at, Audit.by, Audit.action, Audit.what, Audit.reason)))
-    added = 0
+    added, touched = 0, set()
     for e in entries:
         at = dt.datetime.fromisoformat(e["at"])
         if (at, e["by"], e["action"], e["what"], e["reason"]) in have:
@@ -239,8 +262,9 @@ def _restore_audit(s, entries: list[dict]) -> int:
                     old_json=json.dumps(old, ensure_ascii=False),
                     new_json=json.dumps(new, ensure_ascii=False)))
         added += 1
+        touched |= {e["test"]} if e["test"] else set()
     s.flush()
-    return added
+    return added, touched
 
 
 class _Gone:
