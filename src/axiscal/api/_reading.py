@@ -9,13 +9,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
+from axiscal.api import DEFAULT_STANDARD   # the standard evaluate applies when none is named
+
 if TYPE_CHECKING:   # pragma: no cover - typing only
     from axiscal.api._results import Evaluation, PathLike
 
 __all__ = ["read", "evaluate"]
 
-#: The standard :func:`evaluate` applies when none is named (``axiscal.api.DEFAULT_STANDARD``).
-DEFAULT_STANDARD = "iso230-2:2014"
 #: The forms of a positioning evaluation's ``to_dict()``.
 FORMS = ("iso230-2", "standards")
 

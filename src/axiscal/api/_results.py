@@ -10,6 +10,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
+from axiscal.api import DEFAULT_STANDARD
+
 if TYPE_CHECKING:   # pragma: no cover - typing only
     from matplotlib.figure import Figure
 
@@ -18,8 +20,6 @@ __all__ = ["Evaluation", "Simulation", "PathLike"]
 #: A path argument: text or a :class:`pathlib.Path`.
 PathLike = Union[str, Path]
 
-#: The standard a positioning test is evaluated by unless another is named (as the package's).
-_ISO230_2 = "iso230-2:2014"
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,9 +75,10 @@ class Evaluation:
         return dict(self._config)
 
     @property
-    def accepted(self) -> bool | None:
+    def conformance_proven(self) -> bool | None:
         """True when conformance is proven for every tolerance given (ISO 14253-1:2017),
-        False when a tolerance is not proven met, None without tolerances."""
+        False when it is not for one (non-conformance proven, or the uncertainty zone: the
+        commands' exit code 1), None without tolerances."""
         checked = [v for v in self._verdicts if v.value is not None]
         return None if not checked else all(v.passed is True for v in checked)
 
@@ -216,7 +217,7 @@ class Simulation:
         from axiscal.io.simulation_results import DOCUMENTS
         from axiscal.report.evaluations import notebook_html
 
-        return notebook_html(self.kind, DOCUMENTS.get(self.kind, _ISO230_2),
+        return notebook_html(self.kind, DOCUMENTS.get(self.kind, DEFAULT_STANDARD),
                              self.to_dict(), self.plot())
 
     def __str__(self) -> str:
