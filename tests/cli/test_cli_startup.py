@@ -84,9 +84,9 @@ def test_a_command_loads_only_its_own_command_module(tmp_path):
     assert commands == ["axiscal.cli.iso230_2"]
 
 
-@pytest.mark.parametrize("args", [["--version"]])
+@pytest.mark.parametrize("args", [["--version"], ["iso230-2", "--help"], ["evaluate", "--help"]])
 def test_version_and_help_load_no_numpy(tmp_path, args):
-    """``--version`` computes nothing: NumPy is not loaded."""
+    """``--version`` and a command's ``--help`` compute nothing: NumPy is not loaded."""
     modules, r = _modules(tmp_path, *args)
     assert r.returncode == 0, r.stderr
     assert "numpy" not in modules

@@ -23,7 +23,6 @@ import typer
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
-from axiscal.io.results import standard_json as _entry_json  # the library builds the JSON
 
 __all__ = ["register"]
 

@@ -36,9 +36,8 @@ from axiscal.cli._certificate import DRAFT, JOB, PAPER, RULE
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
-from axiscal.io.results import result_json  # the library builds the JSON
 
-__all__ = ["register", "result_json", "render_result"]
+__all__ = ["register", "render_result"]
 
 
 def iso230_2(
