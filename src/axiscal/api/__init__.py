@@ -43,11 +43,9 @@ __all__ = ["Evaluation", "Simulation", "History", "read", "evaluate", "simulate"
            "volumetric_map", "volumetric_compensation", "compensate_environment",
            "compensation_table", "write_table"]
 
-#: The standard :func:`evaluate` applies when none is named.
-DEFAULT_STANDARD = "iso230-2:2014"
-
-#: The module of each public name (and of ``PathLike``, the type of a path argument).
-_HOME = {"read": "_reading", "evaluate": "_reading",
+#: The module of each public name (and of ``PathLike``, the type of a path argument, and
+#: ``DEFAULT_STANDARD``, the standard :func:`evaluate` applies when none is named).
+_HOME = {"DEFAULT_STANDARD": "_results", "read": "_reading", "evaluate": "_reading",
          "simulate": "_simulating", "volumetric_map": "_simulating",
          "volumetric_compensation": "_simulating", "compensate_environment": "_simulating",
          "compensation_table": "_compensation", "write_table": "_compensation",
@@ -60,7 +58,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from axiscal.api._compensation import compensation_table, write_table
     from axiscal.api._history import History
     from axiscal.api._reading import evaluate, read
-    from axiscal.api._results import Evaluation, PathLike, Simulation
+    from axiscal.api._results import DEFAULT_STANDARD, Evaluation, PathLike, Simulation
     from axiscal.api._simulating import (compensate_environment, simulate,
                                          volumetric_compensation, volumetric_map)
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
-from axiscal.api import DEFAULT_STANDARD   # the standard evaluate applies when none is named
+from axiscal.api._results import DEFAULT_STANDARD   # the standard applied when none is named
 
 if TYPE_CHECKING:   # pragma: no cover - typing only
     from axiscal.api._results import Evaluation, PathLike

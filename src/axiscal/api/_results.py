@@ -10,12 +10,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
-from axiscal.api import DEFAULT_STANDARD
-
 if TYPE_CHECKING:   # pragma: no cover - typing only
     from matplotlib.figure import Figure
 
-__all__ = ["Evaluation", "Simulation", "PathLike"]
+__all__ = ["Evaluation", "Simulation", "PathLike", "DEFAULT_STANDARD"]
+
+#: The standard :func:`axiscal.evaluate` applies when none is named.
+DEFAULT_STANDARD = "iso230-2:2014"
 
 #: A path argument: text or a :class:`pathlib.Path`.
 PathLike = Union[str, Path]
