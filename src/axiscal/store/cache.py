@@ -43,6 +43,7 @@ MEMORY_BYTES = 32 * 2**20
 #: Evaluations one process keeps in memory at most.
 MEMORY_ENTRIES = 256
 _memory: OrderedDict = OrderedDict()        # (sha, version, what) -> (value, size)
+_memory_size = [0]                          # the sizes in _memory, summed
 _memory_lock = threading.Lock()
 _key_locks: dict = {}
 _key_locks_lock = threading.Lock()
@@ -175,31 +176,41 @@ def digest(*parts) -> str:
     return hashlib.sha256(repr(parts).encode("utf-8", "surrogatepass")).hexdigest()[:16]
 
 
-def evaluated(raw: bytes, sha: str, filename: str, kind: str | None):
+def evaluated(raw, sha: str, filename: str, kind: str | None, size: int | None = None):
     """The evaluation of stored bytes ``raw`` (digest ``sha``): from memory, else the disk, else
-    :func:`~axiscal.store.kinds.evaluate_file` once (then kept)."""
+    :func:`~axiscal.store.kinds.evaluate_file` once (then kept).
+
+    ``raw`` may be a callable that reads the bytes: it is called only when the evaluation must
+    be made (then ``size``, the bytes' length, counts them in memory without reading them)."""
     def make():
         from axiscal.store.kinds import evaluate_file
 
-        return evaluate_file(raw, filename, kind)
+        return evaluate_file(raw() if callable(raw) else raw, filename, kind)
 
-    return derived(sha, "evaluated", make, size=len(raw))
+    return derived(sha, "evaluated", make, size=len(raw) if size is None else size)
 
 
-def derived(sha: str, what: str, make, size: int | None = None):
+def derived(sha: str, what: str, make, size: int | None = None, disk: bool = True):
     """A value computed from a stored test (its evaluation; a page's plot, tables, figures):
     kept in memory and as a pickle on disk under ``what``, made by ``make()`` once. In memory it
-    counts ``size`` bytes (default: its pickle's size) against :data:`MEMORY_BYTES`."""
+    counts ``size`` bytes (default: its pickle's size) against :data:`MEMORY_BYTES`.
+
+    With ``disk`` False it is kept in this process's memory only, counting its length (a page's
+    rendered HTML, whose templates are not part of the version the disk is keyed by)."""
     key = (sha, _version(), what)
-    with _memory_lock:
-        hit = _memory.get(key)
-        if hit is not None:
-            _memory.move_to_end(key)
-            return hit[0]
+    if not disk:
+        found = _in_memory(key)
+        if found is None:
+            found = (make(),)
+            _hold(key, found[0], len(found[0]) if size is None else size)
+        return found[0]
+    found = _in_memory(key)
+    if found is not None:
+        return found[0]
     with _lock_for(key):
-        with _memory_lock:
-            if key in _memory:
-                return _memory[key][0]
+        found = _in_memory(key)           # made by another thread while this one waited
+        if found is not None:
+            return found[0]
         value = None
         data = read(sha, f"{what}.pickle")
         if data is not None:
@@ -212,6 +223,17 @@ def derived(sha: str, what: str, make, size: int | None = None):
             data = _keep_on_disk(sha, value, f"{what}.pickle")
         _hold(key, value, len(data or b"") if size is None else size)
     return value
+
+
+def _in_memory(key) -> tuple | None:
+    """``(value,)`` kept in this process's memory under ``key`` (now the most recently used),
+    else None."""
+    with _memory_lock:
+        hit = _memory.get(key)
+        if hit is None:
+            return None
+        _memory.move_to_end(key)
+        return (hit[0],)
 
 
 def remember(raw: bytes, sha: str, ev) -> None:
@@ -233,13 +255,15 @@ def _hold(key, ev, size: int) -> None:
     if size > MEMORY_BYTES:
         return
     with _memory_lock:
+        old = _memory.pop(key, None)
+        _memory_size[0] += size - (old[1] if old else 0)
         _memory[key] = (ev, size)
-        _memory.move_to_end(key)
-        while len(_memory) > MEMORY_ENTRIES or sum(s for _, s in _memory.values()) > MEMORY_BYTES:
-            _memory.popitem(last=False)
+        while len(_memory) > MEMORY_ENTRIES or _memory_size[0] > MEMORY_BYTES:
+            _memory_size[0] -= _memory.popitem(last=False)[1][1]
 
 
 def forget_memory() -> None:
     """Empty this process's in-memory evaluations (tests; the disk keeps them)."""
     with _memory_lock:
         _memory.clear()
+        _memory_size[0] = 0

@@ -258,56 +258,22 @@ class Store:
         """Tests, newest first, filtered (``limit`` and ``offset`` page through them).
 
         ``parameters`` (names) narrows what each summary's ``parameters`` holds to those names
-        and the test's first parameter (what a listing shows of it); default: all of them."""
-        from sqlalchemy import select
+        and the test's first parameter (what a listing shows of it), an empty tuple to none;
+        default: all of them."""
+        from axiscal.store import queries
 
-        from axiscal.store.models import Axis, Machine, Test
-
-        q = (select(Test.id, Machine.name, Axis.name, Test.kind, Test.tested_at,
-                    Test.date_known, Test.filename, Test.note, Test.withdrawn, Machine.id)
-             .join(Axis, Test.axis_id == Axis.id).join(Machine, Axis.machine_id == Machine.id)
-             .order_by(Test.tested_at.desc(), Test.id.desc()))
-        if machine:
-            q = q.where(Machine.name == machine)
-        if axis:
-            q = q.where(Axis.name == axis.upper())
-        if kind:
-            q = q.where(Test.kind == kind)
-        if since:
-            q = q.where(Test.tested_at >= since)
         if offset >= 2**63:                   # no test that far (SQLite could not even bind it)
             return []
-        if limit:
-            q = q.limit(min(limit, 2**63 - 1))
-        if offset:
-            q = q.offset(offset)
-        with self._guard("read"), self._session() as s:      # plain rows: fast for thousands
-            rows = s.execute(q).all()
-            params = _parameters(s, [r[0] for r in rows], parameters)
+        rows = queries.test_rows(self, machine, axis, kind, since, limit, offset)
+        params = queries.parameters(self, [r[0] for r in rows], parameters)
         return [TestSummary(i, m, a, k, t, bool(dk), f, params[i], n or "", w or "", mid)
                 for i, m, a, k, t, dk, f, n, w, mid in rows]
 
     def get(self, test_id: int) -> StoredTest:
         """One stored test, all of it (its bytes read when first asked for)."""
-        from sqlalchemy import func, select
-        from sqlalchemy.orm import defer, joinedload, selectinload
+        from axiscal.store.queries import stored_test
 
-        from axiscal.store.models import Axis, Test
-
-        tid = _test_id(test_id)
-        q = (select(Test, func.length(Test.raw)).where(Test.id == tid)
-             .options(defer(Test.raw), joinedload(Test.axis).joinedload(Axis.machine),
-                      selectinload(Test.parameters), selectinload(Test.tables)))
-        with self._guard("read"), self._session() as s:
-            row = s.execute(q).first()
-            if row is None:
-                raise NotFoundError(f"no test {test_id} in the history")
-            t, size = row
-            return StoredTest(_summary(t), t.sha256, json.loads(t.result_json),
-                              t.dataset_json, json.loads(t.environment_json), t.instrument,
-                              t.operator, t.stored_at, t.axiscal_version,
-                              tuple((x.controller, x.filename, x.text) for x in t.tables),
-                              int(size or 0), lambda: self._raw(tid))
+        return stored_test(self, test_id)
 
     def _raw(self, test_id: int) -> bytes:
         from sqlalchemy import select
@@ -345,11 +311,12 @@ class Store:
 
         return issue(self, **kw)
 
-    def certificates(self, laboratory: str | None = None) -> list:
-        """The register, newest first (``CertificateRecord`` without documents)."""
+    def certificates(self, laboratory: str | None = None, test_id: int | None = None) -> list:
+        """The register (of one laboratory, of one test), newest first (``CertificateRecord``
+        without documents)."""
         from axiscal.store.register import listing
 
-        return listing(self, laboratory)
+        return listing(self, laboratory, test_id)
 
     def certificate(self, number: str, laboratory: str | None = None):
         """One certificate with its issued document (SHA-256 checked)."""
@@ -462,27 +429,6 @@ class Prepared:
     tables: tuple              # (controller, filename, text)
 
 
-def _parameters(s, ids: list, names: tuple | None) -> dict[int, dict]:
-    """{test id: {name: (value, unit)}} of tests ``ids``, in the order they were stored: all
-    their parameters, or those named in ``names`` and each test's first."""
-    from sqlalchemy import func, or_, select
-
-    from axiscal.store.models import Parameter
-
-    params: dict[int, dict] = {i: {} for i in ids}
-    for k in range(0, len(ids), 900):                         # SQLite's bound-parameter limit
-        chunk = ids[k:k + 900]
-        q = select(Parameter.test_id, Parameter.name, Parameter.value, Parameter.unit
-                   ).where(Parameter.test_id.in_(chunk)).order_by(Parameter.id)
-        if names is not None:
-            first = (select(func.min(Parameter.id)).where(Parameter.test_id.in_(chunk))
-                     .group_by(Parameter.test_id))
-            q = q.where(or_(Parameter.name.in_(list(names)), Parameter.id.in_(first)))
-        for tid, name, value, unit in s.execute(q):
-            params[tid][name] = (value, unit)
-    return params
-
-
 def _stored(s, digests: list) -> dict:
     """AddResult (duplicate) of each of ``digests`` already in the history."""
     from sqlalchemy import select
@@ -574,10 +520,3 @@ def _date(text: str) -> tuple[dt.datetime, bool]:
         return (d.astimezone(dt.timezone.utc).replace(tzinfo=None) if d.tzinfo else d), True
     except ValueError:
         raise InputError(f"date {t!r}: write it as YYYY-MM-DD (or an ISO 8601 date and time)")
-
-
-def _summary(t) -> TestSummary:
-    return TestSummary(t.id, t.axis.machine.name, t.axis.name, t.kind, t.tested_at,
-                       t.date_known, t.filename,
-                       {p.name: (p.value, p.unit) for p in t.parameters}, t.note,
-                       t.withdrawn or "", t.axis.machine_id)

@@ -114,15 +114,21 @@ def issue(store, *, test_id: int, laboratory: str, series: str,
                      "(other processes issue at the same time); try again")
 
 
-def listing(store, laboratory: str | None = None) -> list[CertificateRecord]:
-    """Every certificate of the register (of one laboratory), newest first, without documents."""
+def listing(store, laboratory: str | None = None,
+            test_id: int | None = None) -> list[CertificateRecord]:
+    """Every certificate of the register (of one laboratory, of one test), newest first,
+    without documents (which are not read)."""
     from sqlalchemy import select
+    from sqlalchemy.orm import defer
 
     from axiscal.store.models import Certificate
 
-    q = select(Certificate).order_by(Certificate.created.desc(), Certificate.id.desc())
+    q = (select(Certificate).options(defer(Certificate.document), defer(Certificate.inputs_json))
+         .order_by(Certificate.created.desc(), Certificate.id.desc()))
     if laboratory:
         q = q.where(Certificate.laboratory == laboratory)
+    if test_id is not None:
+        q = q.where(Certificate.test_id == test_id)
     with store._guard("read"), store._session() as s:
         rows = s.scalars(q).all()
         links = _links(s)

@@ -3,10 +3,9 @@ withdraw and reinstate a test, and the audit trail (:mod:`axiscal.store.correcti
 calls as ``axiscal history rename-machine ... audit``; ISO/IEC 17025:2017 §7.5.2, §8.4.2).
 
 Every change is a POST with the session's CSRF token, by an engineer, with a reason; who made it
-is the logged-in account, or (in the no-login local mode) the name typed in the form. The
-templates ask for the trail (``trail``) and the machines to merge into (``all_machines``)
-through two Jinja globals. Machines are addressed by id,
-so any name, "/" included, reaches its page.
+is the logged-in account, or (in the no-login local mode) the name typed in the form. The pages
+of a machine and of a test hand their templates the newest :data:`SHOWN` entries of the trail
+(``audit_entries``). Machines are addressed by id, so any name, "/" included, reaches its page.
 """
 
 from __future__ import annotations
@@ -30,14 +29,7 @@ SHOWN = 50
 
 
 def add_routes(app: FastAPI) -> None:
-    """Add the correction routes, the audit trail page and the templates' two globals."""
-    from axiscal.store import corrections as c
-
-    def trail(request: Request, machine: int | None = None, test: int | None = None):
-        return c.audit(_store(request), machine=machine, test_id=test, limit=SHOWN)
-
-    app.state.templates.env.globals["trail"] = trail
-    app.state.templates.env.globals["all_machines"] = lambda r: _store(r).machines()
+    """Add the correction routes and the audit trail page."""
     _machine_routes(app)
     _test_routes(app)
 

@@ -54,41 +54,32 @@ def add_routes(app: FastAPI) -> None:
     @app.get("/machine/{machine_id}", response_class=HTMLResponse)
     def machine(request: Request, machine_id: TestId, axis: str = "", kind: str = "",
                 page: Page = 1):
-        st = store(request)
-        m = next((x for x in st.machines() if x.id == machine_id), None)
-        if m is None:
-            raise _missing(f"no machine {machine_id} in the history")
-        name, page = m.name, max(1, page)
-        tests = st.tests(machine=name, axis=axis or None, kind=kind or None,
-                         limit=PAGE + 1, offset=(page - 1) * PAGE)
-        more = len(tests) > PAGE
-        rows = [(t, _key(t)) for t in tests[:PAGE]]
-        return render(request, "machine.html", f"{name}", name=name, machine_id=m.id, rows=rows,
-                      trends=_trend_parameters(st, name, m.axes),
-                      axes=list(m.axes), axis=axis, page=page, more=more, total=m.tests,
-                      query=query)
+        from axiscal.web.memo import memoised
+
+        st, env = store(request), request.app.state.templates.env
+        view = memoised(st, ("machine", machine_id, axis, kind, page),
+                        lambda: _machine_view(st, env, machine_id, axis, kind, page))
+        return render(request, "machine.html", view["name"], **view, query=query)
 
     @app.get("/tests/{test_id}", response_class=HTMLResponse)
     def test_page(request: Request, test_id: TestId):
-        t = store(request).get(test_id)
-        ev = t.evaluate_again()
-        from axiscal.report.issue import load_config
-        from axiscal.store.cache import derived, digest
+        from axiscal.compensation.controllers import CONTROLLERS
+        from axiscal.store.corrections import audit
+        from axiscal.web.correction_pages import SHOWN
         from axiscal.web.signoff_pages import signoff_context
 
-        parts = derived(t.sha256, f"test-page-{digest(load_config(None))}",
-                        lambda: _test_parts(ev))          # computed once, then a look-up
-        from axiscal.compensation.controllers import CONTROLLERS
-
+        st = store(request)
+        t = st.get(test_id)
+        ev, cfg, parts = _test_view(request.app.state.templates.env, t)
+        others = st.tests(machine=t.summary.machine, axis=t.summary.axis, kind=t.summary.kind,
+                          limit=11, parameters=())
         return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
                       f"{t.summary.axis}", t=t, ev=ev, **parts,
-                      signoff=signoff_context(store(request), t, ev, None,
-                                              request.query_params.get("certificate", "")),
-                      controllers=sorted(CONTROLLERS), others=[
-                          o for o in store(request).tests(machine=t.summary.machine,
-                                                          axis=t.summary.axis,
-                                                          kind=t.summary.kind, limit=11)
-                          if o.id != test_id])
+                      signoff=signoff_context(st, t, ev, None,
+                                              request.query_params.get("certificate", ""), cfg),
+                      controllers=sorted(CONTROLLERS),
+                      others=[o for o in others if o.id != test_id],
+                      audit_entries=audit(st, test_id=test_id, limit=SHOWN))
 
     @app.get("/tests/{test_id}/raw")
     def raw(request: Request, test_id: TestId):
@@ -300,6 +291,24 @@ def _write_table(store, test_id: int, controller: str, spacing: float):
     return f
 
 
+def _test_view(env, t) -> tuple:
+    """(evaluation, user configuration, page parts) of stored test ``t``: the parts computed
+    once from the evaluation and the configuration (kept by :func:`axiscal.store.cache.derived`,
+    on disk), and what the page shows of them rendered once by this process (``results_html``,
+    the same for every user: kept in memory)."""
+    from markupsafe import Markup
+
+    from axiscal.report.issue import load_config
+    from axiscal.store.cache import derived, digest
+
+    ev, cfg = t.evaluate_again(), load_config(None)
+    what = f"test-page-{digest(cfg)}"
+    parts = derived(t.sha256, what, lambda: _test_parts(ev))     # computed once, then a look-up
+    html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
+        "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
+    return ev, cfg, {**parts, "results_html": Markup(html)}
+
+
 def _test_parts(ev) -> dict:
     """The parts of a test's page that are functions of its evaluation and the user
     configuration only (kept by :func:`axiscal.store.cache.derived`): the plot, the ISO 230-2
@@ -322,13 +331,41 @@ def _target_rows(ev) -> list:
             zip(r.targets, r.mean_up, r.mean_down, r.mean_bi, r.reversal, r.R_i)]
 
 
-def _trend_parameters(st, machine: str, axes) -> dict:
+def _machine_view(st, env, machine_id: int, axis: str, kind: str, page: int) -> dict:
+    """What a machine's history page shows (kept by :func:`axiscal.web.memo.memoised` while the
+    history is unchanged): the page's tests with their key parameters (their rows rendered with
+    the templates of ``env``, the same for every user), the trend parameter of each axis, the
+    audit trail and the machines it may be merged into."""
+    from markupsafe import Markup
+
+    from axiscal.store import queries
+    from axiscal.store.corrections import audit
+    from axiscal.web.correction_pages import SHOWN
+
+    m = queries.machine(st, machine_id)
+    tests = st.tests(machine=m.name, axis=axis or None, kind=kind or None, limit=PAGE + 1,
+                     offset=(page - 1) * PAGE, parameters=_KEY)
+    newest = tests if page == 1 and not axis and not kind else []
+    rows = [(t, _key(t)) for t in tests[:PAGE]]
+    return dict(name=m.name, machine_id=m.id,
+                rows_html=Markup(env.get_template("_machine_rows.html").render(rows=rows)),
+                trends=_trend_parameters(st, m.name, m.axes, newest), axes=list(m.axes),
+                axis=axis, page=page, more=len(tests) > PAGE, total=m.tests,
+                audit_entries=audit(st, machine=m.id, limit=SHOWN),
+                machines=queries.machine_names(st))
+
+
+def _trend_parameters(st, machine: str, axes, newest=()) -> dict:
     """The parameter a trend of each axis follows: the key parameter of its newest test (E of a
-    positioning test, squareness of a ballbar or diagonal test, ...)."""
+    positioning test, squareness of a ballbar or diagonal test, ...). ``newest``: the machine's
+    newest tests, newest first (its first page), where an axis's first is its newest."""
     out = {}
     for a in axes:
-        newest = st.tests(machine=machine, axis=a, limit=1)
-        key = _key(newest[0]) if newest else None
+        t = next((x for x in newest if x.axis == a), None)
+        if t is None:
+            found = st.tests(machine=machine, axis=a, limit=1, parameters=_KEY)
+            t = found[0] if found else None
+        key = _key(t) if t is not None else None
         if key:
             out[a] = key[0]
     return out

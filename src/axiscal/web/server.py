@@ -9,6 +9,16 @@ first byte of them (or after the connection opened), and one that sends no byte 
 body for ``body_timeout`` seconds; h11's own limit bounds the size of the headers
 (``h11_max_incomplete_event_size``). The defaults (:data:`LIMITS`) are shown by
 ``axiscal serve`` when it starts.
+
+With several worker processes on one listening socket, the kernel hands each new connection to
+whichever process accepts it first, and asyncio accepts every waiting connection in one go: 20
+clients connecting at once were 18 on one worker and 2 on the other, and kept so for as long as
+their keep-alive connections lived (one core busy, the other idle). So a connection answers
+``requests_per_connection`` requests and then says ``Connection: close`` with the last (RFC 9112
+§9.6: the sender of "close" closes after that response); the client connects again and the new
+connection goes to the worker that is free to accept it, which spreads the clients by load (the
+same limit as nginx's ``keepalive_requests``, with a smaller number so that it rebalances within
+a second under load).
 """
 
 from __future__ import annotations
@@ -16,27 +26,40 @@ from __future__ import annotations
 import asyncio
 
 import h11
+from uvicorn.protocols.http.flow_control import CLOSE_HEADER
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
 __all__ = ["LIMITS", "TimedH11Protocol", "app_from_env", "protocol", "run"]
 
 #: Defaults: seconds to send the request headers; seconds of silence within a body; connections
-#: served at once (more get 503); seconds an idle keep-alive connection is kept; header bytes.
+#: served at once (more get 503); seconds an idle keep-alive connection is kept; header bytes;
+#: requests answered on one connection before it is closed (see the module docstring).
 LIMITS = {"header_timeout": 10.0, "body_timeout": 30.0, "max_connections": 100,
-          "keep_alive": 5, "max_header_bytes": 16 * 1024}
+          "keep_alive": 5, "max_header_bytes": 16 * 1024, "requests_per_connection": 20}
 
 
 class TimedH11Protocol(H11Protocol):
-    """uvicorn's h11 protocol with a deadline for the headers and a silence limit in the body."""
+    """uvicorn's h11 protocol with a deadline for the headers, a silence limit in the body and
+    at most :attr:`requests_per_connection` requests on one connection."""
 
     header_timeout = LIMITS["header_timeout"]
     body_timeout = LIMITS["body_timeout"]
+    requests_per_connection = LIMITS["requests_per_connection"]
 
     def connection_made(self, transport: asyncio.Transport) -> None:
         super().connection_made(transport)
         _no_delay(transport)
         self._timer: asyncio.TimerHandle | None = None
+        self._served = 0
         self._arm(self.header_timeout)
+
+    def handle_events(self) -> None:
+        cycle = self.cycle
+        super().handle_events()
+        if self.cycle is not cycle:                          # a request began
+            self._served += 1
+            if self._served >= self.requests_per_connection and CLOSE_HEADER not in self.headers:
+                self.headers.append(CLOSE_HEADER)            # uvicorn answers "close" and closes
 
     def data_received(self, data: bytes) -> None:
         super().data_received(data)

@@ -81,17 +81,18 @@ def add_routes(app: FastAPI) -> None:
         return download(rec.document, f"{rec.number}{ext}", rec.media_type)
 
 
-def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "") -> dict | None:
+def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "",
+                    cfg: dict | None = None) -> dict | None:
     """What the test page's sign-off section shows: the form (prefilled from the user
-    configuration, or from the inputs kept with ``certificate`` of this test, whose verdict is
-    then shown) and the certificates of this test in the register; None for a test that is not
-    a positioning test."""
+    configuration ``cfg``, default read now, or from the inputs kept with ``certificate`` of
+    this test, whose verdict is then shown) and the certificates of this test in the register;
+    None for a test that is not a positioning test."""
     if ev.kind != "iso230-2":
         return None
     from axiscal.report.issue import load_config
 
     params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
-    records = [c for c in st.certificates() if c.test_id == t.summary.id]
+    records = st.certificates(test_id=t.summary.id)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
            "instruments": range(1, INSTRUMENTS + 1),
            "unit": _unit(ev.evaluation.deviation_unit)}
@@ -104,7 +105,8 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
                        **{f"tol_{p}": f"{v:g}" for p, v in tolerances.items()}}
         _verdict(ctx, ev, cfg, tolerances, inputs.get("rule"))
     else:
-        ctx["form"] = _defaults(load_config(None), params) if values is None else values
+        ctx["form"] = values if values is not None else \
+            _defaults(load_config(None) if cfg is None else cfg, params)
     return ctx
 
 
