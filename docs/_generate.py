@@ -31,7 +31,8 @@ def _param_rows(command, ctx) -> list[tuple[str, str]]:
             continue
         option = p.param_type_name == "option"     # typer vendors click: no isinstance
         name = ", ".join(p.opts + p.secondary_opts) if option else p.human_readable_name
-        help_ = (getattr(p, "help", None) or "").replace("\n", " ")
+        # a help text escapes a literal "[table]" from Rich's markup with a backslash
+        help_ = (getattr(p, "help", None) or "").replace("\n", " ").replace("\\[", "[")
         default = p.default
         if option and not p.is_flag and default not in (None, (), []):
             help_ += f" [default: {default}]"
