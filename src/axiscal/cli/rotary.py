@@ -227,21 +227,23 @@ def _budget_data(alpha, beta, omega, accuracy, base) -> dict:
 
 
 def render_rotary(result, title: str) -> None:
+    from rich.markup import escape
     from rich.table import Table
 
     from axiscal.cli._common import console
     from axiscal.cli.iso230_2 import render_result
+    from axiscal.standards.positioning_standards import parameter_label
 
     con = console()
     render_result(result.result, result.capture.dataset, title=title, console=con)
     s = result.summary()
-    t = Table(title="Measured beside the truth [arcsec]", title_justify="left")
+    t = Table(title=escape("Measured beside the truth [arcsec]"), title_justify="left")
     for c in ("parameter", "measured", "true", "difference"):
         t.add_column(c, justify="right" if c != "parameter" else "left")
     for k, m in s["measured"].items():
         tv = s["truth"][k]
         if m is not None and tv is not None:
-            t.add_row(k, f"{m:.2f}", f"{tv:.2f}", f"{m - tv:+.2f}")
+            t.add_row(parameter_label(k), f"{m:.2f}", f"{tv:.2f}", f"{m - tv:+.2f}")
     con.print(t)
     con.print(str(result.setup))
     if result.optics is not None:

@@ -71,6 +71,7 @@ def render_simulation(sim) -> None:
 
     from axiscal.cli._common import console
     from axiscal.cli.iso230_2 import render_result
+    from axiscal.standards.positioning_standards import parameter_label
 
     con = console()
     render_result(sim.result, sim.dataset)
@@ -81,7 +82,7 @@ def render_simulation(sim) -> None:
     params = sim.result.parameters()
     for k, v in sim.truth.items():
         m = sim.result.R if k == "R_expected" else params.get(k)
-        name = "R (expected 4σ+|b|)" if k == "R_expected" else k.replace("_up", "↑").replace("_down", "↓")
+        name = "R (expected 4σ+|b|)" if k == "R_expected" else parameter_label(k)
         if m is None:
             continue
         t.add_row(name, f"{m:.2f}", f"{v:.2f}", f"{m - v:+.2f}")

@@ -166,8 +166,10 @@ def write_positioning_report(path, dataset, result, title: str | None = None, ve
     return positioning_report(dataset, result, title, verdicts).write(path)
 
 
-def positioning_report(dataset, result, title: str | None = None, verdicts=()) -> Report:
-    """Build (without writing) the ISO 230-2 report of one positioning test."""
+def positioning_report(dataset, result, title: str | None = None, verdicts=(), *,
+                       truth=None) -> Report:
+    """Build (without writing) the ISO 230-2 report of one positioning test; ``truth``
+    (positions, systematic deviation) of a simulation is drawn in its figure as a dashed line."""
     from axiscal.report.plots import iso230_2_figure
 
     md = dataset.metadata
@@ -198,9 +200,10 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=()) -
     if verdicts:
         add_acceptance(rep, verdicts, u, _PARAM_LABEL)
     rep.add_warnings(result.warnings)
-    rep.add_figure(iso230_2_figure(result, dataset),
+    rep.add_figure(iso230_2_figure(result, dataset, truth=truth),
                    f"Mean deviation per direction with ±2s bands and every run's readings "
-                   f"({u} against target in {unit_label(result.target_unit)}).")
+                   f"({u} against target in {unit_label(result.target_unit)})"
+                   + ("; dashed: the mean deviation the simulation knew." if truth else "."))
     rep.add_heading("Per target")
     headers = [f"Target [{unit_label(result.target_unit)}]", "n↑",
                *(f"{h} [{u}]" for h in ("x̄↑", "s↑")), "n↓",

@@ -64,9 +64,14 @@ def any_simulation_figure(kind: str, test: Any, name: str = "") -> Any:
         return simulation_figure(test, name)
     from axiscal.report.plots import iso230_2_figure
 
-    truth = (test.plan.targets, 0.5 * (test.truth_up + test.truth_down)
-             if test.plan.bidirectional else test.truth_up)
-    return iso230_2_figure(test.result, test.dataset, truth=truth)
+    return iso230_2_figure(test.result, test.dataset, truth=_truth_line(test))
+
+
+def _truth_line(test: Any) -> tuple:
+    """(targets, systematic deviation) the simulation knew: the mean of both directions when
+    bidirectional, as the ISO 230-2 figure draws it."""
+    return (test.plan.targets, 0.5 * (test.truth_up + test.truth_down)
+            if test.plan.bidirectional else test.truth_up)
 
 
 def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "") -> Path:
@@ -79,7 +84,7 @@ def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "")
         return write_simulation_report(test, path, name)
     from axiscal.report.html import positioning_report
 
-    rep = positioning_report(test.dataset, test.result)
+    rep = positioning_report(test.dataset, test.result, truth=_truth_line(test))
     rep.simulation = True
     add_truth_section(rep, test)
     return Path(rep.write(path))
@@ -88,15 +93,19 @@ def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "")
 def add_truth_section(rep: Any, sim: Any) -> None:
     """Add "evaluation beside the truth" to the report of a simulated positioning test: each
     ISO 230-2:2014 parameter measured beside the one the injected errors imply without noise."""
-    from axiscal.report.html import _PARAM_LABEL
+    from axiscal.report.html import _PARAM_LABEL, unit_label
 
     rep.add_heading("Evaluation beside the truth of the simulation")
     rep.add_text("The simulated axis's injected errors imply the figures below without noise; "
                  "the measured figures differ by the repeatability noise of a 5-run test.")
     rows = [[_PARAM_LABEL[k], sim.result.parameters()[k], v]
             for k, v in sim.truth.items() if k != "R_expected"]
-    rows.append(["R (4σ + |b|)", sim.result.R, sim.truth.get("R_expected")])
-    rep.add_table(["Parameter", "Measured", "Truth"], rows, digits=2)
+    rows.append(["R (truth: 4σ + |b|)", sim.result.R, sim.truth.get("R_expected")])
+    u = unit_label(sim.result.deviation_unit)
+    rep.add_table(["Parameter", f"Measured [{u}]", f"Truth [{u}]"], rows, digits=2,
+                  caption="σ: the simulated repeatability (standard deviation of a reading); "
+                          "b: the simulated backlash; ISO 230-2:2014 clause 3 gives R as "
+                          "max(2s↑ + 2s↓ + |B_i|, 4s↑, 4s↓).")
 
 
 def simulation_figure(run: Any, name: str = "") -> Any:
