@@ -84,9 +84,10 @@ def test_a_command_loads_only_its_own_command_module(tmp_path):
     assert commands == ["axiscal.cli.iso230_2"]
 
 
-@pytest.mark.parametrize("args", [["--version"], ["iso230-2", "--help"], ["evaluate", "--help"]])
+@pytest.mark.parametrize("args", [["--version"], ["--help"], ["iso230-2", "--help"],
+                                  ["evaluate", "--help"]])
 def test_version_and_help_load_no_numpy(tmp_path, args):
-    """``--version`` and a command's ``--help`` compute nothing: NumPy is not loaded."""
+    """``--version`` and the help compute nothing: NumPy is not loaded."""
     modules, r = _modules(tmp_path, *args)
     assert r.returncode == 0, r.stderr
     assert "numpy" not in modules
@@ -99,3 +100,34 @@ def test_iso230_2_is_one_of_the_positioning_standards():
     from axiscal.standards.positioning_standards import STANDARDS
 
     assert ISO230_2 in STANDARDS and STANDARDS[ISO230_2].title == "ISO 230-2:2014"
+
+
+def test_the_root_help_loads_no_command_module(tmp_path):
+    """``axiscal --help`` lists the commands from ``axiscal.cli.SUMMARIES``: no command module
+    is imported to draw it."""
+    modules, r = _modules(tmp_path, "--help")
+    assert r.returncode == 0, r.stderr
+    assert "iso230-2" in r.stdout and "volumetric" in r.stdout
+    assert [m for m in modules if m.startswith("axiscal.cli.")
+            and not m.rpartition(".")[2].startswith("_")] == []
+
+
+def test_the_listed_help_is_each_commands_own(monkeypatch):
+    """Each entry of ``SUMMARIES`` is the first paragraph of its command's help (what the
+    list shows), and the root help drawn from the table is the one drawn from the commands."""
+    import inspect
+
+    from typer.testing import CliRunner
+
+    from axiscal import cli
+
+    assert set(cli.SUMMARIES) == set(cli.COMMANDS)
+    for name in cli.COMMANDS:
+        cmd = cli._load_command(name)
+        own = inspect.cleandoc(cmd.short_help or cmd.help or "").split("\n\n")[0]
+        assert cli.SUMMARIES[name] == own, f"axiscal.cli.SUMMARIES[{name!r}] is not its help"
+    listed = CliRunner().invoke(cli.app, ["--help"], env={"COLUMNS": "200"})
+    monkeypatch.setattr(cli, "SUMMARIES", {})          # every command loaded to be listed
+    loaded = CliRunner().invoke(cli.app, ["--help"], env={"COLUMNS": "200"})
+    assert listed.exit_code == loaded.exit_code == 0
+    assert listed.output == loaded.output

@@ -54,6 +54,65 @@ COMMANDS: dict[str, str] = {
     "ballbar": "axiscal.cli.ballbar",
 }
 
+#: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
+#: drawn from here, without importing the command modules (tests/cli/test_cli_startup.py
+#: checks each entry against its command's own help).
+SUMMARIES: dict[str, str] = {
+    "iso230-2":
+        "Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target),\n"
+        "with its uncertainty (ISO 230-2 Annex A) and, with tolerances, ISO 14253-1 decisions.",
+    "evaluate": "Evaluate a positioning test by a named standard, or by all of them side by side.",
+    "plan": "Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
+    "simulate": "Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.",
+    "demo":
+        "Run the demonstration: linear and rotary positioning tests and a full rotary "
+        "calibration, simulated, evaluated and reported.",
+    "motion":
+        "Five motion errors of a rotary axis at once (Optics Express 2018, Five-DOF motion "
+        "errors of a rotary axis) and ISO 230-7 error motion evaluation.",
+    "straightness":
+        "Straightness deviation and slope of one trajectory (ISO 230-1 reference lines).",
+    "squareness":
+        "Squareness between two linear axes by ISO 230-1, -4 and -6; every result gives the "
+        "sign of Chapman, Calibration of machine squareness (positive when the angle exceeds "
+        "90°) and the ISO 230-1 datum/referred-axis sign.",
+    "compensate":
+        "Write compensation tables for CNC controllers, read them back, or verify them by "
+        "re-measuring.",
+    "rotary":
+        "Rotary-axis calibration with an angular interferometer and a counter-rotating "
+        "reference calibrator (Renishaw, Interferometric calibration of rotary axes).",
+    "air": "Refractive index of air, wavelength in air and compensation factor (Ciddor, Edlén).",
+    "scale":
+        "Laser scale with an environmental compensator: referencing, gantry homing, "
+        "compensation factor (Renishaw, Laser scale axis referencing).",
+    "compensate-environment":
+        "Compensate raw laser readings for the air (Ciddor) and refer the axis to 20 °C "
+        "(ISO 1).",
+    "capture":
+        "Take a positioning test from a continuous record with no trigger: stops found, "
+        "matched.",
+    "formats": "Every file format axiscal reads and writes, with an example file each.",
+    "serve": "Serve the web workbench: machines, history, upload, compare, trend, tables, plans.",
+    "history":
+        "Calibration history: every machine, axis, test, result and table kept, compared and "
+        "trended (SQLite by default, PostgreSQL with --db).",
+    "certificate":
+        "The certificate register: numbers, issued documents and amendments "
+        "(ISO/IEC 17025:2017 §7.8.8) kept in the calibration history.",
+    "volumetric":
+        "Volumetric accuracy of a three-axis machine: the 21 geometric errors (ISO 230-1) "
+        "mapped by the rigid-body model (ISO/TR 16907), compensated by tables, verified on the "
+        "body diagonals (ISO 230-6). Format: README, 'Volumetric configuration'.",
+    "config": "Show the user configuration (company, operator, instruments, uncertainty inputs).",
+    "ballbar":
+        "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "
+        "machine squareness, Method 4: every separable machine error, ranked, with advice.",
+}
+
+#: ``ctx.meta`` key set while the root's help is drawn (commands listed, not loaded).
+_LISTING = "axiscal.listing"
+
 
 class AxiscalGroup(typer.core.TyperGroup):
     """Top-level group: lazy command modules, and library errors as one line with exit code 2."""
@@ -63,8 +122,18 @@ class AxiscalGroup(typer.core.TyperGroup):
 
     def get_command(self, ctx, name):  # noqa: D401 - click API
         if name in COMMANDS:
+            if ctx is not None and ctx.meta.get(_LISTING) and name in SUMMARIES:
+                return typer.core.TyperCommand(name, help=SUMMARIES[name])   # listed only
             return _load_command(name)
         return super().get_command(ctx, name)
+
+    def format_help(self, ctx, formatter):  # noqa: D401 - click API
+        """The root's help lists every command from :data:`SUMMARIES`, importing none."""
+        ctx.meta[_LISTING] = True
+        try:
+            return super().format_help(ctx, formatter)
+        finally:
+            del ctx.meta[_LISTING]
 
     def parse_args(self, ctx, args):  # noqa: D401 - click API
         for arg in args:
