@@ -30,3 +30,21 @@ def test_rotary_simulate_truth_table_has_its_unit_and_symbols():
     truth = r.output.split("Measured beside the truth [arcsec]")[1].split("set-up check")[0]
     assert "A↑" in truth and "B mean" in truth
     assert "A_up" not in truth and "B_mean" not in truth
+
+
+def test_compensation_loop_table_keeps_its_unit_and_symbols():
+    """``compensate --verify`` of a rotary axis: the title's "[arcsec]" was swallowed by Rich's
+    markup and the rows were named A_up, B_mean."""
+    r = CliRunner().invoke(app, ["compensate", "--verify",
+                                 str(ROOT / "examples/compensation_rotary.toml")], env=ENV)
+    assert r.exit_code == 0, r.output
+    assert "ISO 230-2 before and after [arcsec]" in r.output
+    table = r.output.split("before and after [arcsec]")[1].split("E fell by")[0]
+    assert "A↑" in table and "B mean" in table and "A_up" not in table
+
+
+def test_rotary_budget_tables_keep_the_unit_of_alpha_and_beta():
+    """``rotary budget``: the corner header "β \\ α [mrad]" lost "[mrad]" to Rich's markup."""
+    r = CliRunner().invoke(app, ["rotary", "budget", "--alpha", "0.62", "--beta", "1.23"], env=ENV)
+    assert r.exit_code == 0, r.output
+    assert r.output.count("β \\ α [mrad]") == 2

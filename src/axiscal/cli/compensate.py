@@ -527,19 +527,23 @@ def _render_table(cf, out, json_out) -> None:
 
 
 def _render_loop(r) -> None:
+    from rich.markup import escape
     from rich.table import Table
 
     from axiscal.cli._common import console
+    from axiscal.standards.positioning_standards import parameter_label
 
     u = {"um": "µm"}.get(r.unit, r.unit)
     con = console()
     con.print(f"Compensation loop: {r.controller_file.controller} table, {r.table.n_points} points "
               f"every {r.table.spacing:g} {r.table.position_unit}, written, read back and applied")
-    t = Table(title=f"ISO 230-2 before and after [{u}]", title_justify="left")
+    title = f"ISO 230-2 before and after [{u}]"
+    t = Table(title=escape(title), title_justify="left", min_width=len(title))
     for c in ("parameter", "before", "after"):
         t.add_column(c, justify="left" if c == "parameter" else "right")
     for k, b, a in r.rows():
-        t.add_row(k, "n/a" if b is None else f"{b:.3f}", "n/a" if a is None else f"{a:.3f}")
+        t.add_row(parameter_label(k), "n/a" if b is None else f"{b:.3f}",
+                  "n/a" if a is None else f"{a:.3f}")
     con.print(t)
     con.print(f"E fell by {100 * r.reduction:.1f} % ({r.before.E:.3f} → {r.after.E:.3f} {u}).")
     con.print(f"Budget for E after: {r.budget_E:.3f} {u} = table/target spacing {r.spacing_residual:.3f} "

@@ -109,6 +109,7 @@ def budget(
     if json_out:
         print_json(data)
         return
+    from rich.markup import escape
     from rich.table import Table
 
     from axiscal.cli._common import console
@@ -146,7 +147,7 @@ def budget(
     for title, rows in (("Model: base + eq. 1 peak [± arcsec]", tab["accuracy_arcsec"]),
                         (f"{_DOC}, Figure 22 [± arcsec]", tab["published_figure22_arcsec"])):
         t = Table(title=title, title_justify="left")
-        t.add_column("β \\ α [mrad]")
+        t.add_column(escape("β \\ α [mrad]"))   # Rich would take [mrad] for markup
         for a in tab["alpha_mrad"]:
             t.add_column(f"{a:g}", justify="right")
         for b, row in zip(tab["beta_mrad"], rows):
