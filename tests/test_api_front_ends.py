@@ -142,6 +142,10 @@ def test_iso230_2_with_job_and_drift_check_equals_the_api(laser_file, tmp_path):
     assert ev.to_dict() == cli and ev.conformance_proven is True
     assert cli["uncertainty_budget"]["inputs"]["e_ve"]["value"] == pytest.approx(0.30)
     assert ev.config["uncertainty"]["beam_offset"] == 0.05
+    as_dict = axiscal.evaluate(laser_file, job={"uncertainty": {"beam_offset": 0.05}},
+                               drift_check=drift, uncertainty={"reference": "encoder"},
+                               tolerances={"E": 100.0})
+    assert as_dict.to_dict() == cli                     # the job's tables as a dict
     with pytest.raises(axiscal.errors.InputError, match="given twice"):
         axiscal.evaluate(laser_file, drift_check=drift, uncertainty={"e_ve": 1.0})
 

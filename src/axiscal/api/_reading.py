@@ -77,7 +77,8 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
              tolerances: Mapping[str, float] | None = None,
              rule: str | None = None,
              uncertainty: Mapping[str, float | str] | None = None,
-             job: PathLike | None = None, drift_check: PathLike | None = None,
+             job: PathLike | Mapping[str, Any] | None = None,
+             drift_check: PathLike | None = None,
              full_turn: str = "separate", form: str | None = None,
              feed: float | None = None, plane: str | None = None) -> "Evaluation":
     """Evaluate a dataset (or a data file) by its standard.
@@ -102,9 +103,10 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
         NAME=VALUE`` (e.g. ``{"e_ve": 0.3}``: the environmental variation error of a drift
         check, Annex A.5). Every input not given is shown as assumed in
         ``to_dict()["uncertainty_budget"]``.
-    job : str or Path, optional
+    job : str, Path or mapping, optional
         ISO 230-2:2014: the job file (TOML) over the user configuration, as ``--job``: its
-        ``[uncertainty]``, ``[tolerance]``, decision rule and certificate items.
+        ``[uncertainty]``, ``[tolerance]``, decision rule and certificate items; or the same
+        tables as a dict (read as its TOML text would be).
     drift_check : str or Path, optional
         ISO 230-2:2014: a drift-check file; E_VE of the budget is the range of its readings,
         measured (ISO 230-2:2014 Annex A.5), as ``--drift-check``.
@@ -145,6 +147,11 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
             from axiscal.errors import InputError
 
             raise InputError(f"form {form!r}: one of {', '.join(FORMS)}")
+        if isinstance(job, Mapping):
+            from axiscal._schema import loads_toml
+            from axiscal.api._config import SOURCE, toml_text
+
+            job = loads_toml(toml_text(job), SOURCE)
         return Evaluation(**positioning_evaluation(
             data, key, dict(tolerances or {}), rule, dict(uncertainty or {}), form=how, job=job,
             drift_check=drift_check, full_turn=full_turn))

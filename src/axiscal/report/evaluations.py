@@ -171,7 +171,12 @@ def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict, jo
     from axiscal.standards.iso230_2 import evaluate as iso_evaluate
 
     result = iso_evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
-    cfg = load_config(None if job is None else Path(job))
+    if isinstance(job, dict):   # a job's tables already read (axiscal.api: a dict job)
+        from axiscal.io.user_config import merge
+
+        cfg = merge(load_config(None), job)
+    else:
+        cfg = load_config(None if job is None else Path(job))
     if uncertainty or drift_check is not None:
         table = dict(cfg.get("uncertainty") or {})
         if drift_check is not None:
