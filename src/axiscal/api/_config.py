@@ -22,7 +22,8 @@ def toml_text(config: Mapping[str, Any]) -> str:
 
     Examples
     --------
-    >>> print(toml_text({"test": {"step_deg": 45}, "axis": {"positioning": {"harmonics": [[1, 10.0, 0.0]]}}}))
+    >>> cfg = {"test": {"step_deg": 45}, "axis": {"positioning": {"harmonics": [[1, 10.0, 0.0]]}}}
+    >>> print(toml_text(cfg))
     [test]
     step_deg = 45
     <BLANKLINE>
@@ -56,7 +57,8 @@ def _table(d: Mapping[str, Any], path: tuple, lines: list[str]) -> None:
         elif _is_table_array(v):
             for item in v:
                 lines.append(f"[[{'.'.join(_key(p) for p in (*path, k))}]]")
-                lines.extend(f"{_key(ik)} = {_value(iv, (*path, k, ik))}" for ik, iv in item.items())
+                lines.extend(f"{_key(ik)} = {_value(iv, (*path, k, ik))}"
+                             for ik, iv in item.items())
                 lines.append("")
 
 
