@@ -48,3 +48,15 @@ def test_rotary_budget_tables_keep_the_unit_of_alpha_and_beta():
     r = CliRunner().invoke(app, ["rotary", "budget", "--alpha", "0.62", "--beta", "1.23"], env=ENV)
     assert r.exit_code == 0, r.output
     assert r.output.count("β \\ α [mrad]") == 2
+
+
+def test_config_is_shown_as_its_file_writes_it(tmp_path):
+    """``axiscal config`` after ``--init`` printed each table as a Python dict
+    ("[company] {'name': ...}"); it is shown as TOML-like ``key = value`` lines."""
+    env = {**ENV, "AXISCAL_CONFIG": str(tmp_path / "config.toml")}
+    r = CliRunner().invoke(app, ["config", "--init"], env=env)
+    assert r.exit_code == 0, r.output
+    assert "{'" not in r.output
+    assert '[company]\n  name = "Your Calibration Company Ltd"' in r.output
+    assert "[[instrument]]\n  name = \"Laser interferometer\"" in r.output
+    assert "[uncertainty]\n  (none declared: the uncertainty budget assumes each input" in r.output

@@ -41,8 +41,35 @@ def config(
         print_json({"path": str(path), "exists": path.exists(), "config": cfg})
         return
     typer.echo(f"user configuration: {path}" + ("" if path.exists() else " (absent; axiscal config --init writes a template)"))
-    for table, value in cfg.items():
-        typer.echo(f"[{table}] {value}")
+    for line in _config_lines(cfg):
+        typer.echo(line)
+
+
+def _config_lines(cfg: dict) -> list[str]:
+    """The configuration as its file writes it: ``[table]`` then ``key = value`` lines, each
+    ``[[instrument]]`` on its own (the tables printed as Python dicts were hard to read)."""
+    import json
+
+    def value(v) -> str:
+        return json.dumps(v, ensure_ascii=False, default=str)
+
+    lines: list[str] = []
+    for table, body in cfg.items():
+        items = body if isinstance(body, list) else [body]
+        for item in items:
+            lines.append(f"[[{table}]]" if isinstance(body, list) else f"[{table}]")
+            if not isinstance(item, dict):
+                lines.append(f"  {value(item)}")
+            elif not item:
+                lines.append(f"  ({_EMPTY.get(table, 'empty')})")
+            else:
+                lines.extend(f"  {k} = {value(v)}" for k, v in item.items())
+    return lines
+
+
+#: What an empty table means, said where it is shown.
+_EMPTY = {"uncertainty": "none declared: the uncertainty budget assumes each input by its "
+                         "documented rule, except E_VE, which U then leaves out"}
 
 
 def register(app: typer.Typer) -> None:
