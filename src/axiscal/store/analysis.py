@@ -178,11 +178,12 @@ class Comparison:
                 "target_unit": self.target_unit, "unit": self.unit}
 
     def __str__(self) -> str:
-        lines = [f"{'parameter':<16}{'test ' + str(self.first):>14}{'test ' + str(self.second):>14}"
-                 f"{'change':>12}"]
+        w = max([16, *(len(n) + 2 for n, *_ in self.rows)])   # "iso230-2:2006:R_down" too
+        lines = [f"{'parameter':<{w}}{'test ' + str(self.first):>14}"
+                 f"{'test ' + str(self.second):>14}{'change':>12}"]
         for n, a, b, c, u in self.rows:
             f = (lambda v: "—" if v is None else f"{v:.3f}")
-            lines.append(f"{n:<16}{f(a):>14}{f(b):>14}{f(c):>12} {u}")
+            lines.append(f"{n:<{w}}{f(a):>14}{f(b):>14}{f(c):>12} {u}")
         return "\n".join(lines)
 
 
