@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 import axiscal
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -32,3 +34,21 @@ def test_history_compare_keeps_its_columns_for_long_parameter_names():
     lines = str(c).splitlines()
     ends = {len(line.rsplit(" ", 1)[0]) for line in lines[1:]}   # the change column's right edge
     assert len(ends) == 1 and len(lines[0]) == ends.pop(), str(c)
+
+
+def test_trend_of_tests_stored_on_one_day_estimates_no_drift():
+    """``axiscal history trend`` on the demo's history (three tests stored seconds apart, their
+    files giving no date) printed "drift -3.771e+06 ± 7.9e+06 um/year"; a test's date is a day,
+    so they are one date and no drift is estimated."""
+    import datetime as dt
+
+    from axiscal.store.analysis import fit_trend
+
+    day = dt.datetime(2026, 11, 25, 2, 25, 1)
+    dates = [day, day + dt.timedelta(seconds=4), day + dt.timedelta(seconds=9)]
+    t = fit_trend("E", dates, [11.916, 12.934, 1.099], "um", tolerance=15)
+    assert t.drift is None and t.crossing is None
+    assert "no drift estimate: the tests were all taken on one date" in str(t)
+    later = fit_trend("E", [day, day + dt.timedelta(days=200), day + dt.timedelta(days=400)],
+                      [5.0, 6.0, 7.0], "um")
+    assert later.drift == pytest.approx(365.25 / 200)      # 1 µm per 200 days, in µm a year

@@ -91,7 +91,7 @@ class Trend:
         elif len(self.values) < 3:
             lines.append("  no drift estimate: three tests at least are needed")
         else:
-            lines.append("  no drift estimate: the tests were all taken at the same time; a "
+            lines.append("  no drift estimate: the tests were all taken on one date; a "
                          "drift needs tests on different dates")
         if self.tolerance is not None and self.drift is not None:
             if self.crossing is not None:
@@ -131,7 +131,9 @@ def fit_trend(parameter: str, dates, values, unit: str, tolerance: float | None 
         return Trend(drift=None, u_drift=None, level=None, crossing=None,
                      u_crossing_days=None, recalibrate_by=None, **base)
     t0 = dates[0]
-    t = np.array([(d - t0).total_seconds() / _YEAR for d in dates])
+    # a test's date is a day: tests stored minutes apart on one day (no date in their files)
+    # are one date, not a drift of millions of µm a year
+    t = np.array([(d.toordinal() - t0.toordinal()) * 86400.0 / _YEAR for d in dates])
     tm = t.mean()
     x = t - tm
     sxx = float((x ** 2).sum())
