@@ -24,6 +24,7 @@ BALLBAR = ROOT / "examples" / "squareness_ballbar_150mm.csv"
 SCALE_SINGLE = ROOT / "examples" / "scale_single.toml"
 SCALE_GANTRY = ROOT / "examples" / "scale_gantry.toml"
 MOTION = ROOT / "examples" / "motion_indexing_table.toml"
+BALLBAR_SIM = ROOT / "examples" / "ballbar_sim.toml"
 runner = CliRunner()
 
 
@@ -78,6 +79,7 @@ COMMANDS = [
     (["compensate", "{laser}", "--controller", "csv", "--json"],
      ("compensation_table", "write_table")),
     (["simulate", str(DEMO_LINEAR), "--json"], ("simulate",)),
+    (["ballbar", "simulate", str(BALLBAR_SIM), "--json"], ("simulate",)),
     (["volumetric", "map", "{vol}", "--grid", "3", "--json"], ("volumetric_map",)),
     (["volumetric", "compensate", "{vol}", "--controller", "csv", "--json"],
      ("volumetric_compensation",)),
@@ -198,19 +200,21 @@ def test_simulate_report_and_rtl_equal_the_command(tmp_path):
 # -- dict configurations, checked by the file's schema ----------------------------------------
 @pytest.mark.parametrize("path, kind", [(SCALE_SINGLE, "scale-homing"),
                                         (SCALE_GANTRY, "gantry-homing"),
-                                        (MOTION, "five-dof"), (DEMO_LINEAR, "positioning")])
+                                        (MOTION, "five-dof"), (DEMO_LINEAR, "positioning"),
+                                        (BALLBAR_SIM, "ballbar")])
 def test_a_dict_configuration_equals_its_file(path, kind):
     """The TOML file's tables as a dict give the same run as the file, for every kind."""
     cfg = tomllib.loads(path.read_text("utf-8"))
     from_dict, from_file = axiscal.simulate(cfg, seed=5), axiscal.simulate(path, seed=5)
     assert from_dict.kind == from_file.kind == kind
     d, f = from_dict.to_dict(), from_file.to_dict()
-    if "config" in f:                       # five-DOF names its configuration
+    if "config" in f:                       # five-DOF and ballbar name their configuration
         assert (d.pop("config"), f.pop("config")) == ("<dict>", str(path))
     assert d == f
 
 
-@pytest.mark.parametrize("path, table", [(SCALE_SINGLE, "compensator"), (MOTION, "test")])
+@pytest.mark.parametrize("path, table", [(SCALE_SINGLE, "compensator"), (MOTION, "test"),
+                                         (BALLBAR_SIM, "servo")])
 def test_a_dict_with_an_unknown_key_is_refused_as_the_file_is(path, table, tmp_path):
     """An unknown key is named in the same words for a dict and a file (the schema's)."""
     from axiscal.errors import ConfigError
@@ -277,3 +281,23 @@ def test_import_of_the_api_package_stays_light():
             "assert 'axiscal.api._history' in sys.modules and 'axiscal.api._reading' not in "
             "sys.modules; assert sorted(a.__all__) == sorted(n for n in dir(a) if n in a.__all__)")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_ballbar_simulate_equals_the_api_and_analyze_reads_it(tmp_path):
+    """``axiscal.simulate`` of a [ballbar]/[servo] configuration is ``ballbar simulate``: the
+    same trace, byte for byte; its ``result`` is ``ballbar analyze`` of that trace (ISO
+    230-4:2005 and the diagnosis), and the injected squareness comes back."""
+    cli = _cli_json("ballbar", "simulate", BALLBAR_SIM, "--seed", 3, "--out",
+                    tmp_path / "cli.csv")
+    sim = axiscal.simulate(BALLBAR_SIM, seed=3)
+    assert sim.kind == "ballbar" and {**sim.to_dict(), "out": cli["out"]} == cli
+    assert (sim.write_data(tmp_path / "api.csv").read_bytes()
+            == (tmp_path / "cli.csv").read_bytes())
+    analyzed = _cli_json("ballbar", "analyze", tmp_path / "cli.csv")
+    assert sim.result.as_dict()["squareness_um_per_m"] == pytest.approx(   # the file holds
+        analyzed["squareness_um_per_m"], rel=1e-6)                         # rounded readings
+    assert analyzed["squareness_um_per_m"] == pytest.approx(20.0, abs=2.0)   # the truth
+    from matplotlib.figure import Figure
+
+    assert isinstance(sim.plot(), Figure)
+    assert "Ranked" in sim.report(tmp_path / "b.html").read_text("utf-8")

@@ -144,7 +144,8 @@ class Simulation:
         The seed it ran with (None: the configuration's).
     kind : str
         ``positioning``, ``rotary-calibration``, ``scale-homing``, ``gantry-homing``,
-        ``five-dof``, ``volumetric-map``, ``volumetric-compensation`` or ``environment``.
+        ``five-dof``, ``ballbar``, ``volumetric-map``, ``volumetric-compensation`` or
+        ``environment``.
     name : str
         The configuration's (or raw file's) name, in the figure's and the report's titles.
     """
@@ -156,18 +157,24 @@ class Simulation:
 
     @property
     def dataset(self) -> Any:
-        """The simulated readings (a PositioningDataset; five-DOF: the MotionErrorData; an
-        environmental compensation: the compensated test; scale homing and a volumetric map:
-        None)."""
+        """The simulated readings (a PositioningDataset; five-DOF: the MotionErrorData;
+        ballbar: the BallbarData; an environmental compensation: the compensated test; scale
+        homing and a volumetric map: None)."""
         if self._run:
             return self.test.parts.get("dataset", self.test.parts.get("data"))
         return self.test.capture.dataset if self._rotary else self.test.dataset
 
     @property
     def result(self) -> Any:
-        """Their evaluation: ISO 230-2:2014 (positioning, rotary), ISO 230-7:2015 (five-DOF);
-        the library's record for the other kinds (``ReferencingRun``, ``TwinHomingResult``,
-        ``VolumetricMap``, ``VolumetricTables``, ``ReadingCorrections``)."""
+        """Their evaluation: ISO 230-2:2014 (positioning, rotary), ISO 230-7:2015 (five-DOF),
+        the ballbar diagnosis with ISO 230-4:2005 (ballbar, as ``ballbar analyze`` of the
+        simulated file); the library's record for the other kinds (``ReferencingRun``,
+        ``TwinHomingResult``, ``VolumetricMap``, ``VolumetricTables``,
+        ``ReadingCorrections``)."""
+        if self.kind == "ballbar":
+            from axiscal.store.kinds import evaluate_ballbar
+
+            return evaluate_ballbar(self.test.record)
         if self._run:
             return self.test.parts.get("result", self.test.record)
         return self.test.result
@@ -183,7 +190,7 @@ class Simulation:
     def to_dict(self) -> dict:
         """The object of the command's ``--json``: ``axiscal simulate`` (the ISO 230-2 keys,
         ``truth``, ``seed``), ``rotary simulate``, ``scale home``, ``scale gantry``, ``motion
-        simulate``, ``volumetric map``, ``volumetric compensate`` or
+        simulate``, ``ballbar simulate``, ``volumetric map``, ``volumetric compensate`` or
         ``compensate-environment``."""
         from axiscal.io.simulation_results import simulation_dict
 
@@ -209,7 +216,8 @@ class Simulation:
     def write_data(self, path: PathLike) -> Path:
         """Write the simulated readings as ``axiscal simulate --data`` does (``.csv`` tidy CSV,
         ``.json``, or Renishaw ``.rtl``/``.rta``; five-DOF: the ``.csv`` of ``motion simulate
-        --csv``), so they can be read back like an instrument's file."""
+        --csv``; ballbar: the ``.csv`` of ``ballbar simulate --out``), so they can be read
+        back like an instrument's file."""
         from axiscal.io.simulation_results import write_simulated_data
 
         return write_simulated_data(self.kind, self.dataset, path)

@@ -32,13 +32,16 @@ def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None
         scale axis referencing"); ``[instrument]``, ``[mounting]``, ``[reference]``,
         ``[drift]`` or ``[axis.positioning]`` ... the five motion errors of a rotary axis and
         ISO 230-7:2015 (``motion simulate``; Optics Express 2018, "Five-DOF motion errors of a
-        rotary axis"); otherwise a positioning test by ISO 230-2:2014 (``axiscal simulate``).
+        rotary axis"); ``[ballbar]`` or ``[servo]`` a CW + CCW circular test by ISO 230-4:2005
+        (``ballbar simulate``; Chapman, "Calibration of machine squareness", Method 4);
+        otherwise a positioning test by ISO 230-2:2014 (``axiscal simulate``).
     seed : int, optional
         Seed of the simulation; the same seed gives the same readings. Default as the
-        commands: 1 for a positioning test, otherwise the configuration's.
+        commands: 1 for a positioning test, 0 for a ballbar test, otherwise the
+        configuration's.
     kind : str, optional
-        ``positioning``, ``rotary-calibration``, ``scale-homing``, ``gantry-homing`` or
-        ``five-dof``, instead of telling it from the tables.
+        ``positioning``, ``rotary-calibration``, ``scale-homing``, ``gantry-homing``,
+        ``five-dof`` or ``ballbar``, instead of telling it from the tables.
 
     Returns
     -------
@@ -53,7 +56,7 @@ def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None
 
     cfg = _load_config(config)
     kind = kind or sr.simulation_kind(cfg)
-    if kind in ("scale-homing", "gantry-homing", "five-dof"):
+    if kind in ("scale-homing", "gantry-homing", "five-dof", "ballbar"):
         if isinstance(config, Mapping):
             from axiscal.api._config import SOURCE, toml_text
 

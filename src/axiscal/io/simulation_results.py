@@ -27,7 +27,8 @@ from typing import Any
 
 __all__ = ["SimulationRun", "scale_homing", "gantry_homing", "motion_simulation", "iso230_7_json",
            "volumetric_map", "simulated_volumetric_machine", "volumetric_tables_for",
-           "volumetric_compensation", "volumetric_linuxcnc", "write_controller_files",
+           "volumetric_compensation", "volumetric_linuxcnc", "ballbar_simulation",
+           "write_controller_files",
            "environment_compensation",
            "environment_options", "environment_json",
            "MOTION_CHANNELS", "TRUE_SQUARENESS_UM_PER_M", "SIMULATION_KINDS", "DOCUMENTS",
@@ -43,18 +44,20 @@ TRUE_SQUARENESS_UM_PER_M = (25.0, -15.0, 30.0)
 
 #: What :func:`axiscal.simulate` runs, by the name of its kind.
 SIMULATION_KINDS = ("positioning", "rotary-calibration", "scale-homing", "gantry-homing",
-                    "five-dof")
+                    "five-dof", "ballbar")
 #: The document each kind of run follows, shown with its results in a notebook.
 DOCUMENTS = {"rotary-calibration": 'Renishaw, "Interferometric calibration of rotary axes"',
              "scale-homing": 'Renishaw, "Laser scale axis referencing"',
              "gantry-homing": 'Renishaw, "Laser scale axis referencing"',
              "five-dof": "ISO 230-7:2015",
+             "ballbar": "ISO 230-4:2005",
              "volumetric-map": "ISO/TR 16907:2015 and ISO 230-6:2002",
              "volumetric-compensation": "ISO 230-1:2012 and ISO 230-6:2002",
              "environment": "Ciddor 1996 and ISO 1:2016"}
 _SCALE_TABLES = ("laser", "compensator", "switch", "homing")
 _MOTION_TABLES = ("instrument", "mounting", "reference", "drift")
 _MOTION_AXIS = ("positioning", "tilt_x", "tilt_y", "radial_x", "radial_y", "axial")
+_BALLBAR_TABLES = ("ballbar", "servo")
 
 
 def simulation_kind(cfg: dict) -> str:
@@ -67,6 +70,8 @@ def simulation_kind(cfg: dict) -> str:
         return "gantry-homing"
     if any(t in cfg for t in _SCALE_TABLES):
         return "scale-homing"
+    if any(t in cfg for t in _BALLBAR_TABLES):
+        return "ballbar"
     if any(t in cfg for t in _MOTION_TABLES) or (
             isinstance(axis, dict) and any(isinstance(axis.get(k), dict) for k in _MOTION_AXIS)):
         return "five-dof"
@@ -75,10 +80,15 @@ def simulation_kind(cfg: dict) -> str:
 
 def run_configured(kind: str, path: Any, seed: int | None = None,
                    text: str | None = None) -> "SimulationRun":
-    """Run a ``scale-homing``, ``gantry-homing`` or ``five-dof`` configuration file, as
-    ``axiscal scale home``, ``scale gantry`` and ``motion simulate`` do; ``text``: the
-    configuration's TOML instead of the file's (``path`` then only names it in messages), read
-    by the same schema."""
+    """Run a ``scale-homing``, ``gantry-homing``, ``five-dof`` or ``ballbar`` configuration
+    file, as ``axiscal scale home``, ``scale gantry``, ``motion simulate`` and ``ballbar
+    simulate`` do; ``text``: the configuration's TOML instead of the file's (``path`` then
+    only names it in messages), read by the same schema."""
+    if kind == "ballbar":
+        from axiscal.io.ballbar_config import parse_ballbar_config, read_ballbar_config
+
+        cfg = read_ballbar_config(path) if text is None else parse_ballbar_config(text, str(path))
+        return ballbar_simulation(cfg, 0 if seed is None else seed, str(path))
     if kind == "five-dof":
         from axiscal.io.motion import parse_motion_config, read_motion_config
 
@@ -365,6 +375,19 @@ def volumetric_linuxcnc(cfg: Any, tables: Any, *, verify: bool = False,
                          {"files": files, "verify": result, "config": cfg, "linuxcnc": comp})
 
 
+def ballbar_simulation(cfg: dict, seed: int, source: str) -> SimulationRun:
+    """``axiscal ballbar simulate``: a CW + CCW circular test (ISO 230-4:2005) of the
+    configured machine, servo and ballbar, in the format ``ballbar analyze`` reads; ``--json``
+    ``config``, ``out`` (None here: the command names the file it wrote), ``seed``, ``truth``
+    (the configuration as read, defaults filled in) and ``samples_per_run``."""
+    from axiscal.io.ballbar_config import simulate_configured
+
+    data = simulate_configured(cfg, seed, source)
+    d = {"config": source, "out": None, "seed": seed, "truth": cfg,
+         "samples_per_run": len(data.runs[0].angles)}
+    return SimulationRun("ballbar", data, d, {"data": data})
+
+
 def write_controller_files(files: list, out: Any) -> list[str]:
     """Write controller files (and their companions, renamed after their table when two
     tables have one) into the folder ``out``; the names written, in order."""
@@ -487,6 +510,8 @@ def write_simulated_data(kind: str, dataset: Any, path: Any) -> Any:
     fmt: Any
     if kind == "five-dof" and suffix == ".csv":
         from axiscal.io.motion import format_motion_errors as fmt
+    elif kind == "ballbar":     # the analyze format, whatever the name (--out of the command)
+        from axiscal.io.ballbar import format_ballbar as fmt
     elif kind not in ("positioning", "rotary-calibration"):
         raise InputError(f"write_data {path}: a {kind} run writes no readings here"
                          + (" (give a .csv file)" if kind == "five-dof" else ""))

@@ -125,6 +125,11 @@ def simulation_figure(run: Any, name: str = "") -> Any:
                                   title=f"Five motion errors — {run.parts['machine'] or name}")
     if run.kind == "volumetric-compensation":
         return _verify_figure(run, name)
+    if run.kind == "ballbar":
+        from axiscal.report.evaluations import kind_figure
+        from axiscal.store.kinds import evaluate_ballbar
+
+        return kind_figure("ballbar", run.record, evaluate_ballbar(run.record))
     if run.kind == "volumetric-map":
         from axiscal.report.volumetric_plots import volumetric_figure
 
@@ -148,6 +153,12 @@ def write_simulation_report(run: Any, path: Any, name: str = "") -> Path:
                              metadata={"Configuration": name, "Axis": p["axis"],
                                        "Drift compensation": run.json["compensated"]},
                              notes=[MOUNTING_NOTE]).write(path)
+    if run.kind == "ballbar":
+        from axiscal.report.ballbar_plots import write_diagnosis_report
+        from axiscal.store.kinds import evaluate_ballbar
+
+        return write_diagnosis_report(path, run.record.runs, evaluate_ballbar(run.record),
+                                      title=f"Ballbar diagnosis of a simulated test — {name}")
     if run.kind == "volumetric-map":
         from axiscal.report.volumetric_plots import volumetric_report
 
