@@ -60,3 +60,20 @@ def test_config_is_shown_as_its_file_writes_it(tmp_path):
     assert '[company]\n  name = "Your Calibration Company Ltd"' in r.output
     assert "[[instrument]]\n  name = \"Laser interferometer\"" in r.output
     assert "[uncertainty]\n  (none declared: the uncertainty budget assumes each input" in r.output
+
+
+def test_history_list_keeps_its_columns_for_a_long_machine_name(tmp_path):
+    """``axiscal history list`` of the demo: "Turntable TT-2 (simulated)" (26 characters) pushed
+    its axis, kind and result out of the 20-character column the other rows kept."""
+    import re
+
+    db = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    for name, f in (("VMC-800 (simulated)", "x"), ("Turntable TT-2 (simulated)", "y")):
+        r = CliRunner().invoke(app, ["history", "add", str(ROOT / f"examples/squareness_L180_{f}.csv"),
+                                     "--machine", name, "--db", db], env=ENV)
+        assert r.exit_code == 0, r.output
+    r = CliRunner().invoke(app, ["history", "list", "--db", db], env=ENV)
+    lines = r.output.splitlines()
+    assert len(lines) == 2
+    starts = {re.search(r" [XY] +straightness", line).start() for line in lines}
+    assert len(starts) == 1, r.output

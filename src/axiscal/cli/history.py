@@ -132,12 +132,15 @@ def list_(
         return
     if not rows:
         typer.echo("no stored test matches")
+    wm = max([20, *(len(t.machine) for t in rows)])   # columns stay aligned for long names
+    wa = max([4, *(len(t.axis) for t in rows)])
     for t in rows:
         key = next((k for k in ("E", "squareness", "straightness") if k in t.parameters), None)
         main = f"{key} {t.parameters[key][0]:.3f} {t.parameters[key][1]}" if key else ""
         date = f"{t.tested_at:%Y-%m-%d}" + ("" if t.date_known else "?")
-        typer.echo(f"{t.id:>6}  {date:<11} {t.machine:<20} {t.axis:<4} {t.kind:<13} {main:<22} "
-                   f"{t.filename}" + (f"  WITHDRAWN: {t.withdrawn}" if t.withdrawn else ""))
+        typer.echo(f"{t.id:>6}  {date:<11} {t.machine:<{wm}} {t.axis:<{wa}} {t.kind:<13} "
+                   f"{main:<22} {t.filename}"
+                   + (f"  WITHDRAWN: {t.withdrawn}" if t.withdrawn else ""))
 
 
 @app.command("show")
