@@ -351,6 +351,10 @@ class Store:
         return self.stored([digest]).get(digest)
 
     def _insert_all(self, s, items: list, now) -> list[AddResult]:
+        """Insert the tests not stored yet, with their parameters and tables (plain INSERTs on
+        the session's connection: the ORM's unit of work took 5 ms of CPU per test)."""
+        from sqlalchemy import insert
+
         from axiscal import __version__
         from axiscal.store.models import Parameter, Table, Test
 
@@ -358,27 +362,31 @@ class Store:
         axes = {}          # machines and axes made in one (sorted) order: no deadlock between two
         for m, a, k in sorted({(p.machine, p.axis, p.axis_kind) for p in items}):
             axes.setdefault((m, a), _get_or_create_axis(s, m, a, k, now))
-        made = {}
+        conn, made, params, tables = s.connection(), {}, [], []
         for p in items:
             if p.sha256 in stored or p.sha256 in made:
                 continue
-            t = Test(axis_id=axes[p.machine, p.axis].id, kind=p.kind, tested_at=p.tested_at,
-                     date_known=p.date_known, stored_at=now, instrument=p.instrument,
-                     operator=p.operator, note=p.note, filename=p.filename, sha256=p.sha256,
-                     raw=p.raw, dataset_json=p.dataset_json, result_json=p.result_json,
-                     environment_json=p.environment_json, axiscal_version=__version__)
-            t.parameters = [Parameter(name=n, value=v, unit=u) for n, v, u in p.parameters]
-            t.tables = [Table(controller=c, filename=f, text=x, created=now)
-                        for c, f, x in p.tables]
-            s.add(t)
-            made[p.sha256] = t
-        s.flush()
+            tid = conn.execute(insert(Test.__table__).values(
+                axis_id=axes[p.machine, p.axis], kind=p.kind, tested_at=p.tested_at,
+                date_known=p.date_known, stored_at=now, instrument=p.instrument,
+                operator=p.operator, note=p.note, filename=p.filename, sha256=p.sha256,
+                raw=p.raw, dataset_json=p.dataset_json, result_json=p.result_json,
+                environment_json=p.environment_json, axiscal_version=__version__,
+                withdrawn="")).inserted_primary_key[0]
+            made[p.sha256] = tid
+            params += [{"test_id": tid, "name": n, "value": v, "unit": u}
+                       for n, v, u in p.parameters]
+            tables += [{"test_id": tid, "controller": c, "filename": f, "text": x,
+                        "created": now} for c, f, x in p.tables]
+        for table, rows in ((Parameter.__table__, params), (Table.__table__, tables)):
+            if rows:                                  # in order: ids follow the file's order
+                conn.execute(insert(table), rows)
         out, seen = [], set()
         for p in items:
             if p.sha256 in stored:
                 out.append(stored[p.sha256])
             else:
-                out.append(AddResult(made[p.sha256].id, p.sha256 in seen, p.kind, p.machine,
+                out.append(AddResult(made[p.sha256], p.sha256 in seen, p.kind, p.machine,
                                      p.axis))
                 seen.add(p.sha256)
         return out
@@ -445,8 +453,8 @@ def _stored(s, digests: list) -> dict:
     return found
 
 
-def _get_or_create_axis(s, machine: str, axis: str, kind: str, now):
-    """The axis row, made with its machine if new; a row another process inserts at the same
+def _get_or_create_axis(s, machine: str, axis: str, kind: str, now) -> int:
+    """The axis row's id, made with its machine if new; a row another process inserts at the same
     moment is taken, not fought over (INSERT ... ON CONFLICT DO NOTHING, then SELECT: under
     PostgreSQL's READ COMMITTED the insert waits for the other transaction and the select then
     sees its row)."""
@@ -454,13 +462,17 @@ def _get_or_create_axis(s, machine: str, axis: str, kind: str, now):
 
     from axiscal.store.models import Axis, Machine
 
+    found = s.scalar(select(Axis.id).join(Machine, Axis.machine_id == Machine.id)
+                     .where(Machine.name == machine, Axis.name == axis))
+    if found is not None:                       # the usual case: one statement
+        return found
     insert = _dialect_insert(s)
     s.execute(insert(Machine).values(name=machine, maker="", model="", serial="", location="",
                                      created=now).on_conflict_do_nothing(index_elements=["name"]))
     m_id = s.scalar(select(Machine.id).where(Machine.name == machine))
     s.execute(insert(Axis).values(machine_id=m_id, name=axis, kind=kind)
               .on_conflict_do_nothing(index_elements=["machine_id", "name"]))
-    return s.scalars(select(Axis).where(Axis.machine_id == m_id, Axis.name == axis)).one()
+    return s.scalar(select(Axis.id).where(Axis.machine_id == m_id, Axis.name == axis))
 
 
 def _dialect_insert(s):
