@@ -52,3 +52,19 @@ def test_trend_of_tests_stored_on_one_day_estimates_no_drift():
     later = fit_trend("E", [day, day + dt.timedelta(days=200), day + dt.timedelta(days=400)],
                       [5.0, 6.0, 7.0], "um")
     assert later.drift == pytest.approx(365.25 / 200)      # 1 µm per 200 days, in µm a year
+
+
+def test_squareness_report_gives_U_as_the_terminal_does(tmp_path):
+    """``axiscal squareness circular ... --report``: the terminal said "U (k = 2) = 2.8 µm/m"
+    (two significant digits, rounded up, JCGM 100:2008 §7.2.6) and the report "2.72"."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    out = tmp_path / "circ.html"
+    r = CliRunner().invoke(app, ["squareness", "circular",
+                                 str(ROOT / "examples/squareness_ballbar_150mm.csv"),
+                                 "--report", str(out)])
+    assert r.exit_code == 0, r.output
+    assert "U (k = 2) = 2.8 µm/m" in r.output
+    assert "expanded uncertainty [µm/m]</td><td>2.8<" in out.read_text()

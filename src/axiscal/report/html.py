@@ -368,7 +368,7 @@ def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]
     with unit (:func:`axiscal.report.labels.label`) and its unit's decimals; a short list of
     numbers inline, a long one counted (``--json`` holds it whole). Nested objects and lists of
     objects are left to :func:`result_tables`."""
-    from axiscal.report.labels import label, quantity
+    from axiscal.report.labels import label, quantity, split_key
 
     rows: list[list[str]] = []
     for key, value in result.items():
@@ -380,8 +380,18 @@ def result_rows(result: dict, unit: str = "", axes=("X", "Y")) -> list[list[str]
             value = re.sub(r"\b[a-z0-9]+(?:_[a-z0-9]+)+\b", lambda m: label(m[0], unit, axes)
                            if m[0] in result else m[0], value)
         if value is not None:
-            rows.append([shown, _shown(value, u)])
+            rows.append([shown, _uncertainty_text(value) if split_key(key)[0] == "U"
+                         else _shown(value, u)])
     return rows
+
+
+def _uncertainty_text(U) -> str:
+    """An expanded uncertainty U as the terminal shows it: two significant digits, rounded up
+    (JCGM 100:2008 §7.2.6; :func:`axiscal.standards.uncertainty_reporting.format_uncertainty`),
+    not to its unit's decimals (a report said 2.72 µm/m where the terminal said 2.8)."""
+    from axiscal.standards.uncertainty_reporting import format_uncertainty
+
+    return format_uncertainty(U) if isinstance(U, (int, float)) else _shown(U, "")
 
 
 def _record_cell(key: str, value, unit: str, axes) -> str:
