@@ -80,6 +80,11 @@ COMMANDS = [
      ("compensation_table", "write_table")),
     (["simulate", str(DEMO_LINEAR), "--json"], ("simulate",)),
     (["ballbar", "simulate", str(BALLBAR_SIM), "--json"], ("simulate",)),
+    (["rotary", "simulate", str(ROOT / "examples" / "rotary_turntable.toml"), "--json"],
+     ("simulate",)),
+    (["scale", "home", str(SCALE_SINGLE), "--json"], ("simulate",)),
+    (["scale", "gantry", str(SCALE_GANTRY), "--json"], ("simulate",)),
+    (["motion", "simulate", str(MOTION), "--json"], ("simulate",)),
     (["volumetric", "map", "{vol}", "--grid", "3", "--json"], ("volumetric_map",)),
     (["volumetric", "compensate", "{vol}", "--controller", "csv", "--json"],
      ("volumetric_compensation",)),
@@ -301,3 +306,12 @@ def test_ballbar_simulate_equals_the_api_and_analyze_reads_it(tmp_path):
 
     assert isinstance(sim.plot(), Figure)
     assert "Ranked" in sim.report(tmp_path / "b.html").read_text("utf-8")
+
+
+def test_motion_simulate_without_compensation_equals_the_api():
+    """``--no-compensation`` is ``drift_compensation=False`` (Optics Express 2018, eqs. 1-6
+    only): the same JSON, and not the compensated one."""
+    cli = _cli_json("motion", "simulate", MOTION, "--no-compensation")
+    sim = axiscal.simulate(MOTION, drift_compensation=False)
+    assert sim.to_dict() == cli and cli["compensated"] is False
+    assert axiscal.simulate(MOTION).to_dict() != cli

@@ -17,7 +17,7 @@ __all__ = ["simulate", "volumetric_map", "volumetric_compensation", "compensate_
 
 
 def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None, *,
-             kind: str | None = None) -> "Simulation":
+             kind: str | None = None, drift_compensation: bool = True) -> "Simulation":
     """Simulate an instrument or a machine from its configuration.
 
     Parameters
@@ -42,6 +42,9 @@ def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None
     kind : str, optional
         ``positioning``, ``rotary-calibration``, ``scale-homing``, ``gantry-homing``,
         ``five-dof`` or ``ballbar``, instead of telling it from the tables.
+    drift_compensation : bool
+        Five-DOF: the errors with the beam-drift compensation (default), or without it as
+        ``motion simulate --no-compensation`` (Optics Express 2018, eqs. 1-6 only).
 
     Returns
     -------
@@ -60,9 +63,10 @@ def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None
         if isinstance(config, Mapping):
             from axiscal.api._config import SOURCE, toml_text
 
-            return Simulation(sr.run_configured(kind, SOURCE, seed, toml_text(config)), seed,
-                              kind, SOURCE)
-        return Simulation(sr.run_configured(kind, config, seed), seed, kind, Path(config).name)
+            run = sr.run_configured(kind, SOURCE, seed, toml_text(config), drift_compensation)
+            return Simulation(run, seed, kind, SOURCE)
+        return Simulation(sr.run_configured(kind, config, seed, None, drift_compensation), seed,
+                          kind, Path(config).name)
     if kind == "rotary-calibration":
         from axiscal.procedures.rotary_config import run_rotary_config
 

@@ -79,31 +79,25 @@ def simulate(
 
     Example: axiscal motion simulate examples/motion_indexing_table.toml --csv motion.csv
     """
-    from axiscal.io.motion import format_motion_errors, read_motion_config
-    from axiscal.io.simulation_results import motion_simulation
+    from axiscal import api
 
     paths = _check_outputs(report=report, csv=csv, plot=plot)
-    cfg = read_motion_config(config)
-    sim = motion_simulation(cfg, seed, not no_compensation, str(config))
-    run, measured, data, result = sim.record, sim.parts["measured"], sim.parts["data"], sim.parts["result"]
+    five = api.simulate(config, seed, kind="five-dof", drift_compensation=not no_compensation)
+    sim = five.test
+    run, measured, result = sim.record, sim.parts["measured"], sim.parts["result"]
     ct, res = sim.parts["crosstalk"], sim.parts["resolutions"]
     if paths.get("csv"):
-        from axiscal.io._files import write_text_atomic
-
-        write_text_atomic(csv, format_motion_errors(data))
+        five.write_data(csv)
     if paths.get("report"):
-        from axiscal.report.simulation_views import write_simulation_report
-
-        write_simulation_report(sim, report, config.name)
+        five.report(report)
     if paths.get("plot"):
         from axiscal.report.motion_plots import save_figure
-        from axiscal.report.simulation_views import simulation_figure
 
-        save_figure(simulation_figure(sim, config.name), plot)
+        save_figure(five.plot(), plot)
     if json_out:
         print_json(sim.json)
     else:
-        _render_positions(measured, run.truth, cfg.machine or str(config))
+        _render_positions(measured, run.truth, sim.parts["machine"] or str(config))
         typer.echo(_MOUNTING_NOTE)
         typer.echo(str(res))
         typer.echo(str(ct))

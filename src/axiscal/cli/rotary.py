@@ -56,25 +56,22 @@ def simulate(
 
     Example: axiscal rotary simulate examples/rotary_turntable.toml --report turntable.html
     """
-    from axiscal.io._files import load_toml
-    from axiscal.procedures.rotary_config import run_rotary_config
+    from axiscal import api
 
     if report is not None:
         report_path(report)
     if plot is not None:
         plot_path(plot)
-    result = run_rotary_config(load_toml(config), seed)
+    sim = api.simulate(config, seed, kind="rotary-calibration")
+    result = sim.test
     if plot is not None:
         from axiscal.report.plots import save_figure
-        from axiscal.report.rotary import rotary_error_figure
 
-        save_figure(rotary_error_figure(result), plot)
+        save_figure(sim.plot(), plot)
     if report is not None:
-        from axiscal.report.rotary import write_rotary_report
-
-        write_rotary_report(report, result)
+        sim.report(report)
     if json_out:
-        print_json(result.summary())
+        print_json(sim.to_dict())
     else:
         render_rotary(result, str(config))
     for what, path in (("plot", plot), ("report", report)):

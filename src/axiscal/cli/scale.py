@@ -65,23 +65,21 @@ def home(
 
     Example: axiscal scale home examples/scale_single.toml --plot home.png
     """
-    from axiscal.io.scale_config import read_scale_config
-    from axiscal.io.simulation_results import scale_homing
+    from axiscal import api
 
     if plot is not None:
         plot_path(plot)
     if report is not None:
         report_path(report)
-    sim = scale_homing(read_scale_config(config), seed)
+    homing = api.simulate(config, seed, kind="scale-homing")
+    sim = homing.test
     run, d, axis, ppm = sim.record, sim.json, sim.parts["axis"], sim.parts["compensation_ppm"]
     if plot is not None:
         from axiscal.report.scale_plot import save_referencing_plot
 
         save_referencing_plot(run, plot)
     if report is not None:
-        from axiscal.report.simulation_views import write_simulation_report
-
-        write_simulation_report(sim, report, config.name)
+        homing.report(report)
     if json_out:
         print_json(d)
     else:
@@ -119,24 +117,21 @@ def gantry(
 
     Example: axiscal scale gantry examples/scale_gantry.toml
     """
-    from axiscal.io.scale_config import read_scale_config
-    from axiscal.io.simulation_results import gantry_homing
+    from axiscal import api
 
     for p, check in ((plot, plot_path), (report, report_path)):
         if p is not None:
             check(p)
-    sim = gantry_homing(read_scale_config(config, gantry=True), seed)
+    homing = api.simulate(config, seed, kind="gantry-homing")
+    sim = homing.test
     run, d = sim.record, sim.json
     g, worst, spread = sim.parts["gantry"], sim.parts["worst"], sim.parts["spread"]
     if plot is not None:
         from axiscal.report.plots import save_figure
-        from axiscal.report.simulation_views import simulation_figure
 
-        save_figure(simulation_figure(sim), plot)
+        save_figure(homing.plot(), plot)
     if report is not None:
-        from axiscal.report.simulation_views import write_simulation_report
-
-        write_simulation_report(sim, report, config.name)
+        homing.report(report)
     if json_out:
         print_json(d)
     else:

@@ -79,11 +79,12 @@ def simulation_kind(cfg: dict) -> str:
 
 
 def run_configured(kind: str, path: Any, seed: int | None = None,
-                   text: str | None = None) -> "SimulationRun":
+                   text: str | None = None, compensated: bool = True) -> "SimulationRun":
     """Run a ``scale-homing``, ``gantry-homing``, ``five-dof`` or ``ballbar`` configuration
     file, as ``axiscal scale home``, ``scale gantry``, ``motion simulate`` and ``ballbar
     simulate`` do; ``text``: the configuration's TOML instead of the file's (``path`` then
-    only names it in messages), read by the same schema."""
+    only names it in messages), read by the same schema; ``compensated`` False: a five-DOF
+    run without the beam-drift compensation (``motion simulate --no-compensation``)."""
     if kind == "ballbar":
         from axiscal.io.ballbar_config import parse_ballbar_config, read_ballbar_config
 
@@ -93,7 +94,7 @@ def run_configured(kind: str, path: Any, seed: int | None = None,
         from axiscal.io.motion import parse_motion_config, read_motion_config
 
         cfg = read_motion_config(path) if text is None else parse_motion_config(text, str(path))
-        return motion_simulation(cfg, seed, True, str(path))
+        return motion_simulation(cfg, seed, compensated, str(path))
     from axiscal.io.scale_config import (GANTRY_SCHEMA, SCHEMA, parse_scale_config,
                                          read_scale_config)
 
