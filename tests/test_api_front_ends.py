@@ -85,6 +85,9 @@ COMMANDS = [
     (["scale", "home", str(SCALE_SINGLE), "--json"], ("simulate",)),
     (["scale", "gantry", str(SCALE_GANTRY), "--json"], ("simulate",)),
     (["motion", "simulate", str(MOTION), "--json"], ("simulate",)),
+    (["compensate-environment", str(ROOT / "examples" / "raw_readings_vmc800_x.csv"),
+      "--environment", str(ROOT / "examples" / "environment_log_vmc800_x.csv"), "--out",
+      "{tmp}/env.csv", "--json"], ("compensate_environment",)),
     (["volumetric", "map", "{vol}", "--grid", "3", "--json"], ("volumetric_map",)),
     (["volumetric", "compensate", "{vol}", "--controller", "csv", "--json"],
      ("volumetric_compensation",)),
@@ -98,7 +101,7 @@ def test_each_command_calls_its_api_entry(args, entries, laser_file, volumetric_
     """The command's work is done by the API entry: each is called exactly once."""
     calls = _counting(monkeypatch, entries)
     fill = {"laser": str(laser_file), "db": f"sqlite:///{tmp_path / 'h.sqlite'}",
-            "vol": str(volumetric_config)}
+            "vol": str(volumetric_config), "tmp": str(tmp_path)}
     _cli(*[a.format(**fill) for a in args])
     assert calls == dict.fromkeys(entries, 1)
 

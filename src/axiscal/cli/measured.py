@@ -77,38 +77,32 @@ def compensate_environment(
 
     Example: axiscal compensate-environment raw.csv --environment env.csv --out data.csv
     """
-    from axiscal.io.measured import read_environment_log, read_raw_readings
-    from axiscal.io.simulation_results import environment_compensation
+    from axiscal import api
 
     typed_path(out, "positioning CSV", (".csv",))
     if plot is not None:
         plot_path(plot)
     if report is not None:
         report_path(report)
-    raw_data = read_raw_readings(raw)
-    log = read_environment_log(environment) if environment else None
-    sim = environment_compensation(
-        raw_data, log, out=out, equation=equation, normalise_material=not air_only,
-        max_gap=max_gap, air_temperature=air_temperature, pressure=pressure, humidity=humidity,
-        material_temperature=material_temperature,
-        expansion_coefficient=None if expansion_ppm is None else expansion_ppm * 1e-6)
-    ds, d = sim.parts["dataset"], sim.json
+    given = dict(air_temperature=air_temperature, pressure=pressure, humidity=humidity,
+                 material_temperature=material_temperature, expansion_ppm=expansion_ppm)
+    comp = api.compensate_environment(raw, environment or None, out=out, equation=equation,
+                                      air_only=air_only, max_gap=max_gap,
+                                      **{k: v for k, v in given.items() if v is not None})
+    ds, d = comp.dataset, comp.test.json
     if plot is not None:
         from axiscal.report.plots import save_figure
-        from axiscal.report.simulation_views import simulation_figure
 
-        save_figure(simulation_figure(sim, raw.name), plot)
+        save_figure(comp.plot(), plot)
         note(f"wrote plot {plot}")
     if report is not None:
-        from axiscal.report.simulation_views import write_simulation_report
-
-        write_simulation_report(sim, report, raw.name)
+        comp.report(report)
         note(f"wrote report {report}")
     if json_out:
         print_json(d)
         return
     typer.echo(ds.metadata.notes)
-    typer.echo(f"wrote {raw_data.readings.size} compensated readings to {out} "
+    typer.echo(f"wrote {d['readings']} compensated readings to {out} "
                f"(evaluate: axiscal iso230-2 {out})")
 
 
