@@ -16,9 +16,11 @@ Everything a script or a notebook needs is at the package's top and documented h
 
 The command line and the workbench are built on these same entry points: ``axiscal iso230-2``,
 ``evaluate`` and ``ballbar analyze`` call :func:`read` and :func:`evaluate` and print
-:meth:`Evaluation.to_dict` for ``--json``; ``simulate`` calls :func:`simulate`; ``compensate``
-calls :func:`compensation_table` and :func:`write_table`; ``history add`` and the workbench's
-upload call :meth:`History.add`; ``volumetric compensate`` calls
+:meth:`Evaluation.to_dict` for ``--json``; ``simulate``, ``rotary simulate``, ``scale
+home|gantry``, ``motion simulate`` and ``ballbar simulate`` call :func:`simulate`;
+``compensate`` calls :func:`compensation_table` and :func:`write_table`; ``history add`` and
+the workbench's upload call :meth:`History.add`; ``compensate-environment``, ``volumetric map``
+and ``volumetric compensate`` call :func:`compensate_environment`, :func:`volumetric_map` and
 :func:`volumetric_compensation`. Every number comes from the library below
 (:func:`axiscal.store.kinds.evaluate_file` is the one evaluation per kind of test,
 :mod:`axiscal.standards.positioning_standards` the registry of positioning standards,
