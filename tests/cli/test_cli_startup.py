@@ -131,3 +131,44 @@ def test_the_listed_help_is_each_commands_own(monkeypatch):
     loaded = CliRunner().invoke(cli.app, ["--help"], env={"COLUMNS": "200"})
     assert listed.exit_code == loaded.exit_code == 0
     assert listed.output == loaded.output
+
+
+@pytest.fixture
+def collector():
+    """The cycle collector as the test found it, afterwards (main() freezes what exists)."""
+    import gc
+
+    was = gc.isenabled()
+    yield gc
+    gc.unfreeze()
+    gc.enable() if was else gc.disable()
+
+
+def test_the_collector_pauses_for_start_up_only(tmp_path, monkeypatch, collector):
+    """``main`` pauses the cycle collector while the command line and the command are loaded;
+    the command's own work runs with it on, and it is on after the call."""
+    from axiscal import cli
+    from axiscal.cli import iso230_2
+
+    seen = []
+    real = iso230_2.print_json
+    monkeypatch.setattr(iso230_2, "print_json", lambda obj: (seen.append(collector.isenabled()),
+                                                             real(obj)))
+    monkeypatch.setattr(sys, "argv", ["axiscal", "iso230-2", _csv(tmp_path), "--json"])
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "no-config"))
+    collector.enable()
+    with pytest.raises(SystemExit) as exit_:
+        cli.main()
+    assert exit_.value.code == 0
+    assert seen == [True] and collector.isenabled()
+
+
+def test_a_paused_collector_stays_paused(monkeypatch, collector):
+    """A program that paused the collector itself finds it paused after ``main``."""
+    from axiscal import cli
+
+    monkeypatch.setattr(sys, "argv", ["axiscal", "--version"])
+    collector.disable()
+    with pytest.raises(SystemExit):
+        cli.main()
+    assert not collector.isenabled()
