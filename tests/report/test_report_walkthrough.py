@@ -68,3 +68,15 @@ def test_squareness_report_gives_U_as_the_terminal_does(tmp_path):
     assert r.exit_code == 0, r.output
     assert "U (k = 2) = 2.8 µm/m" in r.output
     assert "expanded uncertainty [µm/m]</td><td>2.8<" in out.read_text()
+
+
+def test_rotary_budget_report_gives_the_unit_of_the_terms_of_eq_1(tmp_path):
+    """``axiscal rotary budget --report``: "Terms of eq. 1" listed "Quadratic term 0.020" with no
+    unit; the terms are in arcsec (their key, ``terms_arcsec``, says so)."""
+    from axiscal.report.html import result_tables
+
+    tables = result_tables({"terms_arcsec": {"quadratic": 0.0201, "alpha_beta": 0.157}})
+    (caption, _, rows), = tables
+    assert caption == "Terms of eq. 1"
+    assert [r[1] for r in rows] == ["0.02", "0.16"]
+    assert all(r[0].endswith("[arcsec]") for r in rows), rows

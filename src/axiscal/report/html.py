@@ -424,7 +424,7 @@ def _shown(value, unit: str) -> str:
 def result_tables(result: dict, unit: str = "", axes=("X", "Y")) -> list[tuple[str, list, list]]:
     """The nested parts of a command's result as (caption, headers, rows) tables: an object as a
     table of its own, an object of objects or a list of objects as one row per entry."""
-    from axiscal.report.labels import label, quantity
+    from axiscal.report.labels import label, quantity, split_key
 
     out = []
     for key, value in result.items():
@@ -440,10 +440,11 @@ def result_tables(result: dict, unit: str = "", axes=("X", "Y")) -> list[tuple[s
                      for k in keys] for v in value]
             out.append((caption, [label(f"{key}.{k}", "" if own else unit, axes) if k else ""
                                   for k in keys], rows))
-        elif isinstance(value, dict):
-            rows = [[_esc(r[0]), _esc(r[1])] for r in result_rows(value, unit, axes)]
+        elif isinstance(value, dict):   # its values in the unit its key names (terms_arcsec)
+            inner = split_key(key)[1] or unit
+            rows = [[_esc(r[0]), _esc(r[1])] for r in result_rows(value, inner, axes)]
             out.append((caption, ["", ""], rows))
-            out.extend((f"{caption}: {c}", h, r) for c, h, r in result_tables(value, unit, axes))
+            out.extend((f"{caption}: {c}", h, r) for c, h, r in result_tables(value, inner, axes))
     return out
 
 
