@@ -127,3 +127,25 @@ def test_serve_defaults_are_the_library_limits():
     assert d["body_timeout"] == LIMITS["body_timeout"]
     assert d["max_connections"] == LIMITS["max_connections"]
     assert d["session_idle"] * 60 == IDLE_SECONDS and d["session_max"] * 3600 == ABSOLUTE_SECONDS
+
+
+def test_a_connection_is_closed_after_its_requests_so_clients_spread_over_workers(limited):
+    """The n-th request on one keep-alive connection is answered with ``Connection: close``
+    (RFC 9112 §9.6) and the server closes it; the client's next request opens a new connection,
+    which the kernel hands to whichever worker accepts first."""
+    import http.client
+
+    from axiscal.web.server import LIMITS
+
+    n = LIMITS["requests_per_connection"]
+    conn = http.client.HTTPConnection("127.0.0.1", _port(limited), timeout=10)
+    said = []
+    for _ in range(n):
+        conn.request("GET", "/plan", headers={"Host": "127.0.0.1"})
+        r = conn.getresponse()
+        r.read()
+        said.append((r.status, r.getheader("connection")))
+    assert said[:-1] == [(200, None)] * (n - 1) and said[-1] == (200, "close")
+    assert conn.sock is None                     # http.client closed it, as the server asked
+    conn.request("GET", "/plan", headers={"Host": "127.0.0.1"})    # a new connection
+    assert conn.getresponse().status == 200
