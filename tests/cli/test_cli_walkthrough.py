@@ -77,3 +77,16 @@ def test_history_list_keeps_its_columns_for_a_long_machine_name(tmp_path):
     assert len(lines) == 2
     starts = {re.search(r" [XY] +straightness", line).start() for line in lines}
     assert len(starts) == 1, r.output
+
+
+def test_motion_crosstalk_speaks_in_the_papers_symbols():
+    """``axiscal motion simulate``: the crosstalk table and the spurious motion named the errors
+    by code keys (ez, dy) and gave the residual without units; they are εz … δz with arcsec/µm
+    (Optics Express 2018, Five-DOF motion errors of a rotary axis)."""
+    r = CliRunner().invoke(app, ["motion", "simulate",
+                                 str(ROOT / "examples/motion_indexing_table.toml")], env=ENV)
+    assert r.exit_code == 0, r.output
+    block = r.output.split("leak [out/in]")[1].split("ISO 230-7")[0]
+    assert "εz" in block and "δy" in block
+    assert " ez " not in block and " dy " not in block
+    assert "once-per-turn component: εz 0.000 arcsec" in block

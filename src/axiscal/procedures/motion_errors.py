@@ -28,10 +28,13 @@ from axiscal.standards.iso230_7 import MotionErrorData, fundamental
 from axiscal.units import ARCSEC, UM
 
 __all__ = ["ReferenceAxis", "BeamDrift", "MotionRun", "indexing_test", "stability_test",
-           "repeatability_test", "to_motion_data", "Crosstalk", "crosstalk", "INPUTS"]
+           "repeatability_test", "to_motion_data", "Crosstalk", "crosstalk", "INPUTS", "SYMBOLS"]
 
 #: The six true errors of the crosstalk study, in the order of its matrix columns.
 INPUTS = ("ez", "ey", "ex", "dx", "dy", "dz")
+#: How each error is written for people (Optics Express 2018, Five-DOF motion errors of a rotary
+#: axis: ε for an angular error, δ for a linear one).
+SYMBOLS = {"ez": "εz", "ey": "εy", "ex": "εx", "dx": "δx", "dy": "δy", "dz": "δz"}
 
 
 @dataclass(frozen=True)
@@ -247,12 +250,15 @@ class Crosstalk:
                  for j, inp in enumerate(INPUTS)] for i, out in enumerate(FiveErrors.CHANNELS)]
 
     def __str__(self) -> str:
-        head = "leak [out/in]" + "".join(f"{c:>10}" for c in INPUTS)
-        rows = [f"{out:<13}" + "".join(f"{v:10.4f}" for v in row)
+        head = "leak [out/in]" + "".join(f"{SYMBOLS[c]:>10}" for c in INPUTS)
+        rows = [f"{SYMBOLS[out]:<13}" + "".join(f"{v:10.4f}" for v in row)
                 for out, row in zip(FiveErrors.CHANNELS, self.table())]
-        sp = ", ".join(f"{k} {v / (ARCSEC if k[0] == 'e' else UM):.3f}"
-                       f"{' arcsec' if k[0] == 'e' else ' µm'}" for k, v in self.spurious.items())
-        rs = ", ".join(f"{k} {v / (ARCSEC if k[0] == 'e' else UM):.3f}" for k, v in self.residual.items())
+
+        def shown(values: dict) -> str:
+            return ", ".join(f"{SYMBOLS[k]} {v / (ARCSEC if k[0] == 'e' else UM):.3f}"
+                             f"{' arcsec' if k[0] == 'e' else ' µm'}" for k, v in values.items())
+
+        sp, rs = shown(self.spurious), shown(self.residual)
         return "\n".join([head, *rows, f"spurious motion on a perfect axis (p-v): {sp}",
                           f"  after removing the once-per-turn component: {rs}"])
 

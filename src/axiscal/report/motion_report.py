@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from axiscal.procedures.motion_errors import SYMBOLS
 from axiscal.report.html import Report
 from axiscal.units import ARCSEC, UM
 
@@ -20,7 +21,7 @@ __all__ = ["motion_report", "iso230_7_rows", "STABILITY_SEED"]
 STABILITY_SEED = {"ez": 0.05, "ey": 0.06, "ex": 0.19, "dy": 0.04, "dz": 0.03}
 #: Optics Express 2018, Five-DOF motion errors of a rotary axis §3.3 repeatability deviations (±, arcsec and µm).
 REPEATABILITY_SEED = {"ez": 3.4, "ey": 4.6, "ex": 3.2, "dy": 2.6, "dz": 2.3}
-_SYMBOL = {"ez": "εz", "ey": "εy", "ex": "εx", "dx": "δx", "dy": "δy", "dz": "δz"}
+_SYMBOL = SYMBOLS
 _NAMES = {"ez": "εz angular positioning", "ey": "εy tilt about Y", "ex": "εx tilt about X",
           "dy": "δy radial", "dz": "δz axial"}
 
