@@ -90,3 +90,16 @@ def test_motion_crosstalk_speaks_in_the_papers_symbols():
     assert "εz" in block and "δy" in block
     assert " ez " not in block and " dy " not in block
     assert "once-per-turn component: εz 0.000 arcsec" in block
+
+
+def test_compensate_summary_writes_micrometres_as_every_other_output(tmp_path):
+    """``axiscal compensate ... --out x.ini``: "largest corr. 5.9 um" where every table and report
+    writes µm."""
+    data = tmp_path / "x.csv"
+    data.write_text("# target_unit=mm deviation_unit=um axis=X\ntarget,direction,run,deviation\n"
+                    + "".join(f"{t},{d},{r},{t / 100 + (r - 1) * 0.1}\n" for t in (0, 100, 200)
+                              for d in "+-" for r in (1, 2)))
+    r = CliRunner().invoke(app, ["compensate", str(data), "--controller", "csv",
+                                 "--out", str(tmp_path / "x.table.csv")], env=ENV)
+    assert r.exit_code == 0, r.output
+    assert "largest corr." in r.output and " µm (correction = −deviation)" in r.output

@@ -507,7 +507,9 @@ def _render_table(cf, out, json_out) -> None:
         d.update(_table_json(t))
         print_json(d)
         return
-    pu, cu = t.position_unit, t.correction_unit
+    from axiscal.report.labels import unit_text
+
+    pu, cu = t.position_unit, unit_text(t.correction_unit)   # µm, as every other output writes it
     typer.echo(f"{cf.controller} compensation table for axis {t.axis or '-'} "
                f"({'bidirectional' if t.bidirectional else 'one table for both directions'})")
     typer.echo(f"  points           {t.n_points}")
