@@ -80,3 +80,19 @@ def test_rotary_budget_report_gives_the_unit_of_the_terms_of_eq_1(tmp_path):
     assert caption == "Terms of eq. 1"
     assert [r[1] for r in rows] == ["0.02", "0.16"]
     assert all(r[0].endswith("[arcsec]") for r in rows), rows
+
+
+def test_a_tall_figure_is_given_most_of_a_printed_page():
+    """``axiscal motion simulate --report x.pdf``: the five errors stacked (7.5 × 10.5 in) were
+    squeezed into the print style's 118 mm of height, a third of the page wide, their axis
+    labels too small to read; a figure clearly taller than wide is marked and may fill 215 mm."""
+    from axiscal.report._figures import pyplot
+    from axiscal.report.html import Report
+
+    plt = pyplot()
+    rep = Report("t")
+    rep.add_figure(plt.figure(figsize=(7.5, 10.5)))
+    rep.add_figure(plt.figure(figsize=(8.0, 4.0)))
+    html = rep.html()
+    assert html.count('<figure class="tall">') == 1 and html.count("<figure>") == 1
+    assert "figure.tall svg { max-height: 215mm; }" in html
