@@ -34,7 +34,8 @@ import threading
 from collections import OrderedDict
 from pathlib import Path
 
-__all__ = ["cache_folder", "read", "write", "kept", "kept_file", "evaluated", "derived", "remember",
+__all__ = ["cache_folder", "read", "write", "kept", "kept_file", "evaluated", "derived", "lookup",
+           "remember",
            "MEMORY_BYTES", "MEMORY_ENTRIES"]
 
 #: Stored bytes whose evaluations one process keeps in memory, with the pickled size of the page
@@ -208,21 +209,39 @@ def derived(sha: str, what: str, make, size: int | None = None, disk: bool = Tru
     if found is not None:
         return found[0]
     with _lock_for(key):
-        found = _in_memory(key)           # made by another thread while this one waited
+        found = _kept(key, size)           # in memory, made by another thread meanwhile, or on disk
         if found is not None:
             return found[0]
-        value = None
-        data = read(sha, f"{what}.pickle")
-        if data is not None:
-            try:
-                value = pickle.loads(data)
-            except Exception:                 # noqa: BLE001 - a damaged entry: make it again
-                value = None
-        if value is None:
-            value = make()
-            data = _keep_on_disk(sha, value, f"{what}.pickle")
+        value = make()
+        data = _keep_on_disk(sha, value, f"{what}.pickle")
         _hold(key, value, len(data or b"") if size is None else size)
     return value
+
+
+def lookup(sha: str, what: str, size: int | None = None) -> tuple | None:
+    """``(value,)`` of :func:`derived` ``what`` if it is kept (in memory, or on disk: then read
+    into memory), else None; never makes it. A caller on an event loop looks first, and hands
+    the making (seconds for a figure) to a thread only when nothing is kept."""
+    key = (sha, _version(), what)
+    return _in_memory(key) or _kept(key, size)
+
+
+def _kept(key, size: int | None) -> tuple | None:
+    """``(value,)`` under ``key`` in memory, else from its pickle on disk (then held in memory,
+    counting ``size`` bytes, default the pickle's), else None."""
+    found = _in_memory(key)
+    if found is not None:
+        return found
+    sha, _, what = key
+    data = read(sha, f"{what}.pickle")
+    if data is None:
+        return None
+    try:
+        value = pickle.loads(data)
+    except Exception:                         # noqa: BLE001 - a damaged entry: make it again
+        return None
+    _hold(key, value, len(data) if size is None else size)
+    return (value,)
 
 
 def _in_memory(key) -> tuple | None:

@@ -52,8 +52,10 @@ def add_routes(app: FastAPI) -> None:
                                 + (f"?{q}" if q else ""), 303)
 
     @app.get("/machine/{machine_id}", response_class=HTMLResponse)
-    def machine(request: Request, machine_id: TestId, axis: str = "", kind: str = "",
-                page: Page = 1):
+    async def machine(request: Request, machine_id: TestId, axis: str = "", kind: str = "",
+                      page: Page = 1):
+        """Served on the event loop: a kept page costs one statement and the rendering, one
+        read again a few milliseconds of plain reads (no thread, no hand-over of the GIL)."""
         from axiscal.web.memo import memoised
 
         st, env = store(request), request.app.state.templates.env
@@ -62,15 +64,19 @@ def add_routes(app: FastAPI) -> None:
         return render(request, "machine.html", view["name"], **view, query=query)
 
     @app.get("/tests/{test_id}", response_class=HTMLResponse)
-    def test_page(request: Request, test_id: TestId):
+    async def test_page(request: Request, test_id: TestId):
+        """Served on the event loop when the test's evaluation and page parts are kept (a few
+        plain reads and the rendering); made in a thread when they are not (a figure of a
+        ballbar or five-error test takes a second)."""
         from axiscal.compensation.controllers import CONTROLLERS
         from axiscal.store.corrections import audit
         from axiscal.web.correction_pages import SHOWN
         from axiscal.web.signoff_pages import signoff_context
 
-        st = store(request)
+        st, env = store(request), request.app.state.templates.env
         t = st.get(test_id)
-        ev, cfg, parts = _test_view(request.app.state.templates.env, t)
+        ev, cfg, parts = _test_view(env, t, kept_only=True) or \
+            await run_in_threadpool(_test_view, env, t)
         others = st.tests(machine=t.summary.machine, axis=t.summary.axis, kind=t.summary.kind,
                           limit=11, parameters=())
         return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
@@ -291,19 +297,28 @@ def _write_table(store, test_id: int, controller: str, spacing: float):
     return f
 
 
-def _test_view(env, t) -> tuple:
+def _test_view(env, t, kept_only: bool = False) -> tuple | None:
     """(evaluation, user configuration, page parts) of stored test ``t``: the parts computed
     once from the evaluation and the configuration (kept by :func:`axiscal.store.cache.derived`,
     on disk), and what the page shows of them rendered once by this process (``results_html``,
-    the same for every user: kept in memory)."""
+    the same for every user: kept in memory). With ``kept_only``, None unless the evaluation
+    and the parts are kept already (nothing is made)."""
     from markupsafe import Markup
 
     from axiscal.report.issue import load_config
-    from axiscal.store.cache import derived, digest
+    from axiscal.store.cache import derived, digest, lookup
 
-    ev, cfg = t.evaluate_again(), load_config(None)
+    cfg = load_config(None)
     what = f"test-page-{digest(cfg)}"
-    parts = derived(t.sha256, what, lambda: _test_parts(ev))     # computed once, then a look-up
+    if kept_only:
+        ev = lookup(t.sha256, "evaluated", t.size)
+        parts = lookup(t.sha256, what) if ev is not None else None
+        if parts is None:
+            return None
+        ev, parts = ev[0], parts[0]
+    else:
+        ev = t.evaluate_again()
+        parts = derived(t.sha256, what, lambda: _test_parts(ev))   # computed once, then kept
     html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
         "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
     return ev, cfg, {**parts, "results_html": Markup(html)}
