@@ -82,17 +82,19 @@ def test_rotary_budget_report_gives_the_unit_of_the_terms_of_eq_1(tmp_path):
     assert all(r[0].endswith("[arcsec]") for r in rows), rows
 
 
-def test_a_tall_figure_is_given_most_of_a_printed_page():
+def test_the_five_motion_errors_are_drawn_wider_than_tall():
     """``axiscal motion simulate --report x.pdf``: the five errors stacked (7.5 × 10.5 in) were
     squeezed into the print style's 118 mm of height, a third of the page wide, their axis
-    labels too small to read; a figure clearly taller than wide is marked and may fill 215 mm."""
-    from axiscal.report._figures import pyplot
-    from axiscal.report.html import Report
+    labels too small to read; the stacked figures are drawn wider than tall."""
+    import numpy as np
 
-    plt = pyplot()
-    rep = Report("t")
-    rep.add_figure(plt.figure(figsize=(7.5, 10.5)))
-    rep.add_figure(plt.figure(figsize=(8.0, 4.0)))
-    html = rep.html()
-    assert html.count('<figure class="tall">') == 1 and html.count("<figure>") == 1
-    assert "figure.tall svg { max-height: 215mm; }" in html
+    from axiscal.report.motion_plots import five_errors_figure, stability_figure
+
+    theta = np.radians(np.arange(0, 361, 30.0))
+    run = type("Run", (), {"theta": theta, **{c: np.zeros_like(theta)
+                                              for c in ("ez", "ey", "ex", "dy", "dz")}})()
+    w, h = five_errors_figure([run]).get_size_inches()
+    assert w > h
+    still = type("Still", (), {"time": theta, "measured": run, "uncompensated": run})()
+    w, h = stability_figure(still).get_size_inches()
+    assert w > h

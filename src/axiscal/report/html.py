@@ -99,13 +99,10 @@ class Report:
         self._parts.append(fragment)
 
     def add_figure(self, fig, caption: str = "") -> None:
-        """A matplotlib figure, inline as SVG; a figure clearly taller than wide (the five
-        motion errors stacked) is marked ``tall`` so print gives it most of a page, not the
-        118 mm that shrank it to a third of the page's width and its labels past reading."""
+        """A matplotlib figure, inline as SVG (printed at most 118 mm high: a figure is drawn
+        wider than tall, so that it fills the page's width)."""
         cap = f"<figcaption>{_esc(caption)}</figcaption>" if caption else ""
-        w, h = fig.get_size_inches() if hasattr(fig, "get_size_inches") else (1.0, 0.0)
-        tall = ' class="tall"' if h > 1.2 * w else ""
-        self._parts.append(f"<figure{tall}>{figure_svg(fig)}{cap}</figure>")
+        self._parts.append(f"<figure>{figure_svg(fig)}{cap}</figure>")
 
     def add_table(self, headers: Sequence[str], rows: Iterable[Sequence[Any]], caption: str = "",
                   digits: int = 3, css_class: str = "", formulas: Sequence[int] = ()) -> None:

@@ -29,6 +29,15 @@ LABELS = {
 _COLOURS = ["#1f5fa8", "#d1601f", "#2f8f46", "#8a3ea8", "#a82f3e"]
 
 
+def _name_panel(ax, label: str) -> None:
+    """Symbol and unit as the y label (``εz [arcsec]``), the error's name above the panel: the
+    whole name beside five short panels ran into its neighbours' labels."""
+    symbol, _, rest = label.partition(" ")
+    name, _, unit = rest.rpartition(" ")
+    ax.set_ylabel(f"{symbol} {unit}", fontsize=8.5)
+    ax.set_title(name, loc="left", fontsize=8, pad=2)
+
+
 def five_errors_figure(runs, truth=None, title: str = "Five motion errors against angle"):
     """One panel per error against angle (degrees) for each run; the truth dashed if given.
 
@@ -39,7 +48,8 @@ def five_errors_figure(runs, truth=None, title: str = "Five motion errors agains
     title : str
     """
     plt = _pyplot()
-    fig, axes = plt.subplots(5, 1, figsize=(7.5, 10.5), sharex=True)
+    fig, axes = plt.subplots(5, 1, figsize=(10.0, 8.0), sharex=True)   # wider than tall:
+    # a print fits a figure in 118 mm of height; 7.5 × 10.5 in left it a third of the page wide
     for k, (ch, (label, unit)) in enumerate(LABELS.items()):
         ax = axes[k]
         for j, run in enumerate(runs):
@@ -48,9 +58,9 @@ def five_errors_figure(runs, truth=None, title: str = "Five motion errors agains
         for j, t in enumerate(truth or ()):
             ax.plot(np.degrees(t.theta), getattr(t, ch) / unit, "--", lw=1.0, color="0.35",
                     label=f"truth, run {j + 1} (simulation)")
-        ax.set_ylabel(label, fontsize=8.5)
+        _name_panel(ax, label)
         ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel("commanded angle θ [deg]")
+    axes[-1].set_xlabel("commanded angle θ [°]")
     axes[-1].set_xticks(np.arange(0, 361, 30))
     # above the first panel, never over the data
     axes[0].legend(fontsize=7.5, ncol=2, loc="lower right", bbox_to_anchor=(1.0, 1.0),
@@ -69,7 +79,8 @@ def stability_figure(run, title: str = "Stability: five errors of a still set-up
         From :func:`axiscal.procedures.motion_errors.stability_test`.
     """
     plt = _pyplot()
-    fig, axes = plt.subplots(5, 1, figsize=(9.5, 10.5), sharex=True)
+    fig, axes = plt.subplots(5, 1, figsize=(10.0, 8.0), sharex=True)   # wider than tall:
+    # a print fits a figure in 118 mm of height; 7.5 × 10.5 in left it a third of the page wide
     minutes = run.time / 60.0
     for k, (ch, (label, unit)) in enumerate(LABELS.items()):
         ax = axes[k]
@@ -78,7 +89,7 @@ def stability_figure(run, title: str = "Stability: five errors of a still set-up
         ax.plot(minutes, raw, lw=0.8, color="0.65", label="without drift compensation")
         ax.plot(minutes, meas, lw=0.9, color=_COLOURS[k],
                 label=f"compensated (σ = {np.std(meas):.3f})")
-        ax.set_ylabel(label, fontsize=8.5)
+        _name_panel(ax, label)
         ax.grid(True, alpha=0.3)
         # beside the panel: inside, it hid the first minutes of the traces
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
