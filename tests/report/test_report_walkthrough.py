@@ -98,3 +98,19 @@ def test_the_five_motion_errors_are_drawn_wider_than_tall():
     still = type("Still", (), {"time": theta, "measured": run, "uncompensated": run})()
     w, h = stability_figure(still).get_size_inches()
     assert w > h
+
+
+def test_volumetric_map_draws_the_nominal_grid_it_names():
+    """``axiscal volumetric map --plot``: the 3-D panel says "grey nominal, red actual", but its
+    light grey nominal grid (0.75 grey) vanished against the panes' own grid lines."""
+    from matplotlib.colors import to_rgb
+
+    from axiscal.report.volumetric_plots import volumetric_figure
+    from axiscal.standards.volumetric import AXES, GeometricErrors, KinematicChain, map_volume
+
+    errors = GeometricErrors(KinematicChain.parse("X Y | Z"), {}, {"xy": 10e-6}, [0, 0, 0],
+                             [0, 0, 0], {a: (0.0, 0.5) for a in AXES})
+    ax = volumetric_figure(map_volume(errors, n=5)).axes[0]
+    nominal = [ln for ln in ax.get_lines() if ln.get_linestyle() == "--"]
+    assert nominal and all(max(to_rgb(ln.get_color())) <= 0.5 for ln in nominal)
+    assert "grey dashed nominal" in ax.get_title()

@@ -30,7 +30,8 @@ def volumetric_figure(vmap, title: str = "", magnification: float | None = None)
     X, Y, Z = np.meshgrid(gx, gy, gz, indexing="ij")
     nominal = (X, Y, Z)
     actual = tuple(n + mag * e[i] for i, n in enumerate(nominal))
-    for pts, style in ((nominal, dict(color="0.75", lw=0.6)),
+    # the nominal grid dashed and darker than the panes' own grid, which hid a light grey one
+    for pts, style in ((nominal, dict(color="0.35", lw=0.7, ls="--")),
                        (actual, dict(color="tab:red", lw=0.9))):
         for i in (0, -1):
             for j in (0, -1):
@@ -45,7 +46,7 @@ def volumetric_figure(vmap, title: str = "", magnification: float | None = None)
     ax.set_xlabel("X [mm]")
     ax.set_ylabel("Y [mm]")
     ax.set_zlabel("Z [mm]")
-    ax.set_title(f"grid distorted by the error field, ×{mag:g}\n(grey nominal, red actual)",
+    ax.set_title(f"grid distorted by the error field, ×{mag:g}\n(grey dashed nominal, red actual)",
                  fontsize=9)
     mags = vmap.magnitude * 1e6
     ix, iy, iz = (int(np.argmin(np.abs(g - c)))
