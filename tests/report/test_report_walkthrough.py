@@ -114,3 +114,21 @@ def test_volumetric_map_draws_the_nominal_grid_it_names():
     nominal = [ln for ln in ax.get_lines() if ln.get_linestyle() == "--"]
     assert nominal and all(max(to_rgb(ln.get_color())) <= 0.5 for ln in nominal)
     assert "grey dashed nominal" in ax.get_title()
+
+
+def test_motion_analyze_report_speaks_of_no_truth_it_does_not_have(tmp_path):
+    """``axiscal motion analyze motion.csv --report``: a measured file has no truth, yet the
+    figure's caption said "dashed: the simulation's truth of run 1"."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    csv, report = tmp_path / "motion.csv", tmp_path / "ma.html"
+    r = CliRunner().invoke(app, ["motion", "simulate", str(ROOT / "examples/motion_indexing_table.toml"),
+                                 "--csv", str(csv), "--report", str(tmp_path / "sim.html")])
+    assert r.exit_code == 0, r.output
+    assert "dashed: the simulation" in (tmp_path / "sim.html").read_text()
+    r = CliRunner().invoke(app, ["motion", "analyze", str(csv), "--report", str(report)])
+    assert r.exit_code == 0, r.output
+    html = report.read_text()
+    assert "Measured errors per run (zeroed at 0°)." in html and "truth" not in html.lower()

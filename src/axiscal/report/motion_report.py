@@ -26,6 +26,14 @@ _NAMES = {"ez": "εz angular positioning", "ey": "εy tilt about Y", "ex": "εx 
           "dy": "δy radial", "dz": "δz axial"}
 
 
+#: The five errors' caption when a simulation's truth is drawn (a measured file has none).
+_TRUTH_CAPTION = ("Measured errors per run (zeroed at 0°); dashed: the simulation's truth of run "
+                  "1 at the sensitive unit. Where the two differ by a once-per-turn wave (a "
+                  "tilted or eccentric reference axis shows in εy, εx and δy), the gap is the "
+                  "mounting's crosstalk, quantified in the crosstalk table when it is given; "
+                  "ISO 230-7 removes it as the fundamental.")
+
+
 def _unit(ch):
     return (ARCSEC, "arcsec") if ch[0] == "e" else (UM, "µm")
 
@@ -75,11 +83,7 @@ def motion_report(title: str, *, metadata=None, result=None, runs=None, truth=No
     if runs:
         rep.add_heading("Five errors against angle")
         rep.add_figure(mp.five_errors_figure(runs, truth[:1] if truth else None),
-                       "Measured errors per run (zeroed at 0°); dashed: the simulation's truth of run "
-                       "1 at the sensitive unit. Where the two differ by a once-per-turn wave (a "
-                       "tilted or eccentric reference axis shows in εy, εx and δy), the gap is the "
-                       "mounting's crosstalk, quantified in the crosstalk table when it is given; "
-                       "ISO 230-7 removes it as the fundamental.")
+                       _TRUTH_CAPTION if truth else "Measured errors per run (zeroed at 0°).")
     if resolutions is not None:
         _resolution_section(rep, resolutions)
     if result is not None:
