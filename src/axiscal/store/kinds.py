@@ -25,7 +25,7 @@ from axiscal._json import jsonable
 from axiscal.errors import DataFormatError, InputError
 
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
-           "evaluate_file", "jsonable", "result_text"]
+           "evaluate_file", "jsonable", "other_standards", "result_text"]
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion")
 
@@ -47,6 +47,9 @@ class Evaluated:
     environment: dict = field(default_factory=dict)
     dataset: object = None
     evaluation: object = None
+    #: A positioning test by every other positioning standard (:func:`other_standards`), the
+    #: table its page shows; None for other kinds.
+    standards: dict | None = None
 
 
 def detect_kind(text: str) -> str:
@@ -103,27 +106,41 @@ def _positioning(text: str, filename: str) -> Evaluated:
     params = {n: (getattr(r, n), unit) for n in
               ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "B",
                "B_mean") if getattr(r, n) is not None and math.isfinite(getattr(r, n))}
-    params.update(_other_standards(ds))
+    others, standards = other_standards(ds)
+    params.update(others)
     md = ds.metadata
     env = {k: v for k, v in dataclasses.asdict(md.environment).items() if v is not None}
     return Evaluated("iso230-2", ds.axis_kind.value, jsonable(r), params,
                      format_positioning_json(ds), md.machine, md.axis, md.date, md.operator,
-                     md.instrument, jsonable(env), ds, r)
+                     md.instrument, jsonable(env), ds, r, standards)
 
 
-def _other_standards(ds) -> dict:
-    """The parameters of every other positioning standard axiscal evaluates, named
-    ``KEY:NAME`` (``jis-b6192:R``), so compare and trend work for any standard a contract names."""
+def other_standards(ds) -> tuple[dict, dict]:
+    """Every other positioning standard axiscal evaluates, from one evaluation of each:
+
+    - the parameters, named ``KEY:NAME`` (``jis-b6192:R``), so compare and trend work for any
+      standard a contract names;
+    - the table a test's page shows: ``rows`` (standard, parameter, value, meaning; a parameter
+      not evaluated has value None and its reason) and ``unpublished`` (the standards with no
+      public definitions).
+    """
     from axiscal.standards import positioning_standards as ps
 
-    out = {}
+    out, rows, unpublished = {}, [], []
     for std, res in ps.evaluate_all(ds):
-        if std.key == "iso230-2:2014" or isinstance(res, str):
+        if std.key == "iso230-2:2014":
             continue
+        if isinstance(res, str):  # no public definitions, or this test cannot form them
+            if std.available:
+                rows.append((std.title, "—", None, res))
+            else:
+                unpublished.append(std.title)
+            continue
+        rows += [row[:4] for row in ps.table_rows(std, res)]
         for name, (value, unit, _) in res.parameters().items():
             if value is not None and math.isfinite(value):
                 out[f"{std.key}:{name}"] = (value, unit)
-    return out
+    return out, {"rows": rows, "unpublished": unpublished}
 
 
 def _straightness(text: str, filename: str) -> Evaluated:

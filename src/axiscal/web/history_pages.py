@@ -432,20 +432,11 @@ def _uncertainty(ev):
 
 
 def _other_standards(ev) -> dict:
-    """The test by every other positioning standard, for the test page: ``rows`` (standard,
-    parameter, value, meaning; a parameter not evaluated has value None and its reason) and
-    ``unpublished`` (the standards with no public definitions)."""
-    from axiscal.standards.positioning_standards import evaluate_all, table_rows
+    """The test by every other positioning standard, for the test page: the table kept with
+    its evaluation (:func:`axiscal.store.kinds.other_standards`), made again only for an
+    evaluation kept without it."""
+    if ev.standards is not None:
+        return ev.standards
+    from axiscal.store.kinds import other_standards
 
-    rows, unpublished = [], []
-    for std, res in evaluate_all(ev.dataset):
-        if std.key == "iso230-2:2014":
-            continue
-        if isinstance(res, str):  # no public definitions, or this test cannot form them
-            if std.available:
-                rows.append((std.title, "—", None, res))
-            else:
-                unpublished.append(std.title)
-            continue
-        rows += [row[:4] for row in table_rows(std, res)]
-    return {"rows": rows, "unpublished": unpublished}
+    return other_standards(ev.dataset)[1]
