@@ -46,7 +46,7 @@ def analyze(
     json_out: bool = typer.Option(False, "--json", help="Print JSON (stable keys, module docs)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Polar plot and diagnostic bar chart "
                                         "(PNG/SVG/PDF)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="HTML report."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the diagnosis report (plot, ranked terms, ISO 230-4 values): HTML (.html) or PDF (.pdf, WeasyPrint)."),
 ) -> None:
     """Diagnose a CW + CCW circular test: each error, its share of the circularity, advice.
 

@@ -167,7 +167,7 @@ def compensate(
                                           help="Work-piece expansion coefficient, 1/K."),
     material_temperature: List[float] = typer.Option(
         [], "--material-temperature", help="Work-piece sensor, °C (repeat for several; averaged)."),
-    length: float = typer.Option(1000.0, "--length", help="Length for the errors, mm."),
+    length: float = typer.Option(1000.0, "--length", help="Length of the part (at 20 °C) over which the errors of a scale without this compensation are shown, mm."),
     period: float = typer.Option(20.0, "--period", help="Output period, µm (20, 25, 40, 50, 100)."),
     counts_per_period: int = typer.Option(256, "--counts-per-period",
                                           help="Output counts per period."),

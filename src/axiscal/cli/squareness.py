@@ -252,8 +252,8 @@ def _check_crossed(one, two, axes) -> None:
 
 
 def diagonal(
-    x_length: Optional[float] = typer.Option(None, "--x-length", help="Programmed X travel X, mm."),
-    y_length: Optional[float] = typer.Option(None, "--y-length", help="Programmed Y travel Y, mm."),
+    x_length: Optional[float] = typer.Option(None, "--x-length", help="X side of the rectangle whose diagonals were measured (programmed X travel), mm; with --d1 --d2."),
+    y_length: Optional[float] = typer.Option(None, "--y-length", help="Y side of the rectangle whose diagonals were measured (programmed Y travel), mm; with --d1 --d2."),
     d1: Optional[float] = typer.Option(None, "--d1", help="Length error of D1 (along -X +Y, from corner +X -Y), µm."),
     d2: Optional[float] = typer.Option(None, "--d2", help="Length error of D2 (along +X +Y, from corner -X -Y), µm."),
     file: Optional[Path] = typer.Option(None, "--file", help="Multi-point diagonal CSV (diagonal,position,error) instead of the lengths."),

@@ -110,7 +110,7 @@ def map_(
     grid: int = typer.Option(11, "--grid", min=2, max=100, help="Grid points per axis (at most 100: 10^6 points, about 0.6 GB)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the 3-D grid and slices "
                                         "(.png, .svg, .pdf)."),
-    report: Optional[Path] = typer.Option(None, "--report", help="Write an HTML report (.html)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the map's report (error field, body diagonals, inputs): HTML (.html) or PDF (.pdf, WeasyPrint)."),
     as_json: bool = _JSON,
 ):
     """The volumetric error at every point of the working volume, and the body diagonals.
