@@ -59,6 +59,7 @@ def run() -> list[dict]:
         rows.append(dict(name="iso230-2 --json latency, 41 targets x 5 runs x 2 dirs",
                          value=cli * 1e3, unit="ms", reference=f"python -c 'import numpy' {ref * 1e3:.0f} ms (best of 15 each)",
                          ratio=cli / ref, aim="ratio <= 1.5"))
+        rows.extend(_instruction_rows(f))
     from axiscal.datasets import PositioningDataset
     from axiscal.standards.iso230_2 import evaluate
 
@@ -73,6 +74,36 @@ def run() -> list[dict]:
     rows.append(dict(name="evaluate() in process, 41 x 5 x 2", value=1.0 / dt, unit="evals/s"))
     rows.extend(_large_csv_rows())
     return rows
+
+
+def _instructions(cmd: list[str]) -> int | None:
+    """Instructions the command executes (valgrind's callgrind, "I refs"), after one run that
+    writes the bytecode cache; None without valgrind. Unlike a wall time it does not move with
+    the machine's load (a shared 2-core machine's best of 15 can be off by tens of percent)."""
+    import os
+    import re
+    import shutil
+
+    if shutil.which("valgrind") is None:
+        return None
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    subprocess.run(cmd, check=True, capture_output=True, env=env)
+    out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", *cmd],
+                         capture_output=True, text=True, env=env).stderr
+    found = re.search(r"I\s+refs:\s+([\d,]+)", out)
+    return int(found.group(1).replace(",", "")) if found else None
+
+
+def _instruction_rows(f: Path) -> list[dict]:
+    """The same start-up counted in instructions, beside ``import numpy``'s (issue 30)."""
+    ref = _instructions([sys.executable, "-c", "import numpy"])
+    cli = _instructions([sys.executable, "-m", "axiscal", "iso230-2", str(f), "--json"])
+    if ref is None or cli is None:
+        return [dict(name="  the same in instructions executed", value=float("nan"), unit="",
+                     reference="valgrind not installed: not counted")]
+    return [dict(name="  the same in instructions executed (valgrind)", value=float(cli),
+                 unit="instructions", reference=f"python -c 'import numpy' {ref:.3g}",
+                 ratio=cli / ref, aim="ratio <= 1.5 (the load-independent view)")]
 
 
 _CHILD = """
