@@ -132,3 +132,25 @@ def test_motion_analyze_report_speaks_of_no_truth_it_does_not_have(tmp_path):
     assert r.exit_code == 0, r.output
     html = report.read_text()
     assert "Measured errors per run (zeroed at 0°)." in html and "truth" not in html.lower()
+
+
+def test_a_draft_says_why_it_has_no_number():
+    """``axiscal iso230-2 ... --report x.html --draft`` with no configuration: the draft's
+    "Certificate number" read "not stated", as if the user had forgotten one; a draft is never
+    numbered (the register numbers only an issued certificate)."""
+    import tomllib
+    from importlib import resources
+
+    from axiscal.procedures.positioning import simulate_from_config
+    from axiscal.report.certificate import certificate_info, positioning_certificate
+    from axiscal.standards.iso14253_1 import RULE_TEXT, Rule
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_linear.toml").read_text())
+    sim = simulate_from_config(cfg, seed=1)
+    budget = positioning_budget(sim.dataset, sim.result, {"e_ve": 0.8})
+    info = certificate_info({})
+    assert info.draft
+    html = positioning_certificate(sim.dataset, sim.result, budget, info, (),
+                                   RULE_TEXT[Rule.ISO_14253_1]).html()
+    assert "Certificate number</td><td>none: a draft is not numbered" in html

@@ -270,7 +270,8 @@ def _verdict_box(outcome, rule_text: str) -> str:
 def _identification(md, info: CertificateInfo) -> dict[str, Any]:
     c, m = info.customer, info.machine
     return {
-        "Certificate number": info.number or NOT_STATED,
+        "Certificate number": info.number or ("none: a draft is not numbered" if info.draft
+                                              else NOT_STATED),
         "Date of issue": info.issued or NOT_STATED,
         "Customer": c.get("name") or NOT_STATED,
         "Customer address": _lines(c.get("address"), ", "),
