@@ -33,7 +33,7 @@ DEMO_CONFIG = {
                    "air_temperature": 20.0, "material_temperature": 20.0},
     "certificate": {"signatory": "A. Demonstrator",
                     "signatory_role": "Signatory of the demonstration (simulated)",
-                    "specification": "the demonstration's tolerances (axiscal demo)"},
+                    "specification": "the tolerances of axiscal's demonstration"},
     "uncertainty": {"e_ve": 0.2, "e_ve_source": "declared"},
 }
 DEMO_TOLERANCES = {"linear": {"A": 20.0, "E": 15.0, "R": 8.0, "B": 5.0},
