@@ -154,3 +154,21 @@ def test_a_draft_says_why_it_has_no_number():
     html = positioning_certificate(sim.dataset, sim.result, budget, info, (),
                                    RULE_TEXT[Rule.ISO_14253_1]).html()
     assert "Certificate number</td><td>none: a draft is not numbered" in html
+
+
+def test_a_rotary_certificate_writes_degrees_against_the_number(tmp_path):
+    """The demo's rotary certificate: "25 targets from 0 to 360 °"; an angle is written 360°."""
+    import tomllib
+    from importlib import resources
+
+    from axiscal.procedures.positioning import simulate_from_config
+    from axiscal.report.certificate import certificate_info, positioning_certificate
+    from axiscal.standards.iso14253_1 import RULE_TEXT, Rule
+    from axiscal.standards.iso230_9 import positioning_budget
+
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_rotary.toml").read_text())
+    sim = simulate_from_config(cfg, seed=1)
+    budget = positioning_budget(sim.dataset, sim.result, {"e_ve": 0.1})
+    html = positioning_certificate(sim.dataset, sim.result, budget, certificate_info({}), (),
+                                   RULE_TEXT[Rule.ISO_14253_1]).html()
+    assert "targets from 0 to 360°" in html and "360 °" not in html

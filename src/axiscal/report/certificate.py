@@ -293,7 +293,7 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
     cycle = cond.get("cycle") or (
         f"{'bidirectional' if result.bidirectional else 'unidirectional'}, {result.n_runs} runs, "
         f"{result.targets.size} targets from {target_label(result.targets[0])} to "
-        f"{target_label(result.targets[-1])} {tu}"
+        f"{target_label(result.targets[-1])}{'' if tu == '°' else ' '}{tu}"   # 360°, 800 mm
     )
     air, mat = measured_temperatures(dataset, info)
     if env.material_temperature:
