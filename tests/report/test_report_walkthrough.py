@@ -172,3 +172,20 @@ def test_a_rotary_certificate_writes_degrees_against_the_number(tmp_path):
     html = positioning_certificate(sim.dataset, sim.result, budget, certificate_info({}), (),
                                    RULE_TEXT[Rule.ISO_14253_1]).html()
     assert "targets from 0 to 360°" in html and "360 °" not in html
+
+
+def test_every_standard_report_caption_reads_as_a_sentence(tmp_path):
+    """``axiscal evaluate turntable.csv --standard all --report``: the figure's caption ended
+    "drawn as ISO 230-2:2014 does (±2s bands) (arcsec against target in °)"."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    data, out = tmp_path / "t.csv", tmp_path / "eval.html"
+    r = CliRunner().invoke(app, ["simulate", str(ROOT / "src/axiscal/data/demo_rotary.toml"),
+                                 "--data", str(data)])
+    assert r.exit_code == 0, r.output
+    r = CliRunner().invoke(app, ["evaluate", str(data), "--standard", "all", "--report", str(out)])
+    assert r.exit_code == 0, r.output
+    assert "drawn as ISO 230-2:2014 does with ±2s bands (arcsec against target in °)." \
+        in out.read_text()

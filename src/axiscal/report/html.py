@@ -309,7 +309,7 @@ def standards_report(dataset, results, title: str, decisions=()) -> Report:
         rep.add_figure(standards_figure(dataset, results),
                        f"The readings every standard starts from: mean deviation per direction "
                        f"and every run's readings, drawn as {std.title} does"
-                       + (f" (±{std.band:g}s bands)" if std.band else "") + f" ({units}).")
+                       + (f" with ±{std.band:g}s bands" if std.band else "") + f" ({units}).")
     rep.add_heading("Sources")
     rep.add_table(["Standard", "Definitions taken from"],
                   [[std.title, std.source] for std, _ in evaluated], css_class="text")
