@@ -17,6 +17,9 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
+import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -24,8 +27,8 @@ import pytest
 from axiscal.compensation.controllers import linuxcnc as writer
 from axiscal.compensation.tables import table_from_deviations
 from axiscal.instruments.linuxcnc_controller import (
-    LINUXCNC_LOCK, LinuxCNC, clean_leftovers, leftover_segments, running_processes, session_lock,
-    platform_reason)
+    LINUXCNC_LOCK, SETTLE_PERIODS, LinuxCNC, clean_leftovers, leftover_segments,
+    running_processes, session_lock, platform_reason)
 
 # Skipped only where no install can help (not Debian, not root); on Debian as root a missing
 # LinuxCNC fails these tests: make test installs it (make linuxcnc).
@@ -130,4 +133,45 @@ def test_a_killed_session_is_cleaned_up_by_the_next():
     assert any(r.startswith("process") for r in removed) and str(LINUXCNC_LOCK) in removed
     with LinuxCNC((-10.0, 10.0)) as cnc:
         assert abs(cnc.move(5.0).motor_pos_cmd - 5.0) < 1e-9
+    _nothing_left()
+
+
+def _wait_stopped(pid):
+    """Until every thread of ``pid`` is stopped (SIGSTOP is delivered asynchronously)."""
+    tasks = Path(f"/proc/{pid}/task")
+    for _ in range(500):
+        states = [(t / "stat").read_text().rsplit(")", 1)[1].split()[0] for t in tasks.iterdir()]
+        if all(s == "T" for s in states):
+            return
+        time.sleep(0.01)
+    raise AssertionError(f"rtapi_app ({pid}) did not stop: {states}")
+
+
+def test_a_reading_waits_for_runs_of_the_servo_thread_not_for_time():
+    """LinuxCNC reports a move done before the cubic interpolator has put the planner's last point
+    on the joint's pins; on a loaded computer its servo thread (uspace, no realtime kernel) runs
+    late, and a reading taken by the wall clock was short of the target. A reading waits for
+    SETTLE_PERIODS runs of the thread, counted by the thread: with the thread stopped (SIGSTOP
+    to rtapi_app, a computer too loaded to run it) half a second passes and no reading comes; it
+    comes once the thread has run SETTLE_PERIODS times again, at the target."""
+    with LinuxCNC((-10.0, 10.0)) as cnc:
+        cnc.move(5.0)
+        rtapi = [pid for pid in running_processes()
+                 if open(f"/proc/{pid}/comm").read().strip() == "rtapi_app"]
+        assert len(rtapi) == 1
+        got = []
+        reader = threading.Thread(target=lambda: got.append(cnc.read()))
+        os.kill(rtapi[0], signal.SIGSTOP)
+        try:
+            _wait_stopped(rtapi[0])
+            stopped_at = cnc.servo_runs()
+            reader.start()
+            reader.join(0.5)
+            assert reader.is_alive() and got == []
+            assert cnc.servo_runs() == stopped_at
+        finally:
+            os.kill(rtapi[0], signal.SIGCONT)
+        reader.join(10.0)
+        assert len(got) == 1 and cnc.servo_runs() - stopped_at >= SETTLE_PERIODS
+        assert got[0].pos_cmd == got[0].motor_pos_cmd == pytest.approx(5.0, abs=1e-12)
     _nothing_left()

@@ -27,6 +27,19 @@ How LinuxCNC is run, as LinuxCNC documents and as tried on Debian 12 (issue 32's
   axiscal's marker in its environment, the lock file, and those segments when nothing is attached;
 * a HAL component created in this process must ``exit()`` before LinuxCNC shuts down.
 
+When LinuxCNC reports a move done, the joint's pins may not have reached the end yet: the planner
+is done (``update_status``: in position once ``tpIsDone``) while its last points still pass through
+the cubic interpolator on their way to ``joint.N.pos-cmd`` (``get_pos_cmds``: ``cubicAddPoint``,
+``cubicInterpolate``; LinuxCNC ``src/emc/motion/control.c``). On a quiet computer the servo thread
+has run many periods by the time the report arrives; in uspace without a realtime kernel its
+thread is an ordinary one (scheduling class TS, tried), and on a loaded computer it runs late: a
+reading taken at the report could be short of the target (tried at load average 9: a turntable
+target read 0.00058° short, E after compensation 2.06″ instead of 0.89″), or hold ``pos-cmd`` of
+one run and ``motor-pos-cmd`` of the run before (the thread can be preempted between writing
+them). :meth:`LinuxCNC.read` therefore waits for :data:`SETTLE_PERIODS` runs of the servo
+thread, counted by the thread itself (HAL ``integ`` as ``axiscal-servo-clock`` in
+``axiscal_sim.hal``), never by the wall clock: the same moves read the same pins at any load.
+
 With a ``COMP_FILE``, ``motor-pos-cmd = pos-cmd + trim`` (LinuxCNC ``src/emc/motion/control.c``,
 ``compute_screw_comp``): the forward trim while the joint moves +, the reverse trim while it moves
 −, the last value held when stopped; :attr:`LinuxCNCAxis.log` keeps both pins at every reading.
@@ -54,7 +67,7 @@ from axiscal.machines.seen_through import AxisSeenThrough
 
 __all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "platform_reason", "unavailable_reason",
            "clean_leftovers", "running_processes", "leftover_segments", "session_lock", "SESSION_LOCK",
-           "LINUXCNC_LOCK"]
+           "LINUXCNC_LOCK", "SETTLE_PERIODS"]
 
 #: axiscal's own lock: one LinuxCNC session at a time on this computer (held with fcntl).
 SESSION_LOCK = Path(tempfile.gettempdir()) / "axiscal-linuxcnc.session.lock"
@@ -75,6 +88,15 @@ _SI = {"mm": 1e-3, "inch": 1e-3, "deg": np.pi / 180.0}
 #: The final approach of :meth:`LinuxCNC.move` with ``approach``: distance (mm) and feed
 #: (mm/min): 1 mm/s, a step of at most 1 µm per 1 ms servo period.
 CREEP, CREEP_FEED = 0.01, 60.0
+#: Runs of the servo thread between LinuxCNC reporting a move done and the reading. The joint
+#: gets, each run, the way point (x0 + 4 x1 + x2) / 6 of the cubic interpolator's last four
+#: planner points (LinuxCNC ``src/emc/motion/cubic.c``, ``cubicAddPoint``, ``wayPoint``), so the
+#: planner's final point is on ``joint.N.pos-cmd`` 3 runs after the planner is done (tried: a
+#: reading taken earlier was short by a sixth of the last step, 0.5 µm / 6); 5 leaves the trim's
+#: rate limit (``compute_screw_comp``) its run and costs 5 ms a reading on a quiet computer.
+SETTLE_PERIODS = 5
+#: The HAL signal of ``axiscal-servo-clock.out``: the servo thread's runs so far.
+SERVO_CLOCK = "axiscal-servo-clock"
 
 
 def platform_reason() -> str | None:
@@ -334,12 +356,21 @@ class LinuxCNC:
         comp = hal.component("axiscal-laser")
         for pin in ("motor-pos-cmd", "pos-cmd"):
             comp.newpin(pin, hal.HAL_FLOAT, hal.HAL_IN)
+        self._ready(comp, [("j0-motor-pos-cmd", "axiscal-laser.motor-pos-cmd"),
+                           ("j0-pos-cmd", "axiscal-laser.pos-cmd")])
+        self._switch_on_and_home(1)
+
+    def _ready(self, comp, nets: list) -> None:
+        """Give ``comp`` (a ``hal.component`` with its pins) the servo clock's pin, make it ready
+        and connect the ``nets`` (``halcmd net`` arguments)."""
+        import hal
+
+        comp.newpin("servo-clock", hal.HAL_FLOAT, hal.HAL_IN)
         comp.ready()
         self._comp = comp
-        for sig, pin in (("j0-motor-pos-cmd", "motor-pos-cmd"), ("j0-pos-cmd", "pos-cmd")):
-            subprocess.run(["halcmd", "net", sig, f"axiscal-laser.{pin}"], env=self._env(),
-                           check=True, capture_output=True)
-        self._switch_on_and_home(1)
+        for net in [*nets, (SERVO_CLOCK, f"{comp.getprefix()}.servo-clock")]:
+            subprocess.run(["halcmd", "net", *net], env=self._env(), check=True,
+                           capture_output=True)
 
     def _switch_on_and_home(self, joints: int) -> None:
         """Out of e-stop, machine on, every joint homed in joint mode, then MDI (the order
@@ -397,8 +428,22 @@ class LinuxCNC:
         return self.read()
 
     def read(self) -> Reading:
-        """The joint's ``pos-cmd`` and ``motor-pos-cmd`` now (machine units)."""
+        """The joint's ``pos-cmd`` and ``motor-pos-cmd`` (machine units), :data:`SETTLE_PERIODS`
+        runs of the servo thread after now (the move's last points on the pins; module
+        docstring)."""
+        self.wait_periods(SETTLE_PERIODS)
         return Reading(float(self._comp["pos-cmd"]), float(self._comp["motor-pos-cmd"]))
+
+    def wait_periods(self, n: int, timeout: float = 10.0) -> None:
+        """Wait until the servo thread has run ``n`` more times (its own count, not the wall
+        clock: late runs on a loaded computer count as what they are)."""
+        start = self.servo_runs()
+        _wait(lambda: self.servo_runs() - start > n - 0.5, timeout,
+              f"LinuxCNC's servo thread to run {n} periods", poll=0.001)
+
+    def servo_runs(self) -> float:
+        """Runs of the servo thread so far (``axiscal-servo-clock``; a whole number)."""
+        return float(self._comp["servo-clock"])
 
 
 @dataclass
@@ -455,9 +500,9 @@ class LinuxCNCAxis(AxisSeenThrough):
         return r
 
 
-def _wait(ok, timeout: float, what: str) -> None:
+def _wait(ok, timeout: float, what: str, poll: float = 0.02) -> None:
     end = time.monotonic() + timeout
     while not ok():
         if time.monotonic() > end:
             raise MeasurementError(f"gave up waiting {timeout:g} s for {what}")
-        time.sleep(0.02)
+        time.sleep(poll)

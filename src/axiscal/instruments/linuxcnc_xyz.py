@@ -8,23 +8,25 @@ the external offsets driven by axiscal's userspace HAL component ``axiscal_volco
 (``axiscal_volcomp.hal``; LinuxCNC documentation, "External Axis Offsets": ``[AXIS_L]
 OFFSET_AV_RATIO``, ``axis.L.eoffset-enable``, ``-scale``, ``-counts``).
 
-:meth:`LinuxCNCXYZ.move` reaches a target with the slow final approach of the one-joint driver
+:meth:`LinuxCNCXYZ.move_to` reaches a target with the slow final approach of the one-joint driver
 (LinuxCNC holds, once a joint stops, the trim of the last servo period in which it moved), waits
-until the external offsets have settled on the correction of the final commanded position
-(the component has run two cycles since the move ended, so it evaluated the final position, even
-on a loaded computer; then ``axis.L.eoffset`` equal to ``axis.L.eoffset-request``: the offset
-ramps, limited by OFFSET_AV_RATIO of the axis's velocity and acceleration) and reads the three
-joints' ``motor-pos-cmd`` (command + offset + trim: what reaches the drives) through an in-process HAL
-component (``axiscal-xyz``).
+:data:`~axiscal.instruments.linuxcnc_controller.SETTLE_PERIODS` runs of the servo thread (the
+move's last points on the pins), then until the external offsets have settled on the correction
+of the final commanded position (the component has run two cycles since, so it evaluated the
+final position, even on a loaded computer; then ``axis.L.eoffset`` within :data:`SETTLED` of
+``axis.L.eoffset-request``, both unchanged over SETTLE_PERIODS runs of the servo thread: the
+offset ramps, limited by OFFSET_AV_RATIO of the axis's velocity and acceleration, and reaches the
+joints through the same cubic interpolator) and reads the three joints' ``motor-pos-cmd``
+(command + offset + trim: what reaches the drives) through an in-process HAL component
+(``axiscal-xyz``). Every wait on LinuxCNC's motion is counted in runs of its servo thread, never
+in seconds (the one-joint driver's docstring says why).
 """
 
 from __future__ import annotations
 
 import json
 import os
-import subprocess
 import tempfile
-import time
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -33,7 +35,8 @@ from string import Template
 import numpy as np
 
 from axiscal.errors import MeasurementError
-from axiscal.instruments.linuxcnc_controller import CREEP, CREEP_FEED, LinuxCNC, _wait
+from axiscal.instruments.linuxcnc_controller import (CREEP, CREEP_FEED, SETTLE_PERIODS,
+                                                     LinuxCNC, _wait)
 
 __all__ = ["LinuxCNCXYZ", "EOFFSET_SCALE"]
 
@@ -41,8 +44,11 @@ AXES = "XYZ"
 #: mm per count of the external offsets (``axis.L.eoffset-scale``): 1 nm.
 EOFFSET_SCALE = 1e-6
 #: How close (mm) a settled external offset is to its request: 50 nm. LinuxCNC's offset planner
-#: stops short by about the ratio's acceleration times a servo period squared (tried: 2 nm at
-#: 0.2 × 2e4 mm/s², 14 nm at 0.2 × 1e5 mm/s²); the reading takes the offset as applied.
+#: stops anywhere within its dead band of the request, 0.001 × acceleration × servo period²
+#: (LinuxCNC ``src/emc/motion/simple_tp.c``, ``tiny_dp``: 20 nm at 0.2 × 1e5 mm/s²), where in it
+#: depending on the path, which follows the component's updates (userspace, not in step with
+#: the servo thread; tried: the same point read up to 17 nm apart run to run); the reading takes
+#: the offset as applied.
 SETTLED = 5e-5
 
 
@@ -125,11 +131,7 @@ class LinuxCNCXYZ(LinuxCNC):
         if self.volcomp is not None:
             comp.newpin("cycles", hal.HAL_U32, hal.HAL_IN)
             nets.append(("vc-cycles", "axiscal-volcomp.cycles", "axiscal-xyz.cycles"))
-        comp.ready()
-        self._comp = comp
-        for net in nets:
-            subprocess.run(["halcmd", "net", *net], env=self._env(), check=True,
-                           capture_output=True)
+        self._ready(comp, nets)
         self._switch_on_and_home(len(AXES))
 
     def move_to(self, target) -> np.ndarray:
@@ -139,6 +141,7 @@ class LinuxCNCXYZ(LinuxCNC):
         start = " ".join(f"[{v - CREEP:.9f}]" for v in t)
         end = " ".join(f"[{v:.9f}]" for v in t)
         self.mdi(f"o<axiscal_approach_xyz> call {start} {end} [{CREEP_FEED:g}]")
+        self.wait_periods(SETTLE_PERIODS)
         if self.volcomp is not None:
             c0 = self._comp["cycles"]
             try:
@@ -158,16 +161,20 @@ class LinuxCNCXYZ(LinuxCNC):
         return np.array([self._comp[f"j{j}-pos-cmd"] for j in range(3)], dtype=float)
 
     def _settled(self) -> bool:
-        """The offsets are where the component asks, within :data:`SETTLED`, and did not move
-        for 10 ms (ten servo periods: the request follows the counts at the next one)."""
-        c = self._comp
-        now = [c[f"{a}-eoffset"] for a in "xyz"]
-        want = [c[f"{a}-request"] for a in "xyz"]
-        if any(abs(v - w) > SETTLED for v, w in zip(now, want)):
+        """The offsets are where the component asks, within :data:`SETTLED`, and neither they
+        nor the requests changed over SETTLE_PERIODS runs of the servo thread (the request
+        follows the counts at the next run; the joints follow the offset through the cubic
+        interpolator)."""
+        before = self._offsets()
+        if any(abs(v - w) > SETTLED for v, w in zip(before[:3], before[3:])):
             return False
-        time.sleep(0.01)
-        return now == [c[f"{a}-eoffset"] for a in "xyz"] and all(
-            abs(c[f"{a}-eoffset"] - c[f"{a}-request"]) <= SETTLED for a in "xyz")
+        self.wait_periods(SETTLE_PERIODS)
+        return self._offsets() == before
+
+    def _offsets(self) -> list:
+        """``axis.L.eoffset`` then ``axis.L.eoffset-request`` of X, Y, Z now, mm."""
+        c = self._comp
+        return [c[f"{a}-eoffset"] for a in "xyz"] + [c[f"{a}-request"] for a in "xyz"]
 
     def move(self, *args, **kwargs):
         raise MeasurementError("LinuxCNCXYZ moves three joints: use move_to")
