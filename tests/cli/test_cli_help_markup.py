@@ -36,3 +36,11 @@ def test_iso230_2_help_names_the_job_files_uncertainty_table():
     r = CliRunner().invoke(app, ["iso230-2", "--help"], env={"COLUMNS": "300"})
     assert r.exit_code == 0
     assert "over the job file's [uncertainty], e.g." in r.output
+
+
+def test_every_listed_summary_is_one_line():
+    """A command's first help paragraph is what its group lists; a line break in it broke the
+    list mid-sentence ("... the old one stays in" / "the register, ...")."""
+    for path, cmd in _commands(typer.main.get_command(app), [], None):
+        first = (cmd.help or "").strip().split("\n\n")[0]
+        assert "\n" not in first, (" ".join(path), first)

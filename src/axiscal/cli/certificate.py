@@ -100,8 +100,10 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
                                                "the old certificate."),
             db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
             json_out: bool = _JSON) -> None:
-    """Amend a certificate: a new number that replaces it, with the reason; the old one stays in
-    the register, marked superseded (ISO/IEC 17025:2017 §7.8.8).
+    """Amend a certificate: a new number replaces it; the old one stays, marked superseded.
+
+    The reason is printed on the new certificate, which names the one it replaces (ISO/IEC
+    17025:2017 §7.8.8).
 
     Example: axiscal certificate reissue PM-2026-00001 --reason "serial number corrected" --job fix.toml --out PM-2026-00002.pdf
     """

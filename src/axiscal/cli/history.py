@@ -308,8 +308,7 @@ def import_(
     db: Optional[str] = _DB,
     json_out: bool = _JSON,
 ) -> None:
-    """Store every test of an archive, all or nothing (tests already stored are recognised and
-    skipped).
+    """Store every test of an archive, all or nothing; tests already stored are skipped.
 
     The archive is checked whole before the first row (its ZIP directory's sizes, every record,
     every raw file and its SHA-256, every file evaluated again), then stored in one transaction:

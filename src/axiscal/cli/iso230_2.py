@@ -65,8 +65,10 @@ def iso230_2(
     reference_offset: Optional[float] = REFERENCE_OFFSET,
     rest_window: Optional[float] = REST_WINDOW,
 ) -> None:
-    """Evaluate a positioning test by ISO 230-2:2014 (A, E, M, R, B per axis and per target),
-    with its uncertainty (ISO 230-2 Annex A) and, with tolerances, ISO 14253-1 decisions.
+    """Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U, tolerance verdicts.
+
+    A, E, M, R, B per axis and per target, with their uncertainty (ISO 230-2:2014 Annex A) and,
+    with tolerances, ISO 14253-1 decisions.
 
     Example: axiscal iso230-2 x_axis.csv --tolerance E=10 --report certificate.pdf
     """

@@ -166,8 +166,9 @@ def compensate(
                                        "the 3-D correction, in one run."),
     as_json: bool = _JSON,
 ):
-    """Positioning and cross-axis tables that remove what tables can, in the order of the
-    squareness paper's Appendix II.
+    """Positioning and cross-axis tables that remove what tables can (Chapman's Appendix II).
+
+    In the order of Chapman, "Calibration of machine squareness", Appendix II.
 
     Example: axiscal volumetric compensate vol/volumetric.toml --controller siemens-840d --verify
     """
