@@ -443,13 +443,15 @@ def _stored(s, digests: list) -> dict:
 
     from axiscal.store.models import Axis, Machine, Test
 
+    t, a, m = Test.__table__.c, Axis.__table__.c, Machine.__table__.c     # plain rows
     found, unique = {}, sorted(set(digests))
     for k in range(0, len(unique), 900):                      # SQLite's bound-parameter limit
-        q = (select(Test.sha256, Test.id, Test.kind, Machine.name, Axis.name)
-             .join(Axis, Test.axis_id == Axis.id).join(Machine, Axis.machine_id == Machine.id)
-             .where(Test.sha256.in_(unique[k:k + 900])))
-        for sha, tid, kind, m, a in s.execute(q):
-            found[sha] = AddResult(tid, True, kind, m, a)
+        q = (select(t.sha256, t.id, t.kind, m.name, a.name)
+             .select_from(Test.__table__.join(Axis.__table__, t.axis_id == a.id)
+                          .join(Machine.__table__, a.machine_id == m.id))
+             .where(t.sha256.in_(unique[k:k + 900])))
+        for sha, tid, kind, m_name, a_name in s.connection().execute(q):
+            found[sha] = AddResult(tid, True, kind, m_name, a_name)
     return found
 
 
