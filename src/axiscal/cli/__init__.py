@@ -60,7 +60,7 @@ COMMANDS: dict[str, str] = {
 #: checks each entry against its command's own help).
 SUMMARIES: dict[str, str] = {
     "iso230-2":
-        "Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U, tolerance verdicts.",
+        "Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U and verdicts.",
     "evaluate": "Evaluate a positioning test by a named standard, or by all of them side by side.",
     "plan": "Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
     "simulate": "Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.",

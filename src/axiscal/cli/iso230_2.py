@@ -65,7 +65,7 @@ def iso230_2(
     reference_offset: Optional[float] = REFERENCE_OFFSET,
     rest_window: Optional[float] = REST_WINDOW,
 ) -> None:
-    """Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U, tolerance verdicts.
+    """Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U and verdicts.
 
     A, E, M, R, B per axis and per target, with their uncertainty (ISO 230-2:2014 Annex A) and,
     with tolerances, ISO 14253-1 decisions.
