@@ -103,3 +103,13 @@ def test_compensate_summary_writes_micrometres_as_every_other_output(tmp_path):
                                  "--out", str(tmp_path / "x.table.csv")], env=ENV)
     assert r.exit_code == 0, r.output
     assert "largest corr." in r.output and " µm (correction = −deviation)" in r.output
+
+
+def test_squareness_comparison_tables_are_titled_and_captioned_unbroken():
+    """``axiscal squareness simulate --machine 3``: the table was titled "results" and its caption
+    broke over two lines ("columns: test centre" / "(x, y) in mm") at the narrow table's width."""
+    r = CliRunner().invoke(app, ["squareness", "simulate", "--machine", "3", "--scope", "global"],
+                           env=ENV)
+    assert r.exit_code == 0, r.output
+    assert "squareness by each method [µm/m]" in r.output
+    assert r.output.count("columns: test centre (x, y) in mm") == 2

@@ -451,8 +451,9 @@ def render_comparison(c, console=None) -> None:
     locations = c.locations()
 
     def table(title, names, value):
-        t = Table(title=title, title_justify="left", caption="columns: test centre (x, y) in mm",
-                  caption_justify="left")
+        caption = "columns: test centre (x, y) in mm"   # as wide as its longest line: unwrapped
+        t = Table(title=title, title_justify="left", caption=caption, caption_justify="left",
+                  min_width=max(len(title), len(caption)))
         t.add_column("", no_wrap=True)
         for loc in locations:
             t.add_column(f"{loc[0] * 1e3:+.0f}, {loc[1] * 1e3:+.0f}", justify="right",
@@ -461,7 +462,8 @@ def render_comparison(c, console=None) -> None:
             t.add_row(name, *[f"{value(name, loc):+.2f}" for loc in locations])
         con.print(t)
 
-    table("results", list(dict.fromkeys(r.method for r in c.results if not r.group)), c.value)
+    table("squareness by each method [µm/m]",
+          list(dict.fromkeys(r.method for r in c.results if not r.group)), c.value)
     names = list(dict.fromkeys(n for n, _, _ in c.averages if "ballbar" not in n))
     table("averages of opposite corners (L) and sides (T)", names, c.average)
     for r in (r for r in c.results if r.group):
