@@ -216,8 +216,13 @@ def add_routes(app: FastAPI) -> None:
                           error=str(exc))
         typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
             if r.duplicate else {}        # not stored: shown, offered as a correction
-        return RedirectResponse(f"/tests/{r.id}?" + query(
+        answer = RedirectResponse(f"/tests/{r.id}?" + query(
             stored="again" if r.duplicate else "new", **typed), 303)
+        if not r.duplicate:            # its page made after the answer (a figure: a second)
+            from starlette.background import BackgroundTask
+
+            answer.background = BackgroundTask(_prepare_view, request.app, r.id)
+        return answer
 
 
 async def _product(request: Request, test_id: int, words: str, what: str, make):
@@ -322,6 +327,20 @@ def _test_view(env, t, kept_only: bool = False) -> tuple | None:
     html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
         "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
     return ev, cfg, {**parts, "results_html": Markup(html)}
+
+
+def _prepare_view(app, test_id: int) -> None:
+    """Make a new test's page parts (its figure, tables, rendering) in a thread after the upload
+    was answered, so its first view is a look-up; a view that comes meanwhile waits for this one
+    (:func:`axiscal.store.cache.derived` makes a product once). A failure here is only logged:
+    the view makes the parts again and shows its error."""
+    import logging
+
+    try:
+        _test_view(app.state.templates.env, app.state.store.get(test_id))
+    except Exception:                         # noqa: BLE001 - best effort, the view reports
+        logging.getLogger("axiscal.web").warning("test %s: page not made after upload",
+                                                 test_id, exc_info=True)
 
 
 def _test_parts(ev) -> dict:
