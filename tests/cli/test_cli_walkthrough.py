@@ -113,3 +113,24 @@ def test_squareness_comparison_tables_are_titled_and_captioned_unbroken():
     assert r.exit_code == 0, r.output
     assert "squareness by each method [µm/m]" in r.output
     assert r.output.count("columns: test centre (x, y) in mm") == 2
+
+
+def test_history_speaks_in_micrometres(tmp_path):
+    """``history list``, ``compare`` and ``trend`` wrote "E 1.099 um", "-11.732 um", "um/year"
+    where every table and report writes µm."""
+    db = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    data = []
+    for k, shift in enumerate((0.0, 1.0, 2.0)):
+        p = tmp_path / f"t{k}.csv"
+        p.write_text(f"# target_unit=mm deviation_unit=um machine=M axis=X date=202{k}-01-01\n"
+                     "target,direction,run,deviation\n"
+                     + "".join(f"{t},{d},{r},{t / 100 + shift + (r - 1) * 0.1}\n"
+                               for t in (0, 100, 200) for d in "+-" for r in (1, 2)))
+        data.append(p)
+        r = CliRunner().invoke(app, ["history", "add", str(p), "--db", db], env=ENV)
+        assert r.exit_code == 0, r.output
+    outputs = [CliRunner().invoke(app, args + ["--db", db], env=ENV).output for args in
+               (["history", "list"], ["history", "compare", "1", "2"],
+                ["history", "trend", "--machine", "M", "--axis", "X", "--parameter", "E"])]
+    for out in outputs:
+        assert "µm" in out and " um" not in out, out

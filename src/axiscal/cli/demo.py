@@ -122,10 +122,12 @@ def _history(out: Path, db: str, seed: int) -> None:
                    loop.controller_file.text),) if label == "before" else ()
         ids.append(store.add(p.read_bytes(), p.name, note=f"compensation loop: {label}",
                              tables=tables).id)
+    from axiscal.report.labels import unit_text
+
     typer.echo(f"\ncalibration history ({db}):")
     for t in store.tests():
         key = "E" if "E" in t.parameters else next(iter(t.parameters))
-        v, u = t.parameters[key]
+        v, u = t.parameters[key][0], unit_text(t.parameters[key][1])
         typer.echo(f"  test {t.id:>3}  {t.machine} {t.axis}  {t.kind}  {key} = {v:.3f} {u}  "
                    f"{t.filename}")
     c = compare_tests(store.get(ids[0]), store.get(ids[1]))

@@ -123,6 +123,7 @@ def list_(
 
     Example: axiscal history list --machine VMC-800 --axis X
     """
+    from axiscal.report.labels import unit_text
     from axiscal.store.history import _date
 
     when = _date(since)[0] if since else None
@@ -136,7 +137,7 @@ def list_(
     wa = max([4, *(len(t.axis) for t in rows)])
     for t in rows:
         key = next((k for k in ("E", "squareness", "straightness") if k in t.parameters), None)
-        main = f"{key} {t.parameters[key][0]:.3f} {t.parameters[key][1]}" if key else ""
+        main = f"{key} {t.parameters[key][0]:.3f} {unit_text(t.parameters[key][1])}" if key else ""
         date = f"{t.tested_at:%Y-%m-%d}" + ("" if t.date_known else "?")
         typer.echo(f"{t.id:>6}  {date:<11} {t.machine:<{wm}} {t.axis:<{wa}} {t.kind:<13} "
                    f"{main:<22} {t.filename}"

@@ -82,12 +82,15 @@ class Trend:
                 "recalibrate_by": iso(self.recalibrate_by)}
 
     def __str__(self) -> str:
+        from axiscal.report.labels import unit_text
+
+        unit = unit_text(self.unit)   # µm, as every report writes it
         lines = [f"{self.parameter} over {len(self.values)} tests "
                  f"({self.dates[0]:%Y-%m-%d} … {self.dates[-1]:%Y-%m-%d})"
                  if self.dates else f"{self.parameter}: no tests"]
         if self.drift is not None:
-            lines.append(f"  drift {self.drift:+.4g} ± {self.u_drift:.2g} {self.unit}/year "
-                         f"(standard uncertainty), level now {self.level:.4g} {self.unit}")
+            lines.append(f"  drift {self.drift:+.4g} ± {self.u_drift:.2g} {unit}/year "
+                         f"(standard uncertainty), level now {self.level:.4g} {unit}")
         elif len(self.values) < 3:
             lines.append("  no drift estimate: three tests at least are needed")
         else:
@@ -95,11 +98,11 @@ class Trend:
                          "drift needs tests on different dates")
         if self.tolerance is not None and self.drift is not None:
             if self.crossing is not None:
-                lines.append(f"  reaches the tolerance {self.tolerance:g} {self.unit} on "
+                lines.append(f"  reaches the tolerance {self.tolerance:g} {unit} on "
                              f"{self.crossing:%Y-%m-%d} ± {self.u_crossing_days:.0f} days; "
                              f"recalibrate by {self.recalibrate_by:%Y-%m-%d} (k = 2)")
             else:
-                lines.append(f"  the fitted line does not reach {self.tolerance:g} {self.unit}")
+                lines.append(f"  the fitted line does not reach {self.tolerance:g} {unit}")
         return "\n".join(lines)
 
 
@@ -180,12 +183,14 @@ class Comparison:
                 "target_unit": self.target_unit, "unit": self.unit}
 
     def __str__(self) -> str:
+        from axiscal.report.labels import unit_text
+
         w = max([16, *(len(n) + 2 for n, *_ in self.rows)])   # "iso230-2:2006:R_down" too
         lines = [f"{'parameter':<{w}}{'test ' + str(self.first):>14}"
                  f"{'test ' + str(self.second):>14}{'change':>12}"]
         for n, a, b, c, u in self.rows:
             f = (lambda v: "—" if v is None else f"{v:.3f}")
-            lines.append(f"{n:<{w}}{f(a):>14}{f(b):>14}{f(c):>12} {u}")
+            lines.append(f"{n:<{w}}{f(a):>14}{f(b):>14}{f(c):>12} {unit_text(u)}")
         return "\n".join(lines)
 
 
