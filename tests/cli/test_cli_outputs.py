@@ -246,12 +246,16 @@ def test_report_of_a_result_holds_the_method_the_plot_and_every_figure(tmp_path,
     assert ("simulation report" in page.lower()) == simulation
     # every number of the --json result is in the page's table, under its label with its unit
     # and with the decimals of that unit (issue 28: one label table, one decimal policy)
-    from axiscal.report.labels import fmt, label, quantity
+    # an expanded uncertainty U as the terminal gives it: two significant digits, rounded up
+    # (JCGM 100:2008 §7.2.6)
+    from axiscal.report.labels import fmt, label, quantity, split_key
+    from axiscal.standards.uncertainty_reporting import format_uncertainty
 
     d = json.loads(runner.invoke(app, [*args, "--json"]).stdout)
     for key, value in ((k, v) for k, v in d.items() if isinstance(v, float)):
         unit = quantity(key, d.get("unit"))[1]
-        shown = f"<td>{label(key, d.get('unit'))}</td><td>{fmt(value, unit)}</td>"
+        text = format_uncertainty(value) if split_key(key)[0] == "U" else fmt(value, unit)
+        shown = f"<td>{label(key, d.get('unit'))}</td><td>{text}</td>"
         assert html_lib.unescape(shown) in html_lib.unescape(page), shown
     assert "_um" not in page.split("<body>")[1].split("<svg")[0]
 
