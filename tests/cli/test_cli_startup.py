@@ -39,8 +39,7 @@ NOT_FOR_A_CSV = ("axiscal._schema", "axiscal.io.epics", "axiscal.io.ecmc", "axis
 
 
 def _csv(folder) -> str:
-    """Five targets, three runs each way; deviations in µm (ISO 230-2:2014 §4: each target
-    approached from both directions)."""
+    """A small bidirectional positioning test: five targets, three runs each way, µm."""
     lines = ["# target_unit=mm deviation_unit=um", "target,direction,run,deviation"]
     for i, t in enumerate((0, 100, 200, 300, 400)):
         for d, off in (("+", 0.0), ("-", -2.0)):
