@@ -38,6 +38,10 @@ LIMITS = {"header_timeout": 10.0, "body_timeout": 30.0, "max_connections": 100,
           "keep_alive": 5, "max_header_bytes": 16 * 1024, "requests_per_connection": 20}
 
 
+#: Seconds a thread holds the GIL while another waits for it, in a serving process.
+SWITCH_INTERVAL = 0.001
+
+
 class TimedH11Protocol(H11Protocol):
     """uvicorn's h11 protocol with a deadline for the headers, a silence limit in the body and
     at most :attr:`requests_per_connection` requests on one connection."""
@@ -124,6 +128,7 @@ def run(app, host: str, port: int, header_timeout: float, body_timeout: float,
     """
     import uvicorn
 
+    _switch_often()
     common = dict(host=host, port=port, log_level="warning",
                   timeout_keep_alive=LIMITS["keep_alive"],
                   h11_max_incomplete_event_size=LIMITS["max_header_bytes"])
@@ -143,6 +148,17 @@ def run(app, host: str, port: int, header_timeout: float, body_timeout: float,
                 **common)
 
 
+def _switch_often() -> None:
+    """Hand the GIL over every :data:`SWITCH_INTERVAL` seconds in a serving process (Python's
+    default: 5 ms). Pages are served on the event loop; an upload or a report runs in a thread,
+    and every SQLite step or file write of that thread lets the GIL go and waits for it back,
+    while the busy event loop keeps it a whole interval: the "convoy effect" of the GIL
+    (D. Beazley, "Understanding the Python GIL", PyCon 2010; CPython bpo-7946)."""
+    import sys
+
+    sys.setswitchinterval(SWITCH_INTERVAL)
+
+
 def app_from_env():
     """The application of one worker process of ``axiscal serve --workers N`` (a uvicorn
     factory): :func:`~axiscal.web.app.create_app` with the settings the server handed over."""
@@ -150,6 +166,7 @@ def app_from_env():
     from axiscal.web.workers import settings_from_env
 
     s = settings_from_env()
+    _switch_often()
     TimedH11Protocol.header_timeout = float(s["header_timeout"])
     TimedH11Protocol.body_timeout = float(s["body_timeout"])
     return create_app(**s["app"])
