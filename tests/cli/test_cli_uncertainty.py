@@ -71,8 +71,10 @@ def test_ecmc_as_laser_states_the_assumed_beam_offset():
     assert "5528A" in beam["rule"] and "--uncertainty beam_offset=" in beam["set_with"]
     assert "beam_offset" in d["uncertainty_budget"]["assumed"]
     r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--uncertainty", "reference=laser"])
-    line = next(ln for ln in r.stdout.splitlines() if "beam offset over the travel" in ln)
-    assert "beam_offset" in line and "0.125 mm" in line and "assumed" in line
+    lines = r.stdout.splitlines()
+    i = next(i for i, ln in enumerate(lines) if "beam offset over the travel" in ln)
+    assert "0.125 mm" in lines[i] and "assumed" in lines[i]
+    assert lines[i + 1].startswith("│ beam_offset ")   # its NAME under it (the input column)
 
 
 def test_ecmc_given_beam_offset_changes_U_as_the_budget_predicts():

@@ -134,3 +134,19 @@ def test_history_speaks_in_micrometres(tmp_path):
                 ["history", "trend", "--machine", "M", "--axis", "X", "--parameter", "E"])]
     for out in outputs:
         assert "µm" in out and " um" not in out, out
+
+
+def test_uncertainty_inputs_leave_the_rule_room_on_a_100_column_terminal(tmp_path):
+    """``axiscal iso230-2 FILE`` at 100 columns: NAME had a column of its own, 33 characters wide,
+    and the rule or source was folded into 15 (60 lines of table); NAME now stands under its
+    input, whole, and the rule has more than twice that room."""
+    data = tmp_path / "x.csv"
+    r = CliRunner().invoke(app, ["simulate", str(ROOT / "src/axiscal/data/demo_linear.toml"),
+                                 "--data", str(data)], env=ENV)
+    assert r.exit_code == 0, r.output
+    r = CliRunner().invoke(app, ["iso230-2", str(data)], env={"COLUMNS": "100"})
+    assert r.exit_code == 0, r.output
+    table = r.output.split("Uncertainty inputs")[1].split("└")[0]
+    assert "│ expansion_coefficient_halfwidth " in table and "…" not in table
+    header = next(line for line in table.splitlines() if "rule or source" in line)
+    assert len(header.split("┃")[-2]) > 30

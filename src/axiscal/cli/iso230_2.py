@@ -284,8 +284,9 @@ def render_uncertainty(con, budget) -> None:
     t = Table(title=escape("Uncertainty inputs (ISO 230-2:2014 Annex A): an assumed input is a "
                            "default; declare yours with --uncertainty NAME=VALUE or [uncertainty] "
                            "NAME in the job file"), title_justify="left")
-    t.add_column("input", max_width=30)
-    t.add_column("NAME", no_wrap=True)
+    # the NAME under its input, not in a column of its own: that column (31 characters for
+    # expansion_coefficient_halfwidth) left the rule 15 characters on a 100-column terminal
+    t.add_column("input / NAME", max_width=34, overflow="fold")   # the longest NAME whole
     t.add_column("value", justify="right", no_wrap=True)
     t.add_column("from", no_wrap=True)
     t.add_column("rule or source", ratio=1)
@@ -293,7 +294,8 @@ def render_uncertainty(con, budget) -> None:
         src = ("[bold red]missing[/bold red]" if i.name in budget.missing_inputs else
                "[yellow]assumed[/yellow]" if i.assumed else
                "data file" if i.rule.startswith("taken from the data file") else "declared")
-        t.add_row(escape(i.label), i.name, escape(i.value_text), src, escape(i.rule))
+        t.add_row(f"{escape(i.label)}\n[dim]{i.name}[/dim]", escape(i.value_text), src,
+                  escape(i.rule))
     con.print(t)
     for n in budget.notes:
         if not n.startswith("assumed: "):   # those are the table's rows
