@@ -68,12 +68,12 @@ def test_a_listing_narrowed_to_key_parameters_keeps_their_values(store):
 
 def test_one_machine_equals_its_summary_among_all(store):
     whole = {m.id: m for m in store.machines()}
-    m = queries.machine(store, 1)
+    m = store.machine(1)
     assert m == whole[1] and m.axes == ("X", "Y") and m.tests == 4
     assert queries.machine_names(store) == [(1, "VMC")]
     for bad in (2, 0, 2**63):
         with pytest.raises(NotFoundError):
-            queries.machine(store, bad)
+            store.machine(bad)
 
 
 def test_the_generation_changes_with_every_write_a_history_page_shows(store):

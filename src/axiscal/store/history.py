@@ -271,9 +271,33 @@ class Store:
 
     def get(self, test_id: int) -> StoredTest:
         """One stored test, all of it (its bytes read when first asked for)."""
-        from axiscal.store.queries import stored_test
+        from axiscal.store import queries
 
-        return stored_test(self, test_id)
+        tid = _test_id(test_id)
+        found = queries.test(self, tid)
+        if found is None:
+            raise NotFoundError(f"no test {test_id} in the history")
+        r, params, tables = found
+        summary = TestSummary(tid, r.machine, r.axis, r.kind, r.tested_at, bool(r.date_known),
+                              r.filename, params, r.note or "", r.withdrawn or "", r.machine_id)
+        return StoredTest(summary, r.sha256, json.loads(r.result_json), r.dataset_json,
+                          json.loads(r.environment_json), r.instrument, r.operator,
+                          r.stored_at, r.axiscal_version, tables, int(r.size or 0),
+                          lambda: self._raw(tid))
+
+    def machine(self, machine_id: int) -> MachineSummary:
+        """One machine with its axes, test count and last test date (one statement)."""
+        from axiscal.store import queries
+
+        mid = int(machine_id)
+        rows = queries.machine(self, mid) if 0 < mid < 2**63 else []
+        if not rows:
+            raise NotFoundError(f"no machine {machine_id} in the history")
+        name, maker, model, serial, location = rows[0][:5]
+        lasts = [r[7] for r in rows if r[7] is not None]
+        return MachineSummary(name, tuple(r[5] for r in rows if r[5]), sum(r[6] for r in rows),
+                              max(lasts) if lasts else None, maker, model, serial, location,
+                              mid)
 
     def _raw(self, test_id: int) -> bytes:
         from sqlalchemy import select

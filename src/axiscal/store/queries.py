@@ -1,12 +1,13 @@
 """The reads a page makes on every view, each a few SQL statements built once.
 
-A stored test, a page of a machine's tests, one machine, the machines' names, the certificates
-and audit entries of a test, and the history's *generation*. They are SQLAlchemy Core statements
-over the tables of :mod:`axiscal.store.models`, built once per process with bound parameters
-(:func:`_statements`) and read as plain rows: the ORM's unit of work, identity map and
+A stored test, a page of a machine's tests with their parameters, one machine, the machines'
+names, and the history's *generation*. They are SQLAlchemy Core statements over the tables of
+:mod:`axiscal.store.models`, built once per process with bound parameters (:func:`_statements`)
+where they can be, and read as plain rows: the ORM's unit of work, identity map and
 per-statement compilation cost a page of the workbench ten times the database's own time
-(3.1 ms of CPU for one test's three ORM queries, 0.17 ms for the same rows read here). Writes
-stay with the ORM (:mod:`axiscal.store.history`, :mod:`axiscal.store.corrections`).
+(3.1 ms of CPU for one test's three ORM queries, 0.17 ms for the same rows read here).
+:class:`~axiscal.store.history.Store` makes its records of them (``get``, ``tests``,
+``machine``); this module imports nothing of it.
 
 Notes
 -----
@@ -22,12 +23,11 @@ may commit after one that took id 6, leaving the largest id unchanged.
 
 from __future__ import annotations
 
-import json
 from functools import lru_cache
 from typing import NamedTuple
 
-__all__ = ["MachineName", "machine", "machine_names", "generation", "stored_test",
-           "test_rows", "parameters"]
+__all__ = ["MachineName", "machine", "machine_names", "generation", "test", "test_rows",
+           "parameters"]
 
 
 class MachineName(NamedTuple):
@@ -37,27 +37,19 @@ class MachineName(NamedTuple):
     name: str
 
 
-def stored_test(store, test_id: int):
-    """The :class:`~axiscal.store.history.StoredTest` of ``test_id`` (three statements: the
-    test with its axis and machine, its parameters, its tables; its bytes are read only when
-    asked for); :class:`~axiscal.store.NotFoundError` if there is none."""
-    from axiscal.store.database import NotFoundError
-    from axiscal.store.history import StoredTest, TestSummary, _test_id
-
-    tid = _test_id(test_id)
+def test(store, test_id: int) -> tuple | None:
+    """(row, parameters, tables) of test ``test_id`` in three statements, else None: the row's
+    fields by name (``kind``, ``tested_at`` ... ``size``, the stored bytes' length, ``axis``,
+    ``machine``, ``machine_id``; not the bytes), the parameters {name: (value, unit)} in the
+    order they were stored, the tables as (controller, filename, text)."""
     q = _statements()
     with store._guard("read"), store.engine.connect() as c:
-        r = c.execute(q["test"], {"id": tid}).first()
+        r = c.execute(q["test"], {"id": test_id}).first()
         if r is None:
-            raise NotFoundError(f"no test {test_id} in the history")
-        params = {n: (v, u) for n, v, u in c.execute(q["parameters"], {"id": tid})}
-        tables = tuple(tuple(x) for x in c.execute(q["tables"], {"id": tid}))
-    summary = TestSummary(tid, r.machine, r.axis, r.kind, r.tested_at, bool(r.date_known),
-                          r.filename, params, r.note or "", r.withdrawn or "", r.machine_id)
-    return StoredTest(summary, r.sha256, json.loads(r.result_json), r.dataset_json,
-                      json.loads(r.environment_json), r.instrument, r.operator, r.stored_at,
-                      r.axiscal_version, tables, int(r.size or 0),
-                      lambda: store._raw(tid))
+            return None
+        params = {n: (v, u) for n, v, u in c.execute(q["parameters"], {"id": test_id})}
+        tables = tuple(tuple(x) for x in c.execute(q["tables"], {"id": test_id}))
+    return r, params, tables
 
 
 def test_rows(store, machine=None, axis=None, kind=None, since=None, limit=None, offset=0):
@@ -112,24 +104,11 @@ def parameters(store, ids: list, names: tuple | None) -> dict[int, dict]:
     return out
 
 
-def machine(store, machine_id: int):
-    """The :class:`~axiscal.store.history.MachineSummary` of one machine (its axes, number of
-    tests, last test date) in one statement; :class:`~axiscal.store.NotFoundError` if there is
-    no such machine."""
-    from axiscal.store.database import NotFoundError
-    from axiscal.store.history import MachineSummary
-
-    mid = int(machine_id)
-    if not 0 < mid < 2**63:                   # beyond what the database's keys hold
-        raise NotFoundError(f"no machine {machine_id} in the history")
+def machine(store, machine_id: int) -> list:
+    """Rows (name, maker, model, serial, location, axis, tests, last test date) of one machine,
+    one per axis (none if there is no such machine), in one statement."""
     with store._guard("read"), store.engine.connect() as c:
-        rows = c.execute(_statements()["machine"], {"id": mid}).all()
-    if not rows:
-        raise NotFoundError(f"no machine {machine_id} in the history")
-    name, maker, model, serial, location = rows[0][:5]
-    lasts = [r[7] for r in rows if r[7] is not None]
-    return MachineSummary(name, tuple(r[5] for r in rows if r[5]), sum(r[6] for r in rows),
-                          max(lasts) if lasts else None, maker, model, serial, location, mid)
+        return c.execute(_statements()["machine"], {"id": machine_id}).all()
 
 
 def machine_names(store) -> list[MachineName]:

@@ -376,7 +376,7 @@ def _machine_view(st, env, machine_id: int, axis: str, kind: str, page: int) -> 
     from axiscal.store.corrections import audit
     from axiscal.web.correction_pages import SHOWN
 
-    m = queries.machine(st, machine_id)
+    m = st.machine(machine_id)
     tests = st.tests(machine=m.name, axis=axis or None, kind=kind or None, limit=PAGE + 1,
                      offset=(page - 1) * PAGE, parameters=_KEY)
     newest = tests if page == 1 and not axis and not kind else []
