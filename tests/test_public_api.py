@@ -49,6 +49,11 @@ def test_notebook_flow_equals_the_cli(laser_file, tmp_path):
     assert "ISO 230-2" in html and f"{ev.result.E:.2f}" in html
     notebook = ev._repr_html_()
     assert "<table>" in notebook and "<svg" in notebook
+    # in the reports' words: the standard's title, labels with units, the unit's decimals
+    assert "by ISO 230-2:2014" in notebook and "<th>E, bidirectional systematic error [µm]</th>" \
+        f"<td>{ev.result.E:.2f}</td>" in notebook
+    assert "A_up" not in notebook and "<th>Machine</th>" in notebook
+    assert "E↑ =" in str(ev) and "µm" in str(ev) and " um" not in str(ev)
 
     table = axiscal.compensation_table(ev, spacing=10)
     cf = axiscal.write_table(table, "siemens-840d", tmp_path / "x.ini")

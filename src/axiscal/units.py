@@ -27,6 +27,7 @@ import numpy as np
 from axiscal.errors import UnitError
 
 __all__ = [
+    "display",
     "LENGTH_UNITS",
     "ANGLE_UNITS",
     "canonical",
@@ -83,6 +84,19 @@ _ALIASES: dict[str, str] = {
     "arcminute": "arcmin", "arcminutes": "arcmin", "'": "arcmin",
     "arcsecond": "arcsec", "arcseconds": "arcsec", "sec": "arcsec", '"': "arcsec", "as": "arcsec",
 }
+
+
+#: Canonical names as people write them (the code's names are ASCII).
+_DISPLAY = {"um": "µm", "deg": "°", "urad": "µrad", "uin": "µin", "um/m": "µm/m"}
+
+
+def display(unit: str) -> str:
+    """A unit as people write it: ``µm`` for ``um``, ``°`` for ``deg``; others as they are.
+
+    >>> display("um"), display("deg"), display("arcsec")
+    ('µm', '°', 'arcsec')
+    """
+    return _DISPLAY.get(unit, unit)
 
 
 def canonical(unit: str) -> str:

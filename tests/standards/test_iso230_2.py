@@ -235,7 +235,11 @@ def test_minimum_target_counts():
 def test_result_str_and_table_are_readable():
     r = evaluate(hand_dataset())
     text = str(r)
-    assert "A      = 8 um" in text and "B_mean = 1.667 um" in text
+    # the symbols of ISO 230-2:2014 clause 3, µm and 0.01 µm, not the code's keys and "um"
+    assert "A  =     8.00 µm" in text and "B̄  =     1.67 µm" in text and "A↑ =" in text
+    assert "um" not in text.replace("µm", "") and "B_mean" not in text
+    # one column on screen (the bar over B is a combining mark: it takes no column)
+    assert len({line.replace("\u0304", "").index("=") for line in text.splitlines()[1:13]}) == 1
     rows = r.target_table()
     assert rows[1]["mean_bi"] == pytest.approx(3.5) and rows[0]["n_up"] == 3
 

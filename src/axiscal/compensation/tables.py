@@ -41,6 +41,7 @@ import numpy as np
 
 from axiscal.datasets import AxisKind
 from axiscal.errors import InputError
+from axiscal.units import display
 
 __all__ = ["CompensationTable", "table_from_result", "table_from_deviations", "Extrapolation",
            "MAX_TABLE_POINTS", "check_point_count"]
@@ -261,11 +262,11 @@ class CompensationTable:
         }
 
     def __str__(self) -> str:
-        pu, cu = self.position_unit, self.correction_unit
+        pu, cu = display(self.position_unit), display(self.correction_unit)
         kind = "bidirectional (+/− tables)" if self.bidirectional else "unidirectional"
         return (
             f"Compensation table, axis {self.axis} ({self.axis_kind.value}), {kind}"
-            f"{', modulo 360 deg' if self.modulo else ''}: {self.n_points} points "
+            f"{', modulo 360°' if self.modulo else ''}: {self.n_points} points "
             f"{'every ' + format(self.spacing, 'g') if self.equidistant else 'at irregular positions'}"
             f" {pu if self.equidistant else ''} from {self.start:g} to {self.end:g} {pu}; "
             f"reference point "

@@ -80,20 +80,36 @@ FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
            "diagonal": _diagonal_figure, "motion": _motion_figure}
 
 
+#: A kind of test in words, as the reports head it.
+KIND_WORDS = {"iso230-2": "Positioning test", "positioning": "Positioning test",
+              "standards": "Positioning test", "ballbar": "Ballbar test",
+              "straightness": "Straightness", "diagonal": "Squareness by diagonals",
+              "motion": "Motion errors of a rotary axis"}
+
+
 def notebook_html(kind: str, standard: str, d: dict, fig: Any) -> str:
-    """A notebook's view: the scalar results as a table, then the figure (SVG)."""
+    """A notebook's view: the scalar results as a table, labelled and to the decimals of the
+    reports (:mod:`axiscal.report.labels`), then the figure (SVG)."""
     from html import escape
 
     from axiscal.report.html import figure_svg
+    from axiscal.report.labels import fmt, quantity
+    from axiscal.standards.positioning_standards import STANDARDS
 
-    rows = "".join(f"<tr><th>{escape(str(k))}</th><td>{escape(_cell(v))}</td></tr>"
-                   for k, v in d.items() if isinstance(v, (int, float, str)) or v is None)
-    return (f"<div><p><b>{escape(kind)}</b> by {escape(standard)}</p>"
-            f"<table>{rows}</table>{figure_svg(fig)}</div>")
-
-
-def _cell(v: Any) -> str:
-    return "—" if v is None else f"{v:.4g}" if isinstance(v, float) else str(v)
+    unit = d.get("unit") if isinstance(d.get("unit"), str) else None
+    rows = []
+    for k, v in d.items():
+        if k == "unit" or not (isinstance(v, (int, float, str)) or v is None):
+            continue
+        # the result's unit belongs to its deviations, not to counts, flags and texts
+        own = unit if isinstance(v, float) or v is None else None
+        name, u = quantity(str(k), own)
+        head = f"{name} [{u}]" if u else name
+        rows.append(f"<tr><th>{escape(head)}</th><td>{escape(fmt(v, u))}</td></tr>")
+    title = STANDARDS[standard].title if standard in STANDARDS else standard
+    what = KIND_WORDS.get(kind, kind.replace("-", " ").capitalize())
+    return (f"<div><p><b>{escape(what)}</b> by {escape(title)}</p>"
+            f"<table>{''.join(rows)}</table>{figure_svg(fig)}</div>")
 
 
 def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None,

@@ -67,6 +67,7 @@ from typing import Literal
 import numpy as np
 
 from axiscal.datasets import AxisKind, PositioningDataset
+from axiscal import units
 from axiscal.errors import InputError, InsufficientRunsError
 
 __all__ = [
@@ -84,6 +85,10 @@ __all__ = [
 RECOMMENDED_RUNS = 5
 #: Axis parameters in the order they are printed (and the keys of :meth:`Iso230_2Result.parameters`).
 PARAMETER_NAMES = ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "B", "B_mean")
+#: The symbols ISO 230-2:2014 clause 3 prints for :data:`PARAMETER_NAMES` (↑ positive, ↓ negative
+#: approach; B̄ the mean reversal value).
+PARAMETER_SYMBOLS = {"A": "A", "A_up": "A↑", "A_down": "A↓", "E": "E", "E_up": "E↑", "E_down": "E↓",
+                     "M": "M", "R": "R", "R_up": "R↑", "R_down": "R↓", "B": "B", "B_mean": "B̄"}
 
 FullTurn = Literal["separate", "merge"]
 
@@ -188,7 +193,11 @@ class Iso230_2Result:
         return rows
 
     def __str__(self) -> str:
-        u = self.deviation_unit
+        """The parameters by their symbols in ISO 230-2:2014 clause 3 (A↑, B̄ ...), in the
+        unit as people write it (µm, not the code's ``um``) and to a fixed resolution (0.01 µm
+        or arcsec, 1e-5 mm), so a column of them lines up."""
+        u = units.display(self.deviation_unit)
+        digits = 5 if self.deviation_unit in ("mm", "deg") else 2
         kind = "bidirectional" if self.bidirectional else "unidirectional"
         lines = [
             f"ISO 230-2:2014, {self.axis_kind.value} axis, {kind}: {self.targets.size} targets "
@@ -196,7 +205,9 @@ class Iso230_2Result:
         ]
         for name in PARAMETER_NAMES:
             v = getattr(self, name)
-            lines.append(f"  {name:<7}= " + ("n/a" if v is None else f"{v:.4g} {u}"))
+            sym = PARAMETER_SYMBOLS[name]
+            pad = " " * (3 - len(sym.replace("\u0304", "")))      # the bar takes no column
+            lines.append(f"  {sym}{pad}= " + ("n/a" if v is None else f"{v:8.{digits}f} {u}"))
         lines.extend(f"  warning: {w}" for w in self.warnings)
         return "\n".join(lines)
 

@@ -78,6 +78,7 @@ from axiscal.compensation.controllers._common import (
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
+from axiscal.units import display
 
 __all__ = ["NAME", "write", "write_axes", "parse", "parse_axes", "inputs", "MAX_POINTS"]
 
@@ -162,8 +163,8 @@ def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0):
     notes = []
     if zero_at_reference and table.mean[table.reference_index] != 0:
         notes.append(f"table shifted by {-table.mean[table.reference_index]:+.4g} "
-                     f"{table.correction_unit} so it is zero at the reference point "
-                     f"{table.reference_position:g} {table.position_unit}")
+                     f"{display(table.correction_unit)} so it is zero at the reference point "
+                     f"{table.reference_position:g} {display(table.position_unit)}")
         table = table.zeroed_at_reference(on="mean")
     k = correction_factor(table, table.position_unit) / per  # correction unit -> file unit
     nd = decimals(table.position_unit) + (1 if per != 1.0 else 0)
