@@ -78,10 +78,9 @@ def serve(
     n = workers or _cores()
     typer.echo(f"axiscal workbench on http://{_url_host(host)}:{port}/ (Ctrl+C stops it); answers "
                f"to {', '.join(sorted(hosts))}; logins end after {session_idle:g} min idle or "
-               f"{session_max:g} h; headers within {header_timeout:g} s, body silences under "
-               f"{body_timeout:g} s, {max_connections} connections at once; {n} worker "
-               f"process{'es' if n > 1 else ''}{'' if workers else ' (default: the cores)'}",
-               err=True)
+               f"{session_max:g} h; {_limits(header_timeout, body_timeout, max_connections, app)}"
+               f"; {n} worker process{'es' if n > 1 else ''}"
+               f"{'' if workers else ' (default: the cores)'}", err=True)
     if n == 1:
         return run(app, host, port, header_timeout, body_timeout, max_connections)
     import tempfile
@@ -89,6 +88,18 @@ def serve(
     with tempfile.TemporaryDirectory(prefix="axiscal-sessions-") as folder:   # mode 0700
         run(None, host, port, header_timeout, body_timeout, max_connections, workers=n,
             settings={**settings, "sessions_folder": folder})
+
+
+def _limits(header_timeout: float, body_timeout: float, max_connections: int, app) -> str:
+    """Every limit of :data:`axiscal.web.server.LIMITS` in force, and the upload size, in words
+    (the first three as given on the command line)."""
+    from axiscal.web.server import LIMITS
+
+    return (f"headers within {header_timeout:g} s and {LIMITS['max_header_bytes'] / 1024:g} KiB, "
+            f"body silences under {body_timeout:g} s, uploads up to "
+            f"{app.state.upload_limit / 2**20:g} MiB, {max_connections} connections at once, "
+            f"{LIMITS['requests_per_connection']} requests per connection (then it is closed), "
+            f"idle connections closed after {LIMITS['keep_alive']:g} s")
 
 
 def _cores() -> int:
