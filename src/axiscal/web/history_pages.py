@@ -148,7 +148,9 @@ def add_routes(app: FastAPI) -> None:
         require_engineer(request)
         controller = str(form.get("controller", ""))
         spacing = _positive(form.get("spacing"), "spacing")
-        f = await run_in_threadpool(_write_table, store(request), test_id, controller, spacing)
+        axis = str(form.get("axis", "") or "").strip()      # as `compensate --axis`
+        f = await run_in_threadpool(_write_table, store(request), test_id, controller, spacing,
+                                    axis)
         return download(f.text, f.filename, "text/plain")
 
     @app.get("/compare", response_class=HTMLResponse)
@@ -286,20 +288,39 @@ def _certificate_pdf(t, ev, cfg: dict, paper: str) -> bytes:
         return path.read_bytes()
 
 
-def _write_table(store, test_id: int, controller: str, spacing: float):
+def _write_table(store, test_id: int, controller: str, spacing: float, axis: str = ""):
+    """The table of ``controller`` from stored test ``test_id``, stored with the test; ``axis``
+    the name written in it, as ``axiscal compensate --axis`` (default: the test's axis)."""
     from axiscal.compensation.controllers import controller as controller_module
     from axiscal.compensation.tables import table_from_result
 
     t = store.get(test_id)
+    mod = controller_module(controller)
+    _check_axis_letter(mod, axis, t.summary.axis)
     ev = t.evaluate_again()
     if ev.kind != "iso230-2":
         raise InputError(f"a {ev.kind} test gives no compensation table here")
-    mod = controller_module(controller)
-    table = table_from_result(ev.evaluation, spacing, axis=t.summary.axis,
+    table = table_from_result(ev.evaluation, spacing, axis=axis or t.summary.axis,
                               bidirectional=ev.evaluation.bidirectional)
     f = mod.write(table)
     store.add_table(test_id, mod.NAME, f.filename, f.text)
     return f
+
+
+def _check_axis_letter(mod, axis: str, test_axis: str) -> None:
+    """Refuse, before anything is written, a name that is not an axis letter for a controller
+    whose value column and file names are one (HEIDENHAIN: MANUALplus 620, "Entering
+    compensation values"), naming the form's Axis field."""
+    from axiscal.compensation.controllers._common import AXIS_LETTERS, is_axis_letter
+
+    name = axis or test_axis
+    if not getattr(mod, "AXIS_LETTER", False) or not name or is_axis_letter(name):   # "": X
+        return
+    whose = f"axis {name[:60]!r}" if axis else f"the test's axis {name[:60]!r}"
+    raise InputError(f"{whose} is not an axis letter, which a {mod.NAME} table's value column and "
+                     f"file names are ({', '.join(AXIS_LETTERS)}, one digit after it at most: "
+                     "X2; HEIDENHAIN MANUALplus 620, \"Entering compensation values\"): type one "
+                     "in the Axis field")
 
 
 def _test_view(env, t, kept_only: bool = False) -> tuple | None:

@@ -14,7 +14,7 @@ from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["ControllerFile", "FileInput", "resolve_input", "check_points", "check_spacing",
            "check_travel", "check_modulo", "correction_factor", "parse_number", "decimals",
-           "SafeName", "safe_axis_name", "SOURCE_COMMENT"]
+           "SafeName", "safe_axis_name", "is_axis_letter", "SOURCE_COMMENT"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -285,6 +285,17 @@ class SafeName:
         return [f"{begin}{line.upper() if upper else line}{end}"]
 
 
+def is_axis_letter(name: str) -> bool:
+    """``name`` is one of :data:`AXIS_LETTERS` (either case), optionally followed by one digit.
+
+    Examples
+    --------
+    >>> [is_axis_letter(n) for n in ("X", "c", "X2", "Q", "IOC:m1", "")]
+    [True, True, True, False, False, False]
+    """
+    return bool(re.fullmatch(f"[{AXIS_LETTERS}][0-9]?", str(name), re.IGNORECASE))
+
+
 def safe_axis_name(axis: str, fmt: str, *, letter: bool = False,
                    given: str | None = None) -> SafeName:
     """The axis name ``fmt`` may write, from the table's ``axis`` (or ``given``, the writer's
@@ -301,7 +312,7 @@ def safe_axis_name(axis: str, fmt: str, *, letter: bool = False,
     if letter:
         if not wanted:
             return SafeName("X", "")
-        if not re.fullmatch(f"[{AXIS_LETTERS}][0-9]?", wanted, re.IGNORECASE):
+        if not is_axis_letter(wanted):
             what = "-o axis=" if given else "the data's axis"
             raise ControllerLimitError(
                 f"{fmt}: the axis column takes an axis letter ({', '.join(AXIS_LETTERS)}); "

@@ -48,6 +48,9 @@ __all__ = ["NAME", "write", "parse", "write_cma", "MAX_POINTS"]
 
 NAME = "heidenhain"
 MAX_POINTS = 256
+#: The value column and the file names are an axis letter (``is_axis_letter``; MANUALplus 620,
+#: "Entering compensation values"): a front end asks for one where the data's axis is not one.
+AXIS_LETTER = True
 
 _BEGIN = re.compile(r"^BEGIN\s+(\S+?)(?:\.COM)?\s+(MM|INCH)?\s*$", re.IGNORECASE)
 
