@@ -79,7 +79,8 @@ def simulate(config: Union[PathLike, Mapping[str, Any]], seed: int | None = None
     return Simulation(simulate_from_config(cfg, seed=seed), seed)
 
 
-def volumetric_map(config: PathLike, grid: int = 11) -> "Simulation":
+def volumetric_map(config: Union[PathLike, Mapping[str, Any]], grid: int = 11, *,
+                   base: PathLike | None = None) -> "Simulation":
     """The volumetric error of a three-axis machine from its 21 measured geometric errors.
 
     The errors of ISO 230-1:2012 combined by the rigid-body model of ISO/TR 16907:2015 over the
@@ -88,10 +89,16 @@ def volumetric_map(config: PathLike, grid: int = 11) -> "Simulation":
 
     Parameters
     ----------
-    config : str or Path
-        The volumetric configuration (TOML; format in the README, "Volumetric configuration").
+    config : str, Path or mapping
+        The volumetric configuration (TOML; format in the README, "Volumetric configuration"),
+        or the same tables as a dict, checked by the file's reader (same keys, units, bounds
+        and messages, the source named ``<dict>``).
     grid : int
         Grid points per axis, 2 to 100 (default 11, as the command).
+    base : str or Path, optional
+        With a dict: the folder its relative file names (``[errors] EXX = "X_EXX.csv"``) are
+        taken from (default: the current directory). A file's names are relative to its own
+        folder, so ``base`` with a file is refused.
 
     Returns
     -------
@@ -101,17 +108,17 @@ def volumetric_map(config: PathLike, grid: int = 11) -> "Simulation":
     from axiscal.api._results import Simulation
     from axiscal.errors import InputError
     from axiscal.io.simulation_results import volumetric_map as run_map
-    from axiscal.io.volumetric import read_volumetric_config
 
     if isinstance(grid, bool) or not isinstance(grid, int) or not 2 <= grid <= 100:
         raise InputError(f"grid {grid!r}: a whole number of points per axis, 2 to 100")
-    return Simulation(run_map(read_volumetric_config(config), grid), None, "volumetric-map",
-                      Path(config).name)
+    cfg, name = _volumetric_config(config, base)
+    return Simulation(run_map(cfg, grid), None, "volumetric-map", name)
 
 
-def volumetric_compensation(config: PathLike, controller: str, *, out: PathLike | None = None,
+def volumetric_compensation(config: Union[PathLike, Mapping[str, Any]], controller: str, *,
+                            out: PathLike | None = None,
                             receiving: Mapping[str, str] | None = None, spacing: float = 20.0,
-                            verify: bool = False) -> "Simulation":
+                            verify: bool = False, base: PathLike | None = None) -> "Simulation":
     """Positioning and cross-axis tables that remove what tables can of a volumetric map.
 
     As ``axiscal volumetric compensate CONFIG --controller C [--verify] [--out DIR] --json``:
@@ -127,8 +134,8 @@ def volumetric_compensation(config: PathLike, controller: str, *, out: PathLike 
 
     Parameters
     ----------
-    config : str or Path
-        The volumetric configuration (TOML).
+    config : str, Path or mapping
+        The volumetric configuration (TOML), or its tables as a dict (as :func:`volumetric_map`).
     controller : str
         ``siemens-840d``, ``heidenhain``, ``csv`` or ``linuxcnc``.
     out : str or Path, optional
@@ -140,6 +147,9 @@ def volumetric_compensation(config: PathLike, controller: str, *, out: PathLike 
         Table spacing (default 20 mm, as the command), under the configuration's.
     verify : bool
         Re-measure the simulated machine with the tables applied.
+    base : str or Path, optional
+        With a dict: the folder of its relative file names (default: the current directory;
+        as :func:`volumetric_map`).
 
     Returns
     -------
@@ -151,16 +161,15 @@ def volumetric_compensation(config: PathLike, controller: str, *, out: PathLike 
     """
     from axiscal.api._results import Simulation
     from axiscal.io import simulation_results as sr
-    from axiscal.io.volumetric import read_volumetric_config
 
+    cfg, name = _volumetric_config(config, base)
     if out is not None:
         _folder(Path(out))
-    cfg = read_volumetric_config(config)
     rec = {k.lower(): v for k, v in (receiving or {}).items()}
     tables = sr.volumetric_tables_for(cfg, rec, spacing, verify)
     run = (sr.volumetric_linuxcnc(cfg, tables, verify=verify, out=out) if controller == "linuxcnc"
            else sr.volumetric_compensation(cfg, tables, controller, verify=verify, out=out))
-    return Simulation(run, None, "volumetric-compensation", Path(config).name)
+    return Simulation(run, None, "volumetric-compensation", name)
 
 
 def compensate_environment(raw: PathLike, environment: PathLike | None = None, *,
@@ -214,6 +223,28 @@ def _load_config(config: Union[PathLike, Mapping[str, Any]]) -> dict:
     from axiscal.io._files import load_toml
 
     return load_toml(Path(config))
+
+
+def _volumetric_config(config: Union[PathLike, Mapping[str, Any]], base: PathLike | None):
+    """(the ``VolumetricConfig``, its name): a file read with its names relative to its folder;
+    a dict written as TOML and read by the same reader (:mod:`axiscal.api._config`), its names
+    relative to ``base`` (default: the current directory)."""
+    from axiscal.errors import InputError
+    from axiscal.io.volumetric import parse_volumetric_config, read_volumetric_config
+
+    if not isinstance(config, Mapping):
+        if base is not None:
+            raise InputError(f"base {str(base)[:80]!r}: only for a configuration given as a "
+                             "dict; the files a configuration file names are relative to its "
+                             "own folder")
+        return read_volumetric_config(config), Path(config).name
+    from axiscal.api._config import SOURCE, toml_text
+
+    folder = Path.cwd() if base is None else Path(base)
+    if not folder.is_dir():
+        raise InputError(f"base {str(base)[:80]!r}: not a folder (the relative file names of "
+                         "the configuration are taken from it)")
+    return parse_volumetric_config(toml_text(config), SOURCE, folder), SOURCE
 
 
 def _folder(out: Path) -> None:

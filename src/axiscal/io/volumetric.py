@@ -35,7 +35,8 @@ Format
 
 Angular files are straightness-like CSVs (``# position_unit=mm deviation_unit=arcsec axis=X
 about=Z``, header ``position,deviation``) with an angle unit (arcsec, urad, mrad, deg) or ``um/m``
-(µrad). Paths are relative to the configuration file. A missing error motion is taken as zero
+(µrad). Paths are relative to the configuration file (to ``base`` for
+:func:`parse_volumetric_config`'s text). A missing error motion is taken as zero
 and said; an unknown key or table is refused by name.
 """
 
@@ -51,8 +52,8 @@ from axiscal.io._tidy import number, parse_tidy
 from axiscal.standards.volumetric import (AXES, ERROR_NAMES, PAIRS, ErrorFunction,
                                           GeometricErrors, KinematicChain)
 
-__all__ = ["VolumetricConfig", "read_volumetric_config", "parse_angular", "format_angular",
-           "write_simulation"]
+__all__ = ["VolumetricConfig", "read_volumetric_config", "parse_volumetric_config",
+           "parse_angular", "format_angular", "write_simulation"]
 
 _SECTIONS = {"machine", "errors", "squareness", "compensation", "simulation"}
 _MACHINE_KEYS = {"name", "chain", "travel_mm", "reference_mm", "measured_tool_offset_mm",
@@ -71,7 +72,18 @@ class VolumetricConfig:
 
 
 def read_volumetric_config(path) -> VolumetricConfig:
-    """Read a volumetric configuration and every file it names (format in the module docstring).
+    """Read a volumetric configuration and every file it names, relative to its folder (see
+    :func:`parse_volumetric_config`)."""
+    from axiscal.io._files import read_text
+
+    p = Path(path)
+    return parse_volumetric_config(read_text(p), str(p), p.parent)
+
+
+def parse_volumetric_config(text: str, source: str = "<text>", base=".") -> VolumetricConfig:
+    """Check a volumetric configuration's TOML ``text`` (format in the module docstring) and read
+    every file it names, a relative name taken from the folder ``base``; messages name
+    ``source``.
 
     Raises
     ------
@@ -80,10 +92,10 @@ def read_volumetric_config(path) -> VolumetricConfig:
     DataFormatError, MissingFileError
         A named file that cannot be read (the message names the file).
     """
-    from axiscal.io._files import load_toml
+    from axiscal._schema import loads_toml, remember_document
 
-    p = Path(path)
-    cfg = load_toml(p)
+    p = Path(source)
+    cfg = remember_document(loads_toml(text, source), source, text)
     _known(cfg, _SECTIONS, p, "")
     m = _table(cfg, "machine", p, required=True)
     _known(m, _MACHINE_KEYS, p, "[machine]")
@@ -98,7 +110,7 @@ def read_volumetric_config(path) -> VolumetricConfig:
     tool = np.asarray(_triple(m.get("tool_offset_mm", list(tm * 1e3)), p, "tool_offset_mm")) * 1e-3
     errs = _table(cfg, "errors", p)
     _known(errs, set(ERROR_NAMES), p, "[errors]")
-    functions = {name: _function(name, spec, p) for name, spec in errs.items()}
+    functions = {name: _function(name, spec, p, Path(base)) for name, spec in errs.items()}
     sq = _table(cfg, "squareness", p)
     _known(sq, set(PAIRS), p, "[squareness]")
     squareness = {k: _number(v, p, f"[squareness] {k}", 1e4) * 1e-6 for k, v in sq.items()}
@@ -196,10 +208,10 @@ def write_simulation(out_dir, machine, errors: GeometricErrors, datasets: dict, 
 
 
 # -- helpers ---------------------------------------------------------------------------------
-def _function(name: str, spec, p: Path) -> ErrorFunction:
+def _function(name: str, spec, p: Path, base: Path) -> ErrorFunction:
     angular = name[1] in "ABC"
     if isinstance(spec, str):
-        return _from_file(name, p.parent / spec, angular)
+        return _from_file(name, base / spec, angular)
     if not isinstance(spec, dict):
         raise ConfigError(f"{p}: [errors] {name} = {spec!r}: give a file name or an inline table")
     _known(spec, {"positions_mm", "values", "polynomial", "unit"}, p, f"[errors] {name}")
