@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 
@@ -151,3 +152,21 @@ def test_two_processes_make_one_product_once(counted, tmp_path):
     procs = [subprocess.Popen([sys.executable, "-c", code], env=os.environ) for _ in range(2)]
     assert [p.wait(60) for p in procs] == [0, 0]
     assert (tmp_path / "made").read_text() == "x"
+
+
+def test_an_edited_template_is_another_version(monkeypatch):
+    """Page parts are drawn by the workbench's templates: a template edited in a checkout (its
+    size or modification time) gives another version, so no page part of the old template is
+    served."""
+    from pathlib import Path
+
+    template = Path(cache.__file__).resolve().parents[1] / "web" / "templates" / "_test_results.html"
+    monkeypatch.setattr(cache, "_VERSION", [])
+    before = cache._version()
+    st = template.stat()
+    try:
+        os.utime(template, ns=(st.st_atime_ns, st.st_mtime_ns + 1_000_000_000))
+        monkeypatch.setattr(cache, "_VERSION", [])
+        assert cache._version() != before
+    finally:
+        os.utime(template, ns=(st.st_atime_ns, st.st_mtime_ns))

@@ -49,6 +49,12 @@ def test_test_page_shows_every_standard_and_its_report_downloads(tmp_path, monke
     ds = parse_positioning(_file().decode(), "x.csv")
     params = page.text.split('id="parameters"')[1].split("</table>")[0]
     assert "jis-b6192:R" not in params  # the ISO 230-2:2014 table keeps its own parameters
+    # by the symbols of ISO 230-2:2014 clause 3, the key (for history trend) in the cell's title
+    assert ">A↑</td>" in params and ">B̄</td>" in params and ">A_up</td>" not in params
+    assert 'title="A_up (the name axiscal history trend --parameter takes)"' in params
+    # the uncertainty's assumptions one to a line, not one paragraph
+    notes = page.text.split('id="budget-notes">')[1].split("</ul>")[0]
+    assert notes.count("<li>") >= 3 and "assumed" in notes
     others = page.text.split('id="standards"')[1].split("</table>")[0]
     assert "VDI/DGQ 3441" in others and f"{vdi3441.evaluate(ds).Pa:.3f}" in others
     assert "position scatter: not evaluated" in others and "ISO 230-2:1988" in others

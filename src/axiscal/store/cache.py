@@ -54,14 +54,16 @@ _VERSION: list = []
 
 
 def _version() -> str:
-    """The axiscal version, with a fingerprint of its source files (names, sizes, modification
-    times) so that an edited checkout of one version never reads what its older code kept."""
+    """The axiscal version, with a fingerprint of its source files and the workbench's templates
+    (names, sizes, modification times) so that an edited checkout of one version never reads
+    what its older code kept."""
     if not _VERSION:
         from axiscal import __version__
 
         root = Path(__file__).resolve().parents[1]
         h = hashlib.sha256()
-        for p in sorted(root.rglob("*.py")):
+        # the page parts kept are drawn by the templates too: an edited template is new code
+        for p in sorted([*root.rglob("*.py"), *(root / "web" / "templates").rglob("*.html")]):
             st = p.stat()
             h.update(f"{p.relative_to(root)}|{st.st_size}|{st.st_mtime_ns}\n".encode())
         _VERSION.append(f"{__version__}-{h.hexdigest()[:12]}")
