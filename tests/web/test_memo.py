@@ -95,9 +95,9 @@ def test_a_test_page_reads_a_few_statements_and_never_the_bytes(tmp_path, monkey
     assert not any(re.search(r"test\.raw\s*(,|FROM)", s) for s in seen)
 
 
-def test_a_new_tests_page_is_made_after_the_upload_is_answered(tmp_path, monkeypatch):
-    """The upload's answer (303) is sent first; the test's page parts are then made in a thread
-    (a ballbar or five-error figure takes a second), so the first view finds them kept."""
+def test_a_new_tests_page_is_made_with_the_upload(tmp_path, monkeypatch):
+    """The test's page parts are made in the upload's thread before its answer (303), so the
+    first view finds them kept and makes nothing; a duplicate makes nothing."""
     import axiscal.web.history_pages as pages
 
     c, app, _ = _client(tmp_path, monkeypatch)
@@ -107,7 +107,7 @@ def test_a_new_tests_page_is_made_after_the_upload_is_answered(tmp_path, monkeyp
     tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     r = c.post("/upload", data={"csrf": tok}, follow_redirects=False,
                files={"file": ("n.csv", _file(30, day=28), "text/csv")})
-    assert r.status_code == 303 and made == ["iso230-2"]       # made once, after the answer
+    assert r.status_code == 303 and made == ["iso230-2"]       # made once, with the upload
     page = c.get(r.headers["location"])
     assert page.status_code == 200 and 'id="parameters"' in page.text and len(made) == 1
     again = c.post("/upload", data={"csrf": tok}, follow_redirects=False,
