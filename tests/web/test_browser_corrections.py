@@ -5,6 +5,7 @@ test-artifacts/web/corrections_*.png)."""
 from __future__ import annotations
 
 import numpy as np
+from selenium.common.exceptions import StaleElementReferenceException
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
 
@@ -37,9 +38,12 @@ def _correct(browser, form_id: str, by="A. Ng", reason="", **fields):
     form.find_element(By.NAME, "reason").send_keys(reason)
     old = browser.current_url + browser.find_element(By.TAG_NAME, "h1").text
     form.find_element(By.TAG_NAME, "button").click()
-    WebDriverWait(browser, 20).until(
+    # the old page's h1 goes stale while the next one loads: look again, do not fail on it
+    WebDriverWait(browser, 20, ignored_exceptions=(StaleElementReferenceException,)).until(
         lambda d: d.current_url + d.find_element(By.TAG_NAME, "h1").text != old
         or d.find_elements(By.ID, "withdrawn"))
+    WebDriverWait(browser, 20).until(
+        lambda d: d.execute_script("return document.readyState") == "complete")
 
 
 def _trail(browser) -> list[list[str]]:
