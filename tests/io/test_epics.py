@@ -255,7 +255,7 @@ def test_dwells_of_a_ramping_trajectory_setpoint():
     (f"{SP} 2023-13-40 12:00:00.0 1\n{REF} 2023-01-01 12:00:00.0 1", {}, "not a date"),
     (f"IOC:w {_stamp(0)} 2 1 2\n" + _line(REF, 0, 1.0), {}, "arrays of 2 elements"),
     (_line(SP, 0, 1.0) + "\n" + _line(REF, 0, 1.0), {"dwell": float("nan")}, "dwell nan"),
-    (_line(SP, 0, 1.0) + "\n" + _line(REF, 0, 1.0), {"window": -1.0}, "window -1"),
+    (_line(SP, 0, 1.0) + "\n" + _line(REF, 0, 1.0), {"window": -1.0}, "rest window -1: give a band wider than 0"),
     (_line(SP, 0, 1.0) + "\n" + _line(REF, 0, 1.0), {"reference_scale": 0.0}, "non-zero"),
     (_line(SP, 0, 1.0) + "\n" + _line(REF, 0, 1.0), {"offsets": "sideways"}, "offsets"),
 ])

@@ -228,3 +228,26 @@ def test_a_bad_epics_setting_is_one_message_and_stores_nothing(tmp_path, setting
     assert 'value="kept"' in r.text and _stored(c) == 0
     for name, value in settings.items():                             # the settings kept
         assert f'name="{name}" value="{value}"' in unescape(r.text)
+
+
+@pytest.mark.parametrize("field, value, words", [
+    ("targets", "nan,inf", "the targets must be finite numbers"),
+    ("targets", "1e308,2e308", "the targets must be finite numbers"),
+    ("targets", "0,abc", "give numbers separated by commas"),
+    ("rest_window", "-1", "rest window -1: give a band wider than 0"),
+    ("rest_window", "1e308", "rest window 1e+308: give a band wider than 0"),
+    ("rest_window", "nan", "give a finite number"),
+    ("reference_scale", "0", "a non-zero scale"),
+    ("reference_offset", "1e308", "an offset within ±1e9"),
+])
+def test_hostile_epics_settings_are_an_error_page_and_store_nothing(tmp_path, field, value,
+                                                                    words):
+    """The EPICS settings of the measured upload at their extremes: one error page in the
+    workbench's style naming the setting as ``axiscal iso230-2 LOG`` does, nothing stored."""
+    log, sp, ref = _epics_log(tmp_path)
+    c = _client(tmp_path)
+    r = _post(c, "/upload/measured", {"file": ("axis1.log", log.read_bytes(), "text/x-log")},
+              kind="epics", machine="MCU1025", axis="X", setpoint_pv=sp, reference_pv=ref,
+              **{field: value})
+    assert r.status_code == 400 and words in unescape(r.text), unescape(r.text)[-600:]
+    assert "Traceback" not in r.text and _stored(c) == 0

@@ -505,9 +505,10 @@ def _check_usable(s: PvSeries, source: str) -> None:
 
 def _check_options(dwell, window, settled, scale, offset, source) -> None:
     if not (math.isfinite(dwell) and 0 < dwell <= 86400):
-        raise DataFormatError(f"dwell {dwell:g} s: give 0 … 86400 s", source)
+        raise DataFormatError(f"dwell {dwell:g} s: give more than 0, at most 86400 s", source)
     if not (math.isfinite(window) and 0 < window <= 1e6):
-        raise DataFormatError(f"window {window:g}: give a band of 0 … 1e6 (µm or arcsec)",
+        raise DataFormatError(f"rest window {window:g}: give a band wider than 0, at most 1e6 "
+                              "(µm or arcsec)",
                               source)
     if not (math.isfinite(settled) and 0 <= settled <= 3600):
         raise DataFormatError(f"settled {settled:g} s: give 0 … 3600 s", source)
