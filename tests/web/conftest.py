@@ -91,6 +91,26 @@ def make_browser(tmp_path_factory, *flags: str):
     return driver
 
 
+def replaced(element):
+    """A wait condition: ``element`` is no longer in the page (the answer's page or the swapped
+    section is there). Selenium's ``staleness_of`` knows only StaleElementReferenceException;
+    Chromium may instead answer "Node with given id does not belong to the document" while the
+    old page is torn down, which means the same."""
+    from selenium.common.exceptions import StaleElementReferenceException, WebDriverException
+
+    def gone(_driver) -> bool:
+        try:
+            element.is_enabled()
+            return False
+        except StaleElementReferenceException:
+            return True
+        except WebDriverException as e:
+            if "does not belong to the document" in str(e):
+                return True
+            raise
+    return gone
+
+
 def shot(driver, name: str) -> Path:
     """A screenshot kept in test-artifacts/web/ (to be looked at)."""
     p = ARTIFACTS / f"{name}.png"

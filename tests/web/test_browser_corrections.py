@@ -5,12 +5,11 @@ test-artifacts/web/corrections_*.png)."""
 from __future__ import annotations
 
 import numpy as np
-from selenium.common.exceptions import StaleElementReferenceException
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
 
 from tests.store.test_history import _dataset, _raw
-from tests.web.conftest import shot
+from tests.web.conftest import replaced, shot
 
 SLASH = "DMU 50 S/N 1234"
 
@@ -36,12 +35,9 @@ def _correct(browser, form_id: str, by="A. Ng", reason="", **fields):
             el.send_keys(value)
     form.find_element(By.NAME, "by").send_keys(by)
     form.find_element(By.NAME, "reason").send_keys(reason)
-    old = browser.current_url + browser.find_element(By.TAG_NAME, "h1").text
+    old = browser.find_element(By.TAG_NAME, "h1")
     form.find_element(By.TAG_NAME, "button").click()
-    # the old page's h1 goes stale while the next one loads: look again, do not fail on it
-    WebDriverWait(browser, 20, ignored_exceptions=(StaleElementReferenceException,)).until(
-        lambda d: d.current_url + d.find_element(By.TAG_NAME, "h1").text != old
-        or d.find_elements(By.ID, "withdrawn"))
+    WebDriverWait(browser, 20).until(replaced(old))          # the answer's page is here
     WebDriverWait(browser, 20).until(
         lambda d: d.execute_script("return document.readyState") == "complete")
 

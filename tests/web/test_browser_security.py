@@ -8,12 +8,11 @@ from __future__ import annotations
 
 import pytest
 from selenium.webdriver.common.by import By
-from selenium.webdriver.support.expected_conditions import staleness_of
 from selenium.webdriver.support.ui import WebDriverWait
 
 from axiscal.web.security import UserFile
 from axiscal.web.sessions import FREE_FAILURES
-from tests.web.conftest import make_browser, shot, start_server, stop_server
+from tests.web.conftest import make_browser, replaced, shot, start_server, stop_server
 
 
 @pytest.fixture(scope="module")
@@ -32,7 +31,7 @@ def _log_in(browser, base, name, password):
     browser.find_element(By.NAME, "password").send_keys(password)
     button = browser.find_element(By.CSS_SELECTOR, "form.card button")
     button.click()
-    WebDriverWait(browser, 20).until(staleness_of(button))       # the answer's page is here
+    WebDriverWait(browser, 20).until(replaced(button))       # the answer's page is here
 
 
 def test_error_pages_have_the_workbench_style_and_a_way_back(server, browser):

@@ -11,7 +11,7 @@ import pytest
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
 
-from tests.web.conftest import shot, start_server, stop_server
+from tests.web.conftest import replaced, shot, start_server, stop_server
 from tests.web.test_signoff import JOB, LAB, data_file
 
 
@@ -28,11 +28,9 @@ def lab_server(tmp_path_factory):
 def _press(browser, button: str, then: str, timeout: float = 60) -> None:
     """Click ``button`` and wait until htmx has swapped the sign-off in (the old one gone) and
     the element ``then`` is there (or the page has changed, for a redirect)."""
-    from selenium.webdriver.support import expected_conditions as EC
-
     old = browser.find_element(By.ID, "signoff-body")
     browser.find_element(By.ID, button).click()
-    WebDriverWait(browser, timeout).until(EC.staleness_of(old))
+    WebDriverWait(browser, timeout).until(replaced(old))
     WebDriverWait(browser, timeout).until(lambda b: b.find_elements(By.ID, then))
 
 
