@@ -164,6 +164,7 @@ def result_json(result, verdicts=(), budget=None) -> dict:
         closure_down=result.closure_down,
         targets=result.target_table(),
         warnings=list(result.warnings),
+        outliers=[o.as_dict() for o in result.outliers],
     )
     if budget is not None:
         shown = [p for p, v in result.parameters().items() if v is not None]

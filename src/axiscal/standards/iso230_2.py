@@ -130,7 +130,11 @@ class Iso230_2Result:
     distinct_positions : int
         Physical target positions, 0° and 360° counted once.
     warnings : tuple of str
-        What a reader must know (fewer than 5 runs, missing readings, too few targets, closure).
+        What a reader must know (fewer than 5 runs, missing readings, too few targets, closure,
+        a reading that alone sets A or R).
+    outliers : tuple of Outlier
+        Readings Grubbs' test finds apart from the other runs at their target
+        (:func:`axiscal.standards.outliers.positioning_outliers`); kept in the evaluation.
     """
 
     axis_kind: AxisKind
@@ -166,6 +170,7 @@ class Iso230_2Result:
     closure_up: float | None = None
     closure_down: float | None = None
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    outliers: tuple = field(default_factory=tuple)
 
     @property
     def bidirectional(self) -> bool:
@@ -322,7 +327,7 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
         closure_up, closure_down = _closure(mean_up, s_up, n_up, mean_down, s_down, n_down,
                                             unit, warn, span)
 
-    return Iso230_2Result(
+    result = Iso230_2Result(
         axis_kind=dataset.axis_kind,
         target_unit=dataset.target_unit,
         deviation_unit=unit,
@@ -342,6 +347,10 @@ def evaluate(dataset: PositioningDataset, full_turn: FullTurn = "separate") -> I
         warnings=tuple(warn),
         **params,
     )
+    from axiscal.standards.outliers import with_outliers
+
+    return with_outliers(result, targets, up, down)
+
 
 
 # -- helpers ------------------------------------------------------------------------------
