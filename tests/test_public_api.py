@@ -198,12 +198,29 @@ def test_rotary_calibration_equals_rotary_simulate(tmp_path):
 
 
 def test_per_target_table_as_a_dataframe(laser_file):
-    """``to_dataframe``: the ``targets`` rows of the JSON, one row a target, every column."""
+    """``to_dataframe("targets")``: the ``targets`` rows of the JSON indexed by target, every
+    other column, the units in ``attrs``."""
     ev = axiscal.evaluate(laser_file)
-    df = ev.to_dataframe()
+    df = ev.to_dataframe("targets")
     rows = ev.to_dict()["targets"]
-    assert len(df) == len(rows) and list(df.columns) == list(rows[0])
-    assert df.to_dict("records") == rows
+    assert len(df) == len(rows) and list(df.columns) == list(rows[0])[1:]
+    assert df.reset_index().to_dict("records") == rows
+    assert df.attrs["units"]["target"] == "mm" and df.attrs["units"]["mean_up"] == "um"
+
+
+def test_parameters_as_a_dataframe_with_u(laser_file):
+    """``to_dataframe()``: one row per quantity with value, U, k, unit and verdict, equal to
+    the ``quantities`` of ``--json`` and to the attributes (``ev.E.U``)."""
+    ev = axiscal.evaluate(laser_file, uncertainty={"e_ve": 0.3}, tolerances={"E": 100})
+    df = ev.to_dataframe()
+    q = ev.to_dict()["quantities"]
+    assert list(df.index) == list(q) and ev.to_dict()["schema_version"] == 1
+    assert df.loc["E", "U"] == q["E"]["U"] == ev.E.U == ev.budget.U("E") > 0
+    assert df.loc["E", "value"] == ev.result.E and df.loc["E", "k"] == 2.0
+    assert df.loc["E", "verdict"] == "conformance proven" and df.loc["E", "tolerance"] == 100
+    assert df.loc["R_up", "symbol"] == "R↑" and ev["R_up"] is ev.quantities["R_up"]
+    with pytest.raises(AttributeError, match="no attribute or quantity 'Z'"):
+        ev.Z
 
 
 def test_dataframe_without_pandas_says_how_to_get_it(laser_file, monkeypatch):

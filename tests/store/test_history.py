@@ -58,7 +58,12 @@ def test_store_and_show_again_gives_the_same_numbers(db_url):
         if value is not None:
             assert stored.summary.parameters[name][0] == value          # exact
             assert again.parameters[name][0] == value
-    assert again.result == stored.result == json.loads(json.dumps(jsonable(direct)))
+    assert again.result == json.loads(json.dumps(jsonable(direct)))
+    # what is stored is that evaluation with the record's quantities, inputs and budget
+    assert {k: v for k, v in stored.result.items() if k in again.result} == again.result
+    assert set(stored.result) - set(again.result) == {
+        "schema_version", "quantities", "uncertainty_inputs", "uncertainty_budget"}
+    assert stored.result["quantities"]["E"]["U"] == stored.record().budget.U("E") > 0
     assert stored.summary.tested_at == dt.datetime(2025, 3, 1) and stored.summary.date_known
 
 

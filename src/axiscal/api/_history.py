@@ -53,7 +53,8 @@ class History:
         **metadata
             ``machine``, ``axis``, ``kind`` (default: from the content), ``instrument``,
             ``operator``, ``note``, ``date`` (``YYYY-MM-DD``; default the file's, else today,
-            marked as unknown).
+            marked as unknown), ``uncertainty`` (the inputs of the test's uncertainty budget,
+            stored with it; default the user configuration's, as :func:`axiscal.evaluate`).
 
         Returns
         -------
@@ -83,15 +84,15 @@ class History:
         return self.store.get(test_id)
 
     def evaluation(self, test_id: int) -> "Evaluation":
-        """A stored test evaluated again from its stored bytes by this version of axiscal
-        (kept once made, :mod:`axiscal.store.cache`), as :func:`axiscal.evaluate` evaluates a
-        file of its kind; ``to_dict()`` is the history's evaluation object."""
+        """A stored test's record: its stored bytes evaluated again by this version of
+        axiscal (kept once made, :mod:`axiscal.store.cache`) with the uncertainty budget of the
+        inputs stored with it (:meth:`axiscal.store.history.StoredTest.record`): field for
+        field what :func:`axiscal.evaluate` gave for the file with those inputs (quantities
+        with U, budget, per-target table, ``to_dict()``, ``plot()``, ``report()``)."""
         from axiscal.api._results import Evaluation
-        from axiscal.report.evaluations import KIND_STANDARD
+        from axiscal.report.evaluations import record_fields
 
-        t = self.store.get(test_id)
-        ev = t.evaluate_again()
-        return Evaluation(ev.kind, KIND_STANDARD[ev.kind], ev.dataset, ev.evaluation, ev.result)
+        return Evaluation(**record_fields(self.store.get(test_id).record()))
 
     def trend(self, machine: str, axis: str, parameter: str,
               tolerance: float | None = None) -> Any:

@@ -73,6 +73,12 @@ def read(path: PathLike, *, target_unit: str | None = None,
     return evaluated_file(path, kind).dataset
 
 
+def _user_config() -> dict:
+    from axiscal.io.user_config import load_user_config
+
+    return load_user_config()
+
+
 def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
              tolerances: Mapping[str, float] | None = None,
              rule: str | None = None,
@@ -135,8 +141,13 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
         kind = kind_of_file(data)
         if kind not in ("iso230-2", "ballbar") or (kind == "ballbar" and feed is None
                                                    and plane is None):
+            from axiscal.report.evaluations import record_fields
+            from axiscal.store.kinds import inputs_from_config, with_uncertainty
+
             ev = evaluated_file(data, kind)
-            return Evaluation(kind, KIND_STANDARD[kind], ev.dataset, ev.evaluation, ev.result)
+            table = inputs_from_config(kind, _user_config(), ev.dataset)
+            return Evaluation(**record_fields(with_uncertainty(ev, {**table,
+                                                                   **(uncertainty or {})})))
         data = read(data, kind=kind)
     if isinstance(data, PositioningDataset):
         from axiscal.report.evaluations import positioning_evaluation

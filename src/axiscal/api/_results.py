@@ -36,8 +36,24 @@ class Evaluation:
     dataset : object
         The dataset evaluated.
     result : object
-        The library's frozen result (e.g. :class:`axiscal.standards.iso230_2.ISO230_2Result`;
+        The library's frozen result (e.g. :class:`axiscal.standards.iso230_2.Iso230_2Result`;
         by another positioning standard its ``StandardResult``).
+    quantities : dict of str to Quantity
+        Every result with its value, U, k, unit and verdict
+        (:class:`axiscal.standards.quantities.Quantity`); also as attributes (``ev.E``,
+        ``ev.E.U``) and items (``ev["jis-b6192:R"]``).
+
+    Examples
+    --------
+    >>> import axiscal
+    >>> from axiscal.datasets import PositioningDataset
+    >>> ds = PositioningDataset.from_arrays("linear", [0, 100, 200], [[1, 2], [0, 1], [2, 2]],
+    ...                                     [[3, 3], [2, 1], [4, 5]], "mm", "um")
+    >>> ev = axiscal.evaluate(ds, uncertainty={"e_ve": 0.3})
+    >>> ev.E.value, ev.E.unit, ev.E.k
+    (4.0, 'um', 2.0)
+    >>> ev.E.U == ev.budget.U("E") == ev.to_dict()["quantities"]["E"]["U"]
+    True
     """
 
     kind: str
@@ -49,6 +65,33 @@ class Evaluation:
     _verdicts: tuple = field(default=(), repr=False)
     _results: tuple = field(default=(), repr=False)
     _config: dict = field(default_factory=dict, repr=False)
+    _quantities: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def quantities(self) -> dict:
+        """Every result as a :class:`~axiscal.standards.quantities.Quantity` (value, U, k,
+        unit, verdict), by name: the ``quantities`` of :meth:`to_dict`."""
+        return dict(self._quantities)
+
+    def __getattr__(self, name: str) -> Any:
+        """A quantity by its name as an attribute (``ev.E``, ``ev.R_up``)."""
+        if name.startswith("_"):
+            raise AttributeError(name)
+        q = self.__dict__.get("_quantities", {}).get(name)
+        if q is None:
+            raise AttributeError(f"{type(self).__name__} has no attribute or quantity {name!r}"
+                                 f"; quantities: {', '.join(self.__dict__.get('_quantities', {}))}")
+        return q
+
+    def __getitem__(self, name: str) -> Any:
+        """A quantity by its name (``ev["jis-b6192:R"]``)."""
+        from axiscal.errors import InputError
+
+        try:
+            return self._quantities[name]
+        except KeyError:
+            raise InputError(f"no quantity {name!r}; quantities: "
+                             f"{', '.join(self._quantities)}") from None
 
     @property
     def budget(self) -> Any:
@@ -92,17 +135,34 @@ class Evaluation:
 
         return json.loads(json.dumps(self._json))
 
-    def to_dataframe(self) -> Any:
-        """The per-target table (positioning) as a pandas DataFrame (pandas is optional)."""
+    def to_dataframe(self, what: str = "parameters") -> Any:
+        """A tidy pandas DataFrame (pandas is optional).
+
+        ``what="parameters"`` (default): one row per quantity, indexed by name, with ``symbol``,
+        ``value``, ``U``, ``k``, ``unit``, ``verdict`` and ``tolerance``.
+        ``what="targets"``: a positioning test's per-target table indexed by ``target``
+        (x̄↑, x̄↓, B_i, s, R_i ... ISO 230-2:2014 §3), the units in ``attrs["units"]``.
+        """
         from axiscal.errors import InputError
 
         try:
             import pandas as pd
         except ImportError:
             raise InputError("to_dataframe needs pandas: pip install pandas") from None
-        if self.kind != "iso230-2" or "targets" not in self._json:
-            raise InputError(f"to_dataframe: a {self.kind} evaluation has no per-target table")
-        return pd.DataFrame(self._json["targets"])
+        if what == "parameters":
+            from axiscal.standards.quantities import quantities_frame
+
+            return quantities_frame(self._quantities)
+        if what != "targets":
+            raise InputError(f"to_dataframe({what!r}): 'parameters' or 'targets'")
+        if self.kind != "iso230-2" or not hasattr(self.result, "target_table"):
+            raise InputError(f"to_dataframe: a {self.kind} evaluation by {self.standard} has no "
+                             "per-target table")
+        df = pd.DataFrame(self.result.target_table()).set_index("target")
+        u, tu = self.result.deviation_unit, self.result.target_unit
+        df.attrs["units"] = {"target": tu, **{c: ("" if c.startswith("n_") else u)
+                                              for c in df.columns}}
+        return df
 
     def plot(self) -> "Figure":
         """The evaluation's figure (matplotlib), as its command's ``--plot`` draws it."""
@@ -122,10 +182,21 @@ class Evaluation:
     def _repr_html_(self) -> str:
         from axiscal.report.evaluations import notebook_html
 
-        return notebook_html(self.kind, self.standard, self._json, self.plot())
+        return notebook_html(self.kind, self.standard, self._json, self.plot(),
+                             self._quantities)
 
     def __str__(self) -> str:
-        return str(self.result)
+        """The result as its command prints it, each quantity with its U where it has one."""
+        from axiscal.report.evaluations import evaluation_text
+
+        return evaluation_text(self)
+
+    def __repr__(self) -> str:
+        shown = [q for q in self._quantities.values() if q.value is not None][:3]
+        more = len(self._quantities) - len(shown)
+        return (f"<Evaluation {self.kind} by {self.standard}: "
+                f"{'; '.join(map(str, shown)) or 'no quantities'}"
+                f"{f' (+{more} more)' if more > 0 else ''}>")
 
 
 @dataclass(frozen=True, eq=False)

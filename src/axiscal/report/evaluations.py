@@ -11,6 +11,7 @@ the ``_repr_html_`` of :class:`axiscal.api.Evaluation`: its scalar results, then
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -87,29 +88,82 @@ KIND_WORDS = {"iso230-2": "Positioning test", "positioning": "Positioning test",
               "motion": "Motion errors of a rotary axis"}
 
 
-def notebook_html(kind: str, standard: str, d: dict, fig: Any) -> str:
-    """A notebook's view: the scalar results as a table, labelled and to the decimals of the
-    reports (:mod:`axiscal.report.labels`), then the figure (SVG)."""
+def notebook_html(kind: str, standard: str, d: dict, fig: Any, quantities: Any = None) -> str:
+    """A notebook's view: the quantities with their U and verdict (or, for a simulation, the
+    scalar results), labelled and to the decimals of the reports (:mod:`axiscal.report.labels`),
+    then the figure (SVG)."""
     from html import escape
 
     from axiscal.report.html import figure_svg
     from axiscal.report.labels import fmt, quantity
     from axiscal.standards.positioning_standards import STANDARDS
+    from axiscal.standards.uncertainty_reporting import format_uncertainty
 
-    unit = d.get("unit") if isinstance(d.get("unit"), str) else None
     rows = []
-    for k, v in d.items():
-        if k == "unit" or not (isinstance(v, (int, float, str)) or v is None):
-            continue
-        # the result's unit belongs to its deviations, not to counts, flags and texts
-        own = unit if isinstance(v, float) or v is None else None
-        name, u = quantity(str(k), own)
-        head = f"{name} [{u}]" if u else name
-        rows.append(f"<tr><th>{escape(head)}</th><td>{escape(fmt(v, u))}</td></tr>")
+    if quantities:
+        rows.append("<tr><th>quantity</th><th>value</th><th>U</th><th>k</th><th>verdict</th></tr>")
+        for q in quantities.values():
+            name, u = quantity(q.name, q.unit)
+            head = f"{q.symbol if q.symbol != q.name else name} [{u}]" if u else name
+            rows.append(f"<tr><th>{escape(head)}</th><td>{escape(fmt(q.value, u))}</td>"
+                        f"<td>{escape(format_uncertainty(q.U))}</td>"
+                        f"<td>{'' if q.k is None else f'{q.k:g}'}</td>"
+                        f"<td>{escape(q.verdict or '')}</td></tr>")
+        for k, v in d.items():          # what the test is: machine, axis, runs ...
+            if (k in quantities or k in ("unit", "schema_version")
+                    or not isinstance(v, (int, str)) or isinstance(v, bool)):
+                continue
+            name, _ = quantity(str(k))
+            rows.append(f"<tr><th>{escape(name)}</th><td colspan='4'>{escape(fmt(v))}</td></tr>")
+    else:
+        unit = d.get("unit") if isinstance(d.get("unit"), str) else None
+        for k, v in d.items():
+            if k == "unit" or not (isinstance(v, (int, float, str)) or v is None):
+                continue
+            # the result's unit belongs to its deviations, not to counts, flags and texts
+            own = unit if isinstance(v, float) or v is None else None
+            name, u = quantity(str(k), own)
+            head = f"{name} [{u}]" if u else name
+            rows.append(f"<tr><th>{escape(head)}</th><td>{escape(fmt(v, u))}</td></tr>")
     title = STANDARDS[standard].title if standard in STANDARDS else standard
     what = KIND_WORDS.get(kind, kind.replace("-", " ").capitalize())
+    warns = "".join(f"<li>{escape(str(w))}</li>" for w in d.get("warnings") or ())
     return (f"<div><p><b>{escape(what)}</b> by {escape(title)}</p>"
-            f"<table>{''.join(rows)}</table>{figure_svg(fig)}</div>")
+            f"<table>{''.join(rows)}</table>{f'<ul>{warns}</ul>' if warns else ''}"
+            f"{figure_svg(fig)}</div>")
+
+
+def evaluation_text(ev: Any) -> str:
+    """``str()`` of an :class:`axiscal.api.Evaluation`: an ISO 230-2:2014 result by its
+    symbols with each U (k) and verdict beside its value, then its warnings; another kind as
+    its command prints it, then the quantities that have a U."""
+    qs = ev.quantities
+    if ev.kind == "iso230-2" and ev.standard == ISO230_2:
+        from axiscal import units
+
+        head, *rest = str(ev.result).splitlines()
+        lines = [head]
+        for name in ev.result.parameters():
+            q = qs.get(name)
+            if q is None:
+                continue
+            pad = " " * (3 - len(q.symbol.replace("\u0304", "")))
+            if q.value is None:
+                lines.append(f"  {q.symbol}{pad}= n/a")
+                continue
+            text = f"  {q.symbol}{pad}= {q.value:8.2f} {units.display(q.unit)}"
+            if q.U is not None:
+                from axiscal.standards.uncertainty_reporting import format_uncertainty
+
+                text += f"   U = {format_uncertainty(q.U)} (k = {q.k:g})"
+            if q.verdict:
+                text += f"   {q.verdict}"
+            lines.append(text)
+        lines += [w for w in rest if w.startswith("  warning:")]
+        return "\n".join(lines)
+    text = str(ev.result)
+    with_u = [str(q) for q in qs.values() if q.U is not None]
+    return text + ("\n" + "\n".join(with_u) if with_u else "")
 
 
 def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None,
@@ -151,11 +205,17 @@ def _by_standards(ds: Any, key: str, tolerances: dict, rule: str | None, table: 
     results = (ps.evaluate_all(ds) if key == "all"
                else ((ps.STANDARDS[key], ps.evaluate(key, ds)),))
     first = results[0][1]
+    record = None
+    if key == ISO230_2:   # its own result and Annex A budget: the figure and the report's
+        from axiscal.store.kinds import positioning_record, with_uncertainty
+
+        record = with_uncertainty(positioning_record(ds, others=False), table)
     verdicts: tuple = ()
     if tolerances:
         if isinstance(first, str):
             raise InputError(f"tolerances: {key} was not evaluated: {first}")
-        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule, table))
+        verdicts = tuple(ps.check_tolerances(key, ds, first, tolerances, rule, table,
+                                             budget=record and record.budget))
     d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
          "standards": [standard_json(std, res) for std, res in results]}
     if verdicts:
@@ -165,26 +225,46 @@ def _by_standards(ds: Any, key: str, tolerances: dict, rule: str | None, table: 
         d["warnings"] = unprovable(verdicts, {"um": "µm"}.get(ds.deviation_unit,
                                                              ds.deviation_unit))
     result, budget = first, None
-    if key == ISO230_2:   # its own result and Annex A budget: the figure and the report's
-        from axiscal.standards.iso230_2 import evaluate as iso_evaluate
-        from axiscal.standards.iso230_9 import positioning_budget
-
-        result = iso_evaluate(ds)
-        budget = positioning_budget(ds, result, table)
+    if record is not None:
+        result, budget = record.evaluation, record.budget
+        quantities = replace(record, verdicts=verdicts).quantities
         if any(not math.isnan(v.U) for v in verdicts):
             d["uncertainty_budget"] = budget.to_json([v.parameter for v in verdicts])
+    else:
+        quantities = _standards_quantities(results, verdicts)
+    from axiscal.standards.quantities import quantities_json
+
+    d.update(quantities_json(quantities))
     return dict(kind="iso230-2", standard=key, dataset=ds, result=result, _json=d,
-                _budget=budget, _verdicts=verdicts, _results=tuple(results))
+                _budget=budget, _verdicts=verdicts, _results=tuple(results),
+                _quantities=quantities)
+
+
+def _standards_quantities(results: Any, verdicts: tuple) -> dict:
+    """The quantities of positioning standards other than ISO 230-2:2014 (no published budget
+    gives their U): one standard's by its names, ``all`` as ``KEY:NAME``."""
+    import math
+
+    from axiscal.standards.quantities import make_quantities
+
+    params = {}
+    for std, res in results:
+        if isinstance(res, str):
+            continue
+        for name, (v, u, _) in res.parameters().items():
+            if v is not None and math.isfinite(v):
+                params[name if len(results) == 1 else f"{std.key}:{name}"] = (v, u)
+    return make_quantities(params, None, verdicts)
 
 
 def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict, job: Any,
               drift_check: Any, full_turn: str) -> dict:
     """As ``axiscal iso230-2 FILE --json``: the user configuration, the job file over it, then
     E_VE measured by a drift check (ISO 230-2:2014 Annex A.5) and the uncertainty inputs."""
-    from axiscal.io.results import result_json
-    from axiscal.report.issue import budget_for, decisions_for, load_config
+    from axiscal.report.issue import decisions_for, load_config
     from axiscal.standards.iso230_2 import check_tolerances
     from axiscal.standards.iso230_2 import evaluate as iso_evaluate
+    from axiscal.store.kinds import inputs_from_config, positioning_record, with_uncertainty
 
     result = iso_evaluate(ds, full_turn=full_turn)  # type: ignore[arg-type]
     if isinstance(job, dict):   # a job's tables already read (axiscal.api: a dict job)
@@ -199,12 +279,41 @@ def _iso230_2(ds: Any, tolerances: dict, rule: str | None, uncertainty: dict, jo
             table.update(_drift_e_ve(drift_check, uncertainty))
         cfg = {**cfg, "uncertainty": {**table, **uncertainty}}
     check_tolerances(result, {**cfg.get("tolerance", {}), **tolerances})
-    budget = budget_for(ds, result, cfg)
-    verdicts, _, _ = decisions_for(result.parameters(), budget, tolerances, cfg, rule)
-    d = {**result_json(result, verdicts, budget), "machine": ds.metadata.machine,
-         "axis": ds.metadata.axis, "notes": ds.metadata.notes}
-    return dict(kind="iso230-2", standard=ISO230_2, dataset=ds, result=result, _json=d,
-                _budget=budget, _verdicts=tuple(verdicts), _config=cfg)
+    record = with_uncertainty(positioning_record(ds, result, others=False),
+                              inputs_from_config("iso230-2", cfg, ds))
+    verdicts, _, _ = decisions_for(result.parameters(), record.budget, tolerances, cfg, rule)
+    return record_fields(replace(record, verdicts=tuple(verdicts)), _config=cfg)
+
+
+def record_fields(record: Any, **extra: Any) -> dict:
+    """The fields of :class:`axiscal.api.Evaluation` of one test's record
+    (:class:`axiscal.store.kinds.Evaluated` with its budget): the one way an evaluation is
+    made from a record, for :func:`axiscal.evaluate`, ``History.evaluation`` and the commands.
+    A positioning test's ``to_dict()`` is the object of ``axiscal iso230-2 --json``; every
+    kind's carries the ``quantities`` block (:mod:`axiscal.standards.quantities`)."""
+    from axiscal.standards.quantities import quantities_json
+
+    quantities = record.quantities
+    if record.kind == "iso230-2":   # by ISO 230-2:2014: the history's KEY:NAME of the others
+        from axiscal.io.results import result_json   # are left to ``evaluate --standard all``
+
+        quantities = {k: q for k, q in quantities.items() if ":" not in k}
+        ds = record.dataset
+        d = {**result_json(record.evaluation, record.verdicts, record.budget),
+             "machine": ds.metadata.machine, "axis": ds.metadata.axis, "notes": ds.metadata.notes}
+    else:
+        d = dict(record.result)
+        if record.budget is not None:
+            from axiscal._json import jsonable
+
+            d["uncertainty_budget"] = jsonable(record.budget.to_json())
+    d.update(quantities_json(quantities))
+    fields = dict(kind=record.kind, standard=KIND_STANDARD[record.kind], dataset=record.dataset,
+                  result=record.evaluation, _json=d, _budget=record.budget,
+                  _verdicts=tuple(record.verdicts), _quantities=quantities,
+                  _config={"uncertainty": dict(record.inputs)})
+    fields.update(extra)
+    return fields
 
 
 def _drift_e_ve(drift_check: Any, uncertainty: dict) -> dict:
@@ -227,8 +336,8 @@ def ballbar_evaluation(data: Any, *, feed: float | None = None,
     ``axiscal ballbar analyze --feed --plane``); the other kinds are evaluated from their file."""
     from axiscal.errors import InputError
     from axiscal.io.ballbar import BallbarData
-    from axiscal.store.kinds import evaluate_ballbar
     from axiscal._json import jsonable
+    from axiscal.store.kinds import Evaluated, ballbar_parameters, evaluate_ballbar
 
     if not isinstance(data, BallbarData):
         raise InputError(f"evaluate: give the file's path for a {type(data).__name__} "
@@ -241,8 +350,9 @@ def ballbar_evaluation(data: Any, *, feed: float | None = None,
             raise InputError(f"plane (--plane) {plane!r}: choose XY, YZ or ZX")
         axes = (plane.upper()[0], plane.upper()[1])
     r = evaluate_ballbar(data, feed=None if feed is None else feed / 6e4, axes=axes)
-    return dict(kind="ballbar", standard="iso230-4", dataset=data, result=r,
-                _json=jsonable({"plane": "".join(axes), **r.as_dict()}))
+    res = jsonable({"plane": "".join(axes), **r.as_dict()})
+    return record_fields(Evaluated("ballbar", "linear", res, ballbar_parameters(r),
+                                   axis=res["plane"], dataset=data, evaluation=r))
 
 
 def evaluation_figure(ev: Any) -> Any:

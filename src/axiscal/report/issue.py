@@ -55,18 +55,13 @@ def load_config(job: Path | None) -> dict[str, Any]:
 
 
 def budget_for(dataset, result, cfg: dict):
-    """The ISO 230-2:2014 Annex A budget with the configuration's ``[uncertainty]`` inputs; a
-    material temperature measured and stated in the job's ``[conditions]`` (the data file
-    holding none) is the budget's too, so the certificate and its budget agree."""
-    from axiscal.standards.iso230_9 import positioning_budget
+    """The ISO 230-2:2014 Annex A budget with the configuration's inputs, resolved as every
+    path resolves them (:func:`axiscal.store.kinds.inputs_from_config`: a material temperature
+    the job's ``[conditions]`` states is the budget's too) and made by the one budget call
+    (:func:`axiscal.store.kinds.budget_of`)."""
+    from axiscal.store.kinds import budget_of, inputs_from_config
 
-    table = dict(cfg.get("uncertainty") or {})
-    mat = cfg.get("conditions", {}).get("material_temperature")
-    if (mat is not None and "material_temperature" not in table
-            and dataset.axis_kind.value == "linear"
-            and not dataset.metadata.environment.material_temperature):
-        table["material_temperature"] = mat
-    return positioning_budget(dataset, result, table)
+    return budget_of("iso230-2", dataset, result, inputs_from_config("iso230-2", cfg, dataset))
 
 
 def decisions_for(values, budget, tolerances: dict, cfg: dict, rule: str | None):

@@ -213,7 +213,8 @@ def evaluate_all(dataset: PositioningDataset) -> tuple[tuple[Standard, StandardR
 
 
 def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResult,
-                     tolerances: dict[str, float], rule: str | None = None, uncertainty=None):
+                     tolerances: dict[str, float], rule: str | None = None, uncertainty=None,
+                     budget=None):
     """Decide acceptance tolerances of any standard's parameters (ISO 14253-1:2017 decisions).
 
     Parameters
@@ -232,6 +233,8 @@ def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResu
         and U is reported as not estimated (NaN); asking for ``iso14253-1`` there is refused.
     uncertainty : mapping, optional
         The ``[uncertainty]`` inputs of that budget (absent ones are assumed and shown so).
+    budget : UncertaintyBudget, optional
+        That budget already made (the test's record): used as it is, ``uncertainty`` ignored.
 
     Returns
     -------
@@ -254,7 +257,9 @@ def check_tolerances(key: str, dataset: PositioningDataset, result: StandardResu
         if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
             raise InputError(f"tolerance {name} = {tol!r} must be a number >= 0")
     if key == "iso230-2:2014":
-        budget = iso230_9.positioning_budget(dataset, iso230_2.evaluate(dataset), uncertainty)
+        if budget is None:
+            budget = iso230_9.positioning_budget(dataset, iso230_2.evaluate(dataset),
+                                                 uncertainty)
         return decide_all(values, budget, tolerances, _rule(rule or "iso14253-1"))
     r = _rule(rule or "simple")
     if r is not Rule.SIMPLE:

@@ -72,7 +72,8 @@ _FIELDS = {"machine": (str, None), "axis": (str, None), "kind": (str, None),
            "tested_at": (str, None), "filename": (str, None), "sha256": (str, None),
            "raw": (str, None), "date_known": (bool, True), "instrument": (str, ""),
            "operator": (str, ""), "note": (str, ""), "parameters": (dict, {}),
-           "tables": (list, []), "withdrawn": (str, "")}
+           "tables": (list, []), "withdrawn": (str, ""), "uncertainty_inputs": (dict, {}),
+           "quantities": (dict, {}), "schema_version": (int, 0)}
 
 
 def export_history(store, path, machine: str | None = None) -> int:
@@ -120,6 +121,10 @@ def _write(z: zipfile.ZipFile, store, tests, machine) -> None:
             "instrument": t.instrument, "operator": t.operator, "note": summary.note,
             "withdrawn": summary.withdrawn,
             "parameters": {k: list(v) for k, v in summary.parameters.items()},
+            # the record's U: its inputs (import makes the same budget) and its quantities
+            "uncertainty_inputs": t.result.get("uncertainty_inputs", {}),
+            "schema_version": t.result.get("schema_version", 0),
+            "quantities": t.result.get("quantities", {}),
             "tables": [list(x) for x in t.tables]}))
     audit, certs = export_records(store, shas, machine)
     head = {"format": FORMAT, "tests": len(tests), "audit": len(audit),
@@ -337,7 +342,8 @@ def _prepared(z: zipfile.ZipFile, p: Path, n: int, rec: dict):
                        kind=rec["kind"], instrument=rec["instrument"],
                        operator=rec["operator"], note=rec["note"],
                        date=rec["tested_at"] if rec["date_known"] else None,
-                       tables=tuple(tuple(x) for x in rec["tables"]))
+                       tables=tuple(tuple(x) for x in rec["tables"]),
+                       uncertainty=rec["uncertainty_inputs"])
     except AxiscalError as exc:
         raise DataFormatError(f"history.jsonl line {n} ({rec['filename'][:80]}): "
                               f"{one_line(str(exc))}; nothing was imported", str(p)) from None

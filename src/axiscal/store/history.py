@@ -118,6 +118,14 @@ class StoredTest:
         return evaluated(lambda: self.raw, self.sha256, self.summary.filename,
                          self.summary.kind, self.size)
 
+    def record(self) -> Evaluated:
+        """The test's one record: :meth:`evaluate_again` with the uncertainty budget made from
+        the inputs stored with it (a test stored before inputs were kept: none, each assumed
+        and said), so its U is the U it was stored with."""
+        from axiscal.store.kinds import with_uncertainty
+
+        return with_uncertainty(self.evaluate_again(), self.result.get("uncertainty_inputs"))
+
 
 def default_url() -> str:
     """``AXISCAL_DB``, else SQLite in the user's data folder."""
@@ -158,17 +166,18 @@ class Store:
     def add(self, raw: bytes, filename: str, *, machine: str | None = None,
             axis: str | None = None, kind: str | None = None, instrument: str = "",
             operator: str = "", note: str = "", date: str | None = None,
-            tables: tuple = ()) -> AddResult:
+            tables: tuple = (), uncertainty: dict | None = None) -> AddResult:
         """Evaluate and store one file; a file stored before is reported, not stored again.
 
-        ``tables`` are (controller, filename, text) written from this test.
+        ``tables`` are (controller, filename, text) written from this test; ``uncertainty``
+        the inputs of its budget (default: the user configuration's, :func:`prepare`).
         """
         existing = self._find_hash(hashlib.sha256(raw).hexdigest())
         if existing is not None:
             return existing
         return self.add_all([prepare(raw, filename, machine=machine, axis=axis, kind=kind,
                                      instrument=instrument, operator=operator, note=note,
-                                     date=date, tables=tables)])[0]
+                                     date=date, tables=tables, uncertainty=uncertainty)])[0]
 
     def add_all(self, items, then=None) -> list[AddResult]:
         """Store every :class:`Prepared` file in ONE transaction: all or nothing.
@@ -418,9 +427,16 @@ class Store:
 
 def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str | None = None,
             kind: str | None = None, instrument: str = "", operator: str = "", note: str = "",
-            date: str | None = None, tables: tuple = ()) -> "Prepared":
-    """Evaluate one file into the row it will be stored as (no database is touched)."""
+            date: str | None = None, tables: tuple = (),
+            uncertainty: dict | None = None) -> "Prepared":
+    """Evaluate one file into the row it will be stored as (no database is touched).
+
+    ``uncertainty``: the inputs of the test's uncertainty budget
+    (:func:`axiscal.store.kinds.with_uncertainty`), stored with it so that every later view,
+    report and certificate gives the U it was stored with; default the user configuration's
+    table for the kind (:func:`axiscal.store.kinds.inputs_from_config`)."""
     from axiscal._json import jsonable
+    from axiscal.store.kinds import inputs_from_config, with_uncertainty
 
     ev = evaluate_file(raw, filename, kind)
     if Path(filename).name[:300] == filename:     # as a view evaluates it: kept for the views
@@ -428,12 +444,19 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
 
         remember(raw, hashlib.sha256(raw).hexdigest(), ev)
     when, known = _date(date or ev.date)
+    if uncertainty is None:
+        from axiscal.io.user_config import load_user_config
+
+        inputs = inputs_from_config(ev.kind, load_user_config(), ev.dataset)
+    else:
+        inputs = dict(uncertainty)
     return Prepared(
         hashlib.sha256(raw).hexdigest(), raw, Path(filename).name[:300],
         _name(machine or ev.machine, "machine", filename),
         _name(axis or ev.axis, "axis", filename).upper(), ev.axis_kind, ev.kind, when, known,
         instrument or ev.instrument, operator or ev.operator, note, ev.dataset_json,
-        json.dumps(ev.result), json.dumps(jsonable(ev.environment)),
+        json.dumps(jsonable(with_uncertainty(ev, inputs).stored_result())),
+        json.dumps(jsonable(ev.environment)),
         tuple((n, float(v), u) for n, (v, u) in ev.parameters.items()),
         tuple(tuple(x) for x in tables))
 

@@ -25,7 +25,12 @@ from axiscal._json import jsonable
 from axiscal.errors import DataFormatError, InputError
 
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
-           "evaluate_file", "jsonable", "other_standards", "result_text"]
+           "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
+           "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE"]
+
+#: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
+#: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
+UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion")
 
@@ -50,6 +55,71 @@ class Evaluated:
     #: A positioning test by every other positioning standard (:func:`other_standards`), the
     #: table its page shows; None for other kinds.
     standards: dict | None = None
+    #: The uncertainty budget (:func:`with_uncertainty`; None: the kind has none, or it was
+    #: not asked for), the inputs it was made with, and ISO 14253-1 decisions made with it.
+    budget: object = None
+    inputs: dict = field(default_factory=dict)
+    verdicts: tuple = ()
+
+    @property
+    def quantities(self) -> dict:
+        """Every result as a :class:`~axiscal.standards.quantities.Quantity` (value, U, k,
+        unit, verdict): the one shape of every path."""
+        from axiscal.standards.quantities import make_quantities
+
+        return make_quantities(self.parameters, self.budget, self.verdicts)
+
+    def stored_result(self) -> dict:
+        """The evaluation as the history stores it: the kind's result object with the
+        ``quantities`` block (schema version), the uncertainty inputs and the budget."""
+        from axiscal.standards.quantities import quantities_json
+
+        out = {**self.result, **quantities_json(self.quantities),
+               "uncertainty_inputs": jsonable(self.inputs)}
+        if self.budget is not None:
+            out["uncertainty_budget"] = jsonable(self.budget.to_json())
+        return out
+
+
+def inputs_from_config(kind: str, cfg: dict, dataset=None) -> dict:
+    """The uncertainty inputs of a ``kind`` of test from a configuration (the user's with a
+    job's tables on top): its table of :data:`UNCERTAINTY_TABLE`, and for a linear positioning
+    test whose file holds no material temperature, the one the job's ``[conditions]`` states,
+    so a certificate and its budget agree. The one place inputs are resolved."""
+    table = dict(cfg.get(UNCERTAINTY_TABLE.get(kind, ""), None) or {})
+    if kind == "iso230-2" and dataset is not None:
+        mat = cfg.get("conditions", {}).get("material_temperature")
+        if (mat is not None and "material_temperature" not in table
+                and dataset.axis_kind.value == "linear"
+                and not dataset.metadata.environment.material_temperature):
+            table["material_temperature"] = mat
+    return table
+
+
+def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
+    """``ev`` with its uncertainty budget made from ``inputs`` (absent ones assumed and said):
+    ISO 230-2:2014 Annex A for a positioning test
+    (:func:`~axiscal.standards.iso230_9.positioning_budget`), ISO/TR 230-9 for a diagonal
+    squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`); the
+    other kinds keep none. Every path that shows a U (command, history, workbench, report,
+    certificate, API) takes it from here."""
+    inputs = dict(inputs or {})
+    return dataclasses.replace(ev, budget=budget_of(ev.kind, ev.dataset, ev.evaluation, inputs),
+                               inputs=inputs)
+
+
+def budget_of(kind: str, dataset, evaluation, inputs: dict):
+    """The uncertainty budget of a ``kind`` of test from its inputs (None: the kind has none):
+    the one call behind :func:`with_uncertainty` and the certificate's budget."""
+    if kind == "iso230-2":
+        from axiscal.standards.iso230_9 import positioning_budget
+
+        return positioning_budget(dataset, evaluation, inputs)
+    if kind == "diagonal":
+        from axiscal.standards.iso230_9_geometry import diagonal_budget
+
+        return diagonal_budget(evaluation, inputs)
+    return None
 
 
 def detect_kind(text: str) -> str:
@@ -97,17 +167,27 @@ def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluat
 
 def _positioning(text: str, filename: str) -> Evaluated:
     from axiscal.io import parse_positioning
+
+    return positioning_record(parse_positioning(text, filename))
+
+
+def positioning_record(ds, result=None, others: bool = True) -> Evaluated:
+    """A positioning dataset evaluated by ISO 230-2:2014 (``result``: its evaluation already
+    made, e.g. with the full turn merged) and, with ``others``, by every other positioning
+    standard (``KEY:NAME`` parameters; the history's record has them, ``axiscal iso230-2``
+    does not evaluate them)."""
     from axiscal.io.json import format_positioning_json
     from axiscal.standards.iso230_2 import evaluate
 
-    ds = parse_positioning(text, filename)
-    r = evaluate(ds)
+    r = evaluate(ds) if result is None else result
     unit = r.deviation_unit
     params = {n: (getattr(r, n), unit) for n in
               ("A", "A_up", "A_down", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "B",
                "B_mean") if getattr(r, n) is not None and math.isfinite(getattr(r, n))}
-    others, standards = other_standards(ds)
-    params.update(others)
+    standards = None
+    if others:
+        more, standards = other_standards(ds)
+        params.update(more)
     md = ds.metadata
     env = {k: v for k, v in dataclasses.asdict(md.environment).items() if v is not None}
     return Evaluated("iso230-2", ds.axis_kind.value, jsonable(r), params,

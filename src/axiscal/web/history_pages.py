@@ -344,7 +344,7 @@ def _test_view(env, t, kept_only: bool = False) -> tuple | None:
     from axiscal.store.cache import derived, digest, lookup
 
     cfg = load_config(None)
-    what = f"test-page-{digest(cfg)}"
+    what = f"test-page-{digest([cfg, t.result.get('uncertainty_inputs')])}"
     if kept_only:
         ev = lookup(t.sha256, "evaluated", t.size)
         parts = lookup(t.sha256, what) if ev is not None else None
@@ -353,7 +353,7 @@ def _test_view(env, t, kept_only: bool = False) -> tuple | None:
         ev, parts = ev[0], parts[0]
     else:
         ev = t.evaluate_again()
-        parts = derived(t.sha256, what, lambda: _test_parts(ev))   # computed once, then kept
+        parts = derived(t.sha256, what, lambda: _test_parts(t, ev))   # computed once, then kept
     html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
         "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
     return ev, cfg, {**parts, "results_html": Markup(html)}
@@ -373,20 +373,23 @@ def _prepare_view(app, test_id: int) -> None:
                                                  test_id, exc_info=True)
 
 
-def _test_parts(ev) -> dict:
-    """The parts of a test's page that are functions of its evaluation and the user
+def _test_parts(t, ev) -> dict:
+    """The parts of a test's page that are functions of its record and the user
     configuration only (kept by :func:`axiscal.store.cache.derived`): the plot, the ISO 230-2
-    Annex A budget and decisions, the other standards, the per-target rows, the kind's view."""
+    Annex A budget stored with the test and the decisions, the other standards, the per-target
+    rows, the kind's view."""
     from axiscal.web.kind_pages import kind_view
     from axiscal.web.signoff_pages import signoff_plot
 
+    from axiscal.store.kinds import with_uncertainty
+
+    rec = with_uncertainty(ev, t.result.get("uncertainty_inputs"))   # the stored inputs' budget
     if ev.kind != "iso230-2":
         return {"plot": None, "budget": None, "decisions": {}, "standards": None,
-                "targets": [], "view": kind_view(ev)}
-    budget, decisions = _uncertainty(ev)
-    return {"plot": signoff_plot(ev), "budget": budget, "decisions": decisions,
+                "targets": [], "view": kind_view(rec)}
+    return {"plot": signoff_plot(ev), "budget": rec.budget, "decisions": _decisions(rec),
             "standards": _other_standards(ev), "targets": _target_rows(ev),
-            "view": kind_view(ev)}
+            "view": kind_view(rec)}
 
 
 def _target_rows(ev) -> list:
@@ -468,16 +471,14 @@ def _missing(message: str):
     return NotFoundError(message)
 
 
-def _uncertainty(ev):
-    """The ISO 230-2 Annex A budget of a stored test and, if the user configuration names
-    tolerances, the ISO 14253-1 decisions (by parameter)."""
+def _decisions(rec) -> dict:
+    """If the user configuration names tolerances, the ISO 14253-1 decisions (by parameter)
+    with the budget of the test's record (the inputs stored with it)."""
     from axiscal.report.issue import decisions_for, load_config
-    from axiscal.standards.iso230_9 import positioning_budget
 
-    cfg = load_config(None)
-    budget = positioning_budget(ev.dataset, ev.evaluation, cfg.get("uncertainty"))
-    decisions, _, _ = decisions_for(ev.evaluation.parameters(), budget, {}, cfg, None)
-    return budget, {d.parameter: d for d in decisions}
+    decisions, _, _ = decisions_for(rec.evaluation.parameters(), rec.budget, {},
+                                    load_config(None), None)
+    return {d.parameter: d for d in decisions}
 
 
 def _other_standards(ev) -> dict:

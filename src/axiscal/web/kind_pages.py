@@ -148,7 +148,7 @@ def _diagonal(ev) -> dict:
             ("diagonal nominal D0", fmt(r.nominal * 1e3, "mm"), "mm"),
             ("length error of D1 (along -X +Y)", fmt(r.error_d1 * 1e6, "µm"), "µm"),
             ("length error of D2 (along +X +Y)", fmt(r.error_d2 * 1e6, "µm"), "µm")]
-    budget = diagonal_budget(r, _squareness_table())
+    budget = ev.budget if ev.budget is not None else diagonal_budget(r, _squareness_table())
     rows.insert(2, ("U (k = 2) of the squareness", budget.U_text("squareness"), "µm/m"))
     return {"figure": _figure(diagonal_figure, ev.dataset, r),
             "alt": "Length errors along the two diagonals",
