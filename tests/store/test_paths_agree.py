@@ -228,8 +228,33 @@ def test_every_path_gives_the_same_numbers(places, kind, seed):
     assert _params(web["parameters"]) == params                    # workbench upload
     results = (stored.result, shown["result"], imported.result, web["result"])
     assert all(r == stored.result for r in results)
+    # the record's quantities (value, U, k, unit, verdict), schema 1, on every path, and
+    # the public API's History.evaluation gives them back field by field
+    quantities = stored.result["quantities"]
+    assert {k: q["value"] for k, q in quantities.items()} == params
+    assert shown["quantities"] == web["quantities"] == imported.result["quantities"] == quantities
+    assert shown["schema_version"] == web["schema_version"] == 1
+    _api_record_equals(stores["library"], added.id, path, quantities)
     if whole is not None:                                          # ballbar: the whole object
         assert stored.result == whole
+
+
+def _api_record_equals(store, test_id: int, path, quantities: dict) -> None:
+    """``History.evaluation`` is lossless: its quantities are the stored ones (U included),
+    and they equal :func:`axiscal.evaluate` of the file with the same inputs, field by field
+    (a positioning test's by ISO 230-2:2014: the other standards' ``KEY:NAME`` are the
+    history's for trends)."""
+    import axiscal
+
+    ev = axiscal.History(store=store).evaluation(test_id)
+    got = {k: q.to_dict() for k, q in ev.quantities.items()}
+    assert got == {k: q for k, q in quantities.items() if k in got}
+    direct = axiscal.evaluate(path, uncertainty=store.get(test_id).result["uncertainty_inputs"])
+    assert {k: q.to_dict() for k, q in direct.quantities.items()} == got
+    assert direct.to_dict() == ev.to_dict()
+    if ev.kind in ("iso230-2", "diagonal"):        # the kinds with an uncertainty budget
+        assert all(q["U"] is not None and q["U"] > 0 for k, q in got.items()
+                   if q["value"] is not None)
 
 
 def test_the_issue_ballbar_case_gives_the_diagnosis_on_every_path(places):

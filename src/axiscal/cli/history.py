@@ -160,18 +160,24 @@ def show(
     """
     plot = plot_path(plot) if plot else None
     report = report_path(report) if report else None
-    t = _store(db).get(test_id)
-    ev = t.evaluate_again()
+    store = _store(db)
+    t = store.get(test_id)
+    ev = t.record()                     # the stored bytes' evaluation with its stored inputs' U
     if plot or report:
-        _figures(ev, plot, report, t)
+        _figures(store, test_id, plot, report, t)
     if json_out:
         s = t.summary
+        stored = ev.stored_result()
         print_json({"id": s.id, "machine": s.machine, "axis": s.axis, "kind": s.kind,
                     "date": s.tested_at.isoformat(), "date_known": s.date_known,
                     "file": s.filename, "sha256": t.sha256, "stored_with": t.axiscal_version,
+                    "schema_version": stored["schema_version"],
+                    "quantities": stored["quantities"],
+                    "uncertainty_inputs": stored["uncertainty_inputs"],
+                    # deprecated (schema 1): the same numbers as quantities.NAME.value, .unit
                     "parameters": {k: {"value": v, "unit": u} for k, (v, u) in
                                    ev.parameters.items()},
-                    "result": ev.result,
+                    "result": stored,
                     "tables": [{"controller": c, "file": f} for c, f, _ in t.tables]})
         return
     s = t.summary
@@ -182,9 +188,12 @@ def show(
     if ev.kind == "iso230-2":
         from axiscal.cli.iso230_2 import render_result
 
-        render_result(ev.evaluation, ev.dataset)
+        render_result(ev.evaluation, ev.dataset, budget=ev.budget)
     else:
         typer.echo(str(ev.evaluation))
+        for q in ev.quantities.values():
+            if q.U is not None:
+                typer.echo(str(q))
     for c, f, _ in t.tables:
         typer.echo(f"compensation table: {c} {f}")
 
@@ -339,39 +348,21 @@ def _row(t) -> dict:
             "withdrawn": t.withdrawn or None}
 
 
-def _figures(ev, plot, report, stored) -> None:
-    """The plot and report of a stored test, made again from its readings."""
-    from axiscal.errors import InputError
+def _figures(store, test_id: int, plot, report, stored) -> None:
+    """The plot and report of a stored test, made again from its record
+    (``axiscal.History.evaluation``: its readings and the U of its stored inputs), as
+    ``Evaluation.plot()`` and ``Evaluation.report()`` make them for every kind."""
+    from axiscal.api import History
 
-    if ev.kind == "iso230-2":
-        if plot:
-            from axiscal.report.plots import save_iso230_2_plot
+    ev = History(store=store).evaluation(test_id)
+    if plot:
+        from axiscal.report.plots import save_figure
 
-            save_iso230_2_plot(ev.evaluation, ev.dataset, plot)
-        if report:
-            from axiscal.report.html import write_positioning_report
-
-            write_positioning_report(report, ev.dataset, ev.evaluation)
-    elif ev.kind == "ballbar" and hasattr(ev.evaluation, "circular"):     # the diagnosis
-        from axiscal.report.ballbar_plots import save_diagnosis_plot, write_diagnosis_report
-
-        title = f"Ballbar diagnosis {stored.summary.filename}"
-        if plot:
-            save_diagnosis_plot(ev.dataset.runs, ev.evaluation, plot, title=title)
-        if report:
-            write_diagnosis_report(report, ev.dataset.runs, ev.evaluation, title=title)
-    elif ev.kind == "ballbar" and plot and not report:                    # one direction
-        from axiscal.report.squareness_plots import save_ballbar_plot
-
-        save_ballbar_plot(ev.dataset.runs, ev.evaluation, plot,
-                          title=f"Ballbar test {stored.summary.filename}")
-    elif ev.kind == "straightness" and plot and not report:
-        from axiscal.report.squareness_plots import save_straightness_plot
-
-        save_straightness_plot(ev.dataset, ev.evaluation, plot)
-    else:
-        raise InputError(f"a {ev.kind} test has no {'report' if report else 'plot'} here; "
-                         "use --json")
+        save_figure(ev.plot(), plot)
+    if report:
+        title = (f"Ballbar diagnosis {stored.summary.filename}"
+                 if ev.kind == "ballbar" and hasattr(ev.result, "circular") else None)
+        ev.report(report, title)
     for p, what in ((plot, "plot"), (report, "report")):
         if p:
             note(f"wrote {what} {p}")

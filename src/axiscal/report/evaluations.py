@@ -234,7 +234,7 @@ def _by_standards(ds: Any, key: str, tolerances: dict, rule: str | None, table: 
         quantities = _standards_quantities(results, verdicts)
     from axiscal.standards.quantities import quantities_json
 
-    d.update(quantities_json(quantities))
+    d.update(quantities_json(quantities), uncertainty_inputs=dict(table or {}))
     return dict(kind="iso230-2", standard=key, dataset=ds, result=result, _json=d,
                 _budget=budget, _verdicts=verdicts, _results=tuple(results),
                 _quantities=quantities)
@@ -291,6 +291,7 @@ def record_fields(record: Any, **extra: Any) -> dict:
     made from a record, for :func:`axiscal.evaluate`, ``History.evaluation`` and the commands.
     A positioning test's ``to_dict()`` is the object of ``axiscal iso230-2 --json``; every
     kind's carries the ``quantities`` block (:mod:`axiscal.standards.quantities`)."""
+    from axiscal._json import jsonable
     from axiscal.standards.quantities import quantities_json
 
     quantities = record.quantities
@@ -304,10 +305,8 @@ def record_fields(record: Any, **extra: Any) -> dict:
     else:
         d = dict(record.result)
         if record.budget is not None:
-            from axiscal._json import jsonable
-
             d["uncertainty_budget"] = jsonable(record.budget.to_json())
-    d.update(quantities_json(quantities))
+    d.update(quantities_json(quantities), uncertainty_inputs=jsonable(record.inputs))
     fields = dict(kind=record.kind, standard=KIND_STANDARD[record.kind], dataset=record.dataset,
                   result=record.evaluation, _json=d, _budget=record.budget,
                   _verdicts=tuple(record.verdicts), _quantities=quantities,

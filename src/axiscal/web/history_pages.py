@@ -110,6 +110,10 @@ def add_routes(app: FastAPI) -> None:
         t = store(request).get(test_id)
         body = {"id": test_id, "machine": t.summary.machine, "axis": t.summary.axis,
                 "kind": t.summary.kind, "date": t.summary.tested_at.isoformat(),
+                "schema_version": t.result.get("schema_version", 0),   # the stored record's
+                "quantities": t.result.get("quantities", {}),
+                "uncertainty_inputs": t.result.get("uncertainty_inputs", {}),
+                # deprecated (schema 1): the same numbers as quantities.NAME.value, .unit
                 "parameters": {k: {"value": v, "unit": u}
                                for k, (v, u) in t.summary.parameters.items()},
                 "result": t.result}
