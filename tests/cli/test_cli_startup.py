@@ -30,10 +30,13 @@ runpy.run_module("axiscal", run_name="__main__", alter_sys=True)
 HEAVY = ("matplotlib", "scipy", "GTC", "jinja2", "sqlalchemy", "alembic", "rich", "fastapi",
          "starlette", "weasyprint", "pandas", "pygments", "markdown_it")
 
-#: axiscal's own modules that serve other formats, other commands or other outputs.
+#: axiscal's own modules that serve other formats, other commands or other outputs (of the
+#: history only its one evaluation of a test, axiscal.store.kinds, whose record the command
+#: prints: the package's names load on first use).
 NOT_FOR_A_CSV = ("axiscal._schema", "axiscal.io.epics", "axiscal.io.ecmc", "axiscal.io.renishaw",
                  "axiscal.io.json", "axiscal.report.plots", "axiscal.report.html",
-                 "axiscal.store", "axiscal.web", "axiscal.procedures", "axiscal.machines",
+                 "axiscal.store.history", "axiscal.store.database", "axiscal.store.models",
+                 "axiscal.store.cache", "axiscal.web", "axiscal.procedures", "axiscal.machines",
                  "axiscal.instruments", "axiscal.compensation",
                  "axiscal.standards.positioning_standards")
 

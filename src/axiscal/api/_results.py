@@ -277,12 +277,14 @@ class Simulation:
 
         return any_simulation_figure(self.kind, self.test, self.name)
 
-    def report(self, path: PathLike) -> Path:
+    def report(self, path: PathLike, uncertainty: dict | None = None) -> Path:
         """Write the report (HTML, or PDF by extension where the command allows), as the
-        command's ``--report``."""
+        command's ``--report``; a positioning test's carries its ISO 230-2:2014 Annex A
+        uncertainty from ``uncertainty`` (inputs by name; default the user configuration's)."""
         from axiscal.report.simulation_views import write_any_simulation_report
 
-        return Path(write_any_simulation_report(self.kind, self.test, path, self.name))
+        return Path(write_any_simulation_report(self.kind, self.test, path, self.name,
+                                                uncertainty))
 
     def write_data(self, path: PathLike) -> Path:
         """Write the simulated readings as ``axiscal simulate --data`` does (``.csv`` tidy CSV,

@@ -80,10 +80,11 @@ def demo(
         sim = api.simulate(config, seed, kind="positioning")
         typer.echo("")
         render_simulation(sim.test)
-        write_outputs(sim, out / f"{name}_iso230-2.png", out / f"{name}_report.html",
-                      out / f"{name}_data.csv")
+        write_outputs(sim, out / f"{name}_iso230-2.png", None, out / f"{name}_data.csv")
+        sim.report(out / f"{name}_report.html", uncertainty=_inputs(name))   # the certificate's U
+        note(f"wrote report {out / f'{name}_report.html'}")
         _certificate(out / f"{name}_certificate.pdf", sim.test, name, url)
-        pages.append((label, f"{name}_report.html", sim.result))
+        pages.append((label, f"{name}_report.html", sim.result, _budget(sim, name)))
     pages.append(_rotary_calibration(out))
     _write_index(out, pages)
     _measured_inputs(out, seed)
@@ -222,13 +223,27 @@ def _certificate(path: Path, sim, name: str, db: str) -> None:
            "machine": {**DEMO_CONFIG["machine"],
                        "model": sim.dataset.metadata.machine or "simulated machine"},
            "instrument": [instrument],   # E_VE declared: 0.2 µm, 0.1 arcsec (a still simulation)
-           "uncertainty": {**DEMO_CONFIG["uncertainty"], "e_ve": 0.1 if rotary else 0.2}}
+           "uncertainty": _inputs(name)}
     out_path(path, "certificate")
     data = path.parent / f"{name}_data.csv"
     o = write_certificate(path, sim.dataset, sim.result, cfg, data.read_bytes(),
                           DEMO_TOLERANCES[name], store=open_store(db), filename=data.name,
                           customer_supplied=tuple(DEMO_TOLERANCES[name]))
     note(f"wrote certificate {path}: {o.number or 'DRAFT'}")
+
+
+def _inputs(name: str) -> dict:
+    """The demo's uncertainty inputs: E_VE declared, 0.2 µm (linear) or 0.1 arcsec (rotary),
+    for a still simulation; the same in its report, its index and its certificate."""
+    return {**DEMO_CONFIG["uncertainty"], "e_ve": 0.1 if name == "rotary" else 0.2}
+
+
+def _budget(sim, name: str):
+    """The ISO 230-2:2014 Annex A budget of a demo test's record, with :func:`_inputs`."""
+    from axiscal.store.kinds import positioning_record, with_uncertainty
+
+    return with_uncertainty(positioning_record(sim.dataset, sim.result, others=False),
+                            _inputs(name)).budget
 
 
 def _rotary_calibration(out: Path):
@@ -246,17 +261,28 @@ def _rotary_calibration(out: Path):
     render_rotary(result, "rotary calibration of the turntable (angular interferometer + reference calibrator)")
     write_rotary_report(out / "rotary_calibration_report.html", result)
     note(f"wrote report {out / 'rotary_calibration_report.html'}")
-    return ("C axis, rotary calibration chain", "rotary_calibration_report.html", result.result)
+    return ("C axis, rotary calibration chain", "rotary_calibration_report.html", result.result,
+            result.budget if hasattr(result.budget, "U") else None)
 
 
 def _write_index(out: Path, pages) -> None:
     from axiscal.report.html import Report, unit_label
 
     rep = Report("axiscal demonstration", subtitle="Simulated ISO 230-2 positioning tests, evaluated and compared with the truth")
-    rows = [[label, r.A, r.E, r.R, r.B, unit_label(r.deviation_unit)] for label, _, r in pages]
+    from axiscal.standards.uncertainty_reporting import format_uncertainty
+
+    def cell(r, b, p):
+        v = getattr(r, p)
+        u = b.U(p) if b is not None else None
+        return "—" if v is None else f"{v:.2f}" + (f" ± {format_uncertainty(u)}" if u else "")
+
+    rows = [[label, *(cell(r, b, p) for p in "AERB"), unit_label(r.deviation_unit)]
+            for label, _, r, b in pages]
     rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
+    rep.add_text("Each value ± its expanded uncertainty U (k = 2) by ISO 230-2:2014 Annex A, "
+                 "from the inputs each report lists; a dash where no budget was made.")
     rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
-                                  for label, href, _ in pages)
+                                  for label, href, _, _ in pages)
                  + "".join(f'<li><a href="{n}_certificate.pdf">{n} test: calibration certificate '
                            "(PDF)</a></li>" for n, _, _ in DEMOS if (out / f"{n}_certificate.pdf").exists())
                  + "</ul>")

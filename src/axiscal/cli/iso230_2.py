@@ -18,7 +18,12 @@ parameter, ISO 230-2:2014 Annex A, in ``unit``, the raw number), ``uncertainty_d
 shown: two significant digits rounded up, JCGM 100:2008 §7.2.6) and ``uncertainty_budget``
 (``unit``, ``k``, ``method``, ``U``, ``U_display``, ``contributors``, ``inputs``: name ->
 ``value``, ``unit``, ``assumed``, ``set_with``, ``rule``, ``label``; ``assumed`` (names),
-``missing_inputs`` (left out of U, e.g. ``e_ve``) and ``notes``).
+``missing_inputs`` (left out of U, e.g. ``e_ve``) and ``notes``). ``outliers``: readings
+Grubbs' test finds apart from the other runs at their target (``target``, ``direction``,
+``run``, ``value``, ``mean``, ``s``, ``G``, ``G_critical``, ``n``, ``sets`` — the parameters
+the target decides —, ``rule``, ``text``), kept in the evaluation. The results as data, the
+same on every path (:mod:`axiscal.standards.quantities`): ``schema_version``, ``quantities``
+and ``uncertainty_inputs``.
 
 Exit codes: 0 evaluated (and conformance proven for every tolerance), 1 a tolerance not proven
 met (non-conformance or uncertainty zone; with ``--rule simple``: exceeded), 2 a user error, 3 the

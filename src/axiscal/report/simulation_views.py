@@ -74,8 +74,12 @@ def _truth_line(test: Any) -> tuple:
             if test.plan.bidirectional else test.truth_up)
 
 
-def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "") -> Path:
-    """The report of any :class:`axiscal.api.Simulation`, as its command's ``--report``."""
+def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "",
+                                uncertainty: Any = None) -> Path:
+    """The report of any :class:`axiscal.api.Simulation`, as its command's ``--report``; a
+    positioning test's with its ISO 230-2:2014 Annex A uncertainty, the budget of its record
+    (:func:`axiscal.store.kinds.with_uncertainty`) from ``uncertainty`` (default: the user
+    configuration's inputs)."""
     if kind == "rotary-calibration":
         from axiscal.report.rotary import write_rotary_report
 
@@ -84,8 +88,19 @@ def write_any_simulation_report(kind: str, test: Any, path: Any, name: str = "")
         return write_simulation_report(test, path, name)
     from axiscal.report.html import positioning_report
 
+    from axiscal.report.uncertainty import add_uncertainty
+    from axiscal.store.kinds import inputs_from_config, positioning_record, with_uncertainty
+
+    if uncertainty is None:
+        from axiscal.io.user_config import load_user_config
+
+        uncertainty = inputs_from_config("iso230-2", load_user_config(), test.dataset)
+    rec = with_uncertainty(positioning_record(test.dataset, test.result, others=False),
+                           uncertainty)
     rep = positioning_report(test.dataset, test.result, truth=_truth_line(test))
     rep.simulation = True
+    add_uncertainty(rep, rec.budget, (), [p for p, v in test.result.parameters().items()
+                                          if v is not None])
     add_truth_section(rep, test)
     return Path(rep.write(path))
 

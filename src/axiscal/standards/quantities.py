@@ -8,6 +8,14 @@ under ``quantities`` (:func:`quantities_json`, schema :data:`SCHEMA_VERSION`), w
 stores and gives back, what the workbench's JSON serves and what an archive carries; a tidy
 :class:`pandas.DataFrame` of them is :func:`quantities_frame`.
 
+The block every ``--json`` object of an evaluation carries (schema 1): ``schema_version``
+(1), ``quantities`` (name -> ``value``, ``U``, ``k``, ``unit``, ``symbol``, ``verdict``,
+``tolerance``; null where not applicable, not estimated or not decided) and
+``uncertainty_inputs`` (the inputs the budget was made with, by name, as given; absent ones
+were assumed and are said in ``uncertainty_budget``). Keys of the older flat forms (``A``,
+``uncertainty``, ``parameters``, ``backlash_x_um`` ...) stay for one release and are
+deprecated: read ``quantities``.
+
 Units are the code's short names (``um``, ``arcsec``, ``um/m``), as every ``unit`` key of the
 JSON: :func:`axiscal.units.display` writes them as people do (µm, ″).
 

@@ -19,17 +19,34 @@ numbers, issued documents, amendments; issued by :mod:`axiscal.report.issue`),
 :mod:`~axiscal.store.models` and the Alembic ``migrations``.
 """
 
-from axiscal.store.history import (AddResult, MachineSummary, NotFoundError, Store, StoreError,
-                                   StoredTest, TestSummary, default_url, open_store)
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:   # pragma: no cover - typing only
+    from axiscal.store.history import (AddResult, MachineSummary, NotFoundError, Store,
+                                       StoreError, StoredTest, TestSummary, default_url,
+                                       open_store)
 
 __all__ = ["AddResult", "MachineSummary", "NotFoundError", "Store", "StoreError", "StoredTest",
            "TestSummary", "default_url", "open_store", "trend"]
 
 
-def trend(store: Store, machine: str, axis: str, parameter: str,
+def __getattr__(name: str):
+    """The history's names, imported on first use (PEP 562): the one evaluation of a test
+    (:mod:`axiscal.store.kinds`) is used by commands that open no database, so importing it
+    loads no database code."""
+    if name in __all__ and name != "trend":
+        from axiscal.store import history
+
+        return getattr(history, name)
+    raise AttributeError(f"module 'axiscal.store' has no attribute {name!r}")
+
+
+def trend(store: "Store", machine: str, axis: str, parameter: str,
           tolerance: float | None = None, kind: str | None = None):
     """The :class:`~axiscal.store.analysis.Trend` of one parameter of one axis."""
     from axiscal.store.analysis import fit_trend
+
+    from axiscal.store.history import NotFoundError
 
     rows = store.parameter_series(machine, axis, parameter, kind)
     if not rows:

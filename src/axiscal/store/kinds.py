@@ -167,8 +167,10 @@ def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluat
 
 def _positioning(text: str, filename: str) -> Evaluated:
     from axiscal.io import parse_positioning
+    from axiscal.io.json import format_positioning_json
 
-    return positioning_record(parse_positioning(text, filename))
+    ds = parse_positioning(text, filename)
+    return dataclasses.replace(positioning_record(ds), dataset_json=format_positioning_json(ds))
 
 
 def positioning_record(ds, result=None, others: bool = True) -> Evaluated:
@@ -176,7 +178,6 @@ def positioning_record(ds, result=None, others: bool = True) -> Evaluated:
     made, e.g. with the full turn merged) and, with ``others``, by every other positioning
     standard (``KEY:NAME`` parameters; the history's record has them, ``axiscal iso230-2``
     does not evaluate them)."""
-    from axiscal.io.json import format_positioning_json
     from axiscal.standards.iso230_2 import evaluate
 
     r = evaluate(ds) if result is None else result
@@ -190,8 +191,7 @@ def positioning_record(ds, result=None, others: bool = True) -> Evaluated:
         params.update(more)
     md = ds.metadata
     env = {k: v for k, v in dataclasses.asdict(md.environment).items() if v is not None}
-    return Evaluated("iso230-2", ds.axis_kind.value, jsonable(r), params,
-                     format_positioning_json(ds), md.machine, md.axis, md.date, md.operator,
+    return Evaluated("iso230-2", ds.axis_kind.value, jsonable(r), params, "", md.machine, md.axis, md.date, md.operator,
                      md.instrument, jsonable(env), ds, r, standards)
 
 
