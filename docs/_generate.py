@@ -2,7 +2,10 @@
 
 * ``generated/cli.rst``: the command-line reference, walking the click tree of ``axiscal.cli.app``
   (every command and sub-command, its help, its arguments and options with their defaults);
-* ``generated/formats.rst``: the file-format page, from :data:`axiscal.io.formats.FORMATS`.
+* ``generated/formats.rst``: the file-format page, from :data:`axiscal.io.formats.FORMATS`;
+* ``generated/json.rst``: the ``--json`` objects: the results-as-data block (schema version,
+  ``quantities``) from :mod:`axiscal.standards.quantities` and each command's keys from its
+  module's docstring, the text ``tests/cli/test_cli_json.py`` checks every key against.
 
 So the site cannot say something the program does not do. Run alone:
 ``python docs/_generate.py`` writes the same files.
@@ -95,12 +98,74 @@ def formats_page() -> str:
         cells = (f.name, "yes" if f.read else "no", "yes" if f.write else "no",
                  ", ".join(f.extensions), f.example, f.described_in)
         out += "   * - " + "\n     - ".join(_escape(c) for c in cells) + "\n"
-    return out + "\n"
+    return out + "\n" + _samples()
+
+
+def _samples() -> str:
+    """Each format with columns or a sample: the columns and the sample written by axiscal's
+    own writer (:mod:`axiscal.io.format_samples`), first lines only."""
+    from axiscal.io.format_samples import COLUMNS, sample
+    from axiscal.io.formats import FORMATS
+
+    out = _title("Columns and samples", "-")
+    out += ("The samples are written by axiscal's own writer of each format, from a made-up "
+            "three-target test (``axiscal.io.format_samples``).\n\n")
+    for f in FORMATS:
+        text, columns = sample(f.name), COLUMNS.get(f.name)
+        if text is None and columns is None:
+            continue
+        out += _title(f.name, "~")
+        if columns:
+            out += columns + "\n\n"
+        if text:
+            lines = text.splitlines()
+            shown = lines[:24] + (["..."] if len(lines) > 24 else [])
+            out += ".. code-block:: text\n\n" + _indent("\n".join(shown)) + "\n\n"
+    return out
+
+
+def json_page() -> str:
+    import importlib
+    import inspect
+
+    from axiscal.cli import COMMANDS
+    from axiscal.standards import quantities
+
+    out = _title("JSON output", "=")
+    out += ("Generated from the program itself when the site is built: every command's "
+            "``--json`` keys are the ones its module documents, and ``tests/cli/test_cli_json.py``"
+            " fails on a key printed but not documented here.\n\n")
+    out += _title(f"Results as data (schema {quantities.SCHEMA_VERSION})", "-")
+    out += inspect.cleandoc(quantities.__doc__).split("\nExamples")[0] + "\n\n"
+    out += ("The same block is in ``axiscal history show --json``, the workbench's "
+            "``/tests/ID/result.json``, each record of a history archive and "
+            ":meth:`axiscal.Evaluation.to_dict`.\n\n")
+    out += _title("Each command's keys", "-")
+    seen = set()
+    for name, module in COMMANDS.items():
+        if module in seen:
+            continue
+        seen.add(module)
+        doc = inspect.cleandoc(importlib.import_module(module).__doc__ or "")
+        if "json" not in doc.lower():
+            continue
+        out += _title(f"axiscal {name}", "~") + _bars(doc) + "\n\n"
+    return out
+
+
+def _bars(text: str) -> str:
+    """A docstring's ``|`` outside literals escaped (``|b|`` is an absolute value, not a
+    reStructuredText substitution)."""
+    import re
+
+    parts = re.split(r"(``.*?``)", text, flags=re.S)
+    return "".join(p if p.startswith("``") else p.replace("|", r"\|") for p in parts)
 
 
 def generate() -> None:
     OUT.mkdir(exist_ok=True)
-    for name, text in (("cli.rst", cli_page()), ("formats.rst", formats_page())):
+    for name, text in (("cli.rst", cli_page()), ("formats.rst", formats_page()),
+                       ("json.rst", json_page())):
         p = OUT / name
         if not p.exists() or p.read_text("utf-8") != text:   # unchanged: no rebuild
             p.write_text(text, "utf-8")

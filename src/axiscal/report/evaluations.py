@@ -155,7 +155,7 @@ def evaluation_text(ev: Any) -> str:
             if q.U is not None:
                 from axiscal.standards.uncertainty_reporting import format_uncertainty
 
-                text += f"   U = {format_uncertainty(q.U)} (k = {q.k:g})"
+                text += f"   U = {format_uncertainty(q.U)} {units.display(q.unit)} (k = {q.k:g})"
             if q.verdict:
                 text += f"   {q.verdict}"
             lines.append(text)

@@ -47,7 +47,7 @@ class Outlier:
     mean, s : float, deviation unit
         Mean and standard deviation of the readings at the target in that direction, with it.
     G, G_critical : float
-        Grubbs' statistic |x - x̄|/s and its critical value at :data:`ALPHA` for ``n`` readings.
+        Grubbs' statistic ``|x - x̄| / s`` and its critical value at :data:`ALPHA` for ``n`` readings.
     n : int
         Readings at the target in that direction.
     sets : tuple of str
