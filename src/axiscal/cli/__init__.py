@@ -62,7 +62,7 @@ SUMMARIES: dict[str, str] = {
     "iso230-2":
         "Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U and verdicts.",
     "evaluate": "Evaluate a positioning test by a named standard, or by all of them side by side.",
-    "plan": "Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
+    "plan": "Make test plans (ISO 230-2, 230-4 circular, squareness lines) and their part programs.",
     "simulate": "Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.",
     "demo":
         "Run the demonstration: linear and rotary positioning tests and a full rotary "
