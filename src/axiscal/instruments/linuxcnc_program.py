@@ -48,8 +48,9 @@ DRIVE_GAIN = 0.1
 #: Samples the sampler's FIFO holds (60 s of servo periods): halsampler may fall behind on a
 #: loaded computer; a full FIFO loses samples, which the servo count would show.
 FIFO_DEPTH = 60_000
-#: Servo periods recorded after the program ends (the drive settles on the last position).
-TAIL_PERIODS = 200
+#: Servo periods recorded after the program ends: the drive settles on the last position (ten
+#: time constants), and the end stays shorter than a stop of a plan dwell of 0.2 s or more.
+TAIL_PERIODS = 100
 
 
 @dataclass(frozen=True, eq=False)
@@ -86,15 +87,16 @@ class LinuxCNCProgramMachine(LinuxCNC):
     axes : dict of str to (float, float)
         Axis letter to its limits (mm, or deg for A, B, C: angular joints).
     velocity, acceleration : float, units per s and per s²
-    ferror : float, machine units
-        ``FERROR`` and ``MIN_FERROR`` of every joint.
+    ferror : float, optional, machine units
+        ``FERROR`` and ``MIN_FERROR`` of every joint (default twice the drive's lag at full speed,
+        ``2 velocity τ``).
     """
 
     limits: tuple = (0.0, 0.0)
     axes: dict = field(default_factory=dict)
     velocity: float = 200.0
     acceleration: float = 5000.0
-    ferror: float = 5.0
+    ferror: float | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -108,11 +110,13 @@ class LinuxCNCProgramMachine(LinuxCNC):
         axis_t = Template((data / "axiscal_program_axis.ini").read_text())
         drive_t = Template((data / "axiscal_program_drive.hal").read_text())
         blocks, drives = [], []
+        tau = -SERVO_PERIOD_S / np.log(1 - DRIVE_GAIN)
+        ferror = 2 * self.velocity * tau if self.ferror is None else self.ferror
         for j, (a, (lo, hi)) in enumerate(self.axes.items()):
             blocks.append(axis_t.substitute(
                 letter=a, joint=j, min_limit=repr(float(lo)), max_limit=repr(float(hi)),
                 velocity=repr(float(self.velocity)), acceleration=repr(float(self.acceleration)),
-                joint_type="ANGULAR" if a in "ABC" else "LINEAR", ferror=repr(float(self.ferror))))
+                joint_type="ANGULAR" if a in "ABC" else "LINEAR", ferror=repr(float(ferror))))
             drives.append(drive_t.substitute(joint=j, gain=repr(DRIVE_GAIN)))
         n = len(self.axes)
         coords = "".join(self.axes)
@@ -151,7 +155,9 @@ class LinuxCNCProgramMachine(LinuxCNC):
         try:
             self._halcmd("setp", "sampler.0.enable", "1")
             c.auto(linuxcnc.AUTO_RUN, 0)
+            t0 = time.monotonic()
             self._wait_program(timeout)
+            self.last_run_s = time.monotonic() - t0
             self.wait_periods(TAIL_PERIODS)
             self._halcmd("setp", "sampler.0.enable", "0")
             _wait(lambda: self._halcmd("getp", "sampler.0.curr-depth").strip() == "0", 30.0,
@@ -192,7 +198,15 @@ class LinuxCNCProgramMachine(LinuxCNC):
                               capture_output=True, text=True).stdout
 
     def _parse(self, path: Path) -> ProgramRecord:
-        a = np.loadtxt(path, ndmin=2)
+        lines = path.read_text().splitlines()
+        # halsampler says "overrun" where the sampler's count jumps: on its first line when the
+        # FIFO's count goes on from an earlier program's samples (nothing lost), anywhere else
+        # when samples were lost
+        if lines and lines[0].strip() == "overrun":
+            lines = lines[1:]
+        if any(line.strip() == "overrun" for line in lines):
+            raise MeasurementError("halsampler's record skips samples (the sampler's FIFO overran)")
+        a = np.loadtxt(lines, ndmin=2)
         if a.shape[0] == 0:
             raise MeasurementError("halsampler recorded nothing")
         tags, values = a[:, 0], a[:, 1:]
