@@ -78,10 +78,10 @@ def write_program(plan, controller: str, options: MachineOptions | None = None, 
     Examples
     --------
     >>> from axiscal.procedures.positioning import plan_linear
-    >>> p = plan_linear(100, n_targets=5, irregularity=0, runs=1, unidirectional=False) \\
-    ...     if False else plan_linear(100, irregularity=0, runs=1, bidirectional=False, dwell=1)
-    >>> print(write_program(p, "linuxcnc").splitlines()[5:9])
-    ['G0 X-5.000', 'G1 X0.000 F1000.0', 'G4 P1.000', 'G1 X25.000 F1000.0']
+    >>> p = plan_linear(100, irregularity=0, runs=1, bidirectional=False, dwell=1)
+    >>> text = write_program(p, "fanuc", MachineOptions(feed=2000, limits={"X": (-10, 110)}))
+    >>> [line for line in text.splitlines() if line.startswith("G")][1:5]
+    ['G00 X-5.000', 'G01 X0.000 F2000.0', 'G04 P1000', 'G01 X25.000 F2000.0']
     """
     cls = _dialect_class(controller)
     motion = program_motion(plan, options)

@@ -29,7 +29,8 @@ def number(value: float, digits: int, plus: bool = False) -> str:
 
 def plain(text: str, allowed: str = r"A-Za-z0-9 .,:=+\-/_") -> str:
     """``text`` with only the characters a comment may hold (others become spaces)."""
-    text = text.replace("°", " deg").replace("µ", "u").replace("×", "x")
+    text = text.replace("°", " deg").replace("µ", "u").replace("×", "x").replace(";", ",")
+    text = text.replace("(", "").replace(")", "")
     return re.sub(r"\s+", " ", re.sub(f"[^{allowed}]", " ", text)).strip()
 
 

@@ -219,7 +219,7 @@ class _Builder:
 
 
 _ADVICE = {"overrun": "give a smaller overrun or wider limits",
-           "targets": "move the targets inside (start, length or travel) or widen the limits",
+           "limits": "move the targets inside (start, length or travel) or widen the limits",
            "safe": "give a safe start inside the limits",
            "radius": "give a smaller radius, another centre or wider limits",
            "set-in": "give a smaller set-in or wider limits"}
@@ -251,13 +251,13 @@ def _positioning(plan, options: MachineOptions, fixed=(), safe_default=None) -> 
     safe_pos = (b.at_machine(axis, float(safe), "the safe start", "safe") if safe is not None
                 else b.at(axis, steps[0].position, "the first approach", "overrun"))
     for t in plan.targets:        # the targets first: a target outside is not the overrun's fault
-        b.at(axis, float(t), f"target {t:g} {plan.target_unit}", "targets")
-    held = [b.at(a, v, f"{a} held at {v:g}", "targets") for a, v in fixed]
+        b.at(axis, float(t), f"target {t:g} {plan.target_unit}", "limits")
+    held = [b.at(a, v, f"{a} held at {v:g}", "limits") for a, v in fixed]
     blocks.append(Rapid((safe_pos, *held)))
     f = b.feed(options.feed, axis)
     here = safe_pos
     for s in steps:
-        option = "overrun" if s.kind == "overrun" else "targets"
+        option = "overrun" if s.kind == "overrun" else "limits"
         what = (f"the overrun to {s.position:g} {plan.target_unit}" if s.kind == "overrun"
                 else f"target {s.position:g} {plan.target_unit}")
         to = b.at(axis, s.position, what, option)
@@ -266,7 +266,9 @@ def _positioning(plan, options: MachineOptions, fixed=(), safe_default=None) -> 
         here = to
         if s.kind == "measure":
             blocks.append(Dwell(plan.dwell))
-    blocks.append(Rapid((safe_pos,)))
+    back = [b.at_machine(a, float(options.safe[a]), "the safe start", "safe")
+            for a, _ in fixed if a in options.safe]
+    blocks.append(Rapid((safe_pos, *back)))
     return Motion(plan.cycle if plan.cycle == "pilgrim" else (
         "rotary" if plan.target_unit == "deg" else "linear"), str(plan), (axis, *(a for a, _ in fixed)),
         unit, tuple(blocks))
