@@ -19,6 +19,7 @@ one writer ``axiscal plan … --program`` and the workbench also call.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from axiscal.errors import InputError
 
@@ -35,7 +36,7 @@ class Plan:
     """A test plan (``plan``: the procedures' object) and what can be made of it."""
 
     kind: str
-    plan: object
+    plan: Any
 
     def program(self, controller: str, *, name: str = "AXISCAL", number: int | None = None,
                 **machine) -> str:
