@@ -53,6 +53,7 @@ COMMANDS: dict[str, str] = {
     "volumetric": "axiscal.cli.volumetric",
     "config": "axiscal.cli.config",
     "ballbar": "axiscal.cli.ballbar",
+    "calibrate": "axiscal.cli.calibrate",
 }
 
 #: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
@@ -104,6 +105,7 @@ SUMMARIES: dict[str, str] = {
         "Volumetric accuracy of a three-axis machine: the 21 geometric errors (ISO 230-1) "
         "mapped by the rigid-body model (ISO/TR 16907), compensated by tables, verified on the "
         "body diagonals (ISO 230-6). Format: README, 'Volumetric configuration'.",
+    "calibrate": "Calibrate an axis on LinuxCNC in one run: test, compensate, test again, store both.",
     "config": "Show the user configuration (company, operator, instruments, uncertainty inputs).",
     "ballbar":
         "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "

@@ -87,6 +87,9 @@ class LinuxCNCProgramMachine(LinuxCNC):
     axes : dict of str to (float, float)
         Axis letter to its limits (mm, or deg for A, B, C: angular joints).
     velocity, acceleration : float, units per s and per s²
+    comp_file, comp_file_type
+        A ``COMP_FILE`` (text) for joint 0, the first of ``axes``, and its type (LinuxCNC
+        documentation, "INI Configuration", ``[JOINT_n] COMP_FILE``).
     ferror : float, optional, machine units
         ``FERROR`` and ``MIN_FERROR`` of every joint (default twice the drive's lag at full speed,
         ``2 velocity τ``).
@@ -112,8 +115,12 @@ class LinuxCNCProgramMachine(LinuxCNC):
         blocks, drives = [], []
         tau = -SERVO_PERIOD_S / np.log(1 - DRIVE_GAIN)
         ferror = 2 * self.velocity * tau if self.ferror is None else self.ferror
+        comp = ""
+        if self.comp_file is not None:       # the first axis's joint (joint 0)
+            (self.folder / "joint0.comp").write_text(self.comp_file)
+            comp = f"COMP_FILE = joint0.comp\nCOMP_FILE_TYPE = {self.comp_file_type}"
         for j, (a, (lo, hi)) in enumerate(self.axes.items()):
-            blocks.append(axis_t.substitute(
+            blocks.append(axis_t.substitute(comp_lines=comp if j == 0 else "",
                 letter=a, joint=j, min_limit=repr(float(lo)), max_limit=repr(float(hi)),
                 velocity=repr(float(self.velocity)), acceleration=repr(float(self.acceleration)),
                 joint_type="ANGULAR" if a in "ABC" else "LINEAR", ferror=repr(float(ferror))))
