@@ -86,6 +86,12 @@ def make_program(plan, axes: str, program: Optional[Path], controller: Optional[
     if program is None:
         if controller is not None:
             raise InputError("--controller without --program: give --program FILE to write it to")
+        given = [o for o, v in (("--max-feed", max_feed), ("--limits", limits), ("--safe", safe),
+                                ("--sign", sign), ("--origin", origin), ("--trigger", trigger),
+                                ("--number", number)) if v]
+        if given or inch:
+            raise InputError(f"{(given or ['--inch'])[0]} describes the machine for the part "
+                             "program: give --program FILE --controller NAME")
         return None
     if controller is None:
         raise InputError("--program needs --controller (fanuc, haas, sinumerik, heidenhain or "

@@ -1,10 +1,19 @@
-"""``axiscal plan linear|rotary|circular|squareness``: test plans, printed, exported as CSV, or written as part programs (``--program FILE --controller NAME``, :mod:`axiscal.cli._program`).
+"""``axiscal plan linear|rotary|circular|squareness``: test plans, printed, exported as CSV, or
+written as part programs (``--program FILE --controller NAME``, :mod:`axiscal.cli._program`).
 
 The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
 after one comment line; ``kind`` is ``measure`` (take a reading after the dwell) or ``overrun``
 (a reversing move). ``--json`` prints ``targets``, ``target_unit``, ``runs``, ``cycle``,
 ``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps`` (one object per move:
 ``seq``, ``kind``, ``position``, ``direction``, ``run``, ``target_index``; the dwell is ``dwell``).
+``plan circular --json`` prints ``radius``, ``centre``, ``plane``, ``feed``, ``arc``,
+``overshoot``, ``directions``, ``set_in`` and ``arcs`` (``role``, ``direction``, ``start_deg``,
+``sweep_deg``); ``plan squareness --json`` prints ``kind`` and ``lines`` (``axis``, ``points``,
+``fixed``, ``steps``).
+
+``--program FILE --controller NAME`` writes the part program (fanuc, haas, sinumerik, heidenhain,
+linuxcnc; :mod:`axiscal.programs`), checked against ``--limits``, ``--feed``/``--max-feed`` and
+``--trigger`` before anything is written.
 """
 
 from __future__ import annotations

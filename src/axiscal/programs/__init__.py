@@ -89,7 +89,8 @@ def write_program(plan, controller: str, options: MachineOptions | None = None, 
 
 
 def extension(controller: str) -> str:
-    """The usual file extension of ``controller``'s programs (``.nc``, ``.mpf``, ``.h``, ``.ngc``)."""
+    """The usual file extension of ``controller``'s programs (``.nc``, ``.mpf``, ``.h``,
+    ``.ngc``)."""
     return _dialect_class(controller).extension
 
 

@@ -188,7 +188,7 @@ class _Builder:
     """Collects blocks in machine units and checks every position against the limits."""
 
     def __init__(self, options: MachineOptions, unit: dict):
-        self.o, self.unit, self.blocks = options, unit, []
+        self.o, self.unit = options, unit
 
     def scale(self, axis: str) -> float:
         return 1 / 25.4 if self.unit[axis] == "inch" else 1.0
@@ -226,15 +226,18 @@ _ADVICE = {"overrun": "give a smaller overrun or wider limits",
 
 
 def _header(plan) -> list:
-    return [Comment(str(plan)), Comment("written by axiscal: check it on the machine before the test")]
+    return [Comment(str(plan)),
+            Comment("written by axiscal: check it on the machine before the test")]
 
 
-def _positioning(plan, options: MachineOptions, fixed=(), safe_default=None) -> Motion:
+def _positioning(plan, options: MachineOptions, fixed=()) -> Motion:
+    """A positioning plan's motion (``fixed``: the other axes' positions on a line)."""
     axis = (plan.axis or ("X" if plan.axis_kind.value == "linear" else "C")).upper()
     letters = "XYZUVW" if plan.axis_kind.value == "linear" else "ABC"
     if len(axis) != 1 or axis not in letters:
-        raise ProgramError("axis", f"axis {plan.axis!r}: a program commands a {plan.axis_kind.value} "
-                           f"axis by one of the letters {', '.join(letters)}")
+        raise ProgramError("axis", f"axis {plan.axis!r}: a program commands a "
+                           f"{plan.axis_kind.value} axis by one of the letters "
+                           f"{', '.join(letters)}")
     unit_name = "deg" if plan.target_unit == "deg" else options.units
     unit = {axis: unit_name, **{a: options.units for a, _ in fixed}}
     b = _Builder(options, unit)
@@ -269,9 +272,9 @@ def _positioning(plan, options: MachineOptions, fixed=(), safe_default=None) -> 
     back = [b.at_machine(a, float(options.safe[a]), "the safe start", "safe")
             for a, _ in fixed if a in options.safe]
     blocks.append(Rapid((safe_pos, *back)))
-    return Motion(plan.cycle if plan.cycle == "pilgrim" else (
-        "rotary" if plan.target_unit == "deg" else "linear"), str(plan), (axis, *(a for a, _ in fixed)),
-        unit, tuple(blocks))
+    kind = "pilgrim" if plan.cycle == "pilgrim" else (
+        "rotary" if plan.target_unit == "deg" else "linear")
+    return Motion(kind, str(plan), (axis, *(a for a, _ in fixed)), unit, tuple(blocks))
 
 
 def _check_dwell(dwell: float, options: MachineOptions) -> None:

@@ -55,10 +55,10 @@ class Fanuc(Dialect):
         plane = {"XY": "G17", "ZX": "G18", "YZ": "G19"}.get(b.plane, "")
         if not plane:
             raise ProgramError("plane", f"plane {b.plane}: the ISO planes are XY, ZX and YZ")
-        return (f"{'G03' if b.ccw else 'G02'} {self.words(b.end)} {self.centre_offsets(b)} "
-                f"F{number(b.feed, 1)}") if b.plane == "XY" else (
-            f"{plane} {'G03' if b.ccw else 'G02'} {self.words(b.end)} {self.centre_offsets(b)} "
-            f"F{number(b.feed, 1)}")
+        g = "G03" if b.ccw else "G02"
+        if b.plane != "XY":          # the safe-start block selected G17
+            g = f"{plane} {g}"
+        return f"{g} {self.words(b.end)} {self.centre_offsets(b)} F{number(b.feed, 1)}"
 
     def dwell(self, seconds: float) -> list:
         return [f"G04 P{round(seconds * 1000):d}"]
