@@ -28,6 +28,7 @@ CASES = {
     "plan": ["plan", "linear", "--length", "800", "--json"],
     "plan circular": ["plan", "circular", "--radius", "150", "--json"],
     "plan squareness": ["plan", "squareness", "--length", "400", "--json"],
+    "plan straightness": ["plan", "straightness", "--length", "400", "--at", "Y=5", "--json"],
     "simulate": ["simulate", DATA / "demo_linear.toml", "--json"],
     "rotary-simulate": ["rotary", "simulate", EX / "rotary_trunnion.toml", "--json"],
     "rotary-budget": ["rotary", "budget", "--alpha", "1", "--beta", "1", "--accuracy", "2", "--json"],

@@ -4,7 +4,7 @@ the diff by hand before committing: they are the reference)."""
 
 from pathlib import Path
 
-from axiscal.procedures.circular_plan import plan_circular, plan_squareness
+from axiscal.procedures.circular_plan import plan_circular, plan_squareness, plan_straightness
 from axiscal.procedures.positioning import plan_linear, plan_rotary
 from axiscal.programs import CONTROLLERS, MachineOptions, extension, write_program
 
@@ -28,6 +28,11 @@ def cases():
                                        overrun=2.0),
                        MachineOptions(feed=2000.0, limits={"X": (0.0, 400.0), "Y": (0.0, 400.0)},
                                       safe={"X": 45.0, "Y": 45.0})),
+        # a vertical line in inch: Z held at X, Y; the program's positions and feed in inch
+        "straightness": (plan_straightness("Z", 254.0, -254.0, at={"X": 127.0, "Y": 63.5},
+                                           points=3, dwell=2.0, overrun=2.54),
+                         MachineOptions(feed=508.0, units="inch",
+                                        limits={"Z": (-300.0, 10.0)})),
     }
 
 

@@ -9,8 +9,9 @@
 
 The plan kinds and their arguments are those of :func:`axiscal.procedures.positioning.plan_linear`
 (``linear``), :func:`~axiscal.procedures.positioning.plan_rotary` (``rotary``),
-:func:`axiscal.procedures.circular_plan.plan_circular` (``circular``) and
-:func:`~axiscal.procedures.circular_plan.plan_squareness` (``squareness``); ``cycle="pilgrim"``
+:func:`axiscal.procedures.circular_plan.plan_circular` (``circular``),
+:func:`~axiscal.procedures.circular_plan.plan_squareness` (``squareness``) and
+:func:`~axiscal.procedures.circular_plan.plan_straightness` (``straightness``); ``cycle="pilgrim"``
 makes a pilgrim-step positioning plan. :meth:`Plan.program` takes the options of
 :class:`axiscal.programs.MachineOptions` and calls :func:`axiscal.programs.write_program`, the
 one writer ``axiscal plan … --program`` and the workbench also call.
@@ -28,7 +29,8 @@ __all__ = ["plan", "Plan"]
 _KINDS = {"linear": ("axiscal.procedures.positioning", "plan_linear"),
           "rotary": ("axiscal.procedures.positioning", "plan_rotary"),
           "circular": ("axiscal.procedures.circular_plan", "plan_circular"),
-          "squareness": ("axiscal.procedures.circular_plan", "plan_squareness")}
+          "squareness": ("axiscal.procedures.circular_plan", "plan_squareness"),
+          "straightness": ("axiscal.procedures.circular_plan", "plan_straightness")}
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,7 +77,8 @@ class Plan:
 
 
 def plan(kind: str = "linear", **arguments) -> Plan:
-    """Make a test plan of ``kind`` (``linear``, ``rotary``, ``circular``, ``squareness``).
+    """Make a test plan of ``kind`` (``linear``, ``rotary``, ``circular``, ``squareness``,
+    ``straightness``).
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""``axiscal plan linear|rotary|circular|squareness``: test plans, printed, exported as CSV, or
+"""``axiscal plan linear|rotary|circular|squareness|straightness``: test plans, printed, exported as CSV, or
 written as part programs (``--program FILE --controller NAME``, :mod:`axiscal.cli._program`).
 
 The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
@@ -8,7 +8,7 @@ after one comment line; ``kind`` is ``measure`` (take a reading after the dwell)
 ``seq``, ``kind``, ``position``, ``direction``, ``run``, ``target_index``; the dwell is ``dwell``).
 ``plan circular --json`` prints ``radius``, ``centre``, ``plane``, ``feed``, ``arc``,
 ``overshoot``, ``directions``, ``set_in`` and ``arcs`` (``role``, ``direction``, ``start_deg``,
-``sweep_deg``); ``plan squareness --json`` prints ``kind`` and ``lines`` (``axis``, ``points``,
+``sweep_deg``); ``plan squareness --json`` (and ``plan straightness --json``) prints ``kind`` and ``lines`` (``axis``, ``points``,
 ``fixed``, ``steps``).
 
 ``--program FILE --controller NAME`` writes the part program (fanuc, haas, sinumerik, heidenhain,
@@ -222,6 +222,64 @@ def plan_squareness_cmd(
     p = plan_squareness(axes, length, c, points=points, runs=runs, dwell=dwell, overrun=overrun,
                         bidirectional=not unidirectional)
     text = P.make_program(p, axes.upper(), program, controller, **_machine(locals()))
+    if json_out:
+        print_json({"kind": p.kind, "lines": [
+            {"axis": ln.plan.axis, "points": ln.plan.targets, "fixed": dict(ln.fixed),
+             "steps": [s.__dict__ for s in ln.plan.steps()]} for ln in p.lines]})
+    else:
+        typer.echo(str(p))
+    P.write_program_file(program, text, controller)
+
+
+@plan_app.command("straightness")
+def plan_straightness_cmd(
+    axis: str = typer.Option("X", "--axis", help="The axis that moves (X, Y or Z)."),
+    length: float = typer.Option(..., "--length", max=MAX_LENGTH_MM, help="Length of the line, mm."),
+    start: float = typer.Option(0.0, "--start", help="First point, mm."),
+    at: Optional[List[str]] = typer.Option(None, "--at", help="Position an other axis holds, AXIS=POS mm (repeatable)."),
+    points: int = typer.Option(5, "--points", min=2, max=MAX_TARGETS, help="Reading points on the line."),
+    runs: int = typer.Option(1, "--runs", min=1, max=MAX_RUNS, help="Runs per direction."),
+    unidirectional: bool = _UNIDIRECTIONAL,
+    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
+    dwell: float = _DWELL,
+    json_out: bool = _JSON,
+    feed: float = P.FEED,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
+) -> None:
+    """Plan a straightness line: points along one axis, the others held (ISO 230-1 §8.2).
+
+    Example: axiscal plan straightness --axis Y --length 300 --at X=100 --program y.mpf --controller sinumerik
+    """
+    from axiscal.errors import InputError
+    from axiscal.procedures.circular_plan import plan_straightness
+
+    import math
+
+    held = {}
+    for item in at or []:
+        a, sep, v = str(item).partition("=")
+        a = a.strip().upper()
+        try:
+            pos = float(v)
+        except ValueError:
+            pos = float("nan")
+        if not sep or len(a) != 1 or a not in "XYZ" or not math.isfinite(pos):
+            raise InputError(f"--at {item!r}: give AXIS=POS, as Y=100 (mm)")
+        held[a] = pos
+    p = plan_straightness(axis, length, start, at=held, points=points, runs=runs, dwell=dwell,
+                          overrun=overrun, bidirectional=not unidirectional)
+    axes = "".join(dict.fromkeys(axis.upper() + "".join(held)))
+    text = P.make_program(p, axes, program, controller, **_machine(locals()))
     if json_out:
         print_json({"kind": p.kind, "lines": [
             {"axis": ln.plan.axis, "points": ln.plan.targets, "fixed": dict(ln.fixed),

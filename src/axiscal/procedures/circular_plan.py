@@ -35,7 +35,7 @@ from axiscal.errors import InputError
 from axiscal.procedures.positioning import TestPlan
 
 __all__ = ["CircularPlan", "Line", "LinePlan", "plan_circular", "plan_lines", "plan_squareness",
-           "Arc"]
+           "plan_straightness", "Arc"]
 
 DIRECTIONS = ("ccw", "cw")
 
@@ -229,3 +229,31 @@ def plan_squareness(axes: str = "XY", length: float = 400.0, corner=(0.0, 0.0), 
                         dwell, a[k])
         lines.append((plan, {a[1 - k]: c[1 - k]}))
     return plan_lines(lines, kind="squareness")
+
+
+def plan_straightness(axis: str = "X", length: float = 400.0, start: float = 0.0, *,
+                      at: dict | None = None, points: int = 5, runs: int = 1, dwell: float = 4.0,
+                      overrun: float = 5.0, bidirectional: bool = True) -> LinePlan:
+    """One straightness line along ``axis`` from ``start`` over ``length`` mm, ``points`` evenly
+    spaced reading points, the other axes held ``at`` (mm) (ISO 230-1:2012 §8.2).
+
+    Examples
+    --------
+    >>> print(plan_straightness("Y", 300, at={"X": 100}, points=4, dwell=2))
+    straightness lines (ISO 230-1): Y 0 to 300 mm, 4 points at X=100
+    """
+    from axiscal.datasets import AxisKind
+
+    a = str(axis).upper()
+    if len(a) != 1 or a not in "XYZ":
+        raise InputError(f"axis {axis!r}: give X, Y or Z")
+    if not (math.isfinite(length) and length > 0):
+        raise InputError(f"length {length!r} mm: give a length above 0")
+    if not math.isfinite(start):
+        raise InputError(f"start {start!r} mm: give a finite position")
+    if not isinstance(points, int) or points < 2:
+        raise InputError(f"points {points!r}: give at least 2")
+    targets = np.round(start + np.linspace(0.0, length, points), 6)
+    plan = TestPlan(AxisKind.LINEAR, targets, "mm", runs, "linear", bidirectional, overrun,
+                    dwell, a)
+    return plan_lines([(plan, at or {})], kind="straightness")
