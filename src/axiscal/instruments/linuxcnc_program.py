@@ -103,7 +103,7 @@ class LinuxCNCProgramMachine(LinuxCNC):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not self.axes or any(a not in "XYZABC" for a in self.axes) or len(set(self.axes)) != len(self.axes):
+        if not self.axes or any(a not in "XYZABC" for a in self.axes):
             raise InputError(f"axes {list(self.axes)}: give distinct letters of XYZABC")
 
     def _write_config(self) -> None:
@@ -151,7 +151,7 @@ class LinuxCNCProgramMachine(LinuxCNC):
 
         path = self.folder / f"program{int(time.monotonic_ns())}.ngc"
         path.write_text(program)
-        c, s = self._cmd, self._stat
+        c = self._cmd
         c.mode(linuxcnc.MODE_AUTO)
         c.wait_complete()
         c.program_open(str(path))
