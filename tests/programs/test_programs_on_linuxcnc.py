@@ -45,13 +45,26 @@ def runs():
     linear = plan_linear(100.0, n_targets=5, runs=2, dwell=DWELL, overrun=2.0, axis="X")
     rotary = plan_rotary(360.0, step=45.0, runs=2, dwell=DWELL, overrun=5.0, axis="C")
     circle = plan_circular(30.0, (100.0, 0.0), feed=6000.0, overshoot_deg=45.0)
-    out = {}
+    out = {"progress": []}
     with LinuxCNCProgramMachine(axes=AXES, velocity=720.0, acceleration=20000.0) as m:
         for key, plan, feed in (("linear", linear, 12000.0), ("rotary", rotary, 36000.0),
                                 ("circular", circle, 6000.0)):
             opts = MachineOptions(feed=feed, limits=AXES, trigger=TRIGGER)
-            out[key] = (plan, m.run(write_program(plan, "linuxcnc", opts)))
+            seen = out["progress"] if key == "linear" else None
+            out[key] = (plan, m.run(write_program(plan, "linuxcnc", opts),
+                                    progress=None if seen is None else
+                                    lambda line, lines: seen.append((line, lines))))
     return out
+
+
+def test_progress_follows_the_program(runs):
+    """The run reports LinuxCNC's line as it goes (what ``axiscal calibrate``'s bar shows):
+    increasing, to the program's last moves."""
+    seen = runs["progress"]
+    lines = seen[0][1]
+    assert len(seen) > 10 and all(n == lines for _, n in seen)
+    assert all(a < b for (a, _), (b, _) in zip(seen, seen[1:]))
+    assert seen[-1][0] >= lines - 5
 
 
 def _capture(plan, rec, axis, to_si):

@@ -67,7 +67,8 @@ class ByProgram:
         simulated drive settles in 0.1 s).
     feed : float, mm/min
     progress : callable, optional
-        ``progress(done, total)`` after each LinuxCNC run (two in all).
+        ``progress(done, total)`` as LinuxCNC works through the program, over both runs (the
+        program's lines: ``total`` is twice one program's).
     runs : list of dict
         What each run found: ``samples``, ``seconds`` (servo time), ``stops``, ``measurements``,
         ``gaps``.
@@ -97,7 +98,13 @@ class ByProgram:
         with LinuxCNCProgramMachine(axes={letter: (lo - 1.0, hi + 1.0)}, velocity=500.0,
                                     acceleration=20000.0, comp_file=comp,
                                     comp_file_type=1) as m:
-            rec = m.run(text, timeout=3600.0)
+            done = len(self.runs)
+
+            def step(line, lines):
+                if callable(self.progress):
+                    self.progress(done * lines + line, 2 * lines)
+
+            rec = m.run(text, timeout=3600.0, progress=step)
         x = rec.positions[letter]
         readings = self._laser(x, axis, rng, measurement_sigma) - plan.targets[0] * 1e-3
         record = Record(rec.times, readings, "linear", sample_rate=1000.0)
@@ -105,8 +112,6 @@ class ByProgram:
         self.runs.append(dict(samples=int(rec.times.size), seconds=float(rec.times[-1]),
                               stops=len(cap.stops), measurements=len(cap.assigned),
                               gaps=rec.gaps, compensated=controller_file is not None))
-        if callable(self.progress):
-            self.progress(len(self.runs), 2)
         ds = cap.dataset
         return replace(ds, metadata=replace(ds.metadata, notes=ds.metadata.notes + (
             "; measured through a headless LinuxCNC running axiscal's part program"

@@ -145,8 +145,11 @@ class LinuxCNCProgramMachine(LinuxCNC):
         self._ready(hal.component("axiscal-program"), [])
         self._switch_on_and_home(len(self.axes))
 
-    def run(self, program: str, timeout: float = 120.0) -> ProgramRecord:
-        """Run the G-code ``program`` (text) in AUTO mode and return the sampled record."""
+    def run(self, program: str, timeout: float = 120.0, progress=None) -> ProgramRecord:
+        """Run the G-code ``program`` (text) in AUTO mode and return the sampled record.
+
+        ``progress(line, lines)``, if given, is called as LinuxCNC works through the program
+        (``stat.motion_line``: the line whose motion is executing)."""
         import linuxcnc
 
         path = self.folder / f"program{int(time.monotonic_ns())}.ngc"
@@ -163,7 +166,7 @@ class LinuxCNCProgramMachine(LinuxCNC):
             self._halcmd("setp", "sampler.0.enable", "1")
             c.auto(linuxcnc.AUTO_RUN, 0)
             t0 = time.monotonic()
-            self._wait_program(timeout)
+            self._wait_program(timeout, progress, program.count("\n"))
             self.last_run_s = time.monotonic() - t0
             self.wait_periods(TAIL_PERIODS)
             self._halcmd("setp", "sampler.0.enable", "0")
@@ -181,10 +184,11 @@ class LinuxCNCProgramMachine(LinuxCNC):
         c.wait_complete()
         return self._parse(out)
 
-    def _wait_program(self, timeout: float) -> None:
+    def _wait_program(self, timeout: float, progress=None, lines: int = 0) -> None:
         import linuxcnc
 
         s = self._stat
+        shown = [-1]
 
         def started():
             s.poll()
@@ -195,6 +199,9 @@ class LinuxCNCProgramMachine(LinuxCNC):
             if err:
                 raise MeasurementError(f"LinuxCNC stopped the program: {err[1]}")
             s.poll()
+            if progress is not None and s.motion_line > shown[0]:
+                shown[0] = s.motion_line
+                progress(min(s.motion_line, lines), lines)
             return s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0
 
         _wait(started, 10.0, "LinuxCNC to start the program", poll=0.002)
