@@ -1,6 +1,6 @@
-"""The plans of the golden part programs (tests/data/programs/), one per plan kind, with the machine
-options each is written for. ``python tests/programs/program_cases.py`` rewrites the golden files (review
-the diff by hand before committing: they are the reference)."""
+"""The plans of the golden part programs (tests/data/programs/), one per plan kind, with the
+machine options each is written for. ``python tests/programs/program_cases.py`` rewrites the
+golden files (review the diff by hand before committing: they are the reference)."""
 
 from pathlib import Path
 

@@ -100,7 +100,8 @@ def test_linuxcnc_moves_are_the_plans_steps_in_order(kind, tmp_path):
     steps = plan.steps()
     want = [sign * s.position for s in steps]
     # the first step is the safe start itself (a rapid), the last move the return to it
-    assert ends[0] == pytest.approx(want[0], abs=1e-4) and ends[-1] == pytest.approx(want[0], abs=1e-4)
+    assert ends[0] == pytest.approx(want[0], abs=1e-4)
+    assert ends[-1] == pytest.approx(want[0], abs=1e-4)
     assert ends[1:-1] == pytest.approx(want[1:], abs=1e-4)
     for s, nxt in zip(steps[1:], after[1:-1]):
         assert (nxt == "DWELL") == (s.kind == "measure")
@@ -139,8 +140,8 @@ def test_grammars_accept_the_manuals_block_forms():
     """The grammars accept the block forms the manuals document (SINUMERIK 840D sl
     Programming Manual Fundamentals: G4 dwell with F in seconds, G2/G3 with I, J; HEIDENHAIN
     TNC 640 Klartext: L … R0 FMAX, CC, C … DR+, Cycle 9) and refuse the other dialects' forms."""
-    for line in ("G4 F2.500", "G1 X10.000 Y20.000 F300.0", "G2 X50.000 Y40.000 I10.000 J-7.000 F300.0",
-                 "; comment", "M30", "%_N_TEST_MPF", ";$PATH=/_N_MPF_DIR"):
+    for line in ("G4 F2.500", "G1 X10.000 Y20.000 F300.0",
+                 "G2 X50.000 Y40.000 I10.000 J-7.000 F300.0", "; comment", "M30", "%_N_TEST_MPF", ";$PATH=/_N_MPF_DIR"):
         assert _SIN.match(line), line
     for line in ("G04 P2000", "G4 P2.000", "L X+10 R0 FMAX", "(COMMENT)"):
         assert not _SIN.match(line), line

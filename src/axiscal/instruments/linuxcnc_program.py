@@ -5,8 +5,8 @@ Issue 41, "Proven on LinuxCNC": :class:`LinuxCNCProgramMachine` is the one-joint
 clean-up) on a simulated machine of several axes (``axiscal/data/linuxcnc/axiscal_program.ini``,
 ``axiscal_program_axis.ini``, ``axiscal_program.hal``, ``axiscal_program_drive.hal``):
 
-* each joint's drive is a first-order lag (LinuxCNC's ``lowpass``: ``out += gain (in − out)`` every
-  servo period), its output fed back as ``joint.N.motor-pos-fb``: the position follows the command
+* each joint's drive is a first-order lag (LinuxCNC's ``lowpass``: ``out += gain (in − out)``
+  every servo period), its output fed back as ``joint.N.motor-pos-fb``: the position follows the command
   with a following error ``v τ`` at speed ``v`` (``τ ≈ period / gain``), as a servo does, and
   settles exponentially at a stop;
 * LinuxCNC's ``sampler`` component records every joint's fed-back position and axiscal's count of
@@ -43,7 +43,8 @@ __all__ = ["LinuxCNCProgramMachine", "ProgramRecord", "SERVO_PERIOD_S", "DRIVE_G
 
 #: The servo period of ``axiscal_program.ini`` (``[EMCMOT] SERVO_PERIOD``), s.
 SERVO_PERIOD_S = 1e-3
-#: ``lowpass.N.gain`` of the simulated drives: a time constant of −period / ln(1 − gain) = 9.5 ms.
+#: ``lowpass.N.gain`` of the simulated drives: a time constant of −period / ln(1 − gain),
+#: 9.5 ms.
 DRIVE_GAIN = 0.1
 #: Samples the sampler's FIFO holds (60 s of servo periods): halsampler may fall behind on a
 #: loaded computer; a full FIFO loses samples, which the servo count would show.

@@ -137,8 +137,8 @@ class CircularPlan:
     def __str__(self) -> str:
         return (f"ISO 230-4 circular test in {self.plane}: radius {self.radius:g} mm about "
                 f"({self.centre[0]:g}, {self.centre[1]:g}) mm, feed {self.feed:g} mm/min, data arc "
-                f"{self.arc_deg:g} deg from {self.start_deg:g} deg, overshoot {self.overshoot_deg:g} "
-                f"deg, {' then '.join(self.directions)}")
+                f"{self.arc_deg:g} deg from {self.start_deg:g} deg, overshoot "
+                f"{self.overshoot_deg:g} deg, {' then '.join(self.directions)}")
 
 
 def plan_circular(radius: float, centre=(0.0, 0.0), *, plane: str = "XY", feed: float = 1000.0,
@@ -148,8 +148,11 @@ def plan_circular(radius: float, centre=(0.0, 0.0), *, plane: str = "XY", feed: 
 
     Examples
     --------
-    >>> [(a.role, a.direction, a.start_deg, a.sweep_deg) for a in plan_circular(100).arcs()][:3]
-    [('feed-in', 'ccw', -180.0, 180.0), ('data', 'ccw', 0.0, 360.0), ('feed-out', 'ccw', 360.0, 180.0)]
+    >>> for a in plan_circular(100).arcs()[:3]:
+    ...     print(a.role, a.direction, a.start_deg, a.sweep_deg)
+    feed-in ccw -180.0 180.0
+    data ccw 0.0 360.0
+    feed-out ccw 360.0 180.0
     """
     return CircularPlan(radius, tuple(centre), plane, feed, start_deg, arc_deg, overshoot_deg,
                         tuple(directions), set_in)

@@ -121,7 +121,7 @@ class Dialect:
         raise NotImplementedError
 
     def centre_offsets(self, b: ArcMove) -> str:
-        """``I… J…`` (or ``J… K…``, ``K… I…``): the centre from the start, incremental."""
+        """``I… J…`` (``J… K…``, ``K… I…``): the centre from the start, incremental."""
         letters = {"X": "I", "Y": "J", "Z": "K"}
         return " ".join(f"{letters[a]}{number(c - s, DIGITS[self.m.units[a]])}"
                         for (a, s), (_, c) in zip(b.start, b.centre))

@@ -66,7 +66,8 @@ class Fanuc(Dialect):
 
 class Haas(Fanuc):
     name = "haas"
-    manual = "Haas Mill Operator's Manual: G04 dwell (P. in seconds), program numbers O and five digits"
+    manual = ("Haas Mill Operator's Manual: G04 dwell (P. in seconds), program numbers O and "
+              "five digits")
     digits_of_number = 5
 
     def dwell(self, seconds: float) -> list:
