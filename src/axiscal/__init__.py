@@ -25,14 +25,14 @@ __version__ = "0.1.0"
 
 __all__ = ["__version__", "read", "evaluate", "simulate", "volumetric_map",
            "volumetric_compensation", "compensate_environment", "compensation_table",
-           "write_table", "History", "Evaluation", "Simulation"]
+           "write_table", "History", "Evaluation", "Simulation", "plan", "Plan"]
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from typing import Any
 
     from axiscal.api import (Evaluation, History, Simulation, compensate_environment,
                              compensation_table, evaluate, read, simulate,
-                             volumetric_compensation, volumetric_map, write_table)
+                             volumetric_compensation, volumetric_map, write_table, plan, Plan)
 
 
 def __getattr__(name: str) -> Any:

@@ -26,6 +26,9 @@ DATA = ROOT / "src/axiscal/data"
 CASES = {
     "iso230-2": ["iso230-2", "lin.csv", "--json", "--tolerance", "A=100"],
     "plan": ["plan", "linear", "--length", "800", "--json"],
+    "plan circular": ["plan", "circular", "--radius", "150", "--json"],
+    "plan squareness": ["plan", "squareness", "--length", "400", "--json"],
+    "plan straightness": ["plan", "straightness", "--length", "400", "--at", "Y=5", "--json"],
     "simulate": ["simulate", DATA / "demo_linear.toml", "--json"],
     "rotary-simulate": ["rotary", "simulate", EX / "rotary_trunnion.toml", "--json"],
     "rotary-budget": ["rotary", "budget", "--alpha", "1", "--beta", "1", "--accuracy", "2", "--json"],

@@ -11,6 +11,7 @@ Everything a script or a notebook needs is at the package's top and documented h
     ev.report("x_axis.html")            # the HTML report
     table = axiscal.compensation_table(ev, spacing=10)
     axiscal.write_table(table, "siemens-840d", "x.ini")
+    axiscal.plan("linear", length=800).program("fanuc", feed=2000)   # the part program
     with axiscal.History("sqlite:///history.sqlite") as h:
         h.add("x_axis.csv", machine="VMC-1")
 
@@ -43,7 +44,7 @@ TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing (sta
 
 __all__ = ["Evaluation", "Simulation", "History", "read", "evaluate", "simulate",
            "volumetric_map", "volumetric_compensation", "compensate_environment",
-           "compensation_table", "write_table"]
+           "compensation_table", "write_table", "plan", "Plan"]
 
 #: The module of each public name (and of ``PathLike``, the type of a path argument, and
 #: ``DEFAULT_STANDARD``, the standard :func:`evaluate` applies when none is named).
@@ -52,13 +53,14 @@ _HOME = {"DEFAULT_STANDARD": "_results", "read": "_reading", "evaluate": "_readi
          "volumetric_compensation": "_simulating", "compensate_environment": "_simulating",
          "compensation_table": "_compensation", "write_table": "_compensation",
          "Evaluation": "_results", "Simulation": "_results", "PathLike": "_results",
-         "History": "_history"}
+         "History": "_history", "plan": "_planning", "Plan": "_planning"}
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from typing import Any
 
     from axiscal.api._compensation import compensation_table, write_table
     from axiscal.api._history import History
+    from axiscal.api._planning import Plan, plan
     from axiscal.api._reading import evaluate, read
     from axiscal.api._results import DEFAULT_STANDARD, Evaluation, PathLike, Simulation
     from axiscal.api._simulating import (compensate_environment, simulate,

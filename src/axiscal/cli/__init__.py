@@ -53,6 +53,7 @@ COMMANDS: dict[str, str] = {
     "volumetric": "axiscal.cli.volumetric",
     "config": "axiscal.cli.config",
     "ballbar": "axiscal.cli.ballbar",
+    "calibrate": "axiscal.cli.calibrate",
 }
 
 #: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
@@ -62,7 +63,7 @@ SUMMARIES: dict[str, str] = {
     "iso230-2":
         "Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U and verdicts.",
     "evaluate": "Evaluate a positioning test by a named standard, or by all of them side by side.",
-    "plan": "Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
+    "plan": "Make test plans (ISO 230-2, 230-4 circular, squareness lines) and their part programs.",
     "simulate": "Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.",
     "demo":
         "Run the demonstration: linear and rotary positioning tests and a full rotary "
@@ -104,6 +105,7 @@ SUMMARIES: dict[str, str] = {
         "Volumetric accuracy of a three-axis machine: the 21 geometric errors (ISO 230-1) "
         "mapped by the rigid-body model (ISO/TR 16907), compensated by tables, verified on the "
         "body diagonals (ISO 230-6). Format: README, 'Volumetric configuration'.",
+    "calibrate": "Calibrate an axis on LinuxCNC in one run: test, compensate, test again, store both.",
     "config": "Show the user configuration (company, operator, instruments, uncertainty inputs).",
     "ballbar":
         "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "

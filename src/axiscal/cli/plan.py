@@ -1,19 +1,29 @@
-"""``axiscal plan linear|rotary``: ISO 230-2 test plans, printed or exported as CSV.
+"""``axiscal plan linear|rotary|circular|squareness|straightness``: test plans, printed, exported as CSV, or
+written as part programs (``--program FILE --controller NAME``, :mod:`axiscal.cli._program`).
 
 The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
 after one comment line; ``kind`` is ``measure`` (take a reading after the dwell) or ``overrun``
 (a reversing move). ``--json`` prints ``targets``, ``target_unit``, ``runs``, ``cycle``,
 ``bidirectional``, ``overrun``, ``dwell``, ``n_measurements`` and ``steps`` (one object per move:
 ``seq``, ``kind``, ``position``, ``direction``, ``run``, ``target_index``; the dwell is ``dwell``).
+``plan circular --json`` prints ``radius``, ``centre``, ``plane``, ``feed``, ``arc``,
+``overshoot``, ``directions``, ``set_in`` and ``arcs`` (``role``, ``direction``, ``start_deg``,
+``sweep_deg``); ``plan squareness --json`` (and ``plan straightness --json``) prints ``kind`` and ``lines`` (``axis``, ``points``,
+``fixed``, ``steps``).
+
+``--program FILE --controller NAME`` writes the part program (fanuc, haas, sinumerik, heidenhain,
+linuxcnc; :mod:`axiscal.programs`), checked against ``--limits``, ``--feed``/``--max-feed`` and
+``--trigger`` before anything is written.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import List, Optional
 
 import typer
 
+from axiscal.cli import _program as P
 from axiscal.cli._common import note, print_json, typed_path
 
 #: Bounds of the counts a plan is asked for: beyond them a typing slip would only exhaust memory.
@@ -28,7 +38,7 @@ _DWELL = typer.Option(4.0, "--dwell", help="Dwell at each target before the read
 _CSV = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv).")
 _JSON = typer.Option(False, "--json", help="Print the plan as JSON.")
 
-plan_app = typer.Typer(help="Make ISO 230-2 test plans (targets, runs, cycle) for a real or simulated axis.",
+plan_app = typer.Typer(help="Make test plans (ISO 230-2, 230-4 circular, squareness lines) and their part programs.",
                        no_args_is_help=True)
 
 
@@ -47,17 +57,31 @@ def plan_linear_cmd(
     axis: str = typer.Option("X", "--axis", help="Axis name."),
     csv: Optional[Path] = _CSV,
     json_out: bool = _JSON,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    feed: float = P.FEED,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
 ) -> None:
     """Plan a linear-axis positioning test (irregular target spacing, ISO 230-2 §5.2).
 
-    Example: axiscal plan linear --length 800 --csv plan.csv
+    Example: axiscal plan linear --length 800 --csv plan.csv --program x.nc --controller fanuc
     """
     from axiscal.procedures.positioning import plan_linear
 
     _check_csv(csv)
     p = plan_linear(length, start, n_targets, irregularity, seed, runs, cycle, not unidirectional,  # type: ignore[arg-type]
                     overrun, dwell, axis)
+    text = P.make_program(p, axis.upper(), program, controller, **_machine(locals()))
     _emit(p, csv, json_out)
+    P.write_program_file(program, text, controller)
 
 
 @plan_app.command("rotary")
@@ -74,6 +98,18 @@ def plan_rotary_cmd(
     axis: str = typer.Option("C", "--axis", help="Axis name."),
     csv: Optional[Path] = _CSV,
     json_out: bool = _JSON,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    feed: float = P.FEED,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
 ) -> None:
     """Plan a rotary-axis positioning test (ISO 230-2 Table 1; 0/90/180/270 deg included).
 
@@ -88,7 +124,176 @@ def plan_rotary_cmd(
                          "targets")
     p = plan_rotary(travel, start, step, n_targets, runs, cycle, not unidirectional, overrun,  # type: ignore[arg-type]
                     dwell, axis)
+    text = P.make_program(p, axis.upper(), program, controller, **_machine(locals()))
     _emit(p, csv, json_out)
+    P.write_program_file(program, text, controller)
+
+
+@plan_app.command("circular")
+def plan_circular_cmd(
+    radius: float = typer.Option(..., "--radius", max=MAX_LENGTH_MM, help="Radius of the circle (the ballbar's length), mm."),
+    centre: str = typer.Option("0,0", "--centre", help="The pivot's position on the plane's two axes, mm: 'A,B'."),
+    plane: str = typer.Option("XY", "--plane", help="XY, YZ or ZX (angles count from the first axis to the second)."),
+    feed: float = typer.Option(1000.0, "--feed", help="Contouring feed, mm/min."),
+    start_angle: float = typer.Option(0.0, "--start-angle", help="Start of the data arc, degrees."),
+    arc: float = typer.Option(360.0, "--arc", help="Data arc, degrees (at most 360)."),
+    overshoot: float = typer.Option(180.0, "--overshoot", help="Feed-in and feed-out arcs, degrees (0 to 360)."),
+    direction: str = typer.Option("both", "--direction", help="both (CCW then CW), ccw or cw."),
+    set_in: float = typer.Option(1.0, "--set-in", help="Radial distance of the start and end points outside the circle, mm."),
+    json_out: bool = _JSON,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
+) -> None:
+    """Plan an ISO 230-4 circular (ballbar) test: overshoot arcs, both directions, at the feed.
+
+    Example: axiscal plan circular --radius 150 --feed 1000 --program bb.nc --controller fanuc
+    """
+    from axiscal.errors import InputError
+    from axiscal.procedures.circular_plan import plan_circular
+
+    try:
+        c = tuple(float(v) for v in centre.split(","))
+    except ValueError:
+        c = ()
+    if len(c) != 2:
+        raise InputError(f"--centre {centre!r}: give two positions in mm, as 0,0")
+    dirs = {"both": ("ccw", "cw"), "ccw": ("ccw",), "cw": ("cw",)}.get(direction.strip().lower())
+    if dirs is None:
+        raise InputError(f"--direction {direction!r}: give both, ccw or cw")
+    p = plan_circular(radius, c, plane=plane, feed=feed, start_deg=start_angle, arc_deg=arc,
+                      overshoot_deg=overshoot, directions=dirs, set_in=set_in)
+    text = P.make_program(p, p.plane, program, controller, **_machine(locals()))
+    if json_out:
+        print_json({"radius": p.radius, "centre": list(p.centre), "plane": p.plane,
+                    "feed": p.feed, "arc": p.arc_deg, "overshoot": p.overshoot_deg,
+                    "directions": list(p.directions), "set_in": p.set_in,
+                    "arcs": [a.__dict__ for a in p.arcs()]})
+    else:
+        typer.echo(str(p))
+    P.write_program_file(program, text, controller)
+
+
+@plan_app.command("squareness")
+def plan_squareness_cmd(
+    axes: str = typer.Option("XY", "--axes", help="The two axes (XY, YZ or ZX)."),
+    length: float = typer.Option(..., "--length", max=MAX_LENGTH_MM, help="Length of each line, mm."),
+    corner: str = typer.Option("0,0", "--corner", help="The lines' common corner on the two axes, mm: 'A,B'."),
+    points: int = typer.Option(5, "--points", min=2, max=MAX_TARGETS, help="Reading points on each line."),
+    runs: int = typer.Option(1, "--runs", min=1, max=MAX_RUNS, help="Runs per direction on each line."),
+    unidirectional: bool = _UNIDIRECTIONAL,
+    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
+    dwell: float = _DWELL,
+    json_out: bool = _JSON,
+    feed: float = P.FEED,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
+) -> None:
+    """Plan a squareness test by two straightness lines from a corner (ISO 230-1 §10.3.2).
+
+    Example: axiscal plan squareness --length 400 --program sq.h --controller heidenhain
+    """
+    from axiscal.errors import InputError
+    from axiscal.procedures.circular_plan import plan_squareness
+
+    try:
+        c = tuple(float(v) for v in corner.split(","))
+    except ValueError:
+        c = ()
+    if len(c) != 2:
+        raise InputError(f"--corner {corner!r}: give two positions in mm, as 0,0")
+    p = plan_squareness(axes, length, c, points=points, runs=runs, dwell=dwell, overrun=overrun,
+                        bidirectional=not unidirectional)
+    text = P.make_program(p, axes.upper(), program, controller, **_machine(locals()))
+    if json_out:
+        print_json({"kind": p.kind, "lines": [
+            {"axis": ln.plan.axis, "points": ln.plan.targets, "fixed": dict(ln.fixed),
+             "steps": [s.__dict__ for s in ln.plan.steps()]} for ln in p.lines]})
+    else:
+        typer.echo(str(p))
+    P.write_program_file(program, text, controller)
+
+
+@plan_app.command("straightness")
+def plan_straightness_cmd(
+    axis: str = typer.Option("X", "--axis", help="The axis that moves (X, Y or Z)."),
+    length: float = typer.Option(..., "--length", max=MAX_LENGTH_MM, help="Length of the line, mm."),
+    start: float = typer.Option(0.0, "--start", help="First point, mm."),
+    at: Optional[List[str]] = typer.Option(None, "--at", help="Position an other axis holds, AXIS=POS mm (repeatable)."),
+    points: int = typer.Option(5, "--points", min=2, max=MAX_TARGETS, help="Reading points on the line."),
+    runs: int = typer.Option(1, "--runs", min=1, max=MAX_RUNS, help="Runs per direction."),
+    unidirectional: bool = _UNIDIRECTIONAL,
+    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
+    dwell: float = _DWELL,
+    json_out: bool = _JSON,
+    feed: float = P.FEED,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
+) -> None:
+    """Plan a straightness line: points along one axis, the others held (ISO 230-1 §8.2).
+
+    Example: axiscal plan straightness --axis Y --length 300 --at X=100 --program y.mpf --controller sinumerik
+    """
+    from axiscal.errors import InputError
+    from axiscal.procedures.circular_plan import plan_straightness
+
+    import math
+
+    held = {}
+    for item in at or []:
+        a, sep, v = str(item).partition("=")
+        a = a.strip().upper()
+        try:
+            pos = float(v)
+        except ValueError:
+            pos = float("nan")
+        if not sep or len(a) != 1 or a not in "XYZ" or not math.isfinite(pos):
+            raise InputError(f"--at {item!r}: give AXIS=POS, as Y=100 (mm)")
+        held[a] = pos
+    p = plan_straightness(axis, length, start, at=held, points=points, runs=runs, dwell=dwell,
+                          overrun=overrun, bidirectional=not unidirectional)
+    axes = "".join(dict.fromkeys(axis.upper() + "".join(held)))
+    text = P.make_program(p, axes, program, controller, **_machine(locals()))
+    if json_out:
+        print_json({"kind": p.kind, "lines": [
+            {"axis": ln.plan.axis, "points": ln.plan.targets, "fixed": dict(ln.fixed),
+             "steps": [s.__dict__ for s in ln.plan.steps()]} for ln in p.lines]})
+    else:
+        typer.echo(str(p))
+    P.write_program_file(program, text, controller)
+
+
+def _machine(given: dict) -> dict:
+    """The machine options among a command's arguments (for :func:`P.make_program`)."""
+    keys = ("feed", "max_feed", "limits", "safe", "sign", "origin", "inch", "trigger", "name",
+            "number")
+    return {k: given[k] for k in keys}
 
 
 def _check_csv(csv: Optional[Path]) -> None:

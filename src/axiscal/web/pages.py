@@ -12,7 +12,7 @@ from axiscal.web.login import login_routes
 
 __all__ = ["add_routes", "plan_from_form"]
 
-_PLAN_FIELDS = ("kind", "travel", "targets", "step", "runs")
+_PLAN_FIELDS = ("kind", "travel", "targets", "step", "runs", "feed")
 
 
 def add_routes(app: FastAPI) -> None:
@@ -30,8 +30,8 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/plan", response_class=HTMLResponse)
     async def plan_page(request: Request):
-        form = {"kind": "linear", "travel": "", "targets": "", "step": "", "runs": "5"}
-        return render(request, "plan.html", "Plan a test", form=form)
+        form = {"kind": "linear", "travel": "", "targets": "", "step": "", "runs": "5", "feed": ""}
+        return render(request, "plan.html", "Plan a test", form=form, controllers=_controllers())
 
     @app.post("/plan", response_class=HTMLResponse)
     async def plan_make(request: Request):
@@ -39,10 +39,12 @@ def add_routes(app: FastAPI) -> None:
         values = {k: str(form.get(k, "")).strip() for k in _PLAN_FIELDS}
         try:
             plan = plan_from_form(values)
+            _program_feed(values.get("feed"))
         except InputError as exc:
-            return render(request, "plan.html", "Plan a test", 400, form=values, error=str(exc))
+            return render(request, "plan.html", "Plan a test", 400, form=values, error=str(exc),
+                          controllers=_controllers())
         return render(request, "plan.html", "Plan a test", form=values,
-                      plan=_describe(plan), query=query(**values))
+                      plan=_describe(plan), query=query(**values), controllers=_controllers())
 
     @app.get("/plan.csv")
     async def plan_csv(request: Request, kind: str = "linear", travel: str = "",
@@ -50,6 +52,30 @@ def add_routes(app: FastAPI) -> None:
         plan = plan_from_form({"kind": kind, "travel": travel, "targets": targets,
                                "step": step, "runs": runs})
         return download(plan.to_csv(), f"plan_{kind}_{travel}.csv", "text/csv")
+
+    @app.get("/plan.program")
+    async def plan_program(request: Request, controller: str = "linuxcnc", kind: str = "linear",
+                           travel: str = "", targets: str = "", step: str = "", runs: str = "5",
+                           feed: str = ""):
+        """The plan's part program in ``controller``'s language (issue 41): the one writer,
+        :func:`axiscal.programs.write_program`, as ``axiscal plan … --program``."""
+        from axiscal.programs import MachineOptions, extension, write_program
+
+        plan = plan_from_form({"kind": kind, "travel": travel, "targets": targets,
+                               "step": step, "runs": runs})
+        text = write_program(plan, controller, MachineOptions(feed=_program_feed(feed)))
+        return download(text, f"plan_{kind}_{travel}{extension(controller)}", "text/plain")
+
+
+def _controllers() -> tuple:
+    from axiscal.programs import CONTROLLERS
+
+    return CONTROLLERS
+
+
+def _program_feed(text) -> float:
+    """The form's feed (mm/min or deg/min; blank: 1000)."""
+    return form_number(text or "1000", "feed (mm/min or deg/min)", 1e-3, 1e6)
 
 
 def plan_from_form(values: dict):

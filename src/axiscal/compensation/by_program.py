@@ -1,0 +1,161 @@
+"""The whole calibration job on LinuxCNC, driven by the plan's part program (issue 41).
+
+As Renishaw CARTO's Capture → Explore → Compensate does by hand, in one run:
+
+1. the ISO 230-2 plan's LinuxCNC program (:func:`axiscal.programs.write_program`) runs in AUTO mode
+   on a headless LinuxCNC (:class:`~axiscal.instruments.linuxcnc_program.LinuxCNCProgramMachine`,
+   the one-joint machine with a lagging drive);
+2. the simulated laser records all the time: LinuxCNC's sampler gives the drive's position every
+   servo period, and the laser reads where the simulated machine axis behind the drive is there,
+   ``x + e(x, d)`` (its systematic deviation for the direction ``d`` it last moved, ISO 230-2
+   §3.1; :meth:`~axiscal.machines.linear.LinearAxis.systematic_deviation`), with the axis's
+   repeatability as one draw per approach and the instrument's noise on every reading;
+3. ``axiscal capture``'s stillness trigger (:func:`axiscal.procedures.capture.capture_test`)
+   turns the record into the test's dataset;
+4. :func:`axiscal.compensation.loop.run_compensation_loop` evaluates it (ISO 230-2), writes the
+   LinuxCNC table, and this hook loads it as ``[JOINT_0] COMP_FILE`` and runs the program again.
+
+:class:`ByProgram` is the loop's ``machine``; :func:`calibrate` runs the loop with it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from axiscal.errors import ConfigError
+
+__all__ = ["ByProgram", "calibrate", "plan_rows"]
+
+
+@dataclass(frozen=True, eq=False)
+class _Rows:
+    """A plan's steps as the rows :func:`capture_test` matches (the columns of the plan CSV)."""
+
+    kind: np.ndarray
+    position: np.ndarray
+    direction: np.ndarray
+    run: np.ndarray
+    target_index: np.ndarray
+    dwell: np.ndarray
+    target_unit: str
+    axis: str
+    axis_kind: str
+    targets: np.ndarray
+
+
+def plan_rows(plan) -> _Rows:
+    """The rows of ``plan.steps()`` (what :meth:`TestPlan.to_csv` writes, not via text)."""
+    s = plan.steps()
+    kind = np.array([x.kind for x in s])
+    return _Rows(kind, np.array([x.position for x in s]), np.array([x.direction for x in s]),
+                 np.array([x.run for x in s]), np.array([x.target_index for x in s]),
+                 np.where(kind == "measure", plan.dwell, 0.0), plan.target_unit, plan.axis,
+                 plan.axis_kind.value, np.asarray(plan.targets))
+
+
+@dataclass
+class ByProgram:
+    """The loop's machine: each test is the plan's program run on LinuxCNC, recorded, captured.
+
+    Attributes
+    ----------
+    dwell : float, s
+        The program's dwell at each target (the plan's own is for a real machine's settling; the
+        simulated drive settles in 0.1 s).
+    feed : float, mm/min
+    progress : callable, optional
+        ``progress(done, total)`` as LinuxCNC works through the program, over both runs (the
+        program's lines: ``total`` is twice one program's).
+    runs : list of dict
+        What each run found: ``samples``, ``seconds`` (servo time), ``stops``, ``measurements``,
+        ``gaps``.
+    """
+
+    dwell: float = 0.3
+    feed: float = 12000.0
+    progress: object = None
+    runs: list = field(default_factory=list)
+
+    def measure(self, plan, axis, rng, measurement_sigma, controller_file):
+        """Run ``plan``'s program through LinuxCNC on ``axis``; the captured dataset."""
+        from dataclasses import replace
+
+        from axiscal.instruments.linuxcnc_program import LinuxCNCProgramMachine
+        from axiscal.procedures.capture import Record, capture_test
+        from axiscal.programs import MachineOptions, write_program
+
+        if plan.target_unit != "mm":
+            raise ConfigError("axiscal calibrate runs a linear axis (mm) for now")
+        run_plan = replace(plan, dwell=self.dwell)
+        lo, hi = (v * 1e3 for v in axis.travel)
+        letter = (plan.axis or "X").upper()
+        text = write_program(run_plan, "linuxcnc", MachineOptions(
+            feed=self.feed, limits={letter: (lo, hi)}, trigger=0.6 * self.dwell))
+        comp = None if controller_file is None else controller_file.text
+        with LinuxCNCProgramMachine(axes={letter: (lo - 1.0, hi + 1.0)}, velocity=500.0,
+                                    acceleration=20000.0, comp_file=comp,
+                                    comp_file_type=1) as m:
+            done = len(self.runs)
+
+            def step(line, lines):
+                if callable(self.progress):
+                    self.progress(done * lines + line, 2 * lines)
+
+            rec = m.run(text, timeout=3600.0, progress=step)
+        x = rec.positions[letter]
+        readings = self._laser(x, axis, rng, measurement_sigma) - plan.targets[0] * 1e-3
+        record = Record(rec.times, readings, "linear", sample_rate=1000.0)
+        cap = capture_test(record, plan_rows(run_plan), window=1.0)
+        self.runs.append(dict(samples=int(rec.times.size), seconds=float(rec.times[-1]),
+                              stops=len(cap.stops), measurements=len(cap.assigned),
+                              gaps=rec.gaps, compensated=controller_file is not None))
+        ds = cap.dataset
+        return replace(ds, metadata=replace(ds.metadata, notes=ds.metadata.notes + (
+            "; measured through a headless LinuxCNC running axiscal's part program"
+            + (" with the compensation table loaded" if controller_file is not None else ""))))
+
+    @staticmethod
+    def _laser(x_mm, axis, rng, measurement_sigma_um):
+        """Where the simulated axis is, m, at each sample of the drive's position ``x_mm``: the
+        systematic deviation for the direction it last moved, one repeatability draw per approach
+        (from one stop to the next) and the instrument's noise on each reading."""
+        x = np.asarray(x_mm) * 1e-3
+        v = np.diff(x, prepend=x[0])
+        moving = np.abs(v) > 1e-7          # 0.1 mm/s: the drive's settling tail is at rest
+        d = np.sign(np.where(moving, v, 0.0))
+        idx = np.where(moving, np.arange(x.size), 0)
+        np.maximum.accumulate(idx, out=idx)
+        direction = np.where(d[idx] == 0, 1.0, d[idx])
+        starts = moving & ~np.concatenate(([False], moving[:-1]))
+        approach = np.cumsum(starts)
+        noise = rng.normal(0.0, axis.repeatability_sigma, approach[-1] + 1)[approach] \
+            if axis.repeatability_sigma > 0 else 0.0
+        reading = x + axis.systematic_deviation(x, direction) + noise
+        if measurement_sigma_um > 0:
+            reading = reading + rng.normal(0.0, measurement_sigma_um * 1e-6, x.size)
+        return reading
+
+
+def calibrate(config: dict, seed: int = 1, *, dwell: float = 0.3, feed: float = 12000.0,
+              progress=None, **overrides):
+    """Plan → program → LinuxCNC → capture → ISO 230-2 → table → LinuxCNC → again.
+
+    Returns ``(loop result, hook)``: :class:`~axiscal.compensation.loop.CompensationLoopResult`
+    (``before``, ``after``, ``reduction``, the datasets) and the :class:`ByProgram` with what each
+    run found. The controller is LinuxCNC (``COMP_FILE_TYPE`` 1, mm).
+    """
+    from axiscal.compensation.loop import run_compensation_loop
+
+    if not (math.isfinite(dwell) and dwell >= 0.2):
+        raise ConfigError(f"dwell {dwell!r} s: give 0.2 s or more (the drive settles in 0.1 s; "
+                          "capture needs the rest)")
+    if str(config.get("axis", {}).get("kind", "linear")) != "linear":
+        raise ConfigError("axiscal calibrate runs a linear axis for now: the configuration's "
+                          "[axis] kind is not linear")
+    hook = ByProgram(dwell=dwell, feed=feed, progress=progress)
+    over = dict(overrides, controller="linuxcnc", options={"file_type": 1})
+    r = run_compensation_loop(config, seed=seed, machine=hook, **over)
+    return r, hook
