@@ -75,6 +75,7 @@ from axiscal.compensation.controllers._common import (
     ControllerFile, check_modulo, check_points, check_spacing, check_travel,
     correction_factor, decimals, file_unit, parse_number, require_equidistant, resolve_input,
     safe_axis_name)
+from axiscal.compensation.controllers.siemens_text import fmt as _fmt
 from axiscal.compensation.controllers.siemens_cec import (  # noqa: F401 - the CEC tables
     CECTable, parse_cross_axis, read_cross_axis, write_cross_axis)
 from axiscal.compensation.tables import CompensationTable, TableOrigin
@@ -90,8 +91,6 @@ NAME = "siemens-840d"
 MAX_POINTS = 5000
 
 _VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]\s*=\s*(\S+)")
-_PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]"
-                    r"\s*=\s*(\S+)")
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
 _NAME = re.compile(r"^;\s*axiscal: axis (\S+),")
 _MD10240 = re.compile(r"^(?:;\s*MD10240\s+)?\$MN_SCALING_SYSTEM_IS_METRIC\s*=\s*(\S+?)(?::|\s|$)")
@@ -600,8 +599,5 @@ def _check(table, travel, max_points, position_resolution, per=1.0) -> None:
                                    f"{table.start:g} deg")
 
 
-def _fmt(v: float, nd: int = 9) -> str:
-    s = f"{v:.{nd}f}".rstrip("0")
-    return s + "0" if s.endswith(".") else s
 
 

@@ -42,6 +42,7 @@ import numpy as np
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_points, check_spacing, check_travel, correction_factor, decimals,
     parse_number)
+from axiscal.compensation.controllers.siemens_text import fmt as _fmt
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import DataFormatError, InputError
@@ -195,8 +196,6 @@ def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str =
     Enabling: MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` ≥ points, MD32710 ``$MA_CEC_ENABLE[AXi]`` = 1
     for the compensation axis, SD41300 ``$SN_CEC_TABLE_ENABLE[t]`` = 1.
     """
-    from axiscal.compensation.controllers.siemens_840d import _fmt
-
     check_points(table.n_points, max_points, NAME, "points (MD18342)")
     check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
     check_travel(table, travel, NAME)

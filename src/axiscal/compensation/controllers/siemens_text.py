@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from axiscal.errors import DataFormatError
 
-__all__ = ["Statement", "statements", "CONTROL"]
+__all__ = ["Statement", "statements", "CONTROL", "fmt"]
 
 #: Program statements a loader program uses around its tables, and what each does.
 CONTROL = {
@@ -137,3 +137,9 @@ def _control(up: str) -> str:
     if re.fullmatch(r"G0?4\s*F\s*[0-9.]+", up):
         return "G4"
     return ""
+
+
+def fmt(v: float, nd: int = 9) -> str:
+    """A number as a SINUMERIK file writes it: at most ``nd`` decimals, no trailing zeros."""
+    s = f"{v:.{nd}f}".rstrip("0")
+    return s + "0" if s.endswith(".") else s
