@@ -145,3 +145,22 @@ def test_readback_undoes_the_reference_shift():
     assert "zero at its reference point 0 mm" in rb.note
     plain = compare(back, np.arange(4) * 101.6, dev, "csv")
     assert plain.largest_residual == pytest.approx(1.0) and plain.note == ""
+
+
+def test_linuxcnc_enable_line_names_the_file_written(tmp_path):
+    """Issue 42: ``COMP_FILE = x.comp`` was printed (and returned by the API) whatever name the
+    file was written as; [JOINT_n] COMP_FILE must name the file LinuxCNC is to load."""
+    from axiscal import api
+
+    out = tmp_path / "x_after_service.txt"
+    cf = api.write_table(_table(), "linuxcnc", out)
+    assert "[JOINT_0] COMP_FILE = x_after_service.txt" in cf.enable and out.exists()
+    assert not any("x.comp" in e for e in cf.enable)
+    src = tmp_path / "t.csv"
+    src.write_text("# target_unit=mm deviation_unit=um\ntarget,direction,run,deviation\n"
+                   + "".join(f"{t},{d},{r},{v}\n" for t, v in ((0, 1.0), (100, -2.0), (200, 3.0))
+                             for d in "+-" for r in (1, 2)))
+    r = _run("compensate", src, "--controller", "linuxcnc", "--spacing", "50", "--out",
+             tmp_path / "joint0.comp", "--json")
+    assert r.exit_code == 0, r.output
+    assert "[JOINT_0] COMP_FILE = joint0.comp" in json.loads(r.stdout)["enable"]

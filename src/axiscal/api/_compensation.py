@@ -91,6 +91,7 @@ def write_table(table: Any, controller: str, path: PathLike | None = None, *,
 
     cf = convert(table, controller, travel, **options)
     if path is not None:
+        cf = cf.written_as(Path(path).name)     # COMP_FILE = the name written
         from axiscal.io._files import write_text_atomic
 
         write_text_atomic(path, cf.text)

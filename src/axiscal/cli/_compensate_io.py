@@ -82,9 +82,11 @@ def _value(v: str):
     return v
 
 
-def _write_files(cf, out) -> None:
+def _write_files(cf, out):
+    """Write ``cf`` to ``out`` (and its companions beside it); the file as written, its enabling
+    steps naming ``out``'s name (``COMP_FILE = …``)."""
     if out is None:
-        return
+        return cf
     from axiscal.io._files import write_text_atomic
 
     _check_out(cf, out)
@@ -94,6 +96,7 @@ def _write_files(cf, out) -> None:
         p = Path(out).parent / name
         write_text_atomic(p, text)
         note(f"wrote {p}")
+    return cf.written_as(Path(out).name)
 
 
 def _table_json(t) -> dict:

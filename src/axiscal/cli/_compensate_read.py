@@ -206,7 +206,7 @@ def _convert_table(table, to, writer, out, source, json_out) -> None:
         raise InputError("--read converts with --to NAME [--out FILE] or compares with SOURCE; "
                          "give one of them")
     cf = convert(table, to, **writer)
-    _write_files(cf, out)
+    cf = _write_files(cf, out)
     _render_table(cf, out, json_out)
 
 

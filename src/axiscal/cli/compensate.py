@@ -141,7 +141,7 @@ def compensate(
                                    extrapolation=extrapolation, home=reference, axis=axis)
     cf = api.write_table(table, mod.NAME, travel=_travel(travel),
                          **_typed(mod.write, opts, f"--option for {mod.NAME}"))
-    _write_files(cf, out)
+    cf = _write_files(cf, out)
     _render_table(cf, out, json_out)
 
 
@@ -211,7 +211,7 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
     comp = squareness_compensation(Squareness(um_per_m * 1e-6, (axes[0], axes[1])), aligned)
     ct = cross_axis_table(comp, start, end, spacing, resolution)
     cf = write_cross_axis(ct, controller, _travel(travel), **_cross_axis_options(controller, opts))
-    _write_files(cf, out)
+    cf = _write_files(cf, out)
     if json_out:
         d = dict(controller=cf.controller, file=None if out is None else str(out),
                  extra_files=sorted(cf.extra_files), enable=list(cf.enable), notes=list(cf.notes),
