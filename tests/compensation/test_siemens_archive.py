@@ -161,3 +161,22 @@ def test_round_trip_of_every_table_keeps_axis_and_measuring_system():
         np.testing.assert_allclose(back.up, t.up, atol=1e-9)
         np.testing.assert_allclose(back.positions, t.positions)
         assert (back.origin.machine_axis, back.origin.measuring_system) == (ax, ms)
+
+
+def test_more_points_than_md38000_reserves_is_refused_for_that_table_only():
+    """K3: 0 ≤ N ≤ MD38000 − 1. INITIAL.INI reserves 25 points for AX1 measuring system 2
+    ($MA_MM_ENC_COMP_MAX_POINTS[1,AX1]=25) and 0 for AX2's: with 24 there the AX1/2 table
+    (25 points listed) is refused, the others read."""
+    ini = INI.replace("$MA_MM_ENC_COMP_MAX_POINTS[1,AX1]=25", "$MA_MM_ENC_COMP_MAX_POINTS[1,AX1]=24")
+    r = siemens_840d.read_tables(EEC, "AX_EEC.INI", machine_data=ini)
+    assert list(r.refused) == [("AX1", 2)]
+    assert "25 points but MD38000 $MA_MM_ENC_COMP_MAX_POINTS[1,AX1] = 24" in r.refused[("AX1", 2)]
+
+
+def test_cec_direction_and_multiplication_kept():
+    """K3 §4.4.4: $AN_CEC_DIRECTION 0/1/−1 and $AN_CEC_MULT_BY_TABLE are read per table and
+    kept with it (axiscal does not apply a multiplication: it reports it)."""
+    text = _text("NC_CEC.INI").replace("$AN_CEC_MULT_BY_TABLE[4]=0", "$AN_CEC_MULT_BY_TABLE[4]=3")
+    tables, _ = siemens_840d.read_cross_axis(text)
+    assert [c.mult_by_table for c in tables] == [0, 0, 0, 0, 3, 0, 0, 0, 0]
+    assert tables[4].to_dict()["mult_by_table"] == 3 and tables[6].direction == -1
