@@ -10,10 +10,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.compensation.controllers import siemens_840d, siemens_machine_data
 from axiscal.datasets import AxisKind
-from axiscal.errors import DataFormatError
+from axiscal.errors import AxiscalError, DataFormatError
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "siemens"
 
@@ -180,3 +182,28 @@ def test_cec_direction_and_multiplication_kept():
     tables, _ = siemens_840d.read_cross_axis(text)
     assert [c.mult_by_table for c in tables] == [0, 0, 0, 0, 3, 0, 0, 0, 0]
     assert tables[4].to_dict()["mult_by_table"] == 3 and tables[6].direction == -1
+
+
+_LINES = st.sampled_from([
+    "METRIC", "INCH", "", "CHANDATA(1)", "%_N_AX_EEC_INI", "M17", "NEWCONF", "G4F4", "MSG()",
+    "N38000 $MA_MM_ENC_COMP_MAX_POINTS[0,AX1]=2", "$MA_IS_ROT_AX[AX1]=1",
+    "$MN_SCALING_SYSTEM_IS_METRIC=0", "$AA_ENC_COMP[0,0,AX1]=0.001", "$AA_ENC_COMP[0,1,AX1]=0",
+    "$AA_ENC_COMP_STEP[0,AX1]=10", "$AA_ENC_COMP_MIN[0,AX1]=0", "$AA_ENC_COMP_MAX[0,AX1]=10",
+    "$AA_ENC_COMP_IS_MODULO[0,AX1]=1", "$AN_CEC[0,0]=0", "$AN_CEC[0,1]=0.001",
+    "$AN_CEC_STEP[0]=inf", "$AN_CEC_DIRECTION[0]=1e999", "$AN_CEC_MIN[0]=0", "$AN_CEC_MAX[0]=5",
+    "$AN_CEC_INPUT_AXIS[0]=(AX1)", "$AN_CEC_OUTPUT_AXIS[0]=(AX2)", "$AA_ENC_COMP[²,0,AX1]=1",
+    "$MN_AXCONF_MACHAX_NAME_TAB[0]=\"X1\"", "$MA_MM_ENC_COMP_MAX_POINTS[0,AX1]=²"])
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(_LINES | st.text(max_size=30), max_size=12))
+def test_arbitrary_sinumerik_text_raises_only_axiscal_errors(lines):
+    """Habit 9: the readers of tables, CEC tables and machine data raise nothing but AxiscalError."""
+    text = "\r\n".join(lines)
+    for f in (lambda: siemens_840d.read_tables(text, machine_data=text),
+              lambda: siemens_840d.read_cross_axis(text),
+              lambda: siemens_machine_data.parse(text)):
+        try:
+            f()
+        except AxiscalError:
+            pass

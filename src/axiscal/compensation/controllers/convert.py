@@ -29,6 +29,7 @@ Rules
 from __future__ import annotations
 
 import inspect
+import re
 from dataclasses import replace
 
 from axiscal.errors import ControllerLimitError
@@ -71,7 +72,7 @@ def writer_options(table, controller: str, options: dict | None = None) -> tuple
             f"(MD32700[1]); a {mod.NAME} file has no measuring system to hold it")
     slot = AXIS_OPTION.get(mod.NAME)
     if o.controller == mod.NAME:
-        if slot == "axis_number" and o.machine_axis.isdigit():
+        if slot == "axis_number" and re.fullmatch(r"[0-9]{1,4}", o.machine_axis):
             opts.setdefault(slot, int(o.machine_axis))
     elif slot and o.machine_axis and slot not in opts:
         raise ControllerLimitError(

@@ -429,7 +429,7 @@ def _ms(token: str, source: str, line: int) -> int:
 
 
 def _index(token: str, source: str, line: int) -> int:
-    if not token.isdigit() or len(token) > 9:
+    if not re.fullmatch(r"[0-9]{1,9}", token):
         raise DataFormatError(f"interpolation point {token[:12]!r} is not a whole number", source,
                               line)
     return int(token)

@@ -35,6 +35,7 @@ the EEC is not confirmed.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -145,7 +146,7 @@ def _one_table(t, values, params, source, correction_unit) -> CECTable:
         direction = int(float(params.get("DIRECTION", "0")))
         mult = int(float(params.get("MULT_BY_TABLE", "0")))
         modulo = bool(int(float(params.get("IS_MODULO", "0"))))
-    except ValueError:
+    except (ValueError, OverflowError):
         raise DataFormatError("STEP, MIN, MAX, DIRECTION, MULT_BY_TABLE and IS_MODULO must be "
                               "numbers", source) from None
     if not (math.isfinite(step) and step > 0 and math.isfinite(lo) and math.isfinite(hi)):
@@ -181,7 +182,7 @@ def _one_table(t, values, params, source, correction_unit) -> CECTable:
 
 
 def _whole(token: str, source: str, line: int) -> int:
-    if not token.isdigit() or len(token) > 9:
+    if not re.fullmatch(r"[0-9]{1,9}", token):
         raise DataFormatError(f"table index {token[:12]!r} is not a whole number", source, line)
     return int(token)
 

@@ -26,6 +26,7 @@ linear axis, so :func:`parse` is given beside it.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from axiscal.compensation.controllers.siemens_text import statements
@@ -67,7 +68,7 @@ class MachineData:
     def machine_axis(self, name: str) -> str:
         """``AXn`` for a machine axis written as ``AXn`` or by its MD10000 name (``C1``)."""
         up = str(name).strip().upper()
-        if up in self.rotary or up in self.names or up.startswith("AX") and up[2:].isdigit():
+        if up in self.rotary or up in self.names or re.fullmatch(r"AX[0-9]{1,3}", up) is not None:
             return up
         return next((ax for ax, n in self.names.items() if n.upper() == up), up)
 
@@ -105,7 +106,8 @@ def parse(text: str, source: str = "<text>") -> MachineData:
         if s.kind != "assign" or not s.name.startswith(("MA_", "MN_")):
             continue
         v = s.value.strip().strip('"').strip()
-        if s.name == "MN_AXCONF_MACHAX_NAME_TAB" and len(s.index) == 1 and s.index[0].isdigit():
+        if s.name == "MN_AXCONF_MACHAX_NAME_TAB" and len(s.index) == 1 and \
+                re.fullmatch(r"[0-9]{1,3}", s.index[0]):
             names[f"AX{int(s.index[0]) + 1}"] = v
         elif s.name == "MN_SCALING_SYSTEM_IS_METRIC":
             metric = _flag(v, s, source)
@@ -132,6 +134,6 @@ def _flag(v: str, s, source: str) -> bool:
 
 
 def _whole(v: str, s, source: str) -> int:
-    if not v.isdigit():
+    if not re.fullmatch(r"[0-9]{1,9}", v):
         raise DataFormatError(f"${s.name}: {v[:20]!r} is not a whole number", source, s.line)
     return int(v)
