@@ -80,12 +80,12 @@ def _text(path) -> tuple[str, str]:
     from axiscal.io import detect
     from axiscal.io.renishaw import decode
 
-    text, used = decode(data, None, str(path))
+    try:
+        text, used = decode(data, None, str(path))
+    except DataFormatError:
+        return read_text(path), "utf-8"      # not text: the UTF-8 error names the byte
     if detect.looks_like_renishaw(text):
         return text, used
-    if used == "utf-16":
-        raise DataFormatError("UTF-16 text that is not a Renishaw export: save it as UTF-8",
-                              str(path))
     return read_text(path), "utf-8"          # raises the UTF-8 error, naming the byte
 
 
