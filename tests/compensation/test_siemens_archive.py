@@ -207,3 +207,14 @@ def test_arbitrary_sinumerik_text_raises_only_axiscal_errors(lines):
             f()
         except AxiscalError:
             pass
+
+
+def test_md10240_of_the_machine_data_decides_a_silent_table():
+    """A table without METRIC/INCH header read with an INITIAL.INI stating MD10240 = 0 is in
+    inch (808D Parameter Manual §2.2), and that is said; the table's own header wins."""
+    silent = EEC.replace("METRIC", "", 1)
+    ini = INI.replace("$MN_SCALING_SYSTEM_IS_METRIC=1", "$MN_SCALING_SYSTEM_IS_METRIC=0")
+    r = siemens_840d.read_tables(silent, "x", machine_data=ini, machine_data_source="INITIAL.INI")
+    assert r.tables[("AX1", 1)].spacing == pytest.approx(50 * 25.4)
+    assert "unit inch: MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0 in INITIAL.INI" in r.notes
+    assert siemens_840d.read_tables(EEC, "x", machine_data=ini).tables[("AX1", 1)].spacing == 50

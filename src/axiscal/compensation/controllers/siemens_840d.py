@@ -340,12 +340,17 @@ def read_tables(text: str, source: str = "<text>", axis_kind=None,
     from axiscal.compensation.controllers import siemens_machine_data as smd
     from axiscal.compensation.controllers.siemens_text import statements
 
-    per = file_unit(inputs(text, source, unit=unit)[0].value, None, NAME)
     own = smd.parse(text, source)
     md = smd.parse(machine_data, machine_data_source) if machine_data else own
+    notes: list[str] = []
+    said = inputs(text, source, unit=unit)[0]
+    if said.assumed and md.metric is not None:      # the machine data's MD10240 decides
+        said = inputs(text, source, unit="mm" if md.metric else "inch")[0]
+        notes.append(f"unit {said.value}: MD10240 $MN_SCALING_SYSTEM_IS_METRIC = "
+                     f"{int(md.metric)} in {md.source}")
+    per = file_unit(said.value, None, NAME)
     values: dict = {}
     params: dict = {}
-    notes: list[str] = []
     for s in statements(text, source):
         if s.kind == "control":
             notes.append(f"line {s.line}: {s.name} left out ({_CONTROL_WHAT[s.name]})")
