@@ -140,7 +140,8 @@ def _siemens_table(mod, path, text, encoding, opts, md_text, json_out, to):
         return None, []
     table = mod.parse(text, str(path), machine_data=md_text, **opts, **choose)
     name = r.key((table.origin.machine_axis, table.origin.measuring_system))
-    notes = [n for n in r.notes if n.startswith((f"{name}:", f"assumed: {name} ", "line ", "unit "))]
+    mine = (f"{name}:", f"assumed: {name} ", "line ", "unit ")
+    notes = [n for n in r.notes if n.startswith(mine)]
     return table, notes
 
 

@@ -422,7 +422,9 @@ def _matches(k, machine_axis, measuring_system, md) -> bool:
 
 def _wanted(machine_axis, measuring_system) -> str:
     ms = f", measuring system {measuring_system}" if measuring_system is not None else ""
-    return f"machine axis {machine_axis!r}{ms}" if machine_axis is not None else f"measuring system {measuring_system}"
+    if machine_axis is None:
+        return f"measuring system {measuring_system}"
+    return f"machine axis {machine_axis!r}{ms}"
 
 
 def _ms(token: str, source: str, line: int) -> int:
@@ -518,7 +520,8 @@ def _one_axis(values, params, extra, key, axis_kind, md, correction_unit, source
     if unused:
         nonzero = sum(v != 0 for v in unused)
         notes.append(f"{name}: {_points(k + 1, n - 1)} ({n - k - 1} of {n}, reserved by MD38000) "
-                     f"{'is' if k + 2 == n else 'are'} not used: the table ends at point {k} = MAX {hi:g}"
+                     f"{'is' if k + 2 == n else 'are'} not used: the table ends at point {k} = "
+                     f"MAX {hi:g}"
                      + (f"; {nonzero} of them hold values the control does not apply"
                         if nonzero else ""))
     reserved = md.max_points.get((md.machine_axis(machine_axis), ms - 1))

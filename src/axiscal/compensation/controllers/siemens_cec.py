@@ -159,10 +159,12 @@ def _one_table(t, values, params, source, correction_unit) -> CECTable:
                      f"number of steps: read up to point {k} at {lo + k * step:g} mm, the last "
                      "point the range reaches (axiscal's reading; K3 does not say)")
     if k < 1:
-        raise DataFormatError(f"MIN {lo:g} … MAX {hi:g} holds less than one STEP {step:g}", source)
+        raise DataFormatError(f"MIN {lo:g} … MAX {hi:g} holds less than one STEP {step:g}",
+                              source)
     n = len(values)
     if k >= n:
-        raise DataFormatError(f"the range needs points 0 … {k}, the file gives 0 … {n - 1}", source)
+        raise DataFormatError(f"the range needs points 0 … {k}, the file gives 0 … {n - 1}",
+                              source)
     if k + 1 < n:
         nonzero = sum(values[i] != 0 for i in range(k + 1, n))
         notes.append((f"point {n - 1} is" if k + 2 == n else f"points {k + 1} … {n - 1} are")

@@ -79,7 +79,8 @@ class MachineData:
             return None
         shown = f"{ax} ({self.names[ax]})" if ax in self.names else ax
         if not self.rotary[ax]:
-            return "linear", False, f"MD30300 $MA_IS_ROT_AX[{ax}] = 0 in {self.source}: {shown} is linear"
+            return "linear", False, (f"MD30300 $MA_IS_ROT_AX[{ax}] = 0 in {self.source}: "
+                                     f"{shown} is linear")
         mod = self.modulo.get(ax, False)
         why = (f"MD30300 $MA_IS_ROT_AX[{ax}] = 1, MD30310 $MA_ROT_IS_MODULO[{ax}] = "
                f"{int(mod)} in {self.source}: {shown} is rotary"
@@ -112,7 +113,8 @@ def parse(text: str, source: str = "<text>") -> MachineData:
         elif s.name == "MN_SCALING_SYSTEM_IS_METRIC":
             metric = _flag(v, s, source)
         elif s.name in ("MA_IS_ROT_AX", "MA_ROT_IS_MODULO") and s.index:
-            (rotary if s.name == "MA_IS_ROT_AX" else modulo)[s.index[-1].upper()] = _flag(v, s, source)
+            into = rotary if s.name == "MA_IS_ROT_AX" else modulo
+            into[s.index[-1].upper()] = _flag(v, s, source)
         elif s.name in ("MA_MM_ENC_COMP_MAX_POINTS", "MA_ENC_COMP_ENABLE") and len(s.index) == 2:
             key = (s.index[1].upper(), _whole(s.index[0], s, source))
             if s.name == "MA_ENC_COMP_ENABLE":
