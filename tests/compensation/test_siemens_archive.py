@@ -218,3 +218,13 @@ def test_md10240_of_the_machine_data_decides_a_silent_table():
     assert r.tables[("AX1", 1)].spacing == pytest.approx(50 * 25.4)
     assert "unit inch: MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 0 in INITIAL.INI" in r.notes
     assert siemens_840d.read_tables(EEC, "x", machine_data=ini).tables[("AX1", 1)].spacing == 50
+
+
+def test_controller_file_in_utf16_is_read(tmp_path):
+    """A Windows tool's UTF-16 export (BOM FF FE) of an EEC file reads as its CRLF text does."""
+    from axiscal.io._files import read_controller_text
+
+    p = tmp_path / "AX_EEC.INI"
+    p.write_bytes(b"\xff\xfe" + EEC.encode("utf-16-le"))
+    text, enc = read_controller_text(p)
+    assert enc == "utf-16" and text == EEC

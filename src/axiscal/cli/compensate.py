@@ -44,7 +44,9 @@ E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``; wi
 ``n_applied``). Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
-(``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
+(``utf-8``, ``utf-16`` or ``windows-1252``), ``notes`` (840D: what was read, assumed or left
+out), ``shift_undone`` and ``comparison_note`` (with SOURCE: the reference shift undone),
+``inputs`` (what the file does not carry, each ``name``,
 ``value``, ``unit``, ``assumed``, ``source`` = option, file or default, ``why``, ``set_with``:
 Fanuc's reference position and detection unit, the 840D's MD10240 unit, LinuxCNC's unit,
 ``file_type`` and ``axis_kind`` with source ``ini`` when the INI naming the file gave them),
