@@ -54,7 +54,11 @@ Fanuc's reference position and detection unit, the 840D's MD10240 unit, LinuxCNC
 ``direction``, ``kind``, ``position``, ``trim``, ``before``, ``after``, ``jump``, ``threshold``
 in the table's units; empty otherwise) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
 ``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
-given.
+given. Reading an 840D file of several tables without ``-o machine_axis=``: ``tables`` (each
+``key`` = ``AX1`` or ``AX1/2`` for measuring system 2, ``machine_axis``, ``measuring_system`` and
+the table data keys), ``refused`` (``key``, ``reason``; exit 2 when any) and ``notes``; an
+``NC_CEC.INI``: ``kind``, ``tables`` (each ``index``, ``input_axis``, ``output_axis``,
+``direction``, ``mult_by_table``, ``notes``, ``table``) and ``refused`` (``index``, ``reason``).
 
 Options that the chosen use does not read (``--bidirectional`` with ``--verify``, ``--plot``
 without it ...) are refused by name rather than ignored.
