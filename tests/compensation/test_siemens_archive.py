@@ -228,3 +228,15 @@ def test_controller_file_in_utf16_is_read(tmp_path):
     p.write_bytes(b"\xff\xfe" + EEC.encode("utf-16-le"))
     text, enc = read_controller_text(p)
     assert enc == "utf-16" and text == EEC
+
+
+def test_cec_table_of_a_rotary_input_axis_in_degrees_with_the_machine_data():
+    """Table 7 is driven by AX4 (A1, rotary by MD30300 in INITIAL.INI): its positions are
+    degrees (−105 … 105°) with the machine data, mm when the file alone is read (said in the
+    docstring: the file does not say)."""
+    cec = _text("NC_CEC.INI")
+    with_md, _ = siemens_840d.read_cross_axis(cec, "NC_CEC.INI", machine_data=INI)
+    alone, _ = siemens_840d.read_cross_axis(cec, "NC_CEC.INI")
+    assert with_md[7].table.position_unit == "deg" and alone[7].table.position_unit == "mm"
+    assert with_md[7].table.positions[1] == -90.0 and with_md[7].table.correction_unit == "um"
+    assert "every 15 ° from -105 to 105 °" in str(with_md[7])

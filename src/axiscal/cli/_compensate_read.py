@@ -34,7 +34,7 @@ def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None,
                          "convert the table to); give --to or drop --out")
     reader, writer = _split(mod, opts, to)
     if mod.NAME == "siemens-840d" and _cec_only(text):
-        return _read_cec(path, text, encoding, reader, json_out, to, source)
+        return _read_cec(path, text, encoding, reader, json_out, to, source, ini)
     reader = _typed(mod.parse, reader, f"--option for reading {mod.NAME}")
     reader, ini_inputs, md_text = _beside(mod, path, text, ini, reader)
     notes: list[str] = []
@@ -170,15 +170,18 @@ def _render_tables(mod, path, encoding, r, json_out) -> None:
                               "refused (listed above); the others were read", str(path))
 
 
-def _read_cec(path, text, encoding, opts, json_out, to, source) -> None:
-    """The cross-axis tables of an NC_CEC.INI, each with its input and output axis."""
+def _read_cec(path, text, encoding, opts, json_out, to, source, ini=None) -> None:
+    """The cross-axis tables of an NC_CEC.INI, each with its input and output axis (a rotary
+    axis in degrees with the INITIAL.INI given as ``--ini``)."""
     from axiscal.compensation.controllers.siemens_cec import read_cross_axis
     from axiscal.errors import DataFormatError, InputError
+    from axiscal.io._files import read_controller_text
 
     if to is not None or source is not None or opts:
         raise InputError(f"{path} holds cross-axis (CEC) tables: they are listed; --to, a data "
                          "file to compare with and --option are for EEC tables")
-    tables, refused = read_cross_axis(text, str(path))
+    md = read_controller_text(ini)[0] if ini is not None else ""
+    tables, refused = read_cross_axis(text, str(path), machine_data=md)
     if json_out:
         print_json(dict(controller="siemens-840d", encoding=encoding, kind="cross-axis (CEC)",
                         tables=[c.to_dict() for c in tables],

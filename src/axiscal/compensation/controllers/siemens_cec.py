@@ -47,6 +47,7 @@ from axiscal.compensation.controllers.siemens_text import fmt as _fmt
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import DataFormatError, InputError
+from axiscal.units import display
 
 __all__ = ["CECTable", "read_cross_axis", "write_cross_axis", "parse_cross_axis"]
 
@@ -94,16 +95,24 @@ class CECTable:
         d = {0: "both directions", 1: "positive direction only", -1: "negative direction only"}
         return (f"CEC table {self.index}: {self.output_axis} corrected as a function of "
                 f"{self.input_axis} ({d.get(self.direction, self.direction)}), {t.n_points} "
-                f"points every {t.spacing:g} mm from {t.start:g} to {t.end:g} mm, largest "
-                f"correction {t.largest:.4g} µm")
+                f"points every {t.spacing:g} {display(t.position_unit)} from {t.start:g} to "
+                f"{t.end:g} {display(t.position_unit)}, largest correction {t.largest:.4g} "
+                f"{display(t.correction_unit)}")
 
 
-def read_cross_axis(text: str, source: str = "<text>", correction_unit: str = "um") -> tuple:
+def read_cross_axis(text: str, source: str = "<text>", correction_unit: str | None = None,
+                    machine_data: str = "") -> tuple:
     """Every cross-axis table of a file, each with its axes: (tables, refused).
 
     ``tables`` is a list of :class:`CECTable` by index; ``refused`` maps the index of a table that
-    cannot be read to its reason (the others are read regardless).
+    cannot be read to its reason (the others are read regardless). With ``machine_data`` (an
+    ``INITIAL.INI``'s text; else the file's own machine data), a rotary input axis (MD30300) has
+    its positions in degrees and a rotary output axis its values in degrees, read in arcsec;
+    otherwise both are taken as linear (mm, µm), as the file does not say.
     """
+    from axiscal.compensation.controllers import siemens_machine_data as smd
+
+    md = smd.parse(machine_data, "the machine data") if machine_data else smd.parse(text, source)
     from axiscal.compensation.controllers.siemens_text import statements
 
     values: dict = {}
@@ -127,14 +136,14 @@ def read_cross_axis(text: str, source: str = "<text>", correction_unit: str = "u
     tables, refused = [], {}
     for t in sorted(set(values) | set(params)):
         try:
-            tables.append(_one_table(t, values.get(t, {}), params.get(t, {}), source,
+            tables.append(_one_table(t, values.get(t, {}), params.get(t, {}), source, md,
                                      correction_unit))
         except DataFormatError as exc:
             refused[t] = f"CEC table {t}: {exc.message}"
     return tables, refused
 
 
-def _one_table(t, values, params, source, correction_unit) -> CECTable:
+def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
     for key in ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX"):
         if key not in params:
             raise DataFormatError(f"$AN_CEC_{key}[{t}] is missing", source)
@@ -156,8 +165,10 @@ def _one_table(t, values, params, source, correction_unit) -> CECTable:
     notes = []
     if abs(span - round(span)) > 1e-6 * max(1.0, abs(span)):
         notes.append(f"(MAX {hi:g} − MIN {lo:g}) / STEP {step:g} = {span:.6g} is not a whole "
-                     f"number of steps: read up to point {k} at {lo + k * step:g} mm, the last "
+                     f"number of steps: read up to point {k} at {lo + k * step:g}, the last "
                      "point the range reaches (axiscal's reading; K3 does not say)")
+    if modulo:
+        notes.append("IS_MODULO = 1: the table repeats, point k followed by point 0 (K3 §4.4.4)")
     if k < 1:
         raise DataFormatError(f"MIN {lo:g} … MAX {hi:g} holds less than one STEP {step:g}",
                               source)
@@ -173,12 +184,17 @@ def _one_table(t, values, params, source, correction_unit) -> CECTable:
                         if nonzero else ""))
     dev = np.array([values[i] for i in range(k + 1)])
     out_axis = params["OUTPUT_AXIS"]
+    rot_in = (md.kind(params["INPUT_AXIS"]) or ("linear",))[0] == "rotary"
+    rot_out = (md.kind(out_axis) or ("linear",))[0] == "rotary"
+    kind, pu = (AxisKind.ROTARY, "deg") if rot_in else (AxisKind.LINEAR, "mm")
+    vu = "deg" if rot_out else "mm"                       # the file's values
+    cu = correction_unit or ("arcsec" if rot_out else "um")
     try:
-        tab = CompensationTable(out_axis, AxisKind.LINEAR, "mm", correction_unit, lo, step, dev,
-                                dev, origin=TableOrigin(NAME, out_axis, None, "mm", "file"))
+        tab = CompensationTable(out_axis, kind, pu, cu, lo, step, dev,
+                                dev, origin=TableOrigin(NAME, out_axis, None, pu, "file"))
     except InputError as exc:
         raise DataFormatError(str(exc), source) from None
-    c = np.round(-dev / correction_factor(tab, "mm"), 6) + 0.0
+    c = np.round(-dev / correction_factor(tab, vu), 6) + 0.0
     return CECTable(t, params["INPUT_AXIS"], out_axis, replace(tab, up=c, down=c), direction,
                     mult, tuple(notes))
 
