@@ -30,7 +30,9 @@ for a table at irregular positions, LinuxCNC only) and ``table`` (the table
 itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, ``start``, ``end``,
 ``n_points``, ``position_unit``, ``correction_unit``, ``reference_index``,
 ``reference_position``, ``resolution``, ``extrapolation``, ``bidirectional``, ``modulo``,
-``backlash``, ``largest``, ``equidistant``). Table: ``controller``, ``file`` (path written or null),
+``backlash``, ``largest``, ``equidistant``, ``origin``: for a table read from a controller
+file its ``controller``, ``machine_axis``, ``measuring_system``, ``unit`` and ``kind_from``,
+else null). Table: ``controller``, ``file`` (path written or null),
 ``extra_files`` (names), ``enable`` (list), ``notes`` (list) and the table data keys. Verify:
 ``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``,
 ``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
