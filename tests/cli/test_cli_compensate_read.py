@@ -43,17 +43,20 @@ def tape(tmp_path_factory):
 
 
 def test_fanuc_read_back_compares_at_the_tapes_reference_position(tape):
-    """The table is zero at its reference point (15 mm), so every residual is x̄(15 mm) up to one
-    count x magnification; before the tape carried its reference position, 0 was assumed and the
-    same table compared with 42.5 µm residuals."""
+    """The table is zero at its reference point (15 mm): as written, every residual was x̄(15 mm)
+    up to one count x magnification (largest 7.501 µm). The comparison undoes that shift (issue
+    42) and says so: −x̄(15 mm) is added to every correction, and the residuals are within half a
+    count x magnification of 0."""
     r = _run("compensate", "--read", tape, MCU1025, "--json")
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["start"] == 15.0
     step = d["table"]["resolution"]
+    assert d["shift_undone"] == pytest.approx(-XBAR_AT_15, abs=1e-3)
+    assert "zero at its reference point 15 mm" in d["comparison_note"]
     for row in d["residual"]:
-        assert abs(row["residual"] - XBAR_AT_15) <= step / 2 + 1e-9, (row, step)
-    assert d["largest_residual"] == pytest.approx(7.501, abs=1e-3)
+        assert abs(row["residual"]) <= step / 2 + 1e-9, (row, step)
+    assert d["largest_residual"] == pytest.approx(7.501 - XBAR_AT_15, abs=2e-3)
     ref = next(i for i in d["inputs"] if i["name"] == "reference_position")
     assert ref == dict(name="reference_position", value=15.0, unit="mm", assumed=False,
                        source="file", why="from the tape's comment",
@@ -69,9 +72,9 @@ def test_fanuc_tape_without_its_reference_position_is_not_compared(tape, tmp_pat
     assert "give -o reference_position=… (mm)" in line
     r = _run("compensate", "--read", foreign, MCU1025, "-o", "reference_position=15", "--json")
     assert r.exit_code == 0, r.output
-    assert json.loads(r.stdout)["largest_residual"] == pytest.approx(7.501, abs=1e-3)
+    assert json.loads(r.stdout)["largest_residual"] == pytest.approx(7.501 - XBAR_AT_15, abs=2e-3)
     r = _run("compensate", "--read", foreign, MCU1025, "-o", "reference_position=0", "--json")
-    assert json.loads(r.stdout)["largest_residual"] == pytest.approx(42.518, abs=1e-3)
+    assert json.loads(r.stdout)["largest_residual"] > 20     # the wrong place: large residuals
     shown = _run("compensate", "--read", foreign)            # reading alone: said, not refused
     assert shown.exit_code == 0, shown.output
     assert ("assumed: reference_position = 0 mm (a Fanuc tape does not record where the "

@@ -337,3 +337,41 @@ def test_a_setpoint_rounded_by_camonitors_default_format_meets_the_target_given(
              _line(SP, 25.0, 160.0)]
     ds = parse_epics("\n".join(lines), SP, REF, targets=[123.4567, 150.0])
     assert ds.up[0, 0] == pytest.approx(0.5, abs=1e-6)        # µm: 123.4572 − 123.4567
+
+
+def _ramping_log(seq, start, *, dwell=8.0, travel=3.0, sp_rate=100.0, rate=10.0):
+    """As :func:`_log`, but the setpoint ramps to each stop as a motion controller's trajectory
+    setpoint does (``sp_rate`` samples a second over ``travel`` s), the reference following."""
+    lines = [(-100.0, _line(SP, -100.0, start)), (-50.0, _line(REF, -50.0, start))]
+    t, s0, pos = 0.0, start, start
+    for s, actual in seq:
+        n = int(travel * sp_rate)
+        lines += [(t + i / sp_rate, _line(SP, t + i / sp_rate, s0 + (s - s0) * i / n))
+                  for i in range(1, n + 1)]
+        m = int(travel * rate)
+        lines += [(t + i / rate, _line(REF, t + i / rate, pos + (actual - pos) * i / m))
+                  for i in range(1, m + 1)]
+        s0, pos, t = s, actual, t + travel + dwell
+    lines.append((t, _line(REF, t, pos)))
+    head = [ln for tt, ln in lines if tt < 0]
+    return "\n".join(head + [ln for _, ln in sorted((x for x in lines if x[0] >= 0),
+                                                     key=lambda x: x[0])]) + "\n"
+
+
+def test_ramping_setpoint_reads_as_a_jumping_one():
+    """Issue 42: the MCU1025 readings (tests/data/ecmc, errors up to 93 µm) with a setpoint that
+    ramps at 100 Hz (34 µm a sample between targets 10.2 mm apart) were refused ("rests only
+    nearer the setpoint before"): the setpoint "before" was the last ramp sample. Compared with
+    the previous stop, the log gives the test's numbers exactly, with the targets found or
+    given."""
+    ref_ds = read_ecmc(DATA / "mcu1025_fat_sat_ISO230.dat")
+    tg = ref_ds.targets
+    up, down = tg[:, None] + ref_ds.up * 1e-3, tg[:, None] + ref_ds.down * 1e-3
+    text = _ramping_log(_ecmc_sequence(tg, up, down), tg[0])
+    for kw in ({}, {"targets": tg.tolist()}):
+        ds = parse_epics(text, SP, REF, **kw)
+        np.testing.assert_allclose(ds.up, ref_ds.up, atol=1e-6)
+        np.testing.assert_allclose(ds.down, ref_ds.down, atol=1e-6)
+        np.testing.assert_allclose(_numbers(evaluate(ds)), _numbers(evaluate(ref_ds)), atol=1e-6)
+    d = find_dwells(parse_camonitor(text).series(SP), 1e9)
+    assert (d[3].value, d[3].came_from) == (tg[1], tg[0])    # the stop before, not 25.166

@@ -128,10 +128,11 @@ def test_rta_deviations_are_microradians_targets_degrees():
     up2 = [v + 0.3 for v in up1]
     dn2 = [v - 0.2 for v in dn1]
     text = renishaw_text("rta", t, [up1, dn1, up2, dn2])
-    ds = parse_positioning(text, "c.rta")
+    ds = parse_positioning(text, "c.rta", deviation_unit="urad")
     assert (ds.axis_kind.value, ds.target_unit, ds.deviation_unit) == ("rotary", "deg", "urad")
     same_evaluation(ds, parse_positioning_csv(tidy_csv(t, [up1, up2], [dn1, dn2], "deg", "urad")))
-    arcsec = parse_rta(text, deviation_unit="arcsec")
+    arcsec = parse_rta(text)                    # issue 42: rotary results in arcsec by default
+    assert arcsec.deviation_unit == "arcsec" and "file's µrad" in arcsec.metadata.notes
     assert arcsec.up[0, 0] == pytest.approx(4.8481 * 180 / math.pi * 3600 / 1e6, rel=1e-12)
     assert arcsec.up[0, 0] == pytest.approx(1.0, abs=1e-4)      # 4.8481 µrad ≈ 1″
 
@@ -290,7 +291,7 @@ def test_round_trip_is_exact(ds):
     """write → read gives the same dataset bit for bit (metadata and conditions included)."""
     text = format_renishaw(ds)
     assert text.count("\r\n") == text.count("\n")
-    back = parse_renishaw(text, source="rt.rtl")
+    back = parse_renishaw(text, source="rt.rtl", deviation_unit=ds.deviation_unit)
     assert back.equals(ds), (ds, back)
 
 
@@ -301,3 +302,39 @@ def test_parser_raises_only_axiscal_errors(junk):
         parse_renishaw("HEADER::\r\n" + junk)
     except AxiscalError:
         pass
+
+
+# -- exports in Windows code pages and UTF-16 (issue 42) --------------------------------------
+def _user(by):
+    return {"Machine": "Fräse 3", "Serial No": "", "Date": "2019-05-12 10:46:00", "By": by,
+            "Axis": "X", "Location": "Halle Süd", "TITLE": "nach Wartung"}
+
+
+@pytest.mark.parametrize("encoding, said", [("cp1252", "windows-1252"), ("utf-16", "utf-16"),
+                                            ("utf-8", "")])
+def test_windows_exports_read_and_the_encoding_said(tmp_path, encoding, said):
+    """A German "ä" in USER-TEXT is byte 0xE4 in the ANSI code page 1252 (and 0xE4 0x00 in
+    UTF-16 LE after its BOM); the file reads to the same dataset as its UTF-8 twin, and any
+    encoding but UTF-8 is named in the notes."""
+    text = renishaw_text("rtl", T7, [R1_UP, R1_UP, R1_UP, R1_UP], user=_user("Jürgen"))
+    p = tmp_path / "x.rtl"
+    p.write_bytes(text.encode(encoding) if encoding != "utf-16" else
+                  b"\xff\xfe" + text.encode("utf-16-le"))
+    if encoding == "cp1252":
+        assert b"Fr\xe4se" in p.read_bytes()
+    ds = read_positioning(p)
+    assert ds.metadata.machine == "Fräse 3" and ds.metadata.operator == "Jürgen"
+    assert (said in ds.metadata.notes) if said else "read as" not in ds.metadata.notes
+    same_evaluation(ds, parse_positioning(text, "x.rtl"))
+
+
+def test_other_code_pages_selectable():
+    """Code page 1250 (Central European): "ł" is byte 0xB3, which 1252 reads as "³"."""
+    from axiscal.io.renishaw import decode
+
+    text = renishaw_text("rtl", T7, [R1_UP] * 4, user=_user("Michał"))
+    data = text.encode("cp1250")
+    assert decode(data)[0].count("Micha³") == 1 and decode(data)[1] == "windows-1252"
+    assert "Michał" in decode(data, "cp1250")[0]
+    with pytest.raises(InputError, match="encoding 'koi8'"):
+        decode(data, "koi8")

@@ -68,7 +68,10 @@ def write_table(table: Any, controller: str, path: PathLike | None = None, *,
     Parameters
     ----------
     table : CompensationTable
-        From :func:`compensation_table`.
+        From :func:`compensation_table`, or read from a controller file: then it is written for
+        the machine axis, measuring system and unit it was read from, and a conversion that
+        would lose one is refused naming it
+        (:func:`axiscal.compensation.controllers.convert.convert`).
     controller : str
         ``siemens-840d``, ``fanuc``, ``heidenhain``, ``linuxcnc``, ``csv`` or ``renishaw-ren``.
     path : str or Path, optional
@@ -84,12 +87,11 @@ def write_table(table: Any, controller: str, path: PathLike | None = None, *,
     axiscal.compensation.controllers.ControllerFile
         ``text``, ``extra_files``, ``enable`` (what the controller must be told) and ``notes``.
     """
-    from axiscal.compensation.controllers import check_options
-    from axiscal.compensation.controllers import controller as get_controller
+    from axiscal.compensation.controllers.convert import convert
 
-    mod = get_controller(controller)
-    cf = mod.write(table, travel, **check_options(mod.write, options, f"option for {mod.NAME}"))
+    cf = convert(table, controller, travel, **options)
     if path is not None:
+        cf = cf.written_as(Path(path).name)     # COMP_FILE = the name written
         from axiscal.io._files import write_text_atomic
 
         write_text_atomic(path, cf.text)

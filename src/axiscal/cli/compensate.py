@@ -30,7 +30,9 @@ for a table at irregular positions, LinuxCNC only) and ``table`` (the table
 itself: ``axis``, ``axis_kind``, ``positions``, ``up``, ``down``, ``spacing``, ``start``, ``end``,
 ``n_points``, ``position_unit``, ``correction_unit``, ``reference_index``,
 ``reference_position``, ``resolution``, ``extrapolation``, ``bidirectional``, ``modulo``,
-``backlash``, ``largest``, ``equidistant``). Table: ``controller``, ``file`` (path written or null),
+``backlash``, ``largest``, ``equidistant``, ``origin``: for a table read from a controller
+file its ``controller``, ``machine_axis``, ``measuring_system``, ``unit`` and ``kind_from``,
+else null). Table: ``controller``, ``file`` (path written or null),
 ``extra_files`` (names), ``enable`` (list), ``notes`` (list) and the table data keys. Verify:
 ``controller``, ``before`` and ``after`` (the ISO 230-2 parameters ``A``, ``A_up``,
 ``A_down``, ``E``, ``E_up``, ``E_down``, ``M``, ``R``, ``R_up``, ``R_down``, ``B``,
@@ -44,7 +46,9 @@ E_up, E_down, M, B), ``unit``, ``n_points``, ``spacing``, ``seed``, ``sign``; wi
 ``n_applied``). Squareness: the
 table keys plus ``driving_axis``, ``compensated_axis``, ``factor_um_per_m``, ``advice``. Read:
 ``controller`` (detected from the file's content unless ``--controller`` is given), ``encoding``
-(``utf-8`` or ``windows-1252``), ``inputs`` (what the file does not carry, each ``name``,
+(``utf-8``, ``utf-16`` or ``windows-1252``), ``notes`` (840D: what was read, assumed or left
+out), ``shift_undone`` and ``comparison_note`` (with SOURCE: the reference shift undone),
+``inputs`` (what the file does not carry, each ``name``,
 ``value``, ``unit``, ``assumed``, ``source`` = option, file or default, ``why``, ``set_with``:
 Fanuc's reference position and detection unit, the 840D's MD10240 unit, LinuxCNC's unit,
 ``file_type`` and ``axis_kind`` with source ``ini`` when the INI naming the file gave them),
@@ -52,7 +56,11 @@ Fanuc's reference position and detection unit, the 840D's MD10240 unit, LinuxCNC
 ``direction``, ``kind``, ``position``, ``trim``, ``before``, ``after``, ``jump``, ``threshold``
 in the table's units; empty otherwise) and the table data keys, plus ``residual`` (per target: ``target``, ``deviation``,
 ``correction``, ``residual`` = deviation + correction) and ``largest_residual`` when SOURCE is
-given.
+given. Reading an 840D file of several tables without ``-o machine_axis=``: ``tables`` (each
+``key`` = ``AX1`` or ``AX1/2`` for measuring system 2, ``machine_axis``, ``measuring_system`` and
+the table data keys), ``refused`` (``key``, ``reason``; exit 2 when any) and ``notes``; an
+``NC_CEC.INI``: ``kind``, ``tables`` (each ``index``, ``input_axis``, ``output_axis``,
+``direction``, ``mult_by_table``, ``notes``, ``table``) and ``refused`` (``index``, ``reason``).
 
 Options that the chosen use does not read (``--bidirectional`` with ``--verify``, ``--plot``
 without it ...) are refused by name rather than ignored.
@@ -66,6 +74,8 @@ from typing import List, Optional
 import typer
 
 from axiscal.cli._common import note, out_path, plot_path, print_json, report_path
+from axiscal.cli._compensate_io import (_render_table, _table_json, _typed, _value,
+                                        _write_files)
 
 __all__ = ["register"]
 
@@ -122,7 +132,9 @@ def compensate(
         if out is not None and to is None:
             raise InputError("--read writes --out only with --to NAME (the controller format to "
                              "convert the table to); give --to or drop --out")
-        return _read(read, controller, source, opts, json_out, ini, to=to, out=out)
+        from axiscal.cli._compensate_read import read_back
+
+        return read_back(read, controller, source, opts, json_out, ini, to=to, out=out)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
                            resolution, travel, opts, out, json_out)
@@ -137,7 +149,7 @@ def compensate(
                                    extrapolation=extrapolation, home=reference, axis=axis)
     cf = api.write_table(table, mod.NAME, travel=_travel(travel),
                          **_typed(mod.write, opts, f"--option for {mod.NAME}"))
-    _write_files(cf, out)
+    cf = _write_files(cf, out)
     _render_table(cf, out, json_out)
 
 
@@ -193,116 +205,6 @@ def _verify(config: Path, seed, controller, spacing, opts, out, json_out, plot=N
         _render_applied(extra)
 
 
-def _read(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None) -> None:
-    import numpy as np
-
-    from axiscal.compensation.controllers import controller as get_controller
-    from axiscal.io.results import load_mean_deviations
-
-    from axiscal.compensation.controllers import detect
-    from axiscal.errors import InputError
-    from axiscal.io._files import read_controller_text
-
-    text, encoding = read_controller_text(path)
-    found = detect(text)
-    if controller is None:
-        if found is None:
-            raise InputError(f"{path}: the controller format cannot be told from the content; "
-                             "give --controller")
-        controller = found
-    elif found is not None and found != get_controller(controller).NAME:
-        raise InputError(f"{path} looks like a {found} file, not {controller}: drop "
-                         f"--controller or give --controller {found}")
-    mod = get_controller(controller)
-    opts = _typed(mod.parse, opts, f"--option for reading {mod.NAME}")
-    opts, ini_inputs = _ini_options(mod, path, text, ini, opts)
-    table = mod.parse(text, source=str(path), **opts)
-    if to is not None or out is not None:
-        return _convert_table(table, to, out, source, json_out)
-    inputs = ini_inputs + _file_inputs(mod, text, path, source, opts)
-    jumps = mod.trim_jumps(table) if hasattr(mod, "trim_jumps") else ()
-    d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table),
-             inputs=[i.to_dict() for i in inputs], trim_jumps=[j.to_dict() for j in jumps])
-    rows = []
-    if source is not None:
-        res, _ = load_mean_deviations(source)
-        _same_units(res, table, source)
-        dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
-        corr = 0.5 * (table.correction_at(res.targets, 1) + table.correction_at(res.targets, -1))
-        rows = [dict(target=float(t), deviation=float(x), correction=float(c), residual=float(x + c))
-                for t, x, c in zip(res.targets, dev, corr)]
-        d.update(residual=rows, largest_residual=max(abs(r["residual"]) for r in rows))
-    if json_out:
-        print_json(d)
-        return
-    typer.echo(f"{mod.NAME} file ({encoding}): {table}")
-    for i in inputs:
-        typer.echo(f"  {i}")
-    for j in jumps:
-        typer.echo(f"  warning: {j.describe(table, opts.get('unit'))}")
-    if rows:
-        u = table.correction_unit
-        typer.echo(f"compared with {source} (mean bidirectional deviation + correction):")
-        for r in rows:
-            typer.echo(f"  {r['target']:>10.4g} {table.position_unit}: deviation {r['deviation']:+8.3f}, "
-                       f"correction {r['correction']:+8.3f}, residual {r['residual']:+8.3f} {u}")
-        typer.echo(f"largest residual {d['largest_residual']:.3f} {u}")
-
-
-def _ini_options(mod, path, text, ini, opts) -> tuple[dict, tuple]:
-    """A LinuxCNC file's unit, type and joint kind from the INI naming it, or assumed (shown)."""
-    from axiscal.errors import InputError
-
-    if mod.NAME != "linuxcnc":
-        if ini is not None:
-            raise InputError(f"--ini is read with a LinuxCNC compensation file; {path} is a "
-                             f"{mod.NAME} file: drop --ini")
-        return opts, ()
-    from axiscal.compensation.controllers.linuxcnc_ini import read_options
-    from axiscal.io.linuxcnc_ini import find_comp_settings
-
-    return read_options(find_comp_settings(path, ini), opts, text, str(path))
-
-
-def _file_inputs(mod, text, path, source, opts) -> tuple:
-    """What the parser took from the file, was given, or assumed (``mod.inputs``, where the
-    format leaves numbers out); a comparison resting on an assumed position is refused."""
-    from axiscal.errors import InputError
-
-    inputs = mod.inputs(text, source=str(path), **opts) if hasattr(mod, "inputs") else ()
-    for i in inputs:
-        if source is not None and i.assumed and i.needed_to_compare:
-            raise InputError(f"{path}: {i.why}: give -o {i.name}=… ({i.unit}) to compare it "
-                             f"with {source}")
-    return tuple(inputs)
-
-
-def _convert_table(table, to, out, source, json_out) -> None:
-    """--read FILE --to NAME: the table read, written in another controller's format."""
-    from axiscal.compensation.controllers import controller as get_controller
-    from axiscal.errors import InputError
-
-    if to is None or source is not None:
-        raise InputError("--read converts with --to NAME [--out FILE] or compares with SOURCE; "
-                         "give one of them" if to is not None else "--out with --read needs --to")
-    cf = get_controller(to).write(table)
-    _write_files(cf, out)
-    _render_table(cf, out, json_out)
-
-
-def _same_units(res, table, source) -> None:
-    """A table is compared only with data in its own units (mm/µm against deg/arcsec is nonsense)."""
-    from axiscal import units
-    from axiscal.errors import InputError
-
-    data = (units.canonical(res.target_unit), units.canonical(res.deviation_unit))
-    own = (units.canonical(table.position_unit), units.canonical(table.correction_unit))
-    if data != own:
-        raise InputError(f"{source} is in {data[0]} and {data[1]}, the table in {own[0]} and "
-                         f"{own[1]}; compare a table with data of the same axis (a rotary table "
-                         "is read with -o axis_kind=rotary)")
-
-
 def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolution, travel,
                 opts, out, json_out) -> None:
     from axiscal.compensation.cross_axis import cross_axis_table, write_cross_axis
@@ -317,7 +219,7 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
     comp = squareness_compensation(Squareness(um_per_m * 1e-6, (axes[0], axes[1])), aligned)
     ct = cross_axis_table(comp, start, end, spacing, resolution)
     cf = write_cross_axis(ct, controller, _travel(travel), **_cross_axis_options(controller, opts))
-    _write_files(cf, out)
+    cf = _write_files(cf, out)
     if json_out:
         d = dict(controller=cf.controller, file=None if out is None else str(out),
                  extra_files=sorted(cf.extra_files), enable=list(cf.enable), notes=list(cf.notes),
@@ -363,22 +265,6 @@ def _refuse_unused(ctx, use: str) -> None:
         raise InputError(f"{what} does not use {names}; drop {'it' if len(given) == 1 else 'them'}")
 
 
-def _check_out(cf, out) -> None:
-    """The controller file's name must suit the format (and what its companion files name)."""
-    from axiscal.errors import InputError
-
-    p, own = Path(out), Path(cf.filename)
-    if any(cf.filename in text for text in cf.extra_files.values()):
-        if p.name.upper() != own.name.upper():
-            raise InputError(f"{cf.controller}: {', '.join(sorted(cf.extra_files))} names the "
-                             f"table {cf.filename}; write it as --out {p.parent / own.name}")
-        return
-    allowed = {own.suffix.lower()} | ({".txt"} if cf.controller != "csv" else set())
-    if p.suffix.lower() not in allowed:
-        raise InputError(f"{cf.controller} table {p.name}: use a {' or '.join(sorted(allowed))} "
-                         "extension")
-
-
 def _options(items: list[str]) -> dict[str, str]:
     """``["KEY=VALUE", ...]`` as text; :func:`_typed` converts them for their reader."""
     from axiscal.errors import InputError
@@ -390,48 +276,6 @@ def _options(items: list[str]) -> dict[str, str]:
         k, v = item.split("=", 1)
         out[k.strip()] = v.strip()
     return out
-
-
-def _typed(function, raw: dict[str, str], what: str, exclude: tuple[str, ...] = ()) -> dict:
-    """Options ``function`` takes, converted to the type of its default (named on error).
-
-    ``detection_unit=abc`` or ``zero_ends=maybe`` would otherwise reach the writer as text and fail
-    there with a traceback; ``machine_axis=01`` stays the text ``01``.
-    """
-    import inspect
-
-    from axiscal.compensation.controllers import check_options
-    from axiscal.errors import InputError
-
-    check_options(function, raw, what)
-    fixed = sorted(set(raw) & set(exclude))
-    if fixed:
-        raise InputError(f"{what}: {', '.join(fixed)} is set by the command, not by --option")
-    params = inspect.signature(function).parameters
-    return {k: _convert(k, v, params[k].default, what) for k, v in raw.items()}
-
-
-def _convert(key: str, text: str, default, what: str):
-    import math
-
-    from axiscal.errors import InputError
-
-    if isinstance(default, bool):
-        if text.lower() not in ("true", "false"):
-            raise InputError(f"{what}: {key}={text!r} must be true or false")
-        return text.lower() == "true"
-    if isinstance(default, (int, float)):
-        try:
-            value = int(text) if isinstance(default, int) else float(text)
-        except ValueError:
-            kind = "a whole number" if isinstance(default, int) else "a number"
-            raise InputError(f"{what}: {key}={text!r} must be {kind}") from None
-        if not math.isfinite(value):
-            raise InputError(f"{what}: {key}={text!r} must be a finite number")
-        return value
-    if isinstance(default, str):
-        return text
-    return _value(text)
 
 
 def _guessed(raw: dict[str, str]) -> dict:
@@ -455,18 +299,6 @@ def _cross_axis_options(controller: str, raw: dict[str, str]) -> dict:
     return _guessed(raw)
 
 
-def _value(v: str):
-    low = v.lower()
-    if low in ("true", "false"):
-        return low == "true"
-    for cast in (int, float):
-        try:
-            return cast(v)
-        except ValueError:
-            pass
-    return v
-
-
 def _travel(travel):
     from axiscal.errors import InputError
 
@@ -475,57 +307,6 @@ def _travel(travel):
     if len(travel) != 2 or not travel[1] > travel[0]:
         raise InputError(f"--travel needs two values, low then high; got {list(travel)}")
     return (travel[0], travel[1])
-
-
-def _write_files(cf, out) -> None:
-    if out is None:
-        return
-    from axiscal.io._files import write_text_atomic
-
-    _check_out(cf, out)
-    write_text_atomic(out, cf.text)
-    note(f"wrote {cf.controller} table {out}")
-    for name, text in cf.extra_files.items():
-        p = Path(out).parent / name
-        write_text_atomic(p, text)
-        note(f"wrote {p}")
-
-
-def _table_json(t) -> dict:
-    return dict(n_points=t.n_points, spacing=t.spacing, start=t.start, end=t.end,
-                position_unit=t.position_unit, correction_unit=t.correction_unit,
-                reference_index=t.reference_index, reference_position=t.reference_position,
-                largest_correction=t.largest, backlash=t.backlash, bidirectional=t.bidirectional,
-                modulo=t.modulo, equidistant=t.equidistant, table=t.to_dict())
-
-
-def _render_table(cf, out, json_out) -> None:
-    t = cf.table
-    if json_out:
-        d = dict(controller=cf.controller, file=None if out is None else str(out),
-                 extra_files=sorted(cf.extra_files), enable=list(cf.enable), notes=list(cf.notes))
-        d.update(_table_json(t))
-        print_json(d)
-        return
-    from axiscal.report.labels import unit_text
-
-    pu, cu = t.position_unit, unit_text(t.correction_unit)   # µm, as every other output writes it
-    typer.echo(f"{cf.controller} compensation table for axis {t.axis or '-'} "
-               f"({'bidirectional' if t.bidirectional else 'one table for both directions'})")
-    typer.echo(f"  points           {t.n_points}")
-    typer.echo(f"  spacing          {t.spacing:g} {pu}")
-    typer.echo(f"  range            {t.start:g} … {t.end:g} {pu}{' (modulo 360)' if t.modulo else ''}")
-    typer.echo(f"  reference point  {t.reference_index} at {t.reference_position:g} {pu}")
-    typer.echo(f"  largest corr.    {t.largest:.4g} {cu} (correction = −deviation)")
-    if t.bidirectional:
-        typer.echo(f"  mean reversal    {t.backlash:+.4g} {cu}")
-    for e in cf.enable:
-        typer.echo(f"  enable: {e}")
-    for n in cf.notes:
-        typer.echo(f"  note: {n}")
-    if out is None:
-        typer.echo("")
-        typer.echo(cf.text.rstrip("\n"))
 
 
 def _render_loop(r) -> None:

@@ -43,7 +43,7 @@ from axiscal.datasets import AxisKind
 from axiscal.errors import InputError
 from axiscal.units import display
 
-__all__ = ["CompensationTable", "table_from_result", "table_from_deviations", "Extrapolation",
+__all__ = ["CompensationTable", "TableOrigin", "table_from_result", "table_from_deviations", "Extrapolation",
            "MAX_TABLE_POINTS", "check_point_count"]
 
 Extrapolation = Literal["hold", "linear"]
@@ -52,6 +52,39 @@ FULL_TURN = 360.0
 #: point numbers, Heidenhain and LinuxCNC 256, Siemens MD38000 a few thousand); a count beyond
 #: this is a mistyped spacing, refused before any array is allocated.
 MAX_TABLE_POINTS = 100_000
+
+
+@dataclass(frozen=True)
+class TableOrigin:
+    """Where a table read from a controller file belongs on its machine, so that a conversion
+    writes it for the same axis (issue 42: a C axis's table converted to an 840D file must not
+    land on X).
+
+    Attributes
+    ----------
+    controller : str
+        The format it was read from (``siemens-840d`` ...).
+    machine_axis : str
+        The controller's name of the axis (``AX4``, ``C1``; Fanuc's axis number as text;
+        ``""`` where the format does not say).
+    measuring_system : int or None
+        1 or 2 (SINUMERIK MD32700 index 0 or 1); None where the format has none.
+    unit : str
+        The file's length unit (``mm`` or ``inch``; ``deg`` for a rotary axis).
+    kind_from : str
+        Where the axis kind came from (``machine data``, ``file``, ``option``, ``assumed``).
+    """
+
+    controller: str
+    machine_axis: str = ""
+    measuring_system: int | None = None
+    unit: str = "mm"
+    kind_from: str = ""
+
+    def to_dict(self) -> dict:
+        return dict(controller=self.controller, machine_axis=self.machine_axis,
+                    measuring_system=self.measuring_system, unit=self.unit,
+                    kind_from=self.kind_from)
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,6 +117,9 @@ class CompensationTable:
         The point at the machine reference position (Fanuc parameter 3620 counts from it).
     extrapolation : str
         How table points beyond the measured targets were filled (``hold`` or ``linear``).
+    origin : TableOrigin or None
+        For a table read from a controller file: its machine axis, measuring system and unit
+        there (None for a table made from measurements).
 
     Examples
     --------
@@ -108,6 +144,7 @@ class CompensationTable:
     reference_index: int = 0
     extrapolation: str = "hold"
     nodes: np.ndarray | None = None
+    origin: TableOrigin | None = None
 
     def __post_init__(self) -> None:
         if self.nodes is not None:
@@ -258,6 +295,7 @@ class CompensationTable:
             "reference_index": self.reference_index, "reference_position": self.reference_position,
             "extrapolation": self.extrapolation, "largest": self.largest, "backlash": self.backlash,
             "equidistant": self.equidistant,
+            "origin": None if self.origin is None else self.origin.to_dict(),
             "positions": self.positions.tolist(), "up": self.up.tolist(), "down": self.down.tolist(),
         }
 

@@ -51,8 +51,42 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
 
             return _csv.read_positioning_csv(path, target_unit, deviation_unit, axis_kind,
                                              progress=progress)
-    return parse_positioning(read_text(path), str(path), target_unit, deviation_unit, axis_kind,
+    text, used = _text(path)
+    if used != "utf-8":                      # a Renishaw export in UTF-16 or a code page
+        if epics:
+            raise DataFormatError(f"--{next(iter(epics)).replace('_', '-')} applies to an EPICS "
+                                  "camonitor log; this file is a Renishaw export", str(path))
+        from axiscal.io import renishaw as _renishaw
+
+        return _renishaw.parse_renishaw(text, source=str(path), target_unit=target_unit,
+                                        deviation_unit=deviation_unit, axis_kind=axis_kind,
+                                        encoding=used)
+    return parse_positioning(text, str(path), target_unit, deviation_unit, axis_kind,
                              epics=epics)
+
+
+def _text(path) -> tuple[str, str]:
+    """The file's text and encoding: UTF-8; a Renishaw export may also be UTF-16 (BOM) or in a
+    Windows code page (:func:`axiscal.io.renishaw.decode`). Anything else not UTF-8 is refused
+    as :func:`read_text` refuses it."""
+    from axiscal.io._files import read_bytes
+
+    data = read_bytes(path)
+    if not data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            return data.decode("utf-8-sig"), "utf-8"
+        except UnicodeDecodeError:
+            pass
+    from axiscal.io import detect
+    from axiscal.io.renishaw import decode
+
+    try:
+        text, used = decode(data, None, str(path))
+    except DataFormatError:
+        return read_text(path), "utf-8"      # not text: the UTF-8 error names the byte
+    if detect.looks_like_renishaw(text):
+        return text, used
+    return read_text(path), "utf-8"          # raises the UTF-8 error, naming the byte
 
 
 def _whole_file_format(text: str, source: str) -> bool:

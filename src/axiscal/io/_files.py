@@ -26,12 +26,17 @@ def read_text(path) -> str:
 
 
 def read_controller_text(path) -> tuple[str, str]:
-    """A controller file's text and its encoding: UTF-8, else Windows-1252.
+    """A controller file's text and its encoding: UTF-16 with a BOM, UTF-8, else Windows-1252.
 
     Controller files come from Windows tools; a comment with ``µ`` in Windows-1252 is common
     (a Siemens ``.INI`` edited on the machine's PC). The numbers are ASCII either way.
     """
     data = read_bytes(path)
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):       # UTF-16 with its BOM (Windows)
+        try:
+            return data.decode("utf-16"), "utf-16"
+        except UnicodeDecodeError:
+            raise DataFormatError("not UTF-16 text after its byte-order mark", str(path)) from None
     try:
         return data.decode("utf-8-sig"), "utf-8"
     except UnicodeDecodeError:

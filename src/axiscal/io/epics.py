@@ -47,9 +47,13 @@ value changes by more than the record's deadband (EPICS Record Reference Manual,
 MDEL/ADEL), so a steady reading may not repeat. An update with severity ``INVALID``, a NaN or a
 lost channel makes the reference unknown until its next update (a gap no stretch crosses).
 
-The approach direction of a dwell is the sign of the step that reached it (from the setpoint
-value before it); the log's first dwell was not reached by a step in the log and is not a
-measurement. The deviation is the reference minus the target (ISO 230-2:2014 clause 3,
+The approach direction of a dwell is the sign of the move that reached it, from the previous
+dwell (the previous stop, or the over-travel), never from a sample of a ramp between them: a
+trajectory setpoint ramps, and its last sample before a stop lies a fraction of a step short
+of it (issue 42); the log's first dwell was not reached by a move in the log and is not a
+measurement. The setpoint "before" that the settled reference must be nearer the stop than is
+that previous dwell too, so axis errors of hundreds of µm read as they do with a setpoint that
+jumps. The deviation is the reference minus the target (ISO 230-2:2014 clause 3,
 eq. (1): ``x_ij = P_ij − P_i``); ``reference_scale`` and ``reference_offset`` turn a raw reference into
 a position first (ecmc's ``REF_GR`` and ``REF_OFF``, ``ecmcGetISO230DataFromCAFile.bash``).
 
@@ -203,17 +207,22 @@ def find_dwells(series: PvSeries, end: float, dwell: float = 1.0) -> list:
         t1 = t[starts[k + 1]] if k + 1 < len(starts) else end
         stretches.append((i, float(t[i]), float(t1)))
     known = [float(v[i]) if math.isfinite(v[i]) else None for i, _, _ in stretches]
-    before, last = [], None                     # the last known value before each stretch
-    for x in known:
+    held = [known[k] is not None and t1 - t0 >= dwell for k, (_, t0, t1) in enumerate(stretches)]
+    # where the axis came from and goes to: the previous (next) *stop*, not the last (first)
+    # sample of a ramp between stops (issue 42); a value before the first stop counts as one
+    before, last = [], None
+    for k, x in enumerate(known):
         before.append(last)
-        last = x if x is not None else last
-    after, nxt = [None] * len(known), None      # the first known value after each stretch
+        if x is not None and (held[k] or last is None):
+            last = x
+    after, nxt = [None] * len(known), None
     for k in range(len(known) - 1, -1, -1):
         after[k] = nxt
-        nxt = known[k] if known[k] is not None else nxt
+        if known[k] is not None and (held[k] or nxt is None):
+            nxt = known[k]
     out = []
     for k, (i, t0, t1) in enumerate(stretches):
-        if known[k] is None or t1 - t0 < dwell:
+        if not held[k]:
             continue
         out.append(Dwell(known[k], t0, t1, _sign(known[k], before[k]), _sign(after[k], known[k]),
                          int(series.lines[i]), math.nan if before[k] is None else before[k]))

@@ -110,6 +110,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 from datetime import datetime
 from decimal import Decimal, InvalidOperation
 
@@ -121,7 +122,8 @@ from axiscal.datasets import AxisKind, Environment, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 from axiscal.io.detect import looks_like_renishaw
 
-__all__ = ["looks_like_renishaw", "parse_renishaw", "read_renishaw", "parse_rtl", "read_rtl",
+__all__ = ["decode", "CODE_PAGES", "looks_like_renishaw", "parse_renishaw", "read_renishaw",
+           "parse_rtl", "read_rtl",
            "parse_rta", "read_rta", "format_renishaw", "format_rtl", "format_rta"]
 
 #: File type -> (axis kind, target unit, deviation unit, HEADER Owner written).
@@ -140,11 +142,54 @@ _REQUIRED = ("HEADER", "TARGET DATA", "RUNS", "DEVIATIONS")
 _TARGETS_PER_LINE = 5
 
 
-def read_renishaw(path, **kwargs) -> PositioningDataset:
-    """Read a ``.rtl`` or ``.rta`` file; see :func:`parse_renishaw`."""
-    from axiscal.io._files import read_text
+#: Windows code pages a Renishaw export may be written in (``encoding=``); 1252 by default.
+CODE_PAGES = ("cp1252", "cp1250", "cp1251", "cp1253", "cp1254", "cp1257", "cp932", "cp936")
 
-    return parse_renishaw(read_text(path), source=str(path), **kwargs)
+
+def decode(data: bytes, encoding: str | None = None, source: str = "<bytes>") -> tuple[str, str]:
+    """The text of a Renishaw export and the encoding it was read in.
+
+    Renishaw's software runs on Windows and writes the ANSI code page of the PC: a German "ä"
+    in the USER-TEXT is the byte 0xE4 (Windows-1252). Read: UTF-8 (with or without a BOM),
+    UTF-16 with its BOM, else ``encoding`` (one of :data:`CODE_PAGES`, default Windows-1252).
+    The numbers are ASCII in every one of them.
+    """
+    if encoding is not None:
+        enc = str(encoding).lower().replace("windows-", "cp").replace("-", "")
+        if enc not in CODE_PAGES and enc not in ("utf8", "utf16"):
+            raise InputError(f"encoding {encoding!r}: one of utf-8, utf-16, "
+                             f"{', '.join(CODE_PAGES)}")
+        enc = {"utf8": "utf-8-sig", "utf16": "utf-16"}.get(enc, enc)
+        try:
+            return data.decode(enc), _name(enc)
+        except UnicodeDecodeError as exc:
+            raise DataFormatError(f"not {_name(enc)} text (byte {exc.start})", source) from None
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            return data.decode("utf-16"), "utf-16"
+        except UnicodeDecodeError as exc:
+            raise DataFormatError(f"not UTF-16 text (byte {exc.start})", source) from None
+    try:
+        return data.decode("utf-8-sig"), "utf-8"
+    except UnicodeDecodeError:
+        if b"\x00" in data[:4096]:
+            raise DataFormatError("not a text file (it holds NUL bytes)", source) from None
+        return data.decode("cp1252", errors="replace"), "windows-1252"
+
+
+def _name(enc: str) -> str:
+    return {"utf-8-sig": "utf-8"}.get(enc, enc.replace("cp", "windows-") if enc.startswith("cp12")
+                                      else enc)
+
+
+def read_renishaw(path, encoding: str | None = None, **kwargs) -> PositioningDataset:
+    """Read a ``.rtl`` or ``.rta`` file in UTF-8, UTF-16 (BOM) or a Windows code page
+    (:func:`decode`; the encoding used is said in the dataset's notes); see
+    :func:`parse_renishaw`."""
+    from axiscal.io._files import read_bytes
+
+    text, used = decode(read_bytes(path), encoding, str(path))
+    return parse_renishaw(text, source=str(path), encoding=used, **kwargs)
 
 
 def read_rtl(path, **kwargs) -> PositioningDataset:
@@ -169,7 +214,7 @@ def parse_rta(text: str, **kwargs) -> PositioningDataset:
 
 def parse_renishaw(text: str, source: str = "<text>", target_unit: str | None = None,
                    deviation_unit: str | None = None, axis_kind: str | None = None,
-                   expect: str | None = None) -> PositioningDataset:
+                   expect: str | None = None, encoding: str = "") -> PositioningDataset:
     """Parse a Renishaw ``.rtl``/``.rta`` export into a :class:`PositioningDataset`.
 
     Parameters
@@ -179,11 +224,16 @@ def parse_renishaw(text: str, source: str = "<text>", target_unit: str | None = 
     target_unit : str, optional
         Refused unless it is the file's own (mm for ``.rtl``, deg for ``.rta``).
     deviation_unit : str, optional
-        Convert the deviations to this unit (default: the file's, µm or µrad).
+        Convert the deviations to this unit (default: µm for ``.rtl``, the file's own; arcsec
+        for ``.rta``, converted from the file's µrad and said in the notes, as every rotary
+        result of axiscal is in arcseconds).
     axis_kind : {"linear", "rotary"}, optional
         Refused unless it matches the file type.
     expect : {"rtl", "rta"}, optional
         Refuse a file of the other type.
+    encoding : str, optional
+        The encoding the text was read in (:func:`decode`); anything but UTF-8 is said in the
+        dataset's notes.
 
     Examples
     --------
@@ -204,12 +254,21 @@ def parse_renishaw(text: str, source: str = "<text>", target_unit: str | None = 
     records = _records(targets, values, flags, n_runs, source)
     env, env_date, unfitted = _environment(sections.get("ENVIRONMENT", []), source)
     meta = _metadata(_fields(sections.get("USER-TEXT", []), source), env, env_date, unfitted)
+    if encoding and encoding != "utf-8":
+        said = f"read as {encoding} text (a Windows export in the PC's code page)"
+        meta = replace(meta, notes=f"{meta.notes} | {said}" if meta.notes else said)
     try:
         ds = PositioningDataset.from_records(kind, records, tu, du, meta, source=source)
     except DataFormatError:
         raise
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
+    if deviation_unit is None and ftype == "rta":
+        said = ("deviations converted from the file's µrad to arcsec, the unit of every rotary "
+                "result in axiscal (read with deviation_unit=urad for the file's own numbers)")
+        ds = ds.with_deviation_unit("arcsec")
+        return replace(ds, metadata=replace(ds.metadata, notes=f"{ds.metadata.notes} | {said}"
+                                            if ds.metadata.notes else said))
     return ds.with_deviation_unit(units.canonical(deviation_unit)) if deviation_unit else ds
 
 

@@ -315,7 +315,9 @@ def _write_table(store, test_id: int, controller: str, spacing: float, axis: str
         raise InputError(f"a {ev.kind} test gives no compensation table here")
     table = table_from_result(ev.evaluation, spacing, axis=axis or t.summary.axis,
                               bidirectional=ev.evaluation.bidirectional)
-    f = mod.write(table)
+    from axiscal.compensation.controllers.convert import convert
+
+    f = convert(table, mod.NAME)          # the one writing path of the CLI and the API
     store.add_table(test_id, mod.NAME, f.filename, f.text)
     return f
 

@@ -48,6 +48,16 @@ class ControllerFile:
     extra_files: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
 
+    def written_as(self, name: str) -> "ControllerFile":
+        """The same file saved as ``name``: an enabling step that names the file (LinuxCNC's
+        ``COMP_FILE = x.comp``) names ``name`` instead (issue 42)."""
+        from dataclasses import replace
+
+        if not name or name == self.filename:
+            return self
+        return replace(self, filename=name, enable=tuple(
+            e.replace(f"= {self.filename}", f"= {name}") for e in self.enable))
+
     def __str__(self) -> str:
         lines = [f"{self.controller}: {self.filename} ({len(self.text.splitlines())} lines)"]
         lines += [f"  enable: {e}" for e in self.enable]

@@ -81,7 +81,7 @@ import numpy as np
 from axiscal.compensation.controllers._common import (
     ControllerFile, FileInput, check_points, check_spacing, check_travel, correction_factor,
     file_unit, parse_number, require_equidistant, resolve_input, safe_axis_name)
-from axiscal.compensation.tables import CompensationTable
+from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
@@ -223,8 +223,11 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" 
                           spacing, up, down, bidirectional=bidirectional,
                           modulo=params.get(3625, 0) != 0, reference_index=ref - first)
     k = count / correction_factor(t, pu)   # counts -> correction unit
+    origin = TableOrigin(NAME, str(axis_number) if axis_number else "", None,
+                         got["unit"].value if kind is AxisKind.LINEAR else "deg",
+                         got["axis_kind"].source)
     return replace(t, up=np.round(up * k, 9) + 0.0, down=np.round(down * k, 9) + 0.0,
-                   resolution=k * mag)
+                   resolution=k * mag, origin=origin)
 
 
 def inputs(text: str, source: str = "<text>", axis_kind=None, axis_number: int | None = None,

@@ -40,7 +40,7 @@ import numpy as np
 from axiscal.compensation.controllers._common import (
     SOURCE_COMMENT, ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
     decimals, file_unit, parse_number, require_equidistant, safe_axis_name)
-from axiscal.compensation.tables import CompensationTable
+from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError
 
@@ -190,6 +190,8 @@ def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str" = "line
                           arr[:, 1] + (arr[:, 2] if bidi else 0.0), bidirectional=bidi,
                           modulo=modulo)
     k = correction_factor(t, pu)
+    t = replace(t, origin=TableOrigin(NAME, ax, None, declared if kind is AxisKind.LINEAR
+                                      else "deg", "option"))
     return _as_written(t, arr[:, 1], arr[:, 2] if bidi else 0 * arr[:, 1], k)
 
 

@@ -57,7 +57,7 @@ import numpy as np
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_points, check_travel, correction_factor, decimals, file_unit,
     parse_number, safe_axis_name)
-from axiscal.compensation.tables import CompensationTable
+from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
@@ -161,7 +161,10 @@ def parse(text: str, source: str = "<text>", file_type: int = 1,
                           rev, bidirectional=not np.allclose(fwd, rev), modulo=modulo,
                           nodes=nodes)
     k = correction_factor(t, pu) / mm            # file unit -> correction unit
-    return replace(t, up=np.round(fwd / k, 6) + 0.0, down=np.round(rev / k, 6) + 0.0)
+    origin = TableOrigin(NAME, "", None, "deg" if kind is not AxisKind.LINEAR else
+                         ("inch" if mm != 1.0 else "mm"), "option")
+    return replace(t, up=np.round(fwd / k, 6) + 0.0, down=np.round(rev / k, 6) + 0.0,
+                   origin=origin)
 
 
 def looks_like(text: str) -> bool:

@@ -67,7 +67,7 @@ the table fades out instead, at the cost of the correction in the last interval.
 from __future__ import annotations
 
 import re
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -75,29 +75,31 @@ from axiscal.compensation.controllers._common import (
     ControllerFile, check_modulo, check_points, check_spacing, check_travel,
     correction_factor, decimals, file_unit, parse_number, require_equidistant, resolve_input,
     safe_axis_name)
-from axiscal.compensation.tables import CompensationTable
+from axiscal.compensation.controllers.siemens_text import fmt as _fmt
+from axiscal.compensation.controllers.siemens_cec import (  # noqa: F401 - the CEC tables
+    CECTable, parse_cross_axis, read_cross_axis, write_cross_axis)
+from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 from axiscal.units import display
 
-__all__ = ["NAME", "write", "write_axes", "parse", "parse_axes", "inputs", "MAX_POINTS"]
+__all__ = ["NAME", "write", "write_axes", "parse", "parse_axes", "read_tables", "EECFile",
+           "inputs", "MAX_POINTS", "read_cross_axis", "write_cross_axis", "parse_cross_axis"]
 
 NAME = "siemens-840d"
 #: Default MD38000 limit (not confirmed; the machine's MD38000 value is the real limit).
 MAX_POINTS = 5000
 
 _VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]\s*=\s*(\S+)")
-_PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d{1,9})\s*,\s*([A-Za-z0-9_]+)\s*\]"
-                    r"\s*=\s*(\S+)")
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
 _NAME = re.compile(r"^;\s*axiscal: axis (\S+),")
 _MD10240 = re.compile(r"^(?:;\s*MD10240\s+)?\$MN_SCALING_SYSTEM_IS_METRIC\s*=\s*(\S+?)(?::|\s|$)")
 
 
-def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
+def write(table: CompensationTable, travel=None, *, machine_axis: str | None = None,
           max_points: int = MAX_POINTS, position_resolution: float = 0.001,
           zero_at_reference: bool = True, zero_ends: bool = False,
-          unit: str = "mm") -> ControllerFile:
+          unit: str | None = None, measuring_system: int | None = None) -> ControllerFile:
     """Write ``table`` as a ``%_N_AX_EEC_INI`` file for ``machine_axis``.
 
     Parameters
@@ -106,8 +108,9 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
         Positions in mm (linear) or deg (rotary).
     travel : (float, float), optional, ``table.position_unit``
         Axis travel; the table must lie inside it.
-    machine_axis : str
-        Machine axis name in the file (``AX1``, ``X1`` ...).
+    machine_axis : str, optional
+        Machine axis name in the file (``AX1``, ``X1`` ...); default: the axis the table was
+        read from (:attr:`CompensationTable.origin` of an 840D table), else ``AX1``.
     max_points : int
         MD38000 ``$MA_MM_ENC_COMP_MAX_POINTS``.
     position_resolution : float, mm, inch or deg
@@ -116,17 +119,22 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
         Shift the table so the value at its reference point is 0 (Siemens' advice).
     zero_ends : bool
         Set the first and last values to 0 (see the module docstring).
-    unit : str
-        ``mm`` or ``inch``: the machine's basic system (MD10240 = 1 or 0) for a linear axis.
+    unit : str, optional
+        ``mm`` or ``inch``: the machine's basic system (MD10240 = 1 or 0) for a linear axis;
+        default: the unit of the 840D file the table was read from, else mm.
+    measuring_system : int, optional
+        1 or 2 (the first index 0 or 1, MD32700 per measuring system); default: the one the
+        table was read from, else 1.
 
     Returns
     -------
     ControllerFile
     """
+    machine_axis, measuring_system, unit = _own(table, machine_axis, measuring_system, unit)
     per = file_unit(unit, table, NAME)
     _check(table, travel, max_points, position_resolution, per)
     body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends,
-                                               per)
+                                               per, measuring_system)
     text = "\n".join(["%_N_AX_EEC_INI", "CHANDATA(1)", *body, "M17"]) + "\n"
     return ControllerFile(NAME, text, "AX_EEC.INI", written, tuple(enable), notes=tuple(notes))
 
@@ -141,12 +149,12 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     body, enable, notes = [], [], []
     mp = options.pop("max_points", MAX_POINTS)
     res = options.pop("position_resolution", 0.001)
-    unit = options.pop("unit", "mm")
     for ax, table in tables.items():
         tr = travel.get(ax) if isinstance(travel, dict) else travel
+        _, ms, unit = _own(table, ax, options.get("measuring_system"), options.get("unit"))
         _check(table, tr, mp, res, file_unit(unit, table, NAME))
         b, e, _, n = _axis_block(table, ax, options.get("zero_at_reference", True),
-                                 options.get("zero_ends", False), file_unit(unit, table, NAME))
+                                 options.get("zero_ends", False), file_unit(unit, table, NAME), ms)
         body += b
         enable += e
         notes += n
@@ -155,7 +163,22 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     return ControllerFile(NAME, text, "AX_EEC.INI", first, tuple(enable), notes=tuple(notes))
 
 
-def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0):
+def _own(table, machine_axis, measuring_system, unit):
+    """Machine axis, measuring system and unit: given, else those of the 840D file the table was
+    read from (so a converted table lands on its own axis), else AX1, 1 and mm."""
+    o = table.origin if getattr(table.origin, "controller", "") == NAME else None
+    if machine_axis is None:
+        machine_axis = o.machine_axis if o and o.machine_axis else "AX1"
+    if measuring_system is None:
+        measuring_system = o.measuring_system if o and o.measuring_system else 1
+    if str(measuring_system) not in ("1", "2"):
+        raise InputError(f"{NAME}: measuring_system = {measuring_system!r}; 1 or 2")
+    if unit is None:
+        unit = o.unit if o and o.unit == "inch" else "mm"
+    return str(machine_axis), int(measuring_system), unit
+
+
+def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0, ms=1):
     """The lines of one axis's table, its enabling steps, the table as written, notes.
 
     ``per``: mm per unit of the file (25.4 on an inch machine, MD10240 = 0).
@@ -183,25 +206,28 @@ def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0):
     if table.position_unit == "mm":
         metric = [f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {1 if per == 1.0 else 0}"]
         lines.append(f"; {metric[0]}: values, STEP, MIN and MAX in {fu}")
-    lines += [f"$AA_ENC_COMP[0,{i},{ax}]={_fmt(v)}" for i, v in enumerate(values)]
+    e = ms - 1                                       # measuring system 1 -> index 0
+    lines += [f"$AA_ENC_COMP[{e},{i},{ax}]={_fmt(v)}" for i, v in enumerate(values)]
     nd_pos = 9 if per == 1.0 else 12
-    lines += [f"$AA_ENC_COMP_STEP[0,{ax}]={_fmt(table.spacing / per, nd_pos)}",
-              f"$AA_ENC_COMP_MIN[0,{ax}]={_fmt(table.start / per, nd_pos)}",
-              f"$AA_ENC_COMP_MAX[0,{ax}]={_fmt(table.end / per, nd_pos)}",
-              f"$AA_ENC_COMP_IS_MODULO[0,{ax}]={1 if table.modulo else 0}"]
-    enable = [f"MD38000 $MA_MM_ENC_COMP_MAX_POINTS[0,{ax}] >= {table.n_points} "
+    lines += [f"$AA_ENC_COMP_STEP[{e},{ax}]={_fmt(table.spacing / per, nd_pos)}",
+              f"$AA_ENC_COMP_MIN[{e},{ax}]={_fmt(table.start / per, nd_pos)}",
+              f"$AA_ENC_COMP_MAX[{e},{ax}]={_fmt(table.end / per, nd_pos)}",
+              f"$AA_ENC_COMP_IS_MODULO[{e},{ax}]={1 if table.modulo else 0}"]
+    enable = [f"MD38000 $MA_MM_ENC_COMP_MAX_POINTS[{e},{ax}] >= {table.n_points} "
               "(memory is re-formatted at the next power-on)",
-              f"load the file while MD32700 $MA_ENC_COMP_ENABLE[0,{ax}] = 0",
-              f"then MD32700 $MA_ENC_COMP_ENABLE[0,{ax}] = 1 and reference the axis"]
+              f"load the file while MD32700 $MA_ENC_COMP_ENABLE[{e},{ax}] = 0",
+              f"then MD32700 $MA_ENC_COMP_ENABLE[{e},{ax}] = 1 and reference the axis"]
     enable += [f"{m} on the machine (the file's values, STEP, MIN and MAX are in {fu})"
                for m in metric]
     if table.bidirectional:
         b = np.round(-table.backlash * k, nd) + 0.0
-        lines.append(f"; MD32450 $MA_BACKLASH[0,{ax}]={_fmt(b)}")
-        enable.append(f"MD32450 $MA_BACKLASH[0,{ax}] = {_fmt(b)} {fu} "
+        lines.append(f"; MD32450 $MA_BACKLASH[{e},{ax}]={_fmt(b)}")
+        enable.append(f"MD32450 $MA_BACKLASH[{e},{ax}] = {_fmt(b)} {fu} "
                       "(mean reversal; the table holds the mean of both directions)")
     as_file = np.round(-values / k, 6) + 0.0          # what the file holds, back in the table's unit
-    written = replace(table, up=as_file, down=as_file, bidirectional=False)
+    kind_from = table.origin.kind_from if table.origin is not None else ""
+    written = replace(table, up=as_file, down=as_file, bidirectional=False,
+                      origin=TableOrigin(NAME, ax, ms, fu, kind_from))
     if table.bidirectional:
         written = _with_backlash(written, b / k)
     return lines, enable, written, notes
@@ -209,44 +235,216 @@ def _axis_block(table, machine_axis, zero_at_reference, zero_ends, per=1.0):
 
 def parse(text: str, source: str = "<text>", axis_kind: "AxisKind | str | None" = None,
           axis: str = "", correction_unit: str | None = None,
-          machine_axis: str | None = None, unit: str | None = None) -> CompensationTable:
-    """Read one axis of a ``%_N_AX_EEC_INI`` file back into a table (corrections = −file values).
+          machine_axis: str | None = None, unit: str | None = None,
+          measuring_system: int | None = None, machine_data: str = "") -> CompensationTable:
+    """Read one table of an EEC file back (corrections = −file values).
 
-    ``machine_axis`` chooses the axis of a file holding several (it must then be given).
-    ``axis_kind`` defaults to rotary if the table is modulo, else linear. Corrections come back
-    in ``correction_unit`` (default µm or arcsec). A ``; MD32450`` comment written by
-    :func:`write` makes the table bidirectional again (mean ± backlash/2); a ``; axiscal: axis X``
-    comment gives the axis name back. ``unit`` (``mm`` or ``inch``) is the machine's basic system
-    (MD10240); the file's own statement of it wins, and a ``unit`` contradicting it is refused.
+    ``machine_axis`` (``AX4`` or its name ``C1``) and ``measuring_system`` (1 or 2) choose the
+    table of a file holding several (they must then be given); another table that cannot be
+    read does not stop this one. ``axis_kind`` defaults to the machine data's (MD30300,
+    ``machine_data`` = the text of an ``INITIAL.INI``), else rotary if the table is modulo,
+    else linear (said by :func:`read_tables` as an assumption). Corrections come back in
+    ``correction_unit`` (default µm or arcsec). A ``; MD32450`` comment written by :func:`write`
+    makes the table bidirectional again (mean ± backlash/2); a ``; axiscal: axis X`` comment
+    gives the axis name back. ``unit`` (``mm`` or ``inch``) is the machine's basic system
+    (MD10240); the file's own statement of it (``METRIC``/``INCH`` or MD10240) wins, and a
+    ``unit`` contradicting it is refused.
     """
-    tables = parse_axes(text, source, axis_kind=axis_kind, correction_unit=correction_unit,
-                        unit=unit)
-    if machine_axis is None:
-        if len(tables) > 1:
-            raise DataFormatError(f"the file holds the tables of {len(tables)} machine axes "
-                                  f"({', '.join(tables)}): choose one with machine_axis=",
-                                  source)
-        machine_axis = next(iter(tables))
-    key = next((k for k in tables if k.upper() == str(machine_axis).upper()), None)
-    if key is None:
-        raise DataFormatError(f"no table for machine axis {machine_axis!r}; the file holds "
-                              f"{', '.join(tables)}", source)
-    t = tables[key]
+    r = read_tables(text, source, axis_kind=axis_kind, correction_unit=correction_unit,
+                    unit=unit, machine_data=machine_data)
+    keys = list(r.tables) + list(r.refused)
+    if machine_axis is None and measuring_system is None and len(keys) > 1:
+        axes = len({k[0] for k in keys})
+        what = (f"{len(keys)} tables of {axes} machine axes" if axes < len(keys)
+                else f"the tables of {axes} machine axes")
+        raise DataFormatError(f"the file holds {what} ({', '.join(map(_key, keys))}): choose one "
+                              "with machine_axis= (AX1/2: measuring system 2 of AX1)", source)
+    want = [k for k in keys if _matches(k, machine_axis, measuring_system, r.md)]
+    if not want:
+        raise DataFormatError(f"no table for {_wanted(machine_axis, measuring_system)}; the file "
+                              f"holds {', '.join(map(_key, keys))}", source)
+    if len(want) > 1:
+        raise DataFormatError(f"{machine_axis} has a table for each measuring system: give "
+                              "measuring_system=1 or 2", source)
+    if want[0] in r.refused:
+        raise DataFormatError(r.refused[want[0]], source)
+    t = r.tables[want[0]]
     return replace(t, axis=axis) if axis else t
 
 
 def parse_axes(text: str, source: str = "<text>", axis_kind=None,
-               correction_unit: str | None = None, unit: str | None = None) -> dict:
-    """Every machine axis's table of a ``%_N_AX_EEC_INI`` file, by machine axis name.
+               correction_unit: str | None = None, unit: str | None = None,
+               machine_data: str = "") -> dict:
+    """Every table of an EEC file by machine axis (``AX1``; ``AX1/2`` for measuring system 2).
 
-    Positions come back in mm (deg), whatever the file's unit (see :func:`inputs`).
+    Positions come back in mm (deg), whatever the file's unit (see :func:`inputs`). A table that
+    cannot be read is refused naming it; :func:`read_tables` reads the others regardless.
     """
-    per = file_unit(inputs(text, source, unit=unit)[0].value, None, NAME)
-    values: dict[str, dict[int, float]] = {}
-    params: dict[str, dict[str, float]] = {}
-    backlash: dict[str, float] = {}
-    names: dict[str, str] = {}
-    pending_name = ""
+    r = read_tables(text, source, axis_kind=axis_kind, correction_unit=correction_unit,
+                    unit=unit, machine_data=machine_data)
+    if r.refused:
+        raise DataFormatError("; ".join(r.refused.values()), source)
+    return {_key(k): t for k, t in r.tables.items()}
+
+
+@dataclass(frozen=True)
+class EECFile:
+    """What :func:`read_tables` found in an EEC file or loader program.
+
+    Attributes
+    ----------
+    tables : dict of (str, int) to CompensationTable
+        By (machine axis as written, measuring system 1 or 2).
+    refused : dict of (str, int) to str
+        The tables that cannot be read, each with its reason (the others are read regardless).
+    notes : tuple of str
+        What was read, assumed or left out (control statements of a loader program, points
+        reserved but unused, where each axis kind came from).
+    md : MachineData
+        The machine data used (given beside, or held in the file itself).
+    """
+
+    tables: dict
+    refused: dict
+    notes: tuple
+    md: object
+
+    @staticmethod
+    def key(k) -> str:
+        """``AX1`` (measuring system 1) or ``AX1/2`` (measuring system 2)."""
+        return _key(k)
+
+
+def read_tables(text: str, source: str = "<text>", axis_kind=None,
+                correction_unit: str | None = None, unit: str | None = None,
+                machine_data: str = "", machine_data_source: str = "the machine data") -> EECFile:
+    """Every ``$AA_ENC_COMP`` table of a file as the control writes it, one bad table not
+    blocking the others.
+
+    Reads the NCK's headers (``%_N_…``, ``METRIC``/``INCH``, ``CHANDATA``), ``M17``/``M30``,
+    comments and CRLF (:mod:`~axiscal.compensation.controllers.siemens_text`); a loader
+    program's ``NEWCONF``, ``STOPRE``, ``MSG``, ``G4`` and machine-data assignments are named in
+    the notes and left out. Each table is keyed by machine axis and measuring system (the first
+    index: 0 = measuring system 1, 1 = measuring system 2, MD32700 per measuring system; SINUMERIK
+    840D sl Function Manual K3, "Measuring system-specific parameters of the compensation
+    table"), so the values of one are never combined with STEP/MIN/MAX of the other.
+
+    Notes
+    -----
+    K3: ``$AA_ENC_COMP_MAX`` is the end position, interpolation point *k* with
+    k = (MAX − MIN)/STEP; the control applies point k's value beyond it. MD38000 reserves
+    points 0 … MD38000−1 and a series start-up file lists them all: points after *k* are not
+    used (said in the notes, and named if they are not 0). A range that is not a whole number
+    of steps, or a *k* beyond the points given, refuses that table only.
+    """
+    from axiscal.compensation.controllers import siemens_machine_data as smd
+    from axiscal.compensation.controllers.siemens_text import statements
+
+    own = smd.parse(text, source)
+    md = smd.parse(machine_data, machine_data_source) if machine_data else own
+    notes: list[str] = []
+    said = inputs(text, source, unit=unit)[0]
+    if said.assumed and md.metric is not None:      # the machine data's MD10240 decides
+        said = inputs(text, source, unit="mm" if md.metric else "inch")[0]
+        notes.append(f"unit {said.value}: MD10240 $MN_SCALING_SYSTEM_IS_METRIC = "
+                     f"{int(md.metric)} in {md.source}")
+    per = file_unit(said.value, None, NAME)
+    values: dict = {}
+    params: dict = {}
+    for s in statements(text, source):
+        if s.kind == "control":
+            notes.append(f"line {s.line}: {s.name} left out ({_CONTROL_WHAT[s.name]})")
+        elif s.kind == "assign" and s.name == "AA_ENC_COMP" and len(s.index) == 3:
+            key = (s.index[2], _ms(s.index[0], source, s.line))
+            i = _index(s.index[1], source, s.line)
+            _once(values.setdefault(key, {}), i, f"{_key(key)}: $AA_ENC_COMP point {i}", source,
+                  s.line)
+            values[key][i] = parse_number(s.value, source, s.line)
+        elif s.kind == "assign" and s.name.startswith("AA_ENC_COMP_") and len(s.index) == 2:
+            what = s.name[len("AA_ENC_COMP_"):]
+            if what not in ("STEP", "MIN", "MAX", "IS_MODULO"):
+                raise DataFormatError(f"${s.name} is not a parameter of the EEC table", source,
+                                      s.line)
+            key = (s.index[1], _ms(s.index[0], source, s.line))
+            _once(params.setdefault(key, {}), what, f"{_key(key)}: $AA_ENC_COMP_{what}", source,
+                  s.line)
+            params[key][what] = parse_number(s.value, source, s.line)
+        elif s.kind == "assign" and s.name.startswith(("MA_", "MN_", "MC_", "SN_", "SA_")):
+            if s.name == "MA_ENC_COMP_ENABLE":
+                notes.append(f"line {s.line}: MD32700 ${s.name}[{','.join(s.index)}] = {s.value} "
+                             "(the program switches the compensation; not a table value)")
+        elif s.kind == "assign" and s.name.startswith("AN_CEC"):
+            continue                           # cross-axis tables: read_cross_axis reads them
+        elif s.kind == "assign":
+            raise DataFormatError(f"${s.name} is not a compensation table variable axiscal reads "
+                                  "($AA_ENC_COMP…, $AN_CEC…, machine data)", source, s.line)
+    if not values:
+        raise DataFormatError("no $AA_ENC_COMP values: not an EEC table", source)
+    extra = _comments(text, source)
+    tables, refused = {}, {}
+    for key in values:
+        try:
+            t, n = _one_axis(values[key], params.get(key, {}), extra, key, axis_kind, md,
+                             correction_unit, source, per)
+        except DataFormatError as exc:
+            refused[key] = f"{_key(key)}: {exc.message if hasattr(exc, 'message') else exc}"
+            continue
+        tables[key] = t
+        notes += n
+    for key in params:
+        if key not in values:
+            refused[key] = f"{_key(key)}: STEP/MIN/MAX given but no $AA_ENC_COMP values"
+    return EECFile(tables, refused, tuple(notes), md)
+
+
+_CONTROL_WHAT = {"NEWCONF": "takes over NEW_CONFIG machine data", "STOPRE": "preprocessing stop",
+                 "MSG": "operator message", "G4": "dwell"}
+
+
+def _key(k) -> str:
+    ax, ms = k
+    return ax if ms == 1 else f"{ax}/{ms}"
+
+
+def _matches(k, machine_axis, measuring_system, md) -> bool:
+    ax, ms = k
+    if measuring_system is not None and int(measuring_system) != ms:
+        return False
+    if machine_axis is None:
+        return True
+    want = str(machine_axis).strip().upper()
+    if "/" in want:
+        want, _, m = want.partition("/")
+        if m.strip() != str(ms):
+            return False
+    return ax.upper() == want or md.machine_axis(ax) == md.machine_axis(want)
+
+
+def _wanted(machine_axis, measuring_system) -> str:
+    ms = f", measuring system {measuring_system}" if measuring_system is not None else ""
+    if machine_axis is None:
+        return f"measuring system {measuring_system}"
+    return f"machine axis {machine_axis!r}{ms}"
+
+
+def _ms(token: str, source: str, line: int) -> int:
+    """Measuring system 1 or 2 from the first index (0 or 1)."""
+    if token not in ("0", "1"):
+        raise DataFormatError(f"measuring-system index {token[:10]!r}: 0 (measuring system 1) or "
+                              "1 (measuring system 2)", source, line)
+    return int(token) + 1
+
+
+def _index(token: str, source: str, line: int) -> int:
+    if not re.fullmatch(r"[0-9]{1,9}", token):
+        raise DataFormatError(f"interpolation point {token[:12]!r} is not a whole number", source,
+                              line)
+    return int(token)
+
+
+def _comments(text: str, source: str) -> dict:
+    """What :func:`write` says in comments: MD32450 backlash and the axis name, by axis."""
+    backlash, names, pending = {}, {}, ""
     for n, raw in enumerate(text.splitlines(), 1):
         line = raw.strip()
         m = _BACKLASH.search(line)
@@ -255,88 +453,127 @@ def parse_axes(text: str, source: str = "<text>", axis_kind=None,
             backlash[ax.group(1) if ax else ""] = parse_number(m.group(1), source, n)
         m = _NAME.match(line)
         if m:
-            pending_name = "" if m.group(1) == "-" else m.group(1)
-        if not line or line.startswith((";", "%", "CHANDATA", "M17", "M30")) or \
-                _MD10240.match(line):
-            continue
+            pending = "" if m.group(1) == "-" else m.group(1)
         m = _VALUE.match(line)
-        if m:
-            ax, i = m.group(3), int(m.group(2))
-            _once(values.setdefault(ax, {}), i, f"{ax}: $AA_ENC_COMP point {i}", source, n)
-            values[ax][i] = parse_number(m.group(4).split(";")[0], source, n)
-            if pending_name and ax not in names:
-                names[ax] = pending_name
-            continue
-        m = _PARAM.match(line)
-        if m:
-            ax = m.group(3)
-            _once(params.setdefault(ax, {}), m.group(1), f"{ax}: $AA_ENC_COMP_{m.group(1)}",
-                  source, n)
-            params[ax][m.group(1)] = parse_number(m.group(4).split(";")[0], source, n)
-            continue
-        raise DataFormatError(f"not a $AA_ENC_COMP line: {raw[:60]!r}", source, n)
-    if not values:
-        raise DataFormatError("no $AA_ENC_COMP values: not an EEC table", source)
-    out = {}
-    for ax in values:
-        b = backlash.get(ax, backlash.get("") if len(values) == 1 else None)
-        out[ax] = _one_axis(values[ax], params.get(ax, {}), b, ax, names.get(ax, ""), axis_kind,
-                            correction_unit, source, per)
-    return out
+        if m and pending and m.group(3) not in names:
+            names[m.group(3)] = pending
+    return dict(backlash=backlash, names=names)
 
 
 def inputs(text: str, source: str = "<text>", unit: str | None = None, **_) -> tuple:
-    """The file's length unit (MD10240): stated in the file, given as ``unit``, or mm assumed.
+    """The file's length unit: stated in the file (``METRIC``/``INCH`` header or MD10240),
+    given as ``unit``, or mm assumed.
 
-    A ``unit`` that contradicts the file's statement, or a file stating MD10240 twice
-    differently, is refused (:class:`DataFormatError`).
+    A ``unit`` that contradicts the file's statement, or a file stating it twice differently,
+    is refused (:class:`DataFormatError`).
     """
-    stated = None
+    stated, said = None, ""
     for n, raw in enumerate(text.splitlines(), 1):
-        m = _MD10240.match(raw.strip())
-        if not m:
+        line = re.sub(r"^N\d+\s+", "", raw.strip(), flags=re.IGNORECASE)
+        m = _MD10240.match(line)
+        head = line.split(";")[0].strip().upper()
+        if m:
+            v = {"0": "inch", "false": "inch", "1": "mm", "true": "mm"}.get(m.group(1).lower())
+            what = f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {m.group(1)[:20]}"
+            if v is None:
+                raise DataFormatError(f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {m.group(1)[:20]!r}"
+                                      " (1: metric, 0: inch)", source, n)
+        elif head in ("METRIC", "INCH"):
+            v, what = ("mm" if head == "METRIC" else "inch"), f"the header line {head}"
+        else:
             continue
-        v = {"0": "inch", "false": "inch", "1": "mm", "true": "mm"}.get(m.group(1).lower())
-        if v is None or stated not in (None, v):
-            raise DataFormatError(f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {m.group(1)[:20]!r}"
-                                  + ("" if v is None else " contradicts an earlier line")
-                                  + " (1: metric, 0: inch)", source, n)
-        stated = v
+        if stated not in (None, v):
+            raise DataFormatError(f"{what} contradicts an earlier line ({said})", source, n)
+        stated, said = v, what
     given = None if unit is None else ("inch" if file_unit(unit, None, NAME) != 1.0 else "mm")
-    said = f"the file states MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {0 if stated == 'inch' else 1}"
-    return (resolve_input("unit", given, stated, "mm", said=said, source=source,
-                          why="the file does not state MD10240 (a metric machine, MD10240 = 1, "
-                              "assumed)"),)
+    return (resolve_input("unit", given, stated, "mm", said=f"the file states {said}",
+                          source=source,
+                          why="the file does not state its unit (no METRIC/INCH header, no "
+                              "MD10240): a metric machine, MD10240 = 1, assumed"),)
 
 
-def _one_axis(values, params, backlash, machine_axis, name, axis_kind, correction_unit, source,
-              per=1.0):
-    for key in ("STEP", "MIN", "MAX"):
-        if key not in params:
-            raise DataFormatError(f"$AA_ENC_COMP_{key} of {machine_axis} is missing", source)
+def _one_axis(values, params, extra, key, axis_kind, md, correction_unit, source, per=1.0):
+    """One table (and its notes) from its values and STEP/MIN/MAX/IS_MODULO."""
+    machine_axis, ms = key
+    name = _key(key)
+    notes = []
+    for p in ("STEP", "MIN", "MAX"):
+        if p not in params:
+            raise DataFormatError(f"$AA_ENC_COMP_{p} is missing", source)
     if sorted(values) != list(range(len(values))):
-        raise DataFormatError(f"interpolation points of {machine_axis} must be numbered 0, 1, 2 "
-                              "… without gaps", source)
+        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps",
+                              source)
+    step, lo, hi = params["STEP"], params["MIN"], params["MAX"]
+    if not step > 0:
+        raise DataFormatError(f"$AA_ENC_COMP_STEP = {step:g} must be positive", source)
+    k = (hi - lo) / step
+    if abs(k - round(k)) > 1e-6 * max(1.0, abs(k)) or round(k) < 1:
+        raise DataFormatError(f"(MAX {hi:g} − MIN {lo:g}) / STEP {step:g} = {k:.6g} is not a "
+                              "whole number of steps of at least 1 (K3: MAX is interpolation "
+                              "point k)", source)
+    k = int(round(k))
+    n = len(values)
+    if k >= n:
+        raise DataFormatError(f"MAX {hi:g} is interpolation point {k}, but the file gives points "
+                              f"0 … {n - 1} only", source)
+    unused = [values[i] for i in range(k + 1, n)]
+    if unused:
+        nonzero = sum(v != 0 for v in unused)
+        notes.append(f"{name}: {_points(k + 1, n - 1)} ({n - k - 1} of {n}, reserved by MD38000) "
+                     f"{'is' if k + 2 == n else 'are'} not used: the table ends at point {k} = "
+                     f"MAX {hi:g}"
+                     + (f"; {nonzero} of them hold values the control does not apply"
+                        if nonzero else ""))
+    reserved = md.max_points.get((md.machine_axis(machine_axis), ms - 1))
+    if reserved is not None and n > reserved:
+        raise DataFormatError(f"{n} points but MD38000 $MA_MM_ENC_COMP_MAX_POINTS[{ms - 1},"
+                              f"{machine_axis}] = {reserved}", source)
     modulo = bool(params.get("IS_MODULO", 0))
-    kind = AxisKind.parse(axis_kind or ("rotary" if modulo else "linear"))
+    kind, kind_from = _kind(machine_axis, axis_kind, modulo, md, name, notes)
     pu = "mm" if kind is AxisKind.LINEAR else "deg"
     cu = correction_unit or ("um" if kind is AxisKind.LINEAR else "arcsec")
     per = per if kind is AxisKind.LINEAR else 1.0     # degrees in either basic system
-    dev = np.array([values[i] for i in range(len(values))]) * per
-    span = (len(dev) - 1) * params["STEP"]
-    if abs(params["MIN"] + span - params["MAX"]) > 1e-6 * max(1.0, abs(span)):
-        raise DataFormatError(f"{machine_axis}: MIN {params['MIN']:g} + {len(dev) - 1} x STEP "
-                              f"{params['STEP']:g} does not reach MAX {params['MAX']:g}", source)
+    dev = np.array([values[i] for i in range(k + 1)]) * per
+    label = extra["names"].get(machine_axis) or md.names.get(md.machine_axis(machine_axis)) \
+        or machine_axis
+    origin = TableOrigin(NAME, machine_axis, ms, "inch" if per != 1.0 else pu, kind_from)
     try:
-        t = CompensationTable(name or machine_axis, kind, pu, cu, _mm(params["MIN"], per),
-                              _mm(params["STEP"], per), dev, dev, modulo=modulo)
+        t = CompensationTable(label, kind, pu, cu, _mm(lo, per), _mm(step, per), dev, dev,
+                              modulo=modulo, origin=origin)
     except ControllerLimitError:
         raise
     except InputError as exc:  # the table's own validation of what the file declared
         raise DataFormatError(str(exc), source) from None
-    t = replace(t, up=np.round(-dev / correction_factor(t, pu), 6) + 0.0,
-                down=np.round(-dev / correction_factor(t, pu), 6) + 0.0)
-    return t if backlash is None else _with_backlash(t, backlash * per / correction_factor(t, pu))
+    c = np.round(-dev / correction_factor(t, pu), 6) + 0.0
+    t = replace(t, up=c, down=c)
+    bl = extra["backlash"]
+    b = bl.get(machine_axis, bl.get("") if len(bl) == 1 else None)
+    return (t if b is None else _with_backlash(t, b * per / correction_factor(t, pu))), notes
+
+
+def _points(a: int, b: int) -> str:
+    return f"point {a}" if a == b else f"points {a} … {b}"
+
+
+def _kind(machine_axis, axis_kind, modulo, md, name, notes):
+    """The axis kind: given, from the machine data, modulo → rotary, or linear assumed."""
+    if axis_kind is not None:
+        return AxisKind.parse(axis_kind), "option"
+    said = md.kind(machine_axis)
+    if said is not None:
+        kind, md_modulo, why = said
+        notes.append(f"{name}: {why}")
+        if md_modulo != modulo and kind == "rotary":
+            notes.append(f"{name}: $AA_ENC_COMP_IS_MODULO = {int(modulo)} while MD30310 = "
+                         f"{int(md_modulo)}: the table is read as the file says")
+        return AxisKind.parse(kind), "machine data"
+    if modulo:
+        notes.append(f"{name}: rotary (the table is modulo, $AA_ENC_COMP_IS_MODULO = 1)")
+        return AxisKind.ROTARY, "file"
+    notes.append(f"assumed: {name} is linear (mm): the table is not modulo and no machine data "
+                 "(MD30300 $MA_IS_ROT_AX) was given; a swivel axis is rotary without being "
+                 "modulo: give the INITIAL.INI (--ini) or -o axis_kind=rotary")
+    return AxisKind.LINEAR, "assumed"
 
 
 def _mm(v: float, per: float) -> float:
@@ -370,94 +607,5 @@ def _check(table, travel, max_points, position_resolution, per=1.0) -> None:
                                    f"{table.start:g} deg")
 
 
-def _fmt(v: float, nd: int = 9) -> str:
-    s = f"{v:.{nd}f}".rstrip("0")
-    return s + "0" if s.endswith(".") else s
 
 
-# -- cross-axis (sag / angularity) compensation: the CEC table -------------------------------
-_CEC_VALUE = re.compile(r"^\$AN_CEC\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*\]\s*=\s*(\S+)")
-_CEC_PARAM = re.compile(r"^\$AN_CEC_([A-Z_]+)\[\s*(\d{1,9})\s*\]\s*=\s*(\S+)")
-
-
-def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str = "AX1",
-                     output_axis: str = "AX2", table_index: int = 0, max_points: int = MAX_POINTS,
-                     position_resolution: float = 0.001) -> ControllerFile:
-    """Write a cross-axis table (positions of the base axis, corrections of the compensation axis)
-    as a sag/angularity compensation file ``%_N_NC_CEC_INI``.
-
-    Format (SINUMERIK 802D sl / 840D sl Function Manual K3, "Compensation of sag and angularity
-    errors", table example for axis Y1)::
-
-        %_N_NC_CEC_INI
-        CHANDATA(1)
-        $AN_CEC[0,0]=0              ; value at interpolation point 0, mm
-        ...
-        $AN_CEC_INPUT_AXIS[0]=(AX2)  ; base axis (drives the table)
-        $AN_CEC_OUTPUT_AXIS[0]=(AX1) ; compensation axis (receives the values)
-        $AN_CEC_STEP[0]=6.73
-        $AN_CEC_MIN[0]=-400.0
-        $AN_CEC_MAX[0]=400.0
-        $AN_CEC_DIRECTION[0]=0       ; both directions of the base axis
-        $AN_CEC_MULT_BY_TABLE[0]=0
-        $AN_CEC_IS_MODULO[0]=0
-        M17
-
-    Enabling: MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` ≥ points, MD32710 ``$MA_CEC_ENABLE[AXi]`` = 1
-    for the compensation axis, SD41300 ``$SN_CEC_TABLE_ENABLE[t]`` = 1. Sign: written like the
-    EEC table, file value = −correction; that the CEC uses the same sign as the EEC is not
-    confirmed.
-    """
-    check_points(table.n_points, max_points, NAME, "points (MD18342)")
-    check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
-    check_travel(table, travel, NAME)
-    k = correction_factor(table, table.position_unit)
-    nd = decimals(table.position_unit)
-    values = np.round(-table.mean * k, nd) + 0.0
-    t = int(table_index)
-    lines = ["%_N_NC_CEC_INI", "CHANDATA(1)",
-             f"; axiscal cross-axis table: {output_axis} corrected as a function of {input_axis}, "
-             f"values = -correction in {table.position_unit}"]
-    lines += [f"$AN_CEC[{t},{i}]={_fmt(v)}" for i, v in enumerate(values)]
-    lines += [f"$AN_CEC_INPUT_AXIS[{t}]=({input_axis})", f"$AN_CEC_OUTPUT_AXIS[{t}]=({output_axis})",
-              f"$AN_CEC_STEP[{t}]={_fmt(table.spacing)}", f"$AN_CEC_MIN[{t}]={_fmt(table.start)}",
-              f"$AN_CEC_MAX[{t}]={_fmt(table.end)}", f"$AN_CEC_DIRECTION[{t}]=0",
-              f"$AN_CEC_MULT_BY_TABLE[{t}]=0", f"$AN_CEC_IS_MODULO[{t}]=0", "M17"]
-    enable = [f"MD18342 $MN_MM_CEC_MAX_POINTS[{t}] >= {table.n_points} (power-on re-formats memory)",
-              f"MD32710 $MA_CEC_ENABLE[{output_axis}] = 1 (load the table while it is 0)",
-              f"SD41300 $SN_CEC_TABLE_ENABLE[{t}] = 1"]
-    as_file = np.round(-values / k, 6) + 0.0
-    written = replace(table, up=as_file, down=as_file, bidirectional=False)
-    return ControllerFile(NAME, "\n".join(lines) + "\n", "NC_CEC.INI", written, tuple(enable))
-
-
-def parse_cross_axis(text: str, source: str = "<text>", correction_unit: str = "um"):
-    """Read a ``%_N_NC_CEC_INI`` table: (table, input axis, output axis) of its first table."""
-    values: dict[int, float] = {}
-    params: dict[str, str] = {}
-    for n, raw in enumerate(text.splitlines(), 1):
-        line = raw.split(";")[0].strip()
-        if not line or line.startswith(("%", "CHANDATA", "M17", "M30")):
-            continue
-        m = _CEC_VALUE.match(line)
-        if m:
-            values[int(m.group(2))] = parse_number(m.group(3), source, n)
-            continue
-        m = _CEC_PARAM.match(line)
-        if m:
-            params[m.group(1)] = m.group(3).strip("()")
-            continue
-        raise DataFormatError(f"not a $AN_CEC line: {raw[:60]!r}", source, n)
-    for key in ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX"):
-        if key not in params:
-            raise DataFormatError(f"$AN_CEC_{key} is missing", source)
-    if len(values) < 2 or sorted(values) != list(range(len(values))):
-        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps", source)
-    dev = np.array([values[i] for i in range(len(values))])
-    try:
-        step, lo = float(params["STEP"]), float(params["MIN"])
-        t = CompensationTable("", AxisKind.LINEAR, "mm", correction_unit, lo, step, dev, dev)
-    except ValueError as exc:
-        raise DataFormatError(str(exc), source) from None
-    c = np.round(-dev / correction_factor(t, "mm"), 6) + 0.0
-    return replace(t, up=c, down=c), params["INPUT_AXIS"], params["OUTPUT_AXIS"]

@@ -1,0 +1,253 @@
+"""SINUMERIK 840D: sag and angularity (cross-axis) compensation, the ``NC_CEC.INI`` tables.
+
+Format (SINUMERIK 802D sl / 840D sl Function Manual *Extended Functions*, K3 "Compensation",
+"Compensation of sag and angularity errors", table parameters; 03/2013 edition §4.4.4)::
+
+    %_N_NC_CEC_INI
+    CHANDATA(1)
+    $AN_CEC[0,0]=0              ; value at interpolation point 0 of table 0, mm
+    ...
+    $AN_CEC_INPUT_AXIS[0]=(AX2)  ; base axis: its setpoint drives the table
+    $AN_CEC_OUTPUT_AXIS[0]=(AX1) ; compensation axis: receives the values
+    $AN_CEC_STEP[0]=6.73
+    $AN_CEC_MIN[0]=-400.0        ; interpolation point 0
+    $AN_CEC_MAX[0]=400.0         ; interpolation point k
+    $AN_CEC_DIRECTION[0]=0       ; 0 both directions of the base axis, 1 / -1 one only
+    $AN_CEC_MULT_BY_TABLE[0]=0   ; 0 or the number (index + 1) of a table to multiply by
+    $AN_CEC_IS_MODULO[0]=0
+    M17
+
+A file holds several tables (MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` reserves the points of table
+t); each is its own relation (input axis, output axis, direction), so :func:`read_cross_axis`
+reads them as separate tables, never merged.
+
+**Range not a whole number of steps.** K3 names MAX the position of interpolation point k and
+says the value of point k is used for all positions beyond it. Where (MAX − MIN)/STEP is not a
+whole number no point lies at MAX; axiscal reads such a table with its points at MIN + i·STEP,
+as the control spaces them, up to the last point k = ⌊(MAX − MIN)/STEP⌋ the file's range
+reaches, and says so (the note gives MAX and the last point's position). This reading is
+axiscal's: the manual does not say what the control does between point k and MAX.
+
+Sign: written like the EEC table, file value = −correction; that the CEC uses the same sign as
+the EEC is not confirmed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from axiscal.compensation.controllers._common import (
+    ControllerFile, check_points, check_spacing, check_travel, correction_factor, decimals,
+    parse_number)
+from axiscal.compensation.controllers.siemens_text import fmt as _fmt
+from axiscal.compensation.tables import CompensationTable, TableOrigin
+from axiscal.datasets import AxisKind
+from axiscal.errors import DataFormatError, InputError
+from axiscal.units import display
+
+__all__ = ["CECTable", "read_cross_axis", "write_cross_axis", "parse_cross_axis"]
+
+NAME = "siemens-840d"
+MAX_POINTS = 5000
+_PARAMS = ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX", "DIRECTION", "MULT_BY_TABLE",
+           "IS_MODULO")
+
+
+@dataclass(frozen=True)
+class CECTable:
+    """One cross-axis table of an ``NC_CEC.INI``.
+
+    Attributes
+    ----------
+    index : int
+        The table index t of ``$AN_CEC[t,N]``.
+    input_axis, output_axis : str
+        Base axis (drives the table) and compensation axis (receives its values).
+    table : CompensationTable
+        Positions of the input axis (mm), corrections of the output axis (µm).
+    direction : int
+        ``$AN_CEC_DIRECTION``: 0 both directions, 1 positive only, −1 negative only.
+    mult_by_table : int
+        ``$AN_CEC_MULT_BY_TABLE``: 0, or the number of the table this one is multiplied by.
+    notes : tuple of str
+        Points reserved but unused, a range that is not a whole number of steps.
+    """
+
+    index: int
+    input_axis: str
+    output_axis: str
+    table: CompensationTable
+    direction: int = 0
+    mult_by_table: int = 0
+    notes: tuple = ()
+
+    def to_dict(self) -> dict:
+        return dict(index=self.index, input_axis=self.input_axis, output_axis=self.output_axis,
+                    direction=self.direction, mult_by_table=self.mult_by_table,
+                    notes=list(self.notes), table=self.table.to_dict())
+
+    def __str__(self) -> str:
+        t = self.table
+        d = {0: "both directions", 1: "positive direction only", -1: "negative direction only"}
+        return (f"CEC table {self.index}: {self.output_axis} corrected as a function of "
+                f"{self.input_axis} ({d.get(self.direction, self.direction)}), {t.n_points} "
+                f"points every {t.spacing:g} {display(t.position_unit)} from {t.start:g} to "
+                f"{t.end:g} {display(t.position_unit)}, largest correction {t.largest:.4g} "
+                f"{display(t.correction_unit)}")
+
+
+def read_cross_axis(text: str, source: str = "<text>", correction_unit: str | None = None,
+                    machine_data: str = "") -> tuple:
+    """Every cross-axis table of a file, each with its axes: (tables, refused).
+
+    ``tables`` is a list of :class:`CECTable` by index; ``refused`` maps the index of a table that
+    cannot be read to its reason (the others are read regardless). With ``machine_data`` (an
+    ``INITIAL.INI``'s text; else the file's own machine data), a rotary input axis (MD30300) has
+    its positions in degrees and a rotary output axis its values in degrees, read in arcsec;
+    otherwise both are taken as linear (mm, µm), as the file does not say.
+    """
+    from axiscal.compensation.controllers import siemens_machine_data as smd
+
+    md = smd.parse(machine_data, "the machine data") if machine_data else smd.parse(text, source)
+    from axiscal.compensation.controllers.siemens_text import statements
+
+    values: dict = {}
+    params: dict = {}
+    for s in statements(text, source):
+        if s.kind != "assign" or not s.name.startswith("AN_CEC"):
+            continue
+        if s.name == "AN_CEC" and len(s.index) == 2:
+            t, i = _whole(s.index[0], source, s.line), _whole(s.index[1], source, s.line)
+            if i in values.setdefault(t, {}):
+                raise DataFormatError(f"$AN_CEC[{t},{i}] is given twice", source, s.line)
+            values[t][i] = parse_number(s.value, source, s.line)
+        elif s.name[len("AN_CEC_"):] in _PARAMS and len(s.index) == 1:
+            t = _whole(s.index[0], source, s.line)
+            params.setdefault(t, {})[s.name[len("AN_CEC_"):]] = s.value.strip().strip("()")
+        else:
+            raise DataFormatError(f"${s.name}[{','.join(s.index)}] is not a CEC table variable",
+                                  source, s.line)
+    if not values:
+        raise DataFormatError("no $AN_CEC values: not a cross-axis (CEC) table", source)
+    tables, refused = [], {}
+    for t in sorted(set(values) | set(params)):
+        try:
+            tables.append(_one_table(t, values.get(t, {}), params.get(t, {}), source, md,
+                                     correction_unit))
+        except DataFormatError as exc:
+            refused[t] = f"CEC table {t}: {exc.message}"
+    return tables, refused
+
+
+def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
+    for key in ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX"):
+        if key not in params:
+            raise DataFormatError(f"$AN_CEC_{key}[{t}] is missing", source)
+    if not values or sorted(values) != list(range(len(values))):
+        raise DataFormatError("interpolation points must be numbered 0, 1, 2 … without gaps",
+                              source)
+    try:
+        step, lo, hi = (float(params[k]) for k in ("STEP", "MIN", "MAX"))
+        direction = int(float(params.get("DIRECTION", "0")))
+        mult = int(float(params.get("MULT_BY_TABLE", "0")))
+        modulo = bool(int(float(params.get("IS_MODULO", "0"))))
+    except (ValueError, OverflowError):
+        raise DataFormatError("STEP, MIN, MAX, DIRECTION, MULT_BY_TABLE and IS_MODULO must be "
+                              "numbers", source) from None
+    if not (math.isfinite(step) and step > 0 and math.isfinite(lo) and math.isfinite(hi)):
+        raise DataFormatError(f"STEP {step:g} must be positive, MIN and MAX finite", source)
+    span = (hi - lo) / step
+    k = int(math.floor(span + 1e-6))
+    notes = []
+    if abs(span - round(span)) > 1e-6 * max(1.0, abs(span)):
+        notes.append(f"(MAX {hi:g} − MIN {lo:g}) / STEP {step:g} = {span:.6g} is not a whole "
+                     f"number of steps: read up to point {k} at {lo + k * step:g}, the last "
+                     "point the range reaches (axiscal's reading; K3 does not say)")
+    if modulo:
+        notes.append("IS_MODULO = 1: the table repeats, point k followed by point 0 (K3 §4.4.4)")
+    if k < 1:
+        raise DataFormatError(f"MIN {lo:g} … MAX {hi:g} holds less than one STEP {step:g}",
+                              source)
+    n = len(values)
+    if k >= n:
+        raise DataFormatError(f"the range needs points 0 … {k}, the file gives 0 … {n - 1}",
+                              source)
+    if k + 1 < n:
+        nonzero = sum(values[i] != 0 for i in range(k + 1, n))
+        notes.append((f"point {n - 1} is" if k + 2 == n else f"points {k + 1} … {n - 1} are")
+                     + " reserved by MD18342 but not used"
+                     + (f"; {nonzero} of them hold values the control does not apply"
+                        if nonzero else ""))
+    dev = np.array([values[i] for i in range(k + 1)])
+    out_axis = params["OUTPUT_AXIS"]
+    rot_in = (md.kind(params["INPUT_AXIS"]) or ("linear",))[0] == "rotary"
+    rot_out = (md.kind(out_axis) or ("linear",))[0] == "rotary"
+    kind, pu = (AxisKind.ROTARY, "deg") if rot_in else (AxisKind.LINEAR, "mm")
+    vu = "deg" if rot_out else "mm"                       # the file's values
+    cu = correction_unit or ("arcsec" if rot_out else "um")
+    try:
+        tab = CompensationTable(out_axis, kind, pu, cu, lo, step, dev,
+                                dev, origin=TableOrigin(NAME, out_axis, None, pu, "file"))
+    except InputError as exc:
+        raise DataFormatError(str(exc), source) from None
+    c = np.round(-dev / correction_factor(tab, vu), 6) + 0.0
+    return CECTable(t, params["INPUT_AXIS"], out_axis, replace(tab, up=c, down=c), direction,
+                    mult, tuple(notes))
+
+
+def _whole(token: str, source: str, line: int) -> int:
+    if not re.fullmatch(r"[0-9]{1,9}", token):
+        raise DataFormatError(f"table index {token[:12]!r} is not a whole number", source, line)
+    return int(token)
+
+
+def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str = "AX1",
+                     output_axis: str = "AX2", table_index: int = 0, max_points: int = MAX_POINTS,
+                     position_resolution: float = 0.001) -> ControllerFile:
+    """Write a cross-axis table (positions of the base axis, corrections of the compensation
+    axis) as a sag/angularity compensation file ``%_N_NC_CEC_INI`` (format in the module
+    docstring).
+
+    Enabling: MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` ≥ points, MD32710 ``$MA_CEC_ENABLE[AXi]`` = 1
+    for the compensation axis, SD41300 ``$SN_CEC_TABLE_ENABLE[t]`` = 1.
+    """
+    check_points(table.n_points, max_points, NAME, "points (MD18342)")
+    check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
+    check_travel(table, travel, NAME)
+    k = correction_factor(table, table.position_unit)
+    nd = decimals(table.position_unit)
+    values = np.round(-table.mean * k, nd) + 0.0
+    t = int(table_index)
+    lines = ["%_N_NC_CEC_INI", "CHANDATA(1)",
+             f"; axiscal cross-axis table: {output_axis} corrected as a function of {input_axis}, "
+             f"values = -correction in {table.position_unit}"]
+    lines += [f"$AN_CEC[{t},{i}]={_fmt(v)}" for i, v in enumerate(values)]
+    lines += [f"$AN_CEC_INPUT_AXIS[{t}]=({input_axis})", f"$AN_CEC_OUTPUT_AXIS[{t}]=({output_axis})",
+              f"$AN_CEC_STEP[{t}]={_fmt(table.spacing)}", f"$AN_CEC_MIN[{t}]={_fmt(table.start)}",
+              f"$AN_CEC_MAX[{t}]={_fmt(table.end)}", f"$AN_CEC_DIRECTION[{t}]=0",
+              f"$AN_CEC_MULT_BY_TABLE[{t}]=0", f"$AN_CEC_IS_MODULO[{t}]=0", "M17"]
+    enable = [f"MD18342 $MN_MM_CEC_MAX_POINTS[{t}] >= {table.n_points} (power-on re-formats memory)",
+              f"MD32710 $MA_CEC_ENABLE[{output_axis}] = 1 (load the table while it is 0)",
+              f"SD41300 $SN_CEC_TABLE_ENABLE[{t}] = 1"]
+    as_file = np.round(-values / k, 6) + 0.0
+    written = replace(table, up=as_file, down=as_file, bidirectional=False)
+    return ControllerFile(NAME, "\n".join(lines) + "\n", "NC_CEC.INI", written, tuple(enable))
+
+
+def parse_cross_axis(text: str, source: str = "<text>", correction_unit: str = "um"):
+    """The one table of a ``%_N_NC_CEC_INI`` file: (table, input axis, output axis).
+
+    A file of several tables is refused naming them (:func:`read_cross_axis` reads them all).
+    """
+    tables, refused = read_cross_axis(text, source, correction_unit)
+    if len(tables) + len(refused) > 1:
+        raise DataFormatError(f"the file holds {len(tables) + len(refused)} CEC tables; read them "
+                              "with read_cross_axis (each with its axes)", source)
+    if refused:
+        raise DataFormatError(next(iter(refused.values())), source)
+    c = tables[0]
+    return replace(c.table, axis=""), c.input_axis, c.output_axis
