@@ -51,7 +51,7 @@ import numpy as np
 from axiscal.errors import InputError
 from axiscal.standards.iso230_3_data import TESTS, ThermalLog, check_log, noise_sigma
 
-__all__ = ["ThermalFigure", "ThermalResult", "evaluate_thermal", "evaluate_etve",
+__all__ = ["ThermalFigure", "ThermalResult", "evaluate_thermal", "evaluate_etve", "drift_series",
            "evaluate_spindle", "evaluate_linear", "signed_extreme", "e_ve_from_etve",
            "ROTARY_OUT_OF_SCOPE"]
 
@@ -204,8 +204,7 @@ def evaluate_spindle(log: ThermalLog) -> ThermalResult:
     _is(log, "spindle")
     d = log.displacements
     l = float(log.sensor_spacing)
-    series = {"X": d["X1"], "Y": d["Y1"], "Z": d["Z"],
-              "A": (d["Y2"] - d["Y1"]) / l, "B": (d["X1"] - d["X2"]) / l}
+    series = drift_series(log)
     sig = {k: noise_sigma(d[k]) for k in d}
     sigma = {"X": sig["X1"], "Y": sig["Y1"], "Z": sig["Z"],
              "A": math.hypot(sig["Y1"], sig["Y2"]) / l, "B": math.hypot(sig["X1"], sig["X2"]) / l}
@@ -227,7 +226,7 @@ def evaluate_linear(log: ThermalLog) -> ThermalResult:
     p1, p2 = log.targets
     d = log.displacements
     s1, s2 = noise_sigma(d["P1"]), noise_sigma(d["P2"])
-    series = {"P1": d["P1"], "P2": d["P2"], "G": d["P2"] - d["P1"]}
+    series = drift_series(log)
     sigma = {"P1": s1, "P2": s2, "G": math.hypot(s1, s2)}
     words = {"P1": f"drift at P1 = {p1 * 1e3:g} mm", "P2": f"drift at P2 = {p2 * 1e3:g} mm",
              "G": "growth between P1 and P2"}
@@ -243,6 +242,22 @@ def evaluate_linear(log: ThermalLog) -> ThermalResult:
         notes.append("P2 − P1 exceeds 2 000 mm; Clause 7 takes a representative 2 000 mm of a "
                      "longer axis")
     return ThermalResult("linear", clause, tuple(figs), log.duration, log.run_end, tuple(notes))
+
+
+def drift_series(log: ThermalLog) -> dict[str, np.ndarray]:
+    """The quantities whose drift a test reports, over time (m or rad; not yet relative to the
+    start): ETVE ``X``, ``Y``, ``Z`` as logged; spindle ``X, Y, Z, A, B`` from the five sensors
+    (module docstring); linear ``P1``, ``P2`` and the growth ``G = P2 − P1``. The one place these
+    are derived: the evaluations and the thermal model (``compensation/thermal_model.py``) use it.
+    """
+    d = log.displacements
+    if log.test == "spindle":
+        l = float(log.sensor_spacing)
+        return {"X": d["X1"], "Y": d["Y1"], "Z": d["Z"],
+                "A": (d["Y2"] - d["Y1"]) / l, "B": (d["X1"] - d["X2"]) / l}
+    if log.test == "linear":
+        return {"P1": d["P1"], "P2": d["P2"], "G": d["P2"] - d["P1"]}
+    return dict(sorted(d.items()))
 
 
 def e_ve_from_etve(log: ThermalLog, channel: str, start: float, duration: float) -> float:
