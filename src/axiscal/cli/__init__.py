@@ -53,6 +53,7 @@ COMMANDS: dict[str, str] = {
     "volumetric": "axiscal.cli.volumetric",
     "config": "axiscal.cli.config",
     "ballbar": "axiscal.cli.ballbar",
+    "thermal": "axiscal.cli.thermal",
 }
 
 #: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
@@ -108,6 +109,10 @@ SUMMARIES: dict[str, str] = {
     "ballbar":
         "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "
         "machine squareness, Method 4: every separable machine error, ranked, with advice.",
+    "thermal":
+        "Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
+        "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
+        "compensation.",
 }
 
 #: ``ctx.meta`` key set while the root's help is drawn (commands listed, not loaded).

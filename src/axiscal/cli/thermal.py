@@ -1,0 +1,268 @@
+"""``axiscal thermal``: the ISO 230-3:2020 thermal tests, their model and SINUMERIK's
+temperature compensation.
+
+Each command parses, calls one function of :mod:`axiscal.api._thermal` and renders; ``--json``
+prints the result's ``to_dict()``. The twin is ``axiscal/data/thermal_vmc.toml`` unless
+``--config`` names another (format: :mod:`axiscal.machines.thermal_config`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from axiscal.cli._common import note, out_path, plot_path, print_json
+
+__all__ = ["register", "thermal_app"]
+
+HELP = ("Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
+        "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
+        "compensation.")
+
+thermal_app = typer.Typer(help=HELP, no_args_is_help=True)
+
+_TESTS = "etve, spindle, linear or drift-check (ISO 230-2 Annex A.5)"
+
+
+def _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm, duty,
+                  position_mm, instrument_drift, start_h) -> dict:
+    return dict(test=test, config=config, duration_h=duration_h, run_h=run_h,
+                interval_s=interval_s, speed=speed, axis=axis, p1_mm=p1_mm, p2_mm=p2_mm,
+                duty=duty, position_mm=position_mm, instrument_drift_um_per_h=instrument_drift,
+                start_h=start_h)
+
+
+# The options every planned test shares (plan and simulate), declared once.
+_OPTS = dict(
+    test=typer.Option(..., "--test", help=f"The test: {_TESTS}."),
+    config=typer.Option(None, "--config", help="Thermal twin (TOML); default the shipped VMC."),
+    duration_h=typer.Option(None, "--duration-h", min=0.0, help="Whole test, h (default: etve "
+                            "24, spindle/linear the run + 1, drift-check 1)."),
+    run_h=typer.Option(None, "--run-h", min=0.0, help="Spindle running / axis cycling, h "
+                       "(default 4)."),
+    interval_s=typer.Option(60.0, "--interval-s", help="Between samples, s (at most 300)."),
+    speed=typer.Option(0.5, "--speed", help="Spindle speed, fraction of the maximum (0.5)."),
+    axis=typer.Option("X", "--axis", help="Axis of the linear test or drift check."),
+    p1_mm=typer.Option(None, "--p1-mm", help="Linear test: target P1, mm."),
+    p2_mm=typer.Option(None, "--p2-mm", help="Linear test: target P2, mm."),
+    duty=typer.Option(0.8, "--duty", help="Linear test: the axis's share of time in motion."),
+    position_mm=typer.Option(None, "--position-mm", help="Drift check: where the set-up "
+                             "stands, mm (default mid-travel)."),
+    instrument_drift=typer.Option(0.0, "--instrument-drift-um-per-h", help="Drift check: the "
+                                  "instrument's own drift, µm/h."),
+    start_h=typer.Option(8.0, "--start-h", help="When the test starts in the room's day, h."),
+)
+
+
+def plan(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
+         duration_h: Optional[float] = _OPTS["duration_h"], run_h: Optional[float] = _OPTS["run_h"],
+         interval_s: float = _OPTS["interval_s"], speed: float = _OPTS["speed"],
+         axis: str = _OPTS["axis"], p1_mm: Optional[float] = _OPTS["p1_mm"],
+         p2_mm: Optional[float] = _OPTS["p2_mm"], duty: float = _OPTS["duty"],
+         position_mm: Optional[float] = _OPTS["position_mm"],
+         instrument_drift: float = _OPTS["instrument_drift"], start_h: float = _OPTS["start_h"],
+         json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON.")) -> None:
+    """Plan an ISO 230-3 thermal test or an ISO 230-2 drift check: durations, samples, targets.
+
+    Example: axiscal thermal plan --test spindle --speed 0.5 --run-h 4
+    """
+    from axiscal.api._thermal import plan_thermal
+
+    p = plan_thermal(**_plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
+                                     p1_mm, p2_mm, duty, position_mm, instrument_drift, start_h))
+    d = p.to_dict()
+    if json_out:
+        print_json(d)
+        return
+    typer.echo("\n".join(f"{k}: {v:g}" if isinstance(v, float) else f"{k}: {v}"
+                         for k, v in d.items()))
+
+
+def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
+             duration_h: Optional[float] = _OPTS["duration_h"],
+             run_h: Optional[float] = _OPTS["run_h"], interval_s: float = _OPTS["interval_s"],
+             speed: float = _OPTS["speed"], axis: str = _OPTS["axis"],
+             p1_mm: Optional[float] = _OPTS["p1_mm"], p2_mm: Optional[float] = _OPTS["p2_mm"],
+             duty: float = _OPTS["duty"], position_mm: Optional[float] = _OPTS["position_mm"],
+             instrument_drift: float = _OPTS["instrument_drift"],
+             start_h: float = _OPTS["start_h"],
+             seed: int = typer.Option(0, "--seed", min=0, help="Seed of the sensors' noise."),
+             out: Optional[Path] = typer.Option(None, "--out", help="Write the log CSV (a drift "
+                                                "check: the file iso230-2 --drift-check reads)."),
+             plot: Optional[Path] = typer.Option(None, "--plot", help="Plot over time (.png, "
+                                                 ".svg, .pdf)."),
+             json_out: bool = typer.Option(False, "--json", help="Print figures and truth as "
+                                           "JSON.")) -> None:
+    """Simulate a thermal test on the twin with its sensors; evaluate it beside the truth.
+
+    The truth appears only here (the log holds what the sensors read). Example:
+    axiscal thermal simulate --test linear --out x_linear.csv --seed 1
+    """
+    from axiscal.api._thermal import simulate_thermal
+
+    if out is not None:
+        out_path(out, "log")
+    if plot is not None:
+        plot_path(plot)
+    opts = _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm,
+                         duty, position_mm, instrument_drift, start_h)
+    sim = simulate_thermal(opts.pop("test"), opts.pop("config"), seed, **opts)
+    if sim.plan.test == "drift-check":
+        _drift_check(sim, out, plot, json_out)
+        return
+    from axiscal.api._thermal import evaluate_thermal
+
+    result = evaluate_thermal(sim.log)
+    if out is not None:
+        from axiscal.io.thermal import write_thermal_log
+
+        write_thermal_log(out, sim.log)
+    if plot is not None:
+        from axiscal.report.thermal_plots import save_thermal_plot
+
+        save_thermal_plot(sim.log, plot)
+    truth = {k: _shown(result, k, v) for k, v in sim.truth.items()}
+    if json_out:
+        print_json({"plan": sim.plan.to_dict(), "evaluation": result.to_dict(),
+                    "truth": truth, "out": None if out is None else str(out)})
+        return
+    typer.echo(str(result))
+    typer.echo("simulation truth: " + ", ".join(f"{k} {v:.4g}" for k, v in truth.items()))
+    if out is not None:
+        note(f"wrote {out} ({sim.log.time.size} samples)")
+
+
+def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axiscal formats)."),
+             plot: Optional[Path] = typer.Option(None, "--plot", help="Plot over time (.png, "
+                                                 ".svg, .pdf)."),
+             json_out: bool = typer.Option(False, "--json", help="Print the figures as JSON.")
+             ) -> None:
+    """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle or linear axis).
+
+    Example: axiscal thermal evaluate x_linear.csv --plot x_linear.png
+    """
+    from axiscal.api._thermal import evaluate_thermal, read_thermal
+
+    if plot is not None:
+        plot_path(plot)
+    data = read_thermal(log)
+    result = evaluate_thermal(data)
+    if plot is not None:
+        from axiscal.report.thermal_plots import save_thermal_plot
+
+        save_thermal_plot(data, plot)
+    if json_out:
+        print_json(result.to_dict())
+        return
+    typer.echo(str(result))
+
+
+def model(fit: List[Path] = typer.Argument(..., help="Log(s) to fit (runs of one test)."),
+          validate: Path = typer.Option(..., "--validate", help="A run not fitted: the terms "
+                                        "are chosen on it."),
+          test_run: Optional[Path] = typer.Option(None, "--test", help="A run used for neither: "
+                                                  "the model is judged on it."),
+          sensors: Optional[str] = typer.Option(None, "--sensors", help="Temperatures to use, "
+                                                "comma-separated (default: all)."),
+          channels: Optional[str] = typer.Option(None, "--channels", help="Drifts to model, "
+                                                 "comma-separated (default: all of the test)."),
+          json_out: bool = typer.Option(False, "--json", help="Print the model as JSON.")) -> None:
+    """Fit a thermal model: drift as a linear function of lagged temperatures, validated.
+
+    Example: axiscal thermal model a.csv b.csv --validate c.csv --test d.csv
+    """
+    from axiscal.api._thermal import fit_thermal_model
+
+    m = fit_thermal_model(list(fit), validate, test_run, sensors=_names(sensors),
+                          channels=_names(channels))
+    if json_out:
+        print_json(m.to_dict())
+        return
+    typer.echo(str(m))
+
+
+def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to fit."),
+               validate: Path = typer.Option(..., "--validate", help="A run not fitted: the "
+                                             "terms are chosen on it."),
+               test_run: Optional[Path] = typer.Option(None, "--test", help="A run used for "
+                                                       "neither: the model is judged on it."),
+               sensors: Optional[str] = typer.Option(None, "--sensors", help="Temperatures to "
+                                                     "use, comma-separated (default: all)."),
+               json_out: bool = typer.Option(False, "--json", help="Print the parameters and "
+                                             "the model as JSON.")) -> None:
+    """SINUMERIK temperature compensation (K3: MD32750, SD43900 K0(T), SD43910 tanβ(T),
+    SD43920 P0) from linear-axis runs (ISO 230-3:2020 Clause 7).
+
+    Example: axiscal thermal compensate a.csv --validate b.csv --test c.csv --json
+    """
+    from axiscal.api._thermal import fit_thermal_model, thermal_compensation
+
+    m = fit_thermal_model(list(fit), validate, test_run, sensors=_names(sensors),
+                          channels=("P1", "P2"))
+    comp = thermal_compensation(m)
+    if json_out:
+        print_json({"sinumerik": comp.to_dict(), "model": m.to_dict()})
+        return
+    typer.echo(str(comp))
+    typer.echo(str(m))
+
+
+def _drift_check(dc, out, plot, json_out) -> None:
+    from axiscal.io.drift import parse_drift_check
+    from axiscal.io.thermal import format_drift_check
+    from axiscal.standards.iso230_9_inputs import environmental_variation
+
+    text = format_drift_check(dc.time, dc.readings)
+    # from the file's own readings: the number iso230-2 --drift-check will find in it
+    e_ve = environmental_variation(parse_drift_check(text))
+    if out is not None:
+        from axiscal.io._files import write_text_atomic
+
+        write_text_atomic(out, text)
+    if plot is not None:
+        note("a drift check has no thermal plot; --plot ignored")
+    d = {"plan": dc.plan.to_dict(), "e_ve_um": round(e_ve, 6),
+         "e_ve_source": "drift check (ISO 230-2:2014 Annex A.5)",
+         "truth": {"e_ve_um": round(dc.true_e_ve * 1e6, 6)},
+         "out": None if out is None else str(out)}
+    if json_out:
+        print_json(d)
+        return
+    typer.echo(f"drift check at {dc.plan.position * 1e3:g} mm on axis {dc.plan.axis} over "
+               f"{dc.plan.duration / 3600:g} h: E_VE = {e_ve:.3f} µm (ISO 230-2:2014 Annex A.5); "
+               f"simulation truth {dc.true_e_ve * 1e6:.3f} µm")
+    if out is not None:
+        note(f"wrote {out}: give it to 'axiscal iso230-2 TEST --drift-check {out}'")
+
+
+def _shown(result, name: str, value: float) -> float:
+    try:
+        f = result[name]
+    except KeyError:
+        return value
+    from axiscal.standards.iso230_3 import _UNITS
+
+    return round(value * _UNITS[f.kind][1], 6)
+
+
+def _names(text: Optional[str]):
+    if text is None:
+        return None
+    names = [n.strip() for n in text.split(",") if n.strip()]
+    if not names:
+        from axiscal.errors import InputError
+
+        raise InputError(f"{text!r}: give names separated by commas")
+    return names
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``thermal`` group to the application."""
+    thermal_app.command("plan")(plan)
+    thermal_app.command("simulate")(simulate)
+    thermal_app.command("evaluate")(evaluate)
+    thermal_app.command("model")(model)
+    thermal_app.command("compensate")(compensate)
+    app.add_typer(thermal_app, name="thermal")
