@@ -65,9 +65,45 @@ def test_model_and_sinumerik_compensation(linear_logs):
     assert "SD43920" in text and "outside this function" in text
 
 
-def test_drift_check_gives_iso230_2_a_measured_e_ve(tmp_path):
+JOB = """
+[company]
+name = "Precision Metrology GmbH"
+address = ["Messweg 12", "Stuttgart"]
+code = "PM"
+[operator]
+name = "J. Keller"
+[customer]
+name = "Example Machining AG"
+address = ["Industriestr. 4", "Esslingen"]
+[machine]
+maker = "Example"
+model = "VMC-800"
+serial = "VMC8-0042"
+[conditions]
+date = "2026-11-20"
+air_temperature = 20.4
+material_temperature = 20.6
+measuring_line = "100 mm above the table centre"
+feed = "2000 mm/min"
+dwell = "4 s"
+[[instrument]]
+name = "Laser interferometer"
+serial = "L-1"
+certificate = "C-77"
+due = "2027-04-30"
+[certificate]
+signatory = "Dr. M. Braun"
+signatory_role = "Head of laboratory"
+specification = "Contract 4711"
+"""
+
+
+def test_drift_check_gives_iso230_2_a_measured_e_ve(tmp_path, monkeypatch):
     """The simulated drift check (ISO 230-2:2014 Annex A.5) is read by the existing
-    ``iso230-2 --drift-check`` path: its E_VE is the range of the readings, named measured."""
+    ``iso230-2 --drift-check`` path: its E_VE is the range of the readings, named measured; with
+    a complete job (no E_VE declared in it) the certificate is issued, not a draft, and names
+    the drift check."""
+    monkeypatch.setenv("AXISCAL_CONFIG", str(tmp_path / "none.toml"))
     dc = tmp_path / "dc.csv"
     d = _json("thermal", "simulate", "--test", "drift-check", "--duration-h", 1, "--out", dc,
               "--seed", 4)
@@ -78,6 +114,13 @@ def test_drift_check_gives_iso230_2_a_measured_e_ve(tmp_path):
     budget = _json("iso230-2", pos, "--drift-check", dc)["uncertainty_budget"]
     eve = [c for c in budget["contributors"] if c["name"] == "u_EVE"][0]
     assert "drift check" in eve["basis"] and f"{np.ptp(readings):.4f}" in eve["basis"]
+    job, cert = tmp_path / "job.toml", tmp_path / "c.html"
+    job.write_text(JOB)
+    _ok("iso230-2", pos, "--job", job, "--drift-check", dc, "--tolerance", "E=25", "--report",
+        cert, "--db", f"sqlite:///{tmp_path / 'h.sqlite'}")
+    html = cert.read_text("utf-8")
+    assert "DRAFT" not in html and "PM-2026-00001" in html
+    assert f" = {np.ptp(readings):.4f} µm (drift check)" in html
 
 
 @pytest.mark.parametrize("args, words", [
