@@ -21,7 +21,8 @@ from pathlib import Path
 from typing import Any, Sequence
 
 __all__ = ["thermal_twin", "plan_thermal", "simulate_thermal", "read_thermal",
-           "evaluate_thermal", "fit_thermal_model", "thermal_compensation", "DEFAULT_TWIN"]
+           "evaluate_thermal", "fit_thermal_model", "thermal_compensation",
+           "verify_thermal_compensation", "DEFAULT_TWIN"]
 
 #: The shipped twin of a vertical machining centre.
 DEFAULT_TWIN = Path(__file__).resolve().parent.parent / "data" / "thermal_vmc.toml"
@@ -109,6 +110,16 @@ def thermal_compensation(model: Any):
     from axiscal.compensation.thermal_model import sinumerik_compensation
 
     return sinumerik_compensation(model)
+
+
+def verify_thermal_compensation(comp: Any, config: Any = None, seed: int = 0, **options):
+    """A linear test of ``comp``'s axis on the twin, run without and with the compensation on
+    one thermal history (:func:`axiscal.compensation.thermal_model.verify_on_twin`); ``options``
+    as :func:`plan_thermal`."""
+    from axiscal.compensation.thermal_model import verify_on_twin
+
+    plan = plan_thermal("linear", config, axis=comp.axis, **options)
+    return verify_on_twin(thermal_twin(config), plan, comp, seed)
 
 
 def _log(data: Any):

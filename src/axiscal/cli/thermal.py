@@ -190,23 +190,41 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
                                                        "neither: the model is judged on it."),
                sensors: Optional[str] = typer.Option(None, "--sensors", help="Temperatures to "
                                                      "use, comma-separated (default: all)."),
+               verify: bool = typer.Option(False, "--verify", help="Run a linear test on the "
+                                           "twin twice, one thermal history, without and with "
+                                           "the compensation: the drift at P1 and P2 before "
+                                           "and after."),
+               config: Optional[Path] = _OPTS["config"],
+               seed: int = typer.Option(0, "--seed", min=0, help="--verify: seed of the run."),
+               duty: float = _OPTS["duty"], start_h: float = _OPTS["start_h"],
                json_out: bool = typer.Option(False, "--json", help="Print the parameters and "
                                              "the model as JSON.")) -> None:
     """SINUMERIK temperature compensation (K3: MD32750, SD43900 K0(T), SD43910 tanβ(T),
     SD43920 P0) from linear-axis runs (ISO 230-3:2020 Clause 7).
 
-    Example: axiscal thermal compensate a.csv --validate b.csv --test c.csv --json
+    With --verify, the compensation is applied on the twin to a new linear test (same thermal
+    history with and without it). Example:
+    axiscal thermal compensate a.csv --validate b.csv --test c.csv --verify --json
     """
     from axiscal.api._thermal import fit_thermal_model, thermal_compensation
 
     m = fit_thermal_model(list(fit), validate, test_run, sensors=_names(sensors),
                           channels=("P1", "P2"))
     comp = thermal_compensation(m)
+    check = None
+    if verify:
+        from axiscal.api._thermal import verify_thermal_compensation
+
+        check = verify_thermal_compensation(comp, config, seed, duty=duty, start_h=start_h,
+                                            p1_mm=m.targets[0] * 1e3, p2_mm=m.targets[1] * 1e3)
     if json_out:
-        print_json({"sinumerik": comp.to_dict(), "model": m.to_dict()})
+        print_json({"sinumerik": comp.to_dict(), "model": m.to_dict(),
+                    "verify": None if check is None else check.to_dict()})
         return
     typer.echo(str(comp))
     typer.echo(str(m))
+    if check is not None:
+        typer.echo(str(check))
 
 
 def _drift_check(dc, out, plot, json_out) -> None:
