@@ -104,3 +104,32 @@ def test_drift_check_file_is_what_iso230_2_reads(twin):
     dc = simulate_drift_check(twin, plan_thermal(twin, "drift-check"), np.random.default_rng(0))
     readings = parse_drift_check(format_drift_check(dc.time, dc.readings))
     np.testing.assert_allclose(readings, dc.readings * 1e6, atol=1e-4)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from axiscal.errors import AxiscalError  # noqa: E402
+
+_HEAD = "# test = etve\ntime_s,T_room,X\n"
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.text(max_size=400), st.booleans())
+def test_arbitrary_text_raises_only_axiscal_errors(text, with_head):
+    """CONVENTIONS habit 9: the parser never raises anything but an AxiscalError."""
+    try:
+        parse_thermal_log((_HEAD if with_head else "") + text, "h.csv")
+    except AxiscalError:
+        pass
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=32), min_size=3,
+                max_size=40))
+def test_arbitrary_numbers_raise_only_axiscal_errors(values):
+    rows = "\n".join(f"{60 * i},{v},{v}" for i, v in enumerate(values))
+    try:
+        parse_thermal_log(_HEAD + rows, "h.csv")
+    except AxiscalError:
+        pass

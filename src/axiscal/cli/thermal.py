@@ -272,7 +272,9 @@ def _names(text: Optional[str]):
     if not names:
         from axiscal.errors import InputError
 
-        raise InputError(f"{text!r}: give names separated by commas")
+        from axiscal.errors import one_line
+
+        raise InputError(f"{one_line(repr(text), 60)}: give names separated by commas")
     return names
 
 

@@ -60,7 +60,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axiscal.errors import InputError
+from axiscal.errors import InputError, one_line
 from axiscal.standards.iso230_3 import drift_series
 from axiscal.standards.iso230_3_data import ThermalLog
 
@@ -160,7 +160,7 @@ class ThermalModel:
         """The lagged temperatures of ``log`` minus 20 °C, shape (n, sensors)."""
         missing = [s for s in self.sensors if s not in log.temperatures]
         if missing:
-            raise InputError(f"{log.source}: no temperature {missing[0]!r}; the model uses "
+            raise InputError(f"{log.source}: no temperature {one_line(repr(missing[0]), 60)}; the model uses "
                              f"{', '.join(self.sensors)}")
         return _features(log, self.sensors, self.lags)
 
@@ -242,13 +242,13 @@ def fit_thermal_model(fit, validation: ThermalLog, test: ThermalLog | None = Non
     fit = fits[0]
     sensors = tuple(sensors) if sensors else tuple(s for s in fit.temperatures if s in common)
     if not sensors or not set(sensors) <= common:
-        raise InputError(f"sensors {', '.join(sensors) or 'none'}: each must be in every run "
-                         f"(common: {', '.join(sorted(common)) or 'none'})")
+        raise InputError(f"sensors {one_line(', '.join(sensors), 80) or 'none'}: each must be in "
+                         f"every run (common: {one_line(', '.join(sorted(common)), 200) or 'none'})")
     known = tuple(drift_series(fit))
     channels = tuple(channels) if channels else known
     if not set(channels) <= set(known):
-        raise InputError(f"channels {', '.join(channels)}: the {fit.test} test has "
-                         f"{', '.join(known)}")
+        raise InputError(f"channels {one_line(', '.join(channels), 80)}: the {fit.test} test "
+                         f"has {', '.join(known)}")
     if fit.test == "linear" and any(r.targets != fit.targets for r in runs):
         raise InputError("the linear runs must share their targets P1 and P2")
     best = _select(fits, validation, sensors, channels, candidates)

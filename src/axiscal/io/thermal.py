@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from axiscal._parse import csv_cells, finite_number
-from axiscal.errors import DataFormatError
+from axiscal.errors import DataFormatError, one_line
 from axiscal.standards.iso230_3_data import CHANNELS, TESTS, ThermalLog, check_log
 
 __all__ = ["parse_thermal_log", "read_thermal_log", "format_thermal_log", "write_thermal_log",
@@ -80,7 +80,7 @@ def parse_thermal_log(text: str, source: str = "<text>") -> ThermalLog:
     disp_cols = [n for n in names[1:] if not n.startswith("T_")]
     bad = [n for n in disp_cols if n not in CHANNELS[test]]
     if bad:
-        raise DataFormatError(f"column {bad[0]!r} is neither a temperature (T_...) nor a "
+        raise DataFormatError(f"column {one_line(repr(bad[0]), 60)} is neither a temperature (T_...) nor a "
                               f"displacement of the {test} test ({', '.join(CHANNELS[test])})",
                               source, header[0])
     data = _numbers(rows, len(names), source)
@@ -144,7 +144,7 @@ def _split(text: str, source: str):
                 key, _, value = s[1:].partition("=")
                 key = key.strip()
                 if key not in _KEYS:
-                    raise DataFormatError(f"unknown header key {key!r}; known: "
+                    raise DataFormatError(f"unknown header key {one_line(repr(key), 60)}; known: "
                                           f"{', '.join(_KEYS)}", source, n)
                 meta[key] = value.strip()
             continue
@@ -174,7 +174,7 @@ def _numbers(rows, width: int, source: str) -> np.ndarray:
 def _unit(meta, key, known, default, source):
     v = meta.get(key, default).strip().lower()
     if v not in known:
-        raise DataFormatError(f"{key} = {meta.get(key)!r}; one of "
+        raise DataFormatError(f"{key} = {one_line(repr(meta.get(key)), 60)}; one of "
                               f"{', '.join(sorted(set(k for k in known if k.isascii())))}", source)
     return known[v] if key == "temperature_unit" else v
 

@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from axiscal.errors import InputError
+from axiscal.errors import InputError, one_line
 
 __all__ = ["Room", "ThermalNode", "ThermalAxis", "TemperatureSensor", "ThermalTwin",
            "ThermalHistory", "DIRECTIONS", "REFERENCE_C"]
@@ -222,26 +222,26 @@ class ThermalTwin:
         known = {"room"}
         for n in self.nodes:
             if n.name in known:
-                raise InputError(f"node {n.name!r} is named twice (or is called 'room')")
+                raise InputError(f"node {one_line(repr(n.name), 60)} is named twice (or is called 'room')")
             if n.follows not in known:
-                raise InputError(f"node {n.name}: follows {n.follows!r}, which is not the room or "
+                raise InputError(f"node {n.name}: follows {one_line(repr(n.follows), 60)}, which is not the room or "
                                  "an earlier node")
             if n.heat != "none" and n.heat != "spindle" and not n.heat.startswith("axis:"):
-                raise InputError(f"node {n.name}: heat {n.heat!r}; use none, spindle or axis:NAME")
+                raise InputError(f"node {n.name}: heat {one_line(repr(n.heat), 60)}; use none, spindle or axis:NAME")
             known.add(n.name)
         for a in self.axes:
             if a.screw_node not in known:
-                raise InputError(f"axis {a.name}: screw node {a.screw_node!r} is not a node")
+                raise InputError(f"axis {a.name}: screw node {one_line(repr(a.screw_node), 60)} is not a node")
         for s in self.sensors:
             if s.node not in known:
-                raise InputError(f"sensor {s.name}: node {s.node!r} is not a node or the room")
+                raise InputError(f"sensor {s.name}: node {one_line(repr(s.node), 60)} is not a node or the room")
 
     def axis(self, name: str) -> ThermalAxis:
         """The axis named ``name``."""
         for a in self.axes:
             if a.name.upper() == name.upper():
                 return a
-        raise InputError(f"axis {name!r}: the twin has {', '.join(a.name for a in self.axes) or 'no axes'}")
+        raise InputError(f"axis {one_line(repr(name), 60)}: the twin has {', '.join(a.name for a in self.axes) or 'no axes'}")
 
     def run(self, time, spindle=None, axes=None) -> ThermalHistory:
         """Temperatures and displacement over ``time`` for the given loads.

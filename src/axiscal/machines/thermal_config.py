@@ -45,7 +45,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from axiscal.errors import ConfigError
+from axiscal.errors import ConfigError, one_line
 from axiscal.machines.thermal import (Room, TemperatureSensor, ThermalAxis, ThermalNode,
                                       ThermalTwin)
 
@@ -140,6 +140,6 @@ def _travel(v: Any, source: str) -> tuple[float, float]:
           and all(isinstance(x, (int, float)) and not isinstance(x, bool) and abs(x) < 1e6
                   for x in v) and v[1] > v[0])
     if not ok:
-        raise ConfigError(f"{source}: [[axis]] travel_mm = {v!r} must be [low, high] in mm, "
+        raise ConfigError(f"{source}: [[axis]] travel_mm = {one_line(repr(v), 60)} must be [low, high] in mm, "
                           "low < high")
     return float(v[0]) * 1e-3, float(v[1]) * 1e-3

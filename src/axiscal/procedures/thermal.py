@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axiscal.errors import InputError
+from axiscal.errors import InputError, one_line
 from axiscal.machines.thermal import ThermalHistory, ThermalTwin
 from axiscal.standards.iso230_3 import signed_extreme
 from axiscal.standards.iso230_3_data import MAX_INTERVAL, ThermalLog
@@ -45,6 +45,9 @@ PLAN_TESTS = ("etve", "spindle", "linear", "drift-check")
 #: Most samples one simulated test may hold (a week at one a second).
 MAX_SAMPLES = 700_000
 _SETTLE = 86_400.0
+#: Bounds of a plan's start in the room's cycle, s, and of an instrument's drift, m/s.
+MAX_START = 1e4 * 3600.0
+MAX_INSTRUMENT_DRIFT = 1000e-6 / 3600.0
 #: Representative length of a long axis, m (ISO 230-3:2020 Scope / Clause 7).
 REPRESENTATIVE_LENGTH = 2.0
 
@@ -170,7 +173,8 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
     """
     test = test.strip().lower()
     if test not in PLAN_TESTS:
-        raise InputError(f"thermal test {test!r}: one of {', '.join(PLAN_TESTS)}")
+        raise InputError(f"thermal test {one_line(repr(test), 60)}: one of "
+                         f"{', '.join(PLAN_TESTS)}")
     if not 0 < interval <= MAX_INTERVAL:
         raise InputError(f"interval {interval:g} s must be more than 0 and at most "
                          f"{MAX_INTERVAL:g} s (5 min)")
@@ -191,6 +195,12 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
         raise InputError(f"spindle speed {speed:g} must be a fraction of the maximum, 0 to 1")
     if not 0 <= duty <= 1:
         raise InputError(f"duty {duty:g} must be a share of the time, 0 to 1")
+    if not abs(start) <= MAX_START:
+        raise InputError(f"start {start / 3600:g} h: at most {MAX_START / 3600:g} h from the "
+                         "room's cycle's origin")
+    if not abs(instrument_drift) <= MAX_INSTRUMENT_DRIFT:
+        raise InputError(f"instrument drift {instrument_drift * 1e6 * 3600:g} µm/h: at most "
+                         f"{MAX_INSTRUMENT_DRIFT * 1e6 * 3600:g} µm/h (a laser drifts by µm)")
     if test in ("linear", "drift-check"):
         ax = twin.axis(axis)
         lo, hi = ax.travel
@@ -217,7 +227,7 @@ def simulate_thermal(twin: ThermalTwin, plan: ThermalPlan,
                      rng: np.random.Generator) -> ThermalSimulation:
     """Run an ISO 230-3 test on the twin with its instruments (see the module docstring)."""
     if plan.test not in ("etve", "spindle", "linear"):
-        raise InputError(f"simulate_thermal runs etve, spindle or linear; {plan.test!r} is "
+        raise InputError(f"simulate_thermal runs etve, spindle or linear; {one_line(repr(plan.test), 60)} is "
                          "simulate_drift_check's")
     t = plan.times
     end = plan.run if plan.run is not None else np.inf
@@ -261,7 +271,7 @@ def simulate_drift_check(twin: ThermalTwin, plan: ThermalPlan,
     own drift and its reading noise. E_VE is their range
     (:func:`axiscal.standards.iso230_9_inputs.environmental_variation`)."""
     if plan.test != "drift-check":
-        raise InputError(f"simulate_drift_check runs a drift-check plan, not {plan.test!r}")
+        raise InputError(f"simulate_drift_check runs a drift-check plan, not {one_line(repr(plan.test), 60)}")
     t = plan.times
     history = _history(twin, plan, np.zeros(t.size, dtype=bool))
     true = twin.positioning_error(history, plan.axis, plan.position) + plan.instrument_drift * t

@@ -48,7 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axiscal.errors import InputError
+from axiscal.errors import InputError, one_line
 from axiscal.standards.iso230_3_data import TESTS, ThermalLog, check_log, noise_sigma
 
 __all__ = ["ThermalFigure", "ThermalResult", "evaluate_thermal", "evaluate_etve", "drift_series",
@@ -284,7 +284,7 @@ def e_ve_from_etve(log: ThermalLog, channel: str, start: float, duration: float)
     """
     _is(log, "etve")
     if channel not in log.displacements:
-        raise InputError(f"E_VE from ETVE: no channel {channel!r}; the log has "
+        raise InputError(f"E_VE from ETVE: no channel {one_line(repr(channel), 60)}; the log has "
                          f"{', '.join(sorted(log.displacements))}")
     if not duration > 0:
         raise InputError(f"E_VE from ETVE: duration {duration:g} s must be > 0")

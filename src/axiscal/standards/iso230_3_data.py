@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from axiscal.errors import DataFormatError
+from axiscal.errors import DataFormatError, one_line
 
 __all__ = ["ThermalLog", "TESTS", "CHANNELS", "MIN_DURATION", "MAX_INTERVAL", "check_log",
            "noise_sigma", "STUCK_SAMPLES", "STUCK_TIME", "JUMP_FLOOR"]
@@ -149,7 +149,7 @@ def check_log(log: ThermalLog) -> ThermalLog:
     """
     src = log.source
     if log.test not in TESTS:
-        raise DataFormatError(f"test {log.test!r}: one of {', '.join(TESTS)}", src)
+        raise DataFormatError(f"test {one_line(repr(log.test), 60)}: one of {', '.join(TESTS)}", src)
     t = np.asarray(log.time, dtype=float)
     if t.ndim != 1 or t.size < 3:
         raise DataFormatError(f"{t.size} samples: a thermal test needs at least 3", src)
@@ -158,10 +158,11 @@ def check_log(log: ThermalLog) -> ThermalLog:
     if log.test == "etve":
         if not have or not have <= set(need):
             raise DataFormatError(f"the ETVE test logs displacement columns among X, Y, Z; got "
-                                  f"{', '.join(sorted(have)) or 'none'}", src)
+                                  f"{one_line(', '.join(sorted(have)), 80) or 'none'}", src)
     elif have != set(need):
         raise DataFormatError(f"the {log.test} test logs the displacement columns "
-                              f"{', '.join(need)}; got {', '.join(sorted(have)) or 'none'}", src)
+                              f"{', '.join(need)}; got "
+                              f"{one_line(', '.join(sorted(have)), 80) or 'none'}", src)
     if not log.temperatures:
         raise DataFormatError("no temperature column: ISO 230-3 logs temperatures beside the "
                               "displacements", src)
@@ -202,6 +203,7 @@ def _check_time(t: np.ndarray, src: str) -> None:
 
 
 def _check_channel(name: str, v: np.ndarray, t: np.ndarray, kind: str, src: str) -> None:
+    name = one_line(name, 60)
     if v.shape != t.shape:
         raise DataFormatError(f"{name}: {v.size} values for {t.size} times", src)
     if not np.all(np.isfinite(v)):
