@@ -154,3 +154,15 @@ def test_a_bad_log_is_refused_and_nothing_written(tmp_path, linear_logs):
     plot = tmp_path / "bad.png"
     r = runner.invoke(app, ["thermal", "evaluate", str(bad), "--plot", str(plot)])
     assert r.exit_code == 2 and "a gap of" in r.output and not plot.exists()
+
+
+def test_reports_keep_the_truth_to_simulations(tmp_path, linear_logs):
+    """``evaluate --report``: the figures and the plot, no truth; ``simulate --report``: the
+    truth under the simulation banner."""
+    path, _ = linear_logs[0]
+    r1, r2 = tmp_path / "e.html", tmp_path / "s.html"
+    _ok("thermal", "evaluate", path, "--report", r1)
+    _ok("thermal", "simulate", "--test", "spindle", "--report", r2)
+    e, s = r1.read_text("utf-8"), r2.read_text("utf-8")
+    assert "ISO 230-3:2020 Clause 7" in e and "<svg" in e and "Simulation truth" not in e
+    assert "Simulation truth" in s and "simulation-banner" in s and "ISO 230-3:2020 Clause 6" in s

@@ -13,7 +13,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._common import note, out_path, plot_path, print_json
+from axiscal.cli._common import note, out_path, plot_path, print_json, report_path
 
 __all__ = ["register", "thermal_app"]
 
@@ -93,6 +93,8 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
                                                 "check: the file iso230-2 --drift-check reads)."),
              plot: Optional[Path] = typer.Option(None, "--plot", help="Plot over time (.png, "
                                                  ".svg, .pdf)."),
+             report: Optional[Path] = typer.Option(None, "--report", help="HTML (or PDF) "
+                                                   "report with the truth, as a simulation."),
              json_out: bool = typer.Option(False, "--json", help="Print figures and truth as "
                                            "JSON.")) -> None:
     """Simulate a thermal test on the twin with its sensors; evaluate it beside the truth.
@@ -106,11 +108,13 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
         out_path(out, "log")
     if plot is not None:
         plot_path(plot)
+    if report is not None:
+        report_path(report)
     opts = _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm,
                          duty, position_mm, instrument_drift, start_h)
     sim = simulate_thermal(opts.pop("test"), opts.pop("config"), seed, **opts)
     if sim.plan.test == "drift-check":
-        _drift_check(sim, out, plot, json_out)
+        _drift_check(sim, out, plot or report, json_out)
         return
     from axiscal.api._thermal import evaluate_thermal
 
@@ -123,6 +127,10 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
         from axiscal.report.thermal_plots import save_thermal_plot
 
         save_thermal_plot(sim.log, plot)
+    if report is not None:
+        from axiscal.report.thermal_plots import thermal_report
+
+        thermal_report(sim.log, result, sim.truth).write(report)
     truth = {k: _shown(result, k, v) for k, v in sim.truth.items()}
     if json_out:
         print_json({"plan": sim.plan.to_dict(), "evaluation": result.to_dict(),
@@ -137,6 +145,8 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
 def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axiscal formats)."),
              plot: Optional[Path] = typer.Option(None, "--plot", help="Plot over time (.png, "
                                                  ".svg, .pdf)."),
+             report: Optional[Path] = typer.Option(None, "--report", help="HTML (or PDF) "
+                                                   "report: figures, clauses, plot."),
              json_out: bool = typer.Option(False, "--json", help="Print the figures as JSON.")
              ) -> None:
     """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle or linear axis).
@@ -147,12 +157,18 @@ def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axis
 
     if plot is not None:
         plot_path(plot)
+    if report is not None:
+        report_path(report)
     data = read_thermal(log)
     result = evaluate_thermal(data)
     if plot is not None:
         from axiscal.report.thermal_plots import save_thermal_plot
 
         save_thermal_plot(data, plot)
+    if report is not None:
+        from axiscal.report.thermal_plots import thermal_report
+
+        thermal_report(data, result).write(report)
     if json_out:
         print_json(result.to_dict())
         return
@@ -240,7 +256,7 @@ def _drift_check(dc, out, plot, json_out) -> None:
 
         write_text_atomic(out, text)
     if plot is not None:
-        note("a drift check has no thermal plot; --plot ignored")
+        note("a drift check has no thermal plot or report; --plot and --report ignored")
     d = {"plan": dc.plan.to_dict(), "e_ve_um": round(e_ve, 6),
          "e_ve_source": "drift check (ISO 230-2:2014 Annex A.5)",
          "truth": {"e_ve_um": round(dc.true_e_ve * 1e6, 6)},

@@ -7,7 +7,7 @@ from pathlib import Path
 from axiscal.standards.iso230_3 import drift_series
 from axiscal.standards.iso230_3_data import TESTS, ThermalLog
 
-__all__ = ["plot_thermal", "save_thermal_plot"]
+__all__ = ["plot_thermal", "save_thermal_plot", "thermal_report"]
 
 
 def plot_thermal(log: ThermalLog, title: str | None = None):
@@ -57,3 +57,33 @@ def save_thermal_plot(log: ThermalLog, path) -> Path:
     return save_figure(plot_thermal(log), path)
 
 
+
+
+def thermal_report(log: ThermalLog, result, truth: dict | None = None):
+    """An HTML :class:`~axiscal.report.html.Report` of one ISO 230-3 test: its figures with U
+    and clause, the plot over time, and (a simulation only) the twin's truth beside each
+    figure, under the simulation banner."""
+    from axiscal.report.html import Report
+
+    rep = Report(title=f"{result.clause}: {log.test} test",
+                 subtitle="Test code for machine tools — Part 3: Determination of thermal effects",
+                 metadata={"Source": log.source, "Duration": f"{log.duration / 3600:.3g} h",
+                           "Run ends": "—" if log.run_end is None else f"{log.run_end / 3600:.3g} h",
+                           "Axis": log.axis or None})
+    rows = []
+    for f in result.figures:
+        v, u = f.shown()
+        rows.append([f.label, v, u, f.unit, f.clause])
+    rep.add_heading("Figures")
+    rep.add_table(["Figure", "Value", "U", "Unit", "Clause"], rows, digits=3)
+    for n in result.notes:
+        rep.add_text(n)
+    rep.add_figure(plot_thermal(log), "Drift and temperatures over time")
+    if truth:
+        from axiscal.standards.iso230_3 import _UNITS
+
+        rep.add_truth("Simulation truth")
+        rep.add_table(["Figure", "Evaluated", "Truth", "U", "Unit"],
+                      [[f.label, f.shown()[0], truth[f.name] * _UNITS[f.kind][1], f.shown()[1],
+                        f.unit] for f in result.figures if f.name in truth], digits=3)
+    return rep
