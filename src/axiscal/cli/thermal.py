@@ -4,6 +4,25 @@ temperature compensation.
 Each command parses, calls one function of :mod:`axiscal.api._thermal` and renders; ``--json``
 prints the result's ``to_dict()``. The twin is ``axiscal/data/thermal_vmc.toml`` unless
 ``--config`` names another (format: :mod:`axiscal.machines.thermal_config`).
+
+JSON (``--json``), units in the key names (µm, µrad, K, h as each figure's ``unit`` says):
+
+* ``plan``: ``test``, ``duration_h``, ``interval_s``, ``samples``, ``start_h``; the spindle and
+  linear tests ``run_h``, ``stop_h``; spindle ``speed_fraction``; linear ``axis``, ``duty``,
+  ``P1_mm``, ``P2_mm``; drift check ``position_mm``, ``instrument_drift_um_per_h``.
+* ``evaluate``: ``test``, ``clause``, ``duration_h``, ``run_end_h``, ``notes`` and ``figures``,
+  each with ``name``, ``label``, ``value``, ``U``, ``unit``, ``clause``.
+* ``simulate``: ``plan``, ``evaluation`` (as evaluate), ``truth`` (figure name to value, in the
+  figure's unit) and ``out``; a drift check ``plan``, ``e_ve_um``, ``e_ve_source``, ``truth``
+  (``e_ve_um``), ``out``.
+* ``model``: ``test``, ``axis``, ``targets_mm``, ``sensors`` and ``lags_min`` (one per term),
+  ``reference_C``, ``coefficients`` (per channel ``unit``, ``values``, ``u``) and ``scores``
+  (per run ``role``, ``source``, ``rms``, ``max_error``, ``drift_range``,
+  ``max_error_share_of_range``).
+* ``compensate``: ``sinumerik`` (``controller``, ``axis``, the machine and setting data by
+  name, each with its ``value`` or ``formula`` and ``unit``, ``k0_mm_per_K``, ``s_per_K``,
+  ``lags_min``, ``lag``, ``sign``, ``outside``), ``model`` (as model) and ``verify`` (null, or
+  ``before_um``, ``after_um``, ``reduction`` per target).
 """
 
 from __future__ import annotations
