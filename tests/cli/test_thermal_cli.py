@@ -165,3 +165,17 @@ def test_reports_keep_the_truth_to_simulations(tmp_path, linear_logs):
     e, s = r1.read_text("utf-8"), r2.read_text("utf-8")
     assert "ISO 230-3:2020 Clause 7" in e and "<svg" in e and "Simulation truth" not in e
     assert "Simulation truth" in s and "simulation-banner" in s and "ISO 230-3:2020 Clause 6" in s
+
+
+def test_e_ve_from_an_etve_record_is_said_to_be_declared(tmp_path):
+    """ISO 230-2 Annex A.5's E_VE from an ETVE record: the range of one direction over the
+    window, said to be the machine's response to the room only, to be declared."""
+    log = tmp_path / "etve.csv"
+    _ok("thermal", "simulate", "--test", "etve", "--out", log)
+    d = _json("thermal", "evaluate", log, "--e-ve", "X,1,2")["e_ve"]
+    data = axiscal.read_thermal(log)
+    m = (data.time >= 3600) & (data.time <= 3 * 3600)
+    assert d["value_um"] == pytest.approx(np.ptp(data.displacements["X"][m]) * 1e6, abs=1e-6)
+    assert d["source"] == "declared" and "without" in d["what"]
+    r = runner.invoke(app, ["thermal", "evaluate", str(log), "--e-ve", "X,23,5"])
+    assert r.exit_code == 2 and "outside the log" in r.output

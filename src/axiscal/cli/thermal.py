@@ -11,7 +11,8 @@ JSON (``--json``), units in the key names (µm, µrad, K, h as each figure's ``u
   linear tests ``run_h``, ``stop_h``; spindle ``speed_fraction``; linear ``axis``, ``duty``,
   ``P1_mm``, ``P2_mm``; drift check ``position_mm``, ``instrument_drift_um_per_h``.
 * ``evaluate``: ``test``, ``clause``, ``duration_h``, ``run_end_h``, ``notes`` and ``figures``,
-  each with ``name``, ``label``, ``value``, ``U``, ``unit``, ``clause``.
+  each with ``name``, ``label``, ``value``, ``U``, ``unit``, ``clause``; with ``--e-ve`` also
+  ``e_ve`` (``channel``, ``start_h``, ``duration_h``, ``value_um``, ``source``, ``what``).
 * ``simulate``: ``plan``, ``evaluation`` (as evaluate), ``truth`` (figure name to value, in the
   figure's unit) and ``out``; a drift check ``plan``, ``e_ve_um``, ``e_ve_source``, ``truth``
   (``e_ve_um``), ``out``.
@@ -166,6 +167,11 @@ def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axis
                                                  ".svg, .pdf)."),
              report: Optional[Path] = typer.Option(None, "--report", help="HTML (or PDF) "
                                                    "report: figures, clauses, plot."),
+             e_ve: Optional[str] = typer.Option(None, "--e-ve", help="ETVE log: E_VE of "
+                                                "ISO 230-2 Annex A.5 from one direction over a "
+                                                "window, CHANNEL,START_H,DURATION_H (e.g. "
+                                                "X,1,2): the machine's response to the room "
+                                                "only, to be declared."),
              json_out: bool = typer.Option(False, "--json", help="Print the figures as JSON.")
              ) -> None:
     """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle or linear axis).
@@ -180,6 +186,7 @@ def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axis
         report_path(report)
     data = read_thermal(log)
     result = evaluate_thermal(data)
+    derived = None if e_ve is None else _e_ve_from_etve(data, e_ve)
     if plot is not None:
         from axiscal.report.thermal_plots import save_thermal_plot
 
@@ -189,9 +196,13 @@ def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axis
 
         thermal_report(data, result).write(report)
     if json_out:
-        print_json(result.to_dict())
+        print_json({**result.to_dict(), **({} if derived is None else {"e_ve": derived})})
         return
     typer.echo(str(result))
+    if derived is not None:
+        typer.echo(f"E_VE from the ETVE record, {derived['channel']} over "
+                   f"{derived['start_h']:g} h + {derived['duration_h']:g} h: "
+                   f"{derived['value_um']:.3f} µm; {derived['what']}")
 
 
 def model(fit: List[Path] = typer.Argument(..., help="Log(s) to fit (runs of one test)."),
@@ -288,6 +299,29 @@ def _drift_check(dc, out, plot, json_out) -> None:
                f"simulation truth {dc.true_e_ve * 1e6:.3f} µm")
     if out is not None:
         note(f"wrote {out}: give it to 'axiscal iso230-2 TEST --drift-check {out}'")
+
+
+def _e_ve_from_etve(log, text: str) -> dict:
+    """``--e-ve CHANNEL,START_H,DURATION_H`` (:func:`axiscal.standards.iso230_3.e_ve_from_etve`)."""
+    from axiscal.errors import InputError, one_line
+    from axiscal.standards.iso230_3 import e_ve_from_etve
+
+    parts = [p.strip() for p in text.split(",")]
+    try:
+        channel, start, duration = parts[0], float(parts[1]), float(parts[2])
+        ok = len(parts) == 3 and all(map(lambda v: v == v and abs(v) < 1e6, (start, duration)))
+    except (IndexError, ValueError):
+        ok = False
+    if not ok:
+        raise InputError(f"--e-ve {one_line(repr(text), 60)}: give CHANNEL,START_H,DURATION_H, "
+                         "e.g. X,1,2")
+    v = e_ve_from_etve(log, channel, start * 3600, duration * 3600)
+    return {"channel": channel, "start_h": start, "duration_h": duration,
+            "value_um": round(v * 1e6, 6), "source": "declared",
+            "what": ("the machine's response to the room in that direction at the ETVE set-up's "
+                     "place over that time, without the positioning test's instrument drift; "
+                     "declare it (--uncertainty e_ve=VALUE, e_ve_source = 'declared'), a drift "
+                     "check measures the set-up itself")}
 
 
 def _shown(result, name: str, value: float) -> float:
