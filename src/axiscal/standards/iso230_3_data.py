@@ -18,9 +18,9 @@ them against the clause before an acceptance test:
 test      minimum (axiscal default)   reason
 ========  ==========================  ===================================================
 etve      12 h                        half the room's daily cycle at least; 24 h planned
-spindle   4 h running                 spindle drift settles in hours (4 h is the running
-                                      time of ISO 230-3:2007's spindle test as commonly
-                                      quoted; not verified against the 2020 text)
+spindle   4 h running                 spindle drift settles in hours; 4 h is recalled
+                                      from the earlier edition's spindle test, not found
+                                      in a public source nor checked against the 2020 text
 linear    4 h of motion               as for the spindle: screw nut and bearings settle in
                                       hours
 ========  ==========================  ===================================================
