@@ -129,3 +129,29 @@ def test_bad_logs_are_refused_with_one_line(change, words):
     with pytest.raises(DataFormatError) as e:
         check_log(log)
     assert words in str(e.value) and "\n" not in str(e.value)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def spindle_log(twin):
+    return simulate_thermal(twin, plan_thermal(twin, "spindle"), np.random.default_rng(11)).log
+
+
+@settings(max_examples=25, deadline=None)
+@given(offset=st.floats(-1e-3, 1e-3), flip=st.booleans())
+def test_drift_figures_ignore_each_sensors_zero_and_flip_with_the_sign(spindle_log, offset, flip):
+    """CONVENTIONS habit 9: a constant added to every reading of a sensor (its zero) leaves every
+    drift figure unchanged; negating every displacement negates every drift figure and keeps its
+    U (ISO 230-3 figures are changes from the first reading)."""
+    base = evaluate_thermal(spindle_log)
+    s = -1.0 if flip else 1.0
+    moved = dataclasses.replace(spindle_log, displacements={
+        k: s * v + offset * (i + 1) for i, (k, v) in enumerate(spindle_log.displacements.items())})
+    other = evaluate_thermal(moved)
+    for f in base.figures:
+        if f.kind in ("length", "angle"):
+            assert other[f.name].value == pytest.approx(s * f.value, abs=1e-12)
+            assert other[f.name].uncertainty == pytest.approx(f.uncertainty, rel=1e-9, abs=1e-15)
