@@ -132,6 +132,7 @@ def test_drift_check_gives_iso230_2_a_measured_e_ve(tmp_path, monkeypatch):
     (["plan", "--test", "linear", "--p1-mm", "5000", "--p2-mm", "10"], "outside the travel"),
     (["plan", "--test", "spindle", "--interval-s", "900"], "at most 300 s"),
     (["simulate", "--test", "spindle", "--run-h", "1"], "needs at least 4 h"),
+    (["plan", "--test", "spindle", "--speed-programme", "0.5;30"], "FRACTION:MINUTES"),
 ])
 def test_bad_input_is_one_line_exit_2(tmp_path, args, words):
     out = tmp_path / "never.csv"

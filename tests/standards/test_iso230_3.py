@@ -155,3 +155,19 @@ def test_drift_figures_ignore_each_sensors_zero_and_flip_with_the_sign(spindle_l
         if f.kind in ("length", "angle"):
             assert other[f.name].value == pytest.approx(s * f.value, abs=1e-12)
             assert other[f.name].uncertainty == pytest.approx(f.uncertainty, rel=1e-9, abs=1e-15)
+
+
+def test_a_speed_programme_is_held_step_by_step_and_evaluated_against_the_truth(twin):
+    """Steps of 25 %, 50 % and 100 % speed for 30 min each, repeated through the 4 h run: the
+    spindle node follows the steps, and every figure still equals the truth within its U."""
+    from axiscal.procedures.thermal import _speeds
+
+    plan = plan_thermal(twin, "spindle", programme=((0.25, 1800.0), (0.5, 1800.0), (1.0, 1800.0)))
+    u = _speeds(plan)
+    t = plan.times
+    assert u[t == 0][0] == 0.25 and u[t == 1800][0] == 0.5 and u[t == 3600 + 1740][0] == 1.0
+    assert u[t == 5400][0] == 0.25                              # the programme repeats
+    sim = simulate_thermal(twin, plan, np.random.default_rng(5))
+    result = evaluate_thermal(sim.log)
+    for name, true in sim.truth.items():
+        assert abs(result[name].value - true) <= result[name].uncertainty, name

@@ -41,10 +41,12 @@ def plan_thermal(test: str, config: Any = None, *, duration_h: float | None = No
                  run_h: float | None = None, interval_s: float = 60.0, speed: float = 0.5,
                  axis: str = "X", p1_mm: float | None = None, p2_mm: float | None = None,
                  duty: float = 0.8, position_mm: float | None = None,
-                 instrument_drift_um_per_h: float = 0.0, start_h: float = 8.0):
+                 instrument_drift_um_per_h: float = 0.0, start_h: float = 8.0,
+                 programme: Sequence[tuple[float, float]] = ()):
     """A plan of an ISO 230-3 test (``etve``, ``spindle``, ``linear``) or of the ISO 230-2
     drift check (``drift-check``) on the twin; defaults in
-    :mod:`axiscal.procedures.thermal`."""
+    :mod:`axiscal.procedures.thermal`. ``programme``: spindle speed steps (fraction of the
+    maximum, minutes), repeated through the run."""
     from axiscal.errors import InputError
     from axiscal.procedures.thermal import plan_thermal as plan
 
@@ -58,7 +60,8 @@ def plan_thermal(test: str, config: Any = None, *, duration_h: float | None = No
                 run=None if run_h is None else run_h * 3600, interval=interval_s, speed=speed,
                 axis=axis, targets=targets, duty=duty,
                 position=None if position_mm is None else position_mm * 1e-3,
-                instrument_drift=instrument_drift_um_per_h * 1e-6 / 3600, start=start_h * 3600)
+                instrument_drift=instrument_drift_um_per_h * 1e-6 / 3600, start=start_h * 3600,
+                programme=tuple((f, m * 60) for f, m in programme))
 
 
 def simulate_thermal(test: str, config: Any = None, seed: int = 0, **options):

@@ -47,11 +47,34 @@ _TESTS = "etve, spindle, linear or drift-check (ISO 230-2 Annex A.5)"
 
 
 def _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm, duty,
-                  position_mm, instrument_drift, start_h) -> dict:
+                  position_mm, instrument_drift, start_h, programme=None) -> dict:
     return dict(test=test, config=config, duration_h=duration_h, run_h=run_h,
                 interval_s=interval_s, speed=speed, axis=axis, p1_mm=p1_mm, p2_mm=p2_mm,
                 duty=duty, position_mm=position_mm, instrument_drift_um_per_h=instrument_drift,
-                start_h=start_h)
+                start_h=start_h, programme=_programme(programme))
+
+
+def _programme(text):
+    """``--speed-programme 0.25:30,0.5:30,1:30`` -> ((0.25, 30.0), ...) (fraction, minutes)."""
+    if text is None:
+        return ()
+    from axiscal.errors import InputError, one_line
+
+    steps = []
+    for part in text.split(","):
+        try:
+            f, m = (float(x) for x in part.split(":"))
+        except ValueError:
+            raise InputError(f"--speed-programme {one_line(repr(text), 60)}: give steps "
+                             "FRACTION:MINUTES separated by commas, e.g. 0.25:30,0.5:30,1:30"
+                             ) from None
+        if not (0 <= f <= 1 and 0 < m <= 1e4):
+            raise InputError(f"--speed-programme step {one_line(part, 40)}: a fraction 0 to 1 "
+                             "and more than 0, at most 10000 min")
+        steps.append((f, m))
+    if len(steps) > 1000:
+        raise InputError("--speed-programme: at most 1000 steps")
+    return tuple(steps)
 
 
 # The options every planned test shares (plan and simulate), declared once.
@@ -73,6 +96,8 @@ _OPTS = dict(
     instrument_drift=typer.Option(0.0, "--instrument-drift-um-per-h", help="Drift check: the "
                                   "instrument's own drift, µm/h."),
     start_h=typer.Option(8.0, "--start-h", help="When the test starts in the room's day, h."),
+    programme=typer.Option(None, "--speed-programme", help="Spindle test: speed steps "
+                           "FRACTION:MINUTES,... repeated through the run (replaces --speed)."),
 )
 
 
@@ -83,6 +108,7 @@ def plan(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
          p2_mm: Optional[float] = _OPTS["p2_mm"], duty: float = _OPTS["duty"],
          position_mm: Optional[float] = _OPTS["position_mm"],
          instrument_drift: float = _OPTS["instrument_drift"], start_h: float = _OPTS["start_h"],
+         programme: Optional[str] = _OPTS["programme"],
          json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON.")) -> None:
     """Plan an ISO 230-3 thermal test or an ISO 230-2 drift check: durations, samples, targets.
 
@@ -91,7 +117,8 @@ def plan(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
     from axiscal.api._thermal import plan_thermal
 
     p = plan_thermal(**_plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
-                                     p1_mm, p2_mm, duty, position_mm, instrument_drift, start_h))
+                                     p1_mm, p2_mm, duty, position_mm, instrument_drift, start_h,
+                                     programme))
     d = p.to_dict()
     if json_out:
         print_json(d)
@@ -107,7 +134,7 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
              p1_mm: Optional[float] = _OPTS["p1_mm"], p2_mm: Optional[float] = _OPTS["p2_mm"],
              duty: float = _OPTS["duty"], position_mm: Optional[float] = _OPTS["position_mm"],
              instrument_drift: float = _OPTS["instrument_drift"],
-             start_h: float = _OPTS["start_h"],
+             start_h: float = _OPTS["start_h"], programme: Optional[str] = _OPTS["programme"],
              seed: int = typer.Option(0, "--seed", min=0, help="Seed of the sensors' noise."),
              out: Optional[Path] = typer.Option(None, "--out", help="Write the log CSV (a drift "
                                                 "check: the file iso230-2 --drift-check reads)."),
@@ -131,7 +158,7 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
     if report is not None:
         report_path(report)
     opts = _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm,
-                         duty, position_mm, instrument_drift, start_h)
+                         duty, position_mm, instrument_drift, start_h, programme)
     sim = simulate_thermal(opts.pop("test"), opts.pop("config"), seed, **opts)
     if sim.plan.test == "drift-check":
         _drift_check(sim, out, plot or report, json_out)

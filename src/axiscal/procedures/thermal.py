@@ -12,7 +12,9 @@ Defaults (axiscal's where the standard leaves a choice or its text was not avail
 =================  =====================================================================
 etve               24 h at rest (one daily cycle), a sample a minute
 spindle            4 h at 50 % of the maximum speed, then 1 h stopped; a sample a minute.
-                   The speed is the user's choice; 50 % is axiscal's default
+                   The speed is the user's choice; 50 % is axiscal's default. A speed
+                   programme (steps of a fraction for some minutes, repeated through the
+                   run) replaces the constant speed when given
 linear             4 h cycling between P1 and P2, then 1 h at rest; the axis in motion 80 %
                    of the time (the rest is the measurement dwell at each target); P1 and P2
                    5 % of the travel in from each end; an axis longer than 2 000 mm is tested
@@ -67,6 +69,9 @@ class ThermalPlan:
         Spindle or linear test: how long the spindle runs or the axis cycles.
     speed : float
         Spindle test: speed as a fraction of the maximum.
+    programme : tuple of (float, float)
+        Spindle test: steps of (fraction of the maximum speed, seconds), repeated through the
+        run; empty for the constant ``speed``.
     axis : str
     targets : tuple of float or None, m
         Linear test: P1 and P2.
@@ -91,6 +96,7 @@ class ThermalPlan:
     position: float | None = None
     instrument_drift: float = 0.0
     start: float = 8 * 3600.0
+    programme: tuple[tuple[float, float], ...] = ()
 
     @property
     def times(self) -> np.ndarray:
@@ -105,7 +111,9 @@ class ThermalPlan:
                "start_h": self.start / 3600}
         if self.test == "spindle":
             out |= {"run_h": self.run / 3600, "stop_h": (self.duration - self.run) / 3600,
-                    "speed_fraction": self.speed}
+                    "speed_fraction": self.speed,
+                    "programme": [{"speed_fraction": f, "minutes": d / 60}
+                                  for f, d in self.programme]}
         if self.test == "linear":
             out |= {"axis": self.axis, "run_h": self.run / 3600,
                     "stop_h": (self.duration - self.run) / 3600, "duty": self.duty,
@@ -159,7 +167,8 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
                  interval: float = 60.0, run: float | None = None, speed: float = 0.5,
                  axis: str = "X", targets: tuple[float, float] | None = None, duty: float = 0.8,
                  position: float | None = None, instrument_drift: float = 0.0,
-                 start: float = 8 * 3600.0) -> ThermalPlan:
+                 start: float = 8 * 3600.0,
+                 programme: tuple[tuple[float, float], ...] = ()) -> ThermalPlan:
     """A checked plan with the defaults of the module docstring (all quantities SI).
 
     Examples
@@ -193,6 +202,10 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
                          f"most {MAX_SAMPLES} samples")
     if not 0 <= speed <= 1:
         raise InputError(f"spindle speed {speed:g} must be a fraction of the maximum, 0 to 1")
+    for f, d in programme:
+        if not (0 <= f <= 1 and 0 < d <= 1e6):
+            raise InputError(f"speed programme step ({f:g}, {d / 60:g} min): a fraction 0 to 1 "
+                             "for more than 0 min")
     if not 0 <= duty <= 1:
         raise InputError(f"duty {duty:g} must be a share of the time, 0 to 1")
     if not abs(start) <= MAX_START:
@@ -220,7 +233,8 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
         axis = ax.name
     return ThermalPlan(test, float(duration), float(interval), run, speed, axis,
                        None if targets is None else (float(targets[0]), float(targets[1])),
-                       duty, position, instrument_drift, start)
+                       duty, position, instrument_drift, start,
+                       tuple((float(f), float(d)) for f, d in programme))
 
 
 def simulate_thermal(twin: ThermalTwin, plan: ThermalPlan,
@@ -288,13 +302,26 @@ def _history(twin: ThermalTwin, plan: ThermalPlan, running: np.ndarray) -> Therm
     settle = np.arange(0.0, _SETTLE, 600.0)
     grid = np.concatenate((settle, _SETTLE + t)) + plan.start - _SETTLE
     zeros = np.zeros(settle.size)
-    spindle = np.concatenate((zeros, plan.speed * running)) if plan.test == "spindle" else None
+    spindle = (np.concatenate((zeros, _speeds(plan) * running)) if plan.test == "spindle"
+               else None)
     axes = ({plan.axis: np.concatenate((zeros, plan.duty * running))}
             if plan.test == "linear" else None)
     h = twin.run(grid, spindle=spindle, axes=axes)
     cut = slice(settle.size, None)
     return ThermalHistory(t.copy(), h.room[cut], {k: v[cut] for k, v in h.nodes.items()},
                           h.displacement[cut])
+
+
+def _speeds(plan: ThermalPlan) -> np.ndarray:
+    """The spindle's speed fraction from each sample to the next: constant, or the programme's
+    steps repeated from the start."""
+    t = plan.times
+    if not plan.programme:
+        return np.full(t.size, plan.speed)
+    ends = np.cumsum([d for _, d in plan.programme])
+    phase = np.mod(t, ends[-1])
+    step = np.searchsorted(ends, phase, side="right")
+    return np.array([f for f, _ in plan.programme])[np.minimum(step, len(ends) - 1)]
 
 
 def _drift_truth(series: dict[str, np.ndarray], running: np.ndarray) -> dict[str, float]:
