@@ -25,7 +25,9 @@ __version__ = "0.1.0"
 
 __all__ = ["__version__", "read", "evaluate", "simulate", "volumetric_map",
            "volumetric_compensation", "compensate_environment", "compensation_table",
-           "write_table", "History", "Evaluation", "Simulation", "plan", "Plan"]
+           "write_table", "History", "Evaluation", "Simulation", "plan", "Plan",
+           "simulate_thermal", "read_thermal", "evaluate_thermal", "fit_thermal_model",
+           "thermal_compensation"]
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from typing import Any

@@ -114,6 +114,11 @@ BASES = {
     "volumetric compensate": ["{d}/vol/volumetric.toml", "--controller", "siemens-840d"],
     "volumetric map": ["{d}/vol/volumetric.toml"],
     "volumetric simulate": ["--out", "{c}/vol"],
+    "thermal plan": ["--test", "spindle"],
+    "thermal simulate": ["--test", "linear", "--out", "{c}/log.csv"],
+    "thermal evaluate": ["{d}/thermal1.csv"],
+    "thermal model": ["{d}/thermal1.csv", "--validate", "{d}/thermal2.csv"],
+    "thermal compensate": ["{d}/thermal1.csv", "--validate", "{d}/thermal2.csv"],
 }
 
 #: Suffix of a file an option names when the base gives none (reports, plots, tables).
@@ -477,6 +482,9 @@ def make_fixtures(root: Path) -> dict:
     for args in (["ballbar", "simulate", str(d / "ballbar_sim.toml"), "--out",
                   str(d / "trace.csv")],
                  ["volumetric", "simulate", "--out", str(d / "vol")],
+                 ["thermal", "simulate", "--test", "linear", "--out", str(d / "thermal1.csv")],
+                 ["thermal", "simulate", "--test", "linear", "--seed", "2", "--duty", "0.5",
+                  "--start-h", "13", "--out", str(d / "thermal2.csv")],
                  ["history", "add", str(d / "pos.csv"), "--db", db],
                  ["history", "export", str(d / "history.zip"), "--db", db]):
         r = runner.invoke(app, args)

@@ -35,7 +35,9 @@ and a command's start-up pays only for what it calls. The package's modules: ``_
 :func:`volumetric_compensation`, :func:`compensate_environment`), ``_compensation``
 (:func:`compensation_table`, :func:`write_table`), ``_results`` (:class:`Evaluation`,
 :class:`Simulation`), ``_history`` (:class:`History`) and ``_config`` (dict configurations
-checked by the TOML files' schemas).
+checked by the TOML files' schemas); ``_thermal`` (ISO 230-3 thermal tests:
+:func:`simulate_thermal`, :func:`read_thermal`, :func:`evaluate_thermal`,
+:func:`fit_thermal_model`, :func:`thermal_compensation`, called by ``axiscal thermal``).
 """
 
 from __future__ import annotations
@@ -44,7 +46,8 @@ TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing (sta
 
 __all__ = ["Evaluation", "Simulation", "History", "read", "evaluate", "simulate",
            "volumetric_map", "volumetric_compensation", "compensate_environment",
-           "compensation_table", "write_table", "plan", "Plan"]
+           "compensation_table", "write_table", "plan", "Plan", "simulate_thermal", "read_thermal",
+           "evaluate_thermal", "fit_thermal_model", "thermal_compensation"]
 
 #: The module of each public name (and of ``PathLike``, the type of a path argument, and
 #: ``DEFAULT_STANDARD``, the standard :func:`evaluate` applies when none is named).
@@ -53,7 +56,10 @@ _HOME = {"DEFAULT_STANDARD": "_results", "read": "_reading", "evaluate": "_readi
          "volumetric_compensation": "_simulating", "compensate_environment": "_simulating",
          "compensation_table": "_compensation", "write_table": "_compensation",
          "Evaluation": "_results", "Simulation": "_results", "PathLike": "_results",
-         "History": "_history", "plan": "_planning", "Plan": "_planning"}
+         "History": "_history", "plan": "_planning", "Plan": "_planning",
+         "simulate_thermal": "_thermal", "read_thermal": "_thermal",
+         "evaluate_thermal": "_thermal", "fit_thermal_model": "_thermal",
+         "thermal_compensation": "_thermal"}
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from typing import Any

@@ -54,6 +54,7 @@ COMMANDS: dict[str, str] = {
     "config": "axiscal.cli.config",
     "ballbar": "axiscal.cli.ballbar",
     "calibrate": "axiscal.cli.calibrate",
+    "thermal": "axiscal.cli.thermal",
 }
 
 #: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
@@ -110,6 +111,10 @@ SUMMARIES: dict[str, str] = {
     "ballbar":
         "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "
         "machine squareness, Method 4: every separable machine error, ranked, with advice.",
+    "thermal":
+        "Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
+        "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
+        "compensation.",
 }
 
 #: ``ctx.meta`` key set while the root's help is drawn (commands listed, not loaded).
