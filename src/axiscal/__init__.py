@@ -38,6 +38,7 @@ from axiscal.errors import (  # noqa: E402  (the exceptions: light, and at the t
     InputError,
     InsufficientRunsError,
     MeasurementError,
+    MissingExtraError,
     MissingFileError,
     NotAvailableError,
     NotFoundError,

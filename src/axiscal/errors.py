@@ -28,6 +28,7 @@ __all__ = [
     "NotAvailableError",
     "StoreError",
     "NotFoundError",
+    "MissingExtraError",
     "ERRORS",
     "one_line",
     "MAX_MESSAGE",
@@ -142,9 +143,13 @@ class NotFoundError(AxiscalError, LookupError):
     """No such test, machine or axis in the history."""
 
 
+class MissingExtraError(AxiscalError, ImportError):
+    """A feature needs an optional extra that is not installed (``pip install 'axiscal[web]'``)."""
+
+
 #: Every exception class of the library, each importable from the package's top
 #: (``axiscal.DataFormatError``).
 ERRORS = ("AxiscalError", "InputError", "UnitError", "ConfigError", "InsufficientRunsError",
           "ControllerLimitError", "SignConventionError", "NotAvailableError", "DataFormatError",
           "MissingFileError", "MeasurementError", "SignalLossError", "StoreError",
-          "NotFoundError")
+          "NotFoundError", "MissingExtraError")
