@@ -3,8 +3,9 @@
 * ``generated/cli.rst``: the command-line reference, walking the click tree of ``axiscal.cli.app``
   (every command and sub-command, its help, its arguments and options with their defaults);
 * ``generated/formats.rst``: the file-format page, from :data:`axiscal.io.formats.FORMATS`;
-* ``generated/uncertainty_inputs.rst``: every input of the ISO 230-2 Annex A budgets, from
-  :func:`axiscal.standards.iso230_9_inputs.input_table`.
+* ``generated/uncertainty_inputs.rst``: every input of the ISO 230-2 Annex A and squareness
+  budgets, from :func:`axiscal.standards.iso230_9_inputs.input_table` and
+  :func:`axiscal.standards.iso230_9_geometry.squareness_input_table`.
 
 So the site cannot say something the program does not do. Run alone:
 ``python docs/_generate.py`` writes the same files.
@@ -104,9 +105,12 @@ def uncertainty_inputs_page() -> str:
     from axiscal.standards.iso230_9_inputs import input_table
 
     out = _title("Uncertainty inputs", "=")
-    out += ("Every input of the ISO 230-2:2014 Annex A uncertainty budgets, generated from the "
-            "code (:func:`axiscal.standards.iso230_9_inputs.input_table`). Give one in the "
-            "``[uncertainty]`` table of the user configuration or a job file, with "
+    out += ("Every input of the uncertainty budgets (ISO 230-2:2014 Annex A; the squareness "
+            "budgets of ISO/TR 230-9), generated from the "
+            "code (:func:`axiscal.standards.iso230_9_inputs.input_table`, "
+            ":func:`axiscal.standards.iso230_9_geometry.squareness_input_table`). Give one in the "
+            "``[uncertainty]`` table of the user configuration or a job file (squareness: "
+            "``[squareness_uncertainty]``), with "
             "``--uncertainty NAME=VALUE``, or in the ``uncertainty=`` mapping of "
             ":func:`axiscal.evaluate`. A number is in the unit of the table, the unit the "
             "output shows beside U (α as 11.5 for 11.5 µm/(m·K)); text carries its own unit, "
@@ -115,12 +119,18 @@ def uncertainty_inputs_page() -> str:
             "plausible range is refused with the range: it is most often a value in another "
             "unit. An input not given takes its default, shown as assumed beside U with its "
             "rule.\n\n")
-    for budget in ("linear", "rotary"):
-        out += _title(f"{budget.capitalize()} axis", "-")
+    from axiscal.standards.iso230_9_geometry import squareness_input_table
+
+    rows = input_table() + squareness_input_table()
+    titles = {"linear": "Linear axis (ISO 230-2:2014 Annex A)",
+              "rotary": "Rotary axis (ISO 230-2:2014 Annex A)",
+              "squareness": "Squareness (ISO/TR 230-9; the [squareness_uncertainty] table)"}
+    for budget, title in titles.items():
+        out += _title(title, "-")
         out += ".. list-table::\n   :header-rows: 1\n   :widths: 18 20 9 9 16 28\n\n"
         out += ("   * - name\n     - what it is\n     - unit\n     - default\n"
                 "     - plausible range\n     - rule of the default\n")
-        for r in input_table():
+        for r in rows:
             if r["budget"] == budget:
                 cells = (r["name"], r["label"], r["unit"] or "—", r["default"],
                          f"{r['range']} ({r['why']})" if r["why"] else r["range"],

@@ -105,6 +105,7 @@ def test_from_dataframe_round_trips_a_real_test():
         mine, columns={"target": "pos", "deviation": "err"}, metadata=ds.metadata,
         **units).equals(ds)
     assert axiscal.evaluate(built).to_dict()["E"] == axiscal.evaluate(ECMC).to_dict()["E"]
+    assert axiscal.evaluate(frame).to_dict()["E"] == axiscal.evaluate(ECMC).to_dict()["E"]
 
 
 def test_from_dataframe_refuses_naming_the_problem():

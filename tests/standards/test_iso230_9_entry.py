@@ -187,3 +187,78 @@ def test_the_documented_table_lists_every_input():
     assert (alpha["unit"], alpha["default"]) == ("µm/(m·K)", "11.5")
     assert entered("x", alpha["default"], LINEAR_ENTRY["expansion_coefficient"]) == 11.5e-6
     assert all(r["rule"] and r["range"] for r in rows)
+
+
+#: For each input of a squareness budget: (typed as the output shows it, the same with another
+#: unit, its value in the budget).
+SQUARENESS_TYPED = {
+    "length_x": (0.6, "600 mm", 0.6), "length_y": (0.9, "900 mm", 0.9),
+    "optics_accuracy": (1.5, "0.0015 mm/m", 1.5), "optics_k": (1.5, "1.5", 1.5),
+    "square_error": (1.5, "0.0015 mm", 1.5), "square_length": (0.3, "300 mm", 0.3),
+    "probe_accuracy": (1.5, "1500 nm", 1.5), "slope_fit_x": (0.4, "0.4 um/m", 0.4),
+    "slope_fit_y": (0.4, "0.4 ppm", 0.4), "e_ve": (0.8, "0.0008 mm", 0.8),
+    "reposition": (1.5, "1.5 um", 1.5), "ballbar_radius": (0.1, "100 mm", 0.1),
+    "transducer_accuracy": (1.5, "1.5 um", 1.5), "laser_ppm": (1.5, "1.5 ppm", 1.5),
+    "diagonal_d1": (-20.0, "-0.02 mm", -20.0), "diagonal_d2": (15.0, "15 um", 15.0),
+    "diagonal_length_u": (30.0, "0.03 mm", 30.0), "k": (3.0, "3", 3.0),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SQUARENESS_TYPED))
+def test_squareness_input_typed_as_shown_gives_the_internal_U(name):
+    """The ``[squareness_uncertainty]`` table: as the ISO 230-2 inputs, for the first method
+    whose budget reads the input (``square_error`` also as the optical square's arcsec)."""
+    from axiscal.standards.iso230_9_geometry import (
+        METHOD_INPUTS,
+        squareness_budget,
+        squareness_budget_with_inputs,
+    )
+    from axiscal.standards.iso230_9_entry import SQUARENESS_ENTRY
+
+    assert set(SQUARENESS_TYPED) == set(SQUARENESS_ENTRY)
+    method = next(m for m in ("square", "diagonal", "reversal", "ballbar", "optics")
+                  if name in METHOD_INPUTS[m])
+    shown, text, inside = SQUARENESS_TYPED[name]
+    others = {"diagonal_d1": 20.0} if name == "diagonal_length_u" else {}   # u_D0 ∝ D1 − D2
+    internal = squareness_budget(method, **others, **{name: inside}).U("squareness")
+    for typed in (shown, text):
+        U = squareness_budget_with_inputs(method, {**others, name: typed}).U("squareness")
+        assert U == pytest.approx(internal, rel=1e-12)
+    assert abs(squareness_budget(method, **others).U("squareness") - internal) > 1e-9 * internal
+    if name == "square_error":
+        got = squareness_budget_with_inputs("optics", {name: "0.5 arcsec"}).U("squareness")
+        assert got == pytest.approx(squareness_budget("optics", square_error=0.5).U(
+            "squareness"), rel=1e-12)
+
+
+def test_squareness_values_in_another_unit_are_refused():
+    """A travel typed in mm (600 for 0.6 m) is refused naming the range; every default lies in
+    its range."""
+    import inspect
+
+    from axiscal.errors import ConfigError
+    from axiscal.standards.iso230_9_entry import SQUARENESS_ENTRY
+    from axiscal.standards.iso230_9_geometry import squareness_budget, squareness_budget_with_inputs
+
+    with pytest.raises(ConfigError, match=r"\[squareness_uncertainty\] length_x = 600 m is "
+                                          r"implausible: give 0.01 to 20 m"):
+        squareness_budget_with_inputs("diagonal", {"length_x": 600})
+    with pytest.raises(ConfigError, match="ballbar_radius = 150 m is implausible"):
+        squareness_budget_with_inputs("ballbar", {"ballbar_radius": 150})
+    defaults = {n: p.default for n, p in inspect.signature(squareness_budget).parameters.items()
+                if n != "method"}
+    for name, rule in SQUARENESS_ENTRY.items():
+        assert rule.low <= defaults[name] <= rule.high or (rule.zero and defaults[name] == 0)
+    for rules, cls in ((LINEAR_ENTRY, LinearInputs), (ROTARY_ENTRY, RotaryInputs)):
+        for f in fields(cls):
+            if f.name in rules and f.default is not None:
+                r = rules[f.name]
+                assert r.low <= f.default / r.scale <= r.high, f.name
+
+
+def test_the_documented_table_lists_every_squareness_input():
+    from axiscal.standards.iso230_9_geometry import SQUARENESS_INPUTS, squareness_input_table
+
+    rows = squareness_input_table()
+    assert [r["name"] for r in rows] == list(SQUARENESS_INPUTS)
+    assert all(r["unit"] is not None and r["default"] and r["range"] and r["rule"] for r in rows)

@@ -186,10 +186,12 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
 
     Parameters
     ----------
-    data : dataset, Simulation, str, Path, bytes or file object
+    data : dataset, Simulation, DataFrame, str, Path, bytes or file object
         What :func:`read` returns, a :class:`Simulation` of :func:`simulate` (its simulated
-        test: positioning, rotary calibration, ballbar, five-DOF), or what :func:`read` reads
-        (a path, or the content in memory).
+        test: positioning, rotary calibration, ballbar, five-DOF), a pandas DataFrame of a
+        positioning test's readings (:meth:`PositioningDataset.from_dataframe
+        <axiscal.datasets.PositioningDataset.from_dataframe>`, units in ``attrs["units"]`` or
+        the column names), or what :func:`read` reads (a path, or the content in memory).
     standard : str
         For a positioning test, a key of
         :data:`axiscal.standards.positioning_standards.STANDARDS` (default ``iso230-2:2014``)
@@ -234,6 +236,8 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
 
     if isinstance(data, Simulation):
         data = _simulated(data)
+    elif type(data).__name__ == "DataFrame" and hasattr(data, "columns"):   # pandas, unimported
+        data = PositioningDataset.from_dataframe(data)
     memory = in_memory(data)
     if memory is not None or isinstance(data, (str, Path)):
         from axiscal.report.evaluations import KIND_STANDARD, evaluated_file

@@ -25,7 +25,8 @@ from typing import Any, Mapping
 
 from axiscal.errors import InputError
 
-__all__ = ["EntryRule", "LINEAR_ENTRY", "ROTARY_ENTRY", "entered", "entered_table"]
+__all__ = ["EntryRule", "LINEAR_ENTRY", "ROTARY_ENTRY", "SQUARENESS_ENTRY", "OPTICS_SQUARE_ERROR",
+           "entered", "entered_table"]
 
 
 @dataclass(frozen=True)
@@ -115,7 +116,41 @@ ROTARY_ENTRY: dict[str, EntryRule] = {
 }
 
 
-def entered(name: str, value: Any, rule: EntryRule) -> float:
+_SQ_WHY = "a squareness set-up"
+#: How each number of a squareness budget's ``[squareness_uncertainty]`` table is typed (keys of
+#: :func:`axiscal.standards.iso230_9_geometry.squareness_budget`; ``square_error`` of the
+#: ``optics`` method is :data:`OPTICS_SQUARE_ERROR`).
+SQUARENESS_ENTRY: dict[str, EntryRule] = {
+    "length_x": EntryRule("m", "m", 0.01, 20.0, "0.8 m", "an axis travel; mm need their unit"),
+    "length_y": EntryRule("m", "m", 0.01, 20.0, "0.8 m", "an axis travel; mm need their unit"),
+    "optics_accuracy": EntryRule("µm/m", "um/m", 0.0, 100.0, "0.5 um/m",
+                                 "straightness optics' slope accuracy"),
+    "optics_k": EntryRule("", "", 1.0, 10.0, "2", "a coverage factor, usually 2"),
+    "square_error": EntryRule("µm", "um", 0.0, 100.0, "0.5 um", "a square's certified error"),
+    "square_length": EntryRule("m", "m", 0.01, 5.0, "0.5 m",
+                               "a granite or steel square; mm need their unit"),
+    "probe_accuracy": EntryRule("µm", "um", 0.0, 100.0, "0.5 um", "an indicator's accuracy"),
+    "slope_fit_x": EntryRule("µm/m", "um/m", 0.0, 1000.0, "0.2 um/m", "a fitted slope's u"),
+    "slope_fit_y": EntryRule("µm/m", "um/m", 0.0, 1000.0, "0.2 um/m", "a fitted slope's u"),
+    "e_ve": EntryRule("µm", "um", 0.0, 1000.0, "0.3 um", "a drift check's range"),
+    "reposition": EntryRule("µm", "um", 0.0, 100.0, "0.5 um", _SQ_WHY),
+    "ballbar_radius": EntryRule("m", "m", 0.01, 2.0, "0.15 m",
+                                "a ballbar's length; mm need their unit"),
+    "transducer_accuracy": EntryRule("µm", "um", 0.0, 100.0, "0.5 um",
+                                     "a ballbar transducer's accuracy"),
+    "laser_ppm": EntryRule("ppm", "ppm", 0.01, 100.0, "0.5 ppm",
+                           "laser interferometers are certified to about 0.1-5 ppm"),
+    "diagonal_d1": EntryRule("µm", "um", -1000.0, 1000.0, "5 um", "a diagonal's length error"),
+    "diagonal_d2": EntryRule("µm", "um", -1000.0, 1000.0, "5 um", "a diagonal's length error"),
+    "diagonal_length_u": EntryRule("µm", "um", 0.0, 1000.0, "10 um", _SQ_WHY),
+    "k": EntryRule("", "", 1.0, 10.0, "2", "a coverage factor, usually 2"),
+}
+#: ``square_error`` of the ``optics`` method: the optical square's error, arcsec (k = 2).
+OPTICS_SQUARE_ERROR = EntryRule("arcsec", "arcsec", 0.0, 100.0, "1 arcsec",
+                                "an optical square's certified error")
+
+
+def entered(name: str, value: Any, rule: EntryRule, where: str = "uncertainty") -> float:
     """One typed value of an input, checked and in the unit the budget uses inside.
 
     Parameters
@@ -125,6 +160,8 @@ def entered(name: str, value: Any, rule: EntryRule) -> float:
     value : float or str
         A number in ``rule.unit``, or text: a number alone, or a number and its unit.
     rule : EntryRule
+    where : str
+        What the error names before the key (``uncertainty``, ``[squareness_uncertainty]``).
 
     Returns
     -------
@@ -154,18 +191,18 @@ def entered(name: str, value: Any, rule: EntryRule) -> float:
         try:
             typed = quantity(value, rule.pint or "dimensionless", difference=rule.difference)
         except InputError as e:
-            raise InputError(f"uncertainty {name} = {e}; e.g. {rule.example!r}") from None
+            raise InputError(f"{where} {name} = {e}; e.g. {rule.example!r}") from None
         typed = float(f"{typed:.12g}")   # 68 °F is 20 °C, not 20.000000000000057
     elif isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise InputError(f"uncertainty {name} = {value!r}: give a number in{unit or ' 1'} "
+        raise InputError(f"{where} {name} = {value!r}: give a number in{unit or ' 1'} "
                          f"or text with its unit, e.g. {rule.example!r}")
     else:
         typed = float(value)
     if not math.isfinite(typed):
-        raise InputError(f"uncertainty {name} = {typed!r} must be a finite number")
+        raise InputError(f"{where} {name} = {typed!r} must be a finite number")
     if not (rule.low <= typed <= rule.high or (rule.zero and typed == 0.0)):
         raise InputError(
-            f"uncertainty {name} = {typed:g}{unit} is implausible: give {rule.range_text} "
+            f"{where} {name} = {typed:g}{unit} is implausible: give {rule.range_text} "
             f"({rule.why}); a value in another unit needs its unit, e.g. {rule.example!r}")
     return typed * rule.scale
 
