@@ -195,6 +195,8 @@ def from_si(value, unit: str):
 
 _NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _REGISTRY = None
+#: Longest text read as a value with its unit, characters.
+_LONGEST = 100
 
 
 def quantity(text: str, unit: str, *, difference: bool = False) -> float:
@@ -235,7 +237,11 @@ def quantity(text: str, unit: str, *, difference: bool = False) -> float:
     >>> quantity("2.5", "mm")
     2.5
     """
-    m = _NUMBER.match(str(text))
+    text = str(text)
+    if len(text) > _LONGEST:   # pint's parser on a megabyte of text takes minutes
+        raise UnitError(f"{text[:40]!r}…: {len(text)} characters; a value with its unit is "
+                        f"at most {_LONGEST}")
+    m = _NUMBER.match(text)
     if m is None:
         raise UnitError(f"{text!r}: write a number, then its unit (e.g. '11.5 um/(m K)')")
     number, written = float(m.group(1)), m.group(2).replace("·", "*").replace("⋅", "*")

@@ -262,3 +262,26 @@ def test_the_documented_table_lists_every_squareness_input():
     rows = squareness_input_table()
     assert [r["name"] for r in rows] == list(SQUARENESS_INPUTS)
     assert all(r["unit"] is not None and r["default"] and r["range"] and r["rule"] for r in rows)
+
+
+def test_text_of_any_kind_is_a_number_or_one_input_error():
+    """Arbitrary text given for an input ends as a number in range or an InputError, never
+    another exception (CONVENTIONS habit 9: parsers raise only AxiscalError)."""
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    rule = LINEAR_ENTRY["material_temperature"]
+    units = st.sampled_from(["", " K", " degC", " um", " (", " **", " 1/K", " m*m", " °F"])
+
+    @settings(max_examples=30, deadline=None)
+    @given(st.one_of(st.text(max_size=30), st.builds(
+        lambda x, u: f"{x!r}{u}", st.floats(allow_nan=True, allow_infinity=True), units)))
+    def check(text):
+        try:
+            value = entered("material_temperature", text, rule)
+        except InputError as e:
+            assert "\n" not in str(e)
+        else:
+            assert 0.0 <= value <= 50.0
+
+    check()
