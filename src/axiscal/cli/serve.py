@@ -93,9 +93,10 @@ def serve(
             settings={**settings, "sessions_folder": folder})
 
 
-#: The modules of the ``web`` extra (pyproject.toml) and the distribution of each.
-WEB_EXTRA = {"fastapi": "fastapi", "uvicorn": "uvicorn", "python_multipart": "python-multipart",
-             "argon2": "argon2-cffi"}
+#: The distributions of the ``web`` extra (pyproject.toml) and the module names each may
+#: install (python-multipart before 0.0.13 has only ``multipart``).
+WEB_EXTRA = {"fastapi": ("fastapi",), "uvicorn": ("uvicorn",),
+             "python-multipart": ("python_multipart", "multipart"), "argon2-cffi": ("argon2",)}
 
 
 def _need_web_extra() -> None:
@@ -105,12 +106,16 @@ def _need_web_extra() -> None:
 
     from axiscal.errors import MissingExtraError
 
-    for module, dist in WEB_EXTRA.items():
-        try:
-            importlib.import_module(module)
-        except ImportError:
+    for dist, modules in WEB_EXTRA.items():
+        for module in modules:
+            try:
+                importlib.import_module(module)
+                break
+            except ImportError:
+                continue
+        else:
             raise MissingExtraError(f"axiscal serve needs the web extra: pip install "
-                                    f"'axiscal[web]' ({dist} is not installed)") from None
+                                    f"'axiscal[web]' ({dist} is not installed)")
 
 
 def _port_free(host: str, port: int) -> None:
