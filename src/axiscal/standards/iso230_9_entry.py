@@ -73,7 +73,7 @@ class EntryRule:
 
 
 _ALPHA_WHY = "steel 11.5, glass scale about 8, aluminium 23, Invar 1.2, Zerodur about 0"
-_T_WHY = "a machine in a workshop; a temperature in K needs its unit, e.g. '293.15 K'"
+_T_WHY = "a machine in a workshop"
 
 #: How each number of a linear budget is typed (text inputs, reference and e_ve_source, have
 #: no rule).
@@ -92,9 +92,9 @@ LINEAR_ENTRY: dict[str, EntryRule] = {
     "expansion_coefficient_halfwidth": EntryRule(
         "µm/(m·K)", "um/(m*K)", 0.001, 50.0, "1.15 um/(m K)",
         "a half-width of α, 10 % of α for a handbook value", scale=1e-6, zero=True),
-    "material_temperature": EntryRule("°C", "degC", 0.0, 50.0, "20.5 degC", _T_WHY),
-    "shop_temperature_min": EntryRule("°C", "degC", 0.0, 50.0, "17 degC", _T_WHY),
-    "shop_temperature_max": EntryRule("°C", "degC", 0.0, 50.0, "23 degC", _T_WHY),
+    "material_temperature": EntryRule("°C", "degC", 0.0, 50.0, "293.15 K", _T_WHY),
+    "shop_temperature_min": EntryRule("°C", "degC", 0.0, 50.0, "290.15 K", _T_WHY),
+    "shop_temperature_max": EntryRule("°C", "degC", 0.0, 50.0, "296.15 K", _T_WHY),
     "temperature_halfwidth": EntryRule("K", "K", 0.0, 10.0, "0.1 K",
                                        "a temperature sensor's accuracy", difference=True),
     "sensor_position_halfwidth": EntryRule("K", "K", 0.0, 10.0, "0.2 K",
