@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-stamp
 OUT    ?= demo-output
 
-.PHONY: setup sysdeps linuxcnc demo test bench fuzz shots docs clean
+.PHONY: setup sysdeps demodeps linuxcnc demo test bench fuzz shots docs clean
 
 setup: $(STAMP)
 
@@ -14,16 +14,23 @@ setup: $(STAMP)
 # pages with pdftoppm (poppler-utils), the history tests run on a real throw-away PostgreSQL
 # (tools/pgtest.py starts one per test process in a temporary folder), and the workbench's
 # browser tests drive Chromium with its driver (Selenium). Installed when missing.
-DEBS := libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core fonts-noto-cjk \
-        poppler-utils postgresql chromium chromium-driver
+# The demo needs only what its PDF certificates need (DEMO_DEBS: Pango, HarfBuzz and fonts).
+DEMO_DEBS := libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core fonts-noto-cjk
+DEBS := $(DEMO_DEBS) poppler-utils postgresql chromium chromium-driver
 APT := $(if $(filter 0,$(shell id -u)),,sudo) env DEBIAN_FRONTEND=noninteractive apt-get
-sysdeps:
-	@command -v dpkg >/dev/null || { echo "not Debian: install $(DEBS) yourself"; exit 0; }; \
-	missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+# $(call apt_missing,PACKAGES): install those of PACKAGES that are missing (Debian only).
+define apt_missing
+	@command -v dpkg >/dev/null || { echo "not Debian: install $(1) yourself"; exit 0; }; \
+	missing=""; for p in $(1); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 	  echo "installing Debian packages:$$missing"; \
 	  $(APT) update -qq && $(APT) install -y -qq $$missing >/dev/null; \
 	fi
+endef
+sysdeps:
+	$(call apt_missing,$(DEBS))
+demodeps:
+	$(call apt_missing,$(DEMO_DEBS))
 
 # LinuxCNC (issue 32): the real controller the compensation loop is proven on, run headless in
 # simulation by the tests (tests/instruments/test_linuxcnc_live.py,
@@ -49,7 +56,16 @@ $(STAMP): pyproject.toml | sysdeps
 	$(PY) -m pip install --quiet -e ".[dev]"
 	touch $(STAMP)
 
-demo: $(STAMP)
+# The demo installs axiscal with its [report] extra only (WeasyPrint, for the PDF certificates):
+# not the test tools, the workbench, PostgreSQL or Chromium of [dev] and `make test`.
+DEMO_STAMP := $(VENV)/.demo-stamp
+$(DEMO_STAMP): pyproject.toml | demodeps
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[report]"
+	touch $(DEMO_STAMP)
+
+demo: $(DEMO_STAMP)
 	$(VENV)/bin/axiscal demo --out $(OUT)
 
 test: $(STAMP) sysdeps linuxcnc

@@ -5,7 +5,10 @@
 * ``generated/formats.rst``: the file-format page, from :data:`axiscal.io.formats.FORMATS`;
 * ``generated/json.rst``: the ``--json`` objects: the results-as-data block (schema version,
   ``quantities``) from :mod:`axiscal.standards.quantities` and each command's keys from its
-  module's docstring, the text ``tests/cli/test_cli_json.py`` checks every key against.
+  module's docstring, the text ``tests/cli/test_cli_json.py`` checks every key against;
+* ``generated/uncertainty_inputs.rst``: every input of the ISO 230-2 Annex A and squareness
+  budgets, from :func:`axiscal.standards.iso230_9_inputs.input_table` and
+  :func:`axiscal.standards.iso230_9_geometry.squareness_input_table`.
 
 So the site cannot say something the program does not do. Run alone:
 ``python docs/_generate.py`` writes the same files.
@@ -162,10 +165,50 @@ def _bars(text: str) -> str:
     return "".join(p if p.startswith("``") else p.replace("|", r"\|") for p in parts)
 
 
+def uncertainty_inputs_page() -> str:
+    from axiscal.standards.iso230_9_inputs import input_table
+
+    out = _title("Uncertainty inputs", "=")
+    out += ("Every input of the uncertainty budgets (ISO 230-2:2014 Annex A; the squareness "
+            "budgets of ISO/TR 230-9), generated from the "
+            "code (:func:`axiscal.standards.iso230_9_inputs.input_table`, "
+            ":func:`axiscal.standards.iso230_9_geometry.squareness_input_table`). Give one in the "
+            "``[uncertainty]`` table of the user configuration or a job file (squareness: "
+            "``[squareness_uncertainty]``), with "
+            "``--uncertainty NAME=VALUE``, or in the ``uncertainty=`` mapping of "
+            ":func:`axiscal.evaluate`. A number is in the unit of the table, the unit the "
+            "output shows beside U (α as 11.5 for 11.5 µm/(m·K)); text carries its own unit, "
+            "read by pint (``\"11.5 um/(m K)\"``, ``\"20.5 degC\"``, ``\"293.15 K\"``; a "
+            "temperature difference in K also takes ``\"0.1 degC\"``). A value outside the "
+            "plausible range is refused with the range: it is most often a value in another "
+            "unit. An input not given takes its default, shown as assumed beside U with its "
+            "rule.\n\n")
+    from axiscal.standards.iso230_9_geometry import squareness_input_table
+
+    rows = input_table() + squareness_input_table()
+    titles = {"linear": "Linear axis (ISO 230-2:2014 Annex A)",
+              "rotary": "Rotary axis (ISO 230-2:2014 Annex A)",
+              "squareness": "Squareness (ISO/TR 230-9; the [squareness_uncertainty] table)"}
+    for budget, title in titles.items():
+        out += _title(title, "-")
+        out += ".. list-table::\n   :header-rows: 1\n   :widths: 18 20 9 9 16 28\n\n"
+        out += ("   * - name\n     - what it is\n     - unit\n     - default\n"
+                "     - plausible range\n     - rule of the default\n")
+        for r in rows:
+            if r["budget"] == budget:
+                cells = (r["name"], r["label"], r["unit"] or "—", r["default"],
+                         f"{r['range']} ({r['why']})" if r["why"] else r["range"],
+                         r["rule"])
+                out += "   * - " + "\n     - ".join(_escape(c) for c in cells) + "\n"
+        out += "\n"
+    return out
+
+
 def generate() -> None:
     OUT.mkdir(exist_ok=True)
     for name, text in (("cli.rst", cli_page()), ("formats.rst", formats_page()),
-                       ("json.rst", json_page())):
+                       ("json.rst", json_page()),
+                       ("uncertainty_inputs.rst", uncertainty_inputs_page())):
         p = OUT / name
         if not p.exists() or p.read_text("utf-8") != text:   # unchanged: no rebuild
             p.write_text(text, "utf-8")

@@ -13,8 +13,10 @@ import axiscal
 
 # "data" is package data (configurations, LinuxCNC files, the HAL component axiscal ships): it
 # imports nothing of axiscal, so any layer may read it.
-LAYER = {"errors": 1, "units": 1, "datasets": 1, "data": 1, "_parse": 1, "_json": 1, "_schema": 1, "physics": 2, "standards": 3,
-         "machines": 4, "instruments": 5, "procedures": 6, "compensation": 7, "programs": 7, "io": 8,
+LAYER = {"errors": 1, "units": 1, "datasets": 1, "data": 1, "_parse": 1, "_json": 1, "_schema": 1,
+         "_frames": 1, "physics": 2, "standards": 3,
+         "machines": 4, "instruments": 5, "procedures": 6, "compensation": 7, "programs": 7,
+         "io": 8,
          "report": 8, "store": 8, "api": 8.5, "cli": 9, "web": 9, "__main__": 9}
 ROOT = Path(axiscal.__file__).parent
 

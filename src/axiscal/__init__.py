@@ -14,7 +14,9 @@ The public API (:mod:`axiscal.api`, the only stable surface) is at the top: ``ax
 ``axiscal.volumetric_compensation``,
 ``axiscal.compensate_environment``, ``axiscal.compensation_table``,
 ``axiscal.write_table``, ``axiscal.History``. Its names are imported on first use, so
-``import axiscal`` (and the command line's start-up) stays light.
+``import axiscal`` (and the command line's start-up) stays light. Every exception the library
+raises on purpose is at the top too (``axiscal.DataFormatError``, ``axiscal.InputError`` ...,
+all deriving from ``axiscal.AxiscalError`` and a builtin: :mod:`axiscal.errors`).
 """
 
 from __future__ import annotations
@@ -29,6 +31,28 @@ __all__ = ["__version__", "read", "evaluate", "simulate", "volumetric_map",
            "simulate_thermal", "read_thermal", "evaluate_thermal", "fit_thermal_model",
            "thermal_compensation"]
 
+from axiscal.errors import (  # noqa: E402  (the exceptions: light, and at the top by name)
+    ERRORS,
+    AxiscalError,
+    ConfigError,
+    ControllerLimitError,
+    DataFormatError,
+    InputError,
+    InsufficientRunsError,
+    MeasurementError,
+    MissingExtraError,
+    MissingFileError,
+    NotAvailableError,
+    NotFoundError,
+    SignalLossError,
+    SignConventionError,
+    StoreError,
+    UnitError,
+)
+
+_API = tuple(__all__[1:])
+__all__ += list(ERRORS)
+
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
     from typing import Any
 
@@ -39,7 +63,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
 
 def __getattr__(name: str) -> Any:
     """The public API's names, imported from :mod:`axiscal.api` when first used (PEP 562)."""
-    if name in __all__[1:]:
+    if name in _API:
         from axiscal import api
 
         return getattr(api, name)
@@ -47,4 +71,4 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(list(globals()) + __all__[1:])
+    return sorted(set(globals()) | set(__all__))

@@ -81,8 +81,13 @@ class Num:
     required: bool = False
 
     def check(self, v: Any, name: str) -> float | int:
-        """The value, or an error message (raised by the caller as it knows the file/line)."""
+        """The value, or an error message (raised by the caller as it knows the file/line).
+
+        Text with a unit (``"0.1 m"``, ``"293.15 K"``) is read in ``unit`` by pint, where the
+        unit is one pint knows (:func:`axiscal.units.quantity`; a unit of K is a difference)."""
         shown = f"{name} = {show(v)}{' ' + self.unit if self.unit and _is_num(v) else ''}"
+        if isinstance(v, str) and not self.integer and self.unit not in _NOT_PINT:
+            v = _from_text(v, self.unit, name)
         if self.integer:
             if not (_is_num(v) and isinstance(v, int)):
                 raise _Bad(f"{shown} must be a whole number")
@@ -101,6 +106,27 @@ class Num:
         if hi is not None and v > hi:
             raise _Bad(f"{shown} must be at most {_g(hi, self.unit)}")
         return int(v) if self.integer else float(v)
+
+
+#: Units of :class:`Num` that pint does not read (a count, a relative humidity, no unit).
+_NOT_PINT = ("", "counts", "%RH", "%RH/s")
+#: A :class:`Num`'s unit as pint writes it, where the two differ.
+_PINT = {"°C": "degC", "m/s²": "m/s**2", "µm": "um", "µm/m": "um/m", "µs": "us",
+         "µmol/mol": "umol/mol"}
+_LEADING_NUMBER = re.compile(r"\s*[-+]?(?:\d|\.\d)")
+
+
+def _from_text(v: str, unit: str, name: str) -> Any:
+    """``v``, text, as a number in ``unit``; text without a leading number is left for
+    :meth:`Num.check` to refuse as before (``must be a number in mm``)."""
+    if not _LEADING_NUMBER.match(v):
+        return v
+    from axiscal.units import quantity
+
+    try:
+        return quantity(v, _PINT.get(unit, unit), difference=unit in ("K", "K/s"))
+    except InputError as exc:
+        raise _Bad(f"{name} = {show(v)}: {str(exc).split(': ', 1)[-1]}") from None
 
 
 @dataclass(frozen=True)

@@ -340,6 +340,59 @@ class PositioningDataset:
             arr[i, run - 1] = dev
         return cls.from_arrays(axis_kind, targets, up, down, target_unit, deviation_unit, metadata)
 
+    @classmethod
+    def from_dataframe(
+        cls,
+        frame: Any,
+        *,
+        target_unit: str | None = None,
+        deviation_unit: str | None = None,
+        axis_kind: "str | AxisKind | None" = None,
+        columns: "dict[str, str] | None" = None,
+        metadata: Metadata | None = None,
+    ) -> "PositioningDataset":
+        """Build a dataset from a tidy table in memory, one reading per row.
+
+        Parameters
+        ----------
+        frame : pandas.DataFrame or mapping of str to sequence
+            Columns ``target``, ``direction``, ``run``, ``deviation`` (as the tidy CSV; a unit
+            may be in the name: ``target [mm]``, ``deviation_um``; ``columns=`` maps others).
+        target_unit, deviation_unit : str, optional
+            Else from ``frame.attrs["units"]`` or the column names; refused when found nowhere.
+        axis_kind : {"linear", "rotary"}, optional
+            Default: told by the target unit.
+        columns : dict, optional
+            Your column of each of target, direction, run, deviation.
+        metadata : Metadata, optional
+
+        Returns
+        -------
+        PositioningDataset
+
+        Raises
+        ------
+        DataFormatError
+            A missing column, a bad cell (its row named), a repeated reading; the source is
+            ``<DataFrame>``.
+
+        Examples
+        --------
+        >>> ds = PositioningDataset.from_dataframe(
+        ...     {"target": [0, 0, 50, 50], "direction": ["up", "down", "up", "down"],
+        ...      "run": [1, 1, 1, 1], "deviation": [0.0, 0.4, 1.2, 1.0]},
+        ...     target_unit="mm", deviation_unit="um")
+        >>> ds.bidirectional, ds.down.tolist()
+        (True, [[0.4], [1.0]])
+        """
+        from axiscal._frames import SOURCE, table_readings
+
+        kind = AxisKind.parse(axis_kind).value if axis_kind is not None else None
+        kind, records, tu, du = table_readings(
+            frame, Direction.parse, target_unit=target_unit, deviation_unit=deviation_unit,
+            axis_kind=kind, columns=columns)
+        return cls.from_records(kind, records, tu, du, metadata, source=SOURCE)
+
     # -- derived views ----------------------------------------------------------------
     @property
     def n_targets(self) -> int:

@@ -25,6 +25,11 @@ __all__ = [
     "SignalLossError",
     "ControllerLimitError",
     "SignConventionError",
+    "NotAvailableError",
+    "StoreError",
+    "NotFoundError",
+    "MissingExtraError",
+    "ERRORS",
     "one_line",
     "MAX_MESSAGE",
 ]
@@ -124,3 +129,27 @@ class MeasurementError(AxiscalError, RuntimeError):
 
 class SignalLossError(MeasurementError):
     """An instrument lost its signal (beam obstructed, reflector turned too far, ...)."""
+
+
+class NotAvailableError(InputError):
+    """The standard is known, but no public definition of its parameters was available."""
+
+
+class StoreError(AxiscalError, RuntimeError):
+    """The history database cannot be used as asked (not a database, full, unreachable)."""
+
+
+class NotFoundError(AxiscalError, LookupError):
+    """No such test, machine or axis in the history."""
+
+
+class MissingExtraError(AxiscalError, ImportError):
+    """A feature needs an optional extra that is not installed (``pip install 'axiscal[web]'``)."""
+
+
+#: Every exception class of the library, each importable from the package's top
+#: (``axiscal.DataFormatError``).
+ERRORS = ("AxiscalError", "InputError", "UnitError", "ConfigError", "InsufficientRunsError",
+          "ControllerLimitError", "SignConventionError", "NotAvailableError", "DataFormatError",
+          "MissingFileError", "MeasurementError", "SignalLossError", "StoreError",
+          "NotFoundError", "MissingExtraError")

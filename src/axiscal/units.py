@@ -20,6 +20,7 @@ Examples
 from __future__ import annotations
 
 import math
+import re
 from typing import Literal
 
 import numpy as np
@@ -40,6 +41,7 @@ __all__ = [
     "DEG",
     "UM",
     "MM",
+    "quantity",
 ]
 
 Dimension = Literal["length", "angle"]
@@ -189,3 +191,73 @@ def from_si(value, unit: str):
     if isinstance(value, (int, float)):
         return float(value) / k
     return np.asarray(value, dtype=float) / k
+
+
+_NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+_REGISTRY = None
+#: Longest text read as a value with its unit, characters.
+_LONGEST = 100
+
+
+def quantity(text: str, unit: str, *, difference: bool = False) -> float:
+    """A value written with its unit (``"11.5 um/(m K)"``, ``"20.5 degC"``), in ``unit``.
+
+    Parameters
+    ----------
+    text : str
+        A number, then a unit pint understands (``µm``, ``°C``, ``1/K``, ``ppm``, ``mrad`` ...;
+        ``·`` is read as a product). A number alone is already in ``unit``.
+    unit : str
+        The unit wanted, as pint writes it (``"um/(m*K)"``, ``"degC"``, ``"K"``).
+    difference : bool
+        ``unit`` is a temperature difference (K): ``°C`` or ``°F`` in ``text`` then means a
+        difference of temperature (0.1 °C = 0.1 K), not a temperature (0.1 °C = 273.25 K).
+
+    Returns
+    -------
+    float
+        The value in ``unit``.
+
+    Raises
+    ------
+    UnitError
+        No number at the start, a unit pint does not know, or one of another dimension.
+
+    Notes
+    -----
+    pint (the units library) is imported only here, when a value comes with its unit, so a
+    command given plain numbers never loads it (start-up, issue 30).
+
+    Examples
+    --------
+    >>> quantity("11.5 um/(m K)", "1/K")
+    1.15e-05
+    >>> round(quantity("293.15 K", "degC"), 9), quantity("0.1 degC", "K", difference=True)
+    (20.0, 0.1)
+    >>> quantity("2.5", "mm")
+    2.5
+    """
+    text = str(text)
+    if len(text) > _LONGEST:   # pint's parser on a megabyte of text takes minutes
+        raise UnitError(f"{text[:40]!r}…: {len(text)} characters; a value with its unit is "
+                        f"at most {_LONGEST}")
+    m = _NUMBER.match(text)
+    if m is None:
+        raise UnitError(f"{text!r}: write a number, then its unit (e.g. '11.5 um/(m K)')")
+    number, written = float(m.group(1)), m.group(2).replace("·", "*").replace("⋅", "*")
+    if not written:
+        return number
+    global _REGISTRY
+    import pint
+
+    if _REGISTRY is None:
+        _REGISTRY = pint.UnitRegistry()
+    try:
+        q = _REGISTRY.Quantity(number, written)
+        if difference and not q._is_multiplicative:   # °C, °F: a difference of temperature
+            q = _REGISTRY.Quantity(number, f"delta_{q.units}")
+        return float(q.to(unit).magnitude)
+    except pint.DimensionalityError:
+        raise UnitError(f"{text!r}: {written} cannot be converted to {unit}") from None
+    except Exception as e:   # pint's parser raises many kinds (tokenize, syntax) on odd text
+        raise UnitError(f"{text!r}: unknown unit {written!r} ({e})") from None

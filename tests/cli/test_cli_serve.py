@@ -45,3 +45,44 @@ def test_every_server_limit_is_printed_at_start(monkeypatch, tmp_path):
     assert f"uploads up to {MAX_UPLOAD_BYTES / 2**20:g} MiB," in line
     assert "uploads up to 20 MiB," in line
     assert line.count("\n") == 1 and line.rstrip().endswith("; 1 worker process")   # one line
+
+
+def test_a_taken_port_is_one_line_and_exit_2(monkeypatch, tmp_path):
+    """A port another program listens on: one line naming it, exit 2, before the banner and
+    before serving (it was the banner, then uvicorn's "[Errno 98] address already in use" and
+    exit 3)."""
+    import socket
+
+    import axiscal.web.server as server
+
+    served = []
+    monkeypatch.setattr(server, "run", lambda *a, **k: served.append(a))
+    with socket.socket() as other:
+        other.bind(("127.0.0.1", 0))
+        other.listen()
+        port = other.getsockname()[1]
+        r = runner.invoke(app, ["serve", "--db", f"sqlite:///{tmp_path / 'h.sqlite'}",
+                                "--workers", "1", "--port", str(port)])
+    assert r.exit_code == 2 and not served
+    assert r.stderr == (f"axiscal: error: --port {port}: cannot listen on 127.0.0.1:{port} "
+                        "(another program listens on it); stop it or give another --port\n")
+    assert not (tmp_path / "h.sqlite").exists()   # nothing made before the refusal
+
+
+def test_serve_without_the_web_extra_says_which_to_install(monkeypatch):
+    """A plain install (no ``[web]``): one line naming the extra, exit 2, no traceback
+    (it was ``ModuleNotFoundError: fastapi``). A module set to None in ``sys.modules`` cannot
+    be imported, as if not installed; tests/test_wheel.py checks the same from a wheel."""
+    import sys
+
+    for modules, dist in ((("fastapi",), "fastapi"), (("uvicorn",), "uvicorn"),
+                          (("python_multipart", "multipart"), "python-multipart"),
+                          (("argon2",), "argon2-cffi")):
+        for module in modules:
+            monkeypatch.setitem(sys.modules, module, None)
+        r = runner.invoke(app, ["serve", "--port", "1"])
+        assert r.exit_code == 2 and "Traceback" not in r.output
+        assert r.stderr == ("axiscal: error: axiscal serve needs the web extra: pip install "
+                            f"'axiscal[web]' ({dist} is not installed)\n")
+        for module in modules:
+            monkeypatch.delitem(sys.modules, module)

@@ -26,9 +26,9 @@ runpy.run_module("axiscal", run_name="__main__", alter_sys=True)
 """
 
 #: Libraries the JSON of a positioning test never needs: plots, reports, tables, the history
-#: database, the workbench, GTC.
-HEAVY = ("matplotlib", "scipy", "GTC", "jinja2", "sqlalchemy", "alembic", "rich", "fastapi",
-         "starlette", "weasyprint", "pandas", "pygments", "markdown_it")
+#: database, the workbench, GTC, pint (read only for an uncertainty input written with its unit).
+HEAVY = ("matplotlib", "scipy", "GTC", "pint", "jinja2", "sqlalchemy", "alembic", "rich",
+         "fastapi", "starlette", "weasyprint", "pandas", "pygments", "markdown_it")
 
 #: axiscal's own modules that serve other formats, other commands or other outputs (of the
 #: history only its one evaluation of a test, axiscal.store.kinds, whose record the command

@@ -141,7 +141,7 @@ def test_runs_stated():
 @pytest.mark.parametrize("item, message", [
     ("beam_offset", "write NAME=VALUE"),
     ("beam_ofset=0.1", "unknown key"),
-    ("beam_offset=-1", "must be a finite number >= 0"),
+    ("beam_offset=-1", "implausible: give 0 to 25 mm"),
     ("reference=tracker", "use laser or encoder"),
 ])
 def test_bad_uncertainty_option_is_one_line(item, message):

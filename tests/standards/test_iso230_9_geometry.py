@@ -123,5 +123,5 @@ def test_diagonal_budget_is_the_method_budget_with_its_inputs_shown():
         "assumed: standard uncertainty of the diagonal length D0 10 µm"]
     with pytest.raises(ConfigError, match="probe: no such input"):
         diagonal_budget(r, {"probe": 1.0})
-    with pytest.raises(ConfigError, match="laser_ppm = 'a lot': give a number"):
+    with pytest.raises(ConfigError, match="laser_ppm = 'a lot': write a number, then its unit"):
         diagonal_budget(r, {"laser_ppm": "a lot"})

@@ -7,7 +7,7 @@ print :meth:`axiscal.api.Evaluation.to_dict` for ``--json``.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import IO, TYPE_CHECKING, Any, Callable, Mapping
 
 from axiscal.api._results import DEFAULT_STANDARD   # the standard applied when none is named
 
@@ -20,7 +20,7 @@ __all__ = ["read", "evaluate"]
 FORMS = ("iso230-2", "standards")
 
 
-def read(path: PathLike, *, target_unit: str | None = None,
+def read(path: PathLike | bytes | IO, *, target_unit: str | None = None,
          deviation_unit: str | None = None, kind: str | None = None,
          epics: Mapping[str, Any] | None = None,
          progress: Callable[[int, int], object] | None = None) -> Any:
@@ -28,9 +28,13 @@ def read(path: PathLike, *, target_unit: str | None = None,
 
     Parameters
     ----------
-    path : str or Path
+    path : str, Path, bytes or file object
         A positioning test (tidy CSV, axiscal JSON, Renishaw .rtl/.rta, EPICS ecmc or camonitor
-        log), a straightness, ballbar, diagonal or five-error CSV.
+        log), a straightness, ballbar, diagonal or five-error CSV: its path, or its content in
+        memory: ``bytes`` (UTF-8; errors name ``<bytes>``), a ``str`` holding a line break
+        (the file's text; errors name ``<text>``; a ``str`` without one is a path), or a file
+        object opened in text or binary (``io.StringIO``, ``open(...)``, an upload; errors
+        name its ``name``, else ``<StringIO>`` ...).
     target_unit, deviation_unit : str, optional
         Units of a positioning CSV that does not declare them (mm/deg; um/mm/arcsec).
     kind : str, optional
@@ -51,26 +55,123 @@ def read(path: PathLike, *, target_unit: str | None = None,
 
     Raises
     ------
-    axiscal.errors.DataFormatError
-        A file of no kind axiscal knows, or one that does not parse.
+    axiscal.DataFormatError
+        Content that does not parse, naming the file (or ``<bytes>`` ...) and the line. Content
+        of no kind axiscal tells is read as a positioning test, whose reader says what is
+        wrong (the header it expected), as ``axiscal iso230-2`` does.
+    axiscal.MissingFileError
+        A path that does not exist or cannot be read.
     """
-    from axiscal.report.evaluations import KIND_STANDARD, evaluated_file, kind_of_file
+    from axiscal.report.evaluations import KIND_STANDARD
 
     if kind is not None and kind not in KIND_STANDARD:
         from axiscal.errors import InputError
 
         raise InputError(f"kind {kind!r}: one of {', '.join(KIND_STANDARD)}")
-    kind = kind or kind_of_file(path)
+    memory = in_memory(path)
+    return _read(path, memory, kind or _kind_of(path, memory), target_unit, deviation_unit,
+                 epics, progress)
+
+
+def _read(path, memory, kind, target_unit=None, deviation_unit=None, epics=None,
+          progress=None) -> Any:
+    """:func:`_read_kind`; content of no kind told (``kind`` None) is read as a positioning
+    test and its reader's error says so."""
+    from axiscal.errors import DataFormatError
+
+    try:
+        return _read_kind(path, memory, kind or "iso230-2", target_unit, deviation_unit, epics,
+                          progress)
+    except DataFormatError as e:
+        if kind is not None:
+            raise
+        raise DataFormatError(f"{e.message} (the content is of no kind axiscal tells, so it was "
+                              "read as a positioning test)", e.source, e.line) from None
+
+
+def in_memory(data: Any) -> tuple[str, str] | None:
+    """A data file's content given in memory, as ``(text, source)``; None for a path.
+
+    ``bytes`` (UTF-8) are ``<bytes>``; a ``str`` with a line break is the text itself,
+    ``<text>``; a file object (``read()``) is named by its ``name`` where it has one.
+    """
+    if isinstance(data, (bytes, bytearray, memoryview)):
+        return _decoded(bytes(data), "<bytes>"), "<bytes>"
+    if isinstance(data, str) and ("\n" in data or "\r" in data):
+        return data.removeprefix("\ufeff"), "<text>"
+    read_ = getattr(data, "read", None)
+    if read_ is None or isinstance(data, (str, Path)):
+        return None
+    name = getattr(data, "name", None)
+    source = str(name) if isinstance(name, (str, Path)) and str(name) else \
+        f"<{type(data).__name__}>"
+    raw = read_()
+    if isinstance(raw, (bytes, bytearray)):
+        return _decoded(bytes(raw), source), source
+    if not isinstance(raw, str):
+        from axiscal.errors import InputError
+
+        raise InputError(f"{source}: read() gave {type(raw).__name__}, not text or bytes")
+    return raw.removeprefix("\ufeff"), source
+
+
+def _decoded(raw: bytes, source: str) -> str:
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        from axiscal.errors import DataFormatError
+        from axiscal.io._files import _not_utf8
+
+        raise DataFormatError(_not_utf8(raw, exc.start), source) from None
+
+
+def _kind_of(path: Any, memory: tuple[str, str] | None) -> str | None:
+    """The kind of test the content holds; None when it is of no kind axiscal tells."""
+    from axiscal.errors import DataFormatError
+
+    try:
+        if memory is not None:
+            from axiscal.store.kinds import detect_kind
+
+            return detect_kind(memory[0])
+        from axiscal.report.evaluations import kind_of_file
+
+        return kind_of_file(path)
+    except DataFormatError as e:
+        if e.source is not None:   # not UTF-8, too large ...: the file's own problem
+            raise
+        return None
+
+
+def _read_kind(path, memory, kind, target_unit, deviation_unit, epics, progress) -> Any:
+    """The dataset of ``kind`` from a path or from ``memory`` (text, source)."""
+    epics = dict(epics) if epics else None
+    if memory is None:
+        if kind == "iso230-2":
+            from axiscal.io import read_positioning
+
+            return read_positioning(path, target_unit=target_unit, deviation_unit=deviation_unit,
+                                    progress=progress, epics=epics)
+        if kind == "ballbar":
+            from axiscal.io.ballbar import read_ballbar
+
+            return read_ballbar(path)
+        from axiscal.report.evaluations import evaluated_file
+
+        return evaluated_file(path, kind).dataset
+    text, source = memory
     if kind == "iso230-2":
-        from axiscal.io import read_positioning
+        from axiscal.io import parse_positioning
 
-        return read_positioning(path, target_unit=target_unit, deviation_unit=deviation_unit,
-                                progress=progress, epics=dict(epics) if epics else None)
+        return parse_positioning(text, source, target_unit=target_unit,
+                                 deviation_unit=deviation_unit, epics=epics)
     if kind == "ballbar":
-        from axiscal.io.ballbar import read_ballbar
+        from axiscal.io.ballbar import parse_ballbar
 
-        return read_ballbar(path)
-    return evaluated_file(path, kind).dataset
+        return parse_ballbar(text, source=source)
+    from axiscal.store.kinds import evaluate_file
+
+    return evaluate_file(text.encode("utf-8"), source, kind).dataset
 
 
 def _user_config() -> dict:
@@ -91,8 +192,12 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
 
     Parameters
     ----------
-    data : dataset or str or Path
-        What :func:`read` returns, or a path to read.
+    data : dataset, Simulation, DataFrame, str, Path, bytes or file object
+        What :func:`read` returns, a :class:`Simulation` of :func:`simulate` (its simulated
+        test: positioning, rotary calibration, ballbar, five-DOF), a pandas DataFrame of a
+        positioning test's readings (:meth:`PositioningDataset.from_dataframe
+        <axiscal.datasets.PositioningDataset.from_dataframe>`, units in ``attrs["units"]`` or
+        the column names), or what :func:`read` reads (a path, or the content in memory).
     standard : str
         For a positioning test, a key of
         :data:`axiscal.standards.positioning_standards.STANDARDS` (default ``iso230-2:2014``)
@@ -132,23 +237,33 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
     -------
     Evaluation
     """
-    from axiscal.api._results import Evaluation
+    from axiscal.api._results import Evaluation, Simulation
     from axiscal.datasets import PositioningDataset
 
-    if isinstance(data, (str, Path)):
-        from axiscal.report.evaluations import KIND_STANDARD, evaluated_file, kind_of_file
+    if isinstance(data, Simulation):
+        data = _simulated(data)
+    elif type(data).__name__ == "DataFrame" and hasattr(data, "columns"):   # pandas, unimported
+        data = PositioningDataset.from_dataframe(data)
+    memory = in_memory(data)
+    if memory is not None or isinstance(data, (str, Path)):
+        from axiscal.report.evaluations import evaluated_file
 
-        kind = kind_of_file(data)
-        if kind not in ("iso230-2", "ballbar") or (kind == "ballbar" and feed is None
-                                                   and plane is None):
+        kind = _kind_of(data, memory)
+        if kind is not None and (kind not in ("iso230-2", "ballbar") or (
+                kind == "ballbar" and feed is None and plane is None)):
             from axiscal.report.evaluations import record_fields
             from axiscal.store.kinds import inputs_from_config, with_uncertainty
 
-            ev = evaluated_file(data, kind)
+            if memory is None:
+                ev = evaluated_file(data, kind)
+            else:
+                from axiscal.store.kinds import evaluate_file
+
+                ev = evaluate_file(memory[0].encode("utf-8"), memory[1], kind)
             table = inputs_from_config(kind, _user_config(), ev.dataset)
             return Evaluation(**record_fields(with_uncertainty(ev, {**table,
                                                                    **(uncertainty or {})})))
-        data = read(data, kind=kind)
+        data = _read(data, memory, kind)
     if isinstance(data, PositioningDataset):
         from axiscal.report.evaluations import positioning_evaluation
 
@@ -169,3 +284,21 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
     from axiscal.report.evaluations import ballbar_evaluation
 
     return Evaluation(**ballbar_evaluation(data, feed=feed, plane=plane))
+
+
+def _simulated(sim: Any) -> Any:
+    """What :func:`evaluate` evaluates of a simulation: its simulated test's dataset (a
+    five-DOF test as the text of its data file, as ``axiscal motion analyze`` reads it)."""
+    from axiscal.datasets import PositioningDataset
+    from axiscal.errors import InputError
+    from axiscal.io.ballbar import BallbarData
+
+    data = sim.dataset
+    if isinstance(data, (PositioningDataset, BallbarData)):
+        return data
+    if sim.kind == "five-dof" and data is not None:
+        from axiscal.io.motion import format_motion_errors
+
+        return format_motion_errors(data)
+    raise InputError(f"evaluate: a {sim.kind} simulation holds no test a standard evaluates; "
+                     "its own result is Simulation.result (and to_dict())")

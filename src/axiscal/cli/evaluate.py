@@ -40,7 +40,7 @@ def evaluate(
     report: Optional[Path] = typer.Option(None, "--report", help="Write the HTML report: every parameter of the chosen standard(s) with its source, what is not evaluated and why, the acceptance, the per-target figure."),
     tolerance: List[str] = typer.Option([], "--tolerance", help="NAME=VALUE in the deviation unit, in the chosen standard's names, e.g. -s jis-b6192 --tolerance R=6 (exit code 1 if not proven met)."),
     rule: Optional[str] = typer.Option(None, "--rule", help="Decision rule: iso14253-1 (with U of ISO 230-9; default and only for iso230-2:2014) or simple (default for the other standards, whose U no published budget gives)."),
-    uncertainty: List[str] = typer.Option([], "--uncertainty", help="With -s iso230-2:2014: an input of its uncertainty budget as NAME=VALUE, e.g. --uncertainty e_ve=0.3 (as 'axiscal iso230-2'; every input not given is shown as assumed)."),
+    uncertainty: List[str] = typer.Option([], "--uncertainty", help="With -s iso230-2:2014: an input of its uncertainty budget as NAME=VALUE, e.g. --uncertainty e_ve=0.3, in the unit the output shows or with its unit ('expansion_coefficient=11.5 um/(m K)'), as 'axiscal iso230-2'; every input not given is shown as assumed."),
     setpoint_pv: Optional[str] = SETPOINT_PV,
     reference_pv: Optional[str] = REFERENCE_PV,
     targets: Optional[str] = TARGETS,

@@ -62,7 +62,7 @@ def iso230_2(
     paper: Optional[str] = PAPER,
     draft: bool = DRAFT,
     drift_check: Optional[Path] = typer.Option(None, "--drift-check", help="Drift-check file (CSV: a 'reading' column, or one column of numbers, in the deviation unit): E_VE of the uncertainty budget is the range of its readings, measured (ISO 230-2:2014 Annex A.5)."),
-    uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's \\[uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3 (names and units: the 'Uncertainty inputs' table; every input not given is shown as assumed, with the rule of its default)."),
+    uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's \\[uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3; a number is in the unit the 'Uncertainty inputs' table shows (expansion_coefficient=11.5 for 11.5 µm/(m·K)), or give its unit: 'material_temperature=293.15 K' (names, units and plausible ranges: the documentation's 'Uncertainty inputs' page; every input not given is shown as assumed, with the rule of its default)."),
     setpoint_pv: Optional[str] = SETPOINT_PV,
     reference_pv: Optional[str] = REFERENCE_PV,
     targets: Optional[str] = TARGETS,

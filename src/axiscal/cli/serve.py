@@ -57,6 +57,8 @@ def serve(
     Example: axiscal serve --port 8000   (then open http://127.0.0.1:8000 in a browser)
     """
     from axiscal.errors import InputError
+
+    _need_web_extra()
     from axiscal.web.security import UserFile, is_loopback
 
     users_path = users or _default_users()
@@ -70,6 +72,7 @@ def serve(
     from axiscal.web.guards import allowed_hosts
     from axiscal.web.server import run
 
+    _port_free(host, port)   # before the database is upgraded and the banner printed
     hosts = allowed_hosts(host, allowed_host or ())
     settings = dict(db_url=db, users_file=str(users_path) if (not loopback or users) else None,
                     require_login=not loopback, hosts=sorted(hosts),
@@ -88,6 +91,58 @@ def serve(
     with tempfile.TemporaryDirectory(prefix="axiscal-sessions-") as folder:   # mode 0700
         run(None, host, port, header_timeout, body_timeout, max_connections, workers=n,
             settings={**settings, "sessions_folder": folder})
+
+
+#: The distributions of the ``web`` extra (pyproject.toml) and the module names each may
+#: install (python-multipart before 0.0.13 has only ``multipart``).
+WEB_EXTRA = {"fastapi": ("fastapi",), "uvicorn": ("uvicorn",),
+             "python-multipart": ("python_multipart", "multipart"), "argon2-cffi": ("argon2",)}
+
+
+def _need_web_extra() -> None:
+    """Every module of the ``web`` extra importable, else one line naming the extra to install
+    (a plain ``pip install axiscal`` has none of them)."""
+    import importlib
+
+    from axiscal.errors import MissingExtraError
+
+    for dist, modules in WEB_EXTRA.items():
+        for module in modules:
+            try:
+                importlib.import_module(module)
+                break
+            except ImportError:
+                continue
+        else:
+            raise MissingExtraError(f"axiscal serve needs the web extra: pip install "
+                                    f"'axiscal[web]' ({dist} is not installed)")
+
+
+def _port_free(host: str, port: int) -> None:
+    """Bind ``host``:``port`` as uvicorn will (SO_REUSEADDR, so a closed connection's TIME_WAIT
+    does not count): a port another program listens on is one line, not uvicorn's log of
+    [Errno 98] after the banner."""
+    import socket
+
+    from axiscal.errors import InputError
+
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except OSError as exc:
+        raise InputError(f"--host {host}: no address to listen on ({exc.strerror})") from None
+    family, kind, proto, _name, address = infos[0]
+    with socket.socket(family, kind, proto) as sock:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            sock.bind(address)
+        except OSError as exc:
+            why = "another program listens on it" if exc.errno in _IN_USE else exc.strerror
+            raise InputError(f"--port {port}: cannot listen on {_url_host(host)}:{port} ({why}); "
+                             "stop it or give another --port") from None
+
+
+#: errno of an address in use (Linux 98, BSD and macOS 48, Windows WSAEADDRINUSE 10048).
+_IN_USE = (98, 48, 10048)
 
 
 def _limits(header_timeout: float, body_timeout: float, max_connections: int, app) -> str:

@@ -57,9 +57,10 @@ serial = "..."
 certificate = "..."
 due = "YYYY-MM-DD"
 
-# ISO 230-2:2014 Annex A inputs (see axiscal.standards.iso230_9)
-# An input left out is assumed by a documented rule and shown as assumed beside U; give the
-# values of your own instruments and set-up (the numbers below are the assumed defaults).
+# ISO 230-2:2014 Annex A inputs (see axiscal.standards.iso230_9); a number is in the unit the
+# report shows, or text with its unit ("11.5 um/(m K)", "20.5 degC"). An input left out is
+# assumed by a documented rule and shown as assumed beside U; give the values of your own
+# instruments and set-up (the numbers below are the assumed defaults).
 [uncertainty]
 # reference = "laser"                 # or "encoder" (taken from the data file where it says so)
 # laser_accuracy_ppm = 0.5            # from the laser's calibration certificate, expanded ...
@@ -71,7 +72,9 @@ due = "YYYY-MM-DD"
 # shop_temperature_max = 23.0         # ... is not stated in the data file
 # temperature_halfwidth = 0.1         # K, material sensor accuracy
 # sensor_position_halfwidth = 0.2     # K, sensor place vs scale
-# expansion_coefficient_halfwidth = 1.15e-6   # 1/K (default ±10 % of α)
+# expansion_coefficient = 11.5        # µm/(m·K), α of the machine's scale (the data file's ...
+# material_temperature = 20.0         # °C ... where it states them); or text: "293.15 K"
+# expansion_coefficient_halfwidth = 1.15      # µm/(m·K) (default ±10 % of α)
 # e_ve = 1.0                          # µm, environmental variation error: never assumed ...
 # e_ve_source = "drift check"         # ... measured ("drift check") or "declared"
 """

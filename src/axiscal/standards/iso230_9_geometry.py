@@ -49,10 +49,12 @@ from typing import Mapping
 
 from axiscal.errors import ConfigError, InputError
 from axiscal.standards.iso230_9 import COVERAGE_FACTOR, Contributor, UncertaintyBudget, combine
+from axiscal.standards.iso230_9_entry import OPTICS_SQUARE_ERROR, SQUARENESS_ENTRY, entered
 from axiscal.standards.iso230_9_inputs import BudgetInput
 
 __all__ = ["squareness_budget", "squareness_budget_with_inputs", "diagonal_budget",
-           "five_dof_budget", "slope_uncertainty", "SQUARENESS_METHODS", "FIVE_DOF_CHANNELS"]
+           "five_dof_budget", "slope_uncertainty", "SQUARENESS_METHODS", "FIVE_DOF_CHANNELS",
+           "squareness_input_table"]
 
 SQUARENESS_METHODS = ("optics", "square", "reversal", "ballbar", "diagonal")
 FIVE_DOF_CHANNELS = ("ez", "ey", "ex", "dy", "dz")
@@ -360,8 +362,10 @@ def squareness_budget_with_inputs(
         One of :data:`SQUARENESS_METHODS`.
     table : mapping, optional
         The user configuration's ``[squareness_uncertainty]`` table (keys of
-        :func:`squareness_budget`, in its units); inputs absent from it and from ``measured``
-        take the documented defaults and are marked assumed.
+        :func:`squareness_budget`): a number in its unit (the unit the output shows), or text
+        with a unit (``"600 mm"``), each checked against its plausible range
+        (:data:`axiscal.standards.iso230_9_entry.SQUARENESS_ENTRY`); inputs absent from it and
+        from ``measured`` take the documented defaults and are marked assumed.
     set_with : str
         How a user sets an input, ``{key}`` replaced by its name.
     **measured : float
@@ -377,7 +381,8 @@ def squareness_budget_with_inputs(
     Raises
     ------
     ConfigError
-        A key of ``table`` that is no input, or a value that is not a number.
+        A key of ``table`` that is no input, a value that is not a number (or a number with a
+        unit of its kind), or one outside its plausible range.
 
     Examples
     --------
@@ -395,8 +400,12 @@ def squareness_budget_with_inputs(
         if key not in defaults:
             raise ConfigError(f"[squareness_uncertainty] {key}: no such input; use "
                               f"{', '.join(defaults)}")
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ConfigError(f"[squareness_uncertainty] {key} = {value!r}: give a number")
+        rule = OPTICS_SQUARE_ERROR if (key, method) == ("square_error", "optics") else \
+            SQUARENESS_ENTRY[key]
+        try:   # in the unit the output shows, or with its unit; refused outside its range
+            table[key] = entered(key, value, rule, "[squareness_uncertainty]")
+        except InputError as exc:
+            raise ConfigError(str(exc)) from None
     b = squareness_budget(method, **{**table, **measured})
     records = tuple(_input_record(method, key, defaults[key], table, measured, set_with)
                     for key in METHOD_INPUTS[method])
@@ -405,6 +414,33 @@ def squareness_budget_with_inputs(
     from dataclasses import replace
 
     return replace(b, inputs=records, notes=notes)
+
+
+def squareness_input_table() -> list[dict[str, str]]:
+    """Every input of the squareness budgets as :func:`~axiscal.standards.iso230_9_inputs.
+    input_table` lists the ISO 230-2 ones (budget ``squareness``; the methods that read it).
+
+    Examples
+    --------
+    >>> row = next(r for r in squareness_input_table() if r["name"] == "length_x")
+    >>> row["unit"], row["default"], row["range"]
+    ('m', '0.8', '0.01 to 20 m')
+    """
+    import inspect
+
+    defaults = {n: p.default for n, p in inspect.signature(squareness_budget).parameters.items()
+                if n != "method"}
+    rows = []
+    for name, (label, unit, rule_text) in SQUARENESS_INPUTS.items():
+        rule = SQUARENESS_ENTRY[name]
+        methods = [m for m, names in METHOD_INPUTS.items() if name in names]
+        extra = ("; with optics, the optical square's error in arcsec (k = 2)"
+                 if name == "square_error" else "")
+        rows.append({"budget": "squareness", "name": name,
+                     "label": f"{label} ({', '.join(methods)}){extra}", "unit": rule.unit,
+                     "default": f"{defaults[name]:g}", "range": rule.range_text,
+                     "why": rule.why, "rule": rule_text})
+    return rows
 
 
 def _input_record(method, key, default, table, measured, set_with) -> BudgetInput:

@@ -48,6 +48,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from axiscal.errors import InputError
+from axiscal.standards.iso230_9_entry import LINEAR_ENTRY, ROTARY_ENTRY, entered_table
 
 __all__ = [
     "BudgetInput",
@@ -59,6 +60,7 @@ __all__ = [
     "environmental_variation",
     "runs_statement",
     "REFERENCE_KINDS",
+    "input_table",
 ]
 
 #: Reference instruments a linear budget knows (a rotary budget's reference is a calibrator).
@@ -140,19 +142,25 @@ def _check_inputs(inputs, signed: tuple, k: str) -> None:
         raise InputError(f"uncertainty {k} must be > 0")
 
 
-def _known_keys(cls, d: Mapping[str, Any]) -> dict:
-    """``d`` as keyword arguments of ``cls``, an unknown key refused by name."""
+def _known_keys(cls, d: Mapping[str, Any], rules) -> dict:
+    """``d`` as keyword arguments of ``cls``, an unknown key refused by name, each number read
+    in the unit the output shows and checked against its plausible range
+    (:mod:`axiscal.standards.iso230_9_entry`)."""
     known = {f.name for f in fields(cls)}
     if any(k not in known for k in d):   # the schema's refusal (and its import) for a stray key
         from axiscal._schema import refuse_unknown
 
         refuse_unknown(dict(d) if not isinstance(d, dict) else d, known, "[uncertainty]")
-    return dict(d)
+    return entered_table(d, rules)
 
 
 @dataclass(frozen=True)
 class LinearInputs:
     """What a linear ISO 230-2 budget needs; each field settable in ``[uncertainty]``.
+
+    The fields hold the budget's own units (α in 1/K); a value typed in ``[uncertainty]`` or
+    with ``--uncertainty`` is in the unit the output shows (α in µm/(m·K)) or carries its unit,
+    and is checked against a plausible range (:mod:`axiscal.standards.iso230_9_entry`).
 
     Attributes
     ----------
@@ -234,6 +242,8 @@ class LinearInputs:
 @dataclass(frozen=True)
 class RotaryInputs:
     """What a rotary ISO 230-2 budget needs (angles in arcsec, misalignments in mrad).
+
+    A value typed in ``[uncertainty]`` is read and checked as for :class:`LinearInputs`.
 
     Attributes
     ----------
@@ -319,6 +329,41 @@ _ROTARY = {
 }
 
 
+def input_table() -> list[dict[str, str]]:
+    """Every input of the ISO 230-2 Annex A budgets: budget, name, label (what it is), unit,
+    default, plausible range and what it holds (why), and the rule of its default (the
+    documentation's table).
+
+    Examples
+    --------
+    >>> row = next(r for r in input_table() if r["name"] == "expansion_coefficient")
+    >>> row["unit"], row["default"], row["range"]
+    ('µm/(m·K)', '11.5', '0, or 0.001 to 100 µm/(m·K)')
+    """
+    rows = []
+    for budget, cls, spec, rules in (("linear", LinearInputs, _LINEAR, LINEAR_ENTRY),
+                                     ("rotary", RotaryInputs, _ROTARY, ROTARY_ENTRY)):
+        defaults = {f.name: f.default for f in fields(cls)}
+        for name, (label, unit, rule_text) in spec.items():
+            rule = rules.get(name)
+            default = defaults[name]
+            if default is not None and rule is not None:
+                default = f"{default / rule.scale:.6g}"
+            elif default is None:
+                default = {"expansion_coefficient_halfwidth": "10 % of α",
+                           "material_temperature": "the data file's, else not stated",
+                           }.get(name, "not given")
+            rows.append({
+                "budget": budget, "name": name, "label": label,
+                "unit": rule.unit if rule else unit, "default": str(default),
+                "range": rule.range_text if rule else {
+                    "reference": "laser or encoder",
+                    "e_ve_source": "drift check or declared"}[name],
+                "why": rule.why if rule else "", "rule": rule_text,
+            })
+    return rows
+
+
 def reference_kind(instrument: str) -> tuple[str, str] | None:
     """The reference instrument's kind as a data file names it, with the reason.
 
@@ -372,7 +417,7 @@ def resolve_linear(table: Mapping[str, Any] | None, dataset=None,
     (LinearInputs, tuple of BudgetInput, tuple of str)
         The inputs, their records (assumed ones marked), and the names of missing inputs.
     """
-    kw = _known_keys(LinearInputs, table or {})
+    kw = _known_keys(LinearInputs, table or {}, LINEAR_ENTRY)
     given = {k: "declared by the user (job or configuration file, or the --uncertainty option)"
              for k in kw}
     if dataset is not None:
@@ -400,7 +445,7 @@ def resolve_linear(table: Mapping[str, Any] | None, dataset=None,
 
 def resolve_rotary(table: Mapping[str, Any] | None, set_with: str = "[uncertainty] {key}"):
     """As :func:`resolve_linear` for a rotary budget (a rotary calibrator as reference)."""
-    kw = _known_keys(RotaryInputs, table or {})
+    kw = _known_keys(RotaryInputs, table or {}, ROTARY_ENTRY)
     inputs = RotaryInputs(**kw)
     given = {k: "declared by the user (job or configuration file, or the --uncertainty option)"
              for k in kw}

@@ -41,7 +41,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from axiscal.datasets import PositioningDataset
-from axiscal.errors import InputError
+from axiscal.errors import InputError, NotAvailableError
 from axiscal.standards._parameters import described_parameters, parameter_label
 
 __all__ = ["Standard", "StandardResult", "STANDARDS", "evaluate", "evaluate_all",
@@ -56,10 +56,6 @@ def table_rows(std: "Standard", result: "StandardResult") -> list[tuple]:
     rows = [(parameter_label(n), v, d, True) for n, (v, _u, d) in result.parameters().items()]
     rows += [(parameter_label(n), None, why, False) for n, why in result.not_evaluated]
     return [(std.title if i == 0 else "", *r) for i, r in enumerate(rows)]
-
-
-class NotAvailableError(InputError):
-    """The standard is known, but no public definition of its parameters was available."""
 
 
 @dataclass(frozen=True)

@@ -41,7 +41,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from axiscal.errors import AxiscalError
+from axiscal.errors import AxiscalError, NotFoundError, StoreError
 
 __all__ = ["StoreError", "NotFoundError", "Guard", "sqlite_path", "make_engine", "upgrade", "shown"]
 
@@ -50,14 +50,6 @@ ADVISORY_KEY = 0x61786973_63616C
 #: SQLite's busy timeout, ms: how long a writer waits for another's write lock.
 BUSY_TIMEOUT_MS = 30_000
 _OWN_TABLES = {"machine", "axis", "test"}
-
-
-class StoreError(AxiscalError, RuntimeError):
-    """The history database cannot be used as asked (not a database, full, unreachable)."""
-
-
-class NotFoundError(AxiscalError, LookupError):
-    """No such test, machine or axis in the history."""
 
 
 class Guard:
