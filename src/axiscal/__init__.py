@@ -44,6 +44,7 @@ from axiscal.errors import (  # noqa: E402  (the exceptions: light, and at the t
     MissingFileError,
     NotAvailableError,
     NotFoundError,
+    ProgramError,
     SignalLossError,
     SignConventionError,
     StoreError,

@@ -28,6 +28,7 @@ __all__ = [
     "NotAvailableError",
     "StoreError",
     "NotFoundError",
+    "ProgramError",
     "MissingExtraError",
     "ERRORS",
     "one_line",
@@ -143,6 +144,14 @@ class NotFoundError(AxiscalError, LookupError):
     """No such test, machine or axis in the history."""
 
 
+class ProgramError(InputError):
+    """A part program cannot be made as asked (``option`` names the option to change)."""
+
+    def __init__(self, option: str, message: str):
+        super().__init__(message)
+        self.option = option
+
+
 class MissingExtraError(AxiscalError, ImportError):
     """A feature needs an optional extra that is not installed (``pip install 'axiscal[web]'``)."""
 
@@ -152,4 +161,4 @@ class MissingExtraError(AxiscalError, ImportError):
 ERRORS = ("AxiscalError", "InputError", "UnitError", "ConfigError", "InsufficientRunsError",
           "ControllerLimitError", "SignConventionError", "NotAvailableError", "DataFormatError",
           "MissingFileError", "MeasurementError", "SignalLossError", "StoreError",
-          "NotFoundError", "MissingExtraError")
+          "NotFoundError", "MissingExtraError", "ProgramError")

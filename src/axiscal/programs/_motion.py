@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from axiscal.errors import InputError
+from axiscal.errors import InputError, ProgramError  # noqa: F401 (ProgramError: raised here, defined with the others)
 
 __all__ = ["ProgramError", "MachineOptions", "Rapid", "Feed", "ArcMove", "Dwell", "Comment",
            "Motion", "build_motion", "DEFAULT_TRIGGER_S"]
@@ -31,14 +31,6 @@ __all__ = ["ProgramError", "MachineOptions", "Rapid", "Feed", "ArcMove", "Dwell"
 DEFAULT_TRIGGER_S = 0.5
 #: Largest number of moves a program may hold (a test of 20,000 readings and their overruns).
 MAX_BLOCKS = 200_000
-
-
-class ProgramError(InputError):
-    """A part program cannot be made as asked (``option`` names what to change)."""
-
-    def __init__(self, option: str, message: str):
-        super().__init__(message)
-        self.option = option
 
 
 @dataclass(frozen=True)
