@@ -37,7 +37,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
 
 def __getattr__(name: str) -> Any:
     """The public API's names, imported from :mod:`axiscal.api` when first used (PEP 562)."""
-    if name in __all__[1:]:
+    if name in __all__[1:] or name == "fiveaxis":
         from axiscal import api
 
         return getattr(api, name)
@@ -45,4 +45,4 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(list(globals()) + __all__[1:])
+    return sorted(list(globals()) + __all__[1:] + ["fiveaxis"])

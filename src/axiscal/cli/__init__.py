@@ -53,6 +53,7 @@ COMMANDS: dict[str, str] = {
     "volumetric": "axiscal.cli.volumetric",
     "config": "axiscal.cli.config",
     "ballbar": "axiscal.cli.ballbar",
+    "fiveaxis": "axiscal.cli.fiveaxis",
 }
 
 #: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
@@ -108,6 +109,9 @@ SUMMARIES: dict[str, str] = {
     "ballbar":
         "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "
         "machine squareness, Method 4: every separable machine error, ranked, with advice.",
+    "fiveaxis":
+        "Five-axis machines: the location errors of both rotary axes (ISO 230-1, ISO 230-7) "
+        "identified from probed spheres and R-tests, with their uncertainty.",
 }
 
 #: ``ctx.meta`` key set while the root's help is drawn (commands listed, not loaded).

@@ -108,7 +108,7 @@ class FiveAxisMachine:
 
     def truth_display(self) -> dict[str, float]:
         """The true location errors in µm and µrad, every one of the ten named."""
-        return {n: float(self.errors.get(n, 0.0)) * 1e6 for n in self.geometry.names}
+        return {n: round(float(self.errors.get(n, 0.0)) * 1e6, 9) for n in self.geometry.names}
 
 
 def _motion(axis: RotaryAxis, theta, rng) -> AxisMotion | None:

@@ -191,7 +191,7 @@ def plan_from_config(cfg: dict[str, Any], machine) -> FiveAxisPlan:
         except InputError as exc:
             raise ConfigError(f"{where}: {exc}") from None
         place = np.array(_triple(t, "place_mm", None, where)) * MM
-        label = str(t.get("label", f"{kind} {i}"))
+        label = str(t.get("label", f"{kind} {i}"))[:80]
         noise = _num(t, "noise_um", 0.5, where, lo=0.0) * UM
         if kind == PROBING:
             inst = SimulatedTouchProbe(

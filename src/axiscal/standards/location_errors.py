@@ -56,6 +56,9 @@ R_TEST = "r-test"
 _H = 1e-7          # finite-difference step, m or rad
 _NULL = 1e-7       # singular value below which (relative) a direction is unseen
 _SEEN = 1e-3       # null-space component above which a parameter is unseen
+#: Largest rms residual (m) a fit of location errors may leave: beyond it the readings are not
+#: of this machine's kinematics (a wrong geometry, angle sign or set-up), and no number is given.
+MAX_RESIDUAL = 0.1e-3
 
 
 @dataclass(frozen=True, eq=False)
@@ -370,6 +373,12 @@ def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
         if np.abs(step).max() < 1e-12:
             break
     r = y - f
+    if np.sqrt(np.mean(r ** 2)) > MAX_RESIDUAL:
+        raise InputError(
+            f"the readings do not fit the machine's kinematics: {np.sqrt(np.mean(r ** 2)) * 1e3:.3f}"
+            f" mm rms left after the fit (at most {MAX_RESIDUAL * 1e3:g} mm for location errors); "
+            "check the nominal geometry, the sign of the rotary angles (the table turns "
+            "right-handed, as LinuxCNC's trt kinematics) and that each file is one set-up")
     Jw = J[:, free] * w[:, None]
     N = np.linalg.inv(Jw.T @ Jw)
     K = N @ Jw.T * w                                   # parameters per reading

@@ -1,0 +1,125 @@
+"""``axiscal fiveaxis plan|simulate|identify``: the location errors of the rotary axes of a
+table-table five-axis machine (A/C or B/C), from spheres probed at many rotary poses and R-tests.
+
+Without a configuration the shipped example is used (``--machine ac`` or ``bc``); the format is in
+the README, 'Five-axis configuration', and the files' in 'Five-axis files'.
+
+JSON output (``--json``), stable keys, µm and µrad:
+
+* ``plan``: ``machine``, ``tilt_axis``, ``poses``, ``observations``, ``rank``, ``columns``,
+  ``condition``, ``identifiable`` (names), ``unidentified`` (``name``, ``reason``: why and the test
+  that would see it), ``convention``, ``setups`` (``label``, ``kind``, ``poses``, ``place_mm``,
+  ``angles_deg`` as [tilt, C] pairs).
+* ``identify``: ``plan`` (as above, without ``machine`` and ``setups``), ``errors`` (``name``,
+  ``value``, ``U``, ``k``, ``unit``, ``u_components``: standard uncertainty by input),
+  ``unidentified``, ``correlation`` (matrix in the order of ``errors``), ``places_mm`` (fitted
+  sphere/nest place of each file, table frame), ``residual_rms_um``, ``residual_max_um``,
+  ``residual_by_setup_um``, ``chi2_per_dof``, ``dof``, ``unmodelled`` (what the residual
+  suggests).
+* ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
+  ``true`` and ``deviation`` (identified − true), ``files`` (written, or empty).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from axiscal.cli._common import print_json
+
+__all__ = ["register"]
+
+app = typer.Typer(help="Five-axis machines: the location errors of both rotary axes (ISO 230-1, "
+                  "ISO 230-7) identified from probed spheres and R-tests, with their "
+                  "uncertainty.", no_args_is_help=True)
+
+_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, module docs).")
+_MACHINE = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' "
+                        "(A/C table-table) or 'bc' (B/C).")
+_CONFIG = typer.Argument(None, help="Five-axis configuration (TOML); default: the shipped "
+                         "example (--machine).")
+
+
+def _config(config: Optional[Path], machine: str):
+    if config is not None:
+        return config
+    from importlib import resources
+
+    from axiscal.api.fiveaxis import EXAMPLES
+    from axiscal.errors import InputError
+
+    key = {"ac": "A/C", "bc": "B/C"}.get(machine.lower())
+    if key is None:
+        raise InputError(f"--machine {machine[:20]!r}: use 'ac' or 'bc'")
+    from axiscal.io._files import load_toml
+
+    return load_toml(resources.files("axiscal.data").joinpath(EXAMPLES[key]))
+
+
+@app.command("plan")
+def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE, as_json: bool = _JSON):
+    """What the planned set-ups can separate before measuring: rank, condition, the unseen.
+
+    Example: axiscal fiveaxis plan --machine bc
+    """
+    from axiscal.api import fiveaxis
+
+    planned = fiveaxis.plan(_config(config, machine))
+    if as_json:
+        print_json(planned.to_dict())
+        return
+    typer.echo(str(planned))
+
+
+@app.command("simulate")
+def simulate(
+    config: Optional[Path] = _CONFIG,
+    machine: str = _MACHINE,
+    seed: int = typer.Option(1, "--seed", min=0, help="Random seed of the measurement noise."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Folder for the measured files "
+                                       "(one CSV per set-up; created if missing)."),
+    as_json: bool = _JSON,
+):
+    """Measure the twin with its simulated probe and R-test, identify, compare with the truth.
+
+    Example: axiscal fiveaxis simulate --out run && axiscal fiveaxis identify run/*.csv
+    """
+    from axiscal.api import fiveaxis
+
+    sim = fiveaxis.simulate(_config(config, machine), seed=seed, out=out)
+    if as_json:
+        print_json(sim.to_dict())
+        return
+    typer.echo(str(sim))
+    for f in sim.files:
+        typer.echo(f"wrote {f}")
+
+
+@app.command("identify")
+def identify(
+    files: List[Path] = typer.Argument(..., help="Probing and R-test CSV files (README, "
+                                       "'Five-axis files')."),
+    config: Optional[Path] = typer.Option(None, "--config", help="The machine's configuration "
+                                          "(its [machine] table); default: the shipped example "
+                                          "(--machine)."),
+    machine: str = _MACHINE,
+    as_json: bool = _JSON,
+):
+    """Identify the location errors from measured files, with U (k = 2) and correlations.
+
+    Example: axiscal fiveaxis identify run/1_probing.csv run/3_r-test.csv
+    """
+    from axiscal.api import fiveaxis
+
+    result = fiveaxis.identify(_config(config, machine), files)
+    if as_json:
+        print_json(result.to_dict())
+        return
+    typer.echo(str(result))
+
+
+def register(root: typer.Typer) -> None:
+    """Add the ``fiveaxis`` command group to the application."""
+    root.add_typer(app, name="fiveaxis")
