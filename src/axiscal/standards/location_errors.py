@@ -202,7 +202,8 @@ class PlanCheck:
 
     def __str__(self) -> str:
         lines = [f"{self.poses} poses, {self.observations} observations: sensitivity matrix rank "
-                 f"{self.rank} of {self.columns}, condition {self.condition:.3g}",
+                 f"{self.rank} of {self.columns} columns (location errors and each set-up's "
+                 f"sphere place), condition {self.condition:.3g}",
                  f"identifiable: {', '.join(self.identifiable) or 'none'}"]
         lines += [f"  {u}" for u in self.unidentified]
         lines.append(f"convention: {self.convention}")
