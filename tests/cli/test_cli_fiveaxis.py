@@ -94,3 +94,18 @@ def test_a_simulation_refused_writes_nothing(tmp_path):
                    "utf-8")
     r = runner.invoke(app, ["fiveaxis", "plan", str(cfg)])
     assert r.exit_code == 2 and "rotary axis A named twice" in r.stderr
+
+
+def test_compensate_writes_the_pins_and_the_neutral_table(run, tmp_path):
+    out, _ = run
+    files = [str(f) for f in sorted(out.glob("*.csv"))]
+    d = _json("fiveaxis", "compensate", *files, "--out", tmp_path / "trt.hal", "--table",
+              tmp_path / "trt.csv", "--verify")
+    assert d["component"] == "xyzac-trt-kins"
+    assert d["pins_mm"]["x-rot-point"]["after"] == pytest.approx(0.020, abs=0.001)
+    assert set(d["not_held_urad"]) == {"E_B0A", "E_C0A", "E_B0C"}
+    assert [s["label"] for s in d["verify"]["setups"]][0] == "sphere 1"
+    hal = (tmp_path / "trt.hal").read_text("ascii")
+    assert "setp xyzac-trt-kins.z-offset -60.01" in hal and "HOME_OFFSET += +0.003" in hal
+    table = (tmp_path / "trt.csv").read_text("utf-8").splitlines()
+    assert table[0] == "parameter,before,after,unit,takes" and len(table) == 9

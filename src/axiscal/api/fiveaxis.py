@@ -26,7 +26,8 @@ import numpy as np
 
 from axiscal.errors import InputError
 
-__all__ = ["plan", "simulate", "identify", "load", "Simulated", "Planned", "EXAMPLES"]
+__all__ = ["plan", "simulate", "identify", "compensate", "load", "Simulated", "Planned",
+           "Compensated", "EXAMPLES"]
 
 #: The example configurations shipped with the package (``axiscal.data``).
 EXAMPLES = {"A/C": "fiveaxis_ac.toml", "B/C": "fiveaxis_bc.toml"}
@@ -95,6 +96,29 @@ class Simulated:
         lines += [f"  {e.name}: true {truth[e.name]:+.2f} {e.unit}, identified − true "
                   f"{e.value_display - truth[e.name]:+.2f} {e.unit}" for e in self.result.errors]
         return "\n".join(lines)
+
+
+@dataclass(frozen=True, eq=False)
+class Compensated:
+    """The correction in LinuxCNC's terms (``correction``, TrtCorrection), the identification it
+    comes from (``result``) and, when asked, the twin's ``verification`` (before/after ranges)."""
+
+    correction: object
+    result: object
+    verification: object = None
+
+    def to_dict(self) -> dict:
+        """The ``--json`` object of ``axiscal fiveaxis compensate``."""
+        out = self.correction.to_dict()
+        out["verify"] = None if self.verification is None else self.verification.to_dict()
+        return out
+
+    def __str__(self) -> str:
+        text = self.correction.hal().rstrip()
+        if self.verification is not None:
+            text += "\nverified on the twin (sphere-centre and R-test deviation ranges):\n"
+            text += str(self.verification)
+        return text
 
 
 def load(config):
@@ -177,6 +201,32 @@ def identify(config, files):
         except InputError as exc:
             raise InputError(f"{f}: {exc}") from None
     return identify_location_errors(machine.geometry, setups)
+
+
+def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
+               seed: int = 7) -> Compensated:
+    """Identify from ``files`` and give the LinuxCNC trt parameters that put the location errors
+    right (:mod:`axiscal.compensation.five_axis`); with ``verify``, re-measure the configuration's
+    twin before and after (a simulated configuration only: it needs ``[[setup]]``).
+
+    Parameters
+    ----------
+    z_rot_point : float, mm
+        The ``z-rot-point`` pin as set now (kept; only its sum with ``z-offset`` counts).
+    """
+    from axiscal.compensation.five_axis import trt_correction, verify_on_twin
+
+    cfg = _config(config)
+    result = identify(cfg, files)
+    machine, p = load(cfg) if verify else (None, None)
+    from axiscal.machines.five_axis import five_axis_from_config
+
+    geometry = five_axis_from_config(cfg).geometry
+    correction = trt_correction(geometry, result, z_rot_point * 1e-3)
+    check = None
+    if verify:
+        check = verify_on_twin(machine, p, correction, seed)
+    return Compensated(correction, result, check)
 
 
 def _measure(machine, p, seed: int):

@@ -1,4 +1,4 @@
-"""``axiscal fiveaxis plan|simulate|identify``: the location errors of the rotary axes of a
+"""``axiscal fiveaxis plan|simulate|identify|compensate``: the location errors of the rotary axes of a
 table-table five-axis machine (A/C or B/C), from spheres probed at many rotary poses and R-tests.
 
 Without a configuration the shipped example is used (``--machine ac`` or ``bc``); the format is in
@@ -16,6 +16,11 @@ JSON output (``--json``), stable keys, µm and µrad:
   sphere/nest place of each file, table frame), ``residual_rms_um``, ``residual_max_um``,
   ``residual_by_setup_um``, ``chi2_per_dof``, ``dof``, ``unmodelled`` (what the residual
   suggests).
+* ``compensate``: ``component`` (``xyzac-trt-kins`` or ``xyzbc-trt-kins``), ``pins_mm`` (pin ->
+  ``before``, ``after``), ``home_offset_change_deg`` (tilting axis -> change of HOME_OFFSET),
+  ``not_held_urad`` (orientation errors no pin holds), ``sources`` (pin -> the location errors
+  it takes), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
+  ``reduction``: deviation range of each set-up on the twin).
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` and ``deviation`` (identified − true), ``files`` (written, or empty).
 """
@@ -118,6 +123,48 @@ def identify(
         print_json(result.to_dict())
         return
     typer.echo(str(result))
+
+
+@app.command("compensate")
+def compensate(
+    files: List[Path] = typer.Argument(..., help="Probing and R-test CSV files."),
+    config: Optional[Path] = typer.Option(None, "--config", help="The machine's configuration; "
+                                          "default: the shipped example (--machine)."),
+    machine: str = _MACHINE,
+    z_rot_point: float = typer.Option(0.0, "--z-rot-point", min=-1e5, max=1e5,
+                                      help="The z-rot-point pin as set now, mm (kept)."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the halcmd 'setp' lines "
+                                       "(.hal)."),
+    table: Optional[Path] = typer.Option(None, "--table", help="Write the neutral table (CSV: "
+                                         "parameter, before, after, unit, what it takes)."),
+    verify: bool = typer.Option(False, "--verify", help="Re-measure the configuration's twin "
+                                "before and after the correction (simulated configurations)."),
+    as_json: bool = _JSON,
+):
+    """The correction as LinuxCNC trt kinematics pins and HOME_OFFSET, with its sign convention.
+
+    Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify
+    """
+    from axiscal.api import fiveaxis
+    from axiscal.cli._common import out_path
+
+    for path, what in ((out, "the HAL file"), (table, "the neutral table")):
+        if path is not None:
+            out_path(path, what)
+    comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify)
+    from axiscal.io._files import write_bytes_atomic
+
+    if out is not None:
+        write_bytes_atomic(out, comp.correction.hal().encode("utf-8"))
+    if table is not None:
+        write_bytes_atomic(table, comp.correction.table_csv().encode("utf-8"))
+    if as_json:
+        print_json(comp.to_dict())
+        return
+    typer.echo(str(comp))
+    for path in (out, table):
+        if path is not None:
+            typer.echo(f"wrote {path}")
 
 
 def register(root: typer.Typer) -> None:
