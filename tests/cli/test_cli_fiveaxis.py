@@ -109,3 +109,15 @@ def test_compensate_writes_the_pins_and_the_neutral_table(run, tmp_path):
     assert "setp xyzac-trt-kins.z-offset -60.01" in hal and "HOME_OFFSET += +0.003" in hal
     table = (tmp_path / "trt.csv").read_text("utf-8").splitlines()
     assert table[0] == "parameter,before,after,unit,takes" and len(table) == 9
+
+
+def test_identify_plot_draws_the_lines_and_the_values(run, tmp_path):
+    out, _ = run
+    png = tmp_path / "lines.png"
+    r = runner.invoke(app, ["fiveaxis", "identify", str(out / "1_probing.csv"), "--plot",
+                            str(png)])
+    assert r.exit_code == 0, r.output
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
+    bad = runner.invoke(app, ["fiveaxis", "identify", str(out / "1_probing.csv"), "--plot",
+                              str(tmp_path / "x.txt")])
+    assert bad.exit_code == 2 and not (tmp_path / "x.txt").exists()

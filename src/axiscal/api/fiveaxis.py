@@ -26,7 +26,7 @@ import numpy as np
 
 from axiscal.errors import InputError
 
-__all__ = ["plan", "simulate", "identify", "compensate", "load", "Simulated", "Planned",
+__all__ = ["plan", "simulate", "identify", "compensate", "figure", "load", "Simulated", "Planned",
            "Compensated", "EXAMPLES"]
 
 #: The example configurations shipped with the package (``axiscal.data``).
@@ -227,6 +227,15 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
     if verify:
         check = verify_on_twin(machine, p, correction, seed)
     return Compensated(correction, result, check)
+
+
+def figure(config, result):
+    """The axis lines in 3-D (magnified) beside the identified values with U (a matplotlib
+    Figure; :func:`axiscal.report.five_axis_plots.location_figure`)."""
+    from axiscal.machines.five_axis import five_axis_from_config
+    from axiscal.report.five_axis_plots import location_figure
+
+    return location_figure(five_axis_from_config(_config(config)).geometry, result)
 
 
 def _measure(machine, p, seed: int):

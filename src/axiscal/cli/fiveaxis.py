@@ -110,15 +110,23 @@ def identify(
                                           "(its [machine] table); default: the shipped example "
                                           "(--machine)."),
     machine: str = _MACHINE,
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the axis lines in 3-D "
+                                        "(magnified) and the values with U (.png, .svg, .pdf)."),
     as_json: bool = _JSON,
 ):
     """Identify the location errors from measured files, with U (k = 2) and correlations.
 
-    Example: axiscal fiveaxis identify run/1_probing.csv run/3_r-test.csv
+    Example: axiscal fiveaxis identify run/1_probing.csv run/3_r-test.csv --plot lines.png
     """
     from axiscal.api import fiveaxis
+    from axiscal.cli._common import plot_path
 
-    result = fiveaxis.identify(_config(config, machine), files)
+    if plot is not None:
+        plot_path(plot)
+    cfg = _config(config, machine)
+    result = fiveaxis.identify(cfg, files)
+    if plot is not None:
+        fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
     if as_json:
         print_json(result.to_dict())
         return
