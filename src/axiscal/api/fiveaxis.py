@@ -26,6 +26,13 @@ import numpy as np
 
 from axiscal.errors import InputError
 
+TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing
+if TYPE_CHECKING:   # pragma: no cover - for type checkers
+    from axiscal.compensation.five_axis import TrtCorrection, Verification
+    from axiscal.machines.five_axis import FiveAxisMachine
+    from axiscal.procedures.five_axis import FiveAxisPlan
+    from axiscal.standards.location_errors import LocationIdentification, PlanCheck
+
 __all__ = ["plan", "simulate", "identify", "compensate", "figure", "load", "Simulated", "Planned",
            "Compensated", "EXAMPLES"]
 
@@ -38,9 +45,9 @@ class Planned:
     """A plan and what it can separate: ``check`` (PlanCheck), ``plan`` (FiveAxisPlan),
     ``machine`` (FiveAxisMachine)."""
 
-    check: object
-    plan: object
-    machine: object
+    check: PlanCheck
+    plan: FiveAxisPlan
+    machine: FiveAxisMachine
 
     def to_dict(self) -> dict:
         """The ``--json`` object of ``axiscal fiveaxis plan``."""
@@ -67,8 +74,8 @@ class Simulated:
     (written paths, or empty)."""
 
     records: tuple
-    result: object
-    machine: object
+    result: LocationIdentification
+    machine: FiveAxisMachine
     files: tuple = ()
 
     def truth(self) -> dict[str, float]:
@@ -103,20 +110,24 @@ class Compensated:
     """The correction in LinuxCNC's terms (``correction``, TrtCorrection), the identification it
     comes from (``result``) and, when asked, the twin's ``verification`` (before/after ranges)."""
 
-    correction: object
-    result: object
-    verification: object = None
+    correction: TrtCorrection
+    result: LocationIdentification
+    verification: Verification | None = None
+    on_controller: bool = False
 
     def to_dict(self) -> dict:
         """The ``--json`` object of ``axiscal fiveaxis compensate``."""
         out = self.correction.to_dict()
         out["verify"] = None if self.verification is None else self.verification.to_dict()
+        out["on_controller"] = self.on_controller
         return out
 
     def __str__(self) -> str:
         text = self.correction.hal().rstrip()
         if self.verification is not None:
-            text += "\nverified on the twin (sphere-centre and R-test deviation ranges):\n"
+            text += ("\nverified through LinuxCNC (trt kinematics; R-test deviation ranges):\n"
+                     if self.on_controller else
+                     "\nverified on the twin (sphere-centre and R-test deviation ranges):\n")
             text += str(self.verification)
         return text
 
@@ -150,7 +161,7 @@ def simulate(config, seed: int = 1, out=None) -> Simulated:
     machine, p = load(config)
     records = _measure(machine, p, seed)
     result = identify_location_errors(machine.geometry, [r.setup() for r in records])
-    files = ()
+    files: tuple = ()
     if out is not None:
         from axiscal.io._files import write_bytes_atomic
 
@@ -204,7 +215,7 @@ def identify(config, files):
 
 
 def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
-               seed: int = 7) -> Compensated:
+               seed: int = 7, on_controller: bool = False) -> Compensated:
     """Identify from ``files`` and give the LinuxCNC trt parameters that put the location errors
     right (:mod:`axiscal.compensation.five_axis`); with ``verify``, re-measure the configuration's
     twin before and after (a simulated configuration only: it needs ``[[setup]]``).
@@ -213,6 +224,10 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
     ----------
     z_rot_point : float, mm
         The ``z-rot-point`` pin as set now (kept; only its sum with ``z-offset`` counts).
+    on_controller : bool
+        With ``verify``: run the configuration's R-tests through a live LinuxCNC (its trt
+        kinematics compute the joints the twin then reads), before and after the correction
+        (:mod:`axiscal.compensation.on_controller_five_axis`).
     """
     from axiscal.compensation.five_axis import trt_correction, verify_on_twin
 
@@ -224,9 +239,15 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
     geometry = five_axis_from_config(cfg).geometry
     correction = trt_correction(geometry, result, z_rot_point * 1e-3)
     check = None
-    if verify:
+    if on_controller and not verify:
+        raise InputError("--on-controller verifies through LinuxCNC: give --verify too")
+    if verify and on_controller:
+        from axiscal.compensation.on_controller_five_axis import verify_on_linuxcnc
+
+        check = verify_on_linuxcnc(machine, p, correction, seed, z_rot_point)
+    elif verify:
         check = verify_on_twin(machine, p, correction, seed)
-    return Compensated(correction, result, check)
+    return Compensated(correction, result, check, bool(verify and on_controller))
 
 
 def figure(config, result):

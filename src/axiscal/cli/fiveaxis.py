@@ -20,7 +20,8 @@ JSON output (``--json``), stable keys, µm and µrad:
   ``before``, ``after``), ``home_offset_change_deg`` (tilting axis -> change of HOME_OFFSET),
   ``not_held_urad`` (orientation errors no pin holds), ``sources`` (pin -> the location errors
   it takes), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
-  ``reduction``: deviation range of each set-up on the twin).
+  ``reduction``: deviation range of each set-up on the twin, or with ``--on-controller`` of each
+  R-test run through LinuxCNC), ``on_controller``.
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` and ``deviation`` (identified − true), ``files`` (written, or empty).
 """
@@ -107,7 +108,7 @@ def identify(
     files: List[Path] = typer.Argument(..., help="Probing and R-test CSV files (README, "
                                        "'Five-axis files')."),
     config: Optional[Path] = typer.Option(None, "--config", help="The machine's configuration "
-                                          "(its [machine] table); default: the shipped example "
+                                          "(its \\[machine] table); default: the shipped example "
                                           "(--machine)."),
     machine: str = _MACHINE,
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the axis lines in 3-D "
@@ -147,11 +148,14 @@ def compensate(
                                          "parameter, before, after, unit, what it takes)."),
     verify: bool = typer.Option(False, "--verify", help="Re-measure the configuration's twin "
                                 "before and after the correction (simulated configurations)."),
+    on_controller: bool = typer.Option(False, "--on-controller", help="With --verify: run the "
+                                       "R-tests through a live LinuxCNC (xyzac/xyzbc-trt-kins) "
+                                       "before and after."),
     as_json: bool = _JSON,
 ):
     """The correction as LinuxCNC trt kinematics pins and HOME_OFFSET, with its sign convention.
 
-    Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify
+    Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify --on-controller
     """
     from axiscal.api import fiveaxis
     from axiscal.cli._common import out_path
@@ -159,7 +163,8 @@ def compensate(
     for path, what in ((out, "the HAL file"), (table, "the neutral table")):
         if path is not None:
             out_path(path, what)
-    comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify)
+    comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify,
+                               on_controller=on_controller)
     from axiscal.io._files import write_bytes_atomic
 
     if out is not None:
