@@ -121,3 +121,14 @@ def test_identify_plot_draws_the_lines_and_the_values(run, tmp_path):
     bad = runner.invoke(app, ["fiveaxis", "identify", str(out / "1_probing.csv"), "--plot",
                               str(tmp_path / "x.txt")])
     assert bad.exit_code == 2 and not (tmp_path / "x.txt").exists()
+
+
+def test_a_spindle_head_states_its_convention_and_gets_no_trt_pins(tmp_path):
+    d = _json("fiveaxis", "plan", "--machine", "head")
+    assert d["kind"] == "head-table" and [u["name"] for u in d["unidentified"]] == [
+        "E_B0B", "E_C0C"]
+    assert "E_X0C and E_X0B are taken relative to the tool tip at B = 0" in d["convention"]
+    sim = _json("fiveaxis", "simulate", "--machine", "head", "--out", tmp_path)
+    assert all(abs(e["deviation"]) < (2.0 if e["unit"] == "µrad" else 1.0) for e in sim["errors"])
+    r = runner.invoke(app, ["fiveaxis", "compensate", *sim["files"], "--machine", "head"])
+    assert r.exit_code == 2 and "spindle head" in r.stderr and "5axiskins" in r.stderr

@@ -100,3 +100,20 @@ def test_a_radial_error_motion_of_c_shifts_a_table_point_by_itself():
 def test_a_tilting_axis_other_than_a_or_b_is_refused():
     with pytest.raises(InputError, match="A or B"):
         Geometry("C")
+
+
+def test_a_spindle_head_turns_the_tool_tip_right_handed_about_its_axis():
+    """B head, pivot 150 mm: at B = +90° the tip (0, 0, −150) mm below the pivot turns to
+    (−150, 0, 0) mm (right-handed about +Y), so the joints that put it on the table's origin are
+    (+150, 0, 0) mm; and the inverse is exact with every error."""
+    g = Geometry("B", (0.0, 0.0), (0.0, 0.0), kind="head-table", pivot=0.15)
+    np.testing.assert_allclose(table_to_machine(g, {}, np.pi / 2, 0.0, [[0, 0, 0]])[0],
+                               [0.15, 0.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose(table_to_machine(g, {}, 0.0, 0.0, [[0, 0, 0]])[0],
+                               [0.0, 0.0, 0.15], atol=1e-15)
+    rng = np.random.default_rng(3)
+    errors = dict(zip(parameter_names("B"), rng.normal(0, 30e-6, 10)))
+    a, c, p = rng.uniform(-1.5, 1.5, 7), rng.uniform(-3, 3, 7), rng.uniform(-0.2, 0.2, (7, 3))
+    j = table_to_machine(g, errors, a, c, p)
+    np.testing.assert_allclose(machine_to_table(g, errors, a, c, j), p, atol=1e-15)
+    np.testing.assert_allclose(transform_many(g, [errors], a, c, p)[0], j, atol=1e-15)

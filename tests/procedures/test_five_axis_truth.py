@@ -12,6 +12,7 @@ from importlib import resources
 import numpy as np
 import pytest
 
+from axiscal.api import fiveaxis
 from axiscal.errors import ConfigError, InputError
 from axiscal.machines.five_axis import five_axis_from_config
 from axiscal.procedures.five_axis import measure, plan_from_config
@@ -26,10 +27,12 @@ def _truth(machine, name: str) -> float:
     return sum(machine.errors.get(n, 0.0) for n in name.split("+"))
 
 
-@pytest.mark.parametrize("name", ["fiveaxis_ac.toml", "fiveaxis_bc.toml"])
+@pytest.mark.parametrize("name", ["fiveaxis_ac.toml", "fiveaxis_bc.toml",
+                                  "fiveaxis_head_bc.toml"])
 def test_every_identifiable_location_error_within_2U_and_1um_or_2urad(name):
     """Six noise draws of the shipped set-ups (two spheres probed at 60 poses each, an R-test at
-    18). U has k = 2, a 95 % coverage: of the 48 values one may fall outside 2U (seed 0 of
+    18), table-table A/C and B/C and a B spindle head over C (its simulate() is the full chain:
+    twin, probe and R-test, sphere fits, least squares). U has k = 2, a 95 % coverage: of the 48 values one may fall outside 2U (seed 0 of
     A/C puts E_B0C 1.87 µrad off, 2.8 u); at least 90 % must lie within, and all within
     1 µm or 2 µrad (over 40 draws the largest deviation measured was 1.87 µrad for A/C and
     1.60 µrad for B/C)."""
@@ -38,15 +41,20 @@ def test_every_identifiable_location_error_within_2U_and_1um_or_2urad(name):
     plan = plan_from_config(cfg, m)
     inside = []
     for seed in range(6):
-        r = identify_location_errors(
-            m.geometry, [x.setup() for x in measure(m, plan, np.random.default_rng(seed))])
+        sim = fiveaxis.simulate(cfg, seed=seed)
+        r, truth = sim.result, sim.truth()       # the truth in the result's convention
         tilt = m.tilt
-        assert [e.name for e in r.errors] == list(r.plan.identifiable)
-        assert len(r.errors) == 8 and f"E_{tilt}0{tilt}+E_{tilt}0C" in r.plan.identifiable
+        assert [e.name for e in r.errors] == list(r.plan.identifiable) and len(r.errors) == 8
         for e in r.errors:
-            dev = abs(e.value - _truth(m, e.name))
+            dev = abs(e.value_display - truth[e.name]) * 1e-6
             inside.append(dev <= e.U)                          # 2 u: U is k = 2
             assert dev <= (2e-6 if e.unit == "µrad" else 1e-6), (seed, e, dev)
+        if m.geometry.head:     # the head's zero counted in the positions across (convention)
+            assert [u.name for u in r.unidentified] == [f"E_{tilt}0{tilt}", "E_C0C"]
+            assert truth["E_X0C"] == pytest.approx(20.0 + 40.0 * 0.150)
+            continue
+        assert f"E_{tilt}0{tilt}+E_{tilt}0C" in r.plan.identifiable
+        assert sum(_truth(m, n) for n in ("E_X0C",)) * 1e6 == pytest.approx(truth["E_X0C"])
         assert [u.name for u in r.unidentified] == ["E_C0C"]
         with pytest.raises(KeyError, match="E_C0C is not identified"):
             r["E_C0C"]

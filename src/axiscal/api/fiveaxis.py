@@ -37,7 +37,8 @@ __all__ = ["plan", "simulate", "identify", "compensate", "figure", "load", "Simu
            "Compensated", "EXAMPLES"]
 
 #: The example configurations shipped with the package (``axiscal.data``).
-EXAMPLES = {"A/C": "fiveaxis_ac.toml", "B/C": "fiveaxis_bc.toml"}
+EXAMPLES = {"A/C": "fiveaxis_ac.toml", "B/C": "fiveaxis_bc.toml",
+            "head B/C": "fiveaxis_head_bc.toml"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -79,8 +80,17 @@ class Simulated:
     files: tuple = ()
 
     def truth(self) -> dict[str, float]:
-        """True value (µm, µrad) of each reported name, sums added as they are reported."""
-        t = self.machine.truth_display()
+        """True value (µm, µrad) of each reported name in the result's convention: sums added
+        as they are reported; on a spindle head the head's zero counted in the positions across
+        (:func:`axiscal.standards.location_errors.conventions`)."""
+        t = dict(self.machine.truth_display())
+        g = self.machine.geometry
+        if g.head:
+            zero = t[f"E_{g.tilt}0{g.tilt}"] * g.pivot      # µrad × m = µm
+            if g.tilt == "B":
+                t["E_X0C"], t["E_X0B"] = t["E_X0C"] + zero, t["E_X0B"] + zero
+            else:
+                t["E_Y0C"], t["E_Y0A"] = t["E_Y0C"] - zero, t["E_Y0A"] - zero
         out = {}
         for e in self.result.errors:
             out[e.name] = sum(t[n] for n in e.name.split("+"))

@@ -1,12 +1,13 @@
 """``axiscal fiveaxis plan|simulate|identify|compensate``: the location errors of the rotary axes of a
-table-table five-axis machine (A/C or B/C), from spheres probed at many rotary poses and R-tests.
+five-axis machine (table-table A/C or B/C, or a spindle head over a C table), from spheres probed
+at many rotary poses and R-tests.
 
-Without a configuration the shipped example is used (``--machine ac`` or ``bc``); the format is in
+Without a configuration the shipped example is used (``--machine ac``, ``bc`` or ``head``); the format is in
 the README, 'Five-axis configuration', and the files' in 'Five-axis files'.
 
 JSON output (``--json``), stable keys, µm and µrad:
 
-* ``plan``: ``machine``, ``tilt_axis``, ``poses``, ``observations``, ``rank``, ``columns``,
+* ``plan``: ``machine``, ``tilt_axis``, ``kind`` (``table-table`` or ``head-table``), ``poses``, ``observations``, ``rank``, ``columns``,
   ``condition``, ``identifiable`` (names), ``unidentified`` (``name``, ``reason``: why and the test
   that would see it), ``convention``, ``setups`` (``label``, ``kind``, ``poses``, ``place_mm``,
   ``angles_deg`` as [tilt, C] pairs).
@@ -23,7 +24,8 @@ JSON output (``--json``), stable keys, µm and µrad:
   ``reduction``: deviation range of each set-up on the twin, or with ``--on-controller`` of each
   R-test run through LinuxCNC), ``on_controller``.
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
-  ``true`` and ``deviation`` (identified − true), ``files`` (written, or empty).
+  ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero
+  counted in the positions across) and ``deviation`` (identified − true), ``files`` (written, or empty).
 """
 
 from __future__ import annotations
@@ -43,7 +45,7 @@ app = typer.Typer(help="Five-axis machines: the location errors of both rotary a
 
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, module docs).")
 _MACHINE = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' "
-                        "(A/C table-table) or 'bc' (B/C).")
+                        "(A/C table-table), 'bc' (B/C) or 'head' (B spindle head over C).")
 _CONFIG = typer.Argument(None, help="Five-axis configuration (TOML); default: the shipped "
                          "example (--machine).")
 
@@ -56,9 +58,9 @@ def _config(config: Optional[Path], machine: str):
     from axiscal.api.fiveaxis import EXAMPLES
     from axiscal.errors import InputError
 
-    key = {"ac": "A/C", "bc": "B/C"}.get(machine.lower())
+    key = {"ac": "A/C", "bc": "B/C", "head": "head B/C"}.get(machine.lower())
     if key is None:
-        raise InputError(f"--machine {machine[:20]!r}: use 'ac' or 'bc'")
+        raise InputError(f"--machine {machine[:20]!r}: use 'ac', 'bc' or 'head'")
     from axiscal.io._files import load_toml
 
     return load_toml(resources.files("axiscal.data").joinpath(EXAMPLES[key]))

@@ -118,6 +118,9 @@ def trt_correction(geometry: Geometry, result, z_rot_point: float = 0.0) -> TrtC
     InputError
         A location error a pin needs was not identified.
     """
+    if geometry.head:
+        raise InputError("a spindle head: LinuxCNC's trt pins are for table-table machines "
+                         "(its 5axiskins holds only pivot-length); no pin values are given")
     got = {e.name: e.value for e in result.errors}
     t = geometry.tilt
     need = ("E_X0C", "E_Y0C") + (("E_Y0A", "E_Z0A") if t == "A" else ("E_X0B", "E_Z0B"))

@@ -1,4 +1,5 @@
-"""A simulated table-table five-axis machine (A/C or B/C): the twin whose rotary axes carry the
+"""A simulated five-axis machine, table-table (A/C or B/C) or spindle head over a C table
+(``kind = "head-table"``): the twin whose rotary axes carry the
 location errors of ISO 230-1:2012 / ISO 230-7:2015 Clause 3 and the position-dependent errors of
 the five-DOF rotary-axis model.
 
@@ -25,6 +26,9 @@ Configuration (TOML), lengths in mm, location errors in µm and µrad::
 
     [machine.C]                      # no travel_deg: a continuous table
 
+    # a spindle head instead: kind = "head-table", rotary = ["B", "C"], pivot_length_mm = 150
+    # (the tool tip below the head's axis at B = 0), no tilt_position_mm
+
     [location_errors]                # the twin's truth, shown only in simulation reports
     E_Y0A = 12.0                     # µm
     E_B0A = 25.0                     # µrad
@@ -47,7 +51,7 @@ from axiscal.units import MM
 
 __all__ = ["FiveAxisMachine", "five_axis_from_config", "MACHINE_KEYS"]
 
-MACHINE_KEYS = {"name", "kind", "rotary", "tilt_position_mm", "c_position_mm"}
+MACHINE_KEYS = {"name", "kind", "rotary", "tilt_position_mm", "c_position_mm", "pivot_length_mm"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,7 +74,7 @@ class FiveAxisMachine:
     tilt_axis: RotaryAxis = field(default_factory=lambda: RotaryAxis(name="A",
                                                                       travel=(-2.1, 2.1)))
     c_axis: RotaryAxis = field(default_factory=lambda: RotaryAxis(name="C"))
-    name: str = "simulated table-table five-axis machine"
+    name: str = "simulated five-axis machine"
 
     def __post_init__(self) -> None:
         unknown = set(self.errors) - set(self.geometry.names)
@@ -152,10 +156,25 @@ def five_axis_from_config(cfg: dict[str, Any]) -> FiveAxisMachine:
     tilt = _rotary(m.get("rotary"))
     refuse_unknown_keys("[machine]", m, MACHINE_KEYS | {tilt, "C"})
     kind = m.get("kind", "table-table")
-    if kind != "table-table":
-        raise ConfigError(f"[machine] kind = {kind!r}: only 'table-table' (tilting table "
-                          "carrying a rotary table) is modelled so far")
-    geometry = Geometry(tilt, _pair_mm(m, "tilt_position_mm"), _pair_mm(m, "c_position_mm"))
+    if kind not in ("table-table", "head-table"):
+        raise ConfigError(f"[machine] kind = {kind!r}: 'table-table' (a tilting table carrying "
+                          "the C table) or 'head-table' (a spindle head over a C table)")
+    if kind == "head-table":
+        if "tilt_position_mm" in m:
+            raise ConfigError("[machine] tilt_position_mm: a spindle head's axis passes through "
+                              "the spindle's pivot point; give pivot_length_mm")
+        pivot = m.get("pivot_length_mm")
+        if isinstance(pivot, bool) or not isinstance(pivot, (int, float)) \
+                or not math.isfinite(pivot) or not 0 <= pivot <= 1e4:
+            raise ConfigError(f"[machine] pivot_length_mm = {pivot!r} must be a number of mm "
+                              "from 0 to 10000 (the tool tip below the head's axis)")
+        geometry = Geometry(tilt, (0.0, 0.0), _pair_mm(m, "c_position_mm"), kind,
+                            float(pivot) * MM)
+    else:
+        if "pivot_length_mm" in m:
+            raise ConfigError("[machine] pivot_length_mm belongs to a spindle head "
+                              "(kind = \"head-table\")")
+        geometry = Geometry(tilt, _pair_mm(m, "tilt_position_mm"), _pair_mm(m, "c_position_mm"))
     axes = {}
     for axis in (tilt, "C"):
         t = m.get(axis, {})
@@ -167,7 +186,7 @@ def five_axis_from_config(cfg: dict[str, Any]) -> FiveAxisMachine:
         axes[axis] = rotary_axis_from_config({**t, "name": axis, "kind": "rotary"})
     return FiveAxisMachine(geometry=geometry, errors=_location_errors(cfg, geometry),
                            tilt_axis=axes[tilt], c_axis=axes["C"],
-                           name=str(m.get("name", f"simulated table-table {tilt}/C machine")))
+                           name=str(m.get("name", f"simulated {kind} {tilt}/C machine"))[:80])
 
 
 def _rotary(v: Any) -> str:
@@ -179,8 +198,8 @@ def _rotary(v: Any) -> str:
     if names[0] == names[1]:
         raise ConfigError(f"[machine] rotary = {v!r}: rotary axis {names[0]} named twice")
     if names[0] not in ("A", "B") or names[1] != "C":
-        raise ConfigError(f"[machine] rotary = {v!r}: a table-table machine is [\"A\", \"C\"] "
-                          "or [\"B\", \"C\"] (the tilting axis carries C)")
+        raise ConfigError(f"[machine] rotary = {v!r}: the machine is [\"A\", \"C\"] or "
+                          "[\"B\", \"C\"] (the tilting axis, then the C table)")
     return names[0]
 
 

@@ -40,6 +40,17 @@ conventional axis directions". ISO 841:2001 takes positive rotation of the *tool
 work-piece* right-handed, so a table (primed axis C') turns the other way: an ISO 841 angle is
 the negative of the angle used here.
 
+Spindle head (``kind = "head-table"``)
+--------------------------------------
+A spindle head turns the *tool* about its tilting axis (B about Y, or A about X) over a C table.
+The joints X, Y, Z are the machine position of the spindle's pivot point; at tilt 0 the tool tip
+is ``pivot`` below it, and the head turns it right-handed by the commanded angle about its actual
+line, which passes through the pivot point offset by its position errors (E_X0B, E_Z0B for B;
+E_Y0A, E_Z0A for A) with the same orientation and zero errors. :func:`table_to_machine` then gives
+the joints that put the tool tip on a table point, ``T_C(c) p − tip(b)``, and
+:func:`machine_to_table` the table point the tip reaches from given joints. The tool length
+(``pivot``) is fully correlated with the head's Z position error and is taken as calibrated.
+
 Position-dependent errors (error motions of ISO 230-7 and the angular positioning error) come from
 :class:`axiscal.machines.rotary.RotaryAxis` (the five-DOF model), applied in each axis's own frame
 (its axis of rotation is the frame's +z): ``p → q + F·(Rxy(εx, εy)·Fᵀ·R(θ + εz)(p − q) + δ)``.
@@ -65,8 +76,14 @@ import numpy as np
 
 from axiscal.errors import InputError
 
-__all__ = ["TILT_AXES", "parameter_names", "Geometry", "AxisMotion", "table_to_machine",
+__all__ = ["KINDS", "TABLE_TABLE", "HEAD_TABLE", "TILT_AXES", "parameter_names", "Geometry", "AxisMotion", "table_to_machine",
            "machine_to_table", "rotate_about_line", "is_angle", "transform_many"]
+
+TABLE_TABLE = "table-table"
+HEAD_TABLE = "head-table"
+#: The machine kinds modelled: a tilting table carrying C, or a spindle head tilting the tool
+#: over a C table.
+KINDS = (TABLE_TABLE, HEAD_TABLE)
 
 #: The tilting axes a table-table machine may have, with their nominal direction.
 TILT_AXES = {"A": np.array([1.0, 0.0, 0.0]), "B": np.array([0.0, 1.0, 0.0])}
@@ -114,14 +131,29 @@ class Geometry:
         ``z-rot-point + z-offset``).
     c_position : tuple of float, m
         ``(x, y)`` of the nominal C axis at tilt 0 (LinuxCNC ``x-rot-point``, ``y-rot-point``).
+    kind : str
+        ``"table-table"`` or ``"head-table"`` (module docstring, 'Spindle head').
+    pivot : float, m
+        Head only: the tool tip's distance below the head's axis at tilt 0 (pivot length).
     """
 
     tilt: str = "A"
     tilt_position: tuple[float, float] = (0.0, 0.0)
     c_position: tuple[float, float] = (0.0, 0.0)
+    kind: str = "table-table"
+    pivot: float = 0.0
 
     def __post_init__(self) -> None:
         parameter_names(self.tilt)
+        if self.kind not in KINDS:
+            raise InputError(f"machine kind {self.kind!r}: use one of {', '.join(KINDS)}")
+        if self.kind == HEAD_TABLE and not (np.isfinite(self.pivot) and self.pivot >= 0):
+            raise InputError(f"pivot length {self.pivot!r} m must be a finite number >= 0")
+
+    @property
+    def head(self) -> bool:
+        """True for a spindle head (the tilting axis turns the tool, C the table)."""
+        return self.kind == HEAD_TABLE
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -131,6 +163,8 @@ class Geometry:
         """Nominal reference points of the tilting axis and of C (module docstring), m."""
         cx, cy = self.c_position
         t1, tz = self.tilt_position
+        if self.head:     # the head's line, relative to the spindle's pivot point (the joints)
+            return np.zeros(3), np.array([cx, cy, 0.0])
         if self.tilt == "A":
             return np.array([cx, t1, tz]), np.array([cx, cy, tz])
         return np.array([t1, cy, tz]), np.array([cx, cy, tz])
@@ -181,6 +215,15 @@ def _cross(u, v):
     u0, u1, u2 = u[..., 0], u[..., 1], u[..., 2]
     v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
     return np.stack([u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0], axis=-1)
+
+
+def _tip(geometry: Geometry, q, u, theta, motion: AxisMotion | None):
+    """Tool tip relative to the spindle's pivot point (the joints), head turned by ``theta``:
+    ``(0, 0, −pivot)`` at zero, turned about the head's actual line (point ``q`` relative to
+    the pivot, direction ``u``), then the head's error motion."""
+    th = np.atleast_1d(np.asarray(theta, float))
+    tip0 = np.broadcast_to(np.array([0.0, 0.0, -geometry.pivot]), (len(th), 3))
+    return _motion_forward(rotate_about_line(tip0, q, u, th), q, geometry.tilt, motion)
 
 
 def _motion_forward(p, q, axis, m: AxisMotion | None):
@@ -259,6 +302,8 @@ def table_to_machine(geometry: Geometry, errors, tilt_angle, c_angle, points,
     ec = 0.0 if c_motion is None else c_motion.ez
     et = 0.0 if tilt_motion is None else tilt_motion.ez
     p = _motion_forward(rotate_about_line(p, q_c, u_c, c + z_c + ec), q_c, "C", c_motion)
+    if geometry.head:
+        return p - _tip(geometry, q_t, u_t, a + z_t + et, tilt_motion)
     return _motion_forward(rotate_about_line(p, q_t, u_t, a + z_t + et), q_t, geometry.tilt,
                            tilt_motion)
 
@@ -274,8 +319,11 @@ def machine_to_table(geometry: Geometry, errors, tilt_angle, c_angle, points,
     (q_t, u_t, z_t), (q_c, u_c, z_c) = geometry.lines(errors)
     ec = 0.0 if c_motion is None else c_motion.ez
     et = 0.0 if tilt_motion is None else tilt_motion.ez
-    p = rotate_about_line(_motion_inverse(p, q_t, geometry.tilt, tilt_motion), q_t, u_t,
-                          -(a + z_t + et))
+    if geometry.head:
+        p = p + _tip(geometry, q_t, u_t, a + z_t + et, tilt_motion)
+    else:
+        p = rotate_about_line(_motion_inverse(p, q_t, geometry.tilt, tilt_motion), q_t, u_t,
+                              -(a + z_t + et))
     return rotate_about_line(_motion_inverse(p, q_c, "C", c_motion), q_c, u_c, -(c + z_c + ec))
 
 
@@ -305,6 +353,13 @@ def transform_many(geometry: Geometry, error_sets, tilt_angle, c_angle, points,
     q_t, u_t, z_t, q_c, u_c, z_c = (rep(0, 0), rep(0, 1), rep(0, 2), rep(1, 0), rep(1, 1),
                                     rep(1, 2))
     a, c = np.tile(a, P), np.tile(c, P)
+    if geometry.head:
+        tip = _tip(geometry, q_t, u_t, a + z_t, None)
+        if inverse:
+            out = rotate_about_line(pts + tip, q_c, u_c, -(c + z_c))
+        else:
+            out = rotate_about_line(pts, q_c, u_c, c + z_c) - tip
+        return out.reshape(P, n, 3)
     if inverse:
         out = rotate_about_line(rotate_about_line(pts, q_t, u_t, -(a + z_t)), q_c, u_c,
                                 -(c + z_c))

@@ -195,10 +195,11 @@ class PlanCheck:
     condition: float
     identifiable: tuple[str, ...]
     unidentified: tuple[Unidentified, ...]
+    head: bool = False
 
     @property
     def convention(self) -> str:
-        return conventions(self.tilt)
+        return conventions(self.tilt, self.head)
 
     def __str__(self) -> str:
         lines = [f"{self.poses} poses, {self.observations} observations: sensitivity matrix rank "
@@ -210,7 +211,8 @@ class PlanCheck:
         return "\n".join(lines)
 
     def to_dict(self) -> dict:
-        return {"tilt_axis": self.tilt, "poses": self.poses, "observations": self.observations,
+        return {"tilt_axis": self.tilt, "kind": "head-table" if self.head else "table-table",
+                "poses": self.poses, "observations": self.observations,
                 "rank": self.rank, "columns": self.columns, "condition": self.condition,
                 "identifiable": list(self.identifiable),
                 "unidentified": [{"name": u.name, "reason": u.reason} for u in self.unidentified],
@@ -273,7 +275,8 @@ class LocationIdentification:
                 "errors of the rotary axes, errors of the linear axes, or a moving set-up)")
 
     def __str__(self) -> str:
-        lines = [f"location errors of the {self.plan.tilt}/C table-table axes "
+        kind = "spindle-head" if self.plan.head else "table-table"
+        lines = [f"location errors of the {self.plan.tilt}/C {kind} axes "
                  f"({self.plan.poses} poses, rank {self.plan.rank}, condition "
                  f"{self.plan.condition:.3g}):"]
         lines += [f"  {e}" for e in self.errors]
@@ -302,8 +305,16 @@ class LocationIdentification:
         }
 
 
-def conventions(tilt: str) -> str:
+def conventions(tilt: str, head: bool = False) -> str:
     """The convention that fixes what a sphere of unknown place cannot see (module docstring)."""
+    if head:
+        across = "X" if tilt == "B" else "Y"
+        return (f"E_C0C := 0 (the C zero is the set-up's) and E_{tilt}0{tilt} := 0 (the head's "
+                f"zero tilts the tool, which moves its tip across as a stylus offset would: "
+                f"E_{across}0C and E_{across}0{tilt} are taken relative to the tool tip at "
+                f"{tilt} = 0, the zero counted in them); the head turns the tool right-handed, "
+                f"the table turns right-handed by the commanded angle (LinuxCNC trt sign); the "
+                f"tool length (pivot) is calibrated separately, fully correlated with E_Z0{tilt}")
     return (f"E_C0C := 0 (the C zero is the set-up's) and E_{tilt}0C := 0 (the tilt of C about "
             f"{tilt} is counted in the zero of {tilt}, reported as E_{tilt}0{tilt}+E_{tilt}0C); "
             "rotary angles turn the table right-handed (LinuxCNC trt kinematics, opposite to "
@@ -397,7 +408,8 @@ def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
     idx = [free.index(i) for i in loc]
     sd = np.sqrt(np.diag(cov))[idx]
     corr = cov[np.ix_(idx, idx)] / np.outer(sd, sd)
-    errors = tuple(LocationError(_label(names[i], geometry.tilt), float(theta[i]), float(sd[j]),
+    errors = tuple(LocationError(_label(names[i], geometry.tilt, geometry.head), float(theta[i]),
+                                 float(sd[j]),
                                  components={k: float(v[idx[j]]) for k, v in contributions.items()})
                    for j, i in enumerate(loc))
     sizes = np.cumsum([0] + [3 * s.poses for s in setups])
@@ -475,20 +487,24 @@ def _jacobian(geometry, setups, theta, places, commands):
     return np.vstack(rows), np.concatenate(fs)
 
 
-def _fixed(tilt: str) -> tuple[int, int]:
-    """Columns fixed by the convention: the tilt of C about the tilting axis, and the C zero."""
+def _fixed(tilt: str, head: bool = False) -> tuple[int, ...]:
+    """Columns fixed by the convention: the C zero, and on a table-table machine the tilt of C
+    about the tilting axis (seen only in its sum with the tilting axis's zero), on a spindle head
+    the head's zero (seen only with the tool tip's offset and the C position, conventions())."""
+    if head:
+        return 4, 9
     return (7 if tilt == "A" else 8), 9
 
 
-def _label(name: str, tilt: str) -> str:
+def _label(name: str, tilt: str, head: bool = False) -> str:
     zero = f"E_{tilt}0{tilt}"
-    return f"{zero}+E_{tilt}0C" if name == zero else name
+    return f"{zero}+E_{tilt}0C" if name == zero and not head else name
 
 
 def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
     """Equilibrated SVD of the weighted sensitivity matrix: rank, condition, the unseen."""
-    tilt = geometry.tilt
-    cols = [i for i in range(Jw.shape[1]) if i not in _fixed(tilt)]
+    tilt, head = geometry.tilt, geometry.head
+    cols = [i for i in range(Jw.shape[1]) if i not in _fixed(tilt, head)]
     unseen: list[int] = []
     for _ in range(10):
         A = Jw[:, cols]
@@ -519,11 +535,18 @@ def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
     fixed = [Unidentified(names[9], "a sphere or nest of unknown place on the table sees no C "
                           "zero; set by the convention E_C0C := 0 (the C zero is the set-up's); "
                           "measure it against a datum on the table at a known angle")]
-    out = [Unidentified(_label(names[c], tilt), _hint(names[c], tilt)) for c in sorted(unseen)]
-    plan = PlanCheck(tilt=tilt, poses=sum(s.poses for s in setups), observations=Jw.shape[0],
+    if head:
+        fixed.insert(0, Unidentified(names[4], f"the head's zero moves the tool tip across as a "
+                                     f"stylus offset would; set by the convention "
+                                     f"E_{tilt}0{tilt} := 0 and counted in the C and head "
+                                     f"positions; measure the tool's tilt at {tilt} = 0 (a "
+                                     f"level, or the tip at {tilt} = ±90°) to separate it"))
+    out = [Unidentified(_label(names[c], tilt, head), _hint(names[c], tilt))
+           for c in sorted(unseen)]
+    plan = PlanCheck(tilt=tilt, head=head, poses=sum(s.poses for s in setups), observations=Jw.shape[0],
                      rank=rank, columns=len(cols) + len(unseen),
                      condition=cond,
-                     identifiable=tuple(_label(names[c], tilt) for c in cols if c < 10),
+                     identifiable=tuple(_label(names[c], tilt, head) for c in cols if c < 10),
                      unidentified=tuple(out + fixed))
     return plan, cols
 
