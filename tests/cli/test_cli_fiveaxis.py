@@ -109,6 +109,10 @@ def test_compensate_writes_the_pins_and_the_neutral_table(run, tmp_path):
     assert "setp xyzac-trt-kins.z-offset -60.01" in hal and "HOME_OFFSET += +0.003" in hal
     table = (tmp_path / "trt.csv").read_text("utf-8").splitlines()
     assert table[0] == "parameter,before,after,unit,takes" and len(table) == 9
+    doc = __import__("axiscal.cli.fiveaxis", fromlist=["x"]).__doc__
+    documented = set(re.findall(r"``([A-Za-z_][A-Za-z0-9_-]*)``", doc))
+    keys = set(d) | set(d["verify"]) | set(d["verify"]["setups"][0])
+    assert keys <= documented, keys - documented
 
 
 def test_identify_plot_draws_the_lines_and_the_values(run, tmp_path):
