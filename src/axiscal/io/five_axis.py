@@ -23,6 +23,11 @@ displacement from the nest, table-fixed frame, µm)::
 
     # noise_um = 0.5                 (one sensor's standard deviation; default 0.5)
     # u_gain = 0.001                 (relative gain calibration uncertainty; default 0)
+    # u_direction_mrad = 1.0         (sensor direction calibration uncertainty; default 0)
+
+The gain and direction uncertainties act through the sensors' measuring directions of axiscal's
+tripod nest (:data:`axiscal.instruments.r_test.SENSOR_DIRECTIONS`), as the instrument turned its
+three readings into X, Y, Z.
     pose,A_deg,C_deg,X_mm,Y_mm,Z_mm,dx_um,dy_um,dz_um
     1,0,0,-60.0,-40.0,80.0,0.12,-0.30,0.05
 
@@ -50,7 +55,7 @@ __all__ = ["read_five_axis", "parse_five_axis", "format_five_axis", "write_five_
 PROBING_COLUMNS = ("x_mm", "y_mm", "z_mm")
 RTEST_COLUMNS = ("X_mm", "Y_mm", "Z_mm", "dx_um", "dy_um", "dz_um")
 _SETTINGS = {"sphere_radius_mm", "stylus_radius_mm", "noise_um", "u_offset_um",
-             "radius_tolerance_mm", "place_mm", "label", "u_gain"}
+             "radius_tolerance_mm", "place_mm", "label", "u_gain", "u_direction_mrad"}
 #: Most rows a file may hold (a probing of 20 000 poses with 10 touches each).
 MAX_ROWS = 200_000
 
@@ -90,7 +95,8 @@ def format_five_axis(record: ProbingRecord | RTestRecord) -> str:
                   f"# u_offset_um = {', '.join(f'{v / UM:g}' for v in record.u_offset)}",
                   f"# radius_tolerance_mm = {record.tolerance / MM:g}"]
     else:
-        lines += [f"# noise_um = {record.noise / UM:g}", f"# u_gain = {record.u_gain:g}"]
+        lines += [f"# noise_um = {record.noise / UM:g}", f"# u_gain = {record.u_gain:g}",
+                  f"# u_direction_mrad = {record.u_direction * 1e3:g}"]
     if record.place is not None:
         lines.append(f"# place_mm = {', '.join(f'{v / MM:.6f}' for v in record.place)}")
     lines.append(f"# label = {record.label}")
@@ -274,7 +280,9 @@ def _rtest(settings, rows, tilt, source) -> RTestRecord:
                        vals[:, 5:8] * UM,
                        noise=_setting(settings, "noise_um", 0.5, source, lo=0.0) * UM,
                        u_gain=_setting(settings, "u_gain", 0.0, source, lo=0.0),
-                       place=_place(settings, source), label=_label(settings, "r-test"))
+                       place=_place(settings, source), label=_label(settings, "r-test"),
+                       u_direction=_setting(settings, "u_direction_mrad", 0.0, source,
+                                            lo=0.0) * 1e-3)
 
 
 def _setting(settings, key, default, source, lo: float) -> float:

@@ -21,6 +21,7 @@ A plan is read from the ``[[setup]]`` tables of a five-axis configuration (besid
     poses_deg = [[0, 0], [-45, 90], [-90, 180]]   # or A_deg and C_deg as above
     noise_um = 0.5                   # one sensor reading's standard deviation
     u_gain = 0.001                   # relative calibration uncertainty of each sensor's gain
+    u_direction_mrad = 1.0           # calibration uncertainty of each sensor's direction
     gain_errors = [0, 0, 0]          # simulation only: the gains' true errors
 
 The procedure measures; it never evaluates: it returns one record per set-up (the touches, or the
@@ -37,7 +38,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import ConfigError, InputError
-from axiscal.instruments.r_test import SimulatedRTest
+from axiscal.instruments.r_test import SENSOR_DIRECTIONS, SimulatedRTest
 from axiscal.instruments.touch_probe import SimulatedTouchProbe
 from axiscal.machines.config import refuse_unknown_keys
 from axiscal.physics.rotary_location import table_to_machine
@@ -54,7 +55,7 @@ MAX_POSES = 20_000
 _COMMON = {"kind", "place_mm", "poses_deg", "C_deg", "noise_um", "label"}
 _KEYS = {PROBING: _COMMON | {"sphere_radius_mm", "stylus_radius_mm", "u_offset_um",
                              "radius_tolerance_mm", "offset_um"},
-         R_TEST: _COMMON | {"u_gain", "gain_errors", "range_mm"}}
+         R_TEST: _COMMON | {"u_gain", "u_direction_mrad", "gain_errors", "range_mm"}}
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +72,7 @@ class PlannedSetUp:
     u_gain: float = 0.0
     tolerance: float = RADIUS_TOLERANCE
     label: str = ""
+    u_direction: float = 0.0
 
     @property
     def poses(self) -> int:
@@ -78,9 +80,11 @@ class PlannedSetUp:
 
     def nominal_setup(self) -> SetUp:
         """The set-up as :func:`~axiscal.standards.location_errors.check_plan` needs it."""
+        directions = getattr(self.instrument, "directions", None) if self.kind == R_TEST \
+            else None
         return SetUp(self.kind, self.tilt_angle, self.c_angle, nominal=tuple(self.place),
                      u_reading=_u_reading(self), u_offset=self.u_offset, u_gain=self.u_gain,
-                     label=self.label)
+                     u_direction=self.u_direction, directions=directions, label=self.label)
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,13 +159,18 @@ class RTestRecord:
     u_gain: float = 0.0
     place: np.ndarray | None = None
     label: str = "r-test"
+    u_direction: float = 0.0
+    directions: np.ndarray | None = None
 
     kind = R_TEST
 
     def setup(self) -> SetUp:
         return SetUp(R_TEST, self.tilt_angle, self.c_angle, self.displacement, self.commanded,
                      nominal=tuple(self.place) if self.place is not None else (0.0, 0.0, 0.0),
-                     u_reading=max(self.noise, 1e-9), u_gain=self.u_gain, label=self.label)
+                     u_reading=max(self.noise, 1e-9), u_gain=self.u_gain,
+                     u_direction=self.u_direction,
+                     directions=SENSOR_DIRECTIONS if self.directions is None else self.directions,
+                     label=self.label)
 
 
 def plan_from_config(cfg: dict[str, Any], machine) -> FiveAxisPlan:
@@ -207,8 +216,10 @@ def plan_from_config(cfg: dict[str, Any], machine) -> FiveAxisPlan:
             inst = SimulatedRTest(noise=noise,
                                   gain_errors=tuple(_triple(t, "gain_errors", [0, 0, 0], where)),
                                   range=_num(t, "range_mm", 1.0, where, lo=1e-3) * MM)
-            out.append(PlannedSetUp(R_TEST, machine.tilt, a, c, place, inst,
-                                    u_gain=_num(t, "u_gain", 0.0, where, lo=0.0), label=label))
+            out.append(PlannedSetUp(
+                R_TEST, machine.tilt, a, c, place, inst,
+                u_gain=_num(t, "u_gain", 0.0, where, lo=0.0), label=label,
+                u_direction=_num(t, "u_direction_mrad", 0.0, where, lo=0.0) * 1e-3))
     return FiveAxisPlan(tuple(out))
 
 
@@ -231,7 +242,8 @@ def measure(machine, plan: FiveAxisPlan, rng: np.random.Generator | None = None)
             commanded = table_to_machine(machine.geometry, {}, s.tilt_angle, s.c_angle, s.place)
             d = s.instrument.measure(machine, s.tilt_angle, s.c_angle, commanded, s.place, rng)
             out.append(RTestRecord(s.tilt, s.tilt_angle, s.c_angle, commanded, d,
-                                   s.instrument.noise, s.u_gain, s.place, s.label))
+                                   s.instrument.noise, s.u_gain, s.place, s.label,
+                                   s.u_direction, np.asarray(s.instrument.directions, float)))
     return tuple(out)
 
 

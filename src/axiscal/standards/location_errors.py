@@ -84,6 +84,12 @@ class SetUp:
         Probing: standard uncertainty of the stylus offset (x, y) and length (z) calibration.
     u_gain : float
         R-test: relative standard uncertainty of each sensor's gain.
+    u_direction : float, rad
+        R-test: standard uncertainty of each sensor's measuring direction (about each of the two
+        axes normal to it).
+    directions : numpy.ndarray, shape (3, 3), or None
+        R-test: the sensors' nominal measuring directions (rows, table frame) through which the
+        instrument turned its readings into X, Y, Z; None: along X, Y, Z.
     label : str
     """
 
@@ -96,6 +102,8 @@ class SetUp:
     u_reading: float = 0.5e-6
     u_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
     u_gain: float = 0.0
+    u_direction: float = 0.0
+    directions: np.ndarray | None = None
     label: str = ""
 
     def __post_init__(self) -> None:
@@ -591,9 +599,30 @@ def _inputs(setups, n):
                     g = np.zeros(n)
                     g[start + j:start + m:3] = s.u_offset[j]
                     yield f"probe offset {axis}", g
-        elif s.u_gain > 0:
-            for j in range(3):
-                g = np.zeros(n)
-                g[start + j:start + m:3] = s.values[:, j] * s.u_gain
-                yield f"R-test gain {'xyz'[j]}", g
+        else:
+            yield from _rtest_inputs(s, start, n)
         start += m
+
+
+def _rtest_inputs(s: SetUp, start: int, n: int):
+    """An R-test's calibration inputs: each sensor's gain and measuring direction. The instrument
+    turns readings ``r = N Δ`` into ``Δ = N⁻¹ r``; a gain error ``γ`` of sensor i reads
+    ``γ (n_i·Δ)`` more, a tilt ``β`` of its direction towards ``p`` reads ``β (p·Δ)`` more; either
+    moves the result by ``N⁻¹ e_i`` times that (JCGM 100, 5.1.3)."""
+    N = np.eye(3) if s.directions is None else np.asarray(s.directions, float)
+    Ninv = np.linalg.inv(N)
+    m = 3 * s.poses
+    for i in range(3):
+        n_i = N[i] / np.linalg.norm(N[i])
+        col = Ninv[:, i]
+        if s.u_gain > 0:
+            g = np.zeros(n)
+            g[start:start + m] = np.outer(s.values @ n_i, col).ravel() * s.u_gain
+            yield f"R-test gain {i + 1}", g
+        if s.u_direction > 0:
+            p1 = np.cross(n_i, [0.0, 0.0, 1.0] if abs(n_i[2]) < 0.9 else [1.0, 0.0, 0.0])
+            p1 /= np.linalg.norm(p1)
+            for k, p in enumerate((p1, np.cross(n_i, p1))):
+                g = np.zeros(n)
+                g[start:start + m] = np.outer(s.values @ p, col).ravel() * s.u_direction
+                yield f"R-test direction {i + 1}{'ab'[k]}", g
