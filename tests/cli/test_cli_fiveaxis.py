@@ -136,3 +136,20 @@ def test_a_spindle_head_states_its_convention_and_gets_no_trt_pins(tmp_path):
     assert all(abs(e["deviation"]) < (2.0 if e["unit"] == "µrad" else 1.0) for e in sim["errors"])
     r = runner.invoke(app, ["fiveaxis", "compensate", *sim["files"], "--machine", "head"])
     assert r.exit_code == 2 and "spindle head" in r.stderr and "5axiskins" in r.stderr
+
+
+def test_reports_show_the_values_and_the_truth_only_for_a_simulation(run, tmp_path):
+    out, _ = run
+    real = tmp_path / "identify.html"
+    r = runner.invoke(app, ["fiveaxis", "identify", str(out / "1_probing.csv"), "--report",
+                            str(real)])
+    assert r.exit_code == 0, r.output
+    page = real.read_text("utf-8")
+    # ISO 230 symbols with their subscripts, as every report writes them
+    assert "E<sub>A0A</sub>+E<sub>A0C</sub>" in page and "U (k = 2)" in page and "<svg" in page
+    assert "E<sub>C0C</sub>: not identified" in page and "Simulation report" not in page
+    sim = tmp_path / "simulate.html"
+    r = runner.invoke(app, ["fiveaxis", "simulate", "--report", str(sim)])
+    assert r.exit_code == 0, r.output
+    assert "Simulation report" in sim.read_text("utf-8") and "identified − true" in \
+        sim.read_text("utf-8")

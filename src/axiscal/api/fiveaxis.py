@@ -33,7 +33,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers
     from axiscal.procedures.five_axis import FiveAxisPlan
     from axiscal.standards.location_errors import LocationIdentification, PlanCheck
 
-__all__ = ["plan", "simulate", "identify", "compensate", "figure", "load", "Simulated", "Planned",
+__all__ = ["plan", "simulate", "identify", "compensate", "figure", "report", "load", "Simulated", "Planned",
            "Compensated", "EXAMPLES"]
 
 #: The example configurations shipped with the package (``axiscal.data``).
@@ -267,6 +267,17 @@ def figure(config, result):
     from axiscal.report.five_axis_plots import location_figure
 
     return location_figure(five_axis_from_config(_config(config)).geometry, result)
+
+
+def report(config, result, path, files=(), truth=None):
+    """Write the identification's report (HTML, or PDF for a ``.pdf`` name) and return its path
+    (:func:`axiscal.report.five_axis_plots.location_report`)."""
+    from axiscal.machines.five_axis import five_axis_from_config
+    from axiscal.report.five_axis_plots import location_report
+
+    machine = five_axis_from_config(_config(config))
+    return location_report(machine.geometry, result, name=machine.name, truth=truth,
+                           files=files).write(path)
 
 
 def _measure(machine, p, seed: int):

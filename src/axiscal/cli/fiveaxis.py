@@ -88,6 +88,8 @@ def simulate(
     seed: int = typer.Option(1, "--seed", min=0, help="Random seed of the measurement noise."),
     out: Optional[Path] = typer.Option(None, "--out", help="Folder for the measured files "
                                        "(one CSV per set-up; created if missing)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the report with the "
+                                          "twin's truth beside: HTML (.html) or PDF (.pdf)."),
     as_json: bool = _JSON,
 ):
     """Measure the twin with its simulated probe and R-test, identify, compare with the truth.
@@ -95,8 +97,14 @@ def simulate(
     Example: axiscal fiveaxis simulate --out run && axiscal fiveaxis identify run/*.csv
     """
     from axiscal.api import fiveaxis
+    from axiscal.cli._common import report_path
 
-    sim = fiveaxis.simulate(_config(config, machine), seed=seed, out=out)
+    if report is not None:
+        report_path(report)
+    cfg = _config(config, machine)
+    sim = fiveaxis.simulate(cfg, seed=seed, out=out)
+    if report is not None:
+        fiveaxis.report(cfg, sim.result, report, files=sim.files, truth=sim.truth())
     if as_json:
         print_json(sim.to_dict())
         return
@@ -115,6 +123,9 @@ def identify(
     machine: str = _MACHINE,
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the axis lines in 3-D "
                                         "(magnified) and the values with U (.png, .svg, .pdf)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the report (values, "
+                                          "budget, unseen, correlations, residual, figure): "
+                                          "HTML (.html) or PDF (.pdf, WeasyPrint)."),
     as_json: bool = _JSON,
 ):
     """Identify the location errors from measured files, with U (k = 2) and correlations.
@@ -122,14 +133,18 @@ def identify(
     Example: axiscal fiveaxis identify run/1_probing.csv run/3_r-test.csv --plot lines.png
     """
     from axiscal.api import fiveaxis
-    from axiscal.cli._common import plot_path
+    from axiscal.cli._common import plot_path, report_path
 
     if plot is not None:
         plot_path(plot)
+    if report is not None:
+        report_path(report)
     cfg = _config(config, machine)
     result = fiveaxis.identify(cfg, files)
     if plot is not None:
         fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
+    if report is not None:
+        fiveaxis.report(cfg, result, report, files=files)
     if as_json:
         print_json(result.to_dict())
         return

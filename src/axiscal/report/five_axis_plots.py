@@ -14,7 +14,7 @@ import numpy as np
 from axiscal.physics.rotary_location import Geometry
 from axiscal.report._figures import pyplot as _pyplot
 
-__all__ = ["location_figure"]
+__all__ = ["location_figure", "location_report"]
 
 
 def location_figure(geometry: Geometry, result, magnification: float | None = None,
@@ -79,3 +79,45 @@ def location_figure(geometry: Geometry, result, magnification: float | None = No
 def _ends(line, s):
     q, u, _ = line
     return q + np.outer(s, u)
+
+
+def location_report(geometry: Geometry, result, *, name: str, truth: dict | None = None,
+                    files=()):
+    """The HTML report (:class:`~axiscal.report.html.Report`) of an identification: the values
+    with U and their budget, the unseen with the test that would see them, the convention, the
+    correlations, the residual and the figure. ``truth`` (name -> µm or µrad, a simulation's) is
+    shown only in a section headed as the simulation's truth."""
+    from axiscal.report.html import Report
+
+    kind = "spindle head" if geometry.head else "table-table"
+    plan = result.plan
+    rep = Report(f"Five-axis location errors — {name}",
+                 f"{geometry.tilt}/C {kind}: ISO 230-1:2012 / ISO 230-7:2015 location errors by "
+                 "least squares, U after JCGM 100",
+                 {"files": ", ".join(str(f) for f in files), "poses": plan.poses,
+                  "sensitivity rank": f"{plan.rank} of {plan.columns}",
+                  "condition": f"{plan.condition:.3g}"})
+    rep.add_heading("Location errors")
+    inputs = sorted({k for e in result.errors for k in e.components})
+    rep.add_table(["error", "value", "U (k = 2)", "unit"] + [f"u: {k}" for k in inputs],
+                  [[e.name, e.value_display, e.U_display, e.unit]
+                   + [e.components.get(k, 0.0) * 1e6 for k in inputs] for e in result.errors],
+                  digits=2, formulas=(0,))
+    rep.add_warnings([str(u) for u in result.unidentified])
+    rep.add_text(f"Convention: {plan.convention}.")
+    rep.add_figure(location_figure(geometry, result), "The rotary axes' lines, nominal (dashed) "
+                   "and identified (magnified), and the values with U.")
+    rep.add_heading("Correlations")
+    names = [e.name for e in result.errors]
+    rep.add_table([""] + names, [[n] + list(row) for n, row in zip(names, result.correlation)],
+                  digits=2, formulas=(0,))
+    rep.add_heading("Residual")
+    rep.add_text(f"{result.residual_rms * 1e6:.2f} µm rms, largest {result.residual_max * 1e6:.2f}"
+                 f" µm, χ²/ν = {result.chi2_per_dof:.2f} (ν = {result.dof}); "
+                 f"{result.unmodelled}.")
+    if truth is not None:
+        rep.add_truth("Simulation: the twin's truth")
+        rep.add_table(["error", "identified", "true", "identified − true", "unit"],
+                      [[e.name, e.value_display, truth[e.name], e.value_display - truth[e.name],
+                        e.unit] for e in result.errors], digits=2, formulas=(0,))
+    return rep
