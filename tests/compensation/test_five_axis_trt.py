@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from axiscal.api import fiveaxis
-from axiscal.compensation.five_axis import trt_correction, verify_on_twin
+from axiscal.compensation.five_axis import trt_correction
 from axiscal.errors import InputError
 
 

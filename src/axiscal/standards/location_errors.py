@@ -47,6 +47,7 @@ import numpy as np
 from axiscal.errors import InputError
 from axiscal.physics.rotary_location import (Geometry, is_angle, machine_to_table,
                                               table_to_machine, transform_many)
+from axiscal.standards.location_budget import systematic_inputs
 
 __all__ = ["SetUp", "PlanCheck", "LocationError", "Unidentified", "LocationIdentification",
            "check_plan", "identify_location_errors", "conventions", "PROBING", "R_TEST"]
@@ -407,7 +408,7 @@ def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
     cov_a = N * max(chi2, 1.0)
     contributions = {"residual": np.sqrt(np.diag(cov_a))}
     cov = cov_a.copy()
-    for name, g in _systematic(setups, len(y)).items():
+    for name, g in systematic_inputs(setups, len(y)).items():
         d = K @ g
         cov += np.outer(d, d)
         contributions[name] = np.abs(d)
@@ -577,52 +578,3 @@ def _hint(name: str, tilt: str) -> str:
         return "no planned pose turns C enough; probe at three or more C angles (for example every 90°)"
     return (f"no planned pose separates the C axis's tilt; probe at three or more C angles at "
             f"{tilt} ≠ 0, or with the sphere above the {tilt} axis")
-
-
-def _systematic(setups, n) -> dict[str, np.ndarray]:
-    """Type B inputs acting on all readings of a set-up at once: name -> ``g``, the change of
-    the readings per standard uncertainty of the input (module docstring). One probe (one
-    R-test) serves every set-up of its kind, so its input acts on all of them together."""
-    out: dict[str, np.ndarray] = {}
-    for name, g in _inputs(setups, n):
-        out[name] = out.get(name, 0.0) + g
-    return out
-
-
-def _inputs(setups, n):
-    start = 0
-    for s in setups:
-        m = 3 * s.poses
-        if s.kind == PROBING:
-            for j, axis in enumerate("xyz"):
-                if s.u_offset[j] > 0:
-                    g = np.zeros(n)
-                    g[start + j:start + m:3] = s.u_offset[j]
-                    yield f"probe offset {axis}", g
-        else:
-            yield from _rtest_inputs(s, start, n)
-        start += m
-
-
-def _rtest_inputs(s: SetUp, start: int, n: int):
-    """An R-test's calibration inputs: each sensor's gain and measuring direction. The instrument
-    turns readings ``r = N Δ`` into ``Δ = N⁻¹ r``; a gain error ``γ`` of sensor i reads
-    ``γ (n_i·Δ)`` more, a tilt ``β`` of its direction towards ``p`` reads ``β (p·Δ)`` more; either
-    moves the result by ``N⁻¹ e_i`` times that (JCGM 100, 5.1.3)."""
-    N = np.eye(3) if s.directions is None else np.asarray(s.directions, float)
-    Ninv = np.linalg.inv(N)
-    m = 3 * s.poses
-    for i in range(3):
-        n_i = N[i] / np.linalg.norm(N[i])
-        col = Ninv[:, i]
-        if s.u_gain > 0:
-            g = np.zeros(n)
-            g[start:start + m] = np.outer(s.values @ n_i, col).ravel() * s.u_gain
-            yield f"R-test gain {i + 1}", g
-        if s.u_direction > 0:
-            p1 = np.cross(n_i, [0.0, 0.0, 1.0] if abs(n_i[2]) < 0.9 else [1.0, 0.0, 0.0])
-            p1 /= np.linalg.norm(p1)
-            for k, p in enumerate((p1, np.cross(n_i, p1))):
-                g = np.zeros(n)
-                g[start:start + m] = np.outer(s.values @ p, col).ravel() * s.u_direction
-                yield f"R-test direction {i + 1}{'ab'[k]}", g
