@@ -21,7 +21,8 @@ JSON output (``--json``), stable keys, µm and µrad:
   ``before``, ``after``), ``home_offset_change_deg`` (tilting axis -> change of HOME_OFFSET),
   ``not_held_urad`` (orientation errors no pin holds), ``sources`` (pin -> the location errors
   it takes), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
-  ``reduction``: deviation range of each set-up on the twin, or with ``--on-controller`` of each
+  ``reduction``, ``after_unmodelled_um`` (after, without noise: what the errors the correction
+  cannot hold leave): deviation range of each set-up on the twin, or with ``--on-controller`` of each
   R-test run through LinuxCNC), ``on_controller``.
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero

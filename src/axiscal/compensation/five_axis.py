@@ -170,26 +170,35 @@ class Verification:
 
     The range of a set-up is the largest peak-to-valley, over X, Y and Z, of the sphere centres
     seen through the controller's kinematics in the table frame (probing), or of the R-test's
-    displacements: what a perfect machine would show as 0.
+    displacements: what a perfect machine would show as 0. ``after_unmodelled`` is the range
+    after the correction on the twin without noise: what the errors the correction cannot hold
+    leave (the twin's truth; the rest of ``after`` is the instruments' noise).
     """
 
     labels: tuple[str, ...]
     before: tuple[float, ...]
     after: tuple[float, ...]
+    after_unmodelled: tuple[float, ...] = ()
 
     @property
     def reduction(self) -> tuple[float, ...]:
         return tuple(1.0 - a / b if b > 0 else 0.0 for a, b in zip(self.after, self.before))
 
     def to_dict(self) -> dict:
+        left = self.after_unmodelled or (None,) * len(self.labels)
         return {"setups": [{"label": n, "before_um": b * 1e6, "after_um": a * 1e6,
-                            "reduction": r} for n, b, a, r in
-                           zip(self.labels, self.before, self.after, self.reduction)]}
+                            "reduction": r,
+                            "after_unmodelled_um": None if u is None else u * 1e6}
+                           for n, b, a, r, u in
+                           zip(self.labels, self.before, self.after, self.reduction, left)]}
 
     def __str__(self) -> str:
+        left = self.after_unmodelled or (None,) * len(self.labels)
         return "\n".join(f"  {n}: range {b * 1e6:.2f} µm before, {a * 1e6:.2f} µm after "
-                         f"({r:.1%} less)" for n, b, a, r in
-                         zip(self.labels, self.before, self.after, self.reduction))
+                         f"({r:.1%} less)" + ("" if u is None else
+                                              f"; without noise {u * 1e6:.2f} µm after")
+                         for n, b, a, r, u in
+                         zip(self.labels, self.before, self.after, self.reduction, left))
 
 
 def corrected_machine(machine, correction: TrtCorrection):
@@ -217,10 +226,11 @@ def verify_on_twin(machine, plan, correction: TrtCorrection, seed: int = 7) -> V
 
     after_machine = corrected_machine(machine, correction)
     ranges = []
-    for m in (machine, after_machine):
-        recs = measure(m, plan, np.random.default_rng(seed))
+    for m, rng in ((machine, np.random.default_rng(seed)),
+                   (after_machine, np.random.default_rng(seed)), (after_machine, None)):
+        recs = measure(m, plan, rng)
         ranges.append(tuple(_range(m, r) for r in recs))
-    return Verification(tuple(s.label for s in plan.setups), ranges[0], ranges[1])
+    return Verification(tuple(s.label for s in plan.setups), *ranges)
 
 
 def _range(machine, record) -> float:

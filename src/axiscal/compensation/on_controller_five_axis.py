@@ -24,13 +24,14 @@ from axiscal.units import DEG, MM
 __all__ = ["verify_on_linuxcnc", "r_test_on_linuxcnc"]
 
 
-def r_test_on_linuxcnc(machine, setup, pins: dict, home_offset: float, rng=None
-                       ) -> RTestRecord:
+def r_test_on_linuxcnc(machine, setup, pins: dict, home_offset: float, rng=None,
+                       noise_free: bool = False) -> RTestRecord | tuple[RTestRecord, np.ndarray]:
     """Run one planned R-test set-up through a live LinuxCNC (trt kinematics, ``pins`` in mm,
     the tilting joint's ``home_offset`` in degrees) on the twin.
 
     Returns the record with ``commanded`` the joints' X, Y, Z (m) and the angles the drives
-    reached (rad), as the twin used them.
+    reached (rad), as the twin used them; with ``noise_free`` also the displacements the same
+    joints give without the instrument's noise (m).
     """
     from axiscal.instruments.linuxcnc_trt import joints_for_world_poses
 
@@ -39,8 +40,11 @@ def r_test_on_linuxcnc(machine, setup, pins: dict, home_offset: float, rng=None
     joints = joints_for_world_poses(machine.tilt, pins, home_offset, poses)
     xyz, a, c = joints[:, :3] * MM, joints[:, 3] * DEG, joints[:, 4] * DEG
     d = setup.instrument.measure(machine, a, c, xyz, place, rng)
-    return RTestRecord(machine.tilt, a, c, xyz, d, setup.instrument.noise, setup.u_gain, place,
-                       setup.label)
+    rec = RTestRecord(machine.tilt, a, c, xyz, d, setup.instrument.noise, setup.u_gain, place,
+                      setup.label)
+    if noise_free:
+        return rec, setup.instrument.measure(machine, a, c, xyz, place, None)
+    return rec
 
 
 def verify_on_linuxcnc(machine, plan, correction: TrtCorrection, seed: int = 7,
@@ -56,6 +60,11 @@ def verify_on_linuxcnc(machine, plan, correction: TrtCorrection, seed: int = 7,
         pins = {p: v[which] for p, v in correction.pins.items()}
         pins["z-rot-point"] = z_rot_point
         rng = np.random.default_rng(seed)
-        recs = [r_test_on_linuxcnc(machine, s, pins, home, rng) for s in setups]
-        ranges.append(tuple(float(np.ptp(r.displacement, axis=0).max()) for r in recs))
-    return Verification(tuple(s.label for s in setups), ranges[0], ranges[1])
+        runs = [r_test_on_linuxcnc(machine, s, pins, home, rng, noise_free=True) for s in setups]
+        ranges.append(tuple(_ptp(r.displacement) for r, _ in runs))
+    left = tuple(_ptp(d) for _, d in runs)       # after: the same joints without noise
+    return Verification(tuple(s.label for s in setups), ranges[0], ranges[1], left)
+
+
+def _ptp(v) -> float:
+    return float(np.ptp(v, axis=0).max())
