@@ -64,7 +64,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
 
 def __getattr__(name: str) -> Any:
     """The public API's names, imported from :mod:`axiscal.api` when first used (PEP 562)."""
-    if name in _API:
+    if name in _API or name == "fiveaxis":
         from axiscal import api
 
         return getattr(api, name)
@@ -72,4 +72,4 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+    return sorted(set(globals()) | set(__all__) | {"fiveaxis"})

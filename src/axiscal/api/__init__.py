@@ -75,6 +75,10 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs
 
 def __getattr__(name: str) -> Any:
     """A public name, imported from its module when first used (PEP 562)."""
+    if name == "fiveaxis":   # a namespace module: axiscal.fiveaxis.plan | simulate | identify
+        from importlib import import_module
+
+        return import_module("axiscal.api.fiveaxis")
     home = _HOME.get(name)
     if home is None:
         raise AttributeError(f"module 'axiscal.api' has no attribute {name!r}")
@@ -86,4 +90,4 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_HOME))
+    return sorted(set(globals()) | set(_HOME) | {"fiveaxis"})

@@ -55,6 +55,7 @@ COMMANDS: dict[str, str] = {
     "ballbar": "axiscal.cli.ballbar",
     "calibrate": "axiscal.cli.calibrate",
     "thermal": "axiscal.cli.thermal",
+    "fiveaxis": "axiscal.cli.fiveaxis",
 }
 
 #: Command name -> the first paragraph of its help, as ``axiscal --help`` lists it: the list is
@@ -115,6 +116,9 @@ SUMMARIES: dict[str, str] = {
         "Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
         "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
         "compensation.",
+    "fiveaxis":
+        "Five-axis machines: the location errors of both rotary axes (ISO 230-1, ISO 230-7) "
+        "identified from probed spheres and R-tests, with their uncertainty.",
 }
 
 #: ``ctx.meta`` key set while the root's help is drawn (commands listed, not loaded).

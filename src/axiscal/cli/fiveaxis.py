@@ -1,0 +1,203 @@
+"""``axiscal fiveaxis plan|simulate|identify|compensate``: the location errors of the rotary axes of a
+five-axis machine (table-table A/C or B/C, or a spindle head over a C table), from spheres probed
+at many rotary poses and R-tests.
+
+Without a configuration the shipped example is used (``--machine ac``, ``bc`` or ``head``); the format is in
+the README, 'Five-axis configuration', and the files' in 'Five-axis files'.
+
+JSON output (``--json``), stable keys, µm and µrad:
+
+* ``plan``: ``machine``, ``tilt_axis``, ``kind`` (``table-table`` or ``head-table``), ``poses``, ``observations``, ``rank``, ``columns``,
+  ``condition``, ``identifiable`` (names), ``unidentified`` (``name``, ``reason``: why and the test
+  that would see it), ``convention``, ``setups`` (``label``, ``kind``, ``poses``, ``place_mm``,
+  ``angles_deg`` as [tilt, C] pairs).
+* ``identify``: ``plan`` (as above, without ``machine`` and ``setups``), ``errors`` (``name``,
+  ``value``, ``U``, ``k``, ``unit``, ``u_components``: standard uncertainty by input),
+  ``unidentified``, ``correlation`` (matrix in the order of ``errors``), ``places_mm`` (fitted
+  sphere/nest place of each file, table frame), ``residual_rms_um``, ``residual_max_um``,
+  ``residual_by_setup_um``, ``chi2_per_dof``, ``dof``, ``unmodelled`` (what the residual
+  suggests).
+* ``compensate``: ``component`` (``xyzac-trt-kins`` or ``xyzbc-trt-kins``), ``pins_mm`` (pin ->
+  ``before``, ``after``), ``home_offset_change_deg`` (tilting axis -> change of HOME_OFFSET),
+  ``not_held_urad`` (orientation errors no pin holds), ``sources`` (pin -> the location errors
+  it takes), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
+  ``reduction``, ``after_unmodelled_um`` (after, without noise: what the errors the correction
+  cannot hold leave): deviation range of each set-up on the twin, or with ``--on-controller`` of each
+  R-test run through LinuxCNC), ``on_controller``.
+* ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
+  ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero
+  counted in the positions across) and ``deviation`` (identified − true), ``files`` (written, or empty).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from axiscal.cli._common import print_json
+
+__all__ = ["register"]
+
+app = typer.Typer(help="Five-axis machines: the location errors of both rotary axes (ISO 230-1, "
+                  "ISO 230-7) identified from probed spheres and R-tests, with their "
+                  "uncertainty.", no_args_is_help=True)
+
+_JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, module docs).")
+_MACHINE = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' "
+                        "(A/C table-table), 'bc' (B/C) or 'head' (B spindle head over C).")
+_CONFIG = typer.Argument(None, help="Five-axis configuration (TOML); default: the shipped "
+                         "example (--machine).")
+
+
+def _config(config: Optional[Path], machine: str):
+    if config is not None:
+        return config
+    from importlib import resources
+
+    from axiscal.api.fiveaxis import EXAMPLES
+    from axiscal.errors import InputError
+
+    key = {"ac": "A/C", "bc": "B/C", "head": "head B/C"}.get(machine.lower())
+    if key is None:
+        raise InputError(f"--machine {machine[:20]!r}: use 'ac', 'bc' or 'head'")
+    from axiscal.io._files import load_toml
+
+    return load_toml(resources.files("axiscal.data").joinpath(EXAMPLES[key]))
+
+
+@app.command("plan")
+def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE, as_json: bool = _JSON):
+    """What the planned set-ups can separate before measuring: rank, condition, the unseen.
+
+    Example: axiscal fiveaxis plan --machine bc
+    """
+    from axiscal.api import fiveaxis
+
+    planned = fiveaxis.plan(_config(config, machine))
+    if as_json:
+        print_json(planned.to_dict())
+        return
+    typer.echo(str(planned))
+
+
+@app.command("simulate")
+def simulate(
+    config: Optional[Path] = _CONFIG,
+    machine: str = _MACHINE,
+    seed: int = typer.Option(1, "--seed", min=0, help="Random seed of the measurement noise."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Folder for the measured files "
+                                       "(one CSV per set-up; created if missing)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the report with the "
+                                          "twin's truth beside: HTML (.html) or PDF (.pdf)."),
+    as_json: bool = _JSON,
+):
+    """Measure the twin with its simulated probe and R-test, identify, compare with the truth.
+
+    Example: axiscal fiveaxis simulate --out run && axiscal fiveaxis identify run/*.csv
+    """
+    from axiscal.api import fiveaxis
+    from axiscal.cli._common import report_path
+
+    if report is not None:
+        report_path(report)
+    cfg = _config(config, machine)
+    sim = fiveaxis.simulate(cfg, seed=seed, out=out)
+    if report is not None:
+        fiveaxis.report(cfg, sim.result, report, files=sim.files, truth=sim.truth())
+    if as_json:
+        print_json(sim.to_dict())
+        return
+    typer.echo(str(sim))
+    for f in sim.files:
+        typer.echo(f"wrote {f}")
+
+
+@app.command("identify")
+def identify(
+    files: List[Path] = typer.Argument(..., help="Probing and R-test CSV files (README, "
+                                       "'Five-axis files')."),
+    config: Optional[Path] = typer.Option(None, "--config", help="The machine's configuration "
+                                          "(its \\[machine] table); default: the shipped example "
+                                          "(--machine)."),
+    machine: str = _MACHINE,
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the axis lines in 3-D "
+                                        "(magnified) and the values with U (.png, .svg, .pdf)."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the report (values, "
+                                          "budget, unseen, correlations, residual, figure): "
+                                          "HTML (.html) or PDF (.pdf, WeasyPrint)."),
+    as_json: bool = _JSON,
+):
+    """Identify the location errors from measured files, with U (k = 2) and correlations.
+
+    Example: axiscal fiveaxis identify run/1_probing.csv run/3_r-test.csv --plot lines.png
+    """
+    from axiscal.api import fiveaxis
+    from axiscal.cli._common import plot_path, report_path
+
+    if plot is not None:
+        plot_path(plot)
+    if report is not None:
+        report_path(report)
+    cfg = _config(config, machine)
+    result = fiveaxis.identify(cfg, files)
+    if plot is not None:
+        fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
+    if report is not None:
+        fiveaxis.report(cfg, result, report, files=files)
+    if as_json:
+        print_json(result.to_dict())
+        return
+    typer.echo(str(result))
+
+
+@app.command("compensate")
+def compensate(
+    files: List[Path] = typer.Argument(..., help="Probing and R-test CSV files."),
+    config: Optional[Path] = typer.Option(None, "--config", help="The machine's configuration; "
+                                          "default: the shipped example (--machine)."),
+    machine: str = _MACHINE,
+    z_rot_point: float = typer.Option(0.0, "--z-rot-point", min=-1e5, max=1e5,
+                                      help="The z-rot-point pin as set now, mm (kept)."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the halcmd 'setp' lines "
+                                       "(.hal)."),
+    table: Optional[Path] = typer.Option(None, "--table", help="Write the neutral table (CSV: "
+                                         "parameter, before, after, unit, what it takes)."),
+    verify: bool = typer.Option(False, "--verify", help="Re-measure the configuration's twin "
+                                "before and after the correction (simulated configurations)."),
+    on_controller: bool = typer.Option(False, "--on-controller", help="With --verify: run the "
+                                       "R-tests through a live LinuxCNC (xyzac/xyzbc-trt-kins) "
+                                       "before and after."),
+    as_json: bool = _JSON,
+):
+    """The correction as LinuxCNC trt kinematics pins and HOME_OFFSET, with its sign convention.
+
+    Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify --on-controller
+    """
+    from axiscal.api import fiveaxis
+    from axiscal.cli._common import out_path
+
+    for path, what in ((out, "the HAL file"), (table, "the neutral table")):
+        if path is not None:
+            out_path(path, what)
+    comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify,
+                               on_controller=on_controller)
+    from axiscal.io._files import write_bytes_atomic
+
+    if out is not None:
+        write_bytes_atomic(out, comp.correction.hal().encode("utf-8"))
+    if table is not None:
+        write_bytes_atomic(table, comp.correction.table_csv().encode("utf-8"))
+    if as_json:
+        print_json(comp.to_dict())
+        return
+    typer.echo(str(comp))
+    for path in (out, table):
+        if path is not None:
+            typer.echo(f"wrote {path}")
+
+
+def register(root: typer.Typer) -> None:
+    """Add the ``fiveaxis`` command group to the application."""
+    root.add_typer(app, name="fiveaxis")

@@ -1,0 +1,245 @@
+"""The identified location errors of a table-table machine in LinuxCNC's terms: the HAL pins of
+``xyzac-trt-kins`` / ``xyzbc-trt-kins`` and the joints' ``HOME_OFFSET``, and a neutral table.
+
+What the pins hold (LinuxCNC 2.9, ``src/emc/kinematics/trtfuncs.c``, ``xyzacKinematicsForward``
+and ``xyzbcKinematicsForward``):
+
+* ``x-rot-point``, ``y-rot-point``: X, Y of the C axis at A = 0 (B = 0): E_X0C, E_Y0C are added;
+* xyzac: the A axis is at Y = ``y-rot-point + y-offset``, Z = ``z-rot-point + z-offset``
+  (+ ``tool-offset``); so ``y-offset`` takes E_Y0A minus the change of ``y-rot-point``, and
+  ``z-offset`` takes E_Z0A (``z-rot-point`` is kept: only the sum counts; ``x-offset`` is unused);
+* xyzbc: the B axis is at X = ``x-rot-point + x-offset``, Z = ``z-rot-point + z-offset``;
+  ``x-offset`` takes E_X0B minus the change of ``x-rot-point``, ``z-offset`` takes E_Z0B.
+
+All in the machine's linear unit (mm here), the sign of the machine frame: a pin is the position
+of the axis line, so a positive location error (the line further along +X, +Y, +Z) adds to it.
+The zero position of the tilting axis (identified as E_A0A+E_A0C, the convention of
+:mod:`axiscal.standards.location_errors`) goes to the joint's ``[JOINT_n]HOME_OFFSET``: with the
+table turning right-handed by the commanded angle (LinuxCNC's trt sign), a commanded ``a`` reaches
+``a + E``; after homing the joint reads ``HOME_OFFSET`` at the switch, so ``HOME_OFFSET`` grows by
+``E`` (degrees) and the joint then reads the angle the table really has. E_C0C is not seen by the
+set-ups (the C zero is the set-up's) and is left as it is. The orientation errors (E_B0A, E_C0A,
+E_B0C for A/C; E_A0B, E_C0B, E_A0C for B/C) have no pin: they are listed with the largest
+displacement they leave at the measured places, for an external-offset correction (not made
+here).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.errors import InputError
+from axiscal.physics.rotary_location import Geometry
+
+__all__ = ["TrtCorrection", "trt_correction", "corrected_geometry", "corrected_machine",
+           "Verification", "verify_on_twin"]
+
+
+@dataclass(frozen=True)
+class TrtCorrection:
+    """New values of LinuxCNC trt kinematics parameters (mm, degrees).
+
+    Attributes
+    ----------
+    component : str
+        ``"xyzac-trt-kins"`` or ``"xyzbc-trt-kins"``.
+    pins : dict of str to (float, float)
+        HAL pin -> (value before, value after), mm.
+    home_offset : dict of str to float
+        Joint axis letter -> change of ``HOME_OFFSET``, degrees.
+    not_held : dict of str to float
+        Location errors no parameter holds -> value (µrad).
+    sources : dict of str to str
+        Each pin or offset -> the location error(s) it takes.
+    """
+
+    component: str
+    pins: dict
+    home_offset: dict
+    not_held: dict
+    sources: dict
+
+    def hal(self) -> str:
+        """``setp`` lines for halcmd (idle, rotary axes at 0), with the convention as comments."""
+        lines = [f"# {self.component}: location errors identified by axiscal (ISO 230-1 names);",
+                 "# the table turns right-handed by the commanded angle (LinuxCNC trt sign)."]
+        for pin, (old, new) in self.pins.items():
+            lines.append(f"setp {self.component}.{pin} {new:.6f}    # was {old:.6f} mm; "
+                         f"{self.sources[pin]}")
+        for axis, d in self.home_offset.items():
+            lines.append(f"# [JOINT of {axis}] HOME_OFFSET += {d:+.6f} deg ({self.sources[axis]})")
+        for name, v in self.not_held.items():
+            lines.append(f"# not held by any pin: {name} = {v:+.2f} urad")
+        return "\n".join(lines).replace("\u2212", "-") + "\n"   # halcmd reads ASCII
+
+    def neutral_table(self) -> list[dict]:
+        """One row per parameter: ``parameter``, ``before``, ``after``, ``unit``, ``takes``."""
+        rows = [{"parameter": f"{self.component}.{p}", "before": o, "after": n, "unit": "mm",
+                 "takes": self.sources[p]} for p, (o, n) in self.pins.items()]
+        rows += [{"parameter": f"HOME_OFFSET of {a}", "before": None, "after": d,
+                  "unit": "deg (change)", "takes": self.sources[a]}
+                 for a, d in self.home_offset.items()]
+        rows += [{"parameter": "(none)", "before": None, "after": v, "unit": "µrad",
+                  "takes": n} for n, v in self.not_held.items()]
+        return rows
+
+    def table_csv(self) -> str:
+        """The neutral table as CSV (``parameter,before,after,unit,takes``)."""
+        out = ["parameter,before,after,unit,takes"]
+        for r in self.neutral_table():
+            cells = ["" if r[k] is None else (f"{r[k]:.6f}" if isinstance(r[k], float)
+                                              else str(r[k]))
+                     for k in ("parameter", "before", "after", "unit", "takes")]
+            out.append(",".join(cells))
+        return "\n".join(out) + "\n"
+
+    def to_dict(self) -> dict:
+        return {"component": self.component,
+                "pins_mm": {p: {"before": o, "after": n} for p, (o, n) in self.pins.items()},
+                "home_offset_change_deg": dict(self.home_offset),
+                "not_held_urad": dict(self.not_held), "sources": dict(self.sources)}
+
+
+def trt_correction(geometry: Geometry, result, z_rot_point: float = 0.0) -> TrtCorrection:
+    """The pins that put the identified location errors right (module docstring).
+
+    Parameters
+    ----------
+    geometry : Geometry
+        The nominal geometry the controller holds now (m).
+    result : LocationIdentification
+    z_rot_point : float, m
+        The ``z-rot-point`` pin as set now (kept).
+
+    Raises
+    ------
+    InputError
+        A location error a pin needs was not identified.
+    """
+    if geometry.head:
+        raise InputError("a spindle head: LinuxCNC's trt pins are for table-table machines "
+                         "(its 5axiskins holds only pivot-length); no pin values are given")
+    got = {e.name: e.value for e in result.errors}
+    t = geometry.tilt
+    need = ("E_X0C", "E_Y0C") + (("E_Y0A", "E_Z0A") if t == "A" else ("E_X0B", "E_Z0B"))
+    missing = [n for n in need if n not in got]
+    if missing:
+        raise InputError(f"{', '.join(missing)} not identified: no pin value can be given for "
+                         "them; measure with a plan that sees them (axiscal fiveaxis plan)")
+    mm = 1e3
+    cx, cy = geometry.c_position
+    t1, tz = geometry.tilt_position
+    xr, yr = cx + got["E_X0C"], cy + got["E_Y0C"]
+    pins = {"x-rot-point": (cx * mm, xr * mm), "y-rot-point": (cy * mm, yr * mm)}
+    sources = {"x-rot-point": "E_X0C", "y-rot-point": "E_Y0C"}
+    if t == "A":
+        pins["y-offset"] = ((t1 - cy) * mm, (t1 + got["E_Y0A"] - yr) * mm)
+        sources["y-offset"] = "E_Y0A − E_Y0C"
+        pins["z-offset"] = ((tz - z_rot_point) * mm, (tz + got["E_Z0A"] - z_rot_point) * mm)
+        sources["z-offset"] = "E_Z0A"
+        tilts = ("E_B0A", "E_C0A", "E_B0C")
+    else:
+        pins["x-offset"] = ((t1 - cx) * mm, (t1 + got["E_X0B"] - xr) * mm)
+        sources["x-offset"] = "E_X0B − E_X0C"
+        pins["z-offset"] = ((tz - z_rot_point) * mm, (tz + got["E_Z0B"] - z_rot_point) * mm)
+        sources["z-offset"] = "E_Z0B"
+        tilts = ("E_A0B", "E_C0B", "E_A0C")
+    zero = f"E_{t}0{t}+E_{t}0C"
+    home = {t: got[zero] * 180.0 / 3.141592653589793} if zero in got else {}
+    sources[t] = zero
+    not_held = {n: got[n] * 1e6 for n in tilts if n in got}
+    return TrtCorrection(f"xyz{t.lower()}c-trt-kins", pins, home, not_held, sources)
+
+
+def corrected_geometry(geometry: Geometry, correction: TrtCorrection) -> Geometry:
+    """The nominal geometry the controller holds after the correction (m): the pins' sums."""
+    p = {k: v[1] * 1e-3 for k, v in correction.pins.items()}
+    c = (p["x-rot-point"], p["y-rot-point"])
+    zt = geometry.tilt_position[1] + (correction.pins["z-offset"][1]
+                                      - correction.pins["z-offset"][0]) * 1e-3
+    t1 = p["y-rot-point"] + p["y-offset"] if geometry.tilt == "A" else \
+        p["x-rot-point"] + p["x-offset"]
+    return Geometry(geometry.tilt, (t1, zt), c)
+
+
+@dataclass(frozen=True)
+class Verification:
+    """Sphere-centre (R-test) deviation range of each set-up before and after the correction, m.
+
+    The range of a set-up is the largest peak-to-valley, over X, Y and Z, of the sphere centres
+    seen through the controller's kinematics in the table frame (probing), or of the R-test's
+    displacements: what a perfect machine would show as 0. ``after_unmodelled`` is the range
+    after the correction on the twin without noise: what the errors the correction cannot hold
+    leave (the twin's truth; the rest of ``after`` is the instruments' noise).
+    """
+
+    labels: tuple[str, ...]
+    before: tuple[float, ...]
+    after: tuple[float, ...]
+    after_unmodelled: tuple[float, ...] = ()
+
+    @property
+    def reduction(self) -> tuple[float, ...]:
+        return tuple(1.0 - a / b if b > 0 else 0.0 for a, b in zip(self.after, self.before))
+
+    def to_dict(self) -> dict:
+        left = self.after_unmodelled or (None,) * len(self.labels)
+        return {"setups": [{"label": n, "before_um": b * 1e6, "after_um": a * 1e6,
+                            "reduction": r,
+                            "after_unmodelled_um": None if u is None else u * 1e6}
+                           for n, b, a, r, u in
+                           zip(self.labels, self.before, self.after, self.reduction, left)]}
+
+    def __str__(self) -> str:
+        left = self.after_unmodelled or (None,) * len(self.labels)
+        return "\n".join(f"  {n}: range {b * 1e6:.2f} µm before, {a * 1e6:.2f} µm after "
+                         f"({r:.1%} less)" + ("" if u is None else
+                                              f"; without noise {u * 1e6:.2f} µm after")
+                         for n, b, a, r, u in
+                         zip(self.labels, self.before, self.after, self.reduction, left))
+
+
+def corrected_machine(machine, correction: TrtCorrection):
+    """The twin as its controller sees it after the correction: the same physical axis lines,
+    the corrected nominal geometry, and the zero of the tilting axis shifted by HOME_OFFSET."""
+    from dataclasses import replace
+
+    g0, g1 = machine.geometry, corrected_geometry(machine.geometry, correction)
+    t = g0.tilt
+    e = dict(machine.errors)
+    e["E_X0C"] = e.get("E_X0C", 0.0) + g0.c_position[0] - g1.c_position[0]
+    e["E_Y0C"] = e.get("E_Y0C", 0.0) + g0.c_position[1] - g1.c_position[1]
+    first = "E_Y0A" if t == "A" else "E_X0B"
+    e[first] = e.get(first, 0.0) + g0.tilt_position[0] - g1.tilt_position[0]
+    e[f"E_Z0{t}"] = e.get(f"E_Z0{t}", 0.0) + g0.tilt_position[1] - g1.tilt_position[1]
+    e[f"E_{t}0{t}"] = e.get(f"E_{t}0{t}", 0.0) - correction.home_offset.get(t, 0.0) \
+        * 3.141592653589793 / 180.0
+    return replace(machine, geometry=g1, errors=e)
+
+
+def verify_on_twin(machine, plan, correction: TrtCorrection, seed: int = 7) -> Verification:
+    """Measure the plan on the twin before and after the correction (same noise draws) and
+    compare the deviation ranges (twin only: the controller is the twin's nominal geometry)."""
+    from axiscal.procedures.five_axis import measure
+
+    after_machine = corrected_machine(machine, correction)
+    ranges = []
+    for m, rng in ((machine, np.random.default_rng(seed)),
+                   (after_machine, np.random.default_rng(seed)), (after_machine, None)):
+        recs = measure(m, plan, rng)
+        ranges.append(tuple(_range(m, r) for r in recs))
+    return Verification(tuple(s.label for s in plan.setups), *ranges)
+
+
+def _range(machine, record) -> float:
+    from axiscal.physics.rotary_location import machine_to_table
+
+    if record.kind == "probing":
+        c = record.setup().values
+        v = machine_to_table(machine.geometry, {}, record.tilt_angle, record.c_angle, c)
+    else:
+        v = record.displacement
+    return float(np.ptp(v, axis=0).max())
+
