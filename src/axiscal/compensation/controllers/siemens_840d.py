@@ -74,7 +74,7 @@ import numpy as np
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_modulo, check_points, check_spacing, check_travel,
     correction_factor, decimals, file_unit, parse_number, require_equidistant, resolve_input,
-    safe_axis_name)
+    safe_axis_name, WORD, COUNT, whole, check_fields)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -92,6 +92,12 @@ _PARAM = re.compile(r"^\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[\s*(\d{1,9})\s*,\
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
 _NAME = re.compile(r"^;\s*axiscal: axis (\S+),")
 _MD10240 = re.compile(r"^(?:;\s*MD10240\s+)?\$MN_SCALING_SYSTEM_IS_METRIC\s*=\s*(\S+?)(?::|\s|$)")
+
+
+#: The grammar of every option :func:`write`, :func:`write_axes` and :func:`write_cross_axis`
+#: write into the file (:func:`~axiscal.compensation.controllers._common.check_fields`).
+FIELDS = {"machine_axis": WORD, "input_axis": WORD, "output_axis": WORD, "max_points": COUNT,
+          "table_index": whole(0, 999, "CEC tables")}
 
 
 def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
@@ -123,6 +129,7 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str = "AX1",
     -------
     ControllerFile
     """
+    check_fields(NAME, FIELDS, machine_axis=machine_axis, max_points=max_points)
     per = file_unit(unit, table, NAME)
     _check(table, travel, max_points, position_resolution, per)
     body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends,
@@ -143,6 +150,7 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     res = options.pop("position_resolution", 0.001)
     unit = options.pop("unit", "mm")
     for ax, table in tables.items():
+        check_fields(NAME, FIELDS, machine_axis=ax, max_points=mp)
         tr = travel.get(ax) if isinstance(travel, dict) else travel
         _check(table, tr, mp, res, file_unit(unit, table, NAME))
         b, e, _, n = _axis_block(table, ax, options.get("zero_at_reference", True),
@@ -408,6 +416,8 @@ def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str =
     EEC table, file value = −correction; that the CEC uses the same sign as the EEC is not
     confirmed.
     """
+    check_fields(NAME, FIELDS, input_axis=input_axis, output_axis=output_axis,
+                 table_index=table_index, max_points=max_points)
     check_points(table.n_points, max_points, NAME, "points (MD18342)")
     check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
     check_travel(table, travel, NAME)
