@@ -88,3 +88,106 @@ def test_a_writer_option_outside_its_grammar_is_refused(lin, tmp_path, controlle
     one_error_line(_run("compensate", lin, "--spacing", 40, "-c", controller, "-o", option,
                         "--out", out), *words)
     assert not out.exists()
+
+
+# -- 1. outputs never touch inputs ----------------------------------------------------------
+@pytest.fixture
+def history(tmp_path) -> Path:
+    """A history holding one test, at ``r.html`` (the name the issue's hostile user chose)."""
+    db = tmp_path / "r.html"
+    src = tmp_path / "pos.csv"
+    src.write_text(POS)
+    assert _run("history", "add", src, "--db", f"sqlite:///{db}").exit_code == 0
+    return db
+
+
+@pytest.mark.parametrize("args", [
+    ["history", "show", "1", "--report", "{db}"],
+    ["history", "show", "1", "--plot", "{db}.png"],   # the -wal/-shm are inputs, not this
+    ["history", "export", "{db}"],
+    ["history", "show", "1", "--report", "{link}"],
+])
+def test_an_output_at_the_history_database_is_refused(history, tmp_path, args):
+    """Issue 39: ``history show 1 --report r.html --db sqlite:///r.html`` overwrote the history
+    with the report ("not even SQLite" afterwards); ``history export h.zip --db
+    sqlite:///h.zip`` likewise. A symbolic link to the database is the database too."""
+    link = tmp_path / "link.html"
+    link.symlink_to(history)
+    before = _sha(history)
+    fill = {"{db}": str(history), "{link}": str(link)}
+    argv = [fill.get(a, a) for a in args]
+    if argv[-1].endswith(".png"):
+        argv[-1] = str(history) + ".png"
+        assert _run(*argv, "--db", f"sqlite:///{history}").exit_code == 0   # not the database
+        return
+    if args[1] == "export":   # an archive must be .zip: the database named so
+        zipped = tmp_path / "h.zip"
+        history.rename(zipped)
+        history, before, argv = zipped, _sha(zipped), ["history", "export", str(zipped)]
+    one_error_line(_run(*argv, "--db", f"sqlite:///{history}"), "history database",
+                   "would destroy the history")
+    assert _sha(history) == before
+    assert history.read_bytes()[:16] == b"SQLite format 3\x00"
+
+
+def test_an_output_at_the_default_history_is_refused(history, monkeypatch):
+    """The history named by AXISCAL_DB (no --db) is an input all the same."""
+    monkeypatch.setenv("AXISCAL_DB", f"sqlite:///{history}")
+    before = _sha(history)
+    one_error_line(_run("history", "show", "1", "--report", history), "history database")
+    assert _sha(history) == before
+
+
+@pytest.fixture(scope="module")
+def vol(tmp_path_factory) -> Path:
+    d = tmp_path_factory.mktemp("vol") / "vol"
+    assert _run("volumetric", "simulate", "--out", d).exit_code == 0
+    return d
+
+
+def test_volumetric_tables_never_replace_a_measured_file(vol, tmp_path):
+    """Issue 39: ``volumetric compensate CONFIG --out DIR`` overwrote a measurement file the
+    configuration names when a table had the same name (exit 0). Now refused, nothing written."""
+    import shutil
+
+    d = tmp_path / "v"
+    shutil.copytree(vol, d)
+    (d / "X_EXX.csv").rename(d / "X_compensation_X.csv")
+    cfg = d / "volumetric.toml"
+    cfg.write_text(cfg.read_text().replace('"X_EXX.csv"', '"X_compensation_X.csv"'))
+    before = {p.name: _sha(p) for p in d.iterdir()}
+    one_error_line(_run("volumetric", "compensate", cfg, "--controller", "csv", "--out", d),
+                   "X_compensation_X.csv", "would replace the input")
+    assert {p.name: _sha(p) for p in d.iterdir()} == before   # nothing written, nothing left
+
+
+def test_volumetric_simulate_on_a_full_disk_leaves_no_file(tmp_path, monkeypatch):
+    """Issue 39: ``volumetric simulate --out`` on a full disk left 7 of 19 files. The 19 are
+    written all or nothing, and the message names the full disk."""
+    import errno
+
+    real = Path.write_bytes
+    calls = []
+
+    def full(self, data):
+        calls.append(self)
+        if len(calls) == 8:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(self, data)
+
+    monkeypatch.setattr(Path, "write_bytes", full)
+    out = tmp_path / "vol"
+    one_error_line(_run("volumetric", "simulate", "--out", out), "the disk is full",
+                   "none of the 19 files")
+    assert list(out.iterdir()) == []
+
+
+def test_two_outputs_of_one_run_with_one_name_are_refused(tmp_path):
+    from axiscal.errors import InputError
+    from axiscal.io._files import write_files_atomic
+
+    with pytest.raises(InputError, match="two outputs of one run"):
+        write_files_atomic(tmp_path, {"X.COM": "a", "x.com": "b"})
+    with pytest.raises(InputError, match="not a plain file name"):
+        write_files_atomic(tmp_path, {"../X.COM": "a"})
+    assert list(tmp_path.iterdir()) == []

@@ -15,7 +15,7 @@ from axiscal.compensation.tables import table_from_deviations
 from axiscal.errors import ControllerLimitError
 
 NAMES = ["X1]=0\nM30\n;[", "X\nCompensation spacing : 1 mm", "X1 ", "X)", "X\x00", "X\r",
-         "1X", "", "A" * 1000, "X;", "\u202eX"]
+         "", "A" * 1000, "X;", "\u202eX"]
 
 
 def _table(axis="X"):

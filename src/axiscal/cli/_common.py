@@ -88,9 +88,12 @@ def _given_paths(output: Path) -> list[tuple[str, str]]:
     from typer._click.globals import get_current_context
 
     ctx = get_current_context(silent=True)
-    found = []
+    found, databases = [], []
     while ctx is not None:
         for param in ctx.command.params:
+            if param.name == "db" and param.param_type_name == "option":
+                databases += _database_file(ctx.params.get("db"))
+                continue
             if type(param.type).__name__ not in ("TyperPath", "Path"):
                 continue
             values = ctx.params.get(param.name)
@@ -103,7 +106,29 @@ def _given_paths(output: Path) -> list[tuple[str, str]]:
         if v == str(output):
             del found[i]
             break
-    return found
+    return found + databases
+
+
+def _database_file(url) -> list[tuple[str, str]]:
+    """The history database's file as an input, ``("--db", path)`` (none on PostgreSQL).
+
+    ``history show 1 --report r.html --db sqlite:///r.html`` would write the report over the
+    history (issue 39); the history a command opens is an input of it like any file it reads,
+    and so are SQLite's write-ahead log and shared-memory files beside it.
+    """
+    try:
+        from axiscal.store.database import sqlite_path
+        from axiscal.store.history import default_url
+
+        url = url or default_url()
+        if url.split(":", 1)[0] not in ("sqlite", "sqlite+pysqlite"):
+            return []
+        path = sqlite_path(url)
+    except Exception:   # noqa: BLE001 - a bad URL is the store's to refuse, with its message
+        return []
+    if path is None:
+        return []
+    return [("--db", str(path)), ("--db", f"{path}-wal"), ("--db", f"{path}-shm")]
 
 
 def _not_an_input(path: Path, what: str, inputs) -> None:
@@ -121,6 +146,10 @@ def _not_an_input(path: Path, what: str, inputs) -> None:
                 same = (st.st_dev, st.st_ino) == (out_stat.st_dev, out_stat.st_ino)
         except (OSError, ValueError):
             continue
+        if same and name == "--db":
+            raise InputError(f"{what} {_short(path)} is the history database (--db "
+                             f"{_short(given)}): writing it would destroy the history; give "
+                             "another file name")
         if same:
             raise InputError(f"{what} {_short(path)} is the input {name} {_short(given)}: "
                              "writing it would destroy that input; give another file name")

@@ -371,11 +371,11 @@ def whole(lo: int, hi: int, what: str) -> Field:
     return Field(lo=lo, hi=hi, rule=f"a whole number of {what}")
 
 
-#: A machine-data name (SINUMERIK machine axis names ``AX1``, ``X1``, ``SP1``): a letter, then
+#: A machine-data name (SINUMERIK machine axis names ``AX1``, ``X1``, ``SP1``, or a number):
 #: letters, digits or ``_``, at most 32 characters. No space, bracket, ``=``, ``;`` or line
 #: break, any of which would end the ``$AA_ENC_COMP[0,i,AX1]`` word it is written into.
-WORD = Field(pattern=r"[A-Za-z][A-Za-z0-9_]{0,31}",
-             rule="a machine axis name (a letter, then letters, digits or _, at most 32)")
+WORD = Field(pattern=r"[A-Za-z0-9_]{1,32}",
+             rule="a machine axis name (letters, digits or _, at most 32)")
 #: An axis letter of DIN 66025 / ISO 6983-1, optionally followed by one digit.
 LETTER_FIELD = Field(pattern=f"[{AXIS_LETTERS}{AXIS_LETTERS.lower()}][0-9]?",
                     rule=f"an axis letter ({', '.join(AXIS_LETTERS)}, optionally one digit)")
@@ -393,7 +393,7 @@ def check_fields(fmt: str, fields: dict, **values) -> None:
     >>> check_fields("siemens-840d", {"machine_axis": WORD}, machine_axis="X1]=0\\nM30")
     Traceback (most recent call last):
     ...
-    axiscal.errors.ControllerLimitError: siemens-840d: machine_axis = 'X1]=0\\nM30' is not a machine axis name (a letter, then letters, digits or _, at most 32)
+    axiscal.errors.ControllerLimitError: siemens-840d: machine_axis = 'X1]=0\\nM30' is not a machine axis name (letters, digits or _, at most 32)
     >>> check_fields("fanuc", {"axis_number": whole(1, 32, "axes")}, axis_number=10**20)
     Traceback (most recent call last):
     ...
