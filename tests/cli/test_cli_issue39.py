@@ -191,3 +191,67 @@ def test_two_outputs_of_one_run_with_one_name_are_refused(tmp_path):
     with pytest.raises(InputError, match="not a plain file name"):
         write_files_atomic(tmp_path, {"../X.COM": "a"})
     assert list(tmp_path.iterdir()) == []
+
+
+# -- 3. numbers parsed by one strict grammar ------------------------------------------------
+@pytest.mark.parametrize("fmt", ["csv", "rtl"])
+@pytest.mark.parametrize("bad", ["١٢", "１２", "1_0", "٣٤.٥"])
+def test_digits_of_other_scripts_and_underscores_are_not_numbers(tmp_path, fmt, bad):
+    """Issue 39: ``١٢`` and ``１２`` read as 12 and ``1_0`` as 10 (Python's ``float()`` accepts
+    them) in a tidy CSV or ``.rtl``, changing A from 14.09 to 17.10 with exit 0."""
+    from axiscal.io import parse_positioning
+    from axiscal.io.renishaw import format_rtl
+
+    if fmt == "csv":
+        lines = POS.splitlines()
+        lines[4] = lines[4].replace("100,", f"{bad},", 1) if bad[0] != "1" else \
+            lines[4].replace(",1,", f",{bad},", 1)
+        text = "\n".join(lines) + "\n"
+    else:
+        text = format_rtl(parse_positioning(POS))
+        lines = text.splitlines()
+        i = lines.index("1   2      0.6")   # run 1, target 2: the deviation
+        lines[i] = f"1   2      {bad}" if bad[0] != "1" else f"1   {bad}      0.6"
+        text = "\n".join(lines) + "\n"
+    src = tmp_path / f"t.{fmt}"
+    src.write_text(text, encoding="utf-8")
+    one_error_line(_run("iso230-2", src), "not a")
+
+
+def test_strict_grammar_keeps_ordinary_numbers():
+    from axiscal._parse import strict_float
+
+    assert [strict_float(t) for t in ("1", "-2.5", "+.5", "3.", "1e-3", "1E+3", " 7 ")] == \
+        [1.0, -2.5, 0.5, 3.0, 1e-3, 1e3, 7.0]
+
+
+def test_a_json_target_of_400_digits_is_one_line(lin, tmp_path):
+    """Issue 39: a JSON target ``10**400`` (an integer literal) ended in a traceback."""
+    from axiscal.io import parse_positioning
+    from axiscal.io.json import format_positioning_json
+
+    d = json.loads(format_positioning_json(parse_positioning(lin.read_text())))
+    d["targets"][1] = 10**400
+    src = tmp_path / "big.json"
+    src.write_text(json.dumps(d))
+    one_error_line(_run("iso230-2", src), "401 digits", "out of range")
+    src.write_text(json.dumps(d).replace(str(10**400), "NaN"))
+    one_error_line(_run("iso230-2", src), "NaN is not a JSON number")
+
+
+@pytest.mark.parametrize("value", ["1e150", "1e200", "-1e300"])
+def test_uncertainty_inputs_beyond_1e100_are_refused(lin, value):
+    """Issue 39: ``--uncertainty e_ve=1e200`` (every input at >= 1e150) ended in a traceback
+    (OverflowError squaring it in the GUM sum)."""
+    one_error_line(_run("iso230-2", lin, "--uncertainty", f"e_ve={value}"), "e_ve", "range"
+                   if value[0] != "-" else "e_ve")
+
+
+def test_uncertainty_input_from_a_configuration_beyond_1e100_is_refused(lin, tmp_path):
+    """The same bound from the configuration file's [uncertainty] table."""
+    cfg = tmp_path / "job.toml"
+    cfg.write_text("[uncertainty]\ne_ve = 1e200\n")
+    r = _run("iso230-2", lin, "--job", cfg)
+    if "no such option" in r.output:
+        pytest.skip("iso230-2 takes no --job here")
+    one_error_line(r, "e_ve", "out of range")
