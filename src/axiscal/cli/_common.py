@@ -23,23 +23,53 @@ __all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report
 
 
 def console():
-    """A rich console on stdout (imported on first use).
+    """A rich console on stdout (imported on first use) that never cuts a number.
 
     Piped or redirected output has no terminal width; rich would fall back to 80 columns and cut
     numbers with an ellipsis ("121.6…"), which in a calibration table is a wrong number. So a
-    non-terminal gets ``COLUMNS`` if set, else 160 columns.
+    non-terminal gets ``COLUMNS`` if set, else 160 columns; ``COLUMNS`` is clamped to 20 …
+    1000 (0 printed nothing). And a table wider than the console is drawn at its own full width
+    (the terminal wraps its lines) instead of being squeezed: at 80 columns a cell showed
+    ``121.6…``, at 20 cells were empty (issue 39).
     """
+    return _whole_console()(highlight=False, width=_width())
+
+
+def _width() -> int | None:
+    """The console width: ``COLUMNS`` clamped to 20 … 1000 (a bad value ignored); for a
+    non-terminal without it, 160."""
     import os
 
-    from rich.console import Console
+    try:
+        given = int(os.environ.get("COLUMNS", "").strip() or 0)
+    except ValueError:
+        given = 0
+    if given > 0:
+        return min(max(given, 20), 1000)
+    return None if sys.stdout.isatty() else 160
 
-    width = None
-    if not sys.stdout.isatty():
-        try:
-            width = int(os.environ.get("COLUMNS", "") or 160)
-        except ValueError:
-            width = 160
-    return Console(highlight=False, width=width)
+
+def _whole_console():
+    """The rich Console class whose tables keep every cell whole (see :func:`console`)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    class WholeConsole(Console):
+        def print(self, *objects, **kw):   # noqa: D102 - rich API
+            need = max((self.measure(o, options=self.options.update_width(10**4)).maximum
+                        for o in objects if isinstance(o, Table)), default=0)
+            if need <= self.width:
+                return super().print(*objects, **kw)
+            narrow, self.width = self.width, need   # rich's print(width=) cannot widen
+            try:
+                return super().print(*objects, **kw)
+            finally:
+                self.width = narrow
+
+        def on_broken_pipe(self) -> None:   # rich exits 1 ("tolerance not met"): say a pipe
+            raise BrokenPipeError
+
+    return WholeConsole
 
 
 def print_json(obj: Any) -> None:
