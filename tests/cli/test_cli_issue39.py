@@ -255,3 +255,33 @@ def test_uncertainty_input_from_a_configuration_beyond_1e100_is_refused(lin, tmp
     if "no such option" in r.output:
         pytest.skip("iso230-2 takes no --job here")
     one_error_line(r, "e_ve", "out of range")
+
+
+# -- 5/6. the history's fields at the edge ---------------------------------------------------
+def test_a_5000_character_instrument_is_refused_naming_the_field(tmp_path):
+    """Issue 39: a 5,000-character instrument was stored on SQLite and refused on PostgreSQL
+    ("value too long for type character varying(200)", naming no field). Both now refuse it
+    before a row is made, naming the field and the limit read from the model."""
+    src = tmp_path / "pos.csv"
+    src.write_text(POS)
+    one_error_line(_run("history", "add", src, "--db", f"sqlite:///{tmp_path / 'h.sqlite'}",
+                        "--instrument", "x" * 5000), "instrument of 5000 characters",
+                   "at most 200")
+
+
+def test_a_machine_name_with_a_line_break_is_refused(tmp_path):
+    """Issue 39: a newline was accepted in a machine name."""
+    src = tmp_path / "pos.csv"
+    src.write_text(POS)
+    one_error_line(_run("history", "add", src, "--db", f"sqlite:///{tmp_path / 'h.sqlite'}",
+                        "--machine", "VMC\nM30"), "machine name", "control character")
+
+
+def test_renaming_a_machine_to_its_own_name_is_no_audited_change(history):
+    """Issue 39: ``rename-machine MA MA`` was audited as a change."""
+    url = f"sqlite:///{history}"
+    one_error_line(_run("history", "rename-machine", "VMC-800", "VMC-800", "--reason", "x",
+                        "--by", "me", "--db", url), "already has that name")
+    r = _run("history", "audit", "--db", url, "--json")
+    if r.exit_code == 0:
+        assert "rename-machine" not in r.stdout

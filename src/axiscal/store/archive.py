@@ -277,7 +277,11 @@ def _records(text: str, p: Path) -> tuple[dict, list[tuple[int, dict]]]:
                               f"{' or '.join(FORMATS)}", str(p))
     out = [(n, _record(_json_object(line, n, p, "a test record"), n, p)) for n, line in lines[1:]]
     count = head.get("tests")
-    if isinstance(count, int) and not isinstance(count, bool) and count != len(out):
+    if "tests" in head and (isinstance(count, bool) or not isinstance(count, int)):
+        raise DataFormatError(f"history.jsonl line {lines[0][0]}: 'tests' is a JSON "
+                              f"{type(count).__name__}, not a whole number; the count of "
+                              "tests checks that the archive is whole", str(p))
+    if isinstance(count, int) and count != len(out):
         raise DataFormatError(f"history.jsonl announces {count} tests and holds {len(out)}: "
                               "the archive is truncated or altered", str(p))
     return head, out

@@ -428,11 +428,19 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
 
         remember(raw, hashlib.sha256(raw).hexdigest(), ev)
     when, known = _date(date or ev.date)
+    from axiscal.store.limits import checked_text
+    from axiscal.store.models import Axis, Machine, Test
+
     return Prepared(
-        hashlib.sha256(raw).hexdigest(), raw, Path(filename).name[:300],
-        _name(machine or ev.machine, "machine", filename),
-        _name(axis or ev.axis, "axis", filename).upper(), ev.axis_kind, ev.kind, when, known,
-        instrument or ev.instrument, operator or ev.operator, note, ev.dataset_json,
+        hashlib.sha256(raw).hexdigest(), raw,
+        checked_text(Path(filename).name[:300], "file name", Test, "filename"),
+        checked_text(_name(machine or ev.machine, "machine", filename), "machine name",
+                     Machine, "name"),
+        checked_text(_name(axis or ev.axis, "axis", filename).upper(), "axis name", Axis,
+                     "name"), ev.axis_kind, ev.kind, when, known,
+        checked_text(instrument or ev.instrument, "instrument", Test),
+        checked_text(operator or ev.operator, "operator", Test),
+        checked_text(note, "note", single_line=False), ev.dataset_json,
         json.dumps(ev.result), json.dumps(jsonable(ev.environment)),
         tuple((n, float(v), u) for n, (v, u) in ev.parameters.items()),
         tuple(tuple(x) for x in tables))
@@ -540,7 +548,9 @@ def _name(value: str, what: str, filename: str) -> str:
         raise InputError(f"{filename}: the file does not name the {what}; give --{what}")
     if len(v) > 200:
         raise InputError(f"{what} name of {len(v)} characters; at most 200")
-    return v
+    from axiscal.store.limits import checked_text
+
+    return checked_text(v, f"{what} name")
 
 
 def _date(text: str) -> tuple[dt.datetime, bool]:
