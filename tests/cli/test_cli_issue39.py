@@ -285,3 +285,13 @@ def test_renaming_a_machine_to_its_own_name_is_no_audited_change(history):
     r = _run("history", "audit", "--db", url, "--json")
     if r.exit_code == 0:
         assert "rename-machine" not in r.stdout
+
+
+def test_a_read_only_command_creates_no_folder_and_no_database(tmp_path):
+    """Issue 39: ``history list --db sqlite:///typo/h.sqlite`` made the folder and an empty
+    database."""
+    for args in (["history", "list"], ["history", "machines"], ["certificate", "list"],
+                 ["history", "audit"]):
+        one_error_line(_run(*args, "--db", f"sqlite:///{tmp_path / 'typo' / 'h.sqlite'}"),
+                       "no history database")
+    assert list(tmp_path.iterdir()) == []
