@@ -295,3 +295,30 @@ def test_a_read_only_command_creates_no_folder_and_no_database(tmp_path):
         one_error_line(_run(*args, "--db", f"sqlite:///{tmp_path / 'typo' / 'h.sqlite'}"),
                        "no history database")
     assert list(tmp_path.iterdir()) == []
+
+
+# -- smaller items ----------------------------------------------------------------------------
+def test_a_resolution_rounding_every_correction_to_zero_is_refused(lin, tmp_path):
+    """Issue 39: ``compensate --resolution 1e300`` wrote an all-zero table (exit 0)."""
+    out = tmp_path / "t.csv"
+    one_error_line(_run("compensate", lin, "--spacing", 40, "--resolution", "1e300", "--out",
+                        out), "rounds every correction to zero")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--overrun", "1e6"], "--overrun"), (["--dwell", "1e9"], "--dwell"),
+    (["--overrun", "-1"], "--overrun"),
+])
+def test_plan_overrun_and_dwell_are_bounded(args, words):
+    """Issue 39: ``plan --overrun 1e6 --dwell 1e9`` was accepted."""
+    one_error_line(_run("plan", "linear", "--length", "800", *args), words)
+
+
+def test_an_instrument_without_name_is_refused_by_config(tmp_path, monkeypatch):
+    """Issue 39: a configuration's ``[[instrument]]`` without ``name`` ended a certificate in a
+    traceback, and ``axiscal config`` accepted the file."""
+    cfg = tmp_path / "config.toml"
+    cfg.write_text('[[instrument]]\nserial = "1"\n')
+    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
+    one_error_line(_run("config"), "[[instrument]] 1 has no name")
