@@ -322,7 +322,12 @@ def _ascii_errors(exc):
 
 
 def _ascii_fallback(stream) -> None:
-    """Let ``stream`` print every character, spelled in ASCII where its encoding has none."""
+    """Let ``stream`` print every character, spelled in ASCII where its encoding has none.
+
+    An ASCII stream is re-wrapped in the codec ``axiscal_ascii`` (ASCII with the spellings):
+    click takes a stream that says ``ascii`` for a misconfigured locale and writes UTF-8 to it
+    regardless, which an ASCII console shows as garbage.
+    """
     import codecs
 
     if stream is None:
@@ -333,10 +338,36 @@ def _ascii_fallback(stream) -> None:
     except (UnicodeEncodeError, LookupError):
         pass
     codecs.register_error("axiscal-ascii", _ascii_errors)
+    codecs.register(_ascii_codec)
     try:
-        stream.reconfigure(errors="axiscal-ascii")
-    except (AttributeError, ValueError, OSError):
+        if codecs.lookup(stream.encoding or "ascii").name == "ascii":
+            stream.reconfigure(encoding="axiscal_ascii", errors="axiscal-ascii")
+        else:
+            stream.reconfigure(errors="axiscal-ascii")
+    except (AttributeError, ValueError, OSError, LookupError):
         pass
+
+
+def _ascii_codec(name: str):
+    """The codec ``axiscal_ascii``: ASCII, unencodable characters spelled (ASCII_SPELLINGS)."""
+    import codecs
+
+    if name != "axiscal_ascii":
+        return None
+
+    def encode(text, errors="axiscal-ascii"):
+        return codecs.ascii_encode(text, "axiscal-ascii")
+
+    class Encoder(codecs.IncrementalEncoder):
+        def encode(self, text, final=False):
+            return codecs.ascii_encode(text, "axiscal-ascii")[0]
+
+    class Decoder(codecs.IncrementalDecoder):
+        def decode(self, data, final=False):
+            return codecs.ascii_decode(data, self.errors)[0]
+
+    return codecs.CodecInfo(encode, codecs.ascii_decode, name="axiscal_ascii",
+                            incrementalencoder=Encoder, incrementaldecoder=Decoder)
 
 
 #: The widest and narrowest console a table or help text is drawn for, characters.

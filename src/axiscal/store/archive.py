@@ -191,7 +191,8 @@ def _kept_records(z: zipfile.ZipFile, p: Path, head: dict, tests: set) -> tuple[
         lines = [(n, _json_object(line, n, p, "an entry", name)) for n, line in
                  enumerate(_jsonl_text(z, p, name).splitlines(), start=1) if line.strip()]
         if head.get(key) != len(lines):
-            raise DataFormatError(f"history.jsonl announces {head.get(key)!r} {key} entries and "
+            raise DataFormatError(f"history.jsonl announces {repr(head.get(key))[:40]} {key} "
+                                  "entries and "
                                   f"{name} holds {len(lines)}: the archive is truncated or "
                                   "altered", str(p))
         parts.append(lines)
