@@ -43,6 +43,8 @@ from pathlib import Path
 import typer
 from typer._click import core
 
+from axiscal.errors import MAX_MESSAGE   # the longest line an error is cut to (one_line)
+
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 
@@ -558,7 +560,7 @@ def check(case: Case, args: list, r: dict, before_data: dict, after_data: dict,
     elif r["exit"] == 2:
         if len(lines) != 1 or not lines[0].startswith("axiscal: error: "):
             faults.append(f"not ONE error line: {err[:300]!r}")
-        elif len(lines[0]) > 700 or r.get("stderr_chars", 0) > 1000:
+        elif len(lines[0]) > MAX_MESSAGE or r.get("stderr_chars", 0) > MAX_MESSAGE + 2:
             faults.append(f"an error of {r.get('stderr_chars', len(err))} characters")
         left = sorted(set(after_case) - set(before_case))
         if left:
