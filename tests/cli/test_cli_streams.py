@@ -189,3 +189,28 @@ def test_ctrl_c_says_what_was_written(tmp_path):
                                   ".write_text_atomic(tmp / 'a.txt', 'a')")
     assert code == 130, err
     assert "interrupted; wrote before it:" in err and "a.txt" in err
+
+
+def test_a_file_size_limit_is_named_as_such(pos, tmp_path):
+    """Issue 39: "disk I/O error" where the cause was ``ulimit -f``. The history and a set of
+    files say the file-size limit, in one line, exit 2 (SIGXFSZ no longer ends the process)."""
+    import resource
+
+    from axiscal.store import open_store
+
+    db = tmp_path / "h.sqlite"
+    open_store(f"sqlite:///{db}").add(pos.read_bytes(), pos.name)
+    limit = 16384   # smaller than what one test adds to the write-ahead log
+
+    def small():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    other = tmp_path / "other.csv"
+    other.write_text(POS.replace(",120.", ",121."))
+    code, _, err = _axiscal("history", "add", other, "--db", f"sqlite:///{db}", preexec=small)
+    assert code == 2 and "file-size limit" in err and len(err.strip().splitlines()) == 1, err
+    code, _, err = _axiscal("volumetric", "simulate", "--out", tmp_path / "vol",
+                            preexec=lambda: resource.setrlimit(resource.RLIMIT_FSIZE,
+                                                               (4096, 4096)))
+    assert code == 2 and "file-size limit" in err and "none of the 19 files" in err, err
+    assert list((tmp_path / "vol").iterdir()) == []
