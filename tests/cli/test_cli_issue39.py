@@ -322,3 +322,20 @@ def test_an_instrument_without_name_is_refused_by_config(tmp_path, monkeypatch):
     cfg.write_text('[[instrument]]\nserial = "1"\n')
     monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
     one_error_line(_run("config"), "[[instrument]] 1 has no name")
+
+
+def test_a_long_note_is_not_echoed_back(history, tmp_path):
+    """Issue 39: a 50 kB note was echoed back. ``history add --note`` takes at most 2,000
+    characters, as ``history edit`` does; the line an edit prints says the change in at most
+    400 characters (the trail keeps every word)."""
+    url = f"sqlite:///{history}"
+    src = tmp_path / "other.csv"
+    src.write_text(POS.replace(",0.5", ",0.7"))
+    one_error_line(_run("history", "add", src, "--note", "n" * 50_000, "--db", url),
+                   "note of 50000 characters")
+    r = _run("history", "edit", "1", "--note", "n" * 2000, "--by", "me", "--reason", "x",
+             "--db", url)
+    assert r.exit_code == 0, r.output
+    assert len(r.stdout.strip()) <= 400 and r.stdout.count("\n") == 1
+    r = _run("history", "audit", "--db", url, "--json")
+    assert r.exit_code == 0 and "n" * 2000 in r.stdout
