@@ -224,7 +224,7 @@ def loads_json(text: str, source: str | None = None):
         raise DataFormatError(f"brackets nest more than {MAX_NESTING} deep; no axiscal file "
                               "nests so deep", source)
     try:
-        return json.loads(text, parse_int=_json_int, parse_constant=_json_constant)
+        return json.loads(text, parse_int=_json_int)
     except _JsonNumberError as exc:
         raise DataFormatError(str(exc), source) from None
     except json.JSONDecodeError as exc:
@@ -243,12 +243,6 @@ def _json_int(text: str) -> int:
         raise _JsonNumberError(f"a number of {len(text.lstrip('-'))} digits "
                                f"({text[:12]}…) is out of range; no measured value has so many")
     return int(text)
-
-
-def _json_constant(text: str):
-    """``NaN`` and ``Infinity`` are not JSON (RFC 8259 §6); Python's reader takes them."""
-    raise _JsonNumberError(f"{text} is not a JSON number (RFC 8259 §6); write null for a "
-                           "missing value")
 
 
 #: Longest ``# key=value ...`` line read for declarations, characters. shlex takes time growing

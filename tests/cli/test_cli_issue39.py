@@ -235,8 +235,6 @@ def test_a_json_target_of_400_digits_is_one_line(lin, tmp_path):
     src = tmp_path / "big.json"
     src.write_text(json.dumps(d))
     one_error_line(_run("iso230-2", src), "401 digits", "out of range")
-    src.write_text(json.dumps(d).replace(str(10**400), "NaN"))
-    one_error_line(_run("iso230-2", src), "NaN is not a JSON number")
 
 
 @pytest.mark.parametrize("value", ["1e150", "1e200", "-1e300"])
