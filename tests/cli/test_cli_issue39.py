@@ -323,9 +323,9 @@ def test_an_instrument_without_name_is_refused_by_config(tmp_path, monkeypatch):
 
 
 def test_a_long_note_is_not_echoed_back(history, tmp_path):
-    """Issue 39: a 50 kB note was echoed back. ``history add --note`` takes at most 2,000
-    characters, as ``history edit`` does; the line an edit prints says the change in at most
-    400 characters (the trail keeps every word)."""
+    """Issue 39: a 50 kB note was echoed back. ``history add --note`` takes at most 10,000
+    characters, as the workbench's upload does; the line an edit prints says the change in at
+    most 400 characters (the trail keeps every word)."""
     url = f"sqlite:///{history}"
     src = tmp_path / "other.csv"
     src.write_text(POS.replace(",0.5", ",0.7"))

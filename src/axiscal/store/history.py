@@ -440,7 +440,7 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
                      "name"), ev.axis_kind, ev.kind, when, known,
         checked_text(instrument or ev.instrument, "instrument", Test),
         checked_text(operator or ev.operator, "operator", Test),
-        checked_text(note, "note", limit=2000, single_line=False), ev.dataset_json,
+        checked_text(note, "note", limit=10_000, single_line=False), ev.dataset_json,
         json.dumps(ev.result), json.dumps(jsonable(ev.environment)),
         tuple((n, float(v), u) for n, (v, u) in ev.parameters.items()),
         tuple(tuple(x) for x in tables))
