@@ -53,7 +53,6 @@ def list_(db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
 
     Example: axiscal certificate list --db sqlite:///history.sqlite
     """
-    from axiscal.store import open_store
 
     rows = open_db(db).certificates(laboratory)
     if json_out:
@@ -76,7 +75,6 @@ def show(number: str = typer.Argument(..., help="The certificate number."),
     Example: axiscal certificate show PM-2026-00001 --out PM-2026-00001.pdf
     """
     from axiscal.io._files import write_bytes_atomic
-    from axiscal.store import open_store
 
     r = open_db(db).certificate(number, laboratory)
     if out is not None:
@@ -111,7 +109,6 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     from axiscal.cli._common import report_path
     from axiscal.io.user_config import load_job
     from axiscal.report.issue import reissue_certificate
-    from axiscal.store import open_store
 
     report_path(out)
     corrections = load_job(job) if job is not None else None
