@@ -7,16 +7,66 @@ value gives the same kind of one-line message wherever it is found.
 from __future__ import annotations
 
 import math
+import re
 
 from axiscal.errors import DataFormatError
 
-__all__ = ["finite_number", "csv_cells", "check_run_number", "agreed_unit", "nesting_depth",
+__all__ = ["finite_number", "strict_float", "strict_int", "NUMBER", "csv_cells", "check_run_number", "agreed_unit", "nesting_depth",
            "loads_json", "MAX_NESTING", "comment_tokens"]
 
 
 #: Largest magnitude a measured value may have, in any unit (a deviation of 1e308 is a typing
 #: slip; beyond this, statistics overflow to infinity and print as nonsense).
 MAX_MAGNITUDE = 1e100
+
+
+#: The one grammar of a number in a file axiscal reads: ASCII digits, at most one sign, at most
+#: one decimal point, an optional exponent. Python's ``float()`` also takes other scripts' digits
+#: (``١٢``, ``１２``), underscores (``1_0``), ``infinity`` and surrounding Unicode spaces; a
+#: calibration file holding them was typed or converted wrongly (issue 39: A changed from 14.09
+#: to 17.10 with exit 0).
+NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NOT_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
+
+
+def strict_float(text: str) -> float:
+    """``float(text)`` by the one grammar :data:`NUMBER` (surrounding ASCII blanks allowed);
+    ``nan`` and ``inf`` pass as such, so the caller says they are not finite. ValueError else.
+
+    Examples
+    --------
+    >>> strict_float(" -1.5e3 "), strict_float(".5")
+    (-1500.0, 0.5)
+    >>> for bad in ("1_0", "١٢", "１２", "1.2.3", "--1", "0x10", "", "1e"):
+    ...     try:
+    ...         strict_float(bad)
+    ...     except ValueError:
+    ...         pass
+    ...     else:
+    ...         print("accepted", bad)
+    """
+    t = text.strip(" \t\r\n")
+    if NUMBER.fullmatch(t) or _NOT_FINITE.fullmatch(t):
+        return float(t)
+    raise ValueError(f"not a number: {text!r}")
+
+
+def strict_int(text: str) -> int:
+    """``int(text)`` for ASCII digits with at most one sign (at most 18 digits); ValueError else.
+
+    Examples
+    --------
+    >>> strict_int(" 12 "), strict_int("-3")
+    (12, -3)
+    >>> strict_int("1_0")
+    Traceback (most recent call last):
+    ...
+    ValueError: not a whole number: '1_0'
+    """
+    t = text.strip(" \t\r\n")
+    if not re.fullmatch(r"[+-]?[0-9]{1,18}", t):
+        raise ValueError(f"not a whole number: {text!r}")
+    return int(t)
 
 
 def finite_number(text: str, what: str, source: str | None = None, line: int | None = None,
@@ -35,7 +85,7 @@ def finite_number(text: str, what: str, source: str | None = None, line: int | N
     """
     stripped = text.strip()
     try:
-        v = float(stripped)
+        v = strict_float(stripped)
     except ValueError:
         raise DataFormatError(f"{what} {stripped!r} is not a number", source, line) from None
     if not math.isfinite(v):
@@ -174,11 +224,25 @@ def loads_json(text: str, source: str | None = None):
         raise DataFormatError(f"brackets nest more than {MAX_NESTING} deep; no axiscal file "
                               "nests so deep", source)
     try:
-        return json.loads(text)
+        return json.loads(text, parse_int=_json_int)
+    except _JsonNumberError as exc:
+        raise DataFormatError(str(exc), source) from None
     except json.JSONDecodeError as exc:
         raise DataFormatError(f"not valid JSON: {exc.msg}", source, exc.lineno) from None
     except RecursionError:   # pragma: no cover - the depth check comes first
         raise DataFormatError("brackets nest too deep", source) from None
+
+
+class _JsonNumberError(ValueError):
+    pass
+
+
+def _json_int(text: str) -> int:
+    """A JSON integer that a float can hold (``10**400`` written out cannot: OverflowError)."""
+    if len(text.lstrip("-")) > 300:
+        raise _JsonNumberError(f"a number of {len(text.lstrip('-'))} digits "
+                               f"({text[:12]}…) is out of range; no measured value has so many")
+    return int(text)
 
 
 #: Longest ``# key=value ...`` line read for declarations, characters. shlex takes time growing

@@ -43,6 +43,8 @@ from pathlib import Path
 import typer
 from typer._click import core
 
+from axiscal.errors import MAX_MESSAGE   # the longest line an error is cut to (one_line)
+
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 
@@ -366,6 +368,10 @@ def _variants(src: str, data: bytes) -> dict[str, bytes]:
             variants[f"header numbers {bad.decode()}"] = re.sub(
                 rb"(Sample rate|Actual sample rate|Sample no): [^\r\n]*",
                 lambda m: m.group(1) + b": " + bad, data)
+    if suffix == ".zip":   # every field of its records (the second layer, issue 39)
+        from _fuzz_layer2 import archive_variants
+
+        variants.update(archive_variants(data))
     for cls, b in BYTE_CLASSES.items():
         variants[f"byte {cls}"] = data[: len(data) // 3] + b + data[len(data) // 3:]
     variants["empty"] = b""
@@ -404,7 +410,15 @@ def all_cases(names=None) -> list[Case]:
     out = []
     for name in sorted(names or cmds):
         out += parameter_cases(name, cmds[name]) + file_mutations(name)
-    return out
+    return out + [c for c in layer2_cases(cmds) if names is None or c.command in names]
+
+
+def layer2_cases(cmds=None) -> list[Case]:
+    """The second layer's cases that run like the first's (:mod:`_fuzz_layer2`): outputs at
+    inputs and at the history, writer fields (archive fields are among the file mutations)."""
+    import _fuzz_layer2 as l2
+
+    return l2.output_cases(cmds or commands()) + l2.writer_cases()
 
 
 def sample(cases: list[Case], n: int, seed: int = 30) -> list[Case]:
@@ -492,7 +506,7 @@ def make_fixtures(root: Path) -> dict:
     for f in d.rglob("*"):
         if f.is_file():
             _FIXTURES[str(f.relative_to(d))] = f.read_bytes()
-    return {"{d}": str(d), "{db}": db}
+    return {"{d}": str(d), "{db}": db, "{dbfile}": str(root / "db" / "h.sqlite")}
 
 
 def prepare_case(case: Case, folder: Path, places: dict) -> list[str]:
@@ -554,7 +568,7 @@ def check(case: Case, args: list, r: dict, before_data: dict, after_data: dict,
     elif r["exit"] == 2:
         if len(lines) != 1 or not lines[0].startswith("axiscal: error: "):
             faults.append(f"not ONE error line: {err[:300]!r}")
-        elif len(lines[0]) > 700 or r.get("stderr_chars", 0) > 1000:
+        elif len(lines[0]) > MAX_MESSAGE or r.get("stderr_chars", 0) > MAX_MESSAGE + 2:
             faults.append(f"an error of {r.get('stderr_chars', len(err))} characters")
         left = sorted(set(after_case) - set(before_case))
         if left:

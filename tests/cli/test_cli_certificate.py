@@ -157,8 +157,9 @@ def test_draft_names_what_is_missing_and_exits_3(tmp_path, config, said):
     assert all("DRAFT" in t for t in texts) and "not a certificate" in texts[0]
     r = _issue(tmp_path, "--report", str(tmp_path / "d.pdf"), "--draft")
     assert r.exit_code == 0 and said in r.stderr
-    assert runner.invoke(app, ["certificate", "list", "--db", _db(tmp_path)]).stdout.startswith(
-        "no certificates")
+    # a draft is not kept: the register was never made, and listing it makes none (issue 39)
+    r = runner.invoke(app, ["certificate", "list", "--db", _db(tmp_path)])
+    assert r.exit_code == 2 and "no history database" in r.stderr
 
 
 def test_overdue_instrument_and_late_test_date(tmp_path):

@@ -138,3 +138,15 @@ def test_history_add_keeps_a_log_of_two_pvs(tmp_path):
     r = runner.invoke(app, ["history", "show", "1", "--db", db, "--json"])
     assert json.loads(r.stdout)["parameters"]["A"]["value"] == pytest.approx(
         evaluate(ref_ds).A, abs=1e-6)
+
+
+@pytest.mark.parametrize("command", ["iso230-2", "evaluate"])
+def test_a_refusal_after_reading_a_log_is_one_line_without_its_notes(log, command):
+    """Issue 39: a camonitor refusal came after a notes line (two lines). The notes of what the
+    reader assumed are printed once the evaluation has succeeded."""
+    p, _ = log
+    extra = ["--standard", "iso230-2:2014"] if command == "evaluate" else []
+    r = runner.invoke(app, [command, str(p), *extra, "--setpoint-pv", SP, "--reference-pv", REF,
+                            "--uncertainty", "e_ve=1e200"])
+    assert r.exit_code == 2 and "e_ve" in r.stderr, r.output
+    assert len(r.stderr.strip().splitlines()) == 1 and "camonitor" not in r.stderr

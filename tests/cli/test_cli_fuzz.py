@@ -31,6 +31,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 import _fuzz_cases as fc  # noqa: E402
+import _fuzz_layer2 as l2  # noqa: E402
 
 WORKER = Path(__file__).with_name("_fuzz_worker.py")
 SAMPLE = int(os.environ.get("AXISCAL_FUZZ_SAMPLE", "120"))
@@ -112,7 +113,9 @@ def run_cases(cases, root: Path, places: dict, report=None) -> list[str]:
             r = worker.run(case.command.split() + args, folder,
                            fc.SLOW.get(case.command, fc.TIME_LIMIT))
             after_data = fc.snapshot(data)
-            found = fc.check(case, args, r, before_data, after_data, before, fc.snapshot(folder))
+            after = fc.snapshot(folder)
+            found = fc.check(case, args, r, before_data, after_data, before, after)
+            found += l2.check_more(args, r, [folder / k for k in set(after) - set(before)])
             if found:
                 faults.append(f"{case.name} -> " + "; ".join(found))
                 if after_data != before_data:
@@ -169,6 +172,66 @@ def test_a_sample_of_the_hostile_cases(chunk, fixtures):
     assert not faults, "\n".join(faults)
 
 
+#: Cases of the second layer run by ``make test`` (a seeded sample; ``make fuzz`` runs all).
+SAMPLE2 = int(os.environ.get("AXISCAL_FUZZ_SAMPLE2", "24"))
+ENV_SAMPLE = int(os.environ.get("AXISCAL_FUZZ_ENV_SAMPLE", "4"))
+
+
+def test_the_second_layer_is_derived_from_the_interface():
+    """Issue 39: every output option of a command with a history meets the database, every
+    writer's declared field and every archive record field is mutated, every environment
+    condition is tried."""
+    from axiscal.compensation.controllers import CONTROLLERS, controller
+
+    layer2 = fc.layer2_cases()
+    labels = " ".join(c.what for c in layer2)
+    assert "--report at the history database" in labels and "history export" in \
+        {c.command for c in layer2}
+    for ctrl in CONTROLLERS:
+        for option in getattr(controller(ctrl), "FIELDS", {}):
+            assert f"{ctrl} -o {option}=" in labels, (ctrl, option)
+    zips = [c for c in ALL if c.command == "history import" and c.mutation]
+    assert {c.what.split(" = ")[0] for c in zips if " = " in c.what} >= {
+        "history.zip certificate counter", "history.zip header tests", "history.zip record machine"}
+    assert {c.what for c in l2.env_cases()} == set(l2.ENVIRONMENTS)
+
+
+def test_a_sample_of_the_second_layer(fixtures):
+    """A seeded sample of the second layer (outputs, writer fields, archive fields) at 0
+    faults."""
+    import random
+
+    root, places = fixtures
+    zips = [c for c in ALL if c.command == "history import" and c.mutation
+            and "(valid)" not in c.what and " = " in c.what]
+    pool = fc.layer2_cases() + zips
+    picked = random.Random(39).sample(pool, min(SAMPLE2, len(pool)))
+    faults = run_cases(picked, root / "layer2", places)
+    assert not faults, "\n".join(faults)
+
+
+def test_a_sample_of_the_environments(fixtures, tmp_path):
+    """A seeded sample of the environment cases, run by the console script, at 0 faults."""
+    import random
+
+    _, places = fixtures
+    picked = random.Random(39).sample(l2.env_cases(), ENV_SAMPLE)
+    faults = run_env_cases(picked, places, tmp_path)
+    assert not faults, "\n".join(faults)
+
+
+def run_env_cases(cases, places: dict, home: Path, report=None) -> list[str]:
+    faults = []
+    for case in cases:
+        r = l2.run_env_case(case, places, home)
+        found = l2.check_env(case, r)
+        if found:
+            faults.append(f"{case.name} -> " + "; ".join(found))
+        if report:
+            report(case, r, found, 0.0)
+    return faults
+
+
 def main(argv: list[str]) -> int:
     """``make fuzz``: every case (or those of the commands named), in ``--workers`` processes."""
     import concurrent.futures
@@ -188,9 +251,22 @@ def main(argv: list[str]) -> int:
             parts = list(pool.map(_run_part, [(cases[i::workers], str(r)) for i, r in
                                               enumerate(roots)]))
     faults = [f for p in parts for f in p]
-    print(f"{len(cases)} cases, {len({c.command for c in cases})} commands, {len(faults)} "
+    env = [c for c in l2.env_cases() if not argv or c.command in argv]
+    with tempfile.TemporaryDirectory() as tmp:
+        places = fc.make_fixtures(Path(tmp) / "env")
+        env_faults = run_env_cases(env, places, Path(tmp), _print_fault)
+    layer2 = sum(1 for c in cases if "(layer 2)" in c.what or c.command == "history import"
+                 and " = " in c.what and c.what.split(" ", 2)[1] in ("header", "record",
+                                                                     "certificate"))
+    print(f"{len(cases)} cases ({layer2} of the second layer), {len(env)} environment cases, "
+          f"{len({c.command for c in cases})} commands, {len(faults)} + {len(env_faults)} "
           f"faults, {time.perf_counter() - t0:.0f} s")
-    return 1 if faults else 0
+    return 1 if faults or env_faults else 0
+
+
+def _print_fault(case, r, found, dt) -> None:
+    if found:
+        print(f"FAULT {case.name} -> {'; '.join(found)}", flush=True)
 
 
 def _run_part(arg) -> list[str]:

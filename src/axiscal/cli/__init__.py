@@ -179,9 +179,247 @@ class AxiscalGroup(typer.core.TyperGroup):
             raise typer.Exit(EXIT_USER_ERROR) from None
         except UsageError as exc:
             _usage_error(exc)
-        except KeyboardInterrupt:  # pragma: no cover - interactive only
-            typer.echo("axiscal: interrupted; nothing was written", err=True)
-            raise typer.Exit(130) from None
+        except KeyboardInterrupt as exc:
+            from axiscal.io._files import WRITTEN
+
+            done = (f"wrote before it: {', '.join(WRITTEN[:5])}"
+                    + (f" and {len(WRITTEN) - 5} more" if len(WRITTEN) > 5 else "")
+                    if WRITTEN else "no file was written")
+            typer.echo(one_line(f"axiscal: {getattr(exc, 'what', 'interrupted')}; {done}; "
+                                "temporary files removed"), err=True)
+            raise typer.Exit(getattr(exc, "code", 130)) from None
+        except BrokenPipeError:   # `axiscal ... | head -1`: quiet, as Unix tools are
+            _quiet_stdout()
+            raise typer.Exit(EXIT_BROKEN_PIPE) from None
+        except OSError as exc:
+            if getattr(sys.stdout, "failed", None) is not exc:
+                raise
+            _stdout_error(exc)
+
+
+#: Exit codes of the output stream itself: standard output closed, full or failing
+#: (sysexits.h EX_IOERR), and a reader that went away (128 + SIGPIPE, what a shell reports for a
+#: tool SIGPIPE ended: ``axiscal ... | head -1``). Exit 1 means "tolerance not met".
+EXIT_STREAM = 74
+EXIT_BROKEN_PIPE = 141
+
+
+def _quiet_stdout() -> None:
+    """Point standard output at /dev/null so the interpreter's last flush finds no broken pipe
+    (Python documentation, "signal": Note on SIGPIPE)."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, AttributeError, ValueError):
+        pass
+
+
+def _watch_stdout() -> None:
+    """Replace ``sys.stdout`` by a :class:`_WatchedStdout` on the same buffer, so that an error
+    of standard output itself (``> /dev/full``) is told from any other OSError."""
+    import io
+
+    old = sys.stdout
+    if type(old) is not io.TextIOWrapper:
+        return
+    try:
+        kw = dict(encoding=old.encoding, errors=old.errors, line_buffering=old.line_buffering)
+        old.flush()
+        buffer = old.detach()
+    except (OSError, ValueError):
+        return
+    sys.stdout = _watched()(buffer, **kw)
+
+
+def _watched():
+    import io
+
+    class _WatchedStdout(io.TextIOWrapper):
+        """Standard output that keeps the OSError its last write or flush raised."""
+
+        failed = None
+
+        def write(self, text):
+            try:
+                return super().write(text)
+            except OSError as exc:
+                self.failed = exc
+                raise
+
+        def flush(self):
+            try:
+                return super().flush()
+            except OSError as exc:
+                self.failed = exc
+                raise
+
+    return _WatchedStdout
+
+
+def _stdout_error(exc: OSError):
+    """One line on stderr for an output stream that cannot be written, and its exit code."""
+    from axiscal.io._files import os_reason
+
+    _quiet_stdout()
+    typer.echo(f"axiscal: error: cannot write to standard output: {os_reason(exc)}", err=True)
+    raise typer.Exit(EXIT_STREAM)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the process is so that ``finally`` blocks remove temporary files
+    (a partial archive, a ``.creating`` database) as they do on Ctrl-C."""
+
+    code = 143
+    what = "terminated (SIGTERM)"
+
+
+def _on_sigterm(signum, frame):   # noqa: ARG001 - signal API
+    raise Terminated()
+
+
+def _prepare_process() -> None:
+    """What the console-script entry sets up before a command runs (issue 39).
+
+    * SIGTERM raises :class:`Terminated` (temporary files removed, what was written said);
+      SIGXFSZ is ignored, so a write beyond ``ulimit -f`` fails with EFBIG and is named
+      instead of killing the process;
+    * a closed standard output is refused at once (exit 74, one line on stderr);
+    * a console that cannot encode µ, ° or ″ gets ASCII spellings (``u``, ``deg``, ``"``);
+    * an absurd ``COLUMNS`` (0, negative, not a number, 10,000,000) is clamped;
+    * matplotlib's cache goes to a private temporary folder when HOME cannot be written.
+    """
+    import os
+    import signal
+
+    signal.signal(signal.SIGTERM, _on_sigterm)
+    if hasattr(signal, "SIGXFSZ"):
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    if sys.stdout is None or not _fd_open(1):
+        if sys.stderr is not None:
+            sys.stderr.write("axiscal: error: standard output is closed; redirect it to a "
+                             "file or to /dev/null\n")
+        raise SystemExit(EXIT_STREAM)
+    _watch_stdout()
+    for stream in (sys.stdout, sys.stderr):
+        _ascii_fallback(stream)
+    clamp_columns(os.environ)
+    _writable_caches(os.environ)
+
+
+def _fd_open(fd: int) -> bool:
+    import os
+
+    try:
+        os.fstat(fd)
+    except OSError:
+        return False
+    return True
+
+
+#: ASCII spellings of the characters axiscal prints, for a console that cannot show them.
+ASCII_SPELLINGS = {"µ": "u", "°": "deg", "″": '"', "′": "'", "±": "+/-", "−": "-", "…": "...",
+                   "≤": "<=", "≥": ">=", "×": "x", "→": "->", "←": "<-", "²": "^2", "³": "^3",
+                   "√": "sqrt", "—": "-", "–": "-", "·": ".", "Δ": "D", "σ": "s", "θ": "theta",
+                   "’": "'", "“": '"', "”": '"', "✓": "ok", "✗": "x"}
+
+
+def _ascii_errors(exc):
+    """Codec error handler: the ASCII spelling of each character the console cannot encode."""
+    text = exc.object[exc.start:exc.end]
+    return "".join(ASCII_SPELLINGS.get(c, "?") for c in text), exc.end
+
+
+def _ascii_fallback(stream) -> None:
+    """Let ``stream`` print every character, spelled in ASCII where its encoding has none.
+
+    An ASCII stream is re-wrapped in the codec ``axiscal_ascii`` (ASCII with the spellings):
+    click takes a stream that says ``ascii`` for a misconfigured locale and writes UTF-8 to it
+    regardless, which an ASCII console shows as garbage.
+    """
+    import codecs
+
+    if stream is None:
+        return
+    try:
+        "µ°″—…".encode(stream.encoding or "ascii")
+        return
+    except (UnicodeEncodeError, LookupError):
+        pass
+    codecs.register_error("axiscal-ascii", _ascii_errors)
+    codecs.register(_ascii_codec)
+    try:
+        if codecs.lookup(stream.encoding or "ascii").name == "ascii":
+            stream.reconfigure(encoding="axiscal_ascii", errors="axiscal-ascii")
+        else:
+            stream.reconfigure(errors="axiscal-ascii")
+    except (AttributeError, ValueError, OSError, LookupError):
+        pass
+
+
+def _ascii_codec(name: str):
+    """The codec ``axiscal_ascii``: ASCII, unencodable characters spelled (ASCII_SPELLINGS)."""
+    import codecs
+
+    if name != "axiscal_ascii":
+        return None
+
+    def encode(text, errors="axiscal-ascii"):
+        return codecs.ascii_encode(text, "axiscal-ascii")
+
+    class Encoder(codecs.IncrementalEncoder):
+        def encode(self, text, final=False):
+            return codecs.ascii_encode(text, "axiscal-ascii")[0]
+
+    class Decoder(codecs.IncrementalDecoder):
+        def decode(self, data, final=False):
+            return codecs.ascii_decode(data, self.errors)[0]
+
+    return codecs.CodecInfo(encode, codecs.ascii_decode, name="axiscal_ascii",
+                            incrementalencoder=Encoder, incrementaldecoder=Decoder)
+
+
+#: The widest and narrowest console a table or help text is drawn for, characters.
+WIDEST, NARROWEST = 1000, 20
+
+
+def clamp_columns(env) -> None:
+    """``COLUMNS`` within :data:`NARROWEST` … :data:`WIDEST`; removed when it is not a
+    positive number (0 printed nothing; 10,000,000 made ``--help`` take 68 s)."""
+    text = env.get("COLUMNS")
+    if text is None:
+        return
+    try:
+        n = int(text.strip())
+    except ValueError:
+        n = 0
+    if n <= 0:
+        del env["COLUMNS"]
+    else:
+        env["COLUMNS"] = str(min(max(n, NARROWEST), WIDEST))
+
+
+def _writable_caches(env) -> None:
+    """MPLCONFIGDIR in a private temporary folder when HOME cannot be written (matplotlib
+    warned on every --plot, and wrote under /nonexistent)."""
+    import os
+    import tempfile
+
+    if env.get("MPLCONFIGDIR"):
+        return
+    home = env.get("HOME") or os.path.expanduser("~")
+    if home and os.path.isdir(home) and os.access(home, os.W_OK):
+        return
+    try:
+        path = os.path.join(tempfile.gettempdir(), f"axiscal-mpl-{os.getuid()}")
+        os.makedirs(path, mode=0o700, exist_ok=True)
+        if os.stat(path).st_uid != os.getuid():
+            path = tempfile.mkdtemp(prefix="axiscal-mpl-")
+    except OSError:
+        return
+    env["MPLCONFIGDIR"] = path
 
 
 def _with_source(exc: AxiscalError) -> str:
@@ -328,10 +566,42 @@ def main(*, gc_paused: bool = False) -> None:
     global _gc_paused
     _gc_paused = gc_paused or gc.isenabled()
     gc.disable()
+    _prepare_process()
     try:
         app(prog_name="axiscal")
+    except SystemExit as exc:   # help drawn at parse time, or rich's own exit on a broken pipe
+        failed = getattr(sys.stdout, "failed", None)
+        if failed is not None and exc.code not in (EXIT_STREAM, EXIT_BROKEN_PIPE):
+            _stream_exit(failed)
+        _flush_stdout()
+        raise
+    except OSError as exc:
+        if getattr(sys.stdout, "failed", None) is exc:
+            _stream_exit(exc)
+        raise
     finally:
         _resume_gc()
+
+
+def _flush_stdout() -> None:
+    """Flush standard output before the interpreter does, so a full or broken stream ends with
+    its own exit code (and one line, but none for a broken pipe) instead of a traceback."""
+    try:
+        sys.stdout.flush()
+    except OSError as exc:
+        _stream_exit(exc)
+
+
+def _stream_exit(exc: OSError) -> None:
+    """End the process for a failing standard output: quietly with 141 for a broken pipe, else
+    one line and 74."""
+    if isinstance(exc, BrokenPipeError):
+        _quiet_stdout()
+        raise SystemExit(EXIT_BROKEN_PIPE) from None
+    try:
+        _stdout_error(exc)
+    except typer.Exit as stop:
+        raise SystemExit(stop.exit_code) from None
 
 
 def _resume_gc() -> None:

@@ -23,23 +23,53 @@ __all__ = ["console", "print_json", "jsonable", "out_path", "plot_path", "report
 
 
 def console():
-    """A rich console on stdout (imported on first use).
+    """A rich console on stdout (imported on first use) that never cuts a number.
 
     Piped or redirected output has no terminal width; rich would fall back to 80 columns and cut
     numbers with an ellipsis ("121.6…"), which in a calibration table is a wrong number. So a
-    non-terminal gets ``COLUMNS`` if set, else 160 columns.
+    non-terminal gets ``COLUMNS`` if set, else 160 columns; ``COLUMNS`` is clamped to 20 …
+    1000 (0 printed nothing). And a table wider than the console is drawn at its own full width
+    (the terminal wraps its lines) instead of being squeezed: at 80 columns a cell showed
+    ``121.6…``, at 20 cells were empty (issue 39).
     """
+    return _whole_console()(highlight=False, width=_width())
+
+
+def _width() -> int | None:
+    """The console width: ``COLUMNS`` clamped to 20 … 1000 (a bad value ignored); for a
+    non-terminal without it, 160."""
     import os
 
-    from rich.console import Console
+    try:
+        given = int(os.environ.get("COLUMNS", "").strip() or 0)
+    except ValueError:
+        given = 0
+    if given > 0:
+        return min(max(given, 20), 1000)
+    return None if sys.stdout.isatty() else 160
 
-    width = None
-    if not sys.stdout.isatty():
-        try:
-            width = int(os.environ.get("COLUMNS", "") or 160)
-        except ValueError:
-            width = 160
-    return Console(highlight=False, width=width)
+
+def _whole_console():
+    """The rich Console class whose tables keep every cell whole (see :func:`console`)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    class WholeConsole(Console):
+        def print(self, *objects, **kw):   # noqa: D102 - rich API
+            need = max((self.measure(o, options=self.options.update_width(10**4)).maximum
+                        for o in objects if isinstance(o, Table)), default=0)
+            if need <= self.width:
+                return super().print(*objects, **kw)
+            narrow, self.width = self.width, need   # rich's print(width=) cannot widen
+            try:
+                return super().print(*objects, **kw)
+            finally:
+                self.width = narrow
+
+        def on_broken_pipe(self) -> None:   # rich exits 1 ("tolerance not met"): say a pipe
+            raise BrokenPipeError
+
+    return WholeConsole
 
 
 def print_json(obj: Any) -> None:
@@ -88,9 +118,12 @@ def _given_paths(output: Path) -> list[tuple[str, str]]:
     from typer._click.globals import get_current_context
 
     ctx = get_current_context(silent=True)
-    found = []
+    found, databases = [], []
     while ctx is not None:
         for param in ctx.command.params:
+            if param.name == "db" and param.param_type_name == "option":
+                databases += _database_file(ctx.params.get("db"))
+                continue
             if type(param.type).__name__ not in ("TyperPath", "Path"):
                 continue
             values = ctx.params.get(param.name)
@@ -103,7 +136,29 @@ def _given_paths(output: Path) -> list[tuple[str, str]]:
         if v == str(output):
             del found[i]
             break
-    return found
+    return found + databases
+
+
+def _database_file(url) -> list[tuple[str, str]]:
+    """The history database's file as an input, ``("--db", path)`` (none on PostgreSQL).
+
+    ``history show 1 --report r.html --db sqlite:///r.html`` would write the report over the
+    history (issue 39); the history a command opens is an input of it like any file it reads,
+    and so are SQLite's write-ahead log and shared-memory files beside it.
+    """
+    try:
+        from axiscal.store.database import sqlite_path
+        from axiscal.store.history import default_url
+
+        url = url or default_url()
+        if url.split(":", 1)[0] not in ("sqlite", "sqlite+pysqlite"):
+            return []
+        path = sqlite_path(url)
+    except Exception:   # noqa: BLE001 - a bad URL is the store's to refuse, with its message
+        return []
+    if path is None:
+        return []
+    return [("--db", str(path)), ("--db", f"{path}-wal"), ("--db", f"{path}-shm")]
 
 
 def _not_an_input(path: Path, what: str, inputs) -> None:
@@ -121,6 +176,10 @@ def _not_an_input(path: Path, what: str, inputs) -> None:
                 same = (st.st_dev, st.st_ino) == (out_stat.st_dev, out_stat.st_ino)
         except (OSError, ValueError):
             continue
+        if same and name == "--db":
+            raise InputError(f"{what} {_short(path)} is the history database (--db "
+                             f"{_short(given)}): writing it would destroy the history; give "
+                             "another file name")
         if same:
             raise InputError(f"{what} {_short(path)} is the input {name} {_short(given)}: "
                              "writing it would destroy that input; give another file name")

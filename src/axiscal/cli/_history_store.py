@@ -24,11 +24,38 @@ DB = typer.Option(None, "--db", help="Database URL (default: AXISCAL_DB, else SQ
 JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys).")
 
 
-def open_db(db):
-    """The history store at ``db`` (a URL, or None for the default)."""
+def open_db(db, create: bool = False):
+    """The history store at ``db`` (a URL, or None for the default).
+
+    Only a command that stores (``create=True``: ``history import``) makes a new SQLite history;
+    one that reads or corrects refuses a file that does not exist, and creates no folder
+    (issue 39: ``history list --db sqlite:///typo/h.sqlite`` made the folder ``typo`` and an
+    empty database).
+    """
     from axiscal.store import open_store
 
+    if not create:
+        _existing(db)
     return open_store(db)
+
+
+def _existing(db) -> None:
+    from axiscal.store.database import StoreError
+    from axiscal.store.history import default_url
+
+    url = db or default_url()
+    if url.split(":", 1)[0] not in ("sqlite", "sqlite+pysqlite"):
+        return
+    try:
+        from axiscal.store.database import sqlite_path
+
+        path = sqlite_path(url)
+    except Exception:   # noqa: BLE001 - a bad URL: the store's own message
+        return
+    if path is not None and not path.exists() and not path.is_symlink():
+        raise StoreError(f"no history database at {str(path)[:200]}: nothing is stored there "
+                         "yet (a command that only reads creates none; 'axiscal history add "
+                         "FILE' starts one)")
 
 
 def store_run(file: Path, db, machine=None, axis=None) -> None:

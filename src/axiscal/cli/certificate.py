@@ -26,6 +26,7 @@ import typer
 from axiscal.cli._common import note, print_json
 from axiscal.cli._history_store import DB as _DB      # the history's --db and --json,
 from axiscal.cli._history_store import JSON as _JSON  # the same options
+from axiscal.cli._history_store import open_db
 
 __all__ = ["register", "record_json"]
 
@@ -52,9 +53,8 @@ def list_(db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
 
     Example: axiscal certificate list --db sqlite:///history.sqlite
     """
-    from axiscal.store import open_store
 
-    rows = open_store(db).certificates(laboratory)
+    rows = open_db(db).certificates(laboratory)
     if json_out:
         print_json([record_json(r) for r in rows])
         return
@@ -75,9 +75,8 @@ def show(number: str = typer.Argument(..., help="The certificate number."),
     Example: axiscal certificate show PM-2026-00001 --out PM-2026-00001.pdf
     """
     from axiscal.io._files import write_bytes_atomic
-    from axiscal.store import open_store
 
-    r = open_store(db).certificate(number, laboratory)
+    r = open_db(db).certificate(number, laboratory)
     if out is not None:
         write_bytes_atomic(out, r.document)
     if json_out:
@@ -110,11 +109,10 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     from axiscal.cli._common import report_path
     from axiscal.io.user_config import load_job
     from axiscal.report.issue import reissue_certificate
-    from axiscal.store import open_store
 
     report_path(out)
     corrections = load_job(job) if job is not None else None
-    o = reissue_certificate(open_store(db), number, reason, out, corrections,
+    o = reissue_certificate(open_db(db), number, reason, out, corrections,
                             laboratory=laboratory)
     if json_out:
         print_json({**record_json(o.record), "path": str(out)})

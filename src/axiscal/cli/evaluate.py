@@ -73,9 +73,9 @@ def evaluate(
                       deviation_unit=deviation_unit, progress=bar, epics=epics_options(
                           setpoint_pv, reference_pv, targets, reference_scale,
                           reference_offset, rest_window))
-    show_notes(ds)
     ev = api.evaluate(ds, key, tolerances=tolerances, rule=rule, uncertainty=table,
                       form="standards")
+    show_notes(ds)   # after the evaluation: a refusal is then the one line (issue 39)
     if plot is not None:
         from axiscal.report.plots import save_figure
 

@@ -331,7 +331,7 @@ def import_(
 
     if not archive.is_file():
         raise MissingFileError(archive)
-    store = _store(db)
+    store = _store(db, create=True)
     if json_out:
         added, dup = import_history(store, archive)
         print_json({"archive": str(archive), "added": added, "duplicates": dup})

@@ -31,7 +31,11 @@ def _done(entry, json_out: bool) -> None:
     if json_out:
         print_json(entry.as_dict())
     else:
-        typer.echo(f"{entry.what} (audit entry {entry.id}, by {entry.by}: {entry.reason})")
+        from axiscal.errors import one_line
+
+        # the trail keeps every word; the terminal gets the change, not a 50 kB note back
+        typer.echo(one_line(f"{entry.what} (audit entry {entry.id}, by {entry.by}: "
+                            f"{entry.reason})", 400))
 
 
 def add_commands(app: typer.Typer) -> None:

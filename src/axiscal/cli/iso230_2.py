@@ -96,7 +96,6 @@ def iso230_2(
     with progress_bar(f"reading {file.name}") as bar:
         ds = api.read(file, kind="iso230-2", target_unit=target_unit,
                       deviation_unit=deviation_unit, progress=bar, epics=epics)
-    show_notes(ds)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
 
@@ -104,6 +103,7 @@ def iso230_2(
                          f"is a {ds.axis_kind.value} axis")
     ev = api.evaluate(ds, tolerances=tolerances, rule=rule, job=job, full_turn=full_turn,
                       uncertainty=parse_uncertainty(uncertainty), drift_check=drift_check)
+    show_notes(ds)   # after the evaluation: a refusal is then the one line (issue 39)
     if plot is not None:
         from axiscal.report.plots import save_figure
 

@@ -34,7 +34,8 @@ MAX_LENGTH_MM, MAX_TRAVEL_DEG = 1e6, 36_000.0
 _RUNS = typer.Option(5, "--runs", min=1, max=MAX_RUNS, help="Runs per direction (ISO 230-2: 5).")
 _CYCLE = typer.Option("linear", "--cycle", help="'linear' or 'pilgrim' (pilgrim step).")
 _UNIDIRECTIONAL = typer.Option(False, "--unidirectional", help="Approach in the positive direction only.")
-_DWELL = typer.Option(4.0, "--dwell", help="Dwell at each target before the reading, s.")
+_DWELL = typer.Option(4.0, "--dwell", min=0.0, max=3600.0,
+                      help="Dwell at each target before the reading, s (at most an hour).")
 _CSV = typer.Option(None, "--csv", help="Export the move sequence as CSV (.csv).")
 _JSON = typer.Option(False, "--json", help="Print the plan as JSON.")
 
@@ -52,7 +53,7 @@ def plan_linear_cmd(
     runs: int = _RUNS,
     cycle: str = _CYCLE,
     unidirectional: bool = _UNIDIRECTIONAL,
-    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, mm."),
+    overrun: float = typer.Option(5.0, "--overrun", min=0.0, max=1000.0, help="Overrun for the reversal, mm (at most 1 m)."),
     dwell: float = _DWELL,
     axis: str = typer.Option("X", "--axis", help="Axis name."),
     csv: Optional[Path] = _CSV,
@@ -93,7 +94,7 @@ def plan_rotary_cmd(
     runs: int = _RUNS,
     cycle: str = _CYCLE,
     unidirectional: bool = _UNIDIRECTIONAL,
-    overrun: float = typer.Option(5.0, "--overrun", help="Overrun for the reversal, degrees (Yüksel et al., Position accuracy and repeatability calibration of turn tables: 5)."),
+    overrun: float = typer.Option(5.0, "--overrun", min=0.0, max=360.0, help="Overrun for the reversal, degrees, at most one turn (Yüksel et al., Position accuracy and repeatability calibration of turn tables: 5)."),
     dwell: float = _DWELL,
     axis: str = typer.Option("C", "--axis", help="Axis name."),
     csv: Optional[Path] = _CSV,

@@ -101,7 +101,7 @@ def simulate(
     typer.echo(f"  mapped from the measured errors: {mapped}")
     typer.echo(f"  largest |mapped − true| over the 11³ grid: {diff * 1e6:.3f} µm")
     if cfg:
-        typer.echo(f"  wrote {cfg} and the 21 measured files beside it")
+        typer.echo(f"  wrote {cfg} and the 18 measured files beside it")
 
 
 @app.command("map")

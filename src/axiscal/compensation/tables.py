@@ -280,9 +280,20 @@ class CompensationTable:
         return replace(self, reference_index=k)
 
     def rounded(self, resolution: float) -> "CompensationTable":
-        """The table with corrections rounded to ``resolution`` (``correction_unit``)."""
-        return replace(self, up=_round(self.up, resolution), down=_round(self.down, resolution),
-                       resolution=float(resolution))
+        """The table with corrections rounded to ``resolution`` (``correction_unit``).
+
+        A step so coarse that every correction rounds to zero while the table holds corrections
+        is refused (``--resolution 1e300`` wrote an all-zero table with exit 0: issue 39).
+        """
+        up, down = _round(self.up, resolution), _round(self.down, resolution)
+        largest = float(max(np.max(np.abs(self.up)), np.max(np.abs(self.down))))
+        if resolution and largest > 0 and not (np.any(up) or np.any(down)):
+            from axiscal.errors import InputError
+
+            raise InputError(f"resolution {resolution:g} {display(self.correction_unit)} rounds "
+                             f"every correction to zero (the largest is {largest:.4g} "
+                             f"{display(self.correction_unit)}); give a finer step")
+        return replace(self, up=up, down=down, resolution=float(resolution))
 
     def to_dict(self) -> dict:
         """Plain data (JSON): geometry, units and the per-point corrections."""

@@ -8,7 +8,12 @@ from pathlib import Path
 
 from axiscal.errors import DataFormatError, InputError, MissingFileError
 
-__all__ = ["read_text", "read_controller_text", "read_bytes", "load_toml", "write_text_atomic", "write_bytes_atomic"]
+__all__ = ["read_text", "read_controller_text", "read_bytes", "load_toml", "write_text_atomic",
+           "write_bytes_atomic", "write_files_atomic", "os_reason"]
+
+#: Every file written through this module by the running process, in order: what an
+#: interrupted command says it left (``axiscal: interrupted; wrote ...``).
+WRITTEN: list[str] = []
 
 #: Refuse to read text files larger than this (a positioning file is kilobytes).
 MAX_TEXT_BYTES = 256 * 1024 * 1024
@@ -120,7 +125,7 @@ def write_bytes_atomic(path, data: bytes) -> Path:
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent or ".")
     except OSError as exc:   # a read-only or pseudo file system, a full disk ...
-        raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
+        raise InputError(f"cannot write {p}: {os_reason(exc)}") from None
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
@@ -128,15 +133,112 @@ def write_bytes_atomic(path, data: bytes) -> Path:
             # umask's), and overwriting keeps the old file's mode
             os.fchmod(fh.fileno(), _mode_for(p))
         os.replace(tmp, p)
+        WRITTEN.append(str(p))
     except BaseException as exc:
         try:
             os.unlink(tmp)
         except OSError:
             pass
         if isinstance(exc, OSError):
-            raise InputError(f"cannot write {p}: {exc.strerror or exc}") from None
+            raise InputError(f"cannot write {p}: {os_reason(exc)}") from None
         raise
     return p
+
+
+def os_reason(exc: OSError) -> str:
+    """Why a write failed, in words that name the cause: a full disk, the file-size limit of
+    the process (``ulimit -f``) or a disk quota, rather than the C library's short text alone.
+
+    Examples
+    --------
+    >>> import errno
+    >>> os_reason(OSError(errno.EFBIG, "File too large"))
+    'the file-size limit of this process is reached (ulimit -f; File too large)'
+    """
+    import errno
+
+    text = exc.strerror or str(exc)
+    return {errno.ENOSPC: f"the disk is full ({text})",
+            errno.EFBIG: f"the file-size limit of this process is reached (ulimit -f; {text})",
+            errno.EDQUOT: f"the disk quota is exhausted ({text})"}.get(exc.errno, text)
+
+
+def write_files_atomic(folder, files: dict, inputs=()) -> list[str]:
+    """Write several files into ``folder``: all of them, or none.
+
+    ``files`` maps a file name to its text or bytes. Each is first written into a hidden
+    temporary folder inside ``folder``; only when every one is written (a full disk, a file-size
+    limit or an interrupt stops it before) are they renamed into place, one ``rename`` each,
+    and the temporary folder removed. So a full disk leaves none of them (issue 39: ``volumetric
+    simulate --out`` on a full disk left 7 of 19 files), and an interrupt (SIGINT, or SIGTERM,
+    which the command line turns into the same exception) removes the temporary folder.
+
+    A name that would replace one of ``inputs`` (the same file by path, link or inode: a
+    measured file the configuration names) is refused before anything is written, as is a name
+    given twice.
+
+    Returns
+    -------
+    list of str
+        The names written, in order.
+    """
+    import shutil
+    import tempfile
+
+    out = Path(folder)
+    names = list(files)
+    _refuse_inputs(out, names, inputs)
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=".axiscal-", dir=out))
+    except OSError as exc:
+        raise InputError(f"cannot write into {out}: {os_reason(exc)}") from None
+    try:
+        for name in names:
+            data = files[name]
+            target = tmp / name
+            target.write_bytes(data.encode("utf-8") if isinstance(data, str) else data)
+            os.chmod(target, _mode_for(out / name))
+        for name in names:
+            os.replace(tmp / name, out / name)
+            WRITTEN.append(str(out / name))
+    except OSError as exc:
+        raise InputError(f"cannot write {out / name}: {os_reason(exc)}; none of the "
+                         f"{len(names)} files was written") from None
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return names
+
+
+def _refuse_inputs(out: Path, names: list, inputs) -> None:
+    """Refuse a name of ``names`` in ``out`` that is given twice or is one of ``inputs``."""
+    seen = set()
+    for name in names:
+        if Path(name).name != name or name in ("", ".", ".."):
+            raise InputError(f"cannot write {name!r} into {out}: not a plain file name")
+        if name.lower() in seen:   # a case-insensitive file system would merge them
+            raise InputError(f"two outputs of one run are named {name} in {out}")
+        seen.add(name.lower())
+    keys = {}
+    for given in inputs:
+        try:
+            real = os.path.realpath(given)
+            st = os.stat(given)
+            keys[real] = given
+            keys[(st.st_dev, st.st_ino)] = given
+        except (OSError, ValueError):
+            continue
+    for name in names:
+        target = out / name
+        try:
+            hit = keys.get(os.path.realpath(target))
+            if hit is None and target.exists():
+                st = target.stat()
+                hit = keys.get((st.st_dev, st.st_ino))
+        except (OSError, ValueError):
+            continue
+        if hit is not None:
+            raise InputError(f"{target} would replace the input {hit}: writing it would "
+                             "destroy that input; give another folder")
 
 
 def _mode_for(p: Path) -> int:

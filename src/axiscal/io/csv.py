@@ -263,7 +263,7 @@ class _Readings:
         self.count += 1
         parts = line.split(",")
         reading = None
-        if len(parts) == self.ncols and '"' not in line:
+        if len(parts) == self.ncols and '"' not in line and line.isascii() and "_" not in line:
             try:   # the common line: plain cells, converted directly
                 t = float(parts[self.it])
                 v = float(parts[self.iv])

@@ -117,7 +117,8 @@ def _raw_readings(lines, source: str) -> RawReadings:
         idx = idx or [header.index(c) for c in _RAW_COLUMNS]
         cells = stripped.split(",")
         row = None
-        if len(cells) >= len(header) and '"' not in stripped:
+        if len(cells) >= len(header) and '"' not in stripped and stripped.isascii() \
+                and "_" not in stripped:
             try:
                 row = (float(cells[idx[0]]), float(cells[idx[1]]),
                        _SIGN[cells[idx[2]].strip().lower()], float(cells[idx[3]]),

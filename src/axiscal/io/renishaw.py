@@ -117,7 +117,7 @@ from decimal import Decimal, InvalidOperation
 import numpy as np
 
 from axiscal import units
-from axiscal._parse import finite_number
+from axiscal._parse import finite_number, strict_int
 from axiscal.datasets import AxisKind, Environment, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 from axiscal.io.detect import looks_like_renishaw
@@ -384,7 +384,7 @@ def _count(fields: dict, key: str, section: str, source: str) -> int:
         raise DataFormatError(f"no {key.capitalize()}: line in {section}", source)
     n, value = fields[key]
     try:
-        count = int(value)
+        count = strict_int(value)
     except ValueError:
         raise DataFormatError(f"{key.capitalize()}: {value!r} is not a whole number", source,
                               n) from None
@@ -424,7 +424,7 @@ def _deviations(lines, m: int, n_runs: int, source: str) -> dict[tuple[int, int]
 
 def _index(text: str, what: str, limit: int, source: str, line: int) -> int:
     try:
-        i = int(text)
+        i = strict_int(text)
     except ValueError:
         raise DataFormatError(f"{what} {text!r} is not a whole number", source, line) from None
     if not 1 <= i <= limit:

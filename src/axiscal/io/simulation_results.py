@@ -332,7 +332,7 @@ def volumetric_compensation(cfg: Any, tables: Any, controller: str, *, verify: b
         machine, _ = simulated_volumetric_machine(cfg)
         result = run_verify(machine, cfg.errors, tables, controller,
                             np.random.default_rng(int(cfg.simulation.get("seed", 1)) + 1))
-    written = write_controller_files(files, out) if out is not None else []
+    written = write_controller_files(files, out, cfg.inputs) if out is not None else []
     d = {"controller": controller, "receiving": tables.receiving, "files": written,
          "left_by_tables_um": tables.uncompensable * 1e6}
     if result is not None:
@@ -356,7 +356,7 @@ def volumetric_linuxcnc(cfg: Any, tables: Any, *, verify: bool = False,
     from axiscal.compensation.on_controller_volumetric import (linuxcnc_compensation,
                                                                linuxcnc_outputs,
                                                                verify_on_linuxcnc)
-    from axiscal.io._files import write_text_atomic
+    from axiscal.io._files import write_files_atomic
 
     comp = linuxcnc_compensation(cfg.errors, tables)
     files = linuxcnc_outputs(comp)
@@ -365,8 +365,8 @@ def volumetric_linuxcnc(cfg: Any, tables: Any, *, verify: bool = False,
         machine, _ = simulated_volumetric_machine(cfg)
         result = verify_on_linuxcnc(machine, cfg.errors, tables, np.random.default_rng(
             int(cfg.simulation.get("seed", 1)) + 1))
-    for name, text in files.items() if out is not None else ():
-        write_text_atomic(Path(out) / name, text)
+    if out is not None:
+        write_files_atomic(Path(out), dict(files), cfg.inputs)
     d = {"controller": "linuxcnc", "receiving": tables.receiving,
          "files": list(files) if out is not None else [],
          "left_by_tables_um": tables.uncompensable * 1e6, "grid_spacing_mm": comp.spacing}
@@ -389,22 +389,21 @@ def ballbar_simulation(cfg: dict, seed: int, source: str) -> SimulationRun:
     return SimulationRun("ballbar", data, d, {"data": data})
 
 
-def write_controller_files(files: list, out: Any) -> list[str]:
+def write_controller_files(files: list, out: Any, inputs=()) -> list[str]:
     """Write controller files (and their companions, renamed after their table when two
-    tables have one) into the folder ``out``; the names written, in order."""
+    tables have one) into the folder ``out``, all or none, none replacing one of ``inputs``
+    (:func:`axiscal.io._files.write_files_atomic`); the names written, in order."""
     from pathlib import Path
 
-    from axiscal.io._files import write_text_atomic
+    from axiscal.io._files import write_files_atomic
 
-    names: list[str] = []
+    texts: dict = {}
     for f in files:
-        write_text_atomic(Path(out) / f.filename, f.text)
-        names.append(f.filename)
+        texts[f.filename] = f.text
         for name, text in f.extra_files.items():
-            extra = name if name not in names else f"{Path(f.filename).stem}_{name}"
-            write_text_atomic(Path(out) / extra, text)
-            names.append(extra)
-    return names
+            extra = name if name not in texts else f"{Path(f.filename).stem}_{name}"
+            texts[extra] = text
+    return write_files_atomic(Path(out), texts, inputs)
 
 
 def _truth_map(cfg: Any, grid: int) -> Any:

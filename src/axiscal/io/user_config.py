@@ -97,7 +97,33 @@ def load_user_config(path: Path | None = None) -> dict[str, Any]:
     p = Path(path) if path is not None else config_path()
     if path is None and not p.exists():
         return {}
-    return load_toml(p)
+    return check_instruments(load_toml(p), str(p))
+
+
+#: The keys of an ``[[instrument]]`` entry (``name`` required).
+INSTRUMENT_KEYS = ("name", "serial", "certificate", "due")
+
+
+def check_instruments(cfg: dict[str, Any], source: str) -> dict[str, Any]:
+    """Refuse ``[[instrument]]`` entries that are not tables with a ``name`` and known keys (an
+    entry without ``name`` passed ``axiscal config`` and ended a certificate in a traceback:
+    issue 39)."""
+    from axiscal.errors import ConfigError
+
+    inst = cfg.get("instrument", [])
+    for n, t in enumerate(inst if isinstance(inst, list) else [inst], 1):
+        if not isinstance(t, dict):
+            raise ConfigError(f"{source}: [[instrument]] {n} is not a table; write [[instrument]] "
+                              'then name = "...", serial = "..."')
+        unknown = sorted(set(t) - set(INSTRUMENT_KEYS))
+        if unknown:
+            raise ConfigError(f"{source}: [[instrument]] {n}: unknown key(s) "
+                              f"{', '.join(map(str, unknown))[:80]}; known: "
+                              f"{', '.join(INSTRUMENT_KEYS)}")
+        if not str(t.get("name", "")).strip():
+            raise ConfigError(f"{source}: [[instrument]] {n} has no name; every instrument "
+                              "needs name = \"...\"")
+    return cfg
 
 
 def config_problem(config: dict[str, Any] | None = None) -> str:
@@ -123,7 +149,7 @@ def load_job(path) -> dict[str, Any]:
     """A job file (same tables as the user configuration, for one test)."""
     from axiscal.io._files import load_toml
 
-    return load_toml(path)
+    return check_instruments(load_toml(path), str(path))
 
 
 def merge(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:

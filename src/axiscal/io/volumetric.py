@@ -69,6 +69,9 @@ class VolumetricConfig:
                  simulation: dict, path: Path):
         self.errors, self.tool_offset, self.name = errors, np.asarray(tool_offset, float), name
         self.compensation, self.simulation, self.path = compensation, simulation, path
+        #: Every file the configuration was read from: itself and the measured files it names
+        #: (an output written into their folder must not replace one).
+        self.inputs: tuple = (path,)
 
 
 def read_volumetric_config(path) -> VolumetricConfig:
@@ -122,7 +125,9 @@ def parse_volumetric_config(text: str, source: str = "<text>", base=".") -> Volu
         errors = GeometricErrors(chain, functions, squareness, ref, tm, travel)
     except AxiscalError as exc:
         raise ConfigError(f"{p}: {exc}") from None
-    return VolumetricConfig(errors, tool, str(m.get("name", p.stem)), comp, sim, p)
+    out = VolumetricConfig(errors, tool, str(m.get("name", p.stem)), comp, sim, p)
+    out.inputs = (p, *(Path(base) / spec for spec in errs.values() if isinstance(spec, str)))
+    return out
 
 
 def parse_angular(text: str, source: str = "<text>") -> tuple[np.ndarray, np.ndarray, str]:
@@ -164,12 +169,16 @@ def write_simulation(out_dir, machine, errors: GeometricErrors, datasets: dict, 
     ``datasets`` holds the positioning tests (axis -> PositioningDataset); the other error
     motions are written from ``errors`` as straightness and angular files.
     """
-    from axiscal.io._files import write_text_atomic
+    from axiscal.io._files import write_files_atomic
     from axiscal.io.csv import format_positioning_csv
     from axiscal.io.straightness import StraightnessData, format_straightness
 
     out = Path(out_dir)
     names = {}
+    texts = {}
+
+    def write_text_atomic(path, text):   # gathered, then written all or nothing
+        texts[Path(path).name] = text
     for a in AXES:
         f = f"{a}_E{a}{a}.csv"
         write_text_atomic(out / f, format_positioning_csv(datasets[a]))
@@ -203,7 +212,8 @@ def write_simulation(out_dir, machine, errors: GeometricErrors, datasets: dict, 
               f"seed = {int(seed)}", f"points = {int(points)}",
               f"squareness_um_per_m = [{', '.join(f'{v:g}' for v in squareness_um_per_m)}]"]
     cfg = out / "volumetric.toml"
-    write_text_atomic(cfg, "\n".join(lines) + "\n")
+    texts[cfg.name] = "\n".join(lines) + "\n"
+    write_files_atomic(out, texts)
     return cfg
 
 

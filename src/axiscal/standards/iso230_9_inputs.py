@@ -123,6 +123,12 @@ class BudgetInput:
         return f"{self.label} {self.value_text} ({how}: {self.rule}; set with {self.set_with})"
 
 
+#: Largest magnitude of any uncertainty input, in its own unit (the bound of every measured value,
+#: :data:`axiscal._parse.MAX_MAGNITUDE`): the budget squares and sums them (GUM eq. 10), and an
+#: input of 1e150 or more overflowed there with a traceback (issue 39).
+MAX_INPUT = 1e100
+
+
 def _check_inputs(inputs, signed: tuple, k: str) -> None:
     """Every number finite and >= 0 (``signed`` ones may be negative), text keys from their
     lists, and the coverage factor ``k`` positive."""
@@ -138,6 +144,9 @@ def _check_inputs(inputs, signed: tuple, k: str) -> None:
         elif v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))
                                 or not math.isfinite(v) or (v < 0 and f.name not in signed)):
             raise InputError(f"uncertainty {f.name} = {v!r} must be a finite number >= 0")
+        elif v is not None and abs(v) > MAX_INPUT:   # squared in the budget: 1e200² overflows
+            raise InputError(f"uncertainty {f.name} = {v:g} is out of range (at most "
+                             f"{MAX_INPUT:g} in magnitude; no calibration input is so large)")
     if getattr(inputs, k) <= 0:
         raise InputError(f"uncertainty {k} must be > 0")
 

@@ -196,7 +196,8 @@ def _kept_records(z: zipfile.ZipFile, p: Path, head: dict, tests: set) -> tuple[
         lines = [(n, _json_object(line, n, p, "an entry", name)) for n, line in
                  enumerate(_jsonl_text(z, p, name).splitlines(), start=1) if line.strip()]
         if head.get(key) != len(lines):
-            raise DataFormatError(f"history.jsonl announces {head.get(key)!r} {key} entries and "
+            raise DataFormatError(f"history.jsonl announces {repr(head.get(key))[:40]} {key} "
+                                  "entries and "
                                   f"{name} holds {len(lines)}: the archive is truncated or "
                                   "altered", str(p))
         parts.append(lines)
@@ -282,7 +283,11 @@ def _records(text: str, p: Path) -> tuple[dict, list[tuple[int, dict]]]:
                               f"{' or '.join(FORMATS)}", str(p))
     out = [(n, _record(_json_object(line, n, p, "a test record"), n, p)) for n, line in lines[1:]]
     count = head.get("tests")
-    if isinstance(count, int) and not isinstance(count, bool) and count != len(out):
+    if "tests" in head and (isinstance(count, bool) or not isinstance(count, int)):
+        raise DataFormatError(f"history.jsonl line {lines[0][0]}: 'tests' is a JSON "
+                              f"{type(count).__name__}, not a whole number; the count of "
+                              "tests checks that the archive is whole", str(p))
+    if isinstance(count, int) and count != len(out):
         raise DataFormatError(f"history.jsonl announces {count} tests and holds {len(out)}: "
                               "the archive is truncated or altered", str(p))
     return head, out

@@ -44,10 +44,10 @@ import hashlib
 import json
 import re
 
-from axiscal.errors import DataFormatError
+from axiscal.errors import AxiscalError, DataFormatError
 
 __all__ = ["AUDIT", "CERTIFICATES", "export_records", "check_audit", "check_certificates",
-           "restore"]
+           "validate_certificates", "restore", "MAX_COUNTER", "STATUSES"]
 
 AUDIT, CERTIFICATES = "audit.jsonl", "certificates.jsonl"
 _SHA256 = re.compile(r"[0-9a-f]{64}")
@@ -154,6 +154,7 @@ def check_audit(entries: list[tuple[int, dict]], tests: set[str], p) -> list[dic
 def check_certificates(entries: list[tuple[int, dict]], tests: set[str], read, p
                        ) -> list[tuple[dict, bytes]]:
     """Every certificate checked, its document read (``read(name)``) and matching its SHA-256."""
+    validate_certificates(entries, p)
     out, seen = [], set()
     for n, e in entries:
         _fields(e, _CERT_FIELDS, CERTIFICATES, n, p)
@@ -178,6 +179,79 @@ def check_certificates(entries: list[tuple[int, dict]], tests: set[str], read, p
                                   "was imported", str(p))
         out.append((e, doc))
     return out
+
+
+#: Largest certificate counter the register takes: a laboratory issuing a certificate a second
+#: for thirty years stays below it, and the next counter (+1) fits a 64-bit integer column on
+#: SQLite and PostgreSQL with room to spare (an imported 2^63 - 1 made every later issue fail,
+#: 2^70 ended in a traceback: issue 39).
+MAX_COUNTER = 10**9
+#: The statuses a certificate of the register has (:mod:`axiscal.store.register`).
+STATUSES = ("issued", "superseded")
+
+
+def validate_certificates(entries: list[tuple[int, dict]], p, register=()) -> None:
+    """The register's invariants over an archive's certificates, before anything is stored.
+
+    Each entry's fields of their types (:data:`_CERT_FIELDS`) and within the register's
+    columns, and:
+
+    * its ``counter`` a whole number 1 … :data:`MAX_COUNTER`;
+    * its ``number`` holding its counter as a run of digits (the laboratory's pattern makes the
+      number from the counter, ``{lab}-{year}-{counter:05d}``: a number that does not hold its
+      counter would make the register refuse every later number of its series), unique within
+      its laboratory, and text of one line;
+    * its ``status`` one of :data:`STATUSES`; ``superseded`` only for a certificate another one
+      of the archive (or ``register``) replaces;
+    * its ``replaces`` "" or the number of a certificate of the same laboratory in the archive
+      or in ``register`` ((laboratory, number) pairs), with a ``reason``.
+
+    Raises
+    ------
+    DataFormatError
+        Naming the line, the certificate and the field; nothing is imported.
+    """
+    from axiscal.store.limits import checked_text
+    from axiscal.store.models import Certificate
+
+    known = {(lab, num) for lab, num in register}
+    replaced = set()
+    for n, e in entries:
+        _fields(e, _CERT_FIELDS, CERTIFICATES, n, p)
+        known.add((e["laboratory"], e["number"]))
+        if e["replaces"]:
+            replaced.add((e["laboratory"], e["replaces"]))
+    for n, e in entries:
+        where = f"{CERTIFICATES} line {n} (certificate {str(e['number'])[:80]!r})"
+        try:
+            for key in ("laboratory", "series", "number", "customer", "issued", "status",
+                        "media_type"):
+                checked_text(e[key], key, Certificate, key)
+            checked_text(e["reason"], "reason", single_line=False)
+        except AxiscalError as exc:
+            raise DataFormatError(f"{where}: {exc}", str(p)) from None
+        counter = e["counter"]
+        if not 1 <= counter <= MAX_COUNTER:
+            raise DataFormatError(f"{where}: counter {counter} is outside 1 … {MAX_COUNTER:,}; "
+                                  "nothing was imported", str(p))
+        if counter not in {int(d) for d in re.findall(r"[0-9]+", e["number"])}:
+            raise DataFormatError(f"{where}: the number does not hold its counter {counter}; "
+                                  "the register makes every number from its counter; nothing "
+                                  "was imported", str(p))
+        if e["status"] not in STATUSES:
+            raise DataFormatError(f"{where}: status {e['status'][:40]!r} is not one of "
+                                  f"{', '.join(STATUSES)}; nothing was imported", str(p))
+        if e["status"] == "superseded" and (e["laboratory"], e["number"]) not in replaced:
+            raise DataFormatError(f"{where}: superseded, but no certificate of the archive "
+                                  "replaces it; nothing was imported", str(p))
+        if e["replaces"]:
+            if (e["laboratory"], e["replaces"]) not in known or e["replaces"] == e["number"]:
+                raise DataFormatError(f"{where}: it replaces {e['replaces'][:80]!r}, which is "
+                                      "no other certificate of its laboratory in the archive; "
+                                      "nothing was imported", str(p))
+            if not e["reason"].strip():
+                raise DataFormatError(f"{where}: it replaces {e['replaces'][:80]!r} without a "
+                                      "reason (ISO/IEC 17025:2017 §7.8.8.2)", str(p))
 
 
 def _fields(e: dict, fields: dict, name: str, n: int, p) -> None:

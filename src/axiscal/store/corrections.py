@@ -64,6 +64,8 @@ def rename_machine(store, machine, new_name: str, *, by: str, reason: str) -> Au
     new_name = _name(new_name, "machine", "new name")
     with _change(store) as s:
         m = _machine(s, machine)
+        if m.name == new_name:   # an audit entry for no change would be a false record
+            raise InputError(f"machine {new_name!r} already has that name; nothing to change")
         _free_machine_name(s, new_name, m.id)
         old = m.name
         m.name = new_name
@@ -84,6 +86,9 @@ def rename_axis(store, machine, axis: str, new_name: str, *, by: str,
             raise InputError(f"{m.name} already has an axis {new_name}: merge the two axes "
                              "instead")
         old = a.name
+        if old == new_name:
+            raise InputError(f"axis {new_name} of {m.name!r} already has that name; nothing "
+                             "to change")
         a.name = new_name
         return _log(s, by, reason, "rename-axis", f"axis {old} of {m.name!r} renamed {new_name}",
                     {"axis": old}, {"axis": new_name}, machine_id=m.id, axis_id=a.id)

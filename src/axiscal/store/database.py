@@ -67,7 +67,8 @@ class Guard:
         from sqlalchemy.exc import DBAPIError, SQLAlchemyError
 
         if isinstance(exc, (SQLAlchemyError, DBAPIError)) or _is_driver_error(exc):
-            raise StoreError(f"history database {shown(self.url)}: {_reason(exc)}") from None
+            raise StoreError(f"history database {shown(self.url)}: "
+                             f"{_reason(exc, self.url)}") from None
         return False
 
 
@@ -291,7 +292,7 @@ def _sqlite_begin(conn) -> None:
     conn.exec_driver_sql("BEGIN IMMEDIATE" if write else "BEGIN")
 
 
-def _reason(exc) -> str:
+def _reason(exc, url: str | None = None) -> str:
     orig = getattr(exc, "orig", None) or exc
     text = str(orig).strip().splitlines()[0] if str(orig).strip() else type(orig).__name__
     low = text.lower()
@@ -303,7 +304,41 @@ def _reason(exc) -> str:
         return "cannot open the database file (does its folder exist and is it writable?)"
     if "readonly database" in low or "read-only" in low:
         return "the database is read-only; it can be listed and shown, not written"
+    if "disk i/o error" in low:   # SQLite's word for a full disk or a file-size limit too
+        cause = _io_cause(url)
+        if cause:
+            return f"{cause}; nothing of this write was kept (SQLite says: {text})"
     return text
+
+
+def _io_cause(url: str | None) -> str:
+    """Why a SQLite write failed with "disk I/O error" when the cause can be told: the process's
+    file-size limit (``ulimit -f``) reached by the database or its log, or a full disk."""
+    try:
+        path = sqlite_path(url) if url and url.startswith("sqlite") else None
+    except Exception:   # noqa: BLE001 - no path, no diagnosis
+        path = None
+    if path is None:
+        return ""
+    try:
+        import resource
+
+        limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
+        if limit != resource.RLIM_INFINITY:
+            biggest = max((Path(f"{path}{s}").stat().st_size for s in ("", "-wal", "-journal")
+                           if Path(f"{path}{s}").exists()), default=0)
+            if biggest + 65536 >= limit:
+                return (f"the file-size limit of this process is reached (ulimit -f: "
+                        f"{limit} bytes)")
+    except (ImportError, OSError, ValueError):
+        pass
+    try:
+        st = os.statvfs(path.parent)
+        if st.f_bavail * st.f_frsize < 1 << 20:
+            return "the disk is full"
+    except OSError:
+        pass
+    return ""
 
 
 def _is_driver_error(exc) -> bool:

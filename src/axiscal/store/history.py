@@ -450,11 +450,19 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
         inputs = inputs_from_config(ev.kind, load_user_config(), ev.dataset)
     else:
         inputs = dict(uncertainty)
+    from axiscal.store.limits import checked_text
+    from axiscal.store.models import Axis, Machine, Test
+
     return Prepared(
-        hashlib.sha256(raw).hexdigest(), raw, Path(filename).name[:300],
-        _name(machine or ev.machine, "machine", filename),
-        _name(axis or ev.axis, "axis", filename).upper(), ev.axis_kind, ev.kind, when, known,
-        instrument or ev.instrument, operator or ev.operator, note, ev.dataset_json,
+        hashlib.sha256(raw).hexdigest(), raw,
+        checked_text(Path(filename).name[:300], "file name", Test, "filename"),
+        checked_text(_name(machine or ev.machine, "machine", filename), "machine name",
+                     Machine, "name"),
+        checked_text(_name(axis or ev.axis, "axis", filename).upper(), "axis name", Axis,
+                     "name"), ev.axis_kind, ev.kind, when, known,
+        checked_text(instrument or ev.instrument, "instrument", Test),
+        checked_text(operator or ev.operator, "operator", Test),
+        checked_text(note, "note", limit=10_000, single_line=False), ev.dataset_json,
         json.dumps(jsonable(with_uncertainty(ev, inputs).stored_result())),
         json.dumps(jsonable(ev.environment)),
         tuple((n, float(v), u) for n, (v, u) in ev.parameters.items()),
@@ -563,7 +571,9 @@ def _name(value: str, what: str, filename: str) -> str:
         raise InputError(f"{filename}: the file does not name the {what}; give --{what}")
     if len(v) > 200:
         raise InputError(f"{what} name of {len(v)} characters; at most 200")
-    return v
+    from axiscal.store.limits import checked_text
+
+    return checked_text(v, f"{what} name")
 
 
 def _date(text: str) -> tuple[dt.datetime, bool]:

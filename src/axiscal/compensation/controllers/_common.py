@@ -14,7 +14,8 @@ from axiscal.errors import ControllerLimitError, DataFormatError, InputError
 
 __all__ = ["ControllerFile", "FileInput", "resolve_input", "check_points", "check_spacing",
            "check_travel", "check_modulo", "correction_factor", "parse_number", "decimals",
-           "SafeName", "safe_axis_name", "is_axis_letter", "SOURCE_COMMENT"]
+           "SafeName", "safe_axis_name", "is_axis_letter", "SOURCE_COMMENT", "Field",
+           "check_fields", "WORD", "LETTER_FIELD", "whole", "COUNT"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -332,3 +333,88 @@ def safe_axis_name(axis: str, fmt: str, *, letter: bool = False,
     if name.upper() in _RESERVED:
         name += "_"
     return SafeName(name, source)
+
+
+# -- the grammar of every field a writer puts into its file ----------------------------------
+@dataclass(frozen=True)
+class Field:
+    """The grammar of one value a writer writes into a controller file.
+
+    A writer declares its fields in a module-level ``FIELDS`` dict (option name -> Field) and
+    calls :func:`check_fields` first: every value is checked against its format's grammar and
+    refused naming the option, the value and the rule, before a line is written. So a name with
+    a line break cannot add a line to the file (``machine_axis=X1]=0\\nM30``), and a number too
+    large for the word it goes into cannot be written (``N3620A99999999999999999999``).
+
+    Attributes
+    ----------
+    pattern : str
+        For a name: the regular expression the whole value must match ("" for a number).
+    lo, hi : int
+        For a whole number: the inclusive range.
+    rule : str
+        The rule in words, for the message.
+    """
+
+    pattern: str = ""
+    lo: int = 0
+    hi: int = 0
+    rule: str = ""
+
+    def check(self, fmt: str, name: str, value) -> None:
+        """Refuse ``value`` unless it keeps to this field's grammar (ControllerLimitError)."""
+        if value is None:
+            return
+        if self.pattern:
+            text = value if isinstance(value, str) else None
+            if text is None or len(text) > 64 or not re.fullmatch(self.pattern, text):
+                raise ControllerLimitError(f"{fmt}: {name} = {_quoted(value)} is not {self.rule}")
+            return
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or \
+                not self.lo <= int(value) <= self.hi:
+            raise ControllerLimitError(f"{fmt}: {name} = {_quoted(value)} is not {self.rule} "
+                                       f"({self.lo} … {self.hi})")
+
+
+def whole(lo: int, hi: int, what: str) -> Field:
+    """A whole-number field from ``lo`` to ``hi`` (``what`` names it in the message)."""
+    return Field(lo=lo, hi=hi, rule=f"a whole number of {what}")
+
+
+#: A machine-data name (SINUMERIK machine axis names ``AX1``, ``X1``, ``SP1``, or a number):
+#: letters, digits or ``_``, at most 32 characters. No space, bracket, ``=``, ``;`` or line
+#: break, any of which would end the ``$AA_ENC_COMP[0,i,AX1]`` word it is written into.
+WORD = Field(pattern=r"[A-Za-z0-9_]{1,32}",
+             rule="a machine axis name (letters, digits or _, at most 32)")
+#: An axis letter of DIN 66025 / ISO 6983-1, optionally followed by one digit.
+LETTER_FIELD = Field(pattern=f"[{AXIS_LETTERS}{AXIS_LETTERS.lower()}][0-9]?",
+                    rule=f"an axis letter ({', '.join(AXIS_LETTERS)}, optionally one digit)")
+#: A count of table points a control may hold: far beyond any controller's table (a Siemens
+#: MD38000 of 840D sl allows 125 000 points), small enough that no loop runs away.
+COUNT = whole(1, 10**6, "points")
+
+
+def check_fields(fmt: str, fields: dict, **values) -> None:
+    """Check every value against its :class:`Field` in ``fields`` (names not there are left).
+
+    Examples
+    --------
+    >>> check_fields("siemens-840d", {"machine_axis": WORD}, machine_axis="X1")
+    >>> check_fields("siemens-840d", {"machine_axis": WORD}, machine_axis="X1]=0\\nM30")
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.ControllerLimitError: siemens-840d: machine_axis = 'X1]=0\\nM30' is not a machine axis name (letters, digits or _, at most 32)
+    >>> check_fields("fanuc", {"axis_number": whole(1, 32, "axes")}, axis_number=10**20)
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.ControllerLimitError: fanuc: axis_number = 100000000000000000000 is not a whole number of axes (1 … 32)
+    """
+    for name, value in values.items():
+        if name in fields:
+            fields[name].check(fmt, name, value)
+
+
+def _quoted(value) -> str:
+    """A value for a message: its repr, at most about 60 characters."""
+    text = repr(value) if isinstance(value, str) else str(value)
+    return text if len(text) <= 60 else f"{text[:40]}…{text[-12:]}"

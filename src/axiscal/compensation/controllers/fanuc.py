@@ -80,7 +80,8 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, FileInput, check_points, check_spacing, check_travel, correction_factor,
-    file_unit, parse_number, require_equidistant, resolve_input, safe_axis_name)
+    file_unit, parse_number, require_equidistant, resolve_input, safe_axis_name, whole,
+    check_fields)
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -100,6 +101,13 @@ _HEAD = re.compile(r"\(AXISCAL PITCH ERROR COMPENSATION AXIS (\S+?),.*?1 COUNT =
                    r"([0-9.eE+\-]{1,30}) (MM|DEG|INCH)\)")
 _REF = re.compile(r"\(REFERENCE POSITION ([0-9.eE+\-]{1,30}) (MM|DEG|INCH) AT POINT \d+\)")
 _WORD = {"mm": "MM", "deg": "DEG", "inch": "INCH"}
+
+
+#: The grammar of every number :func:`write` puts into a tape word: ``A`` (axis) numbers a
+#: FANUC control's axes from 1 (a Series 30i path has at most 32); a data line is
+#: ``N(10000 + point)`` and a tape's N word holds 5 digits, so no point number passes 89999.
+FIELDS = {"axis_number": whole(1, 32, "axes"), "reference_number": whole(0, 89999, "points"),
+          "max_number": whole(1, 89999, "points"), "magnification": whole(1, 100, "steps")}
 
 
 def write(table: CompensationTable, travel=None, *, axis_number: int = 1,
@@ -128,6 +136,8 @@ def write(table: CompensationTable, travel=None, *, axis_number: int = 1,
         ``mm`` or ``inch`` (an inch machine, parameter 1001#0 INM = 1): the unit of
         ``detection_unit`` on a linear axis.
     """
+    check_fields(NAME, FIELDS, axis_number=axis_number, reference_number=reference_number,
+                 max_number=max_number, magnification=magnification)
     require_equidistant(table, NAME)
     names = safe_axis_name(table.axis, NAME)             # portable: the comment and file name
     table = replace(table, axis=names.name)

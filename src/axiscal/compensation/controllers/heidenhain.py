@@ -39,7 +39,8 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     SOURCE_COMMENT, ControllerFile, check_modulo, check_points, check_spacing, check_travel, correction_factor,
-    decimals, file_unit, parse_number, require_equidistant, safe_axis_name)
+    decimals, file_unit, parse_number, require_equidistant, safe_axis_name, LETTER_FIELD, COUNT,
+    check_fields)
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError
@@ -53,6 +54,10 @@ MAX_POINTS = 256
 AXIS_LETTER = True
 
 _BEGIN = re.compile(r"^BEGIN\s+(\S+?)(?:\.COM)?\s+(MM|INCH)?\s*$", re.IGNORECASE)
+
+
+#: The grammar of the options :func:`write` writes into the table and file names.
+FIELDS = {"driving_axis": LETTER_FIELD, "max_points": COUNT}
 
 
 def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS,
@@ -83,6 +88,7 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
         keeps to the POSIX portable characters (TNC 640 User's Manual, File names). A .COM
         table has no documented comment line, so the source name goes into the notes.
     """
+    check_fields(NAME, FIELDS, driving_axis=driving_axis, max_points=max_points)
     require_equidistant(table, NAME)
     mm = file_unit(unit, table, NAME)
     check_points(table.n_points, max_points, NAME)

@@ -56,7 +56,7 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_points, check_travel, correction_factor, decimals, file_unit,
-    parse_number, safe_axis_name)
+    parse_number, safe_axis_name, COUNT, whole, check_fields)
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -79,6 +79,11 @@ _STOPS = ("not three numbers (nominal and two values): LinuxCNC stops reading at
 _AXIS_COMMENT = re.compile(r"^#\s*axiscal: axis (\S+)\s*$")
 
 
+#: The grammar of the options :func:`write` writes into the INI lines: LinuxCNC has at most 16
+#: joints (``[JOINT_0]`` … ``[JOINT_15]``, EMCMOT_MAX_JOINTS).
+FIELDS = {"joint": whole(0, 15, "joints"), "max_points": COUNT}
+
+
 def write(table: CompensationTable, travel=None, *, file_type: int = 1, joint: int = 0,
           max_points: int = MAX_POINTS, unit: str = "mm") -> ControllerFile:
     """Write ``table`` as a LinuxCNC compensation file of ``file_type`` 0 or 1.
@@ -87,6 +92,7 @@ def write(table: CompensationTable, travel=None, *, file_type: int = 1, joint: i
     positions (a table built at the measured targets) are written as they are. The axis name
     follows the data as a comment LinuxCNC never reads (see the module's notes).
     """
+    check_fields(NAME, FIELDS, joint=joint, max_points=max_points)
     if file_type not in (0, 1):
         raise ControllerLimitError(f"{NAME}: COMP_FILE_TYPE = {file_type!r}; LinuxCNC knows 0 and 1")
     check_points(table.n_points, max_points, NAME, "lines (EMCMOT_COMP_SIZE)")

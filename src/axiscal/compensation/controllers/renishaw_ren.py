@@ -43,7 +43,7 @@ import numpy as np
 
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_points, check_travel, correction_factor, decimals, parse_number,
-    require_equidistant)
+    require_equidistant, safe_axis_name, COUNT, SOURCE_COMMENT, check_fields)
 from axiscal.compensation.tables import CompensationTable
 from axiscal.datasets import AxisKind
 from axiscal.errors import DataFormatError
@@ -67,6 +67,11 @@ def looks_like_ren(text: str) -> bool:
         any(_HEADER.match(line.strip()) for line in text.splitlines())
 
 
+#: The grammar of the options :func:`write` writes (:func:`~axiscal.compensation.controllers.
+#: _common.check_fields`).
+FIELDS = {"max_points": COUNT}
+
+
 def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS) -> ControllerFile:
     """Write ``table`` as a ``.ren`` export: value = deviation (−correction) in mm (deg).
 
@@ -79,6 +84,9 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
     max_points : int
         Largest number of points written.
     """
+    check_fields(NAME, FIELDS, max_points=max_points)
+    names = safe_axis_name(table.axis, NAME)    # the Axis line ends at a space or line break
+    table = replace(table, axis=names.name)
     require_equidistant(table, NAME)
     check_points(table.n_points, max_points, NAME)
     check_travel(table, travel, NAME)
@@ -106,6 +114,8 @@ def write(table: CompensationTable, travel=None, *, max_points: int = MAX_POINTS
         notes.append(f"the table holds the mean of both directions; the mean reversal "
                      f"{table.backlash:+.4g} {table.correction_unit} is on a 'Mean reversal' line "
                      "that Renishaw's software and the converter do not read")
+    if names.changed:   # a .ren has no comment line: the source name goes into the notes
+        notes.append(f"axis {names.name or '-'}; {SOURCE_COMMENT} {names.source!r}")
     name = f"{(table.axis or 'axis').upper()}.REN"
     enable = ["load it in Renishaw's software, or convert it to a controller's table: axiscal "
               "compensate --read FILE.REN --to NAME --out FILE"]

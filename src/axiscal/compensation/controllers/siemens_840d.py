@@ -74,10 +74,11 @@ import numpy as np
 from axiscal.compensation.controllers._common import (
     ControllerFile, check_modulo, check_points, check_spacing, check_travel,
     correction_factor, decimals, file_unit, parse_number, require_equidistant, resolve_input,
-    safe_axis_name)
+    safe_axis_name, WORD, COUNT, check_fields)
 from axiscal.compensation.controllers.siemens_text import fmt as _fmt
 from axiscal.compensation.controllers.siemens_cec import (  # noqa: F401 - the CEC tables
     CECTable, parse_cross_axis, read_cross_axis, write_cross_axis)
+from axiscal.compensation.controllers.siemens_cec import FIELDS as _cec_fields
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
 from axiscal.errors import ControllerLimitError, DataFormatError, InputError
@@ -94,6 +95,12 @@ _VALUE = re.compile(r"^\$AA_ENC_COMP\[\s*(\d{1,9})\s*,\s*(\d{1,9})\s*,\s*([A-Za-
 _BACKLASH = re.compile(r"MD32450\s+\$MA_BACKLASH\[[^\]]*\]\s*=\s*(\S+)")
 _NAME = re.compile(r"^;\s*axiscal: axis (\S+),")
 _MD10240 = re.compile(r"^(?:;\s*MD10240\s+)?\$MN_SCALING_SYSTEM_IS_METRIC\s*=\s*(\S+?)(?::|\s|$)")
+
+
+#: The grammar of every option :func:`write`, :func:`write_axes` and the cross-axis writer
+#: (:data:`axiscal.compensation.controllers.siemens_cec.FIELDS`) write into the file
+#: (:func:`~axiscal.compensation.controllers._common.check_fields`).
+FIELDS = {"machine_axis": WORD, "max_points": COUNT, **_cec_fields}
 
 
 def write(table: CompensationTable, travel=None, *, machine_axis: str | None = None,
@@ -131,6 +138,7 @@ def write(table: CompensationTable, travel=None, *, machine_axis: str | None = N
     ControllerFile
     """
     machine_axis, measuring_system, unit = _own(table, machine_axis, measuring_system, unit)
+    check_fields(NAME, FIELDS, machine_axis=machine_axis, max_points=max_points)
     per = file_unit(unit, table, NAME)
     _check(table, travel, max_points, position_resolution, per)
     body, enable, written, notes = _axis_block(table, machine_axis, zero_at_reference, zero_ends,
@@ -150,6 +158,7 @@ def write_axes(tables: dict, travel=None, **options) -> ControllerFile:
     mp = options.pop("max_points", MAX_POINTS)
     res = options.pop("position_resolution", 0.001)
     for ax, table in tables.items():
+        check_fields(NAME, FIELDS, machine_axis=ax, max_points=mp)
         tr = travel.get(ax) if isinstance(travel, dict) else travel
         _, ms, unit = _own(table, ax, options.get("measuring_system"), options.get("unit"))
         _check(table, tr, mp, res, file_unit(unit, table, NAME))

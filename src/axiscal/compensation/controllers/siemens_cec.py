@@ -41,8 +41,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from axiscal.compensation.controllers._common import (
-    ControllerFile, check_points, check_spacing, check_travel, correction_factor, decimals,
-    parse_number)
+    COUNT, WORD, ControllerFile, check_fields, check_points, check_spacing, check_travel,
+    correction_factor, decimals, parse_number, whole)
 from axiscal.compensation.controllers.siemens_text import fmt as _fmt
 from axiscal.compensation.tables import CompensationTable, TableOrigin
 from axiscal.datasets import AxisKind
@@ -203,6 +203,12 @@ def _whole(token: str, source: str, line: int) -> int:
     if not re.fullmatch(r"[0-9]{1,9}", token):
         raise DataFormatError(f"table index {token[:12]!r} is not a whole number", source, line)
     return int(token)
+
+
+#: The grammar of every option :func:`write_cross_axis` writes into the file
+#: (:func:`~axiscal.compensation.controllers._common.check_fields`).
+FIELDS = {"input_axis": WORD, "output_axis": WORD, "max_points": COUNT,
+          "table_index": whole(0, 999, "CEC tables")}
 
 
 def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str = "AX1",
