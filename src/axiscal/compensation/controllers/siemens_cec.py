@@ -221,6 +221,8 @@ def write_cross_axis(table: CompensationTable, travel=None, *, input_axis: str =
     Enabling: MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` ≥ points, MD32710 ``$MA_CEC_ENABLE[AXi]`` = 1
     for the compensation axis, SD41300 ``$SN_CEC_TABLE_ENABLE[t]`` = 1.
     """
+    check_fields(NAME, FIELDS, input_axis=input_axis, output_axis=output_axis,
+                 table_index=table_index, max_points=max_points)
     check_points(table.n_points, max_points, NAME, "points (MD18342)")
     check_spacing(table.spacing, position_resolution, table.position_unit, NAME)
     check_travel(table, travel, NAME)
