@@ -103,7 +103,7 @@ def test_a_new_tests_page_is_made_with_the_upload(tmp_path, monkeypatch):
     c, app, _ = _client(tmp_path, monkeypatch)
     made = []
     real = pages._test_parts
-    monkeypatch.setattr(pages, "_test_parts", lambda ev: made.append(ev.kind) or real(ev))
+    monkeypatch.setattr(pages, "_test_parts", lambda t, ev: made.append(ev.kind) or real(t, ev))
     tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     r = c.post("/upload", data={"csrf": tok}, follow_redirects=False,
                files={"file": ("n.csv", _file(30, day=28), "text/csv")})
