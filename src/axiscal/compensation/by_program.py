@@ -30,30 +30,17 @@ from axiscal.errors import ConfigError
 __all__ = ["ByProgram", "calibrate", "plan_rows"]
 
 
-@dataclass(frozen=True, eq=False)
-class _Rows:
-    """A plan's steps as the rows :func:`capture_test` matches (the columns of the plan CSV)."""
+def plan_rows(plan):
+    """The rows of ``plan.steps()`` (what :meth:`TestPlan.to_csv` writes, not via text), as
+    the plan CSV's reader gives them (:class:`axiscal.procedures.capture.PlanRows`)."""
+    from axiscal.procedures.capture import PlanRows
 
-    kind: np.ndarray
-    position: np.ndarray
-    direction: np.ndarray
-    run: np.ndarray
-    target_index: np.ndarray
-    dwell: np.ndarray
-    target_unit: str
-    axis: str
-    axis_kind: str
-    targets: np.ndarray
-
-
-def plan_rows(plan) -> _Rows:
-    """The rows of ``plan.steps()`` (what :meth:`TestPlan.to_csv` writes, not via text)."""
     s = plan.steps()
     kind = np.array([x.kind for x in s])
-    return _Rows(kind, np.array([x.position for x in s]), np.array([x.direction for x in s]),
-                 np.array([x.run for x in s]), np.array([x.target_index for x in s]),
-                 np.where(kind == "measure", plan.dwell, 0.0), plan.target_unit, plan.axis,
-                 plan.axis_kind.value, np.asarray(plan.targets))
+    return PlanRows(kind, np.array([x.position for x in s]), np.array([x.direction for x in s]),
+                    np.array([x.run for x in s]), np.array([x.target_index for x in s]),
+                    np.where(kind == "measure", plan.dwell, 0.0), plan.target_unit, plan.axis,
+                    plan.axis_kind.value, "<plan>")
 
 
 @dataclass

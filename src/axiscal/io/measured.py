@@ -39,44 +39,17 @@ dynamic capture is read by :mod:`axiscal.io.rtx`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from axiscal import units
 from axiscal._parse import csv_cells, finite_number
 from axiscal.errors import AxiscalError, DataFormatError
-from axiscal.procedures.capture import Record
+from axiscal.procedures.capture import PlanRows, Record
 from axiscal.procedures.environment import EnvironmentLog, RawReadings
 
 __all__ = ["RawReadings", "EnvironmentLog", "PlanRows", "Record", "parse_raw_readings",
            "read_raw_readings", "parse_environment_log", "read_environment_log",
            "parse_plan_csv", "read_plan_csv", "parse_record_csv", "read_record"]
-
-
-@dataclass(frozen=True, eq=False)
-class PlanRows:
-    """A test plan as exported (measure and overrun moves, in order)."""
-
-    kind: np.ndarray
-    position: np.ndarray
-    direction: np.ndarray
-    run: np.ndarray
-    target_index: np.ndarray
-    dwell: np.ndarray
-    target_unit: str
-    axis: str
-    axis_kind: str
-    source: str = "<text>"
-
-    @property
-    def targets(self) -> np.ndarray:
-        """The distinct targets, ordered by index."""
-        m = self.kind == "measure"
-        idx = self.target_index[m]
-        out = np.empty(int(idx.max()) + 1)
-        out[idx] = self.position[m]
-        return out
 
 
 def read_raw_readings(path) -> RawReadings:

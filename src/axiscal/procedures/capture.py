@@ -30,7 +30,7 @@ from axiscal import units
 from axiscal.datasets import Metadata, PositioningDataset
 from axiscal.errors import InputError, MeasurementError
 
-__all__ = ["Record", "Stop", "CaptureResult", "find_stops", "capture_test", "match_stops", "plan_dataset",
+__all__ = ["Record", "PlanRows", "Stop", "CaptureResult", "find_stops", "capture_test", "match_stops", "plan_dataset",
            "SMOOTHING_S"]
 
 #: Moving-average length applied before looking for stops, seconds.
@@ -51,6 +51,31 @@ class Record:
     unit: str = "mm"
     source: str = "<text>"
     notes: tuple = ()            # what the reader noted (an .rtx count unlike its header)
+
+
+@dataclass(frozen=True, eq=False)
+class PlanRows:
+    """A test plan as exported (measure and overrun moves, in order)."""
+
+    kind: np.ndarray
+    position: np.ndarray
+    direction: np.ndarray
+    run: np.ndarray
+    target_index: np.ndarray
+    dwell: np.ndarray
+    target_unit: str
+    axis: str
+    axis_kind: str
+    source: str = "<text>"
+
+    @property
+    def targets(self) -> np.ndarray:
+        """The distinct targets, ordered by index."""
+        m = self.kind == "measure"
+        idx = self.target_index[m]
+        out = np.empty(int(idx.max()) + 1)
+        out[idx] = self.position[m]
+        return out
 
 
 @dataclass(frozen=True)
