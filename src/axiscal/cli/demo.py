@@ -280,7 +280,8 @@ def _write_index(out: Path, pages) -> None:
             for label, _, r, b in pages]
     rep.add_table(["Axis", "A", "E", "R", "B", "unit"], rows, digits=2)
     rep.add_text("Each value ± its expanded uncertainty U (k = 2) by ISO 230-2:2014 Annex A, "
-                 "from the inputs each report lists; a dash where no budget was made.")
+                 "from the inputs each report lists; a value without ± has no Annex A budget (the "
+                 "rotary calibration chain states its error budget in its report).")
     rep.add_html("<ul>" + "".join(f'<li><a href="{href}">{label}: full report</a></li>'
                                   for label, href, _, _ in pages)
                  + "".join(f'<li><a href="{n}_certificate.pdf">{n} test: calibration certificate '
