@@ -128,10 +128,11 @@ def test_complete_job_issues_a_numbered_certificate_listed_with_its_sha256(clien
     doc = client.get("/tests/1/certificate?number=PM-2026-00001")
     assert doc.status_code == 200 and doc.content.startswith(b"%PDF")
     assert hashlib.sha256(doc.content).hexdigest() == sha
-    # the next one takes the next counter; no DRAFT
+    # issue 38: a second certificate of the same test is refused (an amendment is a reissue)
     r2 = _sign(client, "issue", tol_E="15", **JOB)
-    assert r2.headers["location"].endswith("PM-2026-00002#signoff")
-    assert client.get("/tests/1/certificate?number=PM-2026-00003").status_code == 404
+    assert r2.status_code == 400
+    assert "a second certificate of the same test is an amendment" in r2.text
+    assert client.get("/tests/1/certificate?number=PM-2026-00002").status_code == 404
 
 
 def test_htmx_issue_answers_with_a_redirect_header(client):

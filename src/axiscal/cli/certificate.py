@@ -7,8 +7,11 @@ laboratory, and the issued document and its SHA-256 are kept with the test
 a new number that replaces the old one, with the reason; the old one is kept, marked superseded.
 
 JSON output (``--json``), stable keys: ``list`` prints a list of objects with ``number``,
-``laboratory``, ``test_id``, ``customer``, ``issued``, ``status`` (``issued`` or
-``superseded``), ``replaces``, ``replaced_by``, ``reason``, ``media_type``, ``sha256``;
+``laboratory`` (the laboratory's code, the register's key), ``laboratory_name`` (as printed),
+``test_id``, ``customer``, ``issued``, ``status`` (``issued`` or ``superseded``), ``replaces``,
+``replaced_by``, ``reason``, ``media_type``, ``sha256``, ``prepared_by``, ``approved_by``,
+``approved_role``, ``changes`` (an amendment's ``what``/``old``/``new``), ``test_withdrawn``
+(why the test was withdrawn after issue; "" while it counts) and ``as_found_test_id``;
 ``show`` and ``reissue`` print one such object (``reissue``: the new certificate) and ``path``
 when a document was written.
 
@@ -33,8 +36,8 @@ app = typer.Typer(help="The certificate register: numbers, issued documents and 
                   "(ISO/IEC 17025:2017 §7.8.8) kept in the calibration history.",
                   no_args_is_help=True)
 
-_LAB = typer.Option(None, "--laboratory", help="The laboratory's name, where two laboratories "
-                    "share a database.")
+_LAB = typer.Option(None, "--laboratory", help="The laboratory's code ([company] code; its "
+                    "name is accepted too), where two laboratories share a database.")
 
 
 def record_json(r) -> dict:
@@ -42,7 +45,11 @@ def record_json(r) -> dict:
     return {"number": r.number, "laboratory": r.laboratory, "test_id": r.test_id,
             "customer": r.customer, "issued": r.issued, "status": r.status,
             "replaces": r.replaces, "replaced_by": r.replaced_by, "reason": r.reason,
-            "media_type": r.media_type, "sha256": r.sha256}
+            "media_type": r.media_type, "sha256": r.sha256,
+            "laboratory_name": r.laboratory_name, "prepared_by": r.prepared_by,
+            "approved_by": r.approved_by, "approved_role": r.approved_role,
+            "changes": list(r.changes), "test_withdrawn": r.test_withdrawn,
+            "as_found_test_id": r.as_found_test_id}
 
 
 @app.command("list")
@@ -84,8 +91,14 @@ def show(number: str = typer.Argument(..., help="The certificate number."),
         print_json({**record_json(r), **({"path": str(out)} if out else {})})
     else:
         typer.echo(str(r))
-        typer.echo(f"laboratory {r.laboratory}; {r.media_type}, {len(r.document)} bytes, "
-                   f"SHA-256 {r.sha256}")
+        typer.echo(f"laboratory {r.laboratory} ({r.laboratory_name}); {r.media_type}, "
+                   f"{len(r.document)} bytes, SHA-256 {r.sha256}")
+        for c in r.changes:
+            typer.echo(f"  changed: {c.get('what')}: {c.get('old')} → {c.get('new')}")
+        if r.test_withdrawn:
+            typer.echo(f"WARNING: the test of this certificate was withdrawn after issue "
+                       f"({r.test_withdrawn}); the certificate stands as issued, its results "
+                       "no longer count in the history")
     if out is not None:
         note(f"wrote {out}")
 

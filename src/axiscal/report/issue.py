@@ -151,8 +151,10 @@ def sign_off(dataset, result, cfg: dict, tolerances: dict | None = None,
 
 
 def number_format(cfg: dict, issued: str):
-    """(laboratory, series, counter -> number) of the configuration's numbering.
+    """(laboratory code, series, counter -> number) of the configuration's numbering.
 
+    The register is keyed by the laboratory's code (``[company] code``, else the initials of its
+    name), never by the name: the same laboratory written another way keeps one counter.
     A ``[certificate] number`` is used as it is (the register refuses it a second time); else
     ``number_pattern`` (``number_prefix`` of earlier versions means ``PREFIX{year}-{counter:05d}``).
     """
@@ -165,7 +167,7 @@ def number_format(cfg: dict, issued: str):
     year = issued[:4]
     if cert.get("number"):
         fixed = str(cert["number"])
-        return lab, f"{code}|fixed", lambda counter: fixed
+        return code, f"{code}|fixed", lambda counter: fixed
     pattern = str(cert.get("number_pattern") or (
         f"{cert['number_prefix']}{{year}}-{{counter:05d}}" if cert.get("number_prefix")
         else DEFAULT_NUMBER_PATTERN))
@@ -178,7 +180,7 @@ def number_format(cfg: dict, issued: str):
         raise ConfigError(f"[certificate] number_pattern {pattern!r} has no {{counter}}: every "
                           "number would be the same")
     series = f"{code}|{year}" if "{year" in pattern else code
-    return lab, series, lambda counter: pattern.format(lab=code, year=year, counter=counter)
+    return code, series, lambda counter: pattern.format(lab=code, year=year, counter=counter)
 
 
 def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, tolerances=None,
@@ -313,7 +315,8 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
     lab, series, number_for = number_format(inputs["config"], info.issued)
     pdf = Path(path).suffix.lower() == ".pdf"
     return store.issue_certificate(
-        test_id=test.id, laboratory=lab, series=series, number_for=number_for, render=render,
+        test_id=test.id, laboratory=lab, series=series,
+        laboratory_name=str(info.company.get("name", "")).strip(), number_for=number_for, render=render,
         customer=str(info.customer.get("name", "")), issued=info.issued,
         media_type="application/pdf" if pdf else "text/html",
         inputs=json.loads(json.dumps(inputs, default=str)), replaces=info.replaces,
