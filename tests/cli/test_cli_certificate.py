@@ -91,7 +91,8 @@ def test_pdf_certificate_from_the_command_line(tmp_path):
     d = json.loads(r.stdout)
     assert d["accepted"] is True and d["decision_rule"] == "iso14253-1"
     assert d["acceptance"][0]["outcome"] == "conformance proven"
-    assert d["uncertainty"]["E"] == d["acceptance"][0]["U"] > 0
+    # the verdict is decided with the U printed (issue 38): two digits, rounded up
+    assert d["acceptance"][0]["U"] == float(d["uncertainty_display"]["E"]) >= d["uncertainty"]["E"]
     year = __import__("datetime").date.today().year
     number = f"PM-{year}-00001"
     assert f"issued certificate {number}" in r.stderr

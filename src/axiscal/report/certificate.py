@@ -320,7 +320,9 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
 
 def _results(result, budget, decisions, info: CertificateInfo) -> str:
     """The results table with U and k: the first part of the block the signature closes. U is
-    never printed as zero: two significant digits, rounded up (JCGM 100:2008 §7.2.6)."""
+    never printed as zero: two significant digits, rounded up (JCGM 100:2008 §7.2.6); each value
+    to the last digit of its U (ILAC-P14:09/2020 §5.3); the verdicts were decided with the U
+    printed (:meth:`~axiscal.standards.iso230_9.UncertaintyBudget.stated`)."""
     from axiscal.standards.iso230_9 import format_uncertainty
 
     u = unit_label(result.deviation_unit)
@@ -339,7 +341,7 @@ def _results(result, budget, decisions, info: CertificateInfo) -> str:
         tol = "" if d is None else f"{d.upper:g}{mark}"
         verdict = "" if d is None or d.outcome is None else state[d.outcome.short]
         rows.append(
-            f"<tr><td>{_PARAM_LABEL[name]}</td><td>{_cell(v, 2)}</td>"
+            f"<tr><td>{_PARAM_LABEL[name]}</td><td>{budget.value_text(name, v)}</td>"
             f"<td>{format_uncertainty(budget.U(name))}</td><td>{tol}</td><td>{verdict}</td>"
             f"<td>{_plain(_PARAM_MEANING[name])}</td></tr>"
         )
@@ -451,7 +453,9 @@ def _budget_table(rep: Report, budget) -> None:
         f"<p>Combined by the law of propagation of uncertainty (JCGM 100:2008, uncorrelated "
         f"inputs) with {_esc(budget.method)}; U = k·u_c with k = {budget.k:g}. Length-"
         "proportional contributions act on A, E and M; R and B carry the reading "
-        "resolution and E_VE.</p>", escaped=True))
+        "resolution, E_VE and the sampling uncertainty of the runs they are formed from "
+        "(JCGM 100:2008 Annex E.4.3). U is never stated below the laboratory's CMC "
+        "(ILAC-P14:09/2020 §5.4).</p>", escaped=True))
 
 
 def _per_target(rep: Report, result) -> None:

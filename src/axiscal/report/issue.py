@@ -137,7 +137,7 @@ def sign_off(dataset, result, cfg: dict, tolerances: dict | None = None,
     ...                                     [[3, 3], [2, 1], [4, 5]], "mm", "um")
     >>> so = sign_off(ds, evaluate(ds), {"uncertainty": {"e_ve": 0.3}}, {"E": 10})
     >>> so.overall.value, str(so.decisions[0])
-    ('conformance proven', 'E: 4 ± 1 (≤ 10) conformance proven')
+    ('conformance proven', 'E: 4 ± 1.2 (≤ 10) conformance proven')
     """
     from axiscal.standards.iso230_2 import check_tolerances
     from axiscal.standards.iso14253_1 import overall, unprovable
