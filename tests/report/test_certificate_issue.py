@@ -219,3 +219,33 @@ def test_rotary_certificate_keeps_its_signature_with_the_results(tmp_path, paper
     assert all(k in texts[-1] for k in ("Results", "Authorised by", "End of certificate"))
     fractions = [used_fraction(p) for p in render_pages(o.path, f"certificate_rotary_long_name_{paper}")]
     assert all(f >= 0.5 for f in fractions[:-1]), fractions
+
+
+def test_prepared_by_one_approved_by_an_authorised_signatory(tmp_path, linear):
+    """Issue 38: whoever ran the command issued. A certificate is prepared by one person and
+    issued when one of the laboratory's authorised signatories ([[signatory]] name, role)
+    approves it; both are printed and kept in the register."""
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["signatory"] = [{"name": "Dr. M. Braun", "role": "Head of laboratory"},
+                        {"name": "K. Weber", "role": "Deputy head of laboratory"}]
+    o, store = _issue(tmp_path, linear, cfg, approved_by="K. Weber")
+    assert not o.draft, o.missing
+    html = o.path.read_text()
+    assert "Prepared by J. Keller; issue approved by K. Weber." in html
+    assert "Authorised by: K. Weber, Deputy head of laboratory" in html
+    r = store.certificate(o.number)
+    assert (r.prepared_by, r.approved_by, r.approved_role) == (
+        "J. Keller", "K. Weber", "Deputy head of laboratory")
+
+
+@pytest.mark.parametrize("approver, prepared, named", [
+    ("J. Keller", "", "'J. Keller' is not one of the laboratory's (Dr. M. Braun"),
+    ("Dr. M. Braun", "Dr. M. Braun", "approval by a second person: Dr. M. Braun prepared"),
+])
+def test_an_approval_that_is_not_an_authorised_signatorys_is_a_draft(tmp_path, linear, approver,
+                                                                     prepared, named):
+    """An approver not on the laboratory's list, or the preparer approving their own
+    certificate: a DRAFT naming it, no number, nothing in the register."""
+    o, store = _issue(tmp_path, linear, COMPLETE, approved_by=approver, prepared_by=prepared)
+    assert o.draft and any(named in m for m in o.missing), o.missing
+    assert store.certificates() == []

@@ -26,6 +26,7 @@ from typing import Optional
 
 import typer
 
+from axiscal.cli._certificate import APPROVED_BY, PREPARED_BY
 from axiscal.cli._common import note, print_json
 from axiscal.cli._history_store import DB as _DB      # the history's --db and --json,
 from axiscal.cli._history_store import JSON as _JSON  # the same options
@@ -36,7 +37,7 @@ app = typer.Typer(help="The certificate register: numbers, issued documents and 
                   "(ISO/IEC 17025:2017 §7.8.8) kept in the calibration history.",
                   no_args_is_help=True)
 
-_LAB = typer.Option(None, "--laboratory", help="The laboratory's code ([company] code; its "
+_LAB = typer.Option(None, "--laboratory", help="The laboratory's code (\\[company] code; its "
                     "name is accepted too), where two laboratories share a database.")
 
 
@@ -111,6 +112,7 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
             job: Optional[Path] = typer.Option(None, "--job", help="Corrections (TOML, the "
                                                "tables of a job file) over the inputs kept with "
                                                "the old certificate."),
+            prepared_by: str = PREPARED_BY, approved_by: str = APPROVED_BY,
             db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
             json_out: bool = _JSON) -> None:
     """Amend a certificate: a new number replaces it; the old one stays, marked superseded.
@@ -128,7 +130,8 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     report_path(out)
     corrections = load_job(job) if job is not None else None
     o = reissue_certificate(open_store(db), number, reason, out, corrections,
-                            laboratory=laboratory)
+                            laboratory=laboratory, prepared_by=prepared_by,
+                            approved_by=approved_by)
     if json_out:
         print_json({**record_json(o.record), "path": str(out)})
     else:

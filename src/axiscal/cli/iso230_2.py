@@ -32,7 +32,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._certificate import DRAFT, JOB, PAPER, RULE
+from axiscal.cli._certificate import APPROVED_BY, DRAFT, JOB, PAPER, PREPARED_BY, RULE
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
@@ -56,6 +56,8 @@ def iso230_2(
     rule: Optional[str] = RULE,
     paper: Optional[str] = PAPER,
     draft: bool = DRAFT,
+    prepared_by: str = PREPARED_BY,
+    approved_by: str = APPROVED_BY,
     drift_check: Optional[Path] = typer.Option(None, "--drift-check", help="Drift-check file (CSV: a 'reading' column, or one column of numbers, in the deviation unit): E_VE of the uncertainty budget is the range of its readings, measured (ISO 230-2:2014 Annex A.5)."),
     uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's \\[uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3 (names and units: the 'Uncertainty inputs' table; every input not given is shown as assumed, with the rule of its default)."),
     setpoint_pv: Optional[str] = SETPOINT_PV,
@@ -111,7 +113,8 @@ def iso230_2(
 
         outcome = write_certificate(report, ds, ev.result, ev.config, Path(file).read_bytes(),
                                     tolerances, rule, paper, job, store=lambda: open_store(db),
-                                    filename=file.name, config_note=config_problem())
+                                    filename=file.name, config_note=config_problem(),
+                                    prepared_by=prepared_by, approved_by=approved_by)
     if json_out:
         print_json(ev.to_dict())
     else:

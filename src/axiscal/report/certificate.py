@@ -54,6 +54,7 @@ _SECTIONS = {
     "certificate": {"paper", "rule", "number", "number_prefix", "number_pattern", "issued",
                     "approver", "signatory", "signatory_role", "specification"},
     "instrument": {"name", "serial", "certificate", "due"},
+    "signatory": {"name", "role"},
     "uncertainty": None,  # checked by the budget's own inputs
     "tolerance": None,  # NAME = value, checked against the standard's parameters
     "squareness_uncertainty": None,  # read by the squareness commands
@@ -96,6 +97,8 @@ class CertificateInfo:
     missing: tuple[str, ...] = ()
     replaces: str = ""
     reason: str = ""
+    prepared_by: str = ""
+    changes: tuple = ()
 
     @property
     def draft(self) -> bool:
@@ -242,12 +245,19 @@ def _draft_box(info: CertificateInfo) -> str:
 
 
 def _signatures(info: CertificateInfo, operator: str) -> str:
+    """Who calibrated, who prepared the certificate and the authorised signatory who approved
+    its issue (ISO/IEC 17025:2017 §7.8.2.1 o)."""
     who = ", ".join(x for x in (info.signatory, info.signatory_role) if x) or NOT_STATED
+    prepared = (f"<br>Prepared by: {_esc(info.prepared_by)}" if info.prepared_by
+                and info.prepared_by != operator else "")
     return (
         '<div class="signatures"><div>Calibrated by'
         + (f": {_esc(operator)}" if operator else "")
-        + f"<br>date, signature</div><div>Authorised by: {_esc(who)}"
+        + f"{prepared}<br>date, signature</div><div>Authorised by: {_esc(who)}"
         + f"<br>{_esc(info.issued or 'date')}, signature</div></div>"
+        + (f'<p class="prepared">Prepared by {_esc(info.prepared_by)}; issue approved by '
+           f"{_esc(info.signatory)}.</p>" if info.prepared_by and info.signatory
+           and not info.draft else "")
         + '<p class="endmark">— End of certificate —</p>'
     )
 

@@ -27,7 +27,8 @@ from typing import Any
 from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
-           "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off"]
+           "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off",
+           "signatories", "authorisation"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -187,7 +188,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
                       rule: str | None = None, paper: str | None = None, job: Path | None = None,
                       *, store=None, filename: str = "data.csv", today: str | None = None,
                       config_note: str = "", customer_supplied=None, logo: str | None = None,
-                      replaces: str = "", reason: str = "") -> CertificateOutcome:
+                      replaces: str = "", reason: str = "", prepared_by: str = "",
+                      approved_by: str = "") -> CertificateOutcome:
     """Budget, decisions and certificate of one positioning test, written to ``path``
     (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
 
@@ -209,6 +211,11 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     config_note : str
         Why the user configuration identifies no laboratory (:func:`~axiscal.io.user_config.
         config_problem`), named among the missing items.
+    prepared_by, approved_by : str
+        Who prepared the certificate (default ``[operator] name``) and the authorised signatory
+        who approves its issue (default ``[certificate] signatory``; the workbench passes the
+        signed-in user). :func:`authorisation` checks them; both are printed and kept in the
+        register.
 
     Raises
     ------
@@ -228,7 +235,10 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
         logo = _logo(cfg, job)
     info = _info(cfg, today, logo, customer_supplied)
     check_dates(calibration_date(dataset, info), info.issued)
-    missing = tuple(missing_items(dataset, result, budget, info, decisions, config_note))
+    info, refusals = authorisation(cfg, info, prepared_by or info.operator
+                                   or dataset.metadata.operator, approved_by)
+    missing = tuple(missing_items(dataset, result, budget, info, decisions, config_note)
+                    + refusals)
     if store is None and not missing:
         missing = ("certificate number: a certificate is numbered only by the certificate "
                    "register (a calibration history, --db)",)
@@ -260,8 +270,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
 
 
 def reissue_certificate(store, number: str, reason: str, path, corrections: dict | None = None,
-                        today: str | None = None, laboratory: str | None = None
-                        ) -> CertificateOutcome:
+                        today: str | None = None, laboratory: str | None = None,
+                        prepared_by: str = "", approved_by: str = "") -> CertificateOutcome:
     """Amend certificate ``number``: a new certificate with a new number that replaces it, for
     ``reason``, rebuilt from the stored test and the inputs kept with the old one, with
     ``corrections`` (job-file tables) on top; the old one is marked superseded. A reissue that
@@ -285,8 +295,49 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
         p, ev.dataset, ev.evaluation, cfg, stored.raw, inputs["tolerances"], inputs["rule"],
         inputs["paper"], store=store, filename=stored.summary.filename, today=today,
         customer_supplied=inputs["customer_supplied"], logo=inputs["logo"], replaces=number,
-        reason=reason.strip()), number)
+        reason=reason.strip(), prepared_by=prepared_by, approved_by=approved_by), number)
     return out
+
+
+def signatories(cfg: dict) -> dict[str, str]:
+    """The laboratory's authorised signatories, name -> role: the configuration's
+    ``[[signatory]]`` tables (``name``, ``role``), else the one ``[certificate] signatory``
+    with its ``signatory_role``."""
+    listed = cfg.get("signatory") or []
+    listed = listed if isinstance(listed, list) else [listed]
+    out = {str(t.get("name", "")).strip(): str(t.get("role", "")).strip()
+           for t in listed if isinstance(t, dict) and str(t.get("name", "")).strip()}
+    cert = cfg.get("certificate", {})
+    if not out and str(cert.get("signatory") or "").strip():
+        out[str(cert["signatory"]).strip()] = str(cert.get("signatory_role", "")).strip()
+    return out
+
+
+def authorisation(cfg: dict, info, prepared_by: str, approved_by: str = ""):
+    """(info with the preparer and the approving signatory, what withholds the issue).
+
+    A certificate is prepared by one person and issued only when an authorised signatory
+    of the laboratory approves it (ISO/IEC 17025:2017 §7.8.2.1 o: the identification of the
+    person authorising it; §6.2.6 c: authorised personnel): the approver must be one of
+    :func:`signatories`, and another person than the one who prepared it. The approver's role
+    comes from the list. Each unmet condition is an item of the DRAFT's list.
+    """
+    approver = (approved_by or info.signatory or "").strip()
+    allowed = signatories(cfg)
+    info = dataclasses.replace(info, prepared_by=(prepared_by or "").strip())
+    out = []
+    if approver and allowed and approver not in allowed:
+        out.append(f"approval by an authorised signatory: {approver!r} is not one of the "
+                   f"laboratory's ({', '.join(allowed)}; [[signatory]] name and role)")
+    elif approver:
+        info = dataclasses.replace(info, signatory=approver,
+                                   signatory_role=allowed.get(approver) or info.signatory_role)
+    if approver and info.prepared_by and approver.casefold() == info.prepared_by.casefold():
+        out.append(f"approval by a second person: {approver} prepared the certificate and "
+                   "cannot also approve it")
+    if not info.prepared_by:
+        out.append("name of the person who prepared the certificate ([operator] name)")
+    return info, out
 
 
 def _draft_refused(path, write, number: str) -> CertificateOutcome:
@@ -320,7 +371,8 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
         customer=str(info.customer.get("name", "")), issued=info.issued,
         media_type="application/pdf" if pdf else "text/html",
         inputs=json.loads(json.dumps(inputs, default=str)), replaces=info.replaces,
-        reason=info.reason)
+        reason=info.reason, prepared_by=info.prepared_by, approved_by=info.signatory,
+        approved_role=info.signatory_role)
 
 
 def _info(cfg: dict, today: str | None, logo: str, customer_supplied):
