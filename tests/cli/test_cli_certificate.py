@@ -121,13 +121,23 @@ def test_same_file_twice_is_refused_and_a_reissue_amends(tmp_path):
     assert (f"has certificate PM-{year}-00001 of PM" in r.stderr
             and f"certificate reissue PM-{year}-00001" in r.stderr)
     assert not (tmp_path / "c2.html").exists()
-    (tmp_path / "fix.toml").write_text('[machine]\nserial = "VMC8-0043"\n')
+    (tmp_path / "fix.toml").write_text('[machine]\nserial = "VMC8-0043"\n'
+                                       '[tolerance]\nE = 12\n')
     r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason",
                             "serial number corrected", "--job", str(tmp_path / "fix.toml"),
                             "--out", str(tmp_path / "c3.html"), "--db", _db(tmp_path)])
     assert r.exit_code == 0, r.output
     html = (tmp_path / "c3.html").read_text()
     assert f"replaces certificate PM-{year}-00001. Reason: serial number corrected" in html
+    # issue 38: every changed field old → new, and every result whose verdict changed
+    assert "[machine] serial: VMC8-0042 → VMC8-0043" in html
+    assert "[tolerance] E: 15 → 12" in html and "tolerance E: 15 → 12" in html
+    assert "verdict E: conformance proven → uncertainty zone" in html
+    shown = runner.invoke(app, ["certificate", "show", f"PM-{year}-00002", "--db",
+                                _db(tmp_path), "--json"])
+    changes = json.loads(shown.stdout)["changes"]
+    assert {"what": "overall verdict", "old": "conformance proven",
+            "new": "uncertainty zone"} in changes
     assert "VMC8-0043" in html and f"PM-{year}-00002" in html
     rows = json.loads(runner.invoke(app, ["certificate", "list", "--db", _db(tmp_path),
                                           "--json"]).stdout)

@@ -210,7 +210,8 @@ def positioning_certificate(
         rep.add_html(_draft_box(info))
     elif info.replaces:
         rep.add_html(f'<div class="amend">This certificate replaces certificate '
-                     f"{_esc(info.replaces)}. Reason: {_esc(info.reason)}</div>")
+                     f"{_esc(info.replaces)}. Reason: {_esc(info.reason)}"
+                     + _changes(info.changes) + "</div>")
     rep.add_html(_verdict_box(overall(decisions), rule_text))
     rep.add_html(_pairs(_identification(md, info), "Customer and item calibrated"))
     rep.add_html(_pairs(_conditions(dataset, result, info), "Test conditions (ISO 230-2:2014 §6)"))
@@ -233,6 +234,15 @@ def _reference(info: CertificateInfo) -> str:
     if info.draft:
         return "DRAFT — not a certificate"
     return f"Certificate {info.number}"
+
+
+def _changes(changes) -> str:
+    """Every change an amendment makes, old → new (ISO/IEC 17025:2017 §7.8.8.3)."""
+    if not changes:
+        return " No field or result changed."
+    rows = "".join(f"<li>{_plain(c['what'])}: {_esc(c['old'])} → {_esc(c['new'])}</li>"
+                   for c in changes)
+    return f"<br>Changed from the replaced certificate:<ul>{rows}</ul>"
 
 
 def _draft_box(info: CertificateInfo) -> str:

@@ -28,7 +28,7 @@ from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
            "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off",
-           "signatories", "authorisation"]
+           "signatories", "authorisation", "amendment_changes"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -189,7 +189,7 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
                       *, store=None, filename: str = "data.csv", today: str | None = None,
                       config_note: str = "", customer_supplied=None, logo: str | None = None,
                       replaces: str = "", reason: str = "", prepared_by: str = "",
-                      approved_by: str = "") -> CertificateOutcome:
+                      approved_by: str = "", changes=()) -> CertificateOutcome:
     """Budget, decisions and certificate of one positioning test, written to ``path``
     (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
 
@@ -242,7 +242,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     if store is None and not missing:
         missing = ("certificate number: a certificate is numbered only by the certificate "
                    "register (a calibration history, --db)",)
-    info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason)
+    info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason,
+                               changes=tuple(changes))
 
     def render(number: str) -> bytes:
         from axiscal.report.certificate import positioning_certificate
@@ -291,11 +292,15 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
         cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
     if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
         raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    changes = amendment_changes(ev.dataset, ev.evaluation, (inputs["config"], inputs["tolerances"],
+                                                            inputs["rule"]),
+                                (cfg, inputs["tolerances"], inputs["rule"]))
     out = _draft_refused(path, lambda p: write_certificate(
         p, ev.dataset, ev.evaluation, cfg, stored.raw, inputs["tolerances"], inputs["rule"],
         inputs["paper"], store=store, filename=stored.summary.filename, today=today,
         customer_supplied=inputs["customer_supplied"], logo=inputs["logo"], replaces=number,
-        reason=reason.strip(), prepared_by=prepared_by, approved_by=approved_by), number)
+        reason=reason.strip(), prepared_by=prepared_by, approved_by=approved_by,
+        changes=changes), number)
     return out
 
 
@@ -340,6 +345,60 @@ def authorisation(cfg: dict, info, prepared_by: str, approved_by: str = ""):
     return info, out
 
 
+def amendment_changes(dataset, result, before, after) -> list[dict]:
+    """What an amendment changes (ISO/IEC 17025:2017 §7.8.8.3: the change identified): every
+    field of the certificate's inputs whose text changed, and every result whose printed U or
+    verdict changed, as ``{"what", "old", "new"}``.
+
+    ``before`` and ``after`` are ``(config, tolerances, rule)``: the inputs kept with the old
+    certificate and the amended ones. The results of both come from the same library calls
+    (:func:`budget_for`, :func:`decisions_for`) on the same stored test.
+    """
+    from axiscal.standards.iso14253_1 import overall
+
+    old, new = _flat(before[0]), _flat(after[0])
+    out = [{"what": k, "old": old.get(k, "—"), "new": new.get(k, "—")}
+           for k in sorted(set(old) | set(new)) if old.get(k) != new.get(k)]
+    states = []
+    for cfg, tol, rule in (before, after):
+        budget = budget_for(dataset, result, cfg)
+        decisions, _, _ = decisions_for(result.parameters(), budget, tol or {}, cfg, rule)
+        by = {d.parameter: d for d in decisions}
+        row = {}
+        for p, v in result.parameters().items():
+            if v is None:
+                continue
+            d = by.get(p)
+            row[f"U({p})"] = budget.U_text(p)
+            row[f"tolerance {p}"] = "—" if d is None else f"{d.upper:g}"
+            row[f"verdict {p}"] = "—" if d is None or d.outcome is None else d.outcome.value
+        o = overall(decisions)
+        row["overall verdict"] = o.value if o else "no tolerance"
+        states.append(row)
+    out += [{"what": k, "old": states[0][k], "new": states[1][k]} for k in states[0]
+            if states[0][k] != states[1].get(k)]
+    return out
+
+
+def _flat(cfg: dict) -> dict[str, str]:
+    """Each printed field of a configuration as ``[table] key`` -> text (the logo and the
+    number and date of issue, which an amendment always changes, left out)."""
+    out = {}
+    for table, v in cfg.items():
+        rows = v if isinstance(v, list) else [v]
+        for n, t in enumerate(rows, 1):
+            if not isinstance(t, dict):
+                continue
+            where = f"[[{table}]] {n}" if isinstance(v, list) else f"[{table}]"
+            for k, x in t.items():
+                if k in ("logo",) or (table == "certificate" and k in ("number", "issued")):
+                    continue
+                out[f"{where} {k}"] = ("; ".join(map(str, x)) if isinstance(x, list)
+                                       else json.dumps(x, sort_keys=True)
+                                       if isinstance(x, dict) else str(x))
+    return out
+
+
 def _draft_refused(path, write, number: str) -> CertificateOutcome:
     """Run ``write`` into a scratch file; a DRAFT is refused, an issued one moved to ``path``."""
     import tempfile
@@ -372,7 +431,7 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
         media_type="application/pdf" if pdf else "text/html",
         inputs=json.loads(json.dumps(inputs, default=str)), replaces=info.replaces,
         reason=info.reason, prepared_by=info.prepared_by, approved_by=info.signatory,
-        approved_role=info.signatory_role)
+        approved_role=info.signatory_role, changes=info.changes)
 
 
 def _info(cfg: dict, today: str | None, logo: str, customer_supplied):
