@@ -249,3 +249,41 @@ def test_an_approval_that_is_not_an_authorised_signatorys_is_a_draft(tmp_path, l
     o, store = _issue(tmp_path, linear, COMPLETE, approved_by=approver, prepared_by=prepared)
     assert o.draft and any(named in m for m in o.missing), o.missing
     assert store.certificates() == []
+
+
+def test_laser_conditions_and_the_datas_origin_are_printed(tmp_path, linear):
+    """Issue 38: air pressure and humidity could not be entered; α showed 'not stated' while the
+    budget assumed 11.5 µm/(m·K); the sensors' place, 'referred to 20 °C' and who took the
+    readings were not said."""
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["conditions"].update(air_pressure=101100, humidity=45, referred_to_20=True,
+                             material_sensors="two sensors on the X scale, at 200 and 600 mm")
+    o, _ = _issue(tmp_path, linear, cfg)
+    html = o.path.read_text()
+    for text in ("101100", ">45<", "two sensors on the X scale, at 200 and 600 mm",
+                 "Deviations referred to 20 °C (ISO 1)</td><td>yes",
+                 "the laboratory&#x27;s instrument"):
+        assert text in html, text
+    assert "11.5 (assumed: steel" in html or "11.5 (taken from the data file" in html
+    bad = copy.deepcopy(COMPLETE)
+    bad["conditions"]["humidity"] = 140
+    with pytest.raises(AxiscalError, match="humidity = 140: a number from 0 to 100"):
+        _issue(tmp_path, linear, bad, name="bad.html")
+
+
+def test_readings_of_the_customers_control_system_are_marked(tmp_path):
+    """The ESS ecmc file: its reference is the machine's encoder read by ecmc, so the readings
+    are the customer's (ISO/IEC 17025:2017 §7.8.2.2), said in the conditions and statements."""
+    from pathlib import Path
+
+    from axiscal.io.ecmc import read_ecmc
+    from axiscal.standards.iso230_2 import evaluate
+
+    path = Path(__file__).resolve().parents[1] / "data" / "ecmc" / "mcu1025_fat_sat_ISO230.dat"
+    ds = read_ecmc(path)
+    o, _ = _issue(tmp_path, (ds, evaluate(ds), path.read_bytes()), COMPLETE, tol={"R": 210.0})
+    html = o.path.read_text()
+    assert "the customer&#x27;s own system (data supplied by the customer)" in html
+    assert "supplied by the customer (ISO/IEC 17025:2017 §7.8.2.2)" in html
+    assert "CONFORMS" not in html and "NOT PROVEN" in html       # R = 204.76 ± 150 vs 210
+    assert "<td>205</td><td>150</td>" in html                    # value to U's last digit

@@ -50,7 +50,8 @@ _SECTIONS = {
     "customer": {"name", "address", "reference"},
     "machine": {"maker", "model", "serial", "location"},
     "conditions": {"date", "measuring_line", "feed", "dwell", "cycle", "location",
-                   "air_temperature", "material_temperature"},
+                   "air_temperature", "material_temperature", "air_pressure", "humidity",
+                   "material_sensors", "referred_to_20", "data_origin"},
     "certificate": {"paper", "rule", "number", "number_prefix", "number_pattern", "issued",
                     "approver", "signatory", "signatory_role", "specification"},
     "instrument": {"name", "serial", "certificate", "due"},
@@ -137,6 +138,7 @@ def certificate_info(
                 raise ConfigError(f"configuration: [{name}] must be a table")
             if keys is not None:
                 refuse_unknown(table, keys, f"[{name}]")
+    _check_conditions(config.get("conditions", {}))
     cert = config.get("certificate", {})
     paper = str(cert.get("paper", "A4"))
     if paper.lower() not in ("a4", "letter"):
@@ -159,6 +161,39 @@ def certificate_info(
         logo=logo,
         customer_supplied=tuple(customer_supplied),
     )
+
+
+#: ``[conditions] data_origin``: who took the readings (ISO/IEC 17025:2017 §7.8.2.2).
+DATA_ORIGINS = ("laboratory", "customer")
+
+
+def _check_conditions(cond: Mapping[str, Any]) -> None:
+    """The laser user's stated conditions: numbers in range, a yes/no, an origin by name."""
+    for key, lo, hi, unit in (("air_pressure", 1e3, 2e5, "Pa"), ("humidity", 0.0, 100.0, "%RH")):
+        v = cond.get(key)
+        if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))
+                              or not lo <= v <= hi):
+            raise ConfigError(f"[conditions] {key} = {v!r}: a number from {lo:g} to {hi:g} "
+                              f"{unit}")
+    if "referred_to_20" in cond and not isinstance(cond["referred_to_20"], bool):
+        raise ConfigError(f"[conditions] referred_to_20 = {cond['referred_to_20']!r}: true "
+                          "(deviations referred to 20 °C, ISO 1) or false")
+    if cond.get("data_origin") not in (None, *DATA_ORIGINS):
+        raise ConfigError(f"[conditions] data_origin = {cond['data_origin']!r}: laboratory "
+                          "(the laboratory's instrument) or customer (the customer's own system)")
+
+
+def data_origin(dataset, info: CertificateInfo) -> tuple[str, str]:
+    """(``laboratory`` or ``customer``, why): ``[conditions] data_origin`` as stated, else a
+    reference the data file names as the machine's own encoder read by its control system (an
+    EPICS ecmc ``…-Enc<NN>-PosAct``) is the customer's, else the laboratory's instrument."""
+    stated = info.conditions.get("data_origin")
+    if stated:
+        return stated, "stated ([conditions] data_origin)"
+    if re.search(r"-Enc\d*-PosAct\b", dataset.metadata.instrument or "", re.IGNORECASE):
+        return "customer", (f"the data file's reference {dataset.metadata.instrument} is the "
+                            "machine's encoder read by its own control system (EPICS ecmc)")
+    return "laboratory", "not stated: the laboratory's instrument assumed"
 
 
 def positioning_certificate(
@@ -214,7 +249,8 @@ def positioning_certificate(
                      + _changes(info.changes) + "</div>")
     rep.add_html(_verdict_box(overall(decisions), rule_text))
     rep.add_html(_pairs(_identification(md, info), "Customer and item calibrated"))
-    rep.add_html(_pairs(_conditions(dataset, result, info), "Test conditions (ISO 230-2:2014 §6)"))
+    rep.add_html(_pairs(_conditions(dataset, result, info, budget),
+                        "Test conditions (ISO 230-2:2014 §6)"))
     _instruments(rep, info, md)
     _budget_table(rep, budget)
     u = unit_label(result.deviation_unit)
@@ -224,7 +260,7 @@ def positioning_certificate(
     )
     _per_target(rep, result)
     _assumptions(rep, dataset, result, budget, info)
-    rep.add_html(_statements(info, decisions, rule_text))
+    rep.add_html(_statements(info, decisions, rule_text, data_origin(dataset, info)[0]))
     rep.add_html('<div class="closing">' + _results(result, budget, decisions, info)
                  + _signatures(info, info.operator or md.operator) + "</div>")
     return rep
@@ -305,7 +341,7 @@ def _identification(md, info: CertificateInfo) -> dict[str, Any]:
     }
 
 
-def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
+def _conditions(dataset, result, info: CertificateInfo, budget=None) -> dict[str, Any]:
     from axiscal.report.certificate_content import calibration_date, measured_temperatures
 
     md, env, cond = dataset.metadata, dataset.metadata.environment, info.conditions
@@ -320,8 +356,16 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
         mat = ", ".join(f"{t:g}" for t in env.material_temperature)
     alpha = env.expansion_coefficient
     alpha = NOT_STATED if alpha is None else f"{alpha * 1e6:g}"
+    used = {i.name: i for i in getattr(budget, "inputs", ())}.get("expansion_coefficient")
+    if alpha == NOT_STATED and used is not None:       # the α the budget used, and whence
+        alpha = f"{used.value * 1e6:g} ({'assumed: ' if used.assumed else ''}{used.rule})"
     if dataset.axis_kind.value == "rotary" and alpha == NOT_STATED:  # angles do not expand
         alpha = "not applicable (rotary axis)"
+    pressure = env.pressure if env.pressure is not None else cond.get("air_pressure")
+    humidity = env.humidity if env.humidity is not None else cond.get("humidity")
+    ref20 = cond.get("referred_to_20")
+    origin, why = data_origin(dataset, info)
+    linear = dataset.axis_kind.value != "rotary"
     return {
         "Date of test": calibration_date(dataset, info) or "not stated in the data file",
         "Location of the measuring line": cond.get("measuring_line") or NOT_STATED,
@@ -329,8 +373,16 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
         "Material temperature (°C)": NOT_STATED if mat is None else (
             mat if isinstance(mat, str) else f"{mat:g}"),
         "Expansion coefficient (µm/(m·K))": alpha,
-        "Air pressure (Pa)": None if env.pressure is None else f"{env.pressure:g}",
-        "Humidity (%RH)": None if env.humidity is None else f"{env.humidity:g}",
+        "Air pressure (Pa)": NOT_STATED if pressure is None else f"{pressure:g}",
+        "Humidity (%RH)": NOT_STATED if humidity is None else f"{humidity:g}",
+        "Material temperature sensors": (cond.get("material_sensors") or NOT_STATED)
+        if linear else None,
+        "Deviations referred to 20 °C (ISO 1)": (
+            NOT_STATED if ref20 is None else "yes" if ref20 else
+            "no: at the material temperature of the test") if linear else None,
+        "Readings taken by": ("the laboratory's instrument" if origin == "laboratory" else
+                              "the customer's own system (data supplied by the customer)")
+        + ("" if why.startswith("stated") else f"; {why}"),
         "Feed": cond.get("feed") or NOT_STATED,
         "Dwell": cond.get("dwell") or NOT_STATED,
         "Test cycle": cycle,
@@ -382,7 +434,8 @@ def _results(result, budget, decisions, info: CertificateInfo) -> str:
     )
 
 
-def _statements(info: CertificateInfo, decisions, rule_text: str) -> str:
+def _statements(info: CertificateInfo, decisions, rule_text: str,
+                origin: str = "laboratory") -> str:
     """The statements ISO/IEC 17025:2017 §7.8.2.1 and §7.8.4.1 ask a certificate to make."""
     certs = [f"{i.name} (certificate {i.certificate}, due {i.due})" for i in info.instruments
              if i.certificate]
@@ -395,6 +448,10 @@ def _statements(info: CertificateInfo, decisions, rule_text: str) -> str:
         "This certificate shall not be reproduced except in full without the written approval "
         "of the laboratory.",
     ]
+    if origin == "customer":
+        items.append("The readings were taken by the customer's own control system and supplied "
+                     "by the customer (ISO/IEC 17025:2017 §7.8.2.2): the laboratory evaluated "
+                     "them and is not responsible for their measurement.")
     if decisions:
         spec = info.specification or NOT_STATED
         items.append(f"Statement of conformity against the specification: {spec}"
