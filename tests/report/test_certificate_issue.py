@@ -24,7 +24,8 @@ COMPLETE = {
                 "code": "PM"},
     "operator": {"name": "J. Keller"},
     "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
-    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042"},
+    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042",
+                "location": "Example Machining AG, hall 2"},
     "conditions": {"date": "2026-11-20", "air_temperature": 20.4, "material_temperature": 20.6,
                    "measuring_line": "100 mm above the table centre", "feed": "2000 mm/min",
                    "dwell": "4 s"},
@@ -85,6 +86,7 @@ def _instrument(**kw):
     (_without("machine.maker"), "", "maker of the machine"),
     (_without("machine.model"), "", "model of the machine"),
     (_without("machine.serial"), "", "serial number of the machine"),
+    (_without("machine.location"), "", "location of the calibration"),
     (_without("conditions.date"), "", "date of calibration"),
     (_without("conditions.air_temperature"), "", "air temperature during the test, measured"),
     (_without("conditions.material_temperature"), "", "material temperature during the test"),
@@ -287,3 +289,23 @@ def test_readings_of_the_customers_control_system_are_marked(tmp_path):
     assert "supplied by the customer (ISO/IEC 17025:2017 §7.8.2.2)" in html
     assert "CONFORMS" not in html and "NOT PROVEN" in html       # R = 204.76 ± 150 vs 210
     assert "<td>205</td><td>150</td>" in html                    # value to U's last digit
+
+
+def test_one_identity_of_the_item_in_title_plot_and_identification(tmp_path, linear):
+    """Issue 38: the plot's title said "VMC-800 (simulated)" where the certificate said "Example
+    VMC-800", and a job's [machine] axis was refused. One identity: the job's machine, serial,
+    axis and location in the identification, the title and the figure's title."""
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["machine"]["axis"] = "Y1"
+    o, _ = _issue(tmp_path, linear, cfg)
+    html = o.path.read_text()
+    assert "positioning of the Y1 axis" in html
+    assert "Example Machining AG, hall 2" in html
+    from axiscal.report.certificate import _figure_title, item_identity, certificate_info
+
+    item = item_identity(linear[0], certificate_info(cfg))
+    assert item == {"Machine": "Example VMC-800", "Serial number": "VMC8-0042",
+                    "Location": "Example Machining AG, hall 2", "Axis": "Y1"}
+    assert _figure_title(item) == ("Positioning deviation, ISO 230-2:2014 — Example VMC-800, "
+                                   "serial VMC8-0042, axis Y1")
+    assert "simulated" not in _figure_title(item)

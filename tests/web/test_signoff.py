@@ -27,6 +27,7 @@ e_ve_source = "declared"
 JOB = {"customer_name": "Example Machining AG",
        "customer_address": "Industriestrasse 4\n73728 Esslingen",
        "machine_maker": "Example", "machine_model": "VMC-800", "machine_serial": "VMC8-0042",
+       "machine_location": "Hall 2, cell 5",
        "air_temperature": "20.3", "material_temperature": "20.5",
        "instrument1_name": "Laser interferometer", "instrument1_serial": "L-77",
        "instrument1_certificate": "DKD-1234", "instrument1_due": "2027-01-31",

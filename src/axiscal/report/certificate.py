@@ -41,6 +41,8 @@ __all__ = [
     "certificate_info",
     "positioning_certificate",
     "NOT_STATED",
+    "item_identity",
+    "data_origin",
 ]
 
 NOT_STATED = "not stated"
@@ -48,7 +50,7 @@ _SECTIONS = {
     "company": {"name", "address", "logo", "accreditation", "code"},
     "operator": {"name"},
     "customer": {"name", "address", "reference"},
-    "machine": {"maker", "model", "serial", "location"},
+    "machine": {"maker", "model", "serial", "location", "axis"},
     "conditions": {"date", "measuring_line", "feed", "dwell", "cycle", "location",
                    "air_temperature", "material_temperature", "air_pressure", "humidity",
                    "material_sensors", "referred_to_20", "data_origin"},
@@ -230,7 +232,8 @@ def positioning_certificate(
 
     md = dataset.metadata
     kind = "rotary" if dataset.axis_kind.value == "rotary" else "linear"
-    what = f"positioning of the {md.axis or kind} axis"
+    item = item_identity(dataset, info)
+    what = f"positioning of the {item['Axis'] if item['Axis'] != NOT_STATED else kind} axis"
     rep = Report(
         f"DRAFT — not a certificate: calibration of the {what}" if info.draft
         else f"Calibration certificate — {what}",
@@ -248,14 +251,14 @@ def positioning_certificate(
                      f"{_esc(info.replaces)}. Reason: {_esc(info.reason)}"
                      + _changes(info.changes) + "</div>")
     rep.add_html(_verdict_box(overall(decisions), rule_text))
-    rep.add_html(_pairs(_identification(md, info), "Customer and item calibrated"))
+    rep.add_html(_pairs(_identification(md, info, item), "Customer and item calibrated"))
     rep.add_html(_pairs(_conditions(dataset, result, info, budget),
                         "Test conditions (ISO 230-2:2014 §6)"))
     _instruments(rep, info, md)
     _budget_table(rep, budget)
     u = unit_label(result.deviation_unit)
     rep.add_figure(
-        iso230_2_figure(result, dataset),
+        iso230_2_figure(result, dataset, _figure_title(item)),
         f"Mean deviation per direction with ±2s bands and every run's readings ({u}).",
     )
     _per_target(rep, result)
@@ -323,8 +326,33 @@ def _verdict_box(outcome, rule_text: str) -> str:
     return f'<div class="verdict {cls}">Overall verdict: {words}</div><p>{_esc(rule_text)}</p>'
 
 
-def _identification(md, info: CertificateInfo) -> dict[str, Any]:
-    c, m = info.customer, info.machine
+def item_identity(dataset, info: CertificateInfo) -> dict[str, str]:
+    """The one identity of the item calibrated (ISO/IEC 17025:2017 §7.8.2.1 c, f): machine
+    (maker and model, else the data file's name of it), serial number, axis (the job's
+    ``[machine] axis``, else the data file's) and location; the certificate's identification,
+    its title and its figure all print these."""
+    m, md = info.machine, dataset.metadata
+    return {
+        "Machine": " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
+        or md.machine or NOT_STATED,
+        "Serial number": str(m.get("serial") or NOT_STATED),
+        "Location": str(m.get("location") or info.conditions.get("location") or NOT_STATED),
+        "Axis": str(m.get("axis") or md.axis or NOT_STATED),
+    }
+
+
+def _figure_title(item: dict[str, str]) -> str:
+    who = ", ".join(x for x in (
+        item["Machine"], item["Serial number"] != NOT_STATED and f"serial {item['Serial number']}",
+        item["Axis"] != NOT_STATED and f"axis {item['Axis']}") if x and x != NOT_STATED)
+    return "Positioning deviation, ISO 230-2:2014" + (f" — {who}" if who else "")
+
+
+def _identification(md, info: CertificateInfo, item: dict[str, str] | None = None
+                    ) -> dict[str, Any]:
+    c = info.customer
+    item = item or {"Machine": md.machine or NOT_STATED, "Serial number": NOT_STATED,
+                    "Location": NOT_STATED, "Axis": md.axis or NOT_STATED}
     return {
         "Certificate number": info.number or ("none: a draft is not numbered" if info.draft
                                               else NOT_STATED),
@@ -332,12 +360,7 @@ def _identification(md, info: CertificateInfo) -> dict[str, Any]:
         "Customer": c.get("name") or NOT_STATED,
         "Customer address": _lines(c.get("address"), ", "),
         "Customer reference": c.get("reference"),
-        "Machine": " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
-        or md.machine
-        or NOT_STATED,
-        "Serial number": m.get("serial") or NOT_STATED,
-        "Location": m.get("location") or info.conditions.get("location") or NOT_STATED,
-        "Axis": md.axis or NOT_STATED,
+        **item,
     }
 
 
