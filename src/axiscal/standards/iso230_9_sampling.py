@@ -62,11 +62,11 @@ def sampling_contributors(result) -> list[Contributor]:
     Returns
     -------
     list of Contributor
-        ``u_SAMPLING,R`` … each acting on its one parameter; none for a parameter that does not
+        ``u_SAMPLING (R)`` … each acting on its one parameter; none for a parameter that does not
         apply or whose target has fewer than 2 readings in a direction.
     """
     t = result.targets
-    u_unit = result.deviation_unit
+    u_unit = {"um": "µm"}.get(result.deviation_unit, result.deviation_unit)
     up = _direction(result.s_up, result.n_up)
     down = _direction(result.s_down, result.n_down)
     out = []
@@ -117,5 +117,5 @@ def _u_b(up, down, i: int) -> float:
 
 
 def _c(name: str, sym: str, u: float, basis: str) -> Contributor:
-    return Contributor(f"u_SAMPLING,{sym}", f"sampling of the runs behind {sym}", u, "normal",
+    return Contributor(f"u_SAMPLING ({sym})", f"sampling of the runs behind {sym}", u, "normal",
                        _CLAUSE, basis, (name,))
