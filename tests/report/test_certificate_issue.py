@@ -267,6 +267,7 @@ def test_laser_conditions_and_the_datas_origin_are_printed(tmp_path, linear):
                  "the laboratory&#x27;s instrument"):
         assert text in html, text
     assert "11.5 (assumed: steel" in html or "11.5 (taken from the data file" in html
+    assert "interval" not in html.lower()          # §7.8.4.3: no calibration interval advised
     bad = copy.deepcopy(COMPLETE)
     bad["conditions"]["humidity"] = 140
     with pytest.raises(AxiscalError, match="humidity = 140: a number from 0 to 100"):

@@ -130,7 +130,7 @@ class Certificate(Base):
     name printed at issue. ``prepared_by`` and ``approved_by`` (with ``approved_role``) name who
     prepared the certificate and the authorised signatory who approved its issue (§7.8.2.1 o);
     ``changes_json`` lists what an amendment changed (§7.8.8.3); ``as_found_test_id`` is the
-    test before adjustment of an "as found / as left" certificate (§7.8.4.2).
+    test before adjustment of an "as found / as left" certificate (§7.8.4.1 d).
     """
 
     __tablename__ = "certificate"

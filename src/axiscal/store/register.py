@@ -1,7 +1,7 @@
 """The certificate register: controlled numbers, the issued documents, amendments.
 
 A certificate number is unique per laboratory and comes from a counter in the register, never
-from the data alone (ISO/IEC 17025:2017 §7.8.2.1 b: "unique identification"). The register is
+from the data alone (ISO/IEC 17025:2017 §7.8.2.1 d: "unique identification"). The register is
 keyed by the laboratory's *code* (``[company] code``), never by its display name: a name written
 another way (a full stop added) is the same laboratory and continues its counter; the name is
 kept beside each certificate as it was printed. The number is formed by the caller's pattern

@@ -1,6 +1,6 @@
 """The certificate register keyed by the laboratory's code, never its display name; who prepared
 and who authorised each certificate; what an amendment changed; the "as found" test of an
-"as found / as left" certificate (ISO/IEC 17025:2017 §7.8.2.1 b and o, §7.8.4.2, §7.8.8.3).
+"as found / as left" certificate (ISO/IEC 17025:2017 §7.8.2.1 d and o, §7.8.4.1 d, §7.8.8.3).
 
 Before this revision ``certificate.laboratory`` held the laboratory's *name*: a full stop added
 to the name started a second counter and gave a number a second time. The code is the part of
