@@ -310,3 +310,49 @@ def test_one_identity_of_the_item_in_title_plot_and_identification(tmp_path, lin
     assert _figure_title(item) == ("Positioning deviation, ISO 230-2:2014 — Example VMC-800, "
                                    "serial VMC8-0042, axis Y1")
     assert "simulated" not in _figure_title(item)
+
+
+def _stored_axis_test(store, seed: int, date: str, slope: float):
+    """A linear X-axis test of machine M-1 on ``date``: deviations ``slope`` µm/mm along the
+    travel plus noise (a compensated axis has a small slope)."""
+    import numpy as np
+
+    from axiscal.datasets import Metadata, PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0, 800, 9)
+    up = slope * t[:, None] + rng.normal(0, 0.4, (9, 5))
+    ds = PositioningDataset("linear", t, up, up - 0.8, "mm", "um",
+                            Metadata(machine="M-1", axis="X", date=date))
+    return store.add(format_positioning_csv(ds).encode(), f"x-{date}.csv").id
+
+
+def test_as_found_and_as_left_from_two_stored_tests(tmp_path):
+    """Issue 38 (ISO/IEC 17025:2017 §7.8.4.1 d): a compensated axis's certificate reports the
+    test before compensation and the one after, each with its U and verdict against the same
+    tolerance; the register keeps both tests; a pair of another axis or in the wrong order is
+    refused."""
+    from axiscal.report.issue import write_as_found_as_left
+
+    store = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    found = _stored_axis_test(store, 1, "2026-11-18", 0.03)     # E about 24 µm
+    left = _stored_axis_test(store, 2, "2026-11-20", 0.001)     # E about 2 µm
+    o = write_as_found_as_left(tmp_path / "c.html", store, found, left, COMPLETE, {"E": 10.0},
+                               today="2026-11-24")
+    assert not o.draft, o.missing
+    html = o.path.read_text()
+    assert "positioning of the X axis, as found and as left" in html
+    assert "Results as found, before adjustment (test of 2026-11-18)" in html
+    assert "Results as left, after adjustment" in html
+    assert "As found: non-conformance proven; as left: conformance proven." in html
+    r = store.certificate(o.number)
+    assert (r.test_id, r.as_found_test_id) == (left, found)
+    assert f"(as found: test {found})" in str(r)
+    with pytest.raises(AxiscalError, match="is after test"):
+        write_as_found_as_left(tmp_path / "d.html", store, left, found, COMPLETE, {"E": 10.0},
+                               today="2026-11-24")
+    other = store.add(store.get(left).raw.replace(b"M-1", b"M-2"), "m2.csv").id
+    with pytest.raises(AxiscalError, match="as found and as left are one axis"):
+        write_as_found_as_left(tmp_path / "e.html", store, found, other, COMPLETE, {"E": 10.0},
+                               today="2026-11-24")

@@ -26,7 +26,7 @@ from typing import Optional
 
 import typer
 
-from axiscal.cli._certificate import APPROVED_BY, PREPARED_BY
+from axiscal.cli._certificate import APPROVED_BY, DRAFT, JOB, PAPER, PREPARED_BY, RULE
 from axiscal.cli._common import note, print_json
 from axiscal.cli._history_store import DB as _DB      # the history's --db and --json,
 from axiscal.cli._history_store import JSON as _JSON  # the same options
@@ -137,6 +137,40 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     else:
         typer.echo(str(o.record))
     note(f"issued certificate {o.record.number}, replacing {number}: {out}")
+
+
+@app.command("as-found-as-left")
+def as_found_as_left(
+        found: int = typer.Argument(..., help="The stored test before the adjustment "
+                                    "(compensation, repair): 'as found'."),
+        left: int = typer.Argument(..., help="The stored test after it: 'as left'."),
+        out: Path = typer.Option(..., "--out", help="The certificate (.pdf or .html)."),
+        job: Optional[Path] = JOB,
+        tolerance: list[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as "
+                                            "NAME=VALUE, decided for both tests."),
+        rule: Optional[str] = RULE, paper: Optional[str] = PAPER, draft: bool = DRAFT,
+        prepared_by: str = PREPARED_BY, approved_by: str = APPROVED_BY,
+        db: Optional[str] = _DB) -> None:
+    """Certify a compensated axis from two stored tests: as found and as left, each with U.
+
+    Both tests' results, U and verdicts are reported (ISO/IEC 17025:2017 §7.8.4.1 d); the
+    number is the as-left test's, the as-found test named beside it in the register.
+
+    Example: axiscal certificate as-found-as-left 3 7 --job job.toml --out X-as-left.pdf
+    """
+    from axiscal.cli._certificate import tell_outcome
+    from axiscal.cli._common import report_path
+    from axiscal.cli.iso230_2 import parse_tolerances
+    from axiscal.io.user_config import config_problem
+    from axiscal.report.issue import load_config, write_as_found_as_left
+    from axiscal.store import open_store
+
+    report_path(out)
+    outcome = write_as_found_as_left(out, open_store(db), found, left, load_config(job),
+                                     parse_tolerances(tolerance), rule, paper, job,
+                                     config_note=config_problem(), prepared_by=prepared_by,
+                                     approved_by=approved_by)
+    tell_outcome(outcome, draft)
 
 
 def register(root: typer.Typer) -> None:

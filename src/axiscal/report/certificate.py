@@ -199,7 +199,8 @@ def data_origin(dataset, info: CertificateInfo) -> tuple[str, str]:
 
 
 def positioning_certificate(
-    dataset, result, budget, info: CertificateInfo, decisions=(), rule_text: str = ""
+    dataset, result, budget, info: CertificateInfo, decisions=(), rule_text: str = "",
+    as_found=None,
 ) -> Report:
     """The certificate of one ISO 230-2 positioning test (a DRAFT when ``info.draft``).
 
@@ -214,6 +215,10 @@ def positioning_certificate(
         From :func:`axiscal.standards.iso14253_1.decide`, one per toleranced parameter.
     rule_text : str
         The decision rule as stated on the certificate.
+    as_found : tuple, optional
+        ``(dataset, result, budget, decisions)`` of the test before adjustment: its results,
+        U and verdicts are reported beside these, the results "as left" (ISO/IEC 17025:2017
+        §7.8.4.1 d).
 
     Returns
     -------
@@ -234,6 +239,8 @@ def positioning_certificate(
     kind = "rotary" if dataset.axis_kind.value == "rotary" else "linear"
     item = item_identity(dataset, info)
     what = f"positioning of the {item['Axis'] if item['Axis'] != NOT_STATED else kind} axis"
+    if as_found is not None:
+        what += ", as found and as left"
     rep = Report(
         f"DRAFT — not a certificate: calibration of the {what}" if info.draft
         else f"Calibration certificate — {what}",
@@ -263,8 +270,17 @@ def positioning_certificate(
     )
     _per_target(rep, result)
     _assumptions(rep, dataset, result, budget, info)
+    if as_found is not None:
+        f_ds, f_res, f_budget, f_dec = as_found
+        rep.add_html(_results(f_res, f_budget, f_dec, info, heading=(
+            f"Results as found, before adjustment (test of "
+            f"{f_ds.metadata.date or 'date not stated'})")))
+        rep.add_html(f'<p class="overall">As found: {_esc(_overall_words(f_dec))}; as left: '
+                     f"{_esc(_overall_words(decisions))}.</p>")
     rep.add_html(_statements(info, decisions, rule_text, data_origin(dataset, info)[0]))
-    rep.add_html('<div class="closing">' + _results(result, budget, decisions, info)
+    rep.add_html('<div class="closing">' + _results(
+        result, budget, decisions, info,
+        heading="Results as left, after adjustment" if as_found is not None else "Results")
                  + _signatures(info, info.operator or md.operator) + "</div>")
     return rep
 
@@ -413,7 +429,14 @@ def _conditions(dataset, result, info: CertificateInfo, budget=None) -> dict[str
     }
 
 
-def _results(result, budget, decisions, info: CertificateInfo) -> str:
+def _overall_words(decisions) -> str:
+    from axiscal.standards.iso14253_1 import overall
+
+    o = overall(decisions)
+    return o.value if o else "no tolerance given"
+
+
+def _results(result, budget, decisions, info: CertificateInfo, heading: str = "Results") -> str:
     """The results table with U and k: the first part of the block the signature closes. U is
     never printed as zero: two significant digits, rounded up (JCGM 100:2008 §7.2.6); each value
     to the last digit of its U (ILAC-P14:09/2020 §5.3); the verdicts were decided with the U
@@ -447,7 +470,7 @@ def _results(result, budget, decisions, info: CertificateInfo) -> str:
                         "two stay separate targets)</td></tr>")
     supplied = " * Supplied by the customer (job file)." if info.customer_supplied else ""
     return (
-        f'<h2>Results</h2><table class="results"><thead><tr><th>Parameter</th><th>Value '
+        f'<h2>{_esc(heading)}</h2><table class="results"><thead><tr><th>Parameter</th><th>Value '
         f"({u})</th><th>U, k = {budget.k:g} ({u})</th><th>Tolerance ({u})</th><th>Verdict</th>"
         f"<th>Meaning (ISO 230-2:2014 clause 3)</th></tr></thead><tbody>{''.join(rows)}"
         f"</tbody><caption>U: expanded uncertainty, coverage factor k = {budget.k:g} (about "

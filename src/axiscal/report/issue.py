@@ -28,7 +28,7 @@ from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
            "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off",
-           "signatories", "authorisation", "amendment_changes"]
+           "signatories", "authorisation", "amendment_changes", "write_as_found_as_left"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -189,7 +189,7 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
                       *, store=None, filename: str = "data.csv", today: str | None = None,
                       config_note: str = "", customer_supplied=None, logo: str | None = None,
                       replaces: str = "", reason: str = "", prepared_by: str = "",
-                      approved_by: str = "", changes=()) -> CertificateOutcome:
+                      approved_by: str = "", changes=(), as_found=None) -> CertificateOutcome:
     """Budget, decisions and certificate of one positioning test, written to ``path``
     (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
 
@@ -211,6 +211,10 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     config_note : str
         Why the user configuration identifies no laboratory (:func:`~axiscal.io.user_config.
         config_problem`), named among the missing items.
+    as_found : tuple, optional
+        ``(dataset, result, test_id)`` of the stored test before adjustment: the certificate
+        reports both (ISO/IEC 17025:2017 §7.8.4.1 d), this test "as left"
+        (:func:`write_as_found_as_left`).
     prepared_by, approved_by : str
         Who prepared the certificate (default ``[operator] name``) and the authorised signatory
         who approves its issue (default ``[certificate] signatory``; the workbench passes the
@@ -245,12 +249,19 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason,
                                changes=tuple(changes))
 
+    found = None
+    if as_found is not None:
+        f_ds, f_res, _ = as_found
+        f_budget = budget_for(f_ds, f_res, cfg)
+        f_dec, _, _ = decisions_for(f_res.parameters(), f_budget, tolerances or {}, cfg, rule)
+        found = (f_ds, f_res, f_budget, tuple(f_dec))
+
     def render(number: str) -> bytes:
         from axiscal.report.certificate import positioning_certificate
 
         rep = positioning_certificate(dataset, result, budget,
                                       dataclasses.replace(info, number=number), decisions,
-                                      rule_text)
+                                      rule_text, as_found=found)
         if Path(path).suffix.lower() == ".pdf":
             from axiscal.report.pdf import html_to_pdf
 
@@ -265,7 +276,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     inputs = {"config": cfg, "tolerances": dict(tolerances or {}), "rule": rule, "paper": paper,
               "logo": logo, "customer_supplied": list(customer_supplied)}
     store = store() if callable(store) else store        # opened only to issue
-    record = _register(store, dataset, info, data_bytes, filename, render, inputs, path)
+    record = _register(store, dataset, info, data_bytes, filename, render, inputs, path,
+                       None if as_found is None else as_found[2])
     write_bytes_atomic(Path(path), record.document)
     return CertificateOutcome(Path(path), tuple(decisions), (), record.number, record)
 
@@ -345,6 +357,40 @@ def authorisation(cfg: dict, info, prepared_by: str, approved_by: str = ""):
     return info, out
 
 
+def write_as_found_as_left(path, store, found_id: int, left_id: int, cfg: dict,
+                           tolerances=None, rule: str | None = None, paper: str | None = None,
+                           job: Path | None = None, **kw) -> CertificateOutcome:
+    """The certificate of a compensated (or repaired) axis from two stored tests: ``found_id``
+    before the adjustment, ``left_id`` after it, each with its U and verdict against the same
+    tolerances (ISO/IEC 17025:2017 §7.8.4.1 d). Numbered as the certificate of the as-left test,
+    the as-found test named beside it in the register.
+
+    Raises
+    ------
+    InputError
+        The two are the same test, not both ISO 230-2 tests, not of the same machine and axis,
+        or the as-found test is dated after the as-left one.
+    """
+    if found_id == left_id:
+        raise InputError(f"as found and as left are both test {left_id}: give the test before "
+                         "the adjustment and the test after it")
+    found, left = store.get(found_id), store.get(left_id)
+    evs = [t.evaluate_again() for t in (found, left)]
+    if any(e.kind != "iso230-2" for e in evs):
+        raise InputError("an as found / as left certificate reports two ISO 230-2 positioning "
+                         f"tests; test {found_id} is {evs[0].kind}, test {left_id} {evs[1].kind}")
+    a, b = found.summary, left.summary
+    if (a.machine, a.axis) != (b.machine, b.axis):
+        raise InputError(f"test {found_id} is of {a.machine} axis {a.axis}, test {left_id} of "
+                         f"{b.machine} axis {b.axis}: as found and as left are one axis")
+    if a.tested_at > b.tested_at:
+        raise InputError(f"test {found_id} (as found, {a.tested_at:%Y-%m-%d}) is after test "
+                         f"{left_id} (as left, {b.tested_at:%Y-%m-%d})")
+    return write_certificate(path, evs[1].dataset, evs[1].evaluation, cfg, left.raw, tolerances,
+                             rule, paper, job, store=store, filename=b.filename,
+                             as_found=(evs[0].dataset, evs[0].evaluation, found_id), **kw)
+
+
 def amendment_changes(dataset, result, before, after) -> list[dict]:
     """What an amendment changes (ISO/IEC 17025:2017 §7.8.8.3: the change identified): every
     field of the certificate's inputs whose text changed, and every result whose printed U or
@@ -415,7 +461,8 @@ def _draft_refused(path, write, number: str) -> CertificateOutcome:
     return dataclasses.replace(out, path=Path(path))
 
 
-def _register(store, dataset, info, data_bytes: bytes, filename: str, render, inputs, path):
+def _register(store, dataset, info, data_bytes: bytes, filename: str, render, inputs, path,
+              as_found_test_id: int | None = None):
     """Keep the test in the history and issue the next number of the laboratory."""
     md = dataset.metadata
     m = info.machine
@@ -431,7 +478,8 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
         media_type="application/pdf" if pdf else "text/html",
         inputs=json.loads(json.dumps(inputs, default=str)), replaces=info.replaces,
         reason=info.reason, prepared_by=info.prepared_by, approved_by=info.signatory,
-        approved_role=info.signatory_role, changes=info.changes)
+        approved_role=info.signatory_role, changes=info.changes,
+        as_found_test_id=as_found_test_id)
 
 
 def _info(cfg: dict, today: str | None, logo: str, customer_supplied):
