@@ -356,3 +356,24 @@ def test_as_found_and_as_left_from_two_stored_tests(tmp_path):
     with pytest.raises(AxiscalError, match="as found and as left are one axis"):
         write_as_found_as_left(tmp_path / "e.html", store, found, other, COMPLETE, {"E": 10.0},
                                today="2026-11-24")
+
+
+def test_names_corrected_in_the_history_reach_the_certificate(tmp_path):
+    """Issue 38: names corrected in the history never reached a certificate. An axis renamed
+    in the history (X -> X1) is the certificate's axis where the job names none."""
+    from axiscal.report.issue import write_certificate
+    from axiscal.store.corrections import rename_axis, rename_machine
+
+    store = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    left = _stored_axis_test(store, 2, "2026-11-20", 0.001)
+    rename_axis(store, "M-1", "X", "X1", by="QA", reason="the customer calls it X1")
+    rename_machine(store, "M-1", "Press line 4 mill", by="QA", reason="customer's name")
+    cfg = copy.deepcopy(COMPLETE)
+    del cfg["machine"]["maker"], cfg["machine"]["model"]
+    t = store.get(left)
+    ev = t.evaluate_again()
+    o = write_certificate(tmp_path / "c.html", ev.dataset, ev.evaluation, cfg, t.raw,
+                          {"E": 10.0}, store=store, filename="x.csv", today="2026-11-24")
+    html = o.path.read_text()
+    assert "positioning of the X1 axis" in html and "Press line 4 mill" in html
+    assert any("maker of the machine" in m for m in o.missing)   # still a DRAFT: no maker

@@ -50,7 +50,7 @@ _SECTIONS = {
     "company": {"name", "address", "logo", "accreditation", "code"},
     "operator": {"name"},
     "customer": {"name", "address", "reference"},
-    "machine": {"maker", "model", "serial", "location", "axis"},
+    "machine": {"maker", "model", "serial", "location", "axis", "name"},
     "conditions": {"date", "measuring_line", "feed", "dwell", "cycle", "location",
                    "air_temperature", "material_temperature", "air_pressure", "humidity",
                    "material_sensors", "referred_to_20", "data_origin"},
@@ -343,14 +343,15 @@ def _verdict_box(outcome, rule_text: str) -> str:
 
 
 def item_identity(dataset, info: CertificateInfo) -> dict[str, str]:
-    """The one identity of the item calibrated (ISO/IEC 17025:2017 §7.8.2.1 c, f): machine
-    (maker and model, else the data file's name of it), serial number, axis (the job's
-    ``[machine] axis``, else the data file's) and location; the certificate's identification,
+    """The one identity of the item calibrated (ISO/IEC 17025:2017 §7.8.2.1 c, g): machine
+    (maker and model, else its name in the history or the data file), serial number, axis (the
+    job's ``[machine] axis``, else the history's as corrected there, else the data file's) and
+    location; the certificate's identification,
     its title and its figure all print these."""
     m, md = info.machine, dataset.metadata
     return {
         "Machine": " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
-        or md.machine or NOT_STATED,
+        or m.get("name") or md.machine or NOT_STATED,
         "Serial number": str(m.get("serial") or NOT_STATED),
         "Location": str(m.get("location") or info.conditions.get("location") or NOT_STATED),
         "Axis": str(m.get("axis") or md.axis or NOT_STATED),
