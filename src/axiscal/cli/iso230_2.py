@@ -9,7 +9,7 @@ stops found and the defaults used), ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
 ``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
 ``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
-``tolerance``, ``U``, ``U_display``, ``outcome`` — ``conformance proven``, ``non-conformance
+``tolerance``, ``U`` (as printed, the U decided with), ``U_display``, ``outcome`` — ``conformance proven``, ``non-conformance
 proven`` or ``uncertainty zone`` —, ``passed`` true/false/null for the zone), ``decision_rule`` and
 ``accepted`` (true when conformance is proven for every parameter, false when non-conformance is
 proven for one, null otherwise); a tolerance not larger than its U (never provable, ISO
@@ -18,7 +18,9 @@ parameter, ISO 230-2:2014 Annex A, in ``unit``, the raw number), ``uncertainty_d
 shown: two significant digits rounded up, JCGM 100:2008 §7.2.6) and ``uncertainty_budget``
 (``unit``, ``k``, ``method``, ``U``, ``U_display``, ``contributors``, ``inputs``: name ->
 ``value``, ``unit``, ``assumed``, ``set_with``, ``rule``, ``label``; ``assumed`` (names),
-``missing_inputs`` (left out of U, e.g. ``e_ve``) and ``notes``).
+``missing_inputs`` (left out of U, e.g. ``e_ve``), ``notes``, ``U_stated`` (the printed U the
+``acceptance`` U is), ``U_narrow`` (Annex A's U of R and B without the sampling of the runs),
+``cmc`` and ``floored`` (parameters whose U is the laboratory's CMC)).
 
 Exit codes: 0 evaluated (and conformance proven for every tolerance), 1 a tolerance not proven
 met (non-conformance or uncertainty zone; with ``--rule simple``: exceeded), 2 a user error, 3 the
