@@ -150,7 +150,7 @@ def as_found_as_left(
                                             "NAME=VALUE, decided for both tests."),
         rule: Optional[str] = RULE, paper: Optional[str] = PAPER, draft: bool = DRAFT,
         prepared_by: str = PREPARED_BY, approved_by: str = APPROVED_BY,
-        db: Optional[str] = _DB) -> None:
+        db: Optional[str] = _DB, json_out: bool = _JSON) -> None:
     """Certify a compensated axis from two stored tests: as found and as left, each with U.
 
     Both tests' results, U and verdicts are reported (ISO/IEC 17025:2017 §7.8.4.1 d); the
@@ -170,6 +170,10 @@ def as_found_as_left(
                                      parse_tolerances(tolerance), rule, paper, job,
                                      config_note=config_problem(), prepared_by=prepared_by,
                                      approved_by=approved_by)
+    if json_out and not outcome.draft:
+        print_json({**record_json(outcome.record), "path": str(out)})
+    elif json_out:
+        print_json({"draft": True, "missing": list(outcome.missing), "path": str(out)})
     tell_outcome(outcome, draft)
 
 

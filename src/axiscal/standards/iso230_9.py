@@ -580,7 +580,7 @@ def _with_sampling(b: UncertaintyBudget, result) -> UncertaintyBudget:
     (:mod:`axiscal.standards.iso230_9_sampling`); Annex A's U of those kept as ``narrow``."""
     from axiscal.standards.iso230_9_sampling import sampling_contributors
 
-    extra = sampling_contributors(result)
+    extra = [Contributor(**c) for c in sampling_contributors(result)]
     if not extra:
         return b
     wide = combine(b.contributors + tuple(extra), b.unit, b.k, list(b.expanded))

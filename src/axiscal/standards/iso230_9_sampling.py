@@ -32,8 +32,6 @@ import math
 
 import numpy as np
 
-from axiscal.standards.iso230_9 import Contributor
-
 __all__ = ["sampling_contributors", "relative_u_of_s"]
 
 _CLAUSE = "JCGM 100:2008 Annex E.4.3 (s from n runs), §4.2.3 (means)"
@@ -50,7 +48,7 @@ def relative_u_of_s(n: int) -> float:
     return 1.0 / math.sqrt(2.0 * (n - 1)) if n >= 2 else math.nan
 
 
-def sampling_contributors(result) -> list[Contributor]:
+def sampling_contributors(result) -> list[dict]:
     """One contributor per scatter parameter (R, R↑, R↓, B, B̄) of ``result``: the sampling
     uncertainty of the standard deviations and means it is formed from, in the result's
     deviation unit, at the target that gives the parameter its value.
@@ -61,9 +59,11 @@ def sampling_contributors(result) -> list[Contributor]:
 
     Returns
     -------
-    list of Contributor
-        ``u_SAMPLING (R)`` … each acting on its one parameter; none for a parameter that does not
-        apply or whose target has fewer than 2 readings in a direction.
+    list of dict
+        The fields of :class:`~axiscal.standards.iso230_9.Contributor` (``name``, ``quantity``,
+        ``u``, ``distribution``, ``clause``, ``basis``, ``applies_to``): ``u_SAMPLING (R)`` …
+        each acting on its one parameter; none for a parameter that does not apply or whose
+        target has fewer than 2 readings in a direction.
     """
     t = result.targets
     u_unit = {"um": "µm"}.get(result.deviation_unit, result.deviation_unit)
@@ -116,6 +116,7 @@ def _u_b(up, down, i: int) -> float:
     return math.sqrt(su * su / nu + sd * sd / nd)
 
 
-def _c(name: str, sym: str, u: float, basis: str) -> Contributor:
-    return Contributor(f"u_SAMPLING ({sym})", f"sampling of the runs behind {sym}", u, "normal",
-                       _CLAUSE, basis, (name,))
+def _c(name: str, sym: str, u: float, basis: str) -> dict:
+    return {"name": f"u_SAMPLING ({sym})", "quantity": f"sampling of the runs behind {sym}",
+            "u": u, "distribution": "normal", "clause": _CLAUSE, "basis": basis,
+            "applies_to": (name,)}
