@@ -283,3 +283,20 @@ def test_withdrawn_test_is_not_certified_and_show_marks_a_later_withdrawal(tmp_p
     r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason", "x",
                             "--out", str(tmp_path / "c2.html"), "--db", _db(tmp_path)])
     assert r.exit_code == 2 and "is withdrawn (reflector loose)" in r.stderr
+
+
+def test_a_date_of_issue_in_the_future_is_refused_and_nothing_kept(tmp_path):
+    """Issue 38: '[certificate] issued = 2031-01-01' was numbered NKL-2031-00001 today. Now
+    refused in one line (exit 2); no certificate, no file and no test kept."""
+    _setup(tmp_path)
+    (tmp_path / "job.toml").write_text(JOB + '\n[certificate]\nissued = "2031-01-01"\n'
+                                       if "[certificate]" not in JOB else
+                                       JOB.replace("[certificate]",
+                                                   '[certificate]\nissued = "2031-01-01"'))
+    r = _issue(tmp_path, "--report", str(tmp_path / "f.html"))
+    assert r.exit_code == 2 and "date of issue 2031-01-01 is in the future" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1 and not (tmp_path / "f.html").exists()
+    from axiscal.store import open_store
+
+    s = open_store(_db(tmp_path))
+    assert s.certificates() == [] and s.tests() == []

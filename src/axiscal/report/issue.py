@@ -465,7 +465,11 @@ def _draft_refused(path, write, number: str) -> CertificateOutcome:
 
 def _register(store, dataset, info, data_bytes: bytes, filename: str, render, inputs, path,
               as_found_test_id: int | None = None):
-    """Keep the test in the history and issue the next number of the laboratory."""
+    """Keep the test in the history and issue the next number of the laboratory (a date of
+    issue in the future refused before the test is kept)."""
+    from axiscal.store.register import check_issue_date
+
+    check_issue_date(info.issued)
     md = dataset.metadata
     m = info.machine
     machine = None if md.machine else " ".join(

@@ -40,7 +40,8 @@ from typing import Callable
 
 from axiscal.errors import InputError
 
-__all__ = ["CertificateRecord", "issue", "listing", "fetch", "ISSUED", "SUPERSEDED"]
+__all__ = ["CertificateRecord", "issue", "listing", "fetch", "check_issue_date", "ISSUED",
+           "SUPERSEDED"]
 
 ISSUED, SUPERSEDED = "issued", "superseded"
 #: How often a number taken by another process at the same moment is tried again (each round
@@ -146,7 +147,7 @@ def issue(store, *, test_id: int, laboratory: str, series: str,
 
     if bool(replaces) != bool(reason.strip()):
         raise InputError("an amendment names the certificate it replaces and the reason, both")
-    issued_on = _issue_date(issued, today)
+    issued_on = check_issue_date(issued, today)
     rules = dict(laboratory=laboratory, test_id=test_id, replaces=replaces, issued=issued_on,
                  as_found=as_found_test_id)
     with store._guard("read"), store._session() as s:
@@ -182,8 +183,8 @@ def issue(store, *, test_id: int, laboratory: str, series: str,
                      "(other processes issue at the same time); try again")
 
 
-def _issue_date(issued: str, today: dt.date | None) -> dt.date:
-    """The date of issue as a date; one in the future is refused."""
+def check_issue_date(issued: str, today: dt.date | None = None) -> dt.date:
+    """The date of issue as a date; one in the future is refused (before anything is kept)."""
     try:
         when = dt.date.fromisoformat(str(issued).strip()[:10])
     except ValueError:
