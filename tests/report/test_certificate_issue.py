@@ -290,6 +290,7 @@ def test_readings_of_the_customers_control_system_are_marked(tmp_path):
     assert "supplied by the customer (ISO/IEC 17025:2017 §7.8.2.2)" in html
     assert "CONFORMS" not in html and "NOT PROVEN" in html       # R = 204.76 ± 150 vs 210
     assert "<td>205</td><td>150</td>" in html                    # value to U's last digit
+    assert "simulated" not in html.lower()            # a real file's certificate says none
 
 
 def test_one_identity_of_the_item_in_title_plot_and_identification(tmp_path, linear):
