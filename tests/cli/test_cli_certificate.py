@@ -91,7 +91,8 @@ def test_pdf_certificate_from_the_command_line(tmp_path):
     d = json.loads(r.stdout)
     assert d["accepted"] is True and d["decision_rule"] == "iso14253-1"
     assert d["acceptance"][0]["outcome"] == "conformance proven"
-    assert d["uncertainty"]["E"] == d["acceptance"][0]["U"] > 0
+    # the verdict is decided with the U printed (issue 38): two digits, rounded up
+    assert d["acceptance"][0]["U"] == float(d["uncertainty_display"]["E"]) >= d["uncertainty"]["E"]
     year = __import__("datetime").date.today().year
     number = f"PM-{year}-00001"
     assert f"issued certificate {number}" in r.stderr
@@ -106,28 +107,44 @@ def test_pdf_certificate_from_the_command_line(tmp_path):
     assert (tmp_path / "again.pdf").read_bytes() == pdf.read_bytes()
 
 
-def test_same_file_twice_two_numbers_and_a_reissue(tmp_path):
-    """Two certificates of the same file: two numbers. A reissue: a new number that replaces
-    the old (printed on it, with the reason), the old kept and marked superseded."""
+def test_same_file_twice_is_refused_and_a_reissue_amends(tmp_path):
+    """Issue 38: the same command run twice issued a second certificate of the same test; now
+    the second is refused (exit 2, one line naming the first and how to amend it, nothing
+    written). A reissue: a new number that replaces the old (printed on it, with the reason),
+    the old kept and marked superseded."""
     _setup(tmp_path)
     year = __import__("datetime").date.today().year
-    for i in (1, 2):
-        r = _issue(tmp_path, "--report", str(tmp_path / f"c{i}.html"))
-        assert r.exit_code == 0 and f"issued certificate PM-{year}-0000{i}" in r.stderr
-    (tmp_path / "fix.toml").write_text('[machine]\nserial = "VMC8-0043"\n')
+    r = _issue(tmp_path, "--report", str(tmp_path / "c1.html"))
+    assert r.exit_code == 0 and f"issued certificate PM-{year}-00001" in r.stderr
+    r = _issue(tmp_path, "--report", str(tmp_path / "c2.html"))
+    assert r.exit_code == 2 and len(r.stderr.strip().splitlines()) == 1, r.output
+    assert (f"has certificate PM-{year}-00001 of PM" in r.stderr
+            and f"certificate reissue PM-{year}-00001" in r.stderr)
+    assert not (tmp_path / "c2.html").exists()
+    (tmp_path / "fix.toml").write_text('[machine]\nserial = "VMC8-0043"\n'
+                                       '[tolerance]\nE = 12\n')
     r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason",
                             "serial number corrected", "--job", str(tmp_path / "fix.toml"),
                             "--out", str(tmp_path / "c3.html"), "--db", _db(tmp_path)])
     assert r.exit_code == 0, r.output
     html = (tmp_path / "c3.html").read_text()
     assert f"replaces certificate PM-{year}-00001. Reason: serial number corrected" in html
-    assert "VMC8-0043" in html and f"PM-{year}-00003" in html
+    # issue 38: every changed field old → new, and every result whose verdict changed
+    assert "[machine] serial: VMC8-0042 → VMC8-0043" in html
+    assert "[tolerance] E: 15 → 12" in html and "tolerance E: 15 → 12" in html
+    assert "verdict E: conformance proven → uncertainty zone" in html
+    shown = runner.invoke(app, ["certificate", "show", f"PM-{year}-00002", "--db",
+                                _db(tmp_path), "--json"])
+    changes = json.loads(shown.stdout)["changes"]
+    assert {"what": "overall verdict", "old": "conformance proven",
+            "new": "uncertainty zone"} in changes
+    assert "VMC8-0043" in html and f"PM-{year}-00002" in html
     rows = json.loads(runner.invoke(app, ["certificate", "list", "--db", _db(tmp_path),
                                           "--json"]).stdout)
     by = {x["number"]: x for x in rows}
     assert by[f"PM-{year}-00001"]["status"] == "superseded"
-    assert by[f"PM-{year}-00001"]["replaced_by"] == f"PM-{year}-00003"
-    assert by[f"PM-{year}-00003"]["replaces"] == f"PM-{year}-00001"
+    assert by[f"PM-{year}-00001"]["replaced_by"] == f"PM-{year}-00002"
+    assert by[f"PM-{year}-00002"]["replaces"] == f"PM-{year}-00001"
     r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason", "x",
                             "--out", str(tmp_path / "c4.html"), "--db", _db(tmp_path)])
     assert r.exit_code == 2 and "already superseded" in r.stderr
@@ -246,3 +263,41 @@ def test_squareness_commands_state_their_uncertainty(tmp_path):
     (tmp_path / "c.toml").write_text("[squareness_uncertainty]\nprobe = 1.0\n")
     r = runner.invoke(app, ["squareness", *cases[2]], env={"AXISCAL_CONFIG": str(tmp_path / "c.toml")})
     assert r.exit_code == 2 and "squareness_uncertainty" in r.stderr
+
+
+def test_withdrawn_test_is_not_certified_and_show_marks_a_later_withdrawal(tmp_path):
+    """Issue 38: 'certificate show' of a certificate whose test was withdrawn afterwards says
+    so; the JSON carries test_withdrawn and the register's key, the laboratory's code."""
+    _setup(tmp_path)
+    year = __import__("datetime").date.today().year
+    assert _issue(tmp_path, "--report", str(tmp_path / "c1.html")).exit_code == 0
+    r = runner.invoke(app, ["history", "withdraw", "1", "--by", "QA", "--reason",
+                            "reflector loose", "--db", _db(tmp_path)])
+    assert r.exit_code == 0, r.output
+    r = runner.invoke(app, ["certificate", "show", f"PM-{year}-00001", "--db", _db(tmp_path)])
+    assert r.exit_code == 0 and "TEST WITHDRAWN after issue: reflector loose" in r.stdout
+    assert "WARNING: the test of this certificate was withdrawn" in r.stdout
+    d = json.loads(runner.invoke(app, ["certificate", "show", f"PM-{year}-00001", "--db",
+                                       _db(tmp_path), "--laboratory", "PMG", "--json"]).stdout)
+    assert d["test_withdrawn"] == "reflector loose" and d["laboratory"] == "PMG"
+    assert d["laboratory_name"] == "Precision Metrology GmbH"
+    r = runner.invoke(app, ["certificate", "reissue", f"PM-{year}-00001", "--reason", "x",
+                            "--out", str(tmp_path / "c2.html"), "--db", _db(tmp_path)])
+    assert r.exit_code == 2 and "is withdrawn (reflector loose)" in r.stderr
+
+
+def test_a_date_of_issue_in_the_future_is_refused_and_nothing_kept(tmp_path):
+    """Issue 38: '[certificate] issued = 2031-01-01' was numbered NKL-2031-00001 today. Now
+    refused in one line (exit 2); no certificate, no file and no test kept."""
+    _setup(tmp_path)
+    (tmp_path / "job.toml").write_text(JOB + '\n[certificate]\nissued = "2031-01-01"\n'
+                                       if "[certificate]" not in JOB else
+                                       JOB.replace("[certificate]",
+                                                   '[certificate]\nissued = "2031-01-01"'))
+    r = _issue(tmp_path, "--report", str(tmp_path / "f.html"))
+    assert r.exit_code == 2 and "date of issue 2031-01-01 is in the future" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1 and not (tmp_path / "f.html").exists()
+    from axiscal.store import open_store
+
+    s = open_store(_db(tmp_path))
+    assert s.certificates() == [] and s.tests() == []

@@ -117,18 +117,22 @@ def test_tolerance_smaller_than_U_is_said_at_once():
 
 
 def test_missing_E_VE_is_named_and_left_out():
-    """No drift check, no declared E_VE: the budget says so (missing input, a note) and U(R) is
-    the reading's alone: 2 · 0.001/(2√3) µm, shown rounded up to two significant digits."""
+    """No drift check, no declared E_VE: the budget says so (missing input, a note) and Annex
+    A's narrow U(R) is the reading's alone: 2 · q/(2√3) µm (the SLS file's readings step by
+    0.001 µm, the default); the printed U(R) adds the sampling of the runs (issue 38)."""
     d = _json()
     b = d["uncertainty_budget"]
+    q = b["inputs"]["resolution"]["value"]
+    assert q == pytest.approx(0.001)
     assert b["missing_inputs"] == ["e_ve"] and b["inputs"]["e_ve"]["value"] is None
     assert any("E_VE not given" in n and "drift check" in n for n in b["notes"])
-    assert d["uncertainty"]["R"] == pytest.approx(0.001 / SQ3, rel=1e-12)
-    assert d["uncertainty_display"]["R"] == "0.00058"
+    assert b["U_narrow"]["R"] == pytest.approx(q / SQ3, rel=1e-12)
+    assert d["uncertainty"]["R"] > 10 * b["U_narrow"]["R"]
+    assert d["uncertainty_display"]["R"] == "0.034"
     declared = _json("--uncertainty", "e_ve=0.3")
     assert declared["uncertainty_budget"]["missing_inputs"] == []
-    assert declared["uncertainty"]["R"] == pytest.approx(
-        2 * math.hypot(0.001 / (2 * SQ3), 0.3 / (2 * SQ3)), rel=1e-12)
+    assert declared["uncertainty_budget"]["U_narrow"]["R"] == pytest.approx(
+        2 * math.hypot(q / (2 * SQ3), 0.3 / (2 * SQ3)), rel=1e-12)
 
 
 def test_runs_stated():
@@ -153,8 +157,10 @@ def test_bad_uncertainty_option_is_one_line(item, message):
 
 def test_demo_U_of_R_is_not_zero(tmp_path):
     """The demo's linear test (src/axiscal/data/demo_linear.toml, seed 1): U(R) is the budget's
-    value rounded up to two significant digits, 0.00058 µm, never "0.00" (JCGM 100:2008
-    §7.2.6); its raw value is kept in --json."""
+    value rounded up to two significant digits, never "0.00" (JCGM 100:2008 §7.2.6); its raw
+    value is kept in --json. Since issue 38 it holds the sampling of the 5 runs (1.6 µm, R =
+    5.81 µm), Annex A's narrow 0.00058 µm (the reading alone) kept as U_narrow; against R ≤ 5
+    the verdict is decided with the U printed and is the zone, no longer FAIL."""
     import tomllib
     from importlib import resources
 
@@ -166,17 +172,17 @@ def test_demo_U_of_R_is_not_zero(tmp_path):
     cfg = tomllib.loads(resources.files("axiscal.data").joinpath("demo_linear.toml").read_text())
     ds = simulate_from_config(cfg, seed=1).dataset
     budget = positioning_budget(ds, evaluate(ds))
-    assert budget.U("R") > 0 and round_up(budget.U("R")) == 0.00058
+    assert round_up(budget.U("R")) == 1.6 and round_up(budget.narrow["R"]) == 0.00058
     path = tmp_path / "linear_data.csv"
     path.write_text(format_positioning_csv(ds))
     r = CliRunner().invoke(app, ["iso230-2", str(path), "--json", "--tolerance", "R=5"])
     d = json.loads(r.stdout)
-    assert d["uncertainty"]["R"] == pytest.approx(budget.U("R"), rel=1e-12)
-    assert d["uncertainty_display"]["R"] == "0.00058"
-    assert d["acceptance"][0]["U_display"] == "0.00058"
+    assert d["uncertainty"]["R"] == pytest.approx(budget.U("R"), rel=1e-9)   # via the CSV
+    assert d["uncertainty_display"]["R"] == "1.6" and d["acceptance"][0]["U"] == 1.6
+    assert d["acceptance"][0]["outcome"] == "uncertainty zone"
     r = CliRunner().invoke(app, ["iso230-2", str(path), "--tolerance", "R=5"])
-    row = next(ln for ln in r.stdout.splitlines() if ln.startswith("│ R ") and "FAIL" in ln)
-    assert "0.00058" in row and "0.00 " not in row
+    row = next(ln for ln in r.stdout.splitlines() if ln.startswith("│ R ") and "ZONE" in ln)
+    assert "1.6" in row and "0.00 " not in row
 
 
 def test_evaluate_shows_the_same_budget_and_warning(tmp_path):
@@ -188,7 +194,7 @@ def test_evaluate_shows_the_same_budget_and_warning(tmp_path):
     r = CliRunner().invoke(app, [*args, "--json"])
     d = json.loads(r.stdout)
     same = _json("--uncertainty", "reference=laser", "--uncertainty", "beam_offset=0.5")
-    assert d["acceptance"][0]["U"] == pytest.approx(same["uncertainty"]["A"], rel=1e-12)
+    assert d["acceptance"][0]["U"] == float(same["uncertainty_display"]["A"])   # as printed
     assert d["acceptance"][0]["U_display"] == "3.6"
     assert len(d["warnings"]) == 1 and "tolerance A = 1 µm" in d["warnings"][0]
     assert d["uncertainty_budget"]["inputs"]["beam_offset"]["assumed"] is False
@@ -205,15 +211,17 @@ def test_evaluate_shows_the_same_budget_and_warning(tmp_path):
 
 def test_E_VE_measured_by_a_drift_check(tmp_path):
     """--drift-check FILE: E_VE is the range of the still set-up's readings (ISO 230-2:2014
-    Annex A.5), shown as measured, not assumed; U(R) = 2·√((r/(2√3))² + (E_VE/(2√3))²)."""
+    Annex A.5), shown as measured, not assumed; Annex A's U(R) = 2·√((r/(2√3))² +
+    (E_VE/(2√3))²), r the encoder's step from the data."""
     drift = tmp_path / "drift.csv"
     drift.write_text("# X at rest, 30 min\ntime_s,reading\n0,0.00\n600,0.21\n1200,-0.09\n1800,0.15\n")
     d = _json("--drift-check", str(drift))
     e_ve = d["uncertainty_budget"]["inputs"]["e_ve"]
     assert e_ve["value"] == pytest.approx(0.30) and e_ve["assumed"] is False
     assert "drift check" in e_ve["rule"] and d["uncertainty_budget"]["missing_inputs"] == []
-    assert d["uncertainty"]["R"] == pytest.approx(
-        2 * math.hypot(0.001 / (2 * SQ3), 0.30 / (2 * SQ3)), rel=1e-9)
+    q = d["uncertainty_budget"]["inputs"]["resolution"]["value"]
+    assert d["uncertainty_budget"]["U_narrow"]["R"] == pytest.approx(
+        2 * math.hypot(q / (2 * SQ3), 0.30 / (2 * SQ3)), rel=1e-9)
     r = CliRunner().invoke(app, ["iso230-2", str(ECMC), "--drift-check", str(drift),
                                  "--uncertainty", "e_ve=1"])
     assert r.exit_code == 2 and "given twice" in r.stderr
@@ -224,11 +232,11 @@ def test_E_VE_measured_by_a_drift_check(tmp_path):
 
 def test_evaluate_report_lists_U_per_parameter_without_tolerances(tmp_path):
     """Without a tolerance the report still shows U of each parameter, as displayed everywhere
-    (R: 0.00058 µm for the reading alone, never 0.00)."""
+    (R: 0.034 µm with the sampling of the runs since issue 38, never 0.00)."""
     r = CliRunner().invoke(app, ["evaluate", str(ECMC), "-s", "iso230-2:2014",
                                  "--report", str(tmp_path / "r.html")])
     assert r.exit_code == 0, r.output
     page = (tmp_path / "r.html").read_text()
     row = page.split("U (k = 2) [µm]</td>", 1)[1].split("</tr>", 1)[0]
     cells = [c.split("</td>")[0] for c in row.split("<td>")[1:]]
-    assert cells[0] == "0.16" and "0.00058" in cells and "0.00" not in cells
+    assert cells[0] == "0.16" and "0.034" in cells and "0.00" not in cells

@@ -69,9 +69,10 @@ def _certificate(ds, result, tolerances, rule=Rule.ISO_14253_1, paper="A4", unce
 def test_pdf_pages_text_and_layout(linear, tmp_path, paper, size):
     """The PDF on A4 and US Letter: every page that size and numbered "page n of N"; the text
     layer holds the overall verdict, each U and the certificate number; no page but the last is
-    more than half empty (measured on the pdftoppm rendering)."""
+    more than half empty (measured on the pdftoppm rendering). B = 3.42 µm: its U (0.97 µm)
+    holds the sampling of the means since issue 38, so B is toleranced at 5 µm, not 4."""
     ds, result = linear
-    rep, budget = _certificate(ds, result, {"E": 15, "R": 8, "A": 20, "B": 4}, paper=paper)
+    rep, budget = _certificate(ds, result, {"E": 15, "R": 8, "A": 20, "B": 5}, paper=paper)
     pdf = rep.write(tmp_path / "cert.pdf")
     texts = pdf_text(pdf)
     n = len(texts)

@@ -24,7 +24,8 @@ COMPLETE = {
                 "code": "PM"},
     "operator": {"name": "J. Keller"},
     "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
-    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042"},
+    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042",
+                "location": "Example Machining AG, hall 2"},
     "conditions": {"date": "2026-11-20", "air_temperature": 20.4, "material_temperature": 20.6,
                    "measuring_line": "100 mm above the table centre", "feed": "2000 mm/min",
                    "dwell": "4 s"},
@@ -85,6 +86,7 @@ def _instrument(**kw):
     (_without("machine.maker"), "", "maker of the machine"),
     (_without("machine.model"), "", "model of the machine"),
     (_without("machine.serial"), "", "serial number of the machine"),
+    (_without("machine.location"), "", "location of the calibration"),
     (_without("conditions.date"), "", "date of calibration"),
     (_without("conditions.air_temperature"), "", "air temperature during the test, measured"),
     (_without("conditions.material_temperature"), "", "material temperature during the test"),
@@ -219,3 +221,160 @@ def test_rotary_certificate_keeps_its_signature_with_the_results(tmp_path, paper
     assert all(k in texts[-1] for k in ("Results", "Authorised by", "End of certificate"))
     fractions = [used_fraction(p) for p in render_pages(o.path, f"certificate_rotary_long_name_{paper}")]
     assert all(f >= 0.5 for f in fractions[:-1]), fractions
+
+
+def test_prepared_by_one_approved_by_an_authorised_signatory(tmp_path, linear):
+    """Issue 38: whoever ran the command issued. A certificate is prepared by one person and
+    issued when one of the laboratory's authorised signatories ([[signatory]] name, role)
+    approves it; both are printed and kept in the register."""
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["signatory"] = [{"name": "Dr. M. Braun", "role": "Head of laboratory"},
+                        {"name": "K. Weber", "role": "Deputy head of laboratory"}]
+    o, store = _issue(tmp_path, linear, cfg, approved_by="K. Weber")
+    assert not o.draft, o.missing
+    html = o.path.read_text()
+    assert "Prepared by J. Keller; issue approved by K. Weber." in html
+    assert "Authorised by: K. Weber, Deputy head of laboratory" in html
+    r = store.certificate(o.number)
+    assert (r.prepared_by, r.approved_by, r.approved_role) == (
+        "J. Keller", "K. Weber", "Deputy head of laboratory")
+
+
+@pytest.mark.parametrize("approver, prepared, named", [
+    ("J. Keller", "", "'J. Keller' is not one of the laboratory's (Dr. M. Braun"),
+    ("Dr. M. Braun", "Dr. M. Braun", "approval by a second person: Dr. M. Braun prepared"),
+])
+def test_an_approval_that_is_not_an_authorised_signatorys_is_a_draft(tmp_path, linear, approver,
+                                                                     prepared, named):
+    """An approver not on the laboratory's list, or the preparer approving their own
+    certificate: a DRAFT naming it, no number, nothing in the register."""
+    o, store = _issue(tmp_path, linear, COMPLETE, approved_by=approver, prepared_by=prepared)
+    assert o.draft and any(named in m for m in o.missing), o.missing
+    assert store.certificates() == []
+
+
+def test_laser_conditions_and_the_datas_origin_are_printed(tmp_path, linear):
+    """Issue 38: air pressure and humidity could not be entered; α showed 'not stated' while the
+    budget assumed 11.5 µm/(m·K); the sensors' place, 'referred to 20 °C' and who took the
+    readings were not said."""
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["conditions"].update(air_pressure=101100, humidity=45, referred_to_20=True,
+                             material_sensors="two sensors on the X scale, at 200 and 600 mm")
+    o, _ = _issue(tmp_path, linear, cfg)
+    html = o.path.read_text()
+    for text in ("101100", ">45<", "two sensors on the X scale, at 200 and 600 mm",
+                 "Deviations referred to 20 °C (ISO 1)</td><td>yes",
+                 "the laboratory&#x27;s instrument"):
+        assert text in html, text
+    assert "11.5 (assumed: steel" in html or "11.5 (taken from the data file" in html
+    assert "interval" not in html.lower()          # §7.8.4.3: no calibration interval advised
+    bad = copy.deepcopy(COMPLETE)
+    bad["conditions"]["humidity"] = 140
+    with pytest.raises(AxiscalError, match="humidity = 140: a number from 0 to 100"):
+        _issue(tmp_path, linear, bad, name="bad.html")
+
+
+def test_readings_of_the_customers_control_system_are_marked(tmp_path):
+    """The ESS ecmc file: its reference is the machine's encoder read by ecmc, so the readings
+    are the customer's (ISO/IEC 17025:2017 §7.8.2.2), said in the conditions and statements."""
+    from pathlib import Path
+
+    from axiscal.io.ecmc import read_ecmc
+    from axiscal.standards.iso230_2 import evaluate
+
+    path = Path(__file__).resolve().parents[1] / "data" / "ecmc" / "mcu1025_fat_sat_ISO230.dat"
+    ds = read_ecmc(path)
+    o, _ = _issue(tmp_path, (ds, evaluate(ds), path.read_bytes()), COMPLETE, tol={"R": 210.0})
+    html = o.path.read_text()
+    assert "the customer&#x27;s own system (data supplied by the customer)" in html
+    assert "supplied by the customer (ISO/IEC 17025:2017 §7.8.2.2)" in html
+    assert "CONFORMS" not in html and "NOT PROVEN" in html       # R = 204.76 ± 150 vs 210
+    assert "<td>205</td><td>150</td>" in html                    # value to U's last digit
+    assert "simulated" not in html.lower()            # a real file's certificate says none
+
+
+def test_one_identity_of_the_item_in_title_plot_and_identification(tmp_path, linear):
+    """Issue 38: the plot's title said "VMC-800 (simulated)" where the certificate said "Example
+    VMC-800", and a job's [machine] axis was refused. One identity: the job's machine, serial,
+    axis and location in the identification, the title and the figure's title."""
+    cfg = copy.deepcopy(COMPLETE)
+    cfg["machine"]["axis"] = "Y1"
+    o, _ = _issue(tmp_path, linear, cfg)
+    html = o.path.read_text()
+    assert "positioning of the Y1 axis" in html
+    assert "Example Machining AG, hall 2" in html
+    from axiscal.report.certificate import _figure_title, item_identity, certificate_info
+
+    item = item_identity(linear[0], certificate_info(cfg))
+    assert item == {"Machine": "Example VMC-800", "Serial number": "VMC8-0042",
+                    "Location": "Example Machining AG, hall 2", "Axis": "Y1"}
+    assert _figure_title(item) == ("Positioning deviation, ISO 230-2:2014 — Example VMC-800, "
+                                   "serial VMC8-0042, axis Y1")
+    assert "simulated" not in _figure_title(item)
+
+
+def _stored_axis_test(store, seed: int, date: str, slope: float):
+    """A linear X-axis test of machine M-1 on ``date``: deviations ``slope`` µm/mm along the
+    travel plus noise (a compensated axis has a small slope)."""
+    import numpy as np
+
+    from axiscal.datasets import Metadata, PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0, 800, 9)
+    up = slope * t[:, None] + rng.normal(0, 0.4, (9, 5))
+    ds = PositioningDataset("linear", t, up, up - 0.8, "mm", "um",
+                            Metadata(machine="M-1", axis="X", date=date))
+    return store.add(format_positioning_csv(ds).encode(), f"x-{date}.csv").id
+
+
+def test_as_found_and_as_left_from_two_stored_tests(tmp_path):
+    """Issue 38 (ISO/IEC 17025:2017 §7.8.4.1 d): a compensated axis's certificate reports the
+    test before compensation and the one after, each with its U and verdict against the same
+    tolerance; the register keeps both tests; a pair of another axis or in the wrong order is
+    refused."""
+    from axiscal.report.issue import write_as_found_as_left
+
+    store = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    found = _stored_axis_test(store, 1, "2026-11-18", 0.03)     # E about 24 µm
+    left = _stored_axis_test(store, 2, "2026-11-20", 0.001)     # E about 2 µm
+    o = write_as_found_as_left(tmp_path / "c.html", store, found, left, COMPLETE, {"E": 10.0},
+                               today="2026-11-24")
+    assert not o.draft, o.missing
+    html = o.path.read_text()
+    assert "positioning of the X axis, as found and as left" in html
+    assert "Results as found, before adjustment (test of 2026-11-18)" in html
+    assert "Results as left, after adjustment" in html
+    assert "As found: non-conformance proven; as left: conformance proven." in html
+    r = store.certificate(o.number)
+    assert (r.test_id, r.as_found_test_id) == (left, found)
+    assert f"(as found: test {found})" in str(r)
+    with pytest.raises(AxiscalError, match="is after test"):
+        write_as_found_as_left(tmp_path / "d.html", store, left, found, COMPLETE, {"E": 10.0},
+                               today="2026-11-24")
+    other = store.add(store.get(left).raw.replace(b"M-1", b"M-2"), "m2.csv").id
+    with pytest.raises(AxiscalError, match="as found and as left are one axis"):
+        write_as_found_as_left(tmp_path / "e.html", store, found, other, COMPLETE, {"E": 10.0},
+                               today="2026-11-24")
+
+
+def test_names_corrected_in_the_history_reach_the_certificate(tmp_path):
+    """Issue 38: names corrected in the history never reached a certificate. An axis renamed
+    in the history (X -> X1) is the certificate's axis where the job names none."""
+    from axiscal.report.issue import write_certificate
+    from axiscal.store.corrections import rename_axis, rename_machine
+
+    store = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    left = _stored_axis_test(store, 2, "2026-11-20", 0.001)
+    rename_axis(store, "M-1", "X", "X1", by="QA", reason="the customer calls it X1")
+    rename_machine(store, "M-1", "Press line 4 mill", by="QA", reason="customer's name")
+    cfg = copy.deepcopy(COMPLETE)
+    del cfg["machine"]["maker"], cfg["machine"]["model"]
+    t = store.get(left)
+    ev = t.evaluate_again()
+    o = write_certificate(tmp_path / "c.html", ev.dataset, ev.evaluation, cfg, t.raw,
+                          {"E": 10.0}, store=store, filename="x.csv", today="2026-11-24")
+    html = o.path.read_text()
+    assert "positioning of the X1 axis" in html and "Press line 4 mill" in html
+    assert any("maker of the machine" in m for m in o.missing)   # still a DRAFT: no maker

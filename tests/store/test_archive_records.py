@@ -178,3 +178,20 @@ def test_corrections_arriving_for_tests_stored_before_are_applied(tmp_path):
     assert by_sha[sha["t1"]].withdrawn == "laser misaligned"
     assert by_sha[sha["t0"]].note == "after the spindle change"
     assert _trail(dst) == _trail(src) and _register(dst) == _register(src)
+
+
+def test_an_old_archives_certificate_is_keyed_by_the_code_of_its_series():
+    """Issue 38: an archive written before migration 0005 names the laboratory by its name; on
+    import its certificate is keyed by the code (the start of its series, CODE|YEAR), the name
+    kept as printed, the later fields empty; a new archive's entry is left as it is."""
+    from axiscal.store.archive_records import _register_key
+
+    old = {"laboratory": "Nordkap Labor.", "series": "NKL|2026"}
+    _register_key(old)
+    assert (old["laboratory"], old["laboratory_name"]) == ("NKL", "Nordkap Labor.")
+    assert old["approved_by"] == "" and old["changes"] == [] and old["as_found"] is None
+    new = {"laboratory": "NKL", "laboratory_name": "Nordkap Labor", "series": "NKL|2026",
+           "approved_by": "Dr. M. Braun", "changes": [{"what": "x", "old": 1, "new": 2}]}
+    _register_key(new)
+    assert (new["laboratory"], new["approved_by"]) == ("NKL", "Dr. M. Braun")
+    assert new["changes"] == [{"what": "x", "old": 1, "new": 2}]

@@ -7,8 +7,11 @@ laboratory, and the issued document and its SHA-256 are kept with the test
 a new number that replaces the old one, with the reason; the old one is kept, marked superseded.
 
 JSON output (``--json``), stable keys: ``list`` prints a list of objects with ``number``,
-``laboratory``, ``test_id``, ``customer``, ``issued``, ``status`` (``issued`` or
-``superseded``), ``replaces``, ``replaced_by``, ``reason``, ``media_type``, ``sha256``;
+``laboratory`` (the laboratory's code, the register's key), ``laboratory_name`` (as printed),
+``test_id``, ``customer``, ``issued``, ``status`` (``issued`` or ``superseded``), ``replaces``,
+``replaced_by``, ``reason``, ``media_type``, ``sha256``, ``prepared_by``, ``approved_by``,
+``approved_role``, ``changes`` (an amendment's ``what``/``old``/``new``), ``test_withdrawn``
+(why the test was withdrawn after issue; "" while it counts) and ``as_found_test_id``;
 ``show`` and ``reissue`` print one such object (``reissue``: the new certificate) and ``path``
 when a document was written.
 
@@ -23,6 +26,7 @@ from typing import Optional
 
 import typer
 
+from axiscal.cli._certificate import APPROVED_BY, DRAFT, JOB, PAPER, PREPARED_BY, RULE
 from axiscal.cli._common import note, print_json
 from axiscal.cli._history_store import DB as _DB      # the history's --db and --json,
 from axiscal.cli._history_store import JSON as _JSON  # the same options
@@ -34,8 +38,8 @@ app = typer.Typer(help="The certificate register: numbers, issued documents and 
                   "(ISO/IEC 17025:2017 §7.8.8) kept in the calibration history.",
                   no_args_is_help=True)
 
-_LAB = typer.Option(None, "--laboratory", help="The laboratory's name, where two laboratories "
-                    "share a database.")
+_LAB = typer.Option(None, "--laboratory", help="The laboratory's code (\\[company] code; its "
+                    "name is accepted too), where two laboratories share a database.")
 
 
 def record_json(r) -> dict:
@@ -43,7 +47,11 @@ def record_json(r) -> dict:
     return {"number": r.number, "laboratory": r.laboratory, "test_id": r.test_id,
             "customer": r.customer, "issued": r.issued, "status": r.status,
             "replaces": r.replaces, "replaced_by": r.replaced_by, "reason": r.reason,
-            "media_type": r.media_type, "sha256": r.sha256}
+            "media_type": r.media_type, "sha256": r.sha256,
+            "laboratory_name": r.laboratory_name, "prepared_by": r.prepared_by,
+            "approved_by": r.approved_by, "approved_role": r.approved_role,
+            "changes": list(r.changes), "test_withdrawn": r.test_withdrawn,
+            "as_found_test_id": r.as_found_test_id}
 
 
 @app.command("list")
@@ -83,8 +91,14 @@ def show(number: str = typer.Argument(..., help="The certificate number."),
         print_json({**record_json(r), **({"path": str(out)} if out else {})})
     else:
         typer.echo(str(r))
-        typer.echo(f"laboratory {r.laboratory}; {r.media_type}, {len(r.document)} bytes, "
-                   f"SHA-256 {r.sha256}")
+        typer.echo(f"laboratory {r.laboratory} ({r.laboratory_name}); {r.media_type}, "
+                   f"{len(r.document)} bytes, SHA-256 {r.sha256}")
+        for c in r.changes:
+            typer.echo(f"  changed: {c.get('what')}: {c.get('old')} → {c.get('new')}")
+        if r.test_withdrawn:
+            typer.echo(f"WARNING: the test of this certificate was withdrawn after issue "
+                       f"({r.test_withdrawn}); the certificate stands as issued, its results "
+                       "no longer count in the history")
     if out is not None:
         note(f"wrote {out}")
 
@@ -97,6 +111,7 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
             job: Optional[Path] = typer.Option(None, "--job", help="Corrections (TOML, the "
                                                "tables of a job file) over the inputs kept with "
                                                "the old certificate."),
+            prepared_by: str = PREPARED_BY, approved_by: str = APPROVED_BY,
             db: Optional[str] = _DB, laboratory: Optional[str] = _LAB,
             json_out: bool = _JSON) -> None:
     """Amend a certificate: a new number replaces it; the old one stays, marked superseded.
@@ -113,12 +128,51 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     report_path(out)
     corrections = load_job(job) if job is not None else None
     o = reissue_certificate(open_db(db), number, reason, out, corrections,
-                            laboratory=laboratory)
+                            laboratory=laboratory, prepared_by=prepared_by,
+                            approved_by=approved_by)
     if json_out:
         print_json({**record_json(o.record), "path": str(out)})
     else:
         typer.echo(str(o.record))
     note(f"issued certificate {o.record.number}, replacing {number}: {out}")
+
+
+@app.command("as-found-as-left")
+def as_found_as_left(
+        found: int = typer.Argument(..., help="The stored test before the adjustment "
+                                    "(compensation, repair): 'as found'."),
+        left: int = typer.Argument(..., help="The stored test after it: 'as left'."),
+        out: Path = typer.Option(..., "--out", help="The certificate (.pdf or .html)."),
+        job: Optional[Path] = JOB,
+        tolerance: list[str] = typer.Option([], "--tolerance", help="Acceptance tolerance as "
+                                            "NAME=VALUE, decided for both tests."),
+        rule: Optional[str] = RULE, paper: Optional[str] = PAPER, draft: bool = DRAFT,
+        prepared_by: str = PREPARED_BY, approved_by: str = APPROVED_BY,
+        db: Optional[str] = _DB, json_out: bool = _JSON) -> None:
+    """Certify a compensated axis from two stored tests: as found and as left, each with U.
+
+    Both tests' results, U and verdicts are reported (ISO/IEC 17025:2017 §7.8.4.1 d); the
+    number is the as-left test's, the as-found test named beside it in the register.
+
+    Example: axiscal certificate as-found-as-left 3 7 --job job.toml --out X-as-left.pdf
+    """
+    from axiscal.cli._certificate import tell_outcome
+    from axiscal.cli._common import report_path
+    from axiscal.cli.iso230_2 import parse_tolerances
+    from axiscal.io.user_config import config_problem
+    from axiscal.report.issue import load_config, write_as_found_as_left
+    from axiscal.store import open_store
+
+    report_path(out)
+    outcome = write_as_found_as_left(out, open_store(db), found, left, load_config(job),
+                                     parse_tolerances(tolerance), rule, paper, job,
+                                     config_note=config_problem(), prepared_by=prepared_by,
+                                     approved_by=approved_by)
+    if json_out and not outcome.draft:
+        print_json({**record_json(outcome.record), "path": str(out)})
+    elif json_out:
+        print_json({"draft": True, "missing": list(outcome.missing), "path": str(out)})
+    tell_outcome(outcome, draft)
 
 
 def register(root: typer.Typer) -> None:

@@ -9,7 +9,7 @@ stops found and the defaults used), ``targets`` (one object per target:
 ``target``, ``n_up``, ``n_down``, ``mean_up``, ``mean_down``, ``mean_bi``, ``reversal``, ``s_up``,
 ``s_down``, ``R_up_i``, ``R_down_i``, ``R_i``) and ``warnings`` (list of text). With
 ``--tolerance``: ``acceptance`` (one object per checked parameter: ``parameter``, ``value``,
-``tolerance``, ``U``, ``U_display``, ``outcome`` — ``conformance proven``, ``non-conformance
+``tolerance``, ``U`` (as printed, the U decided with), ``U_display``, ``outcome`` — ``conformance proven``, ``non-conformance
 proven`` or ``uncertainty zone`` —, ``passed`` true/false/null for the zone), ``decision_rule`` and
 ``accepted`` (true when conformance is proven for every parameter, false when non-conformance is
 proven for one, null otherwise); a tolerance not larger than its U (never provable, ISO
@@ -18,7 +18,9 @@ parameter, ISO 230-2:2014 Annex A, in ``unit``, the raw number), ``uncertainty_d
 shown: two significant digits rounded up, JCGM 100:2008 §7.2.6) and ``uncertainty_budget``
 (``unit``, ``k``, ``method``, ``U``, ``U_display``, ``contributors``, ``inputs``: name ->
 ``value``, ``unit``, ``assumed``, ``set_with``, ``rule``, ``label``; ``assumed`` (names),
-``missing_inputs`` (left out of U, e.g. ``e_ve``) and ``notes``). ``outliers``: readings
+``missing_inputs`` (left out of U, e.g. ``e_ve``), ``notes``, ``U_stated`` (the printed U the
+``acceptance`` U is), ``U_narrow`` (Annex A's U of R and B without the sampling of the runs),
+``cmc`` and ``floored`` (parameters whose U is the laboratory's CMC)). ``outliers``: readings
 Grubbs' test finds apart from the other runs at their target (``target``, ``direction``,
 ``run``, ``value``, ``mean``, ``s``, ``G``, ``G_critical``, ``n``, ``sets`` — the parameters
 the target decides —, ``rule``, ``text``), kept in the evaluation. The results as data, the
@@ -37,7 +39,7 @@ from typing import List, Optional
 
 import typer
 
-from axiscal.cli._certificate import DRAFT, JOB, PAPER, RULE
+from axiscal.cli._certificate import APPROVED_BY, DRAFT, JOB, PAPER, PREPARED_BY, RULE
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
@@ -61,6 +63,8 @@ def iso230_2(
     rule: Optional[str] = RULE,
     paper: Optional[str] = PAPER,
     draft: bool = DRAFT,
+    prepared_by: str = PREPARED_BY,
+    approved_by: str = APPROVED_BY,
     drift_check: Optional[Path] = typer.Option(None, "--drift-check", help="Drift-check file (CSV: a 'reading' column, or one column of numbers, in the deviation unit): E_VE of the uncertainty budget is the range of its readings, measured (ISO 230-2:2014 Annex A.5)."),
     uncertainty: List[str] = typer.Option([], "--uncertainty", help="An input of the uncertainty budget as NAME=VALUE, over the job file's \\[uncertainty], e.g. --uncertainty beam_offset=0.05 --uncertainty e_ve=0.3; a number is in the unit the 'Uncertainty inputs' table shows (expansion_coefficient=11.5 for 11.5 µm/(m·K)), or give its unit: 'material_temperature=293.15 K' (names, units and plausible ranges: the documentation's 'Uncertainty inputs' page; every input not given is shown as assumed, with the rule of its default)."),
     setpoint_pv: Optional[str] = SETPOINT_PV,
@@ -116,7 +120,8 @@ def iso230_2(
 
         outcome = write_certificate(report, ds, ev.result, ev.config, Path(file).read_bytes(),
                                     tolerances, rule, paper, job, store=lambda: open_store(db),
-                                    filename=file.name, config_note=config_problem())
+                                    filename=file.name, config_note=config_problem(),
+                                    prepared_by=prepared_by, approved_by=approved_by)
     if json_out:
         print_json(ev.to_dict())
     else:

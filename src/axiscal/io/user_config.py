@@ -51,6 +51,12 @@ number_pattern = "{lab}-{year}-{counter:05d}"   # {lab} = [company] code, counte
 signatory = "B. Signatory"            # who authorises the certificate ...
 signatory_role = "Head of laboratory" # ... and in which role
 
+# The laboratory's authorised signatories: a certificate is issued only when one of them
+# approves it (--approved-by NAME; the workbench's signed-in user), never the one who prepared it
+# [[signatory]]
+# name = "B. Signatory"
+# role = "Head of laboratory"
+
 [[instrument]]
 name = "Laser interferometer"
 serial = "..."
@@ -77,6 +83,13 @@ due = "YYYY-MM-DD"
 # expansion_coefficient_halfwidth = 1.15      # µm/(m·K) (default ±10 % of α)
 # e_ve = 1.0                          # µm, environmental variation error: never assumed ...
 # e_ve_source = "drift check"         # ... measured ("drift check") or "declared"
+# Keys of the other kind's budget are ignored for a test (said in its notes). Per kind of axis:
+# values for that kind only, and the laboratory's CMC per parameter (U is never stated below):
+# [uncertainty.linear]
+# cmc = { E = 1.0, A = 1.0, M = 1.0, R = 0.6, B = 0.6 }   # µm
+# [uncertainty.rotary]
+# resolution = 0.1                    # arcsec
+# cmc = { E = 1.5, A = 1.5, R = 1.0, B = 1.0 }            # arcsec
 """
 
 

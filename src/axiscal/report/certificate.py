@@ -41,6 +41,8 @@ __all__ = [
     "certificate_info",
     "positioning_certificate",
     "NOT_STATED",
+    "item_identity",
+    "data_origin",
 ]
 
 NOT_STATED = "not stated"
@@ -48,12 +50,14 @@ _SECTIONS = {
     "company": {"name", "address", "logo", "accreditation", "code"},
     "operator": {"name"},
     "customer": {"name", "address", "reference"},
-    "machine": {"maker", "model", "serial", "location"},
+    "machine": {"maker", "model", "serial", "location", "axis", "name"},
     "conditions": {"date", "measuring_line", "feed", "dwell", "cycle", "location",
-                   "air_temperature", "material_temperature"},
+                   "air_temperature", "material_temperature", "air_pressure", "humidity",
+                   "material_sensors", "referred_to_20", "data_origin"},
     "certificate": {"paper", "rule", "number", "number_prefix", "number_pattern", "issued",
                     "approver", "signatory", "signatory_role", "specification"},
     "instrument": {"name", "serial", "certificate", "due"},
+    "signatory": {"name", "role"},
     "uncertainty": None,  # checked by the budget's own inputs
     "tolerance": None,  # NAME = value, checked against the standard's parameters
     "squareness_uncertainty": None,  # read by the squareness commands
@@ -96,6 +100,8 @@ class CertificateInfo:
     missing: tuple[str, ...] = ()
     replaces: str = ""
     reason: str = ""
+    prepared_by: str = ""
+    changes: tuple = ()
 
     @property
     def draft(self) -> bool:
@@ -134,6 +140,7 @@ def certificate_info(
                 raise ConfigError(f"configuration: [{name}] must be a table")
             if keys is not None:
                 refuse_unknown(table, keys, f"[{name}]")
+    _check_conditions(config.get("conditions", {}))
     cert = config.get("certificate", {})
     paper = str(cert.get("paper", "A4"))
     if paper.lower() not in ("a4", "letter"):
@@ -158,8 +165,42 @@ def certificate_info(
     )
 
 
+#: ``[conditions] data_origin``: who took the readings (ISO/IEC 17025:2017 §7.8.2.2).
+DATA_ORIGINS = ("laboratory", "customer")
+
+
+def _check_conditions(cond: Mapping[str, Any]) -> None:
+    """The laser user's stated conditions: numbers in range, a yes/no, an origin by name."""
+    for key, lo, hi, unit in (("air_pressure", 1e3, 2e5, "Pa"), ("humidity", 0.0, 100.0, "%RH")):
+        v = cond.get(key)
+        if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))
+                              or not lo <= v <= hi):
+            raise ConfigError(f"[conditions] {key} = {v!r}: a number from {lo:g} to {hi:g} "
+                              f"{unit}")
+    if "referred_to_20" in cond and not isinstance(cond["referred_to_20"], bool):
+        raise ConfigError(f"[conditions] referred_to_20 = {cond['referred_to_20']!r}: true "
+                          "(deviations referred to 20 °C, ISO 1) or false")
+    if cond.get("data_origin") not in (None, *DATA_ORIGINS):
+        raise ConfigError(f"[conditions] data_origin = {cond['data_origin']!r}: laboratory "
+                          "(the laboratory's instrument) or customer (the customer's own system)")
+
+
+def data_origin(dataset, info: CertificateInfo) -> tuple[str, str]:
+    """(``laboratory`` or ``customer``, why): ``[conditions] data_origin`` as stated, else a
+    reference the data file names as the machine's own encoder read by its control system (an
+    EPICS ecmc ``…-Enc<NN>-PosAct``) is the customer's, else the laboratory's instrument."""
+    stated = info.conditions.get("data_origin")
+    if stated:
+        return stated, "stated ([conditions] data_origin)"
+    if re.search(r"-Enc\d*-PosAct\b", dataset.metadata.instrument or "", re.IGNORECASE):
+        return "customer", (f"the data file's reference {dataset.metadata.instrument} is the "
+                            "machine's encoder read by its own control system (EPICS ecmc)")
+    return "laboratory", "not stated: the laboratory's instrument assumed"
+
+
 def positioning_certificate(
-    dataset, result, budget, info: CertificateInfo, decisions=(), rule_text: str = ""
+    dataset, result, budget, info: CertificateInfo, decisions=(), rule_text: str = "",
+    as_found=None,
 ) -> Report:
     """The certificate of one ISO 230-2 positioning test (a DRAFT when ``info.draft``).
 
@@ -174,6 +215,10 @@ def positioning_certificate(
         From :func:`axiscal.standards.iso14253_1.decide`, one per toleranced parameter.
     rule_text : str
         The decision rule as stated on the certificate.
+    as_found : tuple, optional
+        ``(dataset, result, budget, decisions)`` of the test before adjustment: its results,
+        U and verdicts are reported beside these, the results "as left" (ISO/IEC 17025:2017
+        §7.8.4.1 d).
 
     Returns
     -------
@@ -192,7 +237,10 @@ def positioning_certificate(
 
     md = dataset.metadata
     kind = "rotary" if dataset.axis_kind.value == "rotary" else "linear"
-    what = f"positioning of the {md.axis or kind} axis"
+    item = item_identity(dataset, info)
+    what = f"positioning of the {item['Axis'] if item['Axis'] != NOT_STATED else kind} axis"
+    if as_found is not None:
+        what += ", as found and as left"
     rep = Report(
         f"DRAFT — not a certificate: calibration of the {what}" if info.draft
         else f"Calibration certificate — {what}",
@@ -207,21 +255,32 @@ def positioning_certificate(
         rep.add_html(_draft_box(info))
     elif info.replaces:
         rep.add_html(f'<div class="amend">This certificate replaces certificate '
-                     f"{_esc(info.replaces)}. Reason: {_esc(info.reason)}</div>")
+                     f"{_esc(info.replaces)}. Reason: {_esc(info.reason)}"
+                     + _changes(info.changes) + "</div>")
     rep.add_html(_verdict_box(overall(decisions), rule_text))
-    rep.add_html(_pairs(_identification(md, info), "Customer and item calibrated"))
-    rep.add_html(_pairs(_conditions(dataset, result, info), "Test conditions (ISO 230-2:2014 §6)"))
+    rep.add_html(_pairs(_identification(md, info, item), "Customer and item calibrated"))
+    rep.add_html(_pairs(_conditions(dataset, result, info, budget),
+                        "Test conditions (ISO 230-2:2014 §6)"))
     _instruments(rep, info, md)
     _budget_table(rep, budget)
     u = unit_label(result.deviation_unit)
     rep.add_figure(
-        iso230_2_figure(result, dataset),
+        iso230_2_figure(result, dataset, _figure_title(item)),
         f"Mean deviation per direction with ±2s bands and every run's readings ({u}).",
     )
     _per_target(rep, result)
     _assumptions(rep, dataset, result, budget, info)
-    rep.add_html(_statements(info, decisions, rule_text))
-    rep.add_html('<div class="closing">' + _results(result, budget, decisions, info)
+    if as_found is not None:
+        f_ds, f_res, f_budget, f_dec = as_found
+        rep.add_html(_results(f_res, f_budget, f_dec, info, heading=(
+            f"Results as found, before adjustment (test of "
+            f"{f_ds.metadata.date or 'date not stated'})")))
+        rep.add_html(f'<p class="overall">As found: {_esc(_overall_words(f_dec))}; as left: '
+                     f"{_esc(_overall_words(decisions))}.</p>")
+    rep.add_html(_statements(info, decisions, rule_text, data_origin(dataset, info)[0]))
+    rep.add_html('<div class="closing">' + _results(
+        result, budget, decisions, info,
+        heading="Results as left, after adjustment" if as_found is not None else "Results")
                  + _signatures(info, info.operator or md.operator) + "</div>")
     return rep
 
@@ -230,6 +289,15 @@ def _reference(info: CertificateInfo) -> str:
     if info.draft:
         return "DRAFT — not a certificate"
     return f"Certificate {info.number}"
+
+
+def _changes(changes) -> str:
+    """Every change an amendment makes, old → new (ISO/IEC 17025:2017 §7.8.8.3)."""
+    if not changes:
+        return " No field or result changed."
+    rows = "".join(f"<li>{_plain(c['what'])}: {_esc(c['old'])} → {_esc(c['new'])}</li>"
+                   for c in changes)
+    return f"<br>Changed from the replaced certificate:<ul>{rows}</ul>"
 
 
 def _draft_box(info: CertificateInfo) -> str:
@@ -242,12 +310,19 @@ def _draft_box(info: CertificateInfo) -> str:
 
 
 def _signatures(info: CertificateInfo, operator: str) -> str:
+    """Who calibrated, who prepared the certificate and the authorised signatory who approved
+    its issue (ISO/IEC 17025:2017 §7.8.2.1 o)."""
     who = ", ".join(x for x in (info.signatory, info.signatory_role) if x) or NOT_STATED
+    prepared = (f"<br>Prepared by: {_esc(info.prepared_by)}" if info.prepared_by
+                and info.prepared_by != operator else "")
     return (
         '<div class="signatures"><div>Calibrated by'
         + (f": {_esc(operator)}" if operator else "")
-        + f"<br>date, signature</div><div>Authorised by: {_esc(who)}"
+        + f"{prepared}<br>date, signature</div><div>Authorised by: {_esc(who)}"
         + f"<br>{_esc(info.issued or 'date')}, signature</div></div>"
+        + (f'<p class="prepared">Prepared by {_esc(info.prepared_by)}; issue approved by '
+           f"{_esc(info.signatory)}.</p>" if info.prepared_by and info.signatory
+           and not info.draft else "")
         + '<p class="endmark">— End of certificate —</p>'
     )
 
@@ -267,8 +342,34 @@ def _verdict_box(outcome, rule_text: str) -> str:
     return f'<div class="verdict {cls}">Overall verdict: {words}</div><p>{_esc(rule_text)}</p>'
 
 
-def _identification(md, info: CertificateInfo) -> dict[str, Any]:
-    c, m = info.customer, info.machine
+def item_identity(dataset, info: CertificateInfo) -> dict[str, str]:
+    """The one identity of the item calibrated (ISO/IEC 17025:2017 §7.8.2.1 c, g): machine
+    (maker and model, else its name in the history or the data file), serial number, axis (the
+    job's ``[machine] axis``, else the history's as corrected there, else the data file's) and
+    location; the certificate's identification,
+    its title and its figure all print these."""
+    m, md = info.machine, dataset.metadata
+    return {
+        "Machine": " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
+        or m.get("name") or md.machine or NOT_STATED,
+        "Serial number": str(m.get("serial") or NOT_STATED),
+        "Location": str(m.get("location") or info.conditions.get("location") or NOT_STATED),
+        "Axis": str(m.get("axis") or md.axis or NOT_STATED),
+    }
+
+
+def _figure_title(item: dict[str, str]) -> str:
+    who = ", ".join(x for x in (
+        item["Machine"], item["Serial number"] != NOT_STATED and f"serial {item['Serial number']}",
+        item["Axis"] != NOT_STATED and f"axis {item['Axis']}") if x and x != NOT_STATED)
+    return "Positioning deviation, ISO 230-2:2014" + (f" — {who}" if who else "")
+
+
+def _identification(md, info: CertificateInfo, item: dict[str, str] | None = None
+                    ) -> dict[str, Any]:
+    c = info.customer
+    item = item or {"Machine": md.machine or NOT_STATED, "Serial number": NOT_STATED,
+                    "Location": NOT_STATED, "Axis": md.axis or NOT_STATED}
     return {
         "Certificate number": info.number or ("none: a draft is not numbered" if info.draft
                                               else NOT_STATED),
@@ -276,16 +377,11 @@ def _identification(md, info: CertificateInfo) -> dict[str, Any]:
         "Customer": c.get("name") or NOT_STATED,
         "Customer address": _lines(c.get("address"), ", "),
         "Customer reference": c.get("reference"),
-        "Machine": " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
-        or md.machine
-        or NOT_STATED,
-        "Serial number": m.get("serial") or NOT_STATED,
-        "Location": m.get("location") or info.conditions.get("location") or NOT_STATED,
-        "Axis": md.axis or NOT_STATED,
+        **item,
     }
 
 
-def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
+def _conditions(dataset, result, info: CertificateInfo, budget=None) -> dict[str, Any]:
     from axiscal.report.certificate_content import calibration_date, measured_temperatures
 
     md, env, cond = dataset.metadata, dataset.metadata.environment, info.conditions
@@ -300,8 +396,16 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
         mat = ", ".join(f"{t:g}" for t in env.material_temperature)
     alpha = env.expansion_coefficient
     alpha = NOT_STATED if alpha is None else f"{alpha * 1e6:g}"
+    used = {i.name: i for i in getattr(budget, "inputs", ())}.get("expansion_coefficient")
+    if alpha == NOT_STATED and used is not None:       # the α the budget used, and whence
+        alpha = f"{used.value * 1e6:g} ({'assumed: ' if used.assumed else ''}{used.rule})"
     if dataset.axis_kind.value == "rotary" and alpha == NOT_STATED:  # angles do not expand
         alpha = "not applicable (rotary axis)"
+    pressure = env.pressure if env.pressure is not None else cond.get("air_pressure")
+    humidity = env.humidity if env.humidity is not None else cond.get("humidity")
+    ref20 = cond.get("referred_to_20")
+    origin, why = data_origin(dataset, info)
+    linear = dataset.axis_kind.value != "rotary"
     return {
         "Date of test": calibration_date(dataset, info) or "not stated in the data file",
         "Location of the measuring line": cond.get("measuring_line") or NOT_STATED,
@@ -309,8 +413,16 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
         "Material temperature (°C)": NOT_STATED if mat is None else (
             mat if isinstance(mat, str) else f"{mat:g}"),
         "Expansion coefficient (µm/(m·K))": alpha,
-        "Air pressure (Pa)": None if env.pressure is None else f"{env.pressure:g}",
-        "Humidity (%RH)": None if env.humidity is None else f"{env.humidity:g}",
+        "Air pressure (Pa)": NOT_STATED if pressure is None else f"{pressure:g}",
+        "Humidity (%RH)": NOT_STATED if humidity is None else f"{humidity:g}",
+        "Material temperature sensors": (cond.get("material_sensors") or NOT_STATED)
+        if linear else None,
+        "Deviations referred to 20 °C (ISO 1)": (
+            NOT_STATED if ref20 is None else "yes" if ref20 else
+            "no: at the material temperature of the test") if linear else None,
+        "Readings taken by": ("the laboratory's instrument" if origin == "laboratory" else
+                              "the customer's own system (data supplied by the customer)")
+        + ("" if why.startswith("stated") else f"; {why}"),
         "Feed": cond.get("feed") or NOT_STATED,
         "Dwell": cond.get("dwell") or NOT_STATED,
         "Test cycle": cycle,
@@ -318,9 +430,18 @@ def _conditions(dataset, result, info: CertificateInfo) -> dict[str, Any]:
     }
 
 
-def _results(result, budget, decisions, info: CertificateInfo) -> str:
+def _overall_words(decisions) -> str:
+    from axiscal.standards.iso14253_1 import overall
+
+    o = overall(decisions)
+    return o.value if o else "no tolerance given"
+
+
+def _results(result, budget, decisions, info: CertificateInfo, heading: str = "Results") -> str:
     """The results table with U and k: the first part of the block the signature closes. U is
-    never printed as zero: two significant digits, rounded up (JCGM 100:2008 §7.2.6)."""
+    never printed as zero: two significant digits, rounded up (JCGM 100:2008 §7.2.6); each value
+    to the last digit of its U (ILAC-P14:09/2020 §5.3); the verdicts were decided with the U
+    printed (:meth:`~axiscal.standards.iso230_9.UncertaintyBudget.stated`)."""
     from axiscal.standards.iso230_9 import format_uncertainty
 
     u = unit_label(result.deviation_unit)
@@ -339,7 +460,7 @@ def _results(result, budget, decisions, info: CertificateInfo) -> str:
         tol = "" if d is None else f"{d.upper:g}{mark}"
         verdict = "" if d is None or d.outcome is None else state[d.outcome.short]
         rows.append(
-            f"<tr><td>{_PARAM_LABEL[name]}</td><td>{_cell(v, 2)}</td>"
+            f"<tr><td>{_PARAM_LABEL[name]}</td><td>{budget.value_text(name, v)}</td>"
             f"<td>{format_uncertainty(budget.U(name))}</td><td>{tol}</td><td>{verdict}</td>"
             f"<td>{_plain(_PARAM_MEANING[name])}</td></tr>"
         )
@@ -350,7 +471,7 @@ def _results(result, budget, decisions, info: CertificateInfo) -> str:
                         "two stay separate targets)</td></tr>")
     supplied = " * Supplied by the customer (job file)." if info.customer_supplied else ""
     return (
-        f'<h2>Results</h2><table class="results"><thead><tr><th>Parameter</th><th>Value '
+        f'<h2>{_esc(heading)}</h2><table class="results"><thead><tr><th>Parameter</th><th>Value '
         f"({u})</th><th>U, k = {budget.k:g} ({u})</th><th>Tolerance ({u})</th><th>Verdict</th>"
         f"<th>Meaning (ISO 230-2:2014 clause 3)</th></tr></thead><tbody>{''.join(rows)}"
         f"</tbody><caption>U: expanded uncertainty, coverage factor k = {budget.k:g} (about "
@@ -360,7 +481,8 @@ def _results(result, budget, decisions, info: CertificateInfo) -> str:
     )
 
 
-def _statements(info: CertificateInfo, decisions, rule_text: str) -> str:
+def _statements(info: CertificateInfo, decisions, rule_text: str,
+                origin: str = "laboratory") -> str:
     """The statements ISO/IEC 17025:2017 §7.8.2.1 and §7.8.4.1 ask a certificate to make."""
     certs = [f"{i.name} (certificate {i.certificate}, due {i.due})" for i in info.instruments
              if i.certificate]
@@ -373,6 +495,10 @@ def _statements(info: CertificateInfo, decisions, rule_text: str) -> str:
         "This certificate shall not be reproduced except in full without the written approval "
         "of the laboratory.",
     ]
+    if origin == "customer":
+        items.append("The readings were taken by the customer's own control system and supplied "
+                     "by the customer (ISO/IEC 17025:2017 §7.8.2.2): the laboratory evaluated "
+                     "them and is not responsible for their measurement.")
     if decisions:
         spec = info.specification or NOT_STATED
         items.append(f"Statement of conformity against the specification: {spec}"
@@ -451,7 +577,9 @@ def _budget_table(rep: Report, budget) -> None:
         f"<p>Combined by the law of propagation of uncertainty (JCGM 100:2008, uncorrelated "
         f"inputs) with {_esc(budget.method)}; U = k·u_c with k = {budget.k:g}. Length-"
         "proportional contributions act on A, E and M; R and B carry the reading "
-        "resolution and E_VE.</p>", escaped=True))
+        "resolution, E_VE and the sampling uncertainty of the runs they are formed from "
+        "(JCGM 100:2008 Annex E.4.3). U is never stated below the laboratory's CMC "
+        "(ILAC-P14:09/2020 §5.4).</p>", escaped=True))
 
 
 def _per_target(rep: Report, result) -> None:

@@ -113,6 +113,9 @@ def _identity(info, config_note: str) -> list[str]:
     for key, what in (("maker", "maker"), ("model", "model"), ("serial", "serial number")):
         if not str(m.get(key, "")).strip():
             out.append(f"{what} of the machine calibrated ([machine] {key})")
+    if not str(m.get("location") or info.conditions.get("location") or "").strip():
+        out.append("location of the calibration: the laboratory or the customer's site "
+                   "(ISO/IEC 17025:2017 §7.8.2.1 c; [machine] location)")
     return out
 
 

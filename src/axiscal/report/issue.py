@@ -27,7 +27,8 @@ from typing import Any
 from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
-           "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off"]
+           "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off",
+           "signatories", "authorisation", "amendment_changes", "write_as_found_as_left"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -132,7 +133,7 @@ def sign_off(dataset, result, cfg: dict, tolerances: dict | None = None,
     ...                                     [[3, 3], [2, 1], [4, 5]], "mm", "um")
     >>> so = sign_off(ds, evaluate(ds), {"uncertainty": {"e_ve": 0.3}}, {"E": 10})
     >>> so.overall.value, str(so.decisions[0])
-    ('conformance proven', 'E: 4 ± 1 (≤ 10) conformance proven')
+    ('conformance proven', 'E: 4 ± 1.2 (≤ 10) conformance proven')
     """
     from axiscal.standards.iso230_2 import check_tolerances
     from axiscal.standards.iso14253_1 import overall, unprovable
@@ -146,8 +147,10 @@ def sign_off(dataset, result, cfg: dict, tolerances: dict | None = None,
 
 
 def number_format(cfg: dict, issued: str):
-    """(laboratory, series, counter -> number) of the configuration's numbering.
+    """(laboratory code, series, counter -> number) of the configuration's numbering.
 
+    The register is keyed by the laboratory's code (``[company] code``, else the initials of its
+    name), never by the name: the same laboratory written another way keeps one counter.
     A ``[certificate] number`` is used as it is (the register refuses it a second time); else
     ``number_pattern`` (``number_prefix`` of earlier versions means ``PREFIX{year}-{counter:05d}``).
     """
@@ -160,7 +163,7 @@ def number_format(cfg: dict, issued: str):
     year = issued[:4]
     if cert.get("number"):
         fixed = str(cert["number"])
-        return lab, f"{code}|fixed", lambda counter: fixed
+        return code, f"{code}|fixed", lambda counter: fixed
     pattern = str(cert.get("number_pattern") or (
         f"{cert['number_prefix']}{{year}}-{{counter:05d}}" if cert.get("number_prefix")
         else DEFAULT_NUMBER_PATTERN))
@@ -173,14 +176,15 @@ def number_format(cfg: dict, issued: str):
         raise ConfigError(f"[certificate] number_pattern {pattern!r} has no {{counter}}: every "
                           "number would be the same")
     series = f"{code}|{year}" if "{year" in pattern else code
-    return lab, series, lambda counter: pattern.format(lab=code, year=year, counter=counter)
+    return code, series, lambda counter: pattern.format(lab=code, year=year, counter=counter)
 
 
 def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, tolerances=None,
                       rule: str | None = None, paper: str | None = None, job: Path | None = None,
                       *, store=None, filename: str = "data.csv", today: str | None = None,
                       config_note: str = "", customer_supplied=None, logo: str | None = None,
-                      replaces: str = "", reason: str = "") -> CertificateOutcome:
+                      replaces: str = "", reason: str = "", prepared_by: str = "",
+                      approved_by: str = "", changes=(), as_found=None) -> CertificateOutcome:
     """Budget, decisions and certificate of one positioning test, written to ``path``
     (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
 
@@ -202,6 +206,15 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     config_note : str
         Why the user configuration identifies no laboratory (:func:`~axiscal.io.user_config.
         config_problem`), named among the missing items.
+    as_found : tuple, optional
+        ``(dataset, result, test_id)`` of the stored test before adjustment: the certificate
+        reports both (ISO/IEC 17025:2017 §7.8.4.1 d), this test "as left"
+        (:func:`write_as_found_as_left`).
+    prepared_by, approved_by : str
+        Who prepared the certificate (default ``[operator] name``) and the authorised signatory
+        who approves its issue (default ``[certificate] signatory``; the workbench passes the
+        signed-in user). :func:`authorisation` checks them; both are printed and kept in the
+        register.
 
     Raises
     ------
@@ -211,6 +224,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     from axiscal.report.certificate_content import (calibration_date, check_dates,
                                                     missing_items)
 
+    if store is not None and not callable(store):      # the test as the history names it
+        cfg = _with_history_item(cfg, store, data_bytes)
     budget = budget_for(dataset, result, cfg)
     decisions, _, rule_text = decisions_for(result.parameters(), budget, tolerances or {}, cfg,
                                             rule)
@@ -221,18 +236,29 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
         logo = _logo(cfg, job)
     info = _info(cfg, today, logo, customer_supplied)
     check_dates(calibration_date(dataset, info), info.issued)
-    missing = tuple(missing_items(dataset, result, budget, info, decisions, config_note))
+    info, refusals = authorisation(cfg, info, prepared_by or info.operator
+                                   or dataset.metadata.operator, approved_by)
+    missing = tuple(missing_items(dataset, result, budget, info, decisions, config_note)
+                    + refusals)
     if store is None and not missing:
         missing = ("certificate number: a certificate is numbered only by the certificate "
                    "register (a calibration history, --db)",)
-    info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason)
+    info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason,
+                               changes=tuple(changes))
+
+    found = None
+    if as_found is not None:
+        f_ds, f_res, _ = as_found
+        f_budget = budget_for(f_ds, f_res, cfg)
+        f_dec, _, _ = decisions_for(f_res.parameters(), f_budget, tolerances or {}, cfg, rule)
+        found = (f_ds, f_res, f_budget, tuple(f_dec))
 
     def render(number: str) -> bytes:
         from axiscal.report.certificate import positioning_certificate
 
         rep = positioning_certificate(dataset, result, budget,
                                       dataclasses.replace(info, number=number), decisions,
-                                      rule_text)
+                                      rule_text, as_found=found)
         if Path(path).suffix.lower() == ".pdf":
             from axiscal.report.pdf import html_to_pdf
 
@@ -247,14 +273,15 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     inputs = {"config": cfg, "tolerances": dict(tolerances or {}), "rule": rule, "paper": paper,
               "logo": logo, "customer_supplied": list(customer_supplied)}
     store = store() if callable(store) else store        # opened only to issue
-    record = _register(store, dataset, info, data_bytes, filename, render, inputs, path)
+    record = _register(store, dataset, info, data_bytes, filename, render, inputs, path,
+                       None if as_found is None else as_found[2])
     write_bytes_atomic(Path(path), record.document)
     return CertificateOutcome(Path(path), tuple(decisions), (), record.number, record)
 
 
 def reissue_certificate(store, number: str, reason: str, path, corrections: dict | None = None,
-                        today: str | None = None, laboratory: str | None = None
-                        ) -> CertificateOutcome:
+                        today: str | None = None, laboratory: str | None = None,
+                        prepared_by: str = "", approved_by: str = "") -> CertificateOutcome:
     """Amend certificate ``number``: a new certificate with a new number that replaces it, for
     ``reason``, rebuilt from the stored test and the inputs kept with the old one, with
     ``corrections`` (job-file tables) on top; the old one is marked superseded. A reissue that
@@ -274,11 +301,144 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
         cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
     if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
         raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    changes = amendment_changes(ev.dataset, ev.evaluation, (inputs["config"], inputs["tolerances"],
+                                                            inputs["rule"]),
+                                (cfg, inputs["tolerances"], inputs["rule"]))
     out = _draft_refused(path, lambda p: write_certificate(
         p, ev.dataset, ev.evaluation, cfg, stored.raw, inputs["tolerances"], inputs["rule"],
         inputs["paper"], store=store, filename=stored.summary.filename, today=today,
         customer_supplied=inputs["customer_supplied"], logo=inputs["logo"], replaces=number,
-        reason=reason.strip()), number)
+        reason=reason.strip(), prepared_by=prepared_by, approved_by=approved_by,
+        changes=changes), number)
+    return out
+
+
+def signatories(cfg: dict) -> dict[str, str]:
+    """The laboratory's authorised signatories, name -> role: the configuration's
+    ``[[signatory]]`` tables (``name``, ``role``), else the one ``[certificate] signatory``
+    with its ``signatory_role``."""
+    listed = cfg.get("signatory") or []
+    listed = listed if isinstance(listed, list) else [listed]
+    out = {str(t.get("name", "")).strip(): str(t.get("role", "")).strip()
+           for t in listed if isinstance(t, dict) and str(t.get("name", "")).strip()}
+    cert = cfg.get("certificate", {})
+    if not out and str(cert.get("signatory") or "").strip():
+        out[str(cert["signatory"]).strip()] = str(cert.get("signatory_role", "")).strip()
+    return out
+
+
+def authorisation(cfg: dict, info, prepared_by: str, approved_by: str = ""):
+    """(info with the preparer and the approving signatory, what withholds the issue).
+
+    A certificate is prepared by one person and issued only when an authorised signatory
+    of the laboratory approves it (ISO/IEC 17025:2017 §7.8.2.1 o: the identification of the
+    person authorising it; §6.2.6 c: authorised personnel): the approver must be one of
+    :func:`signatories`, and another person than the one who prepared it. The approver's role
+    comes from the list. Each unmet condition is an item of the DRAFT's list.
+    """
+    approver = (approved_by or info.signatory or "").strip()
+    allowed = signatories(cfg)
+    info = dataclasses.replace(info, prepared_by=(prepared_by or "").strip())
+    out = []
+    if approver and allowed and approver not in allowed:
+        out.append(f"approval by an authorised signatory: {approver!r} is not one of the "
+                   f"laboratory's ({', '.join(allowed)}; [[signatory]] name and role)")
+    elif approver:
+        info = dataclasses.replace(info, signatory=approver,
+                                   signatory_role=allowed.get(approver) or info.signatory_role)
+    if approver and info.prepared_by and approver.casefold() == info.prepared_by.casefold():
+        out.append(f"approval by a second person: {approver} prepared the certificate and "
+                   "cannot also approve it")
+    if not info.prepared_by:
+        out.append("name of the person who prepared the certificate ([operator] name)")
+    return info, out
+
+
+def write_as_found_as_left(path, store, found_id: int, left_id: int, cfg: dict,
+                           tolerances=None, rule: str | None = None, paper: str | None = None,
+                           job: Path | None = None, **kw) -> CertificateOutcome:
+    """The certificate of a compensated (or repaired) axis from two stored tests: ``found_id``
+    before the adjustment, ``left_id`` after it, each with its U and verdict against the same
+    tolerances (ISO/IEC 17025:2017 §7.8.4.1 d). Numbered as the certificate of the as-left test,
+    the as-found test named beside it in the register.
+
+    Raises
+    ------
+    InputError
+        The two are the same test, not both ISO 230-2 tests, not of the same machine and axis,
+        or the as-found test is dated after the as-left one.
+    """
+    if found_id == left_id:
+        raise InputError(f"as found and as left are both test {left_id}: give the test before "
+                         "the adjustment and the test after it")
+    found, left = store.get(found_id), store.get(left_id)
+    evs = [t.evaluate_again() for t in (found, left)]
+    if any(e.kind != "iso230-2" for e in evs):
+        raise InputError("an as found / as left certificate reports two ISO 230-2 positioning "
+                         f"tests; test {found_id} is {evs[0].kind}, test {left_id} {evs[1].kind}")
+    a, b = found.summary, left.summary
+    if (a.machine, a.axis) != (b.machine, b.axis):
+        raise InputError(f"test {found_id} is of {a.machine} axis {a.axis}, test {left_id} of "
+                         f"{b.machine} axis {b.axis}: as found and as left are one axis")
+    if a.tested_at > b.tested_at:
+        raise InputError(f"test {found_id} (as found, {a.tested_at:%Y-%m-%d}) is after test "
+                         f"{left_id} (as left, {b.tested_at:%Y-%m-%d})")
+    return write_certificate(path, evs[1].dataset, evs[1].evaluation, cfg, left.raw, tolerances,
+                             rule, paper, job, store=store, filename=b.filename,
+                             as_found=(evs[0].dataset, evs[0].evaluation, found_id), **kw)
+
+
+def amendment_changes(dataset, result, before, after) -> list[dict]:
+    """What an amendment changes (ISO/IEC 17025:2017 §7.8.8.3: the change identified): every
+    field of the certificate's inputs whose text changed, and every result whose printed U or
+    verdict changed, as ``{"what", "old", "new"}``.
+
+    ``before`` and ``after`` are ``(config, tolerances, rule)``: the inputs kept with the old
+    certificate and the amended ones. The results of both come from the same library calls
+    (:func:`budget_for`, :func:`decisions_for`) on the same stored test.
+    """
+    from axiscal.standards.iso14253_1 import overall
+
+    old, new = _flat(before[0]), _flat(after[0])
+    out = [{"what": k, "old": old.get(k, "—"), "new": new.get(k, "—")}
+           for k in sorted(set(old) | set(new)) if old.get(k) != new.get(k)]
+    states = []
+    for cfg, tol, rule in (before, after):
+        budget = budget_for(dataset, result, cfg)
+        decisions, _, _ = decisions_for(result.parameters(), budget, tol or {}, cfg, rule)
+        by = {d.parameter: d for d in decisions}
+        row = {}
+        for p, v in result.parameters().items():
+            if v is None:
+                continue
+            d = by.get(p)
+            row[f"U({p})"] = budget.U_text(p)
+            row[f"tolerance {p}"] = "—" if d is None else f"{d.upper:g}"
+            row[f"verdict {p}"] = "—" if d is None or d.outcome is None else d.outcome.value
+        o = overall(decisions)
+        row["overall verdict"] = o.value if o else "no tolerance"
+        states.append(row)
+    out += [{"what": k, "old": states[0][k], "new": states[1][k]} for k in states[0]
+            if states[0][k] != states[1].get(k)]
+    return out
+
+
+def _flat(cfg: dict) -> dict[str, str]:
+    """Each printed field of a configuration as ``[table] key`` -> text (the logo and the
+    number and date of issue, which an amendment always changes, left out)."""
+    out = {}
+    for table, v in cfg.items():
+        rows = v if isinstance(v, list) else [v]
+        for n, t in enumerate(rows, 1):
+            if not isinstance(t, dict):
+                continue
+            where = f"[[{table}]] {n}" if isinstance(v, list) else f"[{table}]"
+            for k, x in t.items():
+                if k in ("logo",) or (table == "certificate" and k in ("number", "issued")):
+                    continue
+                out[f"{where} {k}"] = ("; ".join(map(str, x)) if isinstance(x, list)
+                                       else json.dumps(x, sort_keys=True)
+                                       if isinstance(x, dict) else str(x))
     return out
 
 
@@ -298,8 +458,13 @@ def _draft_refused(path, write, number: str) -> CertificateOutcome:
     return dataclasses.replace(out, path=Path(path))
 
 
-def _register(store, dataset, info, data_bytes: bytes, filename: str, render, inputs, path):
-    """Keep the test in the history and issue the next number of the laboratory."""
+def _register(store, dataset, info, data_bytes: bytes, filename: str, render, inputs, path,
+              as_found_test_id: int | None = None):
+    """Keep the test in the history and issue the next number of the laboratory (a date of
+    issue in the future refused before the test is kept)."""
+    from axiscal.store.register import check_issue_date
+
+    check_issue_date(info.issued)
     md = dataset.metadata
     m = info.machine
     machine = None if md.machine else " ".join(
@@ -308,11 +473,34 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
     lab, series, number_for = number_format(inputs["config"], info.issued)
     pdf = Path(path).suffix.lower() == ".pdf"
     return store.issue_certificate(
-        test_id=test.id, laboratory=lab, series=series, number_for=number_for, render=render,
+        test_id=test.id, laboratory=lab, series=series,
+        laboratory_name=str(info.company.get("name", "")).strip(), number_for=number_for, render=render,
         customer=str(info.customer.get("name", "")), issued=info.issued,
         media_type="application/pdf" if pdf else "text/html",
         inputs=json.loads(json.dumps(inputs, default=str)), replaces=info.replaces,
-        reason=info.reason)
+        reason=info.reason, prepared_by=info.prepared_by, approved_by=info.signatory,
+        approved_role=info.signatory_role, changes=info.changes,
+        as_found_test_id=as_found_test_id)
+
+
+def _with_history_item(cfg: dict, store, data_bytes: bytes) -> dict:
+    """``cfg`` with the item's identity from the history where the job leaves it out: the
+    machine's name, maker, model, serial and location and the axis, as corrected there
+    (renamed, merged: :mod:`axiscal.store.corrections`), for a test the history holds."""
+    import hashlib
+
+    sha = hashlib.sha256(data_bytes).hexdigest()
+    hit = store.stored([sha]).get(sha)
+    if hit is None:
+        return cfg
+    t = store.get(hit.id).summary
+    m = store.machine(t.machine_id)
+    machine = dict(cfg.get("machine", {}))
+    for key, value in (("name", m.name), ("maker", m.maker), ("model", m.model),
+                       ("serial", m.serial), ("location", m.location), ("axis", t.axis)):
+        if value and not str(machine.get(key) or "").strip():
+            machine[key] = value
+    return {**cfg, "machine": machine}
 
 
 def _info(cfg: dict, today: str | None, logo: str, customer_supplied):

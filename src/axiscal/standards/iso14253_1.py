@@ -237,7 +237,10 @@ def decide_all(
     values : mapping of str to float or None
         Parameter values (e.g. ``Iso230_2Result.parameters()``).
     budget : UncertaintyBudget or mapping with ``U(name)``
-        Supplies U per parameter (a parameter it does not cover is refused).
+        Supplies U per parameter (a parameter it does not cover is refused); an
+        :class:`~axiscal.standards.iso230_9.UncertaintyBudget` supplies the U it prints
+        (``stated``: two significant digits, rounded up), so a verdict never rests on a U
+        smaller than the one on the certificate.
     tolerances : mapping of str to float
         Upper limit per parameter (one-sided, as ISO 230-2 acceptance tests state them).
     rule : Rule or str
@@ -253,7 +256,9 @@ def decide_all(
     out = []
     for name in (n for n in values if n in tolerances):  # in the result's order
         tol = tolerances[name]
-        U = budget.U(name)
+        # the U printed (rounded up to two digits) where the budget states one: the verdict
+        # follows from the numbers on the page (issue 38: E = 74.77 ± 0.66 against 75.428)
+        U = budget.stated(name) if hasattr(budget, "stated") else budget.U(name)
         if U is None:
             raise InputError(f"tolerance for {name!r}: the uncertainty budget does not cover it")
         v = values[name]

@@ -79,7 +79,7 @@ Renishaw, Interferometric calibration of rotary axes: Renishaw, "Interferometric
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
 import numpy as np
@@ -93,6 +93,7 @@ from axiscal.standards.iso230_9_inputs import (
     resolve_linear,
     resolve_rotary,
     runs_statement,
+    split_table,
 )
 from axiscal.standards.uncertainty_reporting import format_uncertainty, round_up
 
@@ -190,6 +191,14 @@ class UncertaintyBudget:
         Every input with its value, unit, whether it was assumed, how to set it and its rule.
     missing_inputs : tuple of str
         Names of inputs U could not include (``e_ve`` when no drift check or value was given).
+    narrow : mapping of str to float
+        ISO 230-2:2014 Annex A's U of each parameter the sampling of the runs was added to
+        (R, R↑, R↓, B, B̄): the measuring chain's alone; ``expanded`` holds the wider U.
+    cmc : mapping of str to float
+        The laboratory's CMC (an expanded uncertainty, ``unit``) of each parameter that has one.
+    floored : tuple of str
+        The parameters whose U is the CMC: the budget's U was smaller (ILAC-P14:09/2020 §5.4:
+        an uncertainty below the CMC is never stated).
     """
 
     unit: str
@@ -201,10 +210,27 @@ class UncertaintyBudget:
     notes: tuple[str, ...] = ()
     inputs: tuple[BudgetInput, ...] = ()
     missing_inputs: tuple[str, ...] = ()
+    narrow: Mapping[str, float] = field(default_factory=dict)
+    cmc: Mapping[str, float] = field(default_factory=dict)
+    floored: tuple[str, ...] = ()
 
     def U(self, parameter: str) -> float | None:
         """Expanded uncertainty of ``parameter`` (None if the budget does not cover it)."""
         return self.expanded.get(parameter)
+
+    def stated(self, parameter: str) -> float | None:
+        """U of ``parameter`` as it is printed (two significant digits, rounded up: JCGM
+        100:2008 §7.2.6): the U every decision of conformity uses, so the verdict follows from
+        the numbers on the page (:func:`axiscal.standards.iso14253_1.decide_all`)."""
+        U = self.U(parameter)
+        return None if U is None else round_up(U)
+
+    def value_text(self, parameter: str, value: float) -> str:
+        """``value`` rounded to the last digit of the printed U of ``parameter``
+        (ILAC-P14:09/2020 §5.3; :func:`~axiscal.standards.uncertainty_reporting.format_value`)."""
+        from axiscal.standards.uncertainty_reporting import format_value
+
+        return format_value(value, self.U(parameter))
 
     def U_text(self, parameter: str) -> str:
         """U of ``parameter`` as displayed: :func:`format_uncertainty` ("—" if not covered)."""
@@ -230,12 +256,17 @@ class UncertaintyBudget:
         """The budget as stable JSON: ``unit``, ``k``, ``method``, ``U`` (raw floats),
         ``U_display`` (as shown), ``contributors``, ``inputs`` (name -> ``value``, ``unit``,
         ``assumed``, ``set_with``, ``rule``, ``label``), ``assumed`` (names),
-        ``missing_inputs`` and ``notes``."""
+        ``missing_inputs``, ``notes``, and (issue 38) ``U_stated`` (as printed and decided
+        with), ``U_narrow`` (Annex A's U of R and B without the sampling of the runs), ``cmc``
+        and ``floored`` (parameters whose U is the CMC)."""
         names = [p for p in (parameters or self.expanded) if p in self.expanded]
         return {
             "unit": self.unit, "k": self.k, "method": self.method,
             "U": {p: self.expanded[p] for p in names},
             "U_display": {p: self.U_text(p) for p in names},
+            "U_stated": {p: self.stated(p) for p in names},
+            "U_narrow": {p: v for p, v in self.narrow.items() if p in names},
+            "cmc": dict(self.cmc), "floored": list(self.floored),
             "contributors": [{"name": c.name, "quantity": c.quantity, "u": c.u,
                               "distribution": c.distribution, "basis": c.basis,
                               "clause": c.clause, "applies_to": list(c.applies_to)}
@@ -526,9 +557,10 @@ def positioning_budget(
         neither measured nor declared: left out of U) and ``notes`` (the same in plain words,
         and what the number of runs means for R and B).
     """
-    table = dict(table or {})
-    if dataset.axis_kind.value == "rotary":
-        inputs, records, missing = resolve_rotary(table, set_with)
+    kind = "rotary" if dataset.axis_kind.value == "rotary" else "linear"
+    table, cmc, ignored = split_table(table, kind)
+    if kind == "rotary":
+        inputs, records, missing = resolve_rotary(table, set_with, dataset)
         b = rotary_budget(inputs, result.deviation_unit, k)
     else:
         from axiscal.units import convert
@@ -536,8 +568,87 @@ def positioning_budget(
         travel = float(convert(float(np.ptp(result.targets)), result.target_unit, "mm"))
         inputs, records, missing = resolve_linear(table, dataset, set_with)
         b = linear_budget(travel, inputs, result.deviation_unit, k)
-    notes = _notes(inputs, records, missing) + [runs_statement(result.n_runs)]
+    b = _with_sampling(b, result)
+    b = _with_cmc(b, cmc, kind)
+    notes = (_notes(inputs, records, missing) + [runs_statement(result.n_runs)]
+             + _which_U(b, result) + _cmc_notes(b, kind) + _ignored_note(ignored, kind))
     return replace(b, notes=tuple(notes), inputs=records, missing_inputs=missing)
+
+
+def _with_sampling(b: UncertaintyBudget, result) -> UncertaintyBudget:
+    """The budget with the sampling of the runs added to R, R↑, R↓, B, B̄
+    (:mod:`axiscal.standards.iso230_9_sampling`); Annex A's U of those kept as ``narrow``."""
+    from axiscal.standards.iso230_9_sampling import sampling_contributors
+
+    extra = [Contributor(**c) for c in sampling_contributors(result)]
+    if not extra:
+        return b
+    wide = combine(b.contributors + tuple(extra), b.unit, b.k, list(b.expanded))
+    narrow = {p: b.expanded[p] for c in extra for p in c.applies_to}
+    return replace(wide, notes=b.notes, narrow=narrow)
+
+
+def _with_cmc(b: UncertaintyBudget, cmc: Mapping[str, float], kind: str) -> UncertaintyBudget:
+    """U never below the laboratory's CMC (ILAC-P14:09/2020 §5.4). A parameter without its own
+    CMC takes that of its family (A for A↑ and A↓, E for E↑ and E↓, R for R↑ and R↓, B for
+    B̄). The CMC is given in µm (linear) or arcsec (rotary) and converted to the budget's unit."""
+    if not cmc:
+        return b
+    from axiscal.units import convert
+
+    base = "um" if kind == "linear" else "arcsec"
+    floors = {}
+    for p in b.expanded:
+        v = cmc.get(p, cmc.get({"B_mean": "B"}.get(p, p.split("_")[0])))
+        if v is not None:
+            floors[p] = float(convert(v, base, b.unit))
+    floored = tuple(p for p in b.expanded if p in floors and b.expanded[p] < floors[p])
+    expanded = {p: max(U, floors.get(p, 0.0)) for p, U in b.expanded.items()}
+    combined = {p: expanded[p] / b.k for p in expanded}
+    return replace(b, expanded=expanded, combined=combined, cmc=floors, floored=floored)
+
+
+def _which_U(b: UncertaintyBudget, result) -> list[str]:
+    """Which U of R and B is printed, and why (issue 38: say it, not leave it to the reader)."""
+    if not b.narrow:
+        return []
+    names = ", ".join(_SYMBOL.get(p, p) for p in b.narrow)
+    shown = "; ".join(f"{_SYMBOL.get(p, p)}: Annex A {format_uncertainty(v)}, printed "
+                      f"{b.U_text(p)}" for p, v in b.narrow.items())
+    return [f"U of {names} printed is the wider one: ISO 230-2:2014 Annex A's narrow U holds "
+            f"the reading and E_VE only, but a statement that R or B conforms is about the "
+            f"machine's scatter, which {result.n_runs} runs only estimate, so the sampling "
+            f"uncertainty of their standard deviations and means (JCGM 100:2008 Annex E.4.3) "
+            f"is added ({shown} {_unit_text(b.unit)})"]
+
+
+def _cmc_notes(b: UncertaintyBudget, kind: str) -> list[str]:
+    if not b.cmc:
+        return [f"no CMC declared for a {kind} axis ([uncertainty.{kind}] cmc): U is the "
+                "budget's, not checked against the laboratory's calibration and measurement "
+                "capability"]
+    if not b.floored:
+        return []
+    names = ", ".join(f"{_SYMBOL.get(p, p)} {format_uncertainty(b.cmc[p])}" for p in b.floored)
+    return [f"U stated at the laboratory's CMC where the budget gives less ({names} "
+            f"{_unit_text(b.unit)}): an uncertainty below the CMC is never stated "
+            "(ILAC-P14:09/2020 §5.4)"]
+
+
+def _ignored_note(ignored: tuple[str, ...], kind: str) -> list[str]:
+    if not ignored:
+        return []
+    other = "linear" if kind == "rotary" else "rotary"
+    return [f"[uncertainty] {', '.join(ignored)}: not an input of a {kind} axis's budget "
+            f"(they serve {other} axes), ignored"]
+
+
+_SYMBOL = {"R_up": "R↑", "R_down": "R↓", "B_mean": "B̄", "A_up": "A↑", "A_down": "A↓",
+           "E_up": "E↑", "E_down": "E↓"}
+
+
+def _unit_text(unit: str) -> str:
+    return {"um": "µm"}.get(unit, unit)
 
 
 def _notes(inputs, records, missing) -> list[str]:

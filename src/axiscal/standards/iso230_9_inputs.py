@@ -32,6 +32,16 @@ material temperature
     When the data file and the user do not state it, the shop's temperature range is used
     (default 20 ± 3 °C, 17-23 °C: no standard fixes a shop's range, so it is shown as assumed);
     the uncertainty of α then acts over the largest |T − 20 °C| of that range.
+resolution of the reading
+    Where the data shows it: the readings at one target differ by whole multiples of one step
+    (an encoder's increment, 0.2037 µm in an ESS ecmc file), so that step is the resolution,
+    taken from the data (:func:`reading_step`); else the default (1 nm for a laser or an
+    encoder, 0.1 arcsec for a rotary calibrator). A declared value always wins.
+one laboratory configuration for every kind
+    The ``[uncertainty]`` table serves linear and rotary tests: keys of the other kind's budget
+    are ignored and named in the budget's notes (:func:`split_table`); ``[uncertainty.linear]``
+    and ``[uncertainty.rotary]`` hold values for one kind only (over the common ones), and each
+    holds the laboratory's CMC per parameter (``cmc = {E = 1.0, R = 0.6}``, µm or arcsec).
 E_VE
     Never assumed: measure it with a drift check (:func:`environmental_variation`, ISO 230-2:2014
     Annex A.5) or declare it. A budget without it leaves E_VE out of U, lists it in
@@ -61,7 +71,13 @@ __all__ = [
     "runs_statement",
     "REFERENCE_KINDS",
     "input_table",
+    "reading_step",
+    "split_table",
+    "KIND_TABLES",
 ]
+
+#: Sub-tables of ``[uncertainty]`` holding one axis kind's values and CMC.
+KIND_TABLES = ("linear", "rotary")
 
 #: Reference instruments a linear budget knows (a rotary budget's reference is a calibrator).
 REFERENCE_KINDS = ("laser", "encoder")
@@ -441,6 +457,7 @@ def resolve_linear(table: Mapping[str, Any] | None, dataset=None,
         if "reference" not in kw and found is not None:
             kw["reference"], why = found
             given["reference"] = f"taken from the data file: {why}"
+        _step_from_data(kw, given, dataset, "um", LinearInputs.resolution, "µm")
     inputs = LinearInputs(**kw)
     skip = {"laser": {"encoder_accuracy"},
             "encoder": {"laser_accuracy_ppm", "laser_accuracy_k", "beam_offset"}}[inputs.reference]
@@ -452,12 +469,16 @@ def resolve_linear(table: Mapping[str, Any] | None, dataset=None,
     return inputs, rows, ("e_ve",) if inputs.e_ve is None else ()
 
 
-def resolve_rotary(table: Mapping[str, Any] | None, set_with: str = "[uncertainty] {key}"):
-    """As :func:`resolve_linear` for a rotary budget (a rotary calibrator as reference)."""
+def resolve_rotary(table: Mapping[str, Any] | None, set_with: str = "[uncertainty] {key}",
+                   dataset=None):
+    """As :func:`resolve_linear` for a rotary budget (a rotary calibrator as reference); the
+    dataset supplies the resolution where its readings show a step."""
     kw = _known_keys(RotaryInputs, table or {}, ROTARY_ENTRY)
-    inputs = RotaryInputs(**kw)
     given = {k: "declared by the user (job or configuration file, or the --uncertainty option)"
              for k in kw}
+    if dataset is not None:
+        _step_from_data(kw, given, dataset, "arcsec", RotaryInputs.resolution, "arcsec")
+    inputs = RotaryInputs(**kw)
     skip = {"e_ve_source"} if inputs.e_ve is None else set()
     rows = _records(inputs, _ROTARY, given, skip, set_with)
     return inputs, rows, ("e_ve",) if inputs.e_ve is None else ()
@@ -515,7 +536,8 @@ def runs_statement(n_runs: int) -> str:
     R and B are formed from the standard deviations s↑, s↓ and means of n runs per direction
     (ISO 230-2:2014 clause 3). The relative standard uncertainty of an experimental standard
     deviation from n readings is 1/√(2(n − 1)) (JCGM 100:2008 Annex E.4.3, Table E.1): 35 % for
-    n = 5. ISO 230-2:2014 Annex A does not include it in U of R and B; the statement says so.
+    n = 5. ISO 230-2:2014 Annex A does not include it in U of R and B; axiscal adds it
+    (:mod:`axiscal.standards.iso230_9_sampling`) and the statement says so.
 
     Examples
     --------
@@ -529,4 +551,130 @@ def runs_statement(n_runs: int) -> str:
     rel = 100.0 / math.sqrt(2 * (n - 1))
     return (f"R and B rest on {n} runs per direction: the standard uncertainty of each standard "
             f"deviation s from {n} runs is s/√(2(n − 1)) = {rel:.0f} % of s (JCGM 100:2008 "
-            "Annex E.4.3); ISO 230-2:2014 Annex A does not include it in U of R and B")
+            "Annex E.4.3); ISO 230-2:2014 Annex A does not include it in U of R and B, "
+            "axiscal adds it to their U")
+
+
+def reading_step(dataset) -> float | None:
+    """The step of the reference's readings where the data shows one, in the deviation unit.
+
+    Parameters
+    ----------
+    dataset : PositioningDataset
+
+    Returns
+    -------
+    float or None
+        q such that the readings at each target differ from each other by whole multiples of
+        q (within 1 % of q), found from the smallest difference (or a half, third or quarter of
+        it); None when fewer than 4 differences exist or they are not multiples of one step (a
+        laser's readings, or a simulation's, vary continuously).
+
+    Notes
+    -----
+    ISO 230-2:2014 Annex A.2 names the resolution of the reading as a contributor; an encoder
+    read as the reference (an EPICS ecmc ``…-Enc01-PosAct``) moves in increments, which the
+    readings at one target show: the ESS file ``mcu1025_fat_sat_ISO230.dat`` steps by
+    0.20365 µm, where the default would assume 1 nm.
+
+    Examples
+    --------
+    >>> from axiscal.datasets import PositioningDataset
+    >>> ds = PositioningDataset.from_arrays("linear", [0, 10], [[0.0, 0.4, 0.6], [1.0, 1.2, 1.8]],
+    ...                                     [[0.2, 0.2, 0.4], [1.4, 1.2, 1.0]], "mm", "um")
+    >>> round(reading_step(ds), 6)
+    0.2
+    """
+    diffs = []
+    for i in range(dataset.targets.size):
+        v = np.concatenate([dataset.up[i], dataset.down[i]])
+        v = v[np.isfinite(v)]
+        d = np.abs(v[:, None] - v[None, :])[np.triu_indices(v.size, 1)]
+        eps = 1e-9 * (1.0 + float(np.max(np.abs(v)))) if v.size else 0.0
+        diffs.extend(d[d > eps])
+    if len(diffs) < 4:
+        return None
+    d = np.asarray(diffs)
+    smallest = float(d.min())
+    for parts in (1, 2, 3, 4):
+        q = smallest / parts
+        r = np.round(d / q)
+        if np.all(np.abs(d / q - r) < 0.01):
+            return float(d.sum() / r.sum())
+    return None
+
+
+def _step_from_data(kw: dict, given: dict, dataset, unit: str, default: float,
+                    shown: str) -> None:
+    """``resolution`` from the data's step (:func:`reading_step`) when none was declared and
+    the step is coarser than the default."""
+    if "resolution" in kw:
+        return
+    from axiscal.units import convert
+
+    q = reading_step(dataset)
+    if q is None:
+        return
+    q = float(convert(q, dataset.deviation_unit, unit))
+    if q > default * 1.0001:
+        kw["resolution"] = q
+        given["resolution"] = (f"taken from the data: the readings at one target differ by "
+                               f"whole multiples of {q:.4g} {shown}, the reference's step")
+
+
+def split_table(table: Mapping[str, Any] | None, kind: str
+                ) -> tuple[dict, dict[str, float], tuple[str, ...]]:
+    """One laboratory configuration for every kind of test: the ``[uncertainty]`` inputs of
+    ``kind``'s budget, its CMC per parameter and the keys ignored as the other kind's.
+
+    Parameters
+    ----------
+    table : mapping or None
+        The ``[uncertainty]`` table: common keys, and the sub-tables ``linear`` and ``rotary``
+        (values for that kind only, over the common ones, and ``cmc``: parameter -> the
+        laboratory's calibration and measurement capability as an expanded uncertainty, µm
+        for a linear axis, arcsec for a rotary one).
+    kind : str
+        ``linear`` or ``rotary``.
+
+    Returns
+    -------
+    (inputs, cmc, ignored)
+        ``inputs`` for :func:`resolve_linear` or :func:`resolve_rotary` (a key of neither kind
+        stays, to be refused by name), ``cmc`` in µm or arcsec, ``ignored`` the common keys
+        that only the other kind's budget has (said in the budget's notes, not refused).
+
+    Raises
+    ------
+    InputError
+        ``cmc`` outside a kind's sub-table, a sub-table that is not a table, a CMC that names
+        no ISO 230-2 parameter or is not a number > 0.
+    """
+    from axiscal.standards.iso230_2 import PARAMETER_NAMES
+
+    table = dict(table or {})
+    if "cmc" in table:
+        raise InputError("[uncertainty] cmc: give the CMC per kind of axis, [uncertainty.linear] "
+                         "cmc (µm) or [uncertainty.rotary] cmc (arcsec)")
+    subs = {k: table.pop(k, None) or {} for k in KIND_TABLES}
+    for k, sub in subs.items():
+        if not isinstance(sub, Mapping):
+            raise InputError(f"[uncertainty.{k}] must be a table")
+    own = dict(subs[kind])
+    cmc = own.pop("cmc", {}) or {}
+    if not isinstance(cmc, Mapping):
+        raise InputError(f"[uncertainty.{kind}] cmc must be a table: parameter = U")
+    for name, v in cmc.items():
+        if name not in PARAMETER_NAMES:
+            raise InputError(f"[uncertainty.{kind}] cmc {name!r}: not an ISO 230-2 parameter; "
+                             f"use one of {', '.join(PARAMETER_NAMES)}")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (
+                math.isfinite(v) and v > 0):
+            raise InputError(f"[uncertainty.{kind}] cmc {name} = {v!r} must be a number > 0")
+    this, other = ((LinearInputs, RotaryInputs) if kind == "linear"
+                   else (RotaryInputs, LinearInputs))
+    mine, theirs = {f.name for f in fields(this)}, {f.name for f in fields(other)}
+    ignored = tuple(k for k in table if k not in mine and k in theirs)
+    inputs = {k: v for k, v in table.items() if k not in ignored}
+    inputs.update(own)
+    return inputs, {k: float(v) for k, v in cmc.items()}, ignored

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["round_up", "format_uncertainty"]
+__all__ = ["round_up", "format_uncertainty", "format_value"]
 
 
 def round_up(U: float, digits: int = 2) -> float:
@@ -57,3 +57,21 @@ def format_uncertainty(U: float | None, digits: int = 2) -> str:
     r = round_up(float(U), digits)
     decimals = max(0, digits - 1 - math.floor(math.log10(r)))
     return f"{r:.{decimals}f}"
+
+
+def format_value(value: float, U: float | None, digits: int = 2) -> str:
+    """A measured value rounded to the last digit of its printed U (ILAC-P14:09/2020 §5.3:
+    the value is stated to the same number of digits as the uncertainty).
+
+    ``U`` None, NaN, zero or infinite: the value at 2 decimals (no U to round it to).
+
+    Examples
+    --------
+    >>> format_value(74.7682, 0.655), format_value(204.76, 143.2), format_value(5.8123, 0.00058)
+    ('74.77', '205', '5.81230')
+    """
+    if U is None or not math.isfinite(U) or U <= 0:
+        return f"{value:.2f}"
+    text = format_uncertainty(U, digits)
+    decimals = len(text.split(".", 1)[1]) if "." in text else 0
+    return f"{value:.{decimals}f}"

@@ -130,7 +130,10 @@ def _certificate_entry(c, shas) -> tuple[dict, bytes]:
              "issued": c.issued, "status": c.status, "replaces": replaces, "reason": c.reason,
              "media_type": c.media_type, "sha256": c.sha256,
              "document": f"certificates/{c.sha256}", "inputs": json.loads(c.inputs_json),
-             "created": c.created.isoformat()}, c.document)
+             "created": c.created.isoformat(), "laboratory_name": c.laboratory_name,
+             "prepared_by": c.prepared_by, "approved_by": c.approved_by,
+             "approved_role": c.approved_role, "changes": json.loads(c.changes_json or "[]"),
+             "as_found": shas.get(c.as_found_test_id)}, c.document)
 
 
 # -- checking (before the first row) -----------------------------------------------------------
@@ -151,6 +154,19 @@ def check_audit(entries: list[tuple[int, dict]], tests: set[str], p) -> list[dic
     return out
 
 
+def _register_key(e: dict) -> None:
+    """An entry of an archive written before the register was keyed by the laboratory's code
+    (no ``laboratory_name``): its ``laboratory`` is the name, the code the start of its series
+    (``CODE|YEAR``); the optional fields of later archives default to empty."""
+    if not isinstance(e.get("laboratory_name"), str):
+        e["laboratory_name"] = e["laboratory"]
+        e["laboratory"] = e["series"].split("|", 1)[0] or e["laboratory"]
+    for key in ("prepared_by", "approved_by", "approved_role"):
+        e[key] = e.get(key) if isinstance(e.get(key), str) else ""
+    e["changes"] = e.get("changes") if isinstance(e.get("changes"), list) else []
+    e["as_found"] = e.get("as_found") if isinstance(e.get("as_found"), str) else None
+
+
 def check_certificates(entries: list[tuple[int, dict]], tests: set[str], read, p
                        ) -> list[tuple[dict, bytes]]:
     """Every certificate checked, its document read (``read(name)``) and matching its SHA-256."""
@@ -159,6 +175,7 @@ def check_certificates(entries: list[tuple[int, dict]], tests: set[str], read, p
     for n, e in entries:
         _fields(e, _CERT_FIELDS, CERTIFICATES, n, p)
         _when(e["created"], CERTIFICATES, n, p)
+        _register_key(e)
         where = f"{CERTIFICATES} line {n} (certificate {e['number'][:80]})"
         if e["test"] not in tests:
             raise DataFormatError(f"{where}: its test is not in the archive; nothing was "
@@ -396,7 +413,12 @@ def _restore_certificates(s, entries: list[tuple[dict, bytes]], p) -> int:
             number=e["number"], customer=e["customer"], issued=e["issued"],
             status=e["status"], reason=e["reason"], media_type=e["media_type"], document=doc,
             sha256=e["sha256"], inputs_json=json.dumps(e["inputs"]),
-            created=dt.datetime.fromisoformat(e["created"]))
+            created=dt.datetime.fromisoformat(e["created"]),
+            laboratory_name=e["laboratory_name"], prepared_by=e["prepared_by"],
+            approved_by=e["approved_by"], approved_role=e["approved_role"],
+            changes_json=json.dumps(e["changes"]), as_found_test_id=(
+                s.scalar(select(Test.id).where(Test.sha256 == e["as_found"]))
+                if e["as_found"] else None))
         s.add(row)
         added[e["laboratory"], e["number"]] = (row, e["replaces"])
     s.flush()

@@ -124,6 +124,13 @@ class Certificate(Base):
     (customer, machine, conditions, instruments, tolerances, rule) so an amendment can be
     rebuilt; ``replaces_id`` and ``reason`` make an amendment (§7.8.8), ``status`` is
     ``issued`` or ``superseded``.
+
+    ``laboratory`` is the laboratory's *code* (``[company] code``), the register's key: a name
+    may change (a full stop added) without starting a second counter; ``laboratory_name`` is the
+    name printed at issue. ``prepared_by`` and ``approved_by`` (with ``approved_role``) name who
+    prepared the certificate and the authorised signatory who approved its issue (§7.8.2.1 o);
+    ``changes_json`` lists what an amendment changed (§7.8.8.3); ``as_found_test_id`` is the
+    test before adjustment of an "as found / as left" certificate (§7.8.4.1 d).
     """
 
     __tablename__ = "certificate"
@@ -145,6 +152,12 @@ class Certificate(Base):
     sha256: Mapped[str] = mapped_column(String(64))
     inputs_json: Mapped[str] = mapped_column(Text, default="{}")
     created: Mapped[dt.datetime] = mapped_column()
+    laboratory_name: Mapped[str] = mapped_column(String(200), default="")
+    prepared_by: Mapped[str] = mapped_column(String(200), default="")
+    approved_by: Mapped[str] = mapped_column(String(200), default="")
+    approved_role: Mapped[str] = mapped_column(String(200), default="")
+    changes_json: Mapped[str] = mapped_column(Text, default="[]")
+    as_found_test_id: Mapped[int | None] = mapped_column(nullable=True)
     test: Mapped[Test] = relationship(back_populates="certificates")
 
 

@@ -58,8 +58,9 @@ def add_routes(app: FastAPI) -> None:
         issue = values.get("action") == "issue"
         from axiscal.web.workers import heavy     # a certificate: one at a time per worker
 
+        user = request.state.session.get("name") or ""    # signed in: the approver
         ctx = await (heavy if issue else run_in_threadpool)(_evaluate, store(request), test_id,
-                                                            values, issue)
+                                                            values, issue, user)
         partial = request.headers.get("hx-request") == "true"
         if ctx.get("number"):                  # issued: the test page lists it (POST-redirect-GET)
             url = f"/tests/{test_id}?{query(certificate=ctx['number'])}#signoff"
@@ -205,8 +206,13 @@ def _envelopes(r, so, tolerances: dict) -> list:
     return out
 
 
-def _evaluate(st, test_id: int, values: dict, issue: bool) -> dict:
-    """The sign-off's verdict and, with ``issue``, the certificate (library calls only)."""
+def _evaluate(st, test_id: int, values: dict, issue: bool, user: str = "") -> dict:
+    """The sign-off's verdict and, with ``issue``, the certificate (library calls only).
+
+    ``user`` is the signed-in account: the approver of the issue, who must be one of the
+    laboratory's authorised signatories (:func:`axiscal.report.issue.authorisation`); without
+    sign-in (a workbench on one's own computer) the form's signatory approves, as on the
+    command line."""
     t = st.get(test_id)
     ev = t.evaluate_again()
     ctx = signoff_context(st, t, ev, values)
@@ -221,7 +227,7 @@ def _evaluate(st, test_id: int, values: dict, issue: bool) -> dict:
         cfg = merge(load_config(None), job)
         _verdict(ctx, ev, cfg, tolerances, rule)
         if issue:
-            out = _issue(st, t, ev, cfg, tolerances, rule, paper, config_problem())
+            out = _issue(st, t, ev, cfg, tolerances, rule, paper, config_problem(), user)
             ctx.update(missing=out.missing, number=out.number)
     except AxiscalError as exc:
         ctx["error"] = str(exc)
@@ -237,7 +243,7 @@ def _verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
                rows=_rows(ev.evaluation, so, tolerances), budget=so.budget)
 
 
-def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note):
+def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note, user: str = ""):
     import tempfile
     from pathlib import Path
 
@@ -247,7 +253,7 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note):
         return write_certificate(Path(d) / "certificate.pdf", ev.dataset, ev.evaluation, cfg,
                                  t.raw, tolerances, rule, paper, store=st,
                                  filename=t.summary.filename, config_note=config_note,
-                                 customer_supplied=())
+                                 customer_supplied=(), approved_by=user)
 
 
 def _rows(result, so, tolerances: dict) -> list:
