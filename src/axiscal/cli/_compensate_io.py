@@ -44,7 +44,19 @@ def _typed(function, raw: dict[str, str], what: str, exclude: tuple[str, ...] = 
     if fixed:
         raise InputError(f"{what}: {', '.join(fixed)} is set by the command, not by --option")
     params = inspect.signature(function).parameters
-    return {k: _convert(k, v, params[k].default, what) for k, v in raw.items()}
+    return {k: _convert(k, v, _like(params[k]), what) for k, v in raw.items()}
+
+
+def _like(param):
+    """A value of the type ``param`` takes: its default, or for a default of None the type its
+    annotation names (``machine_axis: str | None = None``: text, so ``01`` stays ``01``)."""
+    if param.default is not None:
+        return param.default
+    note = str(param.annotation)
+    for name, example in (("bool", False), ("int", 0), ("float", 0.0), ("str", "")):
+        if name in note.replace("None", ""):
+            return example
+    return None
 
 
 def _convert(key: str, text: str, default, what: str):

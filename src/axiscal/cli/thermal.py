@@ -272,8 +272,9 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
                duty: float = _OPTS["duty"], start_h: float = _OPTS["start_h"],
                json_out: bool = typer.Option(False, "--json", help="Print the parameters and "
                                              "the model as JSON.")) -> None:
-    """SINUMERIK temperature compensation (K3: MD32750, SD43900 K0(T), SD43910 tanβ(T),
-    SD43920 P0) from linear-axis runs (ISO 230-3:2020 Clause 7).
+    """SINUMERIK temperature compensation from linear-axis runs (ISO 230-3:2020 Clause 7).
+
+    K3 function manual: MD32750, SD43900 K0(T), SD43910 tanβ(T), SD43920 P0.
 
     With --verify, the compensation is applied on the twin to a new linear test (same thermal
     history with and without it). Example:
