@@ -280,8 +280,16 @@ class LinuxCNC:
         self.close()
 
     def close(self) -> None:
-        """Shut LinuxCNC down (stdin closed; killed if it does not end) and clean up."""
+        """Shut LinuxCNC down (stdin closed; killed if it does not end) and clean up.
+
+        The NML channels of ``linuxcnc.stat()`` and ``linuxcnc.command()`` are closed first,
+        while LinuxCNC's shared memory still exists: the NML library keeps a process-wide list of
+        the buffers it opened, and a channel left open past its LinuxCNC is found again by the
+        next session's ``linuxcnc.stat()`` in the same process, which then reads unmapped memory
+        (a segmentation fault, seen when the part-program runs preceded the live tests in one
+        test process)."""
         try:
+            self._release_channels()
             if self._comp is not None:
                 self._comp.exit()
                 self._comp = None
@@ -343,6 +351,14 @@ class LinuxCNC:
             return "DUMMY DISPLAY" in (self.folder / "linuxcnc.log").read_text(errors="replace")
 
         _wait(ready, self.ready_timeout, "LinuxCNC to start")
+
+    def _release_channels(self) -> None:
+        """Drop the NML channels (see :meth:`close`) and collect them now."""
+        if getattr(self, "_stat", None) is not None or getattr(self, "_cmd", None) is not None:
+            import gc
+
+            self._stat = self._cmd = None
+            gc.collect()
 
     def _log_tail(self) -> str:
         lines = (self.folder / "linuxcnc.log").read_text(errors="replace").strip().splitlines()
