@@ -83,6 +83,7 @@ address = ["Industriestr. 4", "Esslingen"]
 maker = "Example"
 model = "VMC-800"
 serial = "VMC8-0042"
+location = "Hall 2"
 [conditions]
 date = "2026-11-20"
 air_temperature = 20.4

@@ -60,3 +60,17 @@ def test_clean_data_has_no_outlier_and_order_invariance():
     perm = up[:, [3, 0, 1, 2, 4]]
     ds2 = PositioningDataset.from_arrays("linear", np.arange(6) * 100.0, perm, down, "mm", "um")
     assert [(o.target, o.run) for o in evaluate(ds2).outliers] == [(200.0, 1)]
+
+
+def test_normal_readings_raise_a_false_alarm_rarely_over_the_whole_test():
+    """Each of the m target-direction groups is tested at 5 %/m (Bonferroni): 200 simulated
+    tests of normal readings (21 targets, 5 runs each way) flag a reading in about 5 % of the
+    tests at most, not in most of them (at 5 % per group, 42 groups flag one in 88 %)."""
+    rng = np.random.default_rng(11)
+    flagged = 0
+    for _ in range(200):
+        ds = PositioningDataset.from_arrays("linear", np.arange(21) * 40.0,
+                                            rng.normal(0, 1, (21, 5)), rng.normal(0, 1, (21, 5)),
+                                            "mm", "um")
+        flagged += bool(evaluate(ds).outliers)
+    assert flagged <= 20                       # 5 % of 200 is 10; a binomial bound

@@ -4,8 +4,10 @@ ISO 230-2:2014 evaluates every reading; it has no rule for outliers, and axiscal
 one. But a single reading far from the other runs at its target (a first run taken before the
 machine was warm, a laser beam cut for a moment) can alone set the axis's repeatability R and
 accuracy A, and a reader must be told. Each target's readings in one direction are tested by
-Grubbs' test (two-sided, significance 5 %), and a reading found is said beside the parameters
-it sets; it stays in the evaluation.
+Grubbs' test (two-sided), at a significance of 5 % for the whole test: with m targets and
+directions tested, each at 5 %/m (Bonferroni), so that a test of normal readings raises a false
+alarm once in twenty tests, not once in twenty targets. A reading found is said beside the
+parameters it sets; it stays in the evaluation.
 
 References
 ----------
@@ -28,7 +30,8 @@ import numpy as np
 __all__ = ["ALPHA", "Outlier", "grubbs_critical", "grubbs_p_value", "positioning_outliers",
            "with_outliers"]
 
-#: Significance of Grubbs' test (two-sided), as ISO 5725-2:1994 §7.3.4 takes for an outlier.
+#: Significance of Grubbs' test (two-sided) over a whole test, as ISO 5725-2:1994 §7.3.4 takes
+#: for an outlier; each of the m target-direction groups is tested at ALPHA/m (Bonferroni).
 ALPHA = 0.05
 
 
@@ -47,7 +50,10 @@ class Outlier:
     mean, s : float, deviation unit
         Mean and standard deviation of the readings at the target in that direction, with it.
     G, G_critical : float
-        Grubbs' statistic ``|x - x̄| / s`` and its critical value at :data:`ALPHA` for ``n`` readings.
+        Grubbs' statistic ``|x - x̄| / s`` and its critical value for ``n`` readings at
+        :data:`ALPHA` / ``groups``.
+    groups : int
+        Target-direction groups of the test (the Bonferroni divisor).
     n : int
         Readings at the target in that direction.
     sets : tuple of str
@@ -69,6 +75,7 @@ class Outlier:
     sets: tuple[str, ...]
     unit: str
     target_unit: str
+    groups: int = 1
 
     def __str__(self) -> str:
         from axiscal import units
@@ -78,7 +85,8 @@ class Outlier:
         sets = (f"; it sets {', '.join(self.sets)}" if self.sets else "")
         return (f"run {self.run} {arrow} at target {self.target:g} {tu}: reading {self.value:+.2f}"
                 f" {u} lies {self.G:.3f} s from the mean {self.mean:+.2f} {u} of its {self.n} "
-                f"runs (Grubbs' test, 5 %: critical {self.G_critical:.3f}){sets}; kept, as ISO "
+                f"runs (Grubbs' test, 5 % over the test's {self.groups} target-direction groups: "
+                f"critical {self.G_critical:.3f}){sets}; kept, as ISO "
                 f"230-2:2014 evaluates every reading")
 
     def as_dict(self) -> dict:
@@ -86,7 +94,9 @@ class Outlier:
         return {"target": self.target, "direction": self.direction, "run": self.run,
                 "value": self.value, "mean": self.mean, "s": self.s, "G": self.G,
                 "G_critical": self.G_critical, "n": self.n, "sets": list(self.sets),
-                "rule": "Grubbs two-sided, alpha 0.05 (ISO 5725-2:1994 7.3.4)",
+                "groups": self.groups,
+                "rule": "Grubbs two-sided, alpha 0.05 over the test, Bonferroni over the "
+                        "target-direction groups (ISO 5725-2:1994 7.3.4)",
                 "text": str(self)}
 
 
@@ -137,14 +147,15 @@ def positioning_outliers(targets, up, down, result, alpha: float = ALPHA) -> tup
     result : Iso230_2Result
         The evaluation of those readings (for which targets set A and R).
     alpha : float
-        Significance, two-sided.
+        Significance over the whole test, two-sided; each of the m target-direction groups
+        with 3 readings or more is tested at ``alpha / m`` (Bonferroni).
 
     Returns
     -------
     tuple of Outlier
         At most one per target and direction (the farthest reading), in target order.
     """
-    found = []
+    candidates = []
     for direction, arr in (("up", up), ("down", down)):
         for i, row in enumerate(np.asarray(arr, dtype=float)):
             ok = np.isfinite(row)
@@ -154,14 +165,17 @@ def positioning_outliers(targets, up, down, result, alpha: float = ALPHA) -> tup
             vals = row[ok]
             mean, s = float(vals.mean()), float(vals.std(ddof=1))
             if not s > 0:
+                candidates.append(None)          # a group tested, nothing apart
                 continue
             j = int(np.argmax(np.abs(row - mean) * ok))
             G = abs(float(row[j]) - mean) / s
-            if grubbs_p_value(G, n) < alpha:
-                found.append(Outlier(float(targets[i]), direction, j + 1, float(row[j]), mean, s,
-                                     G, grubbs_critical(n, alpha), n,
-                                     _sets(result, i, direction), result.deviation_unit,
-                                     result.target_unit))
+            candidates.append((direction, i, j, row[j], mean, s, G, n))
+    m = max(len(candidates), 1)
+    found = [Outlier(float(targets[i]), d, j + 1, float(x), mean, s, G,
+                     grubbs_critical(n, alpha / m), n, _sets(result, i, d),
+                     result.deviation_unit, result.target_unit, m)
+             for d, i, j, x, mean, s, G, n in filter(None, candidates)
+             if grubbs_p_value(G, n) < alpha / m]
     return tuple(sorted(found, key=lambda o: (o.target, o.direction)))
 
 
@@ -175,7 +189,7 @@ def with_outliers(result, targets, up, down):
     warn = [f"a reading apart from its run-mates: {o}" for o in found if o.sets]
     if len(found) > len(warn):
         warn.append(f"{len(found) - len(warn)} more reading(s) apart from their run-mates "
-                    "(Grubbs' test, 5 %) set no parameter: see outliers")
+                    "(Grubbs' test, 5 % over the test) set no parameter: see outliers")
     return replace(result, outliers=found, warnings=result.warnings + tuple(warn))
 
 
