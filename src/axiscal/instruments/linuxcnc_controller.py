@@ -409,6 +409,12 @@ class LinuxCNC:
 
         _wait(homed, 10.0, "LinuxCNC to home the joint" if joints == 1 else
               f"LinuxCNC to home the {joints} joints")
+
+        def at_rest():                 # the homing's final move done: an MDI line sent during
+            self._stat.poll()          # it can be lost (seen on the five-axis configuration)
+            return bool(self._stat.inpos)
+
+        _wait(at_rest, 10.0, "the joints to come to rest after homing")
         c.mode(linuxcnc.MODE_MDI)
         c.wait_complete()
 
