@@ -353,11 +353,14 @@ class LinuxCNC:
         _wait(ready, self.ready_timeout, "LinuxCNC to start")
 
     def _release_channels(self) -> None:
-        """Drop the NML channels (see :meth:`close`) and collect them now."""
-        if getattr(self, "_stat", None) is not None or getattr(self, "_cmd", None) is not None:
+        """Drop the NML channels (see :meth:`close`: status, command and a subclass's error
+        channel) and collect them now."""
+        names = ("_stat", "_cmd", "_errors")
+        if any(getattr(self, n, None) is not None for n in names):
             import gc
 
-            self._stat = self._cmd = None
+            for n in names:
+                setattr(self, n, None)
             gc.collect()
 
     def _log_tail(self) -> str:
