@@ -69,7 +69,7 @@ demo: $(DEMO_STAMP)
 	$(VENV)/bin/axiscal demo --out $(OUT)
 
 test: $(STAMP) sysdeps linuxcnc
-	$(PY) -m pytest -n 2 -q
+	$(PY) -m pytest -n 2 --dist loadgroup -q
 
 bench: $(STAMP) sysdeps
 	$(PY) benchmarks/run.py
