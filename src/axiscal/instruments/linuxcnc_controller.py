@@ -250,6 +250,7 @@ class LinuxCNC:
     _proc: object = field(default=None, init=False, repr=False)
     _lock: object = field(default=None, init=False, repr=False)
     _comp: object = field(default=None, init=False, repr=False)
+    _channels: object = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.units not in _UNITS_MM:
@@ -282,17 +283,17 @@ class LinuxCNC:
     def close(self) -> None:
         """Shut LinuxCNC down (stdin closed; killed if it does not end) and clean up.
 
-        The NML channels of ``linuxcnc.stat()`` and ``linuxcnc.command()`` are closed first,
-        while LinuxCNC's shared memory still exists: the NML library keeps a process-wide list of
-        the buffers it opened, and a channel left open past its LinuxCNC is found again by the
-        next session's ``linuxcnc.stat()`` in the same process, which then reads unmapped memory
-        (a segmentation fault, seen when the part-program runs preceded the live tests in one
-        test process)."""
+        The HAL component and the child process that holds the session's channels
+        (:mod:`axiscal.instruments._nml`) end first, while LinuxCNC's shared memory still
+        exists."""
         try:
-            self._release_channels()
             if self._comp is not None:
-                self._comp.exit()
+                try:
+                    self._comp.exit()
+                except MeasurementError:
+                    pass                     # the channels' process has ended already
                 self._comp = None
+            self._release_channels()
             p = self._proc
             if p is not None and p.poll() is None:
                 p.stdin.close()
@@ -353,15 +354,23 @@ class LinuxCNC:
         _wait(ready, self.ready_timeout, "LinuxCNC to start")
 
     def _release_channels(self) -> None:
-        """Drop the NML channels (see :meth:`close`: status, command and a subclass's error
-        channel) and collect them now."""
-        names = ("_stat", "_cmd", "_errors")
-        if any(getattr(self, n, None) is not None for n in names):
-            import gc
+        """End the child process that holds the session's channels (:mod:`._nml`)."""
+        for n in ("_stat", "_cmd", "_errors"):
+            setattr(self, n, None)
+        if self._channels is not None:
+            self._channels.close()
+            self._channels = None
 
-            for n in names:
-                setattr(self, n, None)
-            gc.collect()
+    def _open_channels(self, component: str):
+        """Status and command channels and a HAL component named ``component``, all in a child
+        process of this session's own (:mod:`axiscal.instruments._nml`: the NML library's
+        process-wide state made a second session in one process crash)."""
+        from axiscal.instruments._nml import ChannelProcess, child_env
+
+        self._channels = ChannelProcess(child_env())
+        self._stat = self._channels.new("linuxcnc.stat")
+        self._cmd = self._channels.new("linuxcnc.command")
+        return self._channels.new("hal.component", component)
 
     def _log_tail(self) -> str:
         lines = (self.folder / "linuxcnc.log").read_text(errors="replace").strip().splitlines()
@@ -369,10 +378,8 @@ class LinuxCNC:
 
     def _connect(self) -> None:
         import hal
-        import linuxcnc
 
-        self._stat, self._cmd = linuxcnc.stat(), linuxcnc.command()
-        comp = hal.component("axiscal-laser")
+        comp = self._open_channels("axiscal-laser")
         for pin in ("motor-pos-cmd", "pos-cmd"):
             comp.newpin(pin, hal.HAL_FLOAT, hal.HAL_IN)
         self._ready(comp, [("j0-motor-pos-cmd", "axiscal-laser.motor-pos-cmd"),

@@ -138,12 +138,9 @@ class LinuxCNCProgramMachine(LinuxCNC):
         (self.folder / "tool.tbl").write_text("")
 
     def _connect(self) -> None:
-        import hal
-        import linuxcnc
-
-        self._stat, self._cmd = linuxcnc.stat(), linuxcnc.command()
-        self._errors = linuxcnc.error_channel()
-        self._ready(hal.component("axiscal-program"), [])
+        comp = self._open_channels("axiscal-program")
+        self._errors = self._channels.new("linuxcnc.error_channel")
+        self._ready(comp, [])
         self._switch_on_and_home(len(self.axes))
 
     def run(self, program: str, timeout: float = 120.0, progress=None) -> ProgramRecord:

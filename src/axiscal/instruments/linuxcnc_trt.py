@@ -96,10 +96,8 @@ class LinuxCNCTrt(LinuxCNC):
 
     def _connect(self) -> None:
         import hal
-        import linuxcnc
 
-        self._stat, self._cmd = linuxcnc.stat(), linuxcnc.command()
-        comp = hal.component("axiscal-trt")
+        comp = self._open_channels("axiscal-trt")
         nets = []
         for j in range(5):
             comp.newpin(f"j{j}-motor-pos-cmd", hal.HAL_FLOAT, hal.HAL_IN)

@@ -113,10 +113,8 @@ class LinuxCNCXYZ(LinuxCNC):
 
     def _connect(self) -> None:
         import hal
-        import linuxcnc
 
-        self._stat, self._cmd = linuxcnc.stat(), linuxcnc.command()
-        comp = hal.component("axiscal-xyz")
+        comp = self._open_channels("axiscal-xyz")
         nets = []
         for j, a in enumerate(AXES):
             for pin in ("motor-pos-cmd", "pos-cmd"):
