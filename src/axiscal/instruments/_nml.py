@@ -13,7 +13,6 @@ pipe round trip each (about 0.1 ms); a child that dies becomes a :class:`Measure
 """
 from __future__ import annotations
 
-import os
 import pickle
 import select
 import subprocess
@@ -109,10 +108,3 @@ class Remote:
     def __setitem__(self, key, value) -> None:
         self._proc.request("setitem", self._ref, None, (key, value))
 
-
-def child_env() -> dict:
-    """The parent's environment without LinuxCNC's session marker (the child is not LinuxCNC:
-    :func:`~axiscal.instruments.linuxcnc_controller.clean_leftovers` must not take it for one)."""
-    from axiscal.instruments.linuxcnc_controller import MARKER
-
-    return {k: v for k, v in os.environ.items() if k != MARKER}

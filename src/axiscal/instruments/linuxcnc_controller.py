@@ -365,9 +365,11 @@ class LinuxCNC:
         """Status and command channels and a HAL component named ``component``, all in a child
         process of this session's own (:mod:`axiscal.instruments._nml`: the NML library's
         process-wide state made a second session in one process crash)."""
-        from axiscal.instruments._nml import ChannelProcess, child_env
+        from axiscal.instruments._nml import ChannelProcess
 
-        self._channels = ChannelProcess(child_env())
+        # the parent's environment without the session marker: the child is not LinuxCNC, and
+        # clean_leftovers must not take it for one
+        self._channels = ChannelProcess({k: v for k, v in os.environ.items() if k != MARKER})
         self._stat = self._channels.new("linuxcnc.stat")
         self._cmd = self._channels.new("linuxcnc.command")
         return self._channels.new("hal.component", component)
