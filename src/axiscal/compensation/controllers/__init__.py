@@ -72,8 +72,8 @@ def detect(text: str) -> str | None:
     import re
 
     body = text.lstrip("\ufeff \t\r\n")
-    if body.startswith(("%_N_AX_EEC_INI", "%_N_NC_CEC_INI")) or "$AA_ENC_COMP[" in body \
-            or "$AN_CEC[" in body:
+    if body.startswith(("%_N_AX_EEC_INI", "%_N_NC_CEC_INI")) or \
+            re.search(r"\$(AA_ENC_COMP|AN_CEC)\s*\[", body, re.IGNORECASE):   # `$AN_CEC [0,0]` too
         return "siemens-840d"
     if re.match(r"BEGIN\s+\S+\.COM\b", body, re.IGNORECASE):
         return "heidenhain"
