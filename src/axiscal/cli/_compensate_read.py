@@ -20,12 +20,13 @@ __all__ = ["read_back"]
 TO = "to."
 
 
-def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None) -> None:
+def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None,
+              encoding=None) -> None:
     """Read ``path`` (a table, a file of several, or a CEC file) and render, compare or convert."""
     from axiscal.cli._compensate_io import _typed
     from axiscal.io._files import read_controller_text
 
-    text, encoding = read_controller_text(path)
+    text, used = read_controller_text(path)
     mod = _module(path, text, controller)
     if to is None and out is not None:
         from axiscal.errors import InputError
@@ -34,14 +35,13 @@ def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None,
                          "convert the table to); give --to or drop --out")
     reader, writer = _split(mod, opts, to)
     if mod.NAME == "siemens-840d" and _cec_only(text):
-        return _read_cec(path, text, encoding, reader, json_out, to, source, ini)
+        return _read_cec(path, text, used, reader, json_out, to, source, ini)
     reader = _typed(mod.parse, reader, f"--option for reading {mod.NAME}")
     reader, ini_inputs, md_text = _beside(mod, path, text, ini, reader)
     notes: list[str] = []
     stated: dict = {}
     if mod.NAME == "siemens-840d":
-        table, notes, md = _siemens_table(mod, path, text, encoding, reader, md_text, json_out,
-                                          to)
+        table, notes, md = _siemens_table(mod, path, text, used, reader, md_text, json_out, to)
         if table is None:
             return
         if md_text and md.metric is not None:       # MD10240 of the --ini states the unit
@@ -50,8 +50,8 @@ def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None,
         table = mod.parse(text, source=str(path), **reader)
     if to is not None:
         return _convert_table(table, to, writer, out, source, json_out)
-    _render_read(mod, path, text, encoding, table, reader, ini_inputs, notes, source, json_out,
-                 stated)
+    _render_read(mod, path, text, used, table, reader, ini_inputs, notes, source, json_out,
+                 stated, encoding)
 
 
 def _module(path, text, controller):
@@ -230,7 +230,7 @@ def _convert_table(table, to, writer, out, source, json_out) -> None:
 
 
 def _render_read(mod, path, text, encoding, table, opts, ini_inputs, notes, source,
-                 json_out, stated=None) -> None:
+                 json_out, stated=None, source_encoding=None) -> None:
     import numpy as np
 
     from axiscal.cli._compensate_io import _table_json
@@ -244,7 +244,7 @@ def _render_read(mod, path, text, encoding, table, opts, ini_inputs, notes, sour
              notes=list(notes))
     rb = None
     if source is not None:
-        res, _ = load_mean_deviations(source)
+        res, _ = load_mean_deviations(source, encoding=source_encoding)
         _same_units(res, table, source)
         dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
         rb = compare(table, res.targets, dev, mod.NAME)

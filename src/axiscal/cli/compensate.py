@@ -74,6 +74,7 @@ from typing import List, Optional
 import typer
 
 from axiscal.cli._common import note, out_path, plot_path, print_json, report_path
+from axiscal.cli._encoding import ENCODING
 from axiscal.cli._compensate_io import (_render_table, _table_json, _typed, _value,
                                         _write_files)
 
@@ -107,6 +108,7 @@ def compensate(
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     report: Optional[Path] = typer.Option(None, "--report", help="With --verify: write the loop as a simulation report (plot, before/after parameters, table): HTML or PDF."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
+    encoding: Optional[str] = ENCODING,
 ) -> None:
     """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring.
 
@@ -134,7 +136,11 @@ def compensate(
                              "convert the table to); give --to or drop --out")
         from axiscal.cli._compensate_read import read_back
 
-        return read_back(read, controller, source, opts, json_out, ini, to=to, out=out)
+        if encoding is not None and source is None:
+            raise InputError("--encoding is the code page of SOURCE (a Renishaw export compared "
+                             "with the table read); --read without SOURCE does not use it: drop it")
+        return read_back(read, controller, source, opts, json_out, ini, to=to, out=out,
+                         encoding=encoding)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
                            resolution, travel, opts, out, json_out)
@@ -146,7 +152,8 @@ def compensate(
     mod = get_controller(controller or "csv")
     table = api.compensation_table(source, spacing, bidirectional=bidirectional,
                                    resolution=resolution, start=start, end=end,
-                                   extrapolation=extrapolation, home=reference, axis=axis)
+                                   extrapolation=extrapolation, home=reference, axis=axis,
+                                   encoding=encoding)
     cf = api.write_table(table, mod.NAME, travel=_travel(travel),
                          **_typed(mod.write, opts, f"--option for {mod.NAME}"))
     cf = _write_files(cf, out)
@@ -242,11 +249,12 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
 _USES = {
     "table": ("a table from SOURCE", {"source", "controller", "spacing", "bidirectional",
               "resolution", "start", "end", "extrapolation", "reference", "travel", "axis",
-              "option", "out", "json_out"}),
+              "option", "out", "json_out", "encoding"}),
     "verify": ("--verify", {"verify", "on_controller", "controller", "spacing", "option", "out",
                "seed", "plot",
                "report", "json_out"}),
-    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini", "to", "out"}),
+    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini", "to", "out",
+                        "encoding"}),
     "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
                    "start", "end", "resolution", "travel", "option", "out", "json_out"}),
 }

@@ -23,6 +23,7 @@ import typer
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.cli._encoding import ENCODING
 
 __all__ = ["register"]
 
@@ -47,6 +48,7 @@ def evaluate(
     reference_scale: Optional[float] = REFERENCE_SCALE,
     reference_offset: Optional[float] = REFERENCE_OFFSET,
     rest_window: Optional[float] = REST_WINDOW,
+    encoding: Optional[str] = ENCODING,
 ) -> None:
     """Evaluate a positioning test by a named standard, or by all of them side by side.
 
@@ -72,7 +74,7 @@ def evaluate(
         ds = api.read(file, kind="iso230-2", target_unit=target_unit,
                       deviation_unit=deviation_unit, progress=bar, epics=epics_options(
                           setpoint_pv, reference_pv, targets, reference_scale,
-                          reference_offset, rest_window))
+                          reference_offset, rest_window), encoding=encoding)
     ev = api.evaluate(ds, key, tolerances=tolerances, rule=rule, uncertainty=table,
                       form="standards")
     show_notes(ds)   # after the evaluation: a refusal is then the one line (issue 39)

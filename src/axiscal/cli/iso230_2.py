@@ -43,6 +43,7 @@ from axiscal.cli._certificate import APPROVED_BY, DRAFT, JOB, PAPER, PREPARED_BY
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.cli._encoding import ENCODING
 
 __all__ = ["register", "render_result"]
 
@@ -73,6 +74,7 @@ def iso230_2(
     reference_scale: Optional[float] = REFERENCE_SCALE,
     reference_offset: Optional[float] = REFERENCE_OFFSET,
     rest_window: Optional[float] = REST_WINDOW,
+    encoding: Optional[str] = ENCODING,
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U and verdicts.
 
@@ -97,9 +99,14 @@ def iso230_2(
         raise InputError("--history keeps the file as it came and re-reads it alone, without "
                          f"--{next(iter(epics)).replace('_', '-')}: write the test to CSV "
                          "first (axiscal capture LOG --plan PLAN --out x.csv) and store that")
+    if history and encoding is not None:
+        from axiscal.cli._history_store import history_reads_alike
+
+        history_reads_alike(file, encoding)
     with progress_bar(f"reading {file.name}") as bar:
         ds = api.read(file, kind="iso230-2", target_unit=target_unit,
-                      deviation_unit=deviation_unit, progress=bar, epics=epics)
+                      deviation_unit=deviation_unit, progress=bar, epics=epics,
+                      encoding=encoding)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
 

@@ -27,11 +27,26 @@ KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "i
 
 
 def kind_of_file(path: Any) -> str:
-    """The kind of test a data file holds, told by its content (as the history does)."""
+    """The kind of test a data file holds, told by its content (as the history does); a
+    Renishaw export in UTF-16 or a Windows code page is a positioning test, as
+    :func:`axiscal.io.read_positioning` reads it."""
+    from axiscal.errors import DataFormatError
     from axiscal.io import read_text
     from axiscal.store.kinds import detect_kind
 
-    return detect_kind(read_text(path))
+    try:
+        return detect_kind(read_text(path))
+    except DataFormatError:
+        from axiscal.io import detect
+        from axiscal.io._files import read_bytes
+        from axiscal.io.renishaw import decode
+
+        try:
+            if detect.looks_like_renishaw(decode(read_bytes(path), None, str(path))[0]):
+                return "iso230-2"
+        except DataFormatError:
+            pass
+        raise
 
 
 def evaluated_file(path: Any, kind: str) -> Any:
@@ -302,6 +317,11 @@ def record_fields(record: Any, **extra: Any) -> dict:
         ds = record.dataset
         d = {**result_json(record.evaluation, record.verdicts, record.budget),
              "machine": ds.metadata.machine, "axis": ds.metadata.axis, "notes": ds.metadata.notes}
+        from axiscal.io.renishaw import file_unit_block
+
+        block = file_unit_block(ds.metadata.notes, record.evaluation.parameters())
+        if block is not None:       # a .rta: shown in arcsec, the file's µrad kept (issue 42)
+            d["in_file_unit"] = block
     else:
         d = dict(record.result)
         if record.budget is not None:
