@@ -130,3 +130,32 @@ def test_a_writer_option_without_to_and_an_option_no_side_takes_are_refused(file
                         "-o", "bogus=1", "--out", str(tmp_path / "x.comp")])
     assert neither.exit_code == 2 and "bogus" in neither.output
     assert not (tmp_path / "x.comp").exists()
+
+
+#: What each format's file shows for ``--axis C --home 50 --bidirectional`` (the table's own
+#: options): the axis name, the reference (or, where the format holds none, the note saying
+#: so) and both directions (a second column, a backlash, or the mean reversal said).
+FORMATS = [
+    ("siemens-840d", "T.INI", "; axiscal: axis C,", "$AA_ENC_COMP[0,2,AX1]=0.0\n",
+     "MD32450 $MA_BACKLASH[0,AX1] = 0.00044 mm"),
+    ("fanuc", "T.TXT", "AXIS C,", "(REFERENCE POSITION 50 MM AT POINT 2)", "N3626A1P"),
+    ("heidenhain", "C.COM", "AXISPOS       C", "a heidenhain file holds no reference position",
+     "BACKLASH"),
+    ("linuxcnc", "x.comp", "# axiscal: axis C", "a linuxcnc file holds no reference position",
+     "0.000000 -0.001100 -0.001500"),
+    ("csv", "T.csv", "axis=C", "reference_index=2", "bidirectional=true"),
+    ("renishaw-ren", "T.REN", "Axis : C", "a renishaw-ren file holds no reference position",
+     "Mean reversal : -0.000440 mm"),
+]
+
+
+@pytest.mark.parametrize("name,out,axis,home,both", FORMATS, ids=[f[0] for f in FORMATS])
+def test_axis_home_and_both_directions_reach_every_format(name, out, axis, home, both, files,
+                                                          tmp_path):
+    r = CliRunner().invoke(app, ["compensate", str(files / "src.csv"), "-c", name, "--axis",
+                                 "C", "--home", "50", "--bidirectional", "--out",
+                                 str(tmp_path / out)])
+    assert r.exit_code == 0, r.output
+    shown = (tmp_path / out).read_text(encoding="utf-8") + r.output
+    for what in (axis, home, both):
+        assert what in shown, what

@@ -156,6 +156,13 @@ def compensate(
                                    encoding=encoding)
     cf = api.write_table(table, mod.NAME, travel=_travel(travel),
                          **_typed(mod.write, opts, f"--option for {mod.NAME}"))
+    if reference is not None:
+        from dataclasses import replace
+
+        from axiscal.compensation.controllers import reference_note
+
+        said = reference_note(mod.NAME, reference, table.position_unit)
+        cf = replace(cf, notes=tuple(cf.notes) + (said,)) if said else cf
     cf = _write_files(cf, out)
     _render_table(cf, out, json_out)
 
