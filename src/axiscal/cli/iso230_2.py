@@ -23,7 +23,9 @@ shown: two significant digits rounded up, JCGM 100:2008 §7.2.6) and ``uncertain
 ``cmc`` and ``floored`` (parameters whose U is the laboratory's CMC)). ``outliers``: readings
 Grubbs' test finds apart from the other runs at their target (``target``, ``direction``,
 ``run``, ``value``, ``mean``, ``s``, ``G``, ``G_critical``, ``n``, ``sets`` — the parameters
-the target decides —, ``rule``, ``text``), kept in the evaluation. The results as data, the
+the target decides —, ``rule``, ``text``), kept in the evaluation. A Renishaw ``.rta``, whose
+deviations the file holds in µrad and axiscal shows in arcsec: ``in_file_unit``
+(``deviation_unit`` ``urad``, ``source``, ``parameters``: ``A`` … ``B_mean`` in µrad). The results as data, the
 same on every path (:mod:`axiscal.standards.quantities`): ``schema_version``, ``quantities``
 and ``uncertainty_inputs``.
 
