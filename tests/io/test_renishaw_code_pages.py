@@ -56,6 +56,7 @@ def test_unknown_code_page_or_a_file_that_is_no_export_refused_in_one_line(rta, 
     assert no.exit_code == 2 and "is not one (axiscal reads its other files as UTF-8)" in no.output
     with pytest.raises(InputError, match="is not one"):
         api.read(csv.read_bytes(), encoding="cp1250")
+    assert api.read(rta.read_bytes(), encoding="cp1250").metadata.machine == "Drehtisch Łódź"
     with pytest.raises(InputError, match="already decoded"):
         api.read(rta.read_text(encoding="cp1250"), encoding="cp1250")
 
