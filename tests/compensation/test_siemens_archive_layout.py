@@ -1,8 +1,8 @@
 """SINUMERIK files in the layout of a real series start-up archive (issue 42).
 
 The public archive of a DMG DMU 85 five-axis machining centre (github.com/halitcan/
-Sinumerik_Archive_helper, ``test_environment/test.arc``, commit 8581efa4c3a4ada9ed2db653ff3dcc33fbfcf4db)
-carries no licence, so its bytes are not kept; the files in ``tests/data/siemens/archive_layout``
+Sinumerik_Archive_helper, ``test_environment/test.arc``, commit
+8581efa4c3a4ada9ed2db653ff3dcc33fbfcf4db) carries no licence, so its bytes are not kept; the files in ``tests/data/siemens/archive_layout``
 repeat what reading it showed (values invented, README there): the ``INITIAL.INI``'s display
 machine data (``$MNS_``, ``$SNS_``), user variables without ``$`` (GUD), frames and tool data;
 measuring system 2 (``[1,…]``) only, MD38000 = 25 with fewer points used; ``$AN_CEC_INPUT_NCU``,
@@ -130,7 +130,8 @@ def test_cli_reads_the_archive_files_and_refuses_a_dispatcher_of_calls():
     calls = run(app, ["compensate", "--read", str(DATA / "KOMP_TABLES.MPF"), "-c",
                       "siemens-840d"])
     assert calls.exit_code == 2
-    assert "KOMP_TABLES.MPF:2: 'CALL\"/_N_WKS_DIR" in calls.output and "Traceback" not in calls.output
+    assert "KOMP_TABLES.MPF:2: 'CALL\"/_N_WKS_DIR" in calls.output
+    assert "Traceback" not in calls.output
 
 
 def test_md10240_of_the_ini_states_the_unit_of_a_loader_without_header(tmp_path):

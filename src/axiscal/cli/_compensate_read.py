@@ -211,8 +211,8 @@ def _read_cec(path, text, encoding, opts, json_out, to, source, ini=None) -> Non
         for n in notes:
             typer.echo(f"  note: {n}")
     if in_error(refused):
-        raise DataFormatError(f"{len(in_error(refused))} CEC table(s) refused (listed above); the others "
-                              "were read", str(path))
+        raise DataFormatError(f"{len(in_error(refused))} CEC table(s) refused (listed above); "
+                              "the others were read", str(path))
 
 
 def _convert_table(table, to, writer, out, source, json_out) -> None:

@@ -25,8 +25,8 @@ Grubbs' test finds apart from the other runs at their target (``target``, ``dire
 ``run``, ``value``, ``mean``, ``s``, ``G``, ``G_critical``, ``n``, ``sets`` — the parameters
 the target decides —, ``rule``, ``text``), kept in the evaluation. A Renishaw ``.rta``, whose
 deviations the file holds in µrad and axiscal shows in arcsec: ``in_file_unit``
-(``deviation_unit`` ``urad``, ``source``, ``parameters``: ``A`` … ``B_mean`` in µrad). The results as data, the
-same on every path (:mod:`axiscal.standards.quantities`): ``schema_version``, ``quantities``
+(``deviation_unit`` ``urad``, ``source``, ``parameters``: ``A`` … ``B_mean`` in µrad). The
+results as data, the same on every path (:mod:`axiscal.standards.quantities`): ``schema_version``, ``quantities``
 and ``uncertainty_inputs``.
 
 Exit codes: 0 evaluated (and conformance proven for every tolerance), 1 a tolerance not proven

@@ -122,8 +122,8 @@ from axiscal.datasets import AxisKind, Environment, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 from axiscal.io.detect import looks_like_renishaw
 
-__all__ = ["decode", "encode", "CODE_PAGES", "RTA_CONVERTED", "file_unit_block", "looks_like_renishaw",
-           "parse_renishaw", "read_renishaw", "parse_rtl", "read_rtl",
+__all__ = ["decode", "encode", "CODE_PAGES", "RTA_CONVERTED", "file_unit_block",
+           "looks_like_renishaw", "parse_renishaw", "read_renishaw", "parse_rtl", "read_rtl",
            "parse_rta", "read_rta", "format_renishaw", "format_rtl", "format_rta"]
 
 #: File type -> (axis kind, target unit, deviation unit, HEADER Owner written).
