@@ -400,18 +400,24 @@ def read_tables(text: str, source: str = "<text>", axis_kind=None,
             continue
         tables[key] = t
         notes += n
-    for key in params:
-        if key not in values:
-            refused[key] = f"{_key(key)}: STEP/MIN/MAX given but no $AA_ENC_COMP values"
-    for (ax, ms) in values:            # a loader writing one measuring system's values with the
-        other = (ax, 3 - ms)           # other's STEP/MIN/MAX: both named, never combined (K3)
-        if (ax, ms) in refused and other in refused and other not in values and \
-                (ax, ms) not in params:
+    refused.update(_without_values(values, params, tables))
+    return EECFile(tables, refused, tuple(notes), md)
+
+
+def _without_values(values: dict, params: dict, read: dict) -> dict:
+    """The reason of each table whose STEP/MIN/MAX come without values; a loader writing one
+    measuring system's values with the other's STEP/MIN/MAX (a real builder's ``.MPF``) has
+    both halves named so, never combined (K3: the table is kept per measuring system)."""
+    refused = {key: f"{_key(key)}: STEP/MIN/MAX given but no $AA_ENC_COMP values"
+               for key in params if key not in values}
+    for (ax, ms) in values:
+        other = (ax, 3 - ms)
+        if other in refused and (ax, ms) not in params and (ax, ms) not in read:
             why = (f"the values are for measuring system {ms} ([{ms - 1},…]), STEP/MIN/MAX "
                    f"for measuring system {3 - ms} ([{2 - ms},…]); axiscal does not combine them "
                    "(MD32700 and the table are kept per measuring system, K3)")
             refused[(ax, ms)], refused[other] = f"{_key((ax, ms))}: {why}", f"{_key(other)}: {why}"
-    return EECFile(tables, refused, tuple(notes), md)
+    return refused
 
 
 def _key(k) -> str:

@@ -195,12 +195,7 @@ def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
         raise DataFormatError(f"STEP {step:g} must be positive, MIN and MAX finite", source)
     span = (hi - lo) / step
     k = int(math.floor(span + 1e-6))
-    notes = []
-    if ttype != 0:
-        notes.append(f"$AN_CEC_TYPE = {ttype}: {_TYPES.get(ttype, 'a type axiscal does not know')}"
-                     " (read as a table of values; axiscal does not model the type)")
-    if (in_ncu, out_ncu) != (1, 1):
-        notes.append(f"$AN_CEC_INPUT_NCU = {in_ncu}, $AN_CEC_OUTPUT_NCU = {out_ncu} (NCU link)")
+    notes = _type_and_ncu(ttype, in_ncu, out_ncu)
     if abs(span - round(span)) > 1e-6 * max(1.0, abs(span)):
         notes.append(f"(MAX {hi:g} − MIN {lo:g}) / STEP {step:g} = {span:.6g} is not a whole "
                      f"number of steps: read up to point {k} at {lo + k * step:g}, the last "
@@ -235,6 +230,17 @@ def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
     c = np.round(-dev / correction_factor(tab, vu), 6) + 0.0
     return CECTable(t, params["INPUT_AXIS"], out_axis, replace(tab, up=c, down=c), direction,
                     mult, tuple(notes))
+
+
+def _type_and_ncu(ttype: int, in_ncu: int, out_ncu: int) -> list:
+    """Notes for a table type other than 0 and an NCU other than 1 (an NCU link)."""
+    notes = []
+    if ttype != 0:
+        notes.append(f"$AN_CEC_TYPE = {ttype}: {_TYPES.get(ttype, 'a type axiscal does not know')}"
+                     " (read as a table of values; axiscal does not model the type)")
+    if (in_ncu, out_ncu) != (1, 1):
+        notes.append(f"$AN_CEC_INPUT_NCU = {in_ncu}, $AN_CEC_OUTPUT_NCU = {out_ncu} (NCU link)")
+    return notes
 
 
 def _whole(token: str, source: str, line: int) -> int:
