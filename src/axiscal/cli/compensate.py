@@ -60,7 +60,13 @@ given. Reading an 840D file of several tables without ``-o machine_axis=``: ``ta
 ``key`` = ``AX1`` or ``AX1/2`` for measuring system 2, ``machine_axis``, ``measuring_system`` and
 the table data keys), ``refused`` (``key``, ``reason``; exit 2 when any) and ``notes``; an
 ``NC_CEC.INI``: ``kind``, ``tables`` (each ``index``, ``input_axis``, ``output_axis``,
-``direction``, ``mult_by_table``, ``notes``, ``table``) and ``refused`` (``index``, ``reason``).
+``direction``, ``mult_by_table``, ``notes``, ``table``), ``refused`` (``index``, ``reason``;
+exit 2 when any), ``not_in_use`` (``index``, ``reason``: a table reserved with STEP 0, not an
+error) and ``notes`` (a loader program's ``NEWCONF``, MD32710, SD41300 … lines, said and left
+out).
+
+``--encoding NAME``: the code page of SOURCE when it is a Renishaw ``.rtl``/``.rta`` export
+(``cp1250`` …; refused for another file, an unknown name, or without SOURCE).
 
 Options that the chosen use does not read (``--bidirectional`` with ``--verify``, ``--plot``
 without it ...) are refused by name rather than ignored.
