@@ -143,3 +143,20 @@ def test_md10240_of_the_ini_states_the_unit_of_a_loader_without_header(tmp_path)
                                    str(DATA / "INITIAL.INI"), "-o", "machine_axis=C1"]).output
     assert "unit = mm (MD10240 $MN_SCALING_SYSTEM_IS_METRIC = 1 in --ini)" in out
     assert "assumed" not in out
+
+
+def test_measuring_system_2_tables_round_trip_and_are_refused_where_no_format_holds_them():
+    """Each table of measuring system 2 written back for its own axis reads back exact, kind and
+    all; a conversion to a format without measuring systems is refused naming it."""
+    from axiscal.compensation.controllers.convert import convert
+    from axiscal.errors import ControllerLimitError
+
+    r = siemens_840d.read_tables(_text("AX_EEC.INI"), "AX_EEC.INI", machine_data=INI)
+    for (ax, ms), t in r.tables.items():
+        f = convert(t, "siemens-840d", zero_at_reference=False)
+        assert f"$AA_ENC_COMP[1,0,{ax}]=" in f.text
+        back = siemens_840d.read_tables(f.text, machine_data=INI).tables[(ax, 2)]
+        assert back.up.tolist() == t.up.tolist() and back.positions.tolist() == t.positions.tolist()
+        assert (back.axis, back.axis_kind, back.modulo) == (t.axis, t.axis_kind, t.modulo)
+        with pytest.raises(ControllerLimitError, match=f"measuring system 2 of {ax}"):
+            convert(t, "fanuc", axis_number=1)
