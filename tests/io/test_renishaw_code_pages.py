@@ -119,3 +119,18 @@ def test_encode_and_decode_raise_only_axiscal_errors():
     for name in ("", "latin-1", "utf-32", "cp65001"):
         with pytest.raises(AxiscalError):
             encode("x", name)
+
+
+def test_rta_microradians_kept_by_every_standard_of_evaluate(rta):
+    """``evaluate -s all --json``: each standard evaluated has its deviation parameters in µrad
+    too, each the arcsec value × 4.8481."""
+    d = __import__("json").loads(run(app, ["evaluate", str(rta), "-s", "all", "--json"]).output)
+    block = d["in_file_unit"]
+    assert block["deviation_unit"] == "urad"
+    k = math.pi / 648000 * 1e6
+    evaluated = [s for s in d["standards"] if s["evaluated"]]
+    assert len(evaluated) >= 3 and set(block["standards"]) == {s["standard"] for s in evaluated}
+    for s in evaluated:
+        for name, p in s["parameters"].items():
+            if p["unit"] == "arcsec" and p["value"] is not None:
+                assert block["standards"][s["standard"]][name] == pytest.approx(p["value"] * k)

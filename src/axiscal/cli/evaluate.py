@@ -7,7 +7,9 @@ that parameter of a standard evaluated in part), ``warnings`` (list of text), ``
 standard was not evaluated at all, else null)). With ``--tolerance``: ``acceptance``,
 ``decision_rule`` and ``accepted`` as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014;
 ``U_display`` the same rounded up to two significant digits), ``warnings`` (a tolerance not larger
-than its U) and, for ISO 230-2:2014, ``uncertainty_budget`` as in ``axiscal iso230-2``.
+than its U) and, for ISO 230-2:2014, ``uncertainty_budget`` as in ``axiscal iso230-2``. A
+Renishaw ``.rta`` (deviations in µrad in the file, shown in arcsec): ``in_file_unit``
+(``deviation_unit`` ``urad``, ``source``, ``standards``: key -> name -> value in µrad).
 
 Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
 error (including a single ``--standard`` whose definitions were not publicly available to axiscal).
