@@ -160,3 +160,9 @@ def test_measuring_system_2_tables_round_trip_and_are_refused_where_no_format_ho
         assert (back.axis, back.axis_kind, back.modulo) == (t.axis, t.axis_kind, t.modulo)
         with pytest.raises(ControllerLimitError, match=f"measuring system 2 of {ax}"):
             convert(t, "fanuc", axis_number=1)
+
+
+def test_a_user_variable_or_r_parameter_in_a_cec_loader_is_refused_naming_it():
+    mpf = _text("CEC_A1.MPF").replace("NEWCONF", "R1=5", 1)
+    with pytest.raises(DataFormatError, match=r"CEC_A1.MPF:8: R1 \(a user variable\) is not a CEC"):
+        siemens_840d.read_cross_axis(mpf, "CEC_A1.MPF")
