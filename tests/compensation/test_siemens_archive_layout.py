@@ -166,3 +166,6 @@ def test_a_user_variable_or_r_parameter_in_a_cec_loader_is_refused_naming_it():
     mpf = _text("CEC_A1.MPF").replace("NEWCONF", "R1=5", 1)
     with pytest.raises(DataFormatError, match=r"CEC_A1.MPF:8: R1 \(a user variable\) is not a CEC"):
         siemens_840d.read_cross_axis(mpf, "CEC_A1.MPF")
+    frame = _text("CEC_A1.MPF").replace("NEWCONF", "$P_UIFR[1]=CTRANS()", 1)
+    with pytest.raises(DataFormatError, match=r"CEC_A1.MPF:8: \$P_UIFR is not a CEC table"):
+        siemens_840d.read_cross_axis(frame, "CEC_A1.MPF")

@@ -136,6 +136,10 @@ def read_cross_axis(text: str, source: str = "<text>", correction_unit: str | No
             raise DataFormatError(f"{s.name} (a user variable) is not a CEC table variable "
                                   "axiscal reads ($AN_CEC…, machine and setting data)", source,
                                   s.line)
+        if s.kind == "assign" and not s.name.startswith(("AN_CEC", "MA_", "MN_", "MC_", "SN_",
+                                                           "SA_", "SC_")):
+            raise DataFormatError(f"${s.name} is not a CEC table variable axiscal reads "
+                                  "($AN_CEC…, machine and setting data)", source, s.line)
         if s.kind != "assign" or not s.name.startswith("AN_CEC"):
             continue
         if s.name == "AN_CEC" and len(s.index) == 2:
