@@ -192,7 +192,11 @@ _LINES = st.sampled_from([
     "$AA_ENC_COMP_IS_MODULO[0,AX1]=1", "$AN_CEC[0,0]=0", "$AN_CEC[0,1]=0.001",
     "$AN_CEC_STEP[0]=inf", "$AN_CEC_DIRECTION[0]=1e999", "$AN_CEC_MIN[0]=0", "$AN_CEC_MAX[0]=5",
     "$AN_CEC_INPUT_AXIS[0]=(AX1)", "$AN_CEC_OUTPUT_AXIS[0]=(AX2)", "$AA_ENC_COMP[²,0,AX1]=1",
-    "$MN_AXCONF_MACHAX_NAME_TAB[0]=\"X1\"", "$MA_MM_ENC_COMP_MAX_POINTS[0,AX1]=²"])
+    "$MN_AXCONF_MACHAX_NAME_TAB[0]=\"X1\"", "$MA_MM_ENC_COMP_MAX_POINTS[0,AX1]=²",
+    # the real archive's shapes (tests/data/siemens/README.md)
+    "N51000 $MNS_DISP_RES_MM=3", "_ZSD[0]=-1", "$P_UIFR[0]=CTRANS()", "$AN_CEC [0,2] = 0.004",
+    "$AN_CEC_TYPE[0]=1", "$AN_CEC_INPUT_NCU[0]=nan", "$AN_CEC_STEP[0]=0",
+    "$MA_CEC_ENABLE[AX1] = FALSE", "$SN_CEC_TABLE_ENABLE[0] = TRUE", "$AA_ENC_COMP[1,0,AX1]=0"])
 
 
 @settings(max_examples=150, deadline=None)
@@ -200,9 +204,11 @@ _LINES = st.sampled_from([
 def test_arbitrary_sinumerik_text_raises_only_axiscal_errors(lines):
     """Habit 9: the readers of tables, CEC tables and machine data raise nothing but AxiscalError."""
     text = "\r\n".join(lines)
+    from axiscal.compensation.controllers.siemens_cec import loader_notes
+
     for f in (lambda: siemens_840d.read_tables(text, machine_data=text),
               lambda: siemens_840d.read_cross_axis(text),
-              lambda: siemens_machine_data.parse(text)):
+              lambda: siemens_machine_data.parse(text), lambda: loader_notes(text)):
         try:
             f()
         except AxiscalError:

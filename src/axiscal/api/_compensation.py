@@ -18,7 +18,7 @@ def compensation_table(source: Any, spacing: float | None = None, *,
                        bidirectional: bool = False, resolution: float = 0.1,
                        start: float | None = None, end: float | None = None,
                        extrapolation: str = "hold", home: float | None = None,
-                       axis: str = "") -> Any:
+                       axis: str = "", encoding: str | None = None) -> Any:
     """A compensation table from the mean deviations of a positioning test.
 
     Parameters
@@ -38,6 +38,9 @@ def compensation_table(source: Any, spacing: float | None = None, *,
         Beyond the measured targets.
     axis : str
         Axis name written in the table (default: the file's).
+    encoding : str, optional
+        The code page of a Renishaw export given as ``source`` (``cp1250`` …, as
+        ``axiscal compensate --encoding``); refused for an :class:`Evaluation` (already read).
 
     Returns
     -------
@@ -47,11 +50,16 @@ def compensation_table(source: Any, spacing: float | None = None, *,
     from axiscal.compensation.tables import table_from_result
 
     if isinstance(source, Evaluation):
+        if encoding is not None:
+            from axiscal.errors import InputError
+
+            raise InputError(f"encoding {encoding!r}: the Evaluation given is already read; "
+                             "give the export's path")
         result, file_axis = source.result, getattr(source.dataset.metadata, "axis", "")
     else:
         from axiscal.io.results import load_mean_deviations
 
-        result, file_axis = load_mean_deviations(source)
+        result, file_axis = load_mean_deviations(source, encoding=encoding)
     if spacing is None:
         t = result.targets
         spacing = float((t[-1] - t[0]) / (len(t) - 1))

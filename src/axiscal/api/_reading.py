@@ -23,7 +23,8 @@ FORMS = ("iso230-2", "standards")
 def read(path: PathLike | bytes | IO, *, target_unit: str | None = None,
          deviation_unit: str | None = None, kind: str | None = None,
          epics: Mapping[str, Any] | None = None,
-         progress: Callable[[int, int], object] | None = None) -> Any:
+         progress: Callable[[int, int], object] | None = None,
+         encoding: str | None = None) -> Any:
     """Read any data file axiscal knows into its dataset, the format told by its content.
 
     Parameters
@@ -47,6 +48,11 @@ def read(path: PathLike | bytes | IO, *, target_unit: str | None = None,
         commands' ``--setpoint-pv`` ...; :func:`axiscal.io.epics.parse_epics`), positioning only.
     progress : callable, optional
         Called with ``(bytes read, file size)`` while a large positioning CSV is streamed.
+    encoding : str, optional
+        The code page of a Renishaw ``.rtl``/``.rta`` export (a path or ``bytes``): ``cp1250``
+        … (:data:`axiscal.io.renishaw.CODE_PAGES`), ``utf-8`` or ``utf-16``, as the commands'
+        ``--encoding``; refused for an unknown name, for text already decoded and for any other
+        kind of file.
 
     Returns
     -------
@@ -68,9 +74,37 @@ def read(path: PathLike | bytes | IO, *, target_unit: str | None = None,
         from axiscal.errors import InputError
 
         raise InputError(f"kind {kind!r}: one of {', '.join(KIND_STANDARD)}")
+    if encoding is not None:
+        return _read_encoded(path, encoding, kind, target_unit, deviation_unit, epics)
     memory = in_memory(path)
     return _read(path, memory, kind or _kind_of(path, memory), target_unit, deviation_unit,
                  epics, progress)
+
+
+def _read_encoded(path, encoding, kind, target_unit, deviation_unit, epics) -> Any:
+    """A Renishaw export in the code page ``encoding``: a path, or its bytes."""
+    from axiscal.errors import InputError
+
+    if kind not in (None, "iso230-2"):
+        raise InputError(f"encoding {encoding!r} is the code page of a Renishaw .rtl/.rta "
+                         f"positioning export; a {kind} file is read as UTF-8")
+    if isinstance(path, (bytes, bytearray, memoryview)):
+        from axiscal.io import detect
+        from axiscal.io.renishaw import decode, parse_renishaw
+
+        text, used = decode(bytes(path), encoding, "<bytes>")
+        if not detect.looks_like_renishaw(text):
+            raise InputError(f"encoding {encoding!r} is the code page of a Renishaw .rtl/.rta "
+                             "export; <bytes> is not one")
+        return parse_renishaw(text, "<bytes>", target_unit=target_unit,
+                              deviation_unit=deviation_unit, encoding=used)
+    if not isinstance(path, (str, Path)) or in_memory(path) is not None:
+        raise InputError(f"encoding {encoding!r}: give the export's path or its bytes (text "
+                         "or a file object is already decoded)")
+    from axiscal.io import read_positioning
+
+    return read_positioning(path, target_unit=target_unit, deviation_unit=deviation_unit,
+                            epics=dict(epics) if epics else None, encoding=encoding)
 
 
 def _read(path, memory, kind, target_unit=None, deviation_unit=None, epics=None,

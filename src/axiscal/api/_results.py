@@ -286,14 +286,15 @@ class Simulation:
         return Path(write_any_simulation_report(self.kind, self.test, path, self.name,
                                                 uncertainty))
 
-    def write_data(self, path: PathLike) -> Path:
+    def write_data(self, path: PathLike, encoding: str | None = None) -> Path:
         """Write the simulated readings as ``axiscal simulate --data`` does (``.csv`` tidy CSV,
         ``.json``, or Renishaw ``.rtl``/``.rta``; five-DOF: the ``.csv`` of ``motion simulate
         --csv``; ballbar: the ``.csv`` of ``ballbar simulate --out``), so they can be read
-        back like an instrument's file."""
+        back like an instrument's file. ``encoding``: the code page of a ``.rtl``/``.rta``
+        (``cp1252`` …, as Renishaw's Windows software writes it; refused for other files)."""
         from axiscal.io.simulation_results import write_simulated_data
 
-        return write_simulated_data(self.kind, self.dataset, path)
+        return write_simulated_data(self.kind, self.dataset, path, encoding)
 
     def _repr_html_(self) -> str:
         from axiscal.io.simulation_results import DOCUMENTS

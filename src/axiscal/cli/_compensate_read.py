@@ -20,12 +20,13 @@ __all__ = ["read_back"]
 TO = "to."
 
 
-def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None) -> None:
+def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None, out=None,
+              encoding=None) -> None:
     """Read ``path`` (a table, a file of several, or a CEC file) and render, compare or convert."""
     from axiscal.cli._compensate_io import _typed
     from axiscal.io._files import read_controller_text
 
-    text, encoding = read_controller_text(path)
+    text, used = read_controller_text(path)
     mod = _module(path, text, controller)
     if to is None and out is not None:
         from axiscal.errors import InputError
@@ -34,19 +35,23 @@ def read_back(path: Path, controller, source, opts, json_out, ini=None, to=None,
                          "convert the table to); give --to or drop --out")
     reader, writer = _split(mod, opts, to)
     if mod.NAME == "siemens-840d" and _cec_only(text):
-        return _read_cec(path, text, encoding, reader, json_out, to, source, ini)
+        return _read_cec(path, text, used, reader, json_out, to, source, ini)
     reader = _typed(mod.parse, reader, f"--option for reading {mod.NAME}")
     reader, ini_inputs, md_text = _beside(mod, path, text, ini, reader)
     notes: list[str] = []
+    stated: dict = {}
     if mod.NAME == "siemens-840d":
-        table, notes = _siemens_table(mod, path, text, encoding, reader, md_text, json_out, to)
+        table, notes, md = _siemens_table(mod, path, text, used, reader, md_text, json_out, to)
         if table is None:
             return
+        if md_text and md.metric is not None:       # MD10240 of the --ini states the unit
+            stated = dict(metric=md.metric, metric_source="--ini")
     else:
         table = mod.parse(text, source=str(path), **reader)
     if to is not None:
         return _convert_table(table, to, writer, out, source, json_out)
-    _render_read(mod, path, text, encoding, table, reader, ini_inputs, notes, source, json_out)
+    _render_read(mod, path, text, used, table, reader, ini_inputs, notes, source, json_out,
+                 stated, encoding)
 
 
 def _module(path, text, controller):
@@ -95,7 +100,11 @@ def _split(mod, opts: dict, to) -> tuple[dict, dict]:
 
 
 def _cec_only(text: str) -> bool:
-    return "$AN_CEC[" in text.upper() and "$AA_ENC_COMP[" not in text.upper()
+    import re
+
+    # a builder's loader writes `$AN_CEC [0,0] = …` with a blank before the bracket
+    return re.search(r"\$AN_CEC\s*\[", text, re.IGNORECASE) is not None and \
+        re.search(r"\$AA_ENC_COMP\s*\[", text, re.IGNORECASE) is None
 
 
 def _beside(mod, path, text, ini, opts) -> tuple[dict, tuple, str]:
@@ -137,12 +146,12 @@ def _siemens_table(mod, path, text, encoding, opts, md_text, json_out, to):
             raise InputError(f"{path} holds {len(keys)} tables ({', '.join(map(r.key, keys))}): "
                              "convert one, chosen with -o machine_axis=… (-o measuring_system=2)")
         _render_tables(mod, path, encoding, r, json_out)
-        return None, []
+        return None, [], r.md
     table = mod.parse(text, str(path), machine_data=md_text, **opts, **choose)
     name = r.key((table.origin.machine_axis, table.origin.measuring_system))
     mine = (f"{name}:", f"assumed: {name} ", "line ", "unit ")
     notes = [n for n in r.notes if n.startswith(mine)]
-    return table, notes
+    return table, notes, r.md
 
 
 def _render_tables(mod, path, encoding, r, json_out) -> None:
@@ -166,14 +175,15 @@ def _render_tables(mod, path, encoding, r, json_out) -> None:
         for n in r.notes:
             typer.echo(f"  note: {n}")
     if r.refused:
+        rest = "; the others were read" if r.tables else ""
         raise DataFormatError(f"{len(r.refused)} of {len(r.tables) + len(r.refused)} tables "
-                              "refused (listed above); the others were read", str(path))
+                              f"refused (listed above){rest}", str(path))
 
 
 def _read_cec(path, text, encoding, opts, json_out, to, source, ini=None) -> None:
     """The cross-axis tables of an NC_CEC.INI, each with its input and output axis (a rotary
     axis in degrees with the INITIAL.INI given as ``--ini``)."""
-    from axiscal.compensation.controllers.siemens_cec import read_cross_axis
+    from axiscal.compensation.controllers.siemens_cec import in_error, loader_notes, read_cross_axis
     from axiscal.errors import DataFormatError, InputError
     from axiscal.io._files import read_controller_text
 
@@ -182,10 +192,13 @@ def _read_cec(path, text, encoding, opts, json_out, to, source, ini=None) -> Non
                          "file to compare with and --option are for EEC tables")
     md = read_controller_text(ini)[0] if ini is not None else ""
     tables, refused = read_cross_axis(text, str(path), machine_data=md)
+    notes = loader_notes(text, str(path))
     if json_out:
         print_json(dict(controller="siemens-840d", encoding=encoding, kind="cross-axis (CEC)",
                         tables=[c.to_dict() for c in tables],
-                        refused=[dict(index=i, reason=v) for i, v in refused.items()]))
+                        refused=[dict(index=i, reason=v) for i, v in in_error(refused).items()],
+                        not_in_use=[dict(index=i, reason=v) for i, v in refused.items()
+                                    if i not in in_error(refused)], notes=list(notes)))
     else:
         typer.echo(f"siemens-840d cross-axis (CEC) file ({encoding}): "
                    f"{len(tables) + len(refused)} tables")
@@ -193,11 +206,13 @@ def _read_cec(path, text, encoding, opts, json_out, to, source, ini=None) -> Non
             typer.echo(f"  {c}")
             for n in c.notes:
                 typer.echo(f"    note: {n}")
-        for v in refused.values():
-            typer.echo(f"  refused: {v}")
-    if refused:
-        raise DataFormatError(f"{len(refused)} CEC table(s) refused (listed above); the others "
-                              "were read", str(path))
+        for i, v in refused.items():
+            typer.echo(f"  {'refused' if i in in_error(refused) else 'reserved'}: {v}")
+        for n in notes:
+            typer.echo(f"  note: {n}")
+    if in_error(refused):
+        raise DataFormatError(f"{len(in_error(refused))} CEC table(s) refused (listed above); "
+                              "the others were read", str(path))
 
 
 def _convert_table(table, to, writer, out, source, json_out) -> None:
@@ -215,21 +230,21 @@ def _convert_table(table, to, writer, out, source, json_out) -> None:
 
 
 def _render_read(mod, path, text, encoding, table, opts, ini_inputs, notes, source,
-                 json_out) -> None:
+                 json_out, stated=None, source_encoding=None) -> None:
     import numpy as np
 
     from axiscal.cli._compensate_io import _table_json
     from axiscal.compensation.readback import compare
     from axiscal.io.results import load_mean_deviations
 
-    inputs = ini_inputs + _file_inputs(mod, text, path, source, opts)
+    inputs = ini_inputs + _file_inputs(mod, text, path, source, {**opts, **(stated or {})})
     jumps = mod.trim_jumps(table) if hasattr(mod, "trim_jumps") else ()
     d = dict(controller=mod.NAME, encoding=encoding, **_table_json(table),
              inputs=[i.to_dict() for i in inputs], trim_jumps=[j.to_dict() for j in jumps],
              notes=list(notes))
     rb = None
     if source is not None:
-        res, _ = load_mean_deviations(source)
+        res, _ = load_mean_deviations(source, encoding=source_encoding)
         _same_units(res, table, source)
         dev = 0.5 * (res.mean_up + np.where(np.isfinite(res.mean_down), res.mean_down, res.mean_up))
         rb = compare(table, res.targets, dev, mod.NAME)

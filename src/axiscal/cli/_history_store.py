@@ -67,3 +67,18 @@ def store_run(file: Path, db, machine=None, axis=None) -> None:
         r = h.add(file, machine=machine, axis=axis)
     note(f"history: {'already stored as' if r.duplicate else 'stored as'} test {r.id} "
          f"({r.machine} {r.axis})")
+
+
+def history_reads_alike(file: Path, encoding: str) -> None:
+    """``--history`` with ``--encoding``: the history keeps the file's bytes and re-reads them
+    alone (UTF-8, UTF-16 with a BOM, else Windows-1252): refused where that reading would give
+    other text than the code page given (a cp1250 "ł" would come back as "³")."""
+    from axiscal.errors import InputError
+    from axiscal.io._files import read_bytes
+    from axiscal.io.renishaw import decode
+
+    data = read_bytes(file)
+    if decode(data, encoding, str(file))[0] != decode(data, None, str(file))[0]:
+        raise InputError(f"--history keeps {file} as it came and re-reads it without "
+                         f"--encoding {encoding}, which would read its text differently: store "
+                         "it as UTF-8 (or Windows-1252) first, or drop --history")

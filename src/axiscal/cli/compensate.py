@@ -60,7 +60,13 @@ given. Reading an 840D file of several tables without ``-o machine_axis=``: ``ta
 ``key`` = ``AX1`` or ``AX1/2`` for measuring system 2, ``machine_axis``, ``measuring_system`` and
 the table data keys), ``refused`` (``key``, ``reason``; exit 2 when any) and ``notes``; an
 ``NC_CEC.INI``: ``kind``, ``tables`` (each ``index``, ``input_axis``, ``output_axis``,
-``direction``, ``mult_by_table``, ``notes``, ``table``) and ``refused`` (``index``, ``reason``).
+``direction``, ``mult_by_table``, ``notes``, ``table``), ``refused`` (``index``, ``reason``;
+exit 2 when any), ``not_in_use`` (``index``, ``reason``: a table reserved with STEP 0, not an
+error) and ``notes`` (a loader program's ``NEWCONF``, MD32710, SD41300 … lines, said and left
+out).
+
+``--encoding NAME``: the code page of SOURCE when it is a Renishaw ``.rtl``/``.rta`` export
+(``cp1250`` …; refused for another file, an unknown name, or without SOURCE).
 
 Options that the chosen use does not read (``--bidirectional`` with ``--verify``, ``--plot``
 without it ...) are refused by name rather than ignored.
@@ -74,6 +80,7 @@ from typing import List, Optional
 import typer
 
 from axiscal.cli._common import note, out_path, plot_path, print_json, report_path
+from axiscal.cli._encoding import ENCODING
 from axiscal.cli._compensate_io import (_render_table, _table_json, _typed, _value,
                                         _write_files)
 
@@ -107,6 +114,7 @@ def compensate(
     plot: Optional[Path] = typer.Option(None, "--plot", help="With --verify: write the before/table/after plot (PNG, SVG or PDF)."),
     report: Optional[Path] = typer.Option(None, "--report", help="With --verify: write the loop as a simulation report (plot, before/after parameters, table): HTML or PDF."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON (stable keys, see the docs)."),
+    encoding: Optional[str] = ENCODING,
 ) -> None:
     """Write compensation tables for CNC controllers, read them back, or verify them by re-measuring.
 
@@ -134,7 +142,11 @@ def compensate(
                              "convert the table to); give --to or drop --out")
         from axiscal.cli._compensate_read import read_back
 
-        return read_back(read, controller, source, opts, json_out, ini, to=to, out=out)
+        if encoding is not None and source is None:
+            raise InputError("--encoding is the code page of SOURCE (a Renishaw export compared "
+                             "with the table read); --read without SOURCE does not use it: drop it")
+        return read_back(read, controller, source, opts, json_out, ini, to=to, out=out,
+                         encoding=encoding)
     if squareness is not None:
         return _cross_axis(squareness, axes, aligned, controller or "csv", spacing, start, end,
                            resolution, travel, opts, out, json_out)
@@ -146,9 +158,17 @@ def compensate(
     mod = get_controller(controller or "csv")
     table = api.compensation_table(source, spacing, bidirectional=bidirectional,
                                    resolution=resolution, start=start, end=end,
-                                   extrapolation=extrapolation, home=reference, axis=axis)
+                                   extrapolation=extrapolation, home=reference, axis=axis,
+                                   encoding=encoding)
     cf = api.write_table(table, mod.NAME, travel=_travel(travel),
                          **_typed(mod.write, opts, f"--option for {mod.NAME}"))
+    if reference is not None:
+        from dataclasses import replace
+
+        from axiscal.compensation.controllers import reference_note
+
+        said = reference_note(mod.NAME, reference, table.position_unit)
+        cf = replace(cf, notes=tuple(cf.notes) + (said,)) if said else cf
     cf = _write_files(cf, out)
     _render_table(cf, out, json_out)
 
@@ -242,11 +262,12 @@ def _cross_axis(um_per_m, axes, aligned, controller, spacing, start, end, resolu
 _USES = {
     "table": ("a table from SOURCE", {"source", "controller", "spacing", "bidirectional",
               "resolution", "start", "end", "extrapolation", "reference", "travel", "axis",
-              "option", "out", "json_out"}),
+              "option", "out", "json_out", "encoding"}),
     "verify": ("--verify", {"verify", "on_controller", "controller", "spacing", "option", "out",
                "seed", "plot",
                "report", "json_out"}),
-    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini", "to", "out"}),
+    "read": ("--read", {"read", "source", "controller", "option", "json_out", "ini", "to", "out",
+                        "encoding"}),
     "squareness": ("--squareness", {"squareness", "axes", "aligned", "controller", "spacing",
                    "start", "end", "resolution", "travel", "option", "out", "json_out"}),
 }

@@ -7,7 +7,9 @@ that parameter of a standard evaluated in part), ``warnings`` (list of text), ``
 standard was not evaluated at all, else null)). With ``--tolerance``: ``acceptance``,
 ``decision_rule`` and ``accepted`` as in ``axiscal iso230-2`` (``U`` null where no budget gives it: every standard but ISO 230-2:2014;
 ``U_display`` the same rounded up to two significant digits), ``warnings`` (a tolerance not larger
-than its U) and, for ISO 230-2:2014, ``uncertainty_budget`` as in ``axiscal iso230-2``.
+than its U) and, for ISO 230-2:2014, ``uncertainty_budget`` as in ``axiscal iso230-2``. A
+Renishaw ``.rta`` (deviations in µrad in the file, shown in arcsec): ``in_file_unit``
+(``deviation_unit`` ``urad``, ``source``, ``standards``: key -> name -> value in µrad).
 
 Exit codes: 0 evaluated (and every tolerance proven met), 1 a tolerance not proven met, 2 a user
 error (including a single ``--standard`` whose definitions were not publicly available to axiscal).
@@ -23,6 +25,7 @@ import typer
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.cli._encoding import ENCODING
 
 __all__ = ["register"]
 
@@ -47,6 +50,7 @@ def evaluate(
     reference_scale: Optional[float] = REFERENCE_SCALE,
     reference_offset: Optional[float] = REFERENCE_OFFSET,
     rest_window: Optional[float] = REST_WINDOW,
+    encoding: Optional[str] = ENCODING,
 ) -> None:
     """Evaluate a positioning test by a named standard, or by all of them side by side.
 
@@ -72,7 +76,7 @@ def evaluate(
         ds = api.read(file, kind="iso230-2", target_unit=target_unit,
                       deviation_unit=deviation_unit, progress=bar, epics=epics_options(
                           setpoint_pv, reference_pv, targets, reference_scale,
-                          reference_offset, rest_window))
+                          reference_offset, rest_window), encoding=encoding)
     ev = api.evaluate(ds, key, tolerances=tolerances, rule=rule, uncertainty=table,
                       form="standards")
     show_notes(ds)   # after the evaluation: a refusal is then the one line (issue 39)

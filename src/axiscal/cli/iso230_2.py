@@ -23,8 +23,10 @@ shown: two significant digits rounded up, JCGM 100:2008 §7.2.6) and ``uncertain
 ``cmc`` and ``floored`` (parameters whose U is the laboratory's CMC)). ``outliers``: readings
 Grubbs' test finds apart from the other runs at their target (``target``, ``direction``,
 ``run``, ``value``, ``mean``, ``s``, ``G``, ``G_critical``, ``n``, ``sets`` — the parameters
-the target decides —, ``rule``, ``text``), kept in the evaluation. The results as data, the
-same on every path (:mod:`axiscal.standards.quantities`): ``schema_version``, ``quantities``
+the target decides —, ``rule``, ``text``), kept in the evaluation. A Renishaw ``.rta``, whose
+deviations the file holds in µrad and axiscal shows in arcsec: ``in_file_unit``
+(``deviation_unit`` ``urad``, ``source``, ``parameters``: ``A`` … ``B_mean`` in µrad). The
+results as data, the same on every path (:mod:`axiscal.standards.quantities`): ``schema_version``, ``quantities``
 and ``uncertainty_inputs``.
 
 Exit codes: 0 evaluated (and conformance proven for every tolerance), 1 a tolerance not proven
@@ -43,6 +45,7 @@ from axiscal.cli._certificate import APPROVED_BY, DRAFT, JOB, PAPER, PREPARED_BY
 from axiscal.cli._epics import (REFERENCE_OFFSET, REFERENCE_PV, REFERENCE_SCALE, REST_WINDOW,
                                 SETPOINT_PV, TARGETS, epics_options, show_notes)
 from axiscal.cli._common import note, plot_path, print_json, progress_bar, report_path
+from axiscal.cli._encoding import ENCODING
 
 __all__ = ["register", "render_result"]
 
@@ -73,6 +76,7 @@ def iso230_2(
     reference_scale: Optional[float] = REFERENCE_SCALE,
     reference_offset: Optional[float] = REFERENCE_OFFSET,
     rest_window: Optional[float] = REST_WINDOW,
+    encoding: Optional[str] = ENCODING,
 ) -> None:
     """Evaluate a positioning test by ISO 230-2:2014: A, E, M, R, B, their U and verdicts.
 
@@ -97,9 +101,14 @@ def iso230_2(
         raise InputError("--history keeps the file as it came and re-reads it alone, without "
                          f"--{next(iter(epics)).replace('_', '-')}: write the test to CSV "
                          "first (axiscal capture LOG --plan PLAN --out x.csv) and store that")
+    if history and encoding is not None:
+        from axiscal.cli._history_store import history_reads_alike
+
+        history_reads_alike(file, encoding)
     with progress_bar(f"reading {file.name}") as bar:
         ds = api.read(file, kind="iso230-2", target_unit=target_unit,
-                      deviation_unit=deviation_unit, progress=bar, epics=epics)
+                      deviation_unit=deviation_unit, progress=bar, epics=epics,
+                      encoding=encoding)
     if full_turn != "separate" and ds.axis_kind.value != "rotary":
         from axiscal.errors import InputError
 

@@ -18,6 +18,7 @@ from typing import Optional
 import typer
 
 from axiscal.cli._common import note, plot_path, print_json, report_path, typed_path
+from axiscal.cli._encoding import WRITE_ENCODING
 
 
 def simulate(
@@ -27,6 +28,7 @@ def simulate(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the ISO 230-2 plot with the truth (PNG, SVG or PDF by extension)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write a simulation report (.html, or .pdf with WeasyPrint)."),
     data: Optional[Path] = typer.Option(None, "--data", help="Write the simulated readings (.csv, .json, or Renishaw .rtl/.rta for a linear/rotary axis)."),
+    encoding: Optional[str] = WRITE_ENCODING,
 ) -> None:
     """Simulate an ISO 230-2 positioning test of a configured axis and evaluate it.
 
@@ -40,15 +42,25 @@ def simulate(
         report_path(report)
     if data is not None:
         typed_path(data, "data", (".csv", ".json", ".rtl", ".rta"))
+    if encoding is not None:
+        from axiscal.errors import InputError
+        from axiscal.io.renishaw import encode
+
+        if data is None or data.suffix.lower() not in (".rtl", ".rta"):
+            raise InputError(f"--encoding {encoding} is the code page of the Renishaw export "
+                             "written with --data x.rtl/.rta; "
+                             + ("no --data is given" if data is None else
+                                f"{data.name} is written as UTF-8") + ": drop --encoding")
+        encode("", encoding)                 # an unknown name refused before simulating
     sim = api.simulate(config, seed, kind="positioning")
-    write_outputs(sim, plot, report, data)
+    write_outputs(sim, plot, report, data, encoding)
     if json_out:
         print_json(sim.to_dict())
     else:
         render_simulation(sim.test)
 
 
-def write_outputs(sim, plot=None, report=None, data=None) -> None:
+def write_outputs(sim, plot=None, report=None, data=None, encoding=None) -> None:
     """Write the plot, the report and the data file of a simulated test (an
     :class:`axiscal.api.Simulation`), where asked."""
     if plot is not None:
@@ -60,7 +72,7 @@ def write_outputs(sim, plot=None, report=None, data=None) -> None:
         sim.report(report)
         note(f"wrote report {report}")
     if data is not None:
-        sim.write_data(data)
+        sim.write_data(data, encoding)
         note(f"wrote data {data}")
 
 

@@ -19,7 +19,8 @@ STREAM_ABOVE_BYTES = 1 << 20
 
 
 def read_positioning(path, target_unit: str | None = None, deviation_unit: str | None = None,
-                     axis_kind: str | None = None, progress=None, epics: dict | None = None):
+                     axis_kind: str | None = None, progress=None, epics: dict | None = None,
+                     encoding: str | None = None):
     """Read a positioning test from a CSV, JSON, Renishaw .rtl/.rta or EPICS ecmc file (see
     :func:`parse_positioning`).
 
@@ -35,10 +36,17 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
     epics : dict, optional
         Options of an EPICS camonitor log (:func:`axiscal.io.epics.parse_epics`: ``setpoint_pv``,
         ``reference_pv``, ``targets``, ``plan`` ...); refused for any other file.
+    encoding : str, optional
+        The code page of a Renishaw ``.rtl``/``.rta`` export (``cp1250`` …, one of
+        :data:`axiscal.io.renishaw.CODE_PAGES`, or ``utf-8``/``utf-16``; the command's
+        ``--encoding``); by default UTF-8, UTF-16 with a BOM, else Windows-1252. An unknown
+        encoding, or one given for a file that is not a Renishaw export, is refused.
 
     A CSV file over :data:`STREAM_ABOVE_BYTES` is read a line at a time into compact arrays, so
     memory grows with the readings, not with the file's text.
     """
+    if encoding is not None:
+        return _read_renishaw_in(path, encoding, target_unit, deviation_unit, axis_kind, epics)
     from axiscal.io._files import open_regular_file
 
     fh, size = open_regular_file(path)
@@ -63,6 +71,26 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
                                         encoding=used)
     return parse_positioning(text, str(path), target_unit, deviation_unit, axis_kind,
                              epics=epics)
+
+
+def _read_renishaw_in(path, encoding, target_unit, deviation_unit, axis_kind, epics):
+    """A Renishaw export read in the code page given (``encoding``); any other file refused."""
+    from axiscal.errors import InputError
+    from axiscal.io import detect
+    from axiscal.io import renishaw as _renishaw
+    from axiscal.io._files import read_bytes
+
+    text, used = _renishaw.decode(read_bytes(path), encoding, str(path))
+    if not detect.looks_like_renishaw(text):
+        raise InputError(f"--encoding {encoding} is the code page of a Renishaw .rtl/.rta export; "
+                         f"{path} is not one (axiscal reads its other files as UTF-8): drop "
+                         "--encoding")
+    if epics:
+        raise DataFormatError(f"--{next(iter(epics)).replace('_', '-')} applies to an EPICS "
+                              "camonitor log; this file is a Renishaw export", str(path))
+    return _renishaw.parse_renishaw(text, source=str(path), target_unit=target_unit,
+                                    deviation_unit=deviation_unit, axis_kind=axis_kind,
+                                    encoding=used)
 
 
 def _text(path) -> tuple[str, str]:

@@ -58,7 +58,8 @@ FORMATS: tuple[FileFormat, ...] = (
                "and a JavaScript reader; see the module docstring)"),
     FileFormat("Renishaw angular positioning export (deviations in µrad)", True, True, (".rta",),
                "tests/io/test_renishaw.py (no real public sample found)",
-               "axiscal.io.renishaw (Read Laser Plot: .rta deviations × 0.2063 = arcsec)"),
+               "axiscal.io.renishaw (Read Laser Plot: .rta deviations × 0.2063 = arcsec; shown "
+               "in arcsec, --json keeps µrad; --encoding for a code page)"),
     FileFormat("Renishaw .ren compensation export (spacing, start, end, Combined)", True, True,
                (".ren",), "axiscal compensate ... --controller renishaw-ren",
                "axiscal.compensation.controllers.renishaw_ren (a public .REN → Siemens "
@@ -85,8 +86,11 @@ FORMATS: tuple[FileFormat, ...] = (
     FileFormat("ISO 230-2 result JSON (for compensation)", True, True, (".json",),
                "axiscal iso230-2 FILE --json > r.json", "axiscal.io.results"),
     FileFormat("Siemens 840D compensation (%_N_AX_EEC_INI, %_N_NC_CEC_INI)", True, True,
-               (".ini",), "axiscal compensate demo-output/linear_data.csv --controller "
-               "siemens-840d --spacing 10 --out x.ini", "axiscal.compensation.controllers"),
+               (".ini", ".mpf"), "axiscal compensate demo-output/linear_data.csv --controller "
+               "siemens-840d --spacing 10 --out x.ini; tests/data/siemens/archive_layout",
+               "axiscal.compensation.controllers (K3; loader .MPF programs; INITIAL.INI with "
+               "--ini; checked against a real DMU 85 series start-up archive, "
+               "tests/data/siemens/README.md)"),
     FileFormat("Fanuc pitch error parameters", True, True, (".txt",),
                "axiscal compensate ... --controller fanuc", "axiscal.compensation.controllers"),
     FileFormat("Heidenhain .COM and .CMA", True, True, (".com", ".cma"),

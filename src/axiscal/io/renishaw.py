@@ -122,8 +122,8 @@ from axiscal.datasets import AxisKind, Environment, Metadata, PositioningDataset
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 from axiscal.io.detect import looks_like_renishaw
 
-__all__ = ["decode", "CODE_PAGES", "looks_like_renishaw", "parse_renishaw", "read_renishaw",
-           "parse_rtl", "read_rtl",
+__all__ = ["decode", "encode", "CODE_PAGES", "RTA_CONVERTED", "file_unit_block",
+           "looks_like_renishaw", "parse_renishaw", "read_renishaw", "parse_rtl", "read_rtl",
            "parse_rta", "read_rta", "format_renishaw", "format_rtl", "format_rta"]
 
 #: File type -> (axis kind, target unit, deviation unit, HEADER Owner written).
@@ -142,6 +142,27 @@ _REQUIRED = ("HEADER", "TARGET DATA", "RUNS", "DEVIATIONS")
 _TARGETS_PER_LINE = 5
 
 
+#: The note of a ``.rta`` read in arcsec: its results' ``--json`` also gives them in the file's
+#: µrad (:func:`file_unit_block`).
+RTA_CONVERTED = ("deviations converted from the file's µrad to arcsec, the unit of every rotary "
+                 "result in axiscal (read with deviation_unit=urad for the file's own numbers)")
+
+
+def file_unit_block(notes: str, parameters: dict) -> dict | None:
+    """The ISO 230-2 parameters in the ``.rta`` file's own unit, µrad, for ``--json`` beside the
+    arcsec shown (``parameters`` in arcsec); None for a dataset not read from a ``.rta`` in
+    arcsec (``notes``: the dataset's, which say :data:`RTA_CONVERTED`).
+
+    1″ = π/648000 rad = 4.8481 µrad (ISO 80000-3 angle units; Read Laser Plot's 0.2063 ″/µrad
+    is its inverse).
+    """
+    if RTA_CONVERTED not in (notes or ""):
+        return None
+    k = units.convert(1.0, "arcsec", "urad")
+    return {"deviation_unit": "urad", "source": "the .rta file's unit",
+            "parameters": {n: None if v is None else v * k for n, v in parameters.items()}}
+
+
 #: Windows code pages a Renishaw export may be written in (``encoding=``); 1252 by default.
 CODE_PAGES = ("cp1252", "cp1250", "cp1251", "cp1253", "cp1254", "cp1257", "cp932", "cp936")
 
@@ -155,11 +176,7 @@ def decode(data: bytes, encoding: str | None = None, source: str = "<bytes>") ->
     The numbers are ASCII in every one of them.
     """
     if encoding is not None:
-        enc = str(encoding).lower().replace("windows-", "cp").replace("-", "")
-        if enc not in CODE_PAGES and enc not in ("utf8", "utf16"):
-            raise InputError(f"encoding {encoding!r}: one of utf-8, utf-16, "
-                             f"{', '.join(CODE_PAGES)}")
-        enc = {"utf8": "utf-8-sig", "utf16": "utf-16"}.get(enc, enc)
+        enc = _code_page(encoding)
         try:
             return data.decode(enc), _name(enc)
         except UnicodeDecodeError as exc:
@@ -175,6 +192,30 @@ def decode(data: bytes, encoding: str | None = None, source: str = "<bytes>") ->
         if b"\x00" in data[:4096]:
             raise DataFormatError("not a text file (it holds NUL bytes)", source) from None
         return data.decode("cp1252", errors="replace"), "windows-1252"
+
+
+def encode(text: str, encoding: str | None = None) -> bytes:
+    """The bytes of a Renishaw export written in ``encoding`` (one of :data:`CODE_PAGES`,
+    ``utf-8`` (the default) or ``utf-16``, written with its BOM), as Renishaw's Windows software
+    writes the PC's code page; :func:`decode` reads them back. A character the code page cannot
+    hold is refused naming it (nothing is replaced)."""
+    enc = _code_page(encoding) if encoding is not None else "utf-8-sig"
+    enc = "utf-8" if enc == "utf-8-sig" else enc
+    try:
+        return text.encode(enc)
+    except UnicodeEncodeError as exc:
+        raise InputError(f"encoding {encoding!r}: {text[exc.start]!r} (in "
+                         f"{text[max(0, exc.start - 20):exc.start + 20]!r}) is not in "
+                         f"{_name(enc)}; write it in utf-8 or a code page that holds it") from None
+
+
+def _code_page(encoding: str) -> str:
+    """The codec of a name :func:`decode` and :func:`encode` accept; others refused."""
+    enc = str(encoding).lower().replace("windows-", "cp").replace("-", "")
+    if enc not in CODE_PAGES and enc not in ("utf8", "utf16"):
+        raise InputError(f"encoding {encoding!r}: one of utf-8, utf-16, "
+                         f"{', '.join(CODE_PAGES)}")
+    return {"utf8": "utf-8-sig", "utf16": "utf-16"}.get(enc, enc)
 
 
 def _name(enc: str) -> str:
@@ -264,8 +305,7 @@ def parse_renishaw(text: str, source: str = "<text>", target_unit: str | None = 
     except AxiscalError as exc:
         raise DataFormatError(str(exc), source) from None
     if deviation_unit is None and ftype == "rta":
-        said = ("deviations converted from the file's µrad to arcsec, the unit of every rotary "
-                "result in axiscal (read with deviation_unit=urad for the file's own numbers)")
+        said = RTA_CONVERTED
         ds = ds.with_deviation_unit("arcsec")
         return replace(ds, metadata=replace(ds.metadata, notes=f"{ds.metadata.notes} | {said}"
                                             if ds.metadata.notes else said))

@@ -51,8 +51,11 @@ class MeanDeviations:
     mean_down: np.ndarray
 
 
-def load_mean_deviations(path, full_turn: str = "separate"):
+def load_mean_deviations(path, full_turn: str = "separate", encoding: str | None = None):
     """Read ``path`` as a result JSON or a positioning data file (evaluated by ISO 230-2).
+
+    A Renishaw export is read as :func:`axiscal.io.read_positioning` reads it: UTF-8, UTF-16
+    with a BOM, or its Windows code page (``encoding``, the command's ``--encoding``).
 
     Returns
     -------
@@ -60,18 +63,20 @@ def load_mean_deviations(path, full_turn: str = "separate"):
     axis : str
         The axis name the data file's metadata or the result JSON's ``axis`` gives ("" if none).
     """
-    from axiscal.io import parse_positioning, read_text
+    from axiscal.io import read_positioning, read_text
+    from axiscal.io._files import read_bytes
     from axiscal.standards.iso230_2 import evaluate
 
-    text = read_text(path)
-    if Path(path).suffix.lower() == ".json" or text.lstrip().startswith("{"):
+    head = read_bytes(path).lstrip(b"\xef\xbb\xbf \t\r\n")
+    if encoding is None and (Path(path).suffix.lower() == ".json" or head.startswith(b"{")):
+        text = read_text(path)
         from axiscal._parse import loads_json
 
         d = loads_json(text, str(path))
         if isinstance(d, dict) and "format" not in d and "targets" in d:
             axis = d.get("axis", "")
             return parse_result_json(d, str(path)), axis if isinstance(axis, str) else ""
-    ds = parse_positioning(text, str(path))
+    ds = read_positioning(path, encoding=encoding)
     return evaluate(ds, full_turn=full_turn), ds.metadata.axis  # type: ignore[arg-type]
 
 

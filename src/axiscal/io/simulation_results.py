@@ -496,17 +496,23 @@ def simulation_dict(kind: str, test: Any, seed: int | None) -> dict:
     return json.loads(json.dumps(jsonable(d)))
 
 
-def write_simulated_data(kind: str, dataset: Any, path: Any) -> Any:
+def write_simulated_data(kind: str, dataset: Any, path: Any, encoding: str | None = None) -> Any:
     """Write simulated readings as an instrument's file: a positioning test as tidy CSV
     (``.csv``), axiscal JSON (``.json``) or Renishaw ``.rtl``/``.rta``, as ``axiscal simulate
     --data``; a five-DOF run as
-    the ``.csv`` of ``motion simulate --csv``. Returns the path."""
+    the ``.csv`` of ``motion simulate --csv``. Returns the path.
+
+    ``encoding`` (``simulate --encoding``): the code page of a Renishaw export
+    (:func:`axiscal.io.renishaw.encode`); refused for any other file, which is UTF-8."""
     from pathlib import Path
 
     from axiscal.errors import InputError
     from axiscal.io._files import write_text_atomic
 
     suffix = Path(path).suffix.lower()
+    if encoding is not None and suffix not in (".rtl", ".rta"):
+        raise InputError(f"--encoding {encoding} is the code page of a Renishaw .rtl/.rta "
+                         f"export; {Path(path).name} is written as UTF-8: drop --encoding")
     fmt: Any
     if kind == "five-dof" and suffix == ".csv":
         from axiscal.io.motion import format_motion_errors as fmt
@@ -525,5 +531,11 @@ def write_simulated_data(kind: str, dataset: Any, path: Any) -> Any:
         fmt = renishaw.format_rtl if suffix == ".rtl" else renishaw.format_rta
     else:
         raise InputError(f"write_data {path}: give a .csv, .json, .rtl or .rta file")
+    if encoding is not None:
+        from axiscal.io._files import write_bytes_atomic
+        from axiscal.io.renishaw import encode
+
+        write_bytes_atomic(path, encode(fmt(dataset), encoding))
+        return Path(path)
     write_text_atomic(path, fmt(dataset))
     return Path(path)

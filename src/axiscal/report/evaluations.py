@@ -27,11 +27,26 @@ KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "i
 
 
 def kind_of_file(path: Any) -> str:
-    """The kind of test a data file holds, told by its content (as the history does)."""
+    """The kind of test a data file holds, told by its content (as the history does); a
+    Renishaw export in UTF-16 or a Windows code page is a positioning test, as
+    :func:`axiscal.io.read_positioning` reads it."""
+    from axiscal.errors import DataFormatError
     from axiscal.io import read_text
     from axiscal.store.kinds import detect_kind
 
-    return detect_kind(read_text(path))
+    try:
+        return detect_kind(read_text(path))
+    except DataFormatError:
+        from axiscal.io import detect
+        from axiscal.io._files import read_bytes
+        from axiscal.io.renishaw import decode
+
+        try:
+            if detect.looks_like_renishaw(decode(read_bytes(path), None, str(path))[0]):
+                return "iso230-2"
+        except DataFormatError:
+            pass
+        raise
 
 
 def evaluated_file(path: Any, kind: str) -> Any:
@@ -193,6 +208,20 @@ def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None
     return _by_standards(ds, key, tolerances, rule, uncertainty or None)
 
 
+def _in_file_unit(ds: Any, results: Any) -> dict | None:
+    """Each standard's parameters in the deviation unit, in a ``.rta`` file's own µrad
+    (:func:`axiscal.io.renishaw.file_unit_block`); None for any other dataset."""
+    from axiscal.io.renishaw import file_unit_block
+
+    blocks = {std.key: file_unit_block(ds.metadata.notes, {
+        name: v for name, (v, u, _) in res.parameters().items() if u == ds.deviation_unit})
+        for std, res in results if not isinstance(res, str)}
+    if not blocks or None in blocks.values():
+        return None
+    return {"deviation_unit": "urad", "source": "the .rta file's unit",
+            "standards": {k: b["parameters"] for k, b in blocks.items()}}
+
+
 def _by_standards(ds: Any, key: str, tolerances: dict, rule: str | None, table: Any) -> dict:
     """As ``axiscal evaluate --standard KEY --json``: each standard's parameters, the decisions
     and, where they have a U (ISO 230-2:2014 only), its Annex A budget."""
@@ -218,6 +247,9 @@ def _by_standards(ds: Any, key: str, tolerances: dict, rule: str | None, table: 
                                              budget=record and record.budget))
     d = {"unit": ds.deviation_unit, "target_unit": ds.target_unit,
          "standards": [standard_json(std, res) for std, res in results]}
+    in_file = _in_file_unit(ds, results)
+    if in_file is not None:     # a .rta: shown in arcsec, the file's µrad kept (issue 42)
+        d["in_file_unit"] = in_file
     if verdicts:
         from axiscal.standards.iso14253_1 import unprovable
 
@@ -302,6 +334,11 @@ def record_fields(record: Any, **extra: Any) -> dict:
         ds = record.dataset
         d = {**result_json(record.evaluation, record.verdicts, record.budget),
              "machine": ds.metadata.machine, "axis": ds.metadata.axis, "notes": ds.metadata.notes}
+        from axiscal.io.renishaw import file_unit_block
+
+        block = file_unit_block(ds.metadata.notes, record.evaluation.parameters())
+        if block is not None:       # a .rta: shown in arcsec, the file's µrad kept (issue 42)
+            d["in_file_unit"] = block
     else:
         d = dict(record.result)
         if record.budget is not None:

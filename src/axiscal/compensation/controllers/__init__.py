@@ -26,7 +26,8 @@ import importlib
 from axiscal.compensation.controllers._common import ControllerFile
 from axiscal.errors import InputError
 
-__all__ = ["CONTROLLERS", "controller", "ControllerFile", "check_options", "detect"]
+__all__ = ["CONTROLLERS", "controller", "ControllerFile", "check_options", "detect",
+           "HOLDS_REFERENCE", "reference_note"]
 
 #: Controller name -> module name.
 CONTROLLERS = {
@@ -37,6 +38,21 @@ CONTROLLERS = {
     "csv": "csv",
     "renishaw-ren": "renishaw_ren",
 }
+
+
+#: Formats whose file holds the reference (home) position: the 840D table is shifted to zero
+#: there, Fanuc's parameter 3620 numbers it, the CSV records ``reference_index``. A Heidenhain
+#: ``.COM``, a LinuxCNC file and a Renishaw ``.ren`` hold the values as measured.
+HOLDS_REFERENCE = frozenset({"siemens-840d", "fanuc", "csv"})
+
+
+def reference_note(name: str, home: float, unit: str) -> str:
+    """What a writer's output says of a reference position given (``--home``) that its format
+    does not hold; ``""`` where it does (:data:`HOLDS_REFERENCE`)."""
+    if controller(name).NAME in HOLDS_REFERENCE:
+        return ""
+    return (f"--home {home:g} {unit}: a {controller(name).NAME} file holds no reference position; "
+            "its values are written as measured, not shifted to zero there")
 
 
 def controller(name: str):
@@ -72,8 +88,8 @@ def detect(text: str) -> str | None:
     import re
 
     body = text.lstrip("\ufeff \t\r\n")
-    if body.startswith(("%_N_AX_EEC_INI", "%_N_NC_CEC_INI")) or "$AA_ENC_COMP[" in body \
-            or "$AN_CEC[" in body:
+    if body.startswith(("%_N_AX_EEC_INI", "%_N_NC_CEC_INI")) or \
+            re.search(r"\$(AA_ENC_COMP|AN_CEC)\s*\[", body, re.IGNORECASE):   # `$AN_CEC [0,0]` too
         return "siemens-840d"
     if re.match(r"BEGIN\s+\S+\.COM\b", body, re.IGNORECASE):
         return "heidenhain"

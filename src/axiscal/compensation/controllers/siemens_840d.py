@@ -347,6 +347,7 @@ def read_tables(text: str, source: str = "<text>", axis_kind=None,
     of steps, or a *k* beyond the points given, refuses that table only.
     """
     from axiscal.compensation.controllers import siemens_machine_data as smd
+    from axiscal.compensation.controllers.siemens_text import said as left_out
     from axiscal.compensation.controllers.siemens_text import statements
 
     own = smd.parse(text, source)
@@ -361,8 +362,8 @@ def read_tables(text: str, source: str = "<text>", axis_kind=None,
     values: dict = {}
     params: dict = {}
     for s in statements(text, source):
-        if s.kind == "control":
-            notes.append(f"line {s.line}: {s.name} left out ({_CONTROL_WHAT[s.name]})")
+        if left_out(s):
+            notes.append(left_out(s))
         elif s.kind == "assign" and s.name == "AA_ENC_COMP" and len(s.index) == 3:
             key = (s.index[2], _ms(s.index[0], source, s.line))
             i = _index(s.index[1], source, s.line)
@@ -379,13 +380,12 @@ def read_tables(text: str, source: str = "<text>", axis_kind=None,
                   s.line)
             params[key][what] = parse_number(s.value, source, s.line)
         elif s.kind == "assign" and s.name.startswith(("MA_", "MN_", "MC_", "SN_", "SA_")):
-            if s.name == "MA_ENC_COMP_ENABLE":
-                notes.append(f"line {s.line}: MD32700 ${s.name}[{','.join(s.index)}] = {s.value} "
-                             "(the program switches the compensation; not a table value)")
+            continue                           # other machine and setting data: passed over
         elif s.kind == "assign" and s.name.startswith("AN_CEC"):
             continue                           # cross-axis tables: read_cross_axis reads them
-        elif s.kind == "assign":
-            raise DataFormatError(f"${s.name} is not a compensation table variable axiscal reads "
+        elif s.kind in ("assign", "user"):
+            what = f"${s.name}" if s.kind == "assign" else f"{s.name} (a user variable)"
+            raise DataFormatError(f"{what} is not a compensation table variable axiscal reads "
                                   "($AA_ENC_COMP…, $AN_CEC…, machine data)", source, s.line)
     if not values:
         raise DataFormatError("no $AA_ENC_COMP values: not an EEC table", source)
@@ -400,14 +400,24 @@ def read_tables(text: str, source: str = "<text>", axis_kind=None,
             continue
         tables[key] = t
         notes += n
-    for key in params:
-        if key not in values:
-            refused[key] = f"{_key(key)}: STEP/MIN/MAX given but no $AA_ENC_COMP values"
+    refused.update(_without_values(values, params, tables))
     return EECFile(tables, refused, tuple(notes), md)
 
 
-_CONTROL_WHAT = {"NEWCONF": "takes over NEW_CONFIG machine data", "STOPRE": "preprocessing stop",
-                 "MSG": "operator message", "G4": "dwell"}
+def _without_values(values: dict, params: dict, read: dict) -> dict:
+    """The reason of each table whose STEP/MIN/MAX come without values; a loader writing one
+    measuring system's values with the other's STEP/MIN/MAX (a real builder's ``.MPF``) has
+    both halves named so, never combined (K3: the table is kept per measuring system)."""
+    refused = {key: f"{_key(key)}: STEP/MIN/MAX given but no $AA_ENC_COMP values"
+               for key in params if key not in values}
+    for (ax, ms) in values:
+        other = (ax, 3 - ms)
+        if other in refused and (ax, ms) not in params and (ax, ms) not in read:
+            why = (f"the values are for measuring system {ms} ([{ms - 1},…]), STEP/MIN/MAX "
+                   f"for measuring system {3 - ms} ([{2 - ms},…]); axiscal does not combine them "
+                   "(MD32700 and the table are kept per measuring system, K3)")
+            refused[(ax, ms)], refused[other] = f"{_key((ax, ms))}: {why}", f"{_key(other)}: {why}"
+    return refused
 
 
 def _key(k) -> str:
@@ -469,9 +479,11 @@ def _comments(text: str, source: str) -> dict:
     return dict(backlash=backlash, names=names)
 
 
-def inputs(text: str, source: str = "<text>", unit: str | None = None, **_) -> tuple:
+def inputs(text: str, source: str = "<text>", unit: str | None = None, *,
+           metric: bool | None = None, metric_source: str = "the machine data", **_) -> tuple:
     """The file's length unit: stated in the file (``METRIC``/``INCH`` header or MD10240),
-    given as ``unit``, or mm assumed.
+    given as ``unit``, stated by the machine data given beside it (``metric``: MD10240 of the
+    ``INITIAL.INI``, from ``metric_source``), or mm assumed.
 
     A ``unit`` that contradicts the file's statement, or a file stating it twice differently,
     is refused (:class:`DataFormatError`).
@@ -494,8 +506,13 @@ def inputs(text: str, source: str = "<text>", unit: str | None = None, **_) -> t
         if stated not in (None, v):
             raise DataFormatError(f"{what} contradicts an earlier line ({said})", source, n)
         stated, said = v, what
+    from_md = stated is None and metric is not None
+    if from_md:
+        stated = "mm" if metric else "inch"
+        said = f"MD10240 $MN_SCALING_SYSTEM_IS_METRIC = {int(metric)} in {metric_source}"
     given = None if unit is None else ("inch" if file_unit(unit, None, NAME) != 1.0 else "mm")
-    return (resolve_input("unit", given, stated, "mm", said=f"the file states {said}",
+    return (resolve_input("unit", given, stated, "mm",
+                          said=said if from_md else f"the file states {said}",
                           source=source,
                           why="the file does not state its unit (no METRIC/INCH header, no "
                               "MD10240): a metric machine, MD10240 = 1, assumed"),)

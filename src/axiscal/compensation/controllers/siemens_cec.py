@@ -17,6 +17,13 @@ Format (SINUMERIK 802D sl / 840D sl Function Manual *Extended Functions*, K3 "Co
     $AN_CEC_IS_MODULO[0]=0
     M17
 
+A series start-up archive's ``NC_CEC.INI`` also holds, per table, ``$AN_CEC_INPUT_NCU`` and
+``$AN_CEC_OUTPUT_NCU`` (the NCU that computes the base and the compensation axis, for an NCU
+link) and ``$AN_CEC_TYPE`` (0 no special table type, 1 cylinder error compensation), as the
+control's own description of these variables (``CECDescr``) names them: read, a type other than
+0 and an NCU other than 1 said in the notes. A table the machine reserves but does not use
+(STEP 0, every value 0, as the NCK lists it) is named as not in use, not read.
+
 A file holds several tables (MD18342 ``$MN_MM_CEC_MAX_POINTS[t]`` reserves the points of table
 t); each is its own relation (input axis, output axis, direction), so :func:`read_cross_axis`
 reads them as separate tables, never merged.
@@ -49,12 +56,17 @@ from axiscal.datasets import AxisKind
 from axiscal.errors import DataFormatError, InputError
 from axiscal.units import display
 
-__all__ = ["CECTable", "read_cross_axis", "write_cross_axis", "parse_cross_axis"]
+__all__ = ["CECTable", "read_cross_axis", "write_cross_axis", "parse_cross_axis", "NOT_IN_USE",
+           "in_error", "loader_notes"]
 
 NAME = "siemens-840d"
 MAX_POINTS = 5000
 _PARAMS = ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX", "DIRECTION", "MULT_BY_TABLE",
-           "IS_MODULO")
+           "IS_MODULO", "INPUT_NCU", "OUTPUT_NCU", "TYPE")
+#: How the reason of a reserved table that is not in use begins (after ``CEC table t: ``).
+NOT_IN_USE = "not in use"
+#: ``$AN_CEC_TYPE`` (the control's description of its system variables, ``CECDescr``)
+_TYPES = {0: "no special table type", 1: "a cylinder error compensation table"}
 
 
 @dataclass(frozen=True)
@@ -105,7 +117,9 @@ def read_cross_axis(text: str, source: str = "<text>", correction_unit: str | No
     """Every cross-axis table of a file, each with its axes: (tables, refused).
 
     ``tables`` is a list of :class:`CECTable` by index; ``refused`` maps the index of a table that
-    cannot be read to its reason (the others are read regardless). With ``machine_data`` (an
+    cannot be read to its reason (the others are read regardless); a table reserved but not in
+    use is there too, its reason beginning ``CEC table t: not in use`` (:func:`in_error` leaves
+    it out). With ``machine_data`` (an
     ``INITIAL.INI``'s text; else the file's own machine data), a rotary input axis (MD30300) has
     its positions in degrees and a rotary output axis its values in degrees, read in arcsec;
     otherwise both are taken as linear (mm, µm), as the file does not say.
@@ -118,6 +132,14 @@ def read_cross_axis(text: str, source: str = "<text>", correction_unit: str | No
     values: dict = {}
     params: dict = {}
     for s in statements(text, source):
+        if s.kind == "user":
+            raise DataFormatError(f"{s.name} (a user variable) is not a CEC table variable "
+                                  "axiscal reads ($AN_CEC…, machine and setting data)", source,
+                                  s.line)
+        if s.kind == "assign" and not s.name.startswith(("AN_CEC", "MA_", "MN_", "MC_", "SN_",
+                                                           "SA_", "SC_")):
+            raise DataFormatError(f"${s.name} is not a CEC table variable axiscal reads "
+                                  "($AN_CEC…, machine and setting data)", source, s.line)
         if s.kind != "assign" or not s.name.startswith("AN_CEC"):
             continue
         if s.name == "AN_CEC" and len(s.index) == 2:
@@ -143,6 +165,19 @@ def read_cross_axis(text: str, source: str = "<text>", correction_unit: str | No
     return tables, refused
 
 
+def loader_notes(text: str, source: str = "<text>") -> tuple:
+    """What a loader program does around its CEC tables, said and left out (``NEWCONF``,
+    MD32710 ``$MA_CEC_ENABLE``, SD41300 ``$SN_CEC_TABLE_ENABLE`` …), one note per line."""
+    from axiscal.compensation.controllers.siemens_text import said, statements
+
+    return tuple(said(s) for s in statements(text, source) if said(s))
+
+
+def in_error(refused: dict) -> dict:
+    """The tables of ``refused`` that could not be read (a table not in use is not an error)."""
+    return {t: r for t, r in refused.items() if not r.startswith(f"CEC table {t}: {NOT_IN_USE}")}
+
+
 def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
     for key in ("INPUT_AXIS", "OUTPUT_AXIS", "STEP", "MIN", "MAX"):
         if key not in params:
@@ -152,17 +187,23 @@ def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
                               source)
     try:
         step, lo, hi = (float(params[k]) for k in ("STEP", "MIN", "MAX"))
-        direction = int(float(params.get("DIRECTION", "0")))
-        mult = int(float(params.get("MULT_BY_TABLE", "0")))
-        modulo = bool(int(float(params.get("IS_MODULO", "0"))))
+        direction, mult, modulo, ttype, in_ncu, out_ncu = (
+            int(float(params.get(k, d))) for k, d in (
+                ("DIRECTION", "0"), ("MULT_BY_TABLE", "0"), ("IS_MODULO", "0"), ("TYPE", "0"),
+                ("INPUT_NCU", "1"), ("OUTPUT_NCU", "1")))
     except (ValueError, OverflowError):
-        raise DataFormatError("STEP, MIN, MAX, DIRECTION, MULT_BY_TABLE and IS_MODULO must be "
-                              "numbers", source) from None
+        raise DataFormatError("STEP, MIN, MAX, DIRECTION, MULT_BY_TABLE, IS_MODULO, TYPE and the "
+                              "NCUs must be numbers", source) from None
+    modulo = bool(modulo)
+    if step == 0 and lo == hi and not any(values.values()):
+        raise DataFormatError(f"{NOT_IN_USE} (STEP 0, MIN = MAX = {lo:g}, every value 0; input "
+                              f"axis {params['INPUT_AXIS']}, output axis "
+                              f"{params['OUTPUT_AXIS']})", source)
     if not (math.isfinite(step) and step > 0 and math.isfinite(lo) and math.isfinite(hi)):
         raise DataFormatError(f"STEP {step:g} must be positive, MIN and MAX finite", source)
     span = (hi - lo) / step
     k = int(math.floor(span + 1e-6))
-    notes = []
+    notes = _type_and_ncu(ttype, in_ncu, out_ncu)
     if abs(span - round(span)) > 1e-6 * max(1.0, abs(span)):
         notes.append(f"(MAX {hi:g} − MIN {lo:g}) / STEP {step:g} = {span:.6g} is not a whole "
                      f"number of steps: read up to point {k} at {lo + k * step:g}, the last "
@@ -197,6 +238,17 @@ def _one_table(t, values, params, source, md, correction_unit) -> CECTable:
     c = np.round(-dev / correction_factor(tab, vu), 6) + 0.0
     return CECTable(t, params["INPUT_AXIS"], out_axis, replace(tab, up=c, down=c), direction,
                     mult, tuple(notes))
+
+
+def _type_and_ncu(ttype: int, in_ncu: int, out_ncu: int) -> list:
+    """Notes for a table type other than 0 and an NCU other than 1 (an NCU link)."""
+    notes = []
+    if ttype != 0:
+        notes.append(f"$AN_CEC_TYPE = {ttype}: {_TYPES.get(ttype, 'a type axiscal does not know')}"
+                     " (read as a table of values; axiscal does not model the type)")
+    if (in_ncu, out_ncu) != (1, 1):
+        notes.append(f"$AN_CEC_INPUT_NCU = {in_ncu}, $AN_CEC_OUTPUT_NCU = {out_ncu} (NCU link)")
+    return notes
 
 
 def _whole(token: str, source: str, line: int) -> int:

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from axiscal.errors import DataFormatError
 
-__all__ = ["Statement", "statements", "CONTROL", "fmt"]
+__all__ = ["Statement", "statements", "CONTROL", "SWITCHES", "said", "fmt"]
 
 #: Program statements a loader program uses around its tables, and what each does.
 CONTROL = {
@@ -38,8 +38,19 @@ CONTROL = {
     "G4": "dwells",
 }
 
+#: Data a loader program sets around its tables to switch the compensation off and on again
+#: (SINUMERIK 840D sl Function Manual K3: tables load only while MD32700 / MD32710 = 0; SD41300
+#: enables a CEC table).
+SWITCHES = {"MA_ENC_COMP_ENABLE": "MD32700", "MA_CEC_ENABLE": "MD32710",
+            "SN_CEC_TABLE_ENABLE": "SD41300"}
+
+_SAID = {"NEWCONF": "takes over NEW_CONFIG machine data", "STOPRE": "preprocessing stop",
+         "MSG": "operator message", "G4": "dwell"}
+
 _BLOCK = re.compile(r"^N\d{1,9}\s+", re.IGNORECASE)
-_ASSIGN = re.compile(r"^\$([A-Z]{2})_([A-Z0-9_]+)\s*(?:\[([^\]]*)\])?\s*=\s*(.*)$", re.IGNORECASE)
+_ASSIGN = re.compile(r"^\$([A-Z]{1,4})_([A-Z0-9_]+)\s*(?:\[([^\]]*)\])?\s*=\s*(.*)$", re.IGNORECASE)
+#: a user variable (GUD) without ``$``, as an ``INITIAL.INI`` holds them (``_ZSD[0]=-1``)
+_USER = re.compile(r"^([A-Z_][A-Z0-9_]*)\s*(?:\[([^\]]*)\])?\s*=\s*(.*)$", re.IGNORECASE)
 _CHAN = re.compile(r"^CHANDATA\s*\(\s*\d{1,3}\s*\)$", re.IGNORECASE)
 _END = {"M17", "M30", "M02", "M2", "RET"}
 _UNIT = {"METRIC": "mm", "INCH": "inch"}
@@ -54,7 +65,9 @@ class Statement:
     line : int
         1-based line number.
     kind : str
-        ``assign`` (a system variable or machine data), ``unit`` (``METRIC``/``INCH``),
+        ``assign`` (a system variable or machine data, ``$`` and one to four letters:
+        ``$MA_``, ``$MNS_``, ``$P_``), ``user`` (a user variable without ``$``, as the GUD
+        blocks of an ``INITIAL.INI`` hold them: ``_ZSD[0]=-1``), ``unit`` (``METRIC``/``INCH``),
         ``control`` (a loader program's statement, :data:`CONTROL`), ``end`` (``M17`` …).
     name : str
         ``AA_ENC_COMP``, ``MA_IS_ROT_AX`` … (without the ``$``, upper case); for ``unit`` the
@@ -107,6 +120,11 @@ def statements(text: str, source: str = "<text>") -> list[Statement]:
             index = tuple(s.strip() for s in m.group(3).split(",")) if m.group(3) else ()
             out.append(Statement(n, "assign", name, index, m.group(4).strip(), block))
             continue
+        m = _USER.match(line)
+        if m:
+            index = tuple(s.strip() for s in m.group(2).split(",")) if m.group(2) else ()
+            out.append(Statement(n, "user", m.group(1).upper(), index, m.group(3).strip(), block))
+            continue
         word = _control(up)
         if word:
             out.append(Statement(n, "control", word, value=line, block=block))
@@ -115,6 +133,17 @@ def statements(text: str, source: str = "<text>") -> list[Statement]:
                               "table or loader program (it reads system-variable assignments, "
                               f"{', '.join(CONTROL)}, M17/M30 and comments)", source, n)
     return out
+
+
+def said(s: Statement) -> str:
+    """What a reader says of a loader program's statement it leaves out, or ``""``: a control
+    statement (:data:`CONTROL`) or a switch of the compensation (:data:`SWITCHES`)."""
+    if s.kind == "control":
+        return f"line {s.line}: {s.name} left out ({_SAID[s.name]})"
+    if s.kind == "assign" and s.name in SWITCHES:
+        return (f"line {s.line}: {SWITCHES[s.name]} ${s.name}[{','.join(s.index)}] = {s.value} "
+                "(the program switches the compensation; not a table value)")
+    return ""
 
 
 def _code(raw: str) -> str:
