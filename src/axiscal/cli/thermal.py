@@ -21,9 +21,12 @@ JSON (``--json``), units in the key names (µm, µrad, K, h as each figure's ``u
   (per run ``role``, ``source``, ``rms``, ``max_error``, ``drift_range``,
   ``max_error_share_of_range``).
 * ``compensate``: ``sinumerik`` (``controller``, ``axis``, the machine and setting data by
-  name, each with its ``value`` or ``formula`` and ``unit``, ``k0_mm_per_K``, ``s_per_K``,
-  ``lags_min``, ``lag``, ``sign``, ``outside``), ``model`` (as model) and ``verify`` (null, or
-  ``before_um``, ``after_um``, ``reduction`` per target).
+  name, each with its ``value`` or ``formula`` and ``unit``, ``k0_mm_per_K`` and ``s_per_K``
+  (lists, one per term), ``sensors`` and ``lags_min`` (one per term: a sensor may give two
+  terms), ``lag``, ``sign``, ``outside``), ``model`` (as model), ``verify`` (null, or
+  ``before_um``, ``after_um``, ``reduction`` per target; with ``--on-controller`` also
+  ``moves_per_run``, ``largest_applied_difference_um``, ``time_compression``,
+  ``on_controller``) and ``files`` (what ``--sinumerik-out`` and ``--linuxcnc-out`` wrote).
 """
 
 from __future__ import annotations
@@ -267,6 +270,21 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
                                            "twin twice, one thermal history, without and with "
                                            "the compensation: the drift at P1 and P2 before "
                                            "and after."),
+               on_controller: bool = typer.Option(False, "--on-controller", help="With "
+                                                  "--verify: measure through a real LinuxCNC "
+                                                  "(headless, Debian linuxcnc-uspace) with "
+                                                  "axiscal's HAL component driving X's external "
+                                                  "offset, fed by the simulated sensors "
+                                                  "through HAL on a time-compressed clock."),
+               linuxcnc_out: Optional[Path] = typer.Option(None, "--linuxcnc-out", help="Write "
+                                                           "LinuxCNC's files into this folder: "
+                                                           "thermcomp.json, "
+                                                           "axiscal_thermcomp.py and .hal."),
+               sinumerik_out: Optional[Path] = typer.Option(None, "--sinumerik-out",
+                                                            help="Write SINUMERIK's machine "
+                                                            "and setting data (MD32750, "
+                                                            "SD43920, SD43900, SD43910) with "
+                                                            "the PLC's formulas as comments."),
                config: Optional[Path] = _OPTS["config"],
                seed: int = typer.Option(0, "--seed", min=0, help="--verify: seed of the run."),
                duty: float = _OPTS["duty"], start_h: float = _OPTS["start_h"],
@@ -277,11 +295,19 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
     K3 function manual: MD32750, SD43900 K0(T), SD43910 tanβ(T), SD43920 P0.
 
     With --verify, the compensation is applied on the twin to a new linear test (same thermal
-    history with and without it). Example:
+    history with and without it); with --on-controller too, through a real LinuxCNC. Example:
     axiscal thermal compensate a.csv --validate b.csv --test c.csv --verify --json
     """
     from axiscal.api._thermal import fit_thermal_model, thermal_compensation
+    from axiscal.errors import InputError
 
+    if on_controller and not verify:
+        raise InputError("--on-controller measures the --verify run through LinuxCNC: give "
+                         "--verify too")
+    if sinumerik_out is not None:
+        out_path(sinumerik_out, "SINUMERIK data")
+    if linuxcnc_out is not None and linuxcnc_out.exists() and not linuxcnc_out.is_dir():
+        raise InputError(f"--linuxcnc-out {str(linuxcnc_out)[:200]}: not a folder")
     m = fit_thermal_model(list(fit), validate, test_run, sensors=_names(sensors),
                           channels=("P1", "P2"))
     comp = thermal_compensation(m)
@@ -290,15 +316,33 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
         from axiscal.api._thermal import verify_thermal_compensation
 
         check = verify_thermal_compensation(comp, config, seed, duty=duty, start_h=start_h,
-                                            p1_mm=m.targets[0] * 1e3, p2_mm=m.targets[1] * 1e3)
+                                            p1_mm=m.targets[0] * 1e3, p2_mm=m.targets[1] * 1e3,
+                                            on_controller=on_controller)
+    written = []
+    if sinumerik_out is not None:
+        from axiscal.io._files import write_text_atomic
+
+        write_text_atomic(sinumerik_out, comp.to_text())
+        written.append(str(sinumerik_out))
+    if linuxcnc_out is not None:
+        from axiscal.compensation.on_controller_thermal import thermal_linuxcnc_outputs
+        from axiscal.io._files import write_text_atomic
+
+        linuxcnc_out.mkdir(parents=True, exist_ok=True)
+        for name, text in thermal_linuxcnc_outputs(comp).items():
+            write_text_atomic(linuxcnc_out / name, text)
+            written.append(str(linuxcnc_out / name))
     if json_out:
         print_json({"sinumerik": comp.to_dict(), "model": m.to_dict(),
-                    "verify": None if check is None else check.to_dict()})
+                    "verify": None if check is None else check.to_dict(),
+                    "files": written})
         return
     typer.echo(str(comp))
     typer.echo(str(m))
     if check is not None:
         typer.echo(str(check))
+    if written:
+        note(f"wrote {', '.join(written)}")
 
 
 def _drift_check(dc, out, plot, json_out) -> None:
