@@ -154,9 +154,9 @@ def verify_thermal_on_linuxcnc(twin, plan, comp: SinumerikTemperatureCompensatio
     travel = {"X": (lo, hi), "Y": (0.0, 10.0), "Z": (0.0, 10.0)}
     params = linuxcnc_thermcomp(comp, clock="pin", interval=plan.interval)
     readings, applied = {}, 0.0
-    start = time.monotonic()
     with LinuxCNCThermal(travel=travel, thermcomp=params, velocity=VELOCITY,
                          acceleration=ACCELERATION, av_ratio=AV_RATIO) as cnc:
+        start = time.monotonic()             # once LinuxCNC runs (not the wait for its lock)
         for active in (False, True):
             cnc.set_active(active)
             e = np.empty((measured.size, 2))
@@ -173,7 +173,7 @@ def verify_thermal_on_linuxcnc(twin, plan, comp: SinumerikTemperatureCompensatio
                         asked = comp.error(p * 1e-3, lag[k])
                         applied = max(applied, abs((motor - p) * 1e-3 + asked))
             readings[active] = e
-    wall = time.monotonic() - start
+        wall = time.monotonic() - start
     tm = t[measured]
     run_end = None if log.run_end is None else float(tm[tm <= log.run_end + 1e-9][-1])
 
