@@ -207,3 +207,20 @@ def test_e_ve_from_an_etve_record_is_said_to_be_declared(tmp_path):
     assert d["source"] == "declared" and "without" in d["what"]
     r = runner.invoke(app, ["thermal", "evaluate", str(log), "--e-ve", "X,23,5"])
     assert r.exit_code == 2 and "outside the log" in r.output
+
+
+def test_rotary_table_test_round_trips_through_its_log(tmp_path):
+    """ISO 230-3:2020 Clause 8: ``simulate --test rotary`` on the rotary-table twin writes the
+    log, ``evaluate`` reads it and gives the simulation's figures (one evaluation, every path);
+    the shipped VMC twin has no rotary table and is refused in one line."""
+    log = tmp_path / "rot.csv"
+    sim = _json("thermal", "simulate", "--test", "rotary", "--config",
+                "src/axiscal/data/thermal_rotary_table.toml", "--out", log, "--seed", 2)
+    ev = _json("thermal", "evaluate", log)
+    assert ev["clause"] == "ISO 230-3:2020 Clause 8" and ev["test"] == "rotary"
+    assert ev == axiscal.evaluate_thermal(log).to_dict()
+    by_name = {f["name"]: f for f in sim["evaluation"]["figures"]}
+    for f in ev["figures"]:
+        assert f["value"] == pytest.approx(by_name[f["name"]]["value"], abs=2e-3)
+    r = runner.invoke(app, ["thermal", "plan", "--test", "rotary"])
+    assert r.exit_code == 2 and "rotary table" in r.output

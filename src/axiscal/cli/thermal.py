@@ -40,13 +40,14 @@ from axiscal.cli._common import note, out_path, plot_path, print_json, report_pa
 
 __all__ = ["register", "thermal_app"]
 
-HELP = ("Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
-        "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
-        "compensation.")
+HELP = ("Thermal effects by ISO 230-3:2020: ETVE, spindle, linear-axis and rotary-table tests "
+        "planned, simulated on a thermal twin and evaluated; a thermal model; SINUMERIK and "
+        "LinuxCNC temperature compensation.")
 
 thermal_app = typer.Typer(help=HELP, no_args_is_help=True)
 
-_TESTS = "etve, spindle, linear or drift-check (ISO 230-2 Annex A.5)"
+_TESTS = ("etve, spindle, linear, rotary (a rotary table turning: a twin with one, e.g. "
+          "src/axiscal/data/thermal_rotary_table.toml) or drift-check (ISO 230-2 Annex A.5)")
 
 
 def _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm, duty,
@@ -85,11 +86,12 @@ _OPTS = dict(
     test=typer.Option(..., "--test", help=f"The test: {_TESTS}."),
     config=typer.Option(None, "--config", help="Thermal twin (TOML); default the shipped VMC."),
     duration_h=typer.Option(None, "--duration-h", min=0.0, help="Whole test, h (default: etve "
-                            "24, spindle/linear the run + 1, drift-check 1)."),
-    run_h=typer.Option(None, "--run-h", min=0.0, help="Spindle running / axis cycling, h "
-                       "(default 4)."),
+                            "24, spindle/linear/rotary the run + 1, drift-check 1)."),
+    run_h=typer.Option(None, "--run-h", min=0.0, help="Spindle running / axis cycling / "
+                       "table turning, h (default 4)."),
     interval_s=typer.Option(60.0, "--interval-s", help="Between samples, s (at most 300)."),
-    speed=typer.Option(0.5, "--speed", help="Spindle speed, fraction of the maximum (0.5)."),
+    speed=typer.Option(0.5, "--speed", help="Spindle (or rotary table) speed, "
+                      "fraction of the maximum (0.5)."),
     axis=typer.Option("X", "--axis", help="Axis of the linear test or drift check."),
     p1_mm=typer.Option(None, "--p1-mm", help="Linear test: target P1, mm."),
     p2_mm=typer.Option(None, "--p2-mm", help="Linear test: target P2, mm."),
@@ -204,7 +206,7 @@ def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axis
                                                 "only, to be declared."),
              json_out: bool = typer.Option(False, "--json", help="Print the figures as JSON.")
              ) -> None:
-    """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle or linear axis).
+    """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle, linear axis, rotary).
 
     Example: axiscal thermal evaluate x_linear.csv --plot x_linear.png
     """

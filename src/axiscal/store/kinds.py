@@ -95,7 +95,7 @@ def drift_check_record(raw: bytes, filename: str) -> dict:
 
     Examples
     --------
-    >>> r = drift_check_record(b"reading\n0.1\n0.4\n-0.2\n", "dc.csv")
+    >>> r = drift_check_record(b"reading\\n0.1\\n0.4\\n-0.2\\n", "dc.csv")
     >>> round(r["e_ve"], 6), r["samples"], r["standard"]
     (0.6, 3, 'ISO 230-2:2014 Annex A.5')
     """
