@@ -321,19 +321,23 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
                                             p1_mm=m.targets[0] * 1e3, p2_mm=m.targets[1] * 1e3,
                                             on_controller=on_controller)
     written = []
-    if sinumerik_out is not None:
+    if linuxcnc_out is not None:            # all three files or none (write_files_atomic)
+        from axiscal.compensation.on_controller_thermal import thermal_linuxcnc_outputs
+        from axiscal.io._files import write_files_atomic
+
+        try:
+            linuxcnc_out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise InputError(f"cannot create folder {str(linuxcnc_out)[:200]}: "
+                             f"{exc.strerror or exc}") from None
+        names = write_files_atomic(linuxcnc_out, thermal_linuxcnc_outputs(comp),
+                                   inputs=[*fit, validate, *([test_run] if test_run else [])])
+        written += [str(linuxcnc_out / n) for n in names]
+    if sinumerik_out is not None:           # checked writable before the fit (out_path)
         from axiscal.io._files import write_text_atomic
 
         write_text_atomic(sinumerik_out, comp.to_text())
         written.append(str(sinumerik_out))
-    if linuxcnc_out is not None:
-        from axiscal.compensation.on_controller_thermal import thermal_linuxcnc_outputs
-        from axiscal.io._files import write_text_atomic
-
-        linuxcnc_out.mkdir(parents=True, exist_ok=True)
-        for name, text in thermal_linuxcnc_outputs(comp).items():
-            write_text_atomic(linuxcnc_out / name, text)
-            written.append(str(linuxcnc_out / name))
     if json_out:
         print_json({"sinumerik": comp.to_dict(), "model": m.to_dict(),
                     "verify": None if check is None else check.to_dict(),
