@@ -5,7 +5,7 @@ The model is fitted on three simulated ISO 230-3:2020 linear-axis runs of the th
 (``src/axiscal/data/thermal_vmc.toml``; fit at 8 h with 80 % duty, choice at 13 h with 50 %,
 judged at 2 h with 100 %), and a fourth run (10 h, 70 % duty, seed 9) is measured through a
 headless LinuxCNC twice on one simulated thermal history: axiscal's HAL component
-``axiscal_thermcomp.py`` inactive, then active. The simulated sensors feed LinuxCNC through HAL
+``axiscal_thermcomp.py`` active, then inactive. The simulated sensors feed LinuxCNC through HAL
 pins on a time-compressed clock; every 5 min the X axis moves to P1 and P2 by MDI.
 
 Skipped, with the concrete reason, only where LinuxCNC cannot run (not Debian, not root).

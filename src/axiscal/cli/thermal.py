@@ -316,10 +316,14 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
     check = None
     if verify:
         from axiscal.api._thermal import verify_thermal_compensation
+        from axiscal.cli._common import progress_bar
 
-        check = verify_thermal_compensation(comp, config, seed, duty=duty, start_h=start_h,
-                                            p1_mm=m.targets[0] * 1e3, p2_mm=m.targets[1] * 1e3,
-                                            on_controller=on_controller)
+        with progress_bar("through LinuxCNC: without, then with the compensation") as bar:
+            check = verify_thermal_compensation(comp, config, seed, duty=duty,
+                                                start_h=start_h, p1_mm=m.targets[0] * 1e3,
+                                                p2_mm=m.targets[1] * 1e3,
+                                                on_controller=on_controller,
+                                                progress=bar if on_controller else None)
     written = []
     if linuxcnc_out is not None:            # all three files or none (write_files_atomic)
         from axiscal.compensation.on_controller_thermal import thermal_linuxcnc_outputs

@@ -10,7 +10,7 @@ documentation, "External Axis Offsets"; :mod:`axiscal.instruments.linuxcnc_therm
 :func:`verify_thermal_on_linuxcnc` runs the linear-axis test (ISO 230-3:2020 Clause 7) on the
 thermal twin with the positioning measured through LinuxCNC, twice in one session on one
 simulated thermal history (one seed: the same temperatures, the same reading noise): the
-component inactive, then active. At every sample of the plan the simulated sensors' readings go
+component active, then inactive, each run starting its filters afresh (``reset``). At every sample of the plan the simulated sensors' readings go
 to LinuxCNC through HAL (``feed``: the temperature pins, then the sensors' clock); at every
 ``every``-th sample the axis moves to P1 and P2 (a LinuxCNC move each, MDI), and the simulated
 laser reads the position the machine reaches: ``motor-pos-cmd`` (command + external offset)
@@ -120,10 +120,11 @@ class ThermalOnController:
 
 
 def verify_thermal_on_linuxcnc(twin, plan, comp: SinumerikTemperatureCompensation, seed: int,
-                               *, every: int = 5) -> ThermalOnController:
+                               *, every: int = 5, progress=None) -> ThermalOnController:
     """Measure ``plan`` (a linear test) through LinuxCNC without and with ``comp`` (module
     docstring); the positioning error read at every ``every``-th sample of the plan (at most
-    :data:`~axiscal.standards.iso230_3_data.MAX_INTERVAL` apart)."""
+    :data:`~axiscal.standards.iso230_3_data.MAX_INTERVAL` apart). ``progress(done, total)``,
+    if given, is called after each sample of both runs."""
     from axiscal.instruments.linuxcnc_controller import unavailable_reason
     from axiscal.instruments.linuxcnc_thermal import LinuxCNCThermal
     from axiscal.procedures.thermal import simulate_thermal
@@ -157,11 +158,13 @@ def verify_thermal_on_linuxcnc(twin, plan, comp: SinumerikTemperatureCompensatio
     with LinuxCNCThermal(travel=travel, thermcomp=params, velocity=VELOCITY,
                          acceleration=ACCELERATION, av_ratio=AV_RATIO) as cnc:
         start = time.monotonic()             # once LinuxCNC runs (not the wait for its lock)
-        for active in (False, True):
+        for active in (True, False):         # the compensated run first: from a fresh start
             cnc.set_active(active)
             e = np.empty((measured.size, 2))
             for k in range(t.size):
-                cnc.feed(float(t[k]), temps[k])
+                (cnc.start if k == 0 else cnc.feed)(float(t[k]), temps[k])
+                if progress is not None:
+                    progress(k + 1 + (0 if active else t.size), 2 * t.size)
                 if k % every:
                     continue
                 m = k // every

@@ -19,8 +19,12 @@ a whole number of ``scale`` units on ``counts`` (net to ``axis.L.eoffset-counts`
 The lag: ``L ← T + (L − T) · exp(−Δt / τ)`` at each new reading, ``L = T`` at the first (the
 temperature held over the interval at its new value: axiscal's ``lagged``). Δt comes from the
 ``time`` pin (s) when the JSON says ``"clock": "pin"`` (the logger's clock; the test feeds a
-time-compressed simulated clock there), else from the computer's monotonic clock, a reading
-taken each ``interval_s``. A time that goes backwards starts the filters again.
+time-compressed simulated clock there: a reading each time it moves), else from the computer's
+monotonic clock, a reading taken each ``interval_s``. While the ``reset`` pin is high no
+reading is taken and the filters are empty (ΔK = 0); on its release they start from the
+temperatures then (hold it high until the temperature inputs are valid: a filter started from
+an input still at 0 would take hours to forget it). A time that goes backwards starts the
+filters again.
 
 Pure Python (only LinuxCNC's ``hal`` module), so it runs on any LinuxCNC machine as it is.
 
@@ -88,6 +92,7 @@ def main(argv):
     c.newpin("scale", hal.HAL_FLOAT, hal.HAL_IN)
     c.newpin("arm", hal.HAL_BIT, hal.HAL_IN)            # motion.coord-mode
     c.newpin("active", hal.HAL_BIT, hal.HAL_IN)         # 0: the offset held at no correction
+    c.newpin("reset", hal.HAL_BIT, hal.HAL_IN)          # 1: filters empty, no reading
     c.newpin("enable", hal.HAL_BIT, hal.HAL_OUT)
     c.newpin("error", hal.HAL_FLOAT, hal.HAL_OUT)       # ΔK now, mm
     c.newpin("cycles", hal.HAL_U32, hal.HAL_OUT)
@@ -103,17 +108,22 @@ def main(argv):
 
 def run(c, m, pin_clock, interval):
     """The loop: a new reading when the clock has moved (the pin's value, or ``interval`` s of
-    the computer's clock); the counts make the offset request −ΔK from the base taken at each
-    arming (LinuxCNC applies count changes only while the offsets are active, as in
+    the computer's clock; with the pin's clock the first when it first moves), or at once when
+    ``reset`` falls; the counts make the offset request −ΔK from the base taken at each arming
+    (LinuxCNC applies count changes only while the offsets are active, as in
     ``axiscal_volcomp.py``)."""
-    n, armed, base, last = 0, False, 0, None
+    n, armed, base = 0, False, 0
+    last = c["time"] if pin_clock else None
     n_temps = len(m.sensors)
     try:
         while True:
-            t = c["time"] if pin_clock else time.monotonic()
-            if last is None or (t != last if pin_clock else t - last >= interval):
-                m.update(t, [c[f"temp-{i}"] for i in range(n_temps)])
-                last = t
+            if c["reset"]:
+                m.state, m.t, last = None, None, None
+            else:
+                t = c["time"] if pin_clock else time.monotonic()
+                if last is None or (t != last if pin_clock else t - last >= interval):
+                    m.update(t, [c[f"temp-{i}"] for i in range(n_temps)])
+                    last = t
             s = c["scale"]
             if c["arm"] and s > 0:
                 if not armed:
