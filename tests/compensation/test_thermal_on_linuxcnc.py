@@ -35,8 +35,8 @@ def _run(twin, seed, start_h, duty):
 @pytest.mark.skipif(WHY is not None, reason=f"LinuxCNC cannot run here: {WHY}")
 def test_thermal_drift_falls_by_80_percent_through_linuxcnc():
     """4 h of cycling (the minimum of axiscal's Clause 7 test), 49 readings at each target per
-    run, 196 LinuxCNC moves in all. Measured (seed 9): P1 5.41 µm → 0.50 µm (91 %), P2 56.9 µm →
-    1.58 µm (97 %); the twin alone (``verify_on_twin``, 5 h) gave 92 % and 96 %. LinuxCNC's
+    run, 196 LinuxCNC moves in all. Measured (seed 9): P1 5.41 µm → 0.51 µm (90 %), P2 56.9 µm →
+    1.60 µm (97 %); the twin alone (``verify_on_twin``, 5 h) gave 92 % and 96 %. LinuxCNC's
     offset equals −ΔK of axiscal's model at every reading within 0.1 µm (the offset planner
     stops ≤ 20 nm short; the count is 1 nm)."""
     twin = parse_thermal_config(open(CONFIG).read(), CONFIG)
