@@ -93,3 +93,18 @@ def test_a_drift_check_only_goes_with_a_positioning_test_and_e_ve_once(files, tm
                             "--db", f"sqlite:///{tmp_path / 'h.sqlite'}"])
     assert r.exit_code == 2 and "at least 2" in r.output
     assert not (tmp_path / "h.sqlite").exists()
+
+
+def test_history_add_keeps_the_drift_check_too(files, tmp_path, monkeypatch):
+    """``axiscal history add TEST --drift-check DC``: the same record as ``iso230-2 --history``
+    (one path into the store, :func:`axiscal.store.kinds.drift_check_record`)."""
+    d, dc, pos = files
+    monkeypatch.setenv("AXISCAL_CONFIG", str(d / "none.toml"))
+    db = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    out = json.loads(_ok("history", "add", pos, "--drift-check", dc, "--db", db,
+                         "--json").stdout)
+    with api.History(db) as h:
+        kept = h.get(out["id"]).result["drift_check"]
+    assert kept["e_ve"] == pytest.approx(np.ptp(read_drift_check(dc)), abs=1e-12)
+    r = _ok("history", "add", pos, "--drift-check", dc, "--db", db)
+    assert "already stored" in r.stdout and "not stored: --drift-check" in r.output
