@@ -62,7 +62,7 @@ def linuxcnc_thermcomp(comp: SinumerikTemperatureCompensation, *, clock: str = "
         raise InputError(f"interval {interval!r} s must be > 0")
     return {"axis": comp.axis, "sensors": list(comp.sensors), "lags_s": list(comp.lags),
             "k0_mm_per_K": [k * 1e3 for k in comp.k0], "slope_per_K": list(comp.slope),
-            "p0_mm": comp.p0 * 1e3, "reference_C": 20.0, "clock": clock,
+            "p0_mm": round(comp.p0 * 1e3, 9), "reference_C": 20.0, "clock": clock,
             "interval_s": float(interval),
             "model": "dK = K0 + tan(beta) (P - P0), K0 = sum k0_i (L_i - 20 C), tan(beta) = "
                      "sum s_i (L_i - 20 C); the external offset is -dK"}
