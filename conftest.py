@@ -18,7 +18,7 @@ collect_ignore = ([] if importlib.util.find_spec("numba") is not None
 #: lost an MDI line (a 30 s timeout of the volumetric test in 2 of 3 ``make test`` runs).
 LINUXCNC_FILES = {"test_programs_on_linuxcnc.py", "test_linuxcnc_live.py", "test_on_linuxcnc.py",
                   "test_calibrate_on_linuxcnc.py", "test_on_linuxcnc_volumetric.py",
-                  "test_five_axis_linuxcnc.py"}
+                  "test_five_axis_linuxcnc.py", "test_thermal_on_linuxcnc.py"}
 
 
 def pytest_collection_modifyitems(config, items):

@@ -41,3 +41,10 @@ b.legend()
 model = axiscal.fit_thermal_model(runs[0].log, runs[1].log, test=runs[2].log)
 print(model)
 print(axiscal.thermal_compensation(model))
+
+# %%
+# What the controller is given: SINUMERIK's machine and setting data, with K0(T) and tanβ(T) for
+# the PLC as comments (``thermal compensate --sinumerik-out``; ΔK is the error line, the sign of
+# K3 §4.2). LinuxCNC is given a HAL component with the same terms (``--linuxcnc-out``; proven
+# through a real LinuxCNC by ``--verify --on-controller``).
+print(axiscal.thermal_compensation(model).to_text())

@@ -69,6 +69,32 @@ def test_model_and_sinumerik_compensation(linear_logs):
     assert text.startswith("thermal model of the linear test") and "validation run" in text
 
 
+def test_controller_files_from_the_model(linear_logs, tmp_path):
+    """--sinumerik-out: K3's data (MD32750 = 3, SD43920 = P0 = 40 mm) with K0(T) and tanβ(T)
+    for the PLC as comments, the JSON's coefficients; --linuxcnc-out: the component, its HAL
+    file and thermcomp.json with the same coefficients in mm/K. --on-controller alone (without
+    --verify) is refused in one line."""
+    (a, _), (b, _), _ = linear_logs
+    sd, lc = tmp_path / "x_temp.txt", tmp_path / "lcnc"
+    d = _json("thermal", "compensate", a, "--validate", b, "--sinumerik-out", sd,
+              "--linuxcnc-out", lc)
+    text = sd.read_text()
+    assert "$MA_TEMP_COMP_TYPE[AX1]=3" in text
+    assert "$SA_TEMP_COMP_REF_POSITION[AX1]=40.000000" in text
+    k0 = d["sinumerik"]["SD43900 $SA_TEMP_COMP_ABS_VALUE"]["k0_mm_per_K"]
+    tc = json.loads((lc / "thermcomp.json").read_text())
+    assert tc["sensors"] == d["sinumerik"]["sensors"] and len(k0) == len(tc["sensors"])
+    assert tc["k0_mm_per_K"] == pytest.approx(k0, abs=1e-12)
+    assert tc["p0_mm"] == pytest.approx(40.0)
+    assert (lc / "axiscal_thermcomp.py").exists() and (lc / "axiscal_thermcomp.hal").exists()
+    assert sorted(d["files"]) == sorted([str(sd)] + [str(lc / n) for n in (
+        "thermcomp.json", "axiscal_thermcomp.py", "axiscal_thermcomp.hal")])
+    r = runner.invoke(app, ["thermal", "compensate", str(a), "--validate", str(b),
+                            "--on-controller"])
+    assert r.exit_code == 2 and "give --verify too" in r.output
+    assert len(r.output.strip().splitlines()) == 1
+
+
 JOB = """
 [company]
 name = "Precision Metrology GmbH"
@@ -181,3 +207,20 @@ def test_e_ve_from_an_etve_record_is_said_to_be_declared(tmp_path):
     assert d["source"] == "declared" and "without" in d["what"]
     r = runner.invoke(app, ["thermal", "evaluate", str(log), "--e-ve", "X,23,5"])
     assert r.exit_code == 2 and "outside the log" in r.output
+
+
+def test_rotary_table_test_round_trips_through_its_log(tmp_path):
+    """ISO 230-3:2020 Clause 8: ``simulate --test rotary`` on the rotary-table twin writes the
+    log, ``evaluate`` reads it and gives the simulation's figures (one evaluation, every path);
+    the shipped VMC twin has no rotary table and is refused in one line."""
+    log = tmp_path / "rot.csv"
+    sim = _json("thermal", "simulate", "--test", "rotary", "--config",
+                "src/axiscal/data/thermal_rotary_table.toml", "--out", log, "--seed", 2)
+    ev = _json("thermal", "evaluate", log)
+    assert ev["clause"] == "ISO 230-3:2020 Clause 8" and ev["test"] == "rotary"
+    assert ev == axiscal.evaluate_thermal(log).to_dict()
+    by_name = {f["name"]: f for f in sim["evaluation"]["figures"]}
+    for f in ev["figures"]:
+        assert f["value"] == pytest.approx(by_name[f["name"]]["value"], abs=2e-3)
+    r = runner.invoke(app, ["thermal", "plan", "--test", "rotary"])
+    assert r.exit_code == 2 and "rotary table" in r.output

@@ -111,3 +111,32 @@ def test_lag_is_a_first_order_filter():
     t = np.arange(0, 3001, 30.0)
     step = np.where(t > 0, 1.0, 0.0)
     np.testing.assert_allclose(lagged(step, t, 600.0), 1 - np.exp(-t / 600.0), atol=1e-12)
+
+
+def test_linuxcnc_component_computes_the_models_correction(twin, linear_model):
+    """axiscal_thermcomp.py (the HAL component, run here without HAL) takes the readings one by
+    one and evaluates ΔK = K0 + tanβ (P − P0) as the library does from the whole log
+    (:func:`lagged` and ``SinumerikTemperatureCompensation.error``), to 1e-12 mm; a time that
+    goes backwards starts its filters again."""
+    from axiscal.compensation.on_controller_thermal import linuxcnc_thermcomp
+    from axiscal.data.linuxcnc.axiscal_thermcomp import ThermalCorrection
+
+    model, _ = linear_model
+    comp = sinumerik_compensation(model)
+    log, _ = _run(twin, "linear", 9, 10, duty=0.7)
+    temps = np.column_stack([log.temperatures[s] for s in comp.sensors])
+    lag = np.column_stack([lagged(log.temperatures[s], log.time, tau)
+                           for s, tau in zip(comp.sensors, comp.lags)])
+    c = ThermalCorrection(linuxcnc_thermcomp(comp, clock="pin"))
+    for pass_ in range(2):
+        for k in range(0, log.time.size, 7):
+            c.update(float(log.time[k]), list(temps[k]))
+            if k == 0:
+                assert c.error(400.0) == pytest.approx(comp.error(0.4, lag[0]) * 1e3, abs=1e-12)
+    # the filter sees every 7th reading: compare with lagged() on the same samples
+    sub = np.arange(0, log.time.size, 7)
+    lag7 = np.column_stack([lagged(log.temperatures[s][sub], log.time[sub], tau)
+                            for s, tau in zip(comp.sensors, comp.lags)])
+    for p_mm in (40.0, 760.0):
+        assert c.error(p_mm) == pytest.approx(comp.error(p_mm * 1e-3, lag7[-1]) * 1e3,
+                                              abs=1e-12)

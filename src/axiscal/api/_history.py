@@ -54,21 +54,26 @@ class History:
             ``machine``, ``axis``, ``kind`` (default: from the content), ``instrument``,
             ``operator``, ``note``, ``date`` (``YYYY-MM-DD``; default the file's, else today,
             marked as unknown), ``uncertainty`` (the inputs of the test's uncertainty budget,
-            stored with it; default the user configuration's, as :func:`axiscal.evaluate`).
+            stored with it; default the user configuration's, as :func:`axiscal.evaluate`),
+            ``drift_check`` (a positioning test's drift check, ISO 230-2:2014 Annex A.5: a
+            path, or (bytes, filename); kept in the test's record, its E_VE the budget's).
 
         Returns
         -------
         axiscal.store.history.AddResult
             ``id``, ``duplicate``, ``kind``, ``machine``, ``axis``.
         """
+        from axiscal.io._files import read_bytes
+
+        dc = metadata.get("drift_check")
+        if dc is not None and not isinstance(dc, tuple):
+            metadata["drift_check"] = (read_bytes(dc), Path(dc).name)
         if isinstance(source, (bytes, bytearray)):
             if not filename:
                 from axiscal.errors import InputError
 
                 raise InputError("History.add: give the filename of the bytes")
             return self.store.add(bytes(source), filename, **metadata)
-        from axiscal.io._files import read_bytes
-
         return self.store.add(read_bytes(source), filename or Path(source).name, **metadata)
 
     def tests(self, machine: str | None = None, axis: str | None = None) -> list:

@@ -115,13 +115,21 @@ def thermal_compensation(model: Any):
     return sinumerik_compensation(model)
 
 
-def verify_thermal_compensation(comp: Any, config: Any = None, seed: int = 0, **options):
+def verify_thermal_compensation(comp: Any, config: Any = None, seed: int = 0, *,
+                                on_controller: bool = False, progress: Any = None, **options):
     """A linear test of ``comp``'s axis on the twin, run without and with the compensation on
-    one thermal history (:func:`axiscal.compensation.thermal_model.verify_on_twin`); ``options``
-    as :func:`plan_thermal`."""
+    one thermal history (:func:`axiscal.compensation.thermal_model.verify_on_twin`); with
+    ``on_controller``, measured through a real LinuxCNC with axiscal's HAL component
+    (:func:`axiscal.compensation.on_controller_thermal.verify_thermal_on_linuxcnc`).
+    ``options`` as :func:`plan_thermal`; ``progress(done, total)`` follows the LinuxCNC run."""
+    plan = plan_thermal("linear", config, axis=comp.axis, **options)
+    if on_controller:
+        from axiscal.compensation.on_controller_thermal import verify_thermal_on_linuxcnc
+
+        return verify_thermal_on_linuxcnc(thermal_twin(config), plan, comp, seed,
+                                          progress=progress)
     from axiscal.compensation.thermal_model import verify_on_twin
 
-    plan = plan_thermal("linear", config, axis=comp.axis, **options)
     return verify_on_twin(thermal_twin(config), plan, comp, seed)
 
 

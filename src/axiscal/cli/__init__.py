@@ -113,9 +113,9 @@ SUMMARIES: dict[str, str] = {
         "Ballbar (circular test) diagnosis after ISO 230-4:2005 and Renishaw, Calibration of "
         "machine squareness, Method 4: every separable machine error, ranked, with advice.",
     "thermal":
-        "Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
-        "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
-        "compensation.",
+        "Thermal effects by ISO 230-3:2020: ETVE, spindle, linear-axis and rotary-table tests "
+        "planned, simulated on a thermal twin and evaluated; a thermal model; SINUMERIK and "
+        "LinuxCNC temperature compensation.",
     "fiveaxis":
         "Five-axis machines: the location errors of both rotary axes (ISO 230-1, ISO 230-7) "
         "identified from probed spheres and R-tests, with their uncertainty.",

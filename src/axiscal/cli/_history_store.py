@@ -58,15 +58,16 @@ def _existing(db) -> None:
                          "FILE' starts one)")
 
 
-def store_run(file: Path, db, machine=None, axis=None) -> None:
+def store_run(file: Path, db, machine=None, axis=None, drift_check=None) -> None:
     """The ``--history`` step of an evaluating command: store the file just evaluated
-    (:meth:`axiscal.api.History.add`)."""
+    (:meth:`axiscal.api.History.add`), with its drift check when one was given."""
     from axiscal import api
 
+    extra = {} if drift_check is None else {"drift_check": drift_check}
     with api.History(db) as h:
-        r = h.add(file, machine=machine, axis=axis)
+        r = h.add(file, machine=machine, axis=axis, **extra)
     note(f"history: {'already stored as' if r.duplicate else 'stored as'} test {r.id} "
-         f"({r.machine} {r.axis})")
+         f"({r.machine} {r.axis}){' with its drift check' if extra and not r.duplicate else ''}")
 
 
 def history_reads_alike(file: Path, encoding: str) -> None:

@@ -60,6 +60,10 @@ def add(
     note_: str = typer.Option("", "--note", help="A note kept with the test."),
     date: Optional[str] = typer.Option(None, "--date", help="Test date YYYY-MM-DD (default: the "
                                        "file's, else today, marked as unknown)."),
+    drift_check: Optional[Path] = typer.Option(None, "--drift-check", help="A positioning "
+                                               "test's drift check (ISO 230-2:2014 Annex A.5), "
+                                               "kept with it: its E_VE, measured, is the "
+                                               "budget's."),
     db: Optional[str] = _DB,
     json_out: bool = _JSON,
 ) -> None:
@@ -70,8 +74,9 @@ def add(
     from axiscal import api
 
     with api.History(db) as h:
+        extra = {} if drift_check is None else {"drift_check": drift_check}
         r = h.add(file, machine=machine, axis=axis, kind=kind, instrument=instrument,
-                  note=note_, date=date)
+                  note=note_, date=date, **extra)
     if json_out:
         print_json({"id": r.id, "duplicate": r.duplicate, "kind": r.kind, "machine": r.machine,
                     "axis": r.axis})
@@ -84,6 +89,9 @@ def add(
 
     typed = [f"--{k} {quote(v)}" for k, v in (("date", date), ("instrument", instrument),
                                          ("note", note_)) if v]
+    if r.duplicate and drift_check is not None:
+        note(f"not stored: --drift-check {quote(str(drift_check))} (test {r.id} was stored "
+             "before and keeps its record)")
     if r.duplicate and typed:      # not stored with the old test: said, with the correction
         note(f"not stored: {' '.join(typed)} (test {r.id} keeps what it was stored with); "
              f"to change it: axiscal history edit {r.id} {' '.join(typed)} --by NAME "

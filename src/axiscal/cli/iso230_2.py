@@ -140,7 +140,7 @@ def iso230_2(
     if history:
         from axiscal.cli._history_store import store_run
 
-        store_run(file, db, machine=machine)
+        store_run(file, db, machine=machine, drift_check=drift_check)
     if outcome is not None:
         from axiscal.cli._certificate import tell_outcome
 

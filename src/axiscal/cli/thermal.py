@@ -21,9 +21,12 @@ JSON (``--json``), units in the key names (µm, µrad, K, h as each figure's ``u
   (per run ``role``, ``source``, ``rms``, ``max_error``, ``drift_range``,
   ``max_error_share_of_range``).
 * ``compensate``: ``sinumerik`` (``controller``, ``axis``, the machine and setting data by
-  name, each with its ``value`` or ``formula`` and ``unit``, ``k0_mm_per_K``, ``s_per_K``,
-  ``lags_min``, ``lag``, ``sign``, ``outside``), ``model`` (as model) and ``verify`` (null, or
-  ``before_um``, ``after_um``, ``reduction`` per target).
+  name, each with its ``value`` or ``formula`` and ``unit``, ``k0_mm_per_K`` and ``s_per_K``
+  (lists, one per term), ``sensors`` and ``lags_min`` (one per term: a sensor may give two
+  terms), ``lag``, ``sign``, ``outside``), ``model`` (as model), ``verify`` (null, or
+  ``before_um``, ``after_um``, ``reduction`` per target; with ``--on-controller`` also
+  ``moves_per_run``, ``largest_applied_difference_um``, ``time_compression``,
+  ``on_controller``) and ``files`` (what ``--sinumerik-out`` and ``--linuxcnc-out`` wrote).
 """
 
 from __future__ import annotations
@@ -37,13 +40,14 @@ from axiscal.cli._common import note, out_path, plot_path, print_json, report_pa
 
 __all__ = ["register", "thermal_app"]
 
-HELP = ("Thermal effects by ISO 230-3:2020: ETVE, spindle and linear-axis tests planned, "
-        "simulated on a thermal twin and evaluated; a thermal model; SINUMERIK temperature "
-        "compensation.")
+HELP = ("Thermal effects by ISO 230-3:2020: ETVE, spindle, linear-axis and rotary-table tests "
+        "planned, simulated on a thermal twin and evaluated; a thermal model; SINUMERIK and "
+        "LinuxCNC temperature compensation.")
 
 thermal_app = typer.Typer(help=HELP, no_args_is_help=True)
 
-_TESTS = "etve, spindle, linear or drift-check (ISO 230-2 Annex A.5)"
+_TESTS = ("etve, spindle, linear, rotary (a rotary table turning: a twin with one, e.g. "
+          "src/axiscal/data/thermal_rotary_table.toml) or drift-check (ISO 230-2 Annex A.5)")
 
 
 def _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm, duty,
@@ -82,11 +86,12 @@ _OPTS = dict(
     test=typer.Option(..., "--test", help=f"The test: {_TESTS}."),
     config=typer.Option(None, "--config", help="Thermal twin (TOML); default the shipped VMC."),
     duration_h=typer.Option(None, "--duration-h", min=0.0, help="Whole test, h (default: etve "
-                            "24, spindle/linear the run + 1, drift-check 1)."),
-    run_h=typer.Option(None, "--run-h", min=0.0, help="Spindle running / axis cycling, h "
-                       "(default 4)."),
+                            "24, spindle/linear/rotary the run + 1, drift-check 1)."),
+    run_h=typer.Option(None, "--run-h", min=0.0, help="Spindle running / axis cycling / "
+                       "table turning, h (default 4)."),
     interval_s=typer.Option(60.0, "--interval-s", help="Between samples, s (at most 300)."),
-    speed=typer.Option(0.5, "--speed", help="Spindle speed, fraction of the maximum (0.5)."),
+    speed=typer.Option(0.5, "--speed", help="Spindle (or rotary table) speed, "
+                      "fraction of the maximum (0.5)."),
     axis=typer.Option("X", "--axis", help="Axis of the linear test or drift check."),
     p1_mm=typer.Option(None, "--p1-mm", help="Linear test: target P1, mm."),
     p2_mm=typer.Option(None, "--p2-mm", help="Linear test: target P2, mm."),
@@ -201,7 +206,7 @@ def evaluate(log: Path = typer.Argument(..., help="Thermal log CSV (format: axis
                                                 "only, to be declared."),
              json_out: bool = typer.Option(False, "--json", help="Print the figures as JSON.")
              ) -> None:
-    """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle or linear axis).
+    """Evaluate a logged thermal test by ISO 230-3:2020 (ETVE, spindle, linear axis, rotary).
 
     Example: axiscal thermal evaluate x_linear.csv --plot x_linear.png
     """
@@ -267,6 +272,21 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
                                            "twin twice, one thermal history, without and with "
                                            "the compensation: the drift at P1 and P2 before "
                                            "and after."),
+               on_controller: bool = typer.Option(False, "--on-controller", help="With "
+                                                  "--verify: measure through a real LinuxCNC "
+                                                  "(headless, Debian linuxcnc-uspace) with "
+                                                  "axiscal's HAL component driving X's external "
+                                                  "offset, fed by the simulated sensors "
+                                                  "through HAL on a time-compressed clock."),
+               linuxcnc_out: Optional[Path] = typer.Option(None, "--linuxcnc-out", help="Write "
+                                                           "LinuxCNC's files into this folder: "
+                                                           "thermcomp.json, "
+                                                           "axiscal_thermcomp.py and .hal."),
+               sinumerik_out: Optional[Path] = typer.Option(None, "--sinumerik-out",
+                                                            help="Write SINUMERIK's machine "
+                                                            "and setting data (MD32750, "
+                                                            "SD43920, SD43900, SD43910) with "
+                                                            "the PLC's formulas as comments."),
                config: Optional[Path] = _OPTS["config"],
                seed: int = typer.Option(0, "--seed", min=0, help="--verify: seed of the run."),
                duty: float = _OPTS["duty"], start_h: float = _OPTS["start_h"],
@@ -277,28 +297,62 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
     K3 function manual: MD32750, SD43900 K0(T), SD43910 tanβ(T), SD43920 P0.
 
     With --verify, the compensation is applied on the twin to a new linear test (same thermal
-    history with and without it). Example:
+    history with and without it); with --on-controller too, through a real LinuxCNC. Example:
     axiscal thermal compensate a.csv --validate b.csv --test c.csv --verify --json
     """
     from axiscal.api._thermal import fit_thermal_model, thermal_compensation
+    from axiscal.errors import InputError
 
+    if on_controller and not verify:
+        raise InputError("--on-controller measures the --verify run through LinuxCNC: give "
+                         "--verify too")
+    if sinumerik_out is not None:
+        out_path(sinumerik_out, "SINUMERIK data")
+    if linuxcnc_out is not None and linuxcnc_out.exists() and not linuxcnc_out.is_dir():
+        raise InputError(f"--linuxcnc-out {str(linuxcnc_out)[:200]}: not a folder")
     m = fit_thermal_model(list(fit), validate, test_run, sensors=_names(sensors),
                           channels=("P1", "P2"))
     comp = thermal_compensation(m)
     check = None
     if verify:
         from axiscal.api._thermal import verify_thermal_compensation
+        from axiscal.cli._common import progress_bar
 
-        check = verify_thermal_compensation(comp, config, seed, duty=duty, start_h=start_h,
-                                            p1_mm=m.targets[0] * 1e3, p2_mm=m.targets[1] * 1e3)
+        with progress_bar("through LinuxCNC: without, then with the compensation") as bar:
+            check = verify_thermal_compensation(comp, config, seed, duty=duty,
+                                                start_h=start_h, p1_mm=m.targets[0] * 1e3,
+                                                p2_mm=m.targets[1] * 1e3,
+                                                on_controller=on_controller,
+                                                progress=bar if on_controller else None)
+    written = []
+    if linuxcnc_out is not None:            # all three files or none (write_files_atomic)
+        from axiscal.compensation.on_controller_thermal import thermal_linuxcnc_outputs
+        from axiscal.io._files import write_files_atomic
+
+        try:
+            linuxcnc_out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise InputError(f"cannot create folder {str(linuxcnc_out)[:200]}: "
+                             f"{exc.strerror or exc}") from None
+        names = write_files_atomic(linuxcnc_out, thermal_linuxcnc_outputs(comp),
+                                   inputs=[*fit, validate, *([test_run] if test_run else [])])
+        written += [str(linuxcnc_out / n) for n in names]
+    if sinumerik_out is not None:           # checked writable before the fit (out_path)
+        from axiscal.io._files import write_text_atomic
+
+        write_text_atomic(sinumerik_out, comp.to_text())
+        written.append(str(sinumerik_out))
     if json_out:
         print_json({"sinumerik": comp.to_dict(), "model": m.to_dict(),
-                    "verify": None if check is None else check.to_dict()})
+                    "verify": None if check is None else check.to_dict(),
+                    "files": written})
         return
     typer.echo(str(comp))
     typer.echo(str(m))
     if check is not None:
         typer.echo(str(check))
+    if written:
+        note(f"wrote {', '.join(written)}")
 
 
 def _drift_check(dc, out, plot, json_out) -> None:

@@ -46,12 +46,22 @@ fast the compensation may change. From a linear-axis model (P1, P2)::
     P0 = P1,   K0(T) = d_P1(T),   tanβ(T) = (d_P2(T) − d_P1(T)) / (P2 − P1)
 
 each a linear function of the lagged temperatures with the coefficients reported (mm/K and 1/K).
-Sign: the value is the error (actual − commanded), as axiscal writes SINUMERIK's EEC tables
-(``compensation/controllers/siemens_840d.py``: "a positive compensation value causes the machine
-axis to move in the negative direction"); that the temperature compensation shares that sign
-is not confirmed against the K3 text. Outside the function: the tilts A and B and every drift
-across the axis (Y or Z drift while X moves); SINUMERIK's temperature compensation corrects an
-axis along itself only.
+Sign (axiscal's reading, and why): ΔK is written as the axis's thermal **error** (actual −
+commanded, the laser's reading of the deviation), not as the correction. The K3 text defines ΔK
+as the "approximated error line": its figure plots the error curve of the axis at temperature T
+against the position, the deviation up, and calls tanβ "the gradient of the approximated error
+line" (SINUMERIK 840D sl Function Manual *Extended Functions*, 03/2013, 6FC5397-1BP40-3BA1, K3
+§4.2 "Temperature compensation", p. 225, "Error curve characteristic" and "Compensation
+equation"); its worked example takes P0, K0 and tanβ(T) from the measured error curves (p. 230,
+"Specifying parameters"); the SINUMERIK 840C manual's same function labels that axis "Error
+(comp. value)" (Installation Instructions 09.95, §12.19.4 "Temperature compensation TC",
+p. 12-188): the compensation value is the error, which the control then removes. The same sign
+as SINUMERIK's EEC tables, for which K3 says it plainly ("a positive compensation value causes
+the machine axis to move in the negative direction"; ``compensation/controllers/
+siemens_840d.py``). The K3 pages read do not state the direction of the temperature
+compensation's motion in words: check the sign on the machine with one small K0 before use.
+Outside the function: the tilts A and B and every drift across the axis (Y or Z drift while X
+moves); SINUMERIK's temperature compensation corrects an axis along itself only.
 """
 
 from __future__ import annotations
@@ -304,16 +314,50 @@ class SinumerikTemperatureCompensation:
             "SD43920 $SA_TEMP_COMP_REF_POSITION": {"value": round(self.p0 * 1e3, 6), "unit": "mm"},
             "SD43900 $SA_TEMP_COMP_ABS_VALUE": {
                 "formula": "K0 = sum_i k0_i * (L_i - 20 °C)", "unit": "mm",
-                "k0_mm_per_K": dict(zip(self.sensors, [round(k * 1e3, 12) for k in self.k0]))},
+                "k0_mm_per_K": [round(k * 1e3, 12) for k in self.k0]},
             "SD43910 $SA_TEMP_COMP_SLOPE": {
                 "formula": "tanβ = sum_i s_i * (L_i - 20 °C)", "unit": "1 (mm/mm)",
-                "s_per_K": dict(zip(self.sensors, [float(f"{k:.6g}") for k in self.slope]))},
-            "lags_min": dict(zip(self.sensors, [tau / 60 for tau in self.lags])),
+                "s_per_K": [float(f"{k:.6g}") for k in self.slope]},
+            "sensors": list(self.sensors),
+            "lags_min": [tau / 60 for tau in self.lags],
             "lag": "L_i: the temperature through a first-order lag, tau dL/dt = T - L",
-            "sign": "the value is the error (actual - commanded), as axiscal's EEC tables; not "
-                    "confirmed against the K3 text for the temperature compensation",
+            "sign": "the value is the error (actual - commanded): K3's 'approximated error "
+                    "line' (840D sl Extended Functions 03/2013, K3 4.2, p. 225), the sign of "
+                    "axiscal's EEC tables; check it on the machine with one small K0",
             "outside": "tilts and drifts across the axis are outside this function",
         }
+
+    def to_text(self, machine_axis: str = "AX1") -> str:
+        """The machine and setting data as a SINUMERIK assignment file (``;`` comments): MD32750
+        and SD43920 fixed, SD43900 and SD43910 at their value with every sensor at 20 °C (0),
+        and, as comments, K0(T) and tanβ(T) for the PLC (or synchronized actions) to write
+        cyclically (K3 §4.2; module docstring for the sign).
+
+        Examples
+        --------
+        >>> c = SinumerikTemperatureCompensation("X", 0.04, ("T",), (600.0,), (-1e-6,), (1e-5,))
+        >>> print(c.to_text().splitlines()[-4])
+        $MA_TEMP_COMP_TYPE[AX1]=3
+        """
+        ax = one_line(machine_axis, 20)
+        lines = [f"; axiscal: SINUMERIK temperature compensation of axis {self.axis} (K3 4.2, "
+                 "840D sl Function Manual Extended Functions)",
+                 "; from a thermal model fitted to ISO 230-3:2020 Clause 7 runs",
+                 "; dK = K0 + tan(beta) * (Px - P0); dK is the error line (actual - commanded)",
+                 "; the PLC writes cyclically, from each temperature seen through its lag",
+                 ";   L_i(t): tau_i dL_i/dt = T_i - L_i",
+                 ";   SD43900 $SA_TEMP_COMP_ABS_VALUE = sum k0_i (L_i - 20 C)  [mm]",
+                 ";   SD43910 $SA_TEMP_COMP_SLOPE     = sum s_i  (L_i - 20 C)  [1]"]
+        for sensor, tau, k, b in zip(self.sensors, self.lags, self.k0, self.slope):
+            lines.append(f";   {one_line(sensor, 40)}: tau {tau:g} s, k0 {k * 1e3:.9g} mm/K, "
+                         f"s {b:.9g} 1/K")
+        lines += ["; MD32760 $MA_COMP_ADD_VELO_FACTOR limits how fast dK may change",
+                  "; tilts and drifts across the axis are outside this function",
+                  f"$MA_TEMP_COMP_TYPE[{ax}]=3",
+                  f"$SA_TEMP_COMP_REF_POSITION[{ax}]={self.p0 * 1e3:.6f}",
+                  f"$SA_TEMP_COMP_ABS_VALUE[{ax}]=0",
+                  f"$SA_TEMP_COMP_SLOPE[{ax}]=0"]
+        return "\n".join(lines) + "\n"
 
     def __str__(self) -> str:
         rows = [f"SINUMERIK temperature compensation, axis {self.axis}: MD32750 = 3, "

@@ -81,6 +81,16 @@ class LinuxCNCXYZ(LinuxCNC):
     acceleration: float = 1.0e5
     settle_timeout: float = 5.0
 
+    #: The HAL component that drives the external offsets (its ``cycles`` pin is waited on).
+    offset_component = "axiscal-volcomp"
+
+    def _offsets_driven(self) -> bool:
+        """Whether a component drives the external offsets (a subclass may load another)."""
+        return self.volcomp is not None
+
+    def _extra_pins(self, comp, nets: list) -> None:
+        """Pins a subclass adds to the session's component before it is made ready."""
+
     def _write_config(self) -> None:
         self.folder = Path(tempfile.mkdtemp(prefix="axiscal-linuxcnc-"))
         os.chmod(self.folder, 0o1777)
@@ -120,15 +130,16 @@ class LinuxCNCXYZ(LinuxCNC):
             for pin in ("motor-pos-cmd", "pos-cmd"):
                 comp.newpin(f"j{j}-{pin}", hal.HAL_FLOAT, hal.HAL_IN)
                 nets.append((f"j{j}-{pin}", f"axiscal-xyz.j{j}-{pin}"))
-            if self.volcomp is not None:
+            if self._offsets_driven():
                 a = a.lower()
                 comp.newpin(f"{a}-eoffset", hal.HAL_FLOAT, hal.HAL_IN)
                 comp.newpin(f"{a}-request", hal.HAL_FLOAT, hal.HAL_IN)
                 nets += [(f"vc-{a}-eoffset", f"axis.{a}.eoffset", f"axiscal-xyz.{a}-eoffset"),
                          (f"vc-{a}-request", f"axiscal-xyz.{a}-request")]
-        if self.volcomp is not None:
+        if self._offsets_driven():
             comp.newpin("cycles", hal.HAL_U32, hal.HAL_IN)
-            nets.append(("vc-cycles", "axiscal-volcomp.cycles", "axiscal-xyz.cycles"))
+            nets.append(("vc-cycles", f"{self.offset_component}.cycles", "axiscal-xyz.cycles"))
+        self._extra_pins(comp, nets)
         self._ready(comp, nets)
         self._switch_on_and_home(len(AXES))
 
@@ -140,11 +151,11 @@ class LinuxCNCXYZ(LinuxCNC):
         end = " ".join(f"[{v:.9f}]" for v in t)
         self.mdi(f"o<axiscal_approach_xyz> call {start} {end} [{CREEP_FEED:g}]")
         self.wait_periods(SETTLE_PERIODS)
-        if self.volcomp is not None:
+        if self._offsets_driven():
             c0 = self._comp["cycles"]
             try:
                 _wait(lambda: (self._comp["cycles"] - c0) % 2 ** 31 >= 2, self.settle_timeout,
-                      "axiscal-volcomp to evaluate the final position")
+                      f"{self.offset_component} to evaluate the final position")
                 _wait(self._settled, self.settle_timeout, "the external offsets to settle")
             except MeasurementError as exc:
                 c = self._comp

@@ -5,9 +5,10 @@ The twin is what the ISO 230-3:2020 tests measure against (``standards/iso230_3.
 * the **room**: a mean temperature, a daily cycle and a slow ramp (the environment of the ETVE
   test, ISO 230-3:2020 Clause 5);
 * **nodes**: lumped first-order temperatures (spindle bearings and motor, ball-screw nut and
-  bearings, the machine's bulk structure). Each relaxes to the temperature it ``follows`` (the room
+  bearings, a rotary table's drive and bearings, the machine's bulk structure). Each relaxes to the temperature it ``follows`` (the room
   or an earlier node) with its time constant τ, raised by ``rise`` times its load u(t) in [0, 1]
-  (the spindle's speed as a fraction of its maximum, an axis's share of time in motion);
+  (the spindle's or the rotary table's speed as a fraction of its maximum, an axis's share of
+  time in motion);
 * a **structure**: each node's temperature above 20 °C times a sensitivity gives the relative
   displacement of tool and table in three translations (X, Y, Z) and two tilts (A about X, B about
   Y), at the tool's reference point;
@@ -98,7 +99,8 @@ class ThermalNode:
     follows : str
         ``"room"`` or the name of an earlier node.
     heat : str
-        What loads it: ``"none"``, ``"spindle"`` or ``"axis:X"`` (the axis named X moving).
+        What loads it: ``"none"``, ``"spindle"``, ``"rotary"`` (a rotary table turning) or
+        ``"axis:X"`` (the axis named X moving).
     rise : float, K
         Steady rise above what it follows at full load (u = 1).
     sensitivity : tuple of 5 floats
@@ -226,8 +228,9 @@ class ThermalTwin:
             if n.follows not in known:
                 raise InputError(f"node {n.name}: follows {one_line(repr(n.follows), 60)}, which is not the room or "
                                  "an earlier node")
-            if n.heat != "none" and n.heat != "spindle" and not n.heat.startswith("axis:"):
-                raise InputError(f"node {n.name}: heat {one_line(repr(n.heat), 60)}; use none, spindle or axis:NAME")
+            if n.heat not in ("none", "spindle", "rotary") and not n.heat.startswith("axis:"):
+                raise InputError(f"node {n.name}: heat {one_line(repr(n.heat), 60)}; use none, "
+                                 "spindle, rotary or axis:NAME")
             known.add(n.name)
         for a in self.axes:
             if a.screw_node not in known:
@@ -243,7 +246,11 @@ class ThermalTwin:
                 return a
         raise InputError(f"axis {one_line(repr(name), 60)}: the twin has {', '.join(a.name for a in self.axes) or 'no axes'}")
 
-    def run(self, time, spindle=None, axes=None) -> ThermalHistory:
+    def heats(self, source: str) -> bool:
+        """Whether a node is heated by ``source`` (``"spindle"``, ``"rotary"``)."""
+        return any(n.heat == source for n in self.nodes)
+
+    def run(self, time, spindle=None, axes=None, rotary=None) -> ThermalHistory:
         """Temperatures and displacement over ``time`` for the given loads.
 
         Parameters
@@ -254,6 +261,8 @@ class ThermalTwin:
             Spindle speed as a fraction of its maximum, one per sample (0 if omitted).
         axes : dict of str to array_like, optional
             Each axis's share of time in motion (0 to 1), one per sample.
+        rotary : array_like, optional
+            A rotary table's speed as a fraction of its maximum, one per sample (0 if omitted).
 
         Returns
         -------
@@ -262,7 +271,8 @@ class ThermalTwin:
         t = np.asarray(time, dtype=float)
         if t.ndim != 1 or t.size < 1 or np.any(np.diff(t) <= 0):
             raise InputError("twin: time must be a 1-D increasing array")
-        load = {"none": np.zeros_like(t), "spindle": _load(spindle, t, "spindle")}
+        load = {"none": np.zeros_like(t), "spindle": _load(spindle, t, "spindle"),
+                "rotary": _load(rotary, t, "rotary table")}
         for name, u in (axes or {}).items():
             load[f"axis:{name.upper()}"] = _load(u, t, f"axis {name}")
         room = self.room.temperature(t)

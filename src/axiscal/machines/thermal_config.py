@@ -13,7 +13,7 @@
     name = "spindle"
     time_constant_min = 30
     follows = "structure"
-    heat = "spindle"              # none | spindle | axis:X
+    heat = "spindle"              # none | spindle | rotary | axis:X
     rise_K = 12.0                 # steady rise at full load
     x_um_per_K = 0.2              # also y_um_per_K, z_um_per_K, a_urad_per_K, b_urad_per_K
 
@@ -34,10 +34,12 @@
 
     [instruments]
     displacement_noise_um = 0.1   # each displacement sensor and the laser's reading
-    mandrel_spacing_mm = 100      # spindle test: X1/X2 and Y1/Y2 apart along the mandrel
+    mandrel_spacing_mm = 100      # spindle (rotary) test: X1/X2 and Y1/Y2 apart along the
+                                  # mandrel (the artefact on the table)
     spindle_max_rpm = 12000
 
-The shipped example is ``axiscal/data/thermal_vmc.toml``. Unknown tables and keys are refused
+The shipped examples are ``axiscal/data/thermal_vmc.toml`` and, with a rotary table (ISO 230-3
+Clause 8), ``axiscal/data/thermal_rotary_table.toml``. Unknown tables and keys are refused
 with the file and line (:mod:`axiscal._schema`).
 """
 

@@ -15,6 +15,8 @@ spindle            4 h at 50 % of the maximum speed, then 1 h stopped; a sample 
                    The speed is the user's choice; 50 % is axiscal's default. A speed
                    programme (steps of a fraction for some minutes, repeated through the
                    run) replaces the constant speed when given
+rotary             as the spindle test, the rotary table turning (ISO 230-3:2020 Clause 8);
+                   the twin needs a node heated by ``rotary``
 linear             4 h cycling between P1 and P2, then 1 h at rest; the axis in motion 80 %
                    of the time (the rest is the measurement dwell at each target); P1 and P2
                    5 % of the travel in from each end; an axis longer than 2 000 mm is tested
@@ -43,7 +45,7 @@ from axiscal.standards.iso230_3_data import MAX_INTERVAL, ThermalLog
 __all__ = ["ThermalPlan", "ThermalSimulation", "DriftCheck", "plan_thermal", "simulate_thermal",
            "simulate_drift_check", "PLAN_TESTS", "MAX_SAMPLES"]
 
-PLAN_TESTS = ("etve", "spindle", "linear", "drift-check")
+PLAN_TESTS = ("etve", "spindle", "linear", "rotary", "drift-check")
 #: Most samples one simulated test may hold (a week at one a second).
 MAX_SAMPLES = 700_000
 _SETTLE = 86_400.0
@@ -60,7 +62,7 @@ class ThermalPlan:
 
     Attributes
     ----------
-    test : {"etve", "spindle", "linear", "drift-check"}
+    test : {"etve", "spindle", "linear", "rotary", "drift-check"}
     duration : float, s
         Whole test, running and stopped.
     interval : float, s
@@ -109,7 +111,7 @@ class ThermalPlan:
         out = {"test": self.test, "duration_h": self.duration / 3600,
                "interval_s": self.interval, "samples": int(self.times.size),
                "start_h": self.start / 3600}
-        if self.test == "spindle":
+        if self.test in ("spindle", "rotary"):
             out |= {"run_h": self.run / 3600, "stop_h": (self.duration - self.run) / 3600,
                     "speed_fraction": self.speed,
                     "programme": [{"speed_fraction": f, "minutes": d / 60}
@@ -189,7 +191,7 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
                          f"{MAX_INTERVAL:g} s (5 min)")
     if test == "etve":
         duration = 24 * 3600.0 if duration is None else duration
-    elif test in ("spindle", "linear"):
+    elif test in ("spindle", "linear", "rotary"):
         run = 4 * 3600.0 if run is None else run
         duration = run + 3600.0 if duration is None else duration
         if not 0 < run <= duration:
@@ -201,7 +203,11 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
         raise InputError(f"duration {duration / 3600:g} h at {interval:g} s: more than 0 and at "
                          f"most {MAX_SAMPLES} samples")
     if not 0 <= speed <= 1:
-        raise InputError(f"spindle speed {speed:g} must be a fraction of the maximum, 0 to 1")
+        raise InputError(f"speed {speed:g} must be a fraction of the maximum, 0 to 1")
+    if test == "rotary" and not twin.heats("rotary"):
+        raise InputError("the rotary test (ISO 230-3:2020 Clause 8) needs a twin with a rotary "
+                         "table: a [[node]] with heat = \"rotary\" (e.g. "
+                         "src/axiscal/data/thermal_rotary_table.toml)")
     for f, d in programme:
         if not (0 <= f <= 1 and 0 < d <= 1e6):
             raise InputError(f"speed programme step ({f:g}, {d / 60:g} min): a fraction 0 to 1 "
@@ -240,9 +246,9 @@ def plan_thermal(twin: ThermalTwin, test: str, *, duration: float | None = None,
 def simulate_thermal(twin: ThermalTwin, plan: ThermalPlan,
                      rng: np.random.Generator) -> ThermalSimulation:
     """Run an ISO 230-3 test on the twin with its instruments (see the module docstring)."""
-    if plan.test not in ("etve", "spindle", "linear"):
-        raise InputError(f"simulate_thermal runs etve, spindle or linear; {one_line(repr(plan.test), 60)} is "
-                         "simulate_drift_check's")
+    if plan.test not in ("etve", "spindle", "linear", "rotary"):
+        raise InputError(f"simulate_thermal runs etve, spindle, linear or rotary; "
+                         f"{one_line(repr(plan.test), 60)} is simulate_drift_check's")
     t = plan.times
     end = plan.run if plan.run is not None else np.inf
     running = t <= end + 1e-9             # the reading at the moment it stops is the run's last
@@ -259,12 +265,12 @@ def simulate_thermal(twin: ThermalTwin, plan: ThermalPlan,
         channels = {k: read(d[:, i]) for i, k in enumerate("XYZ")}
         log = ThermalLog("etve", t, temps, channels, source="simulation")
         truth = {f"ETVE_{k}": float(np.ptp(d[:, i])) for i, k in enumerate("XYZ")}
-    elif plan.test == "spindle":
+    elif plan.test in ("spindle", "rotary"):
         l = float(twin.meta.get("mandrel_spacing", 0.1))
         x, y, z, a, b = d.T
         channels = {"X1": read(x), "X2": read(x - l * b), "Y1": read(y), "Y2": read(y + l * a),
                     "Z": read(z)}
-        log = ThermalLog("spindle", t, temps, channels, run_end=run_end, sensor_spacing=l,
+        log = ThermalLog(plan.test, t, temps, channels, run_end=run_end, sensor_spacing=l,
                          source="simulation")
         truth = _drift_truth(dict(zip("XYZAB", d.T)), running)
     else:
@@ -304,9 +310,11 @@ def _history(twin: ThermalTwin, plan: ThermalPlan, running: np.ndarray) -> Therm
     zeros = np.zeros(settle.size)
     spindle = (np.concatenate((zeros, _speeds(plan) * running)) if plan.test == "spindle"
                else None)
+    rotary = (np.concatenate((zeros, _speeds(plan) * running)) if plan.test == "rotary"
+              else None)
     axes = ({plan.axis: np.concatenate((zeros, plan.duty * running))}
             if plan.test == "linear" else None)
-    h = twin.run(grid, spindle=spindle, axes=axes)
+    h = twin.run(grid, spindle=spindle, axes=axes, rotary=rotary)
     cut = slice(settle.size, None)
     return ThermalHistory(t.copy(), h.room[cut], {k: v[cut] for k, v in h.nodes.items()},
                           h.displacement[cut])

@@ -355,14 +355,14 @@ def record_fields(record: Any, **extra: Any) -> dict:
 def _drift_e_ve(drift_check: Any, uncertainty: dict) -> dict:
     """E_VE, the range of a drift check's readings (ISO 230-2:2014 Annex A.5), as inputs."""
     from axiscal.errors import InputError
-    from axiscal.io.drift import read_drift_check
-    from axiscal.standards.iso230_9 import environmental_variation
+    from axiscal.io._files import read_bytes
+    from axiscal.store.kinds import drift_check_record
 
     if "e_ve" in uncertainty:
         raise InputError("E_VE is given twice: by the drift check (--drift-check) and by the "
                          "uncertainty input e_ve (--uncertainty e_ve); give one")
-    return {"e_ve": environmental_variation(read_drift_check(drift_check)),
-            "e_ve_source": "drift check"}
+    rec = drift_check_record(read_bytes(drift_check), str(drift_check))
+    return {"e_ve": rec["e_ve"], "e_ve_source": rec["e_ve_source"]}
 
 
 def ballbar_evaluation(data: Any, *, feed: float | None = None,

@@ -29,10 +29,12 @@ the figure names follow the quantities the public scope and the test names state
   again while the axis cycles; its drift at each target relative to the first measurement (the
   largest while running, signed, and at the end of the run), and the axis's growth between them
   ``G = δ(P2) − δ(P1)`` (largest, and per metre of P2 − P1).
-* Rotary motion of components (Clause 8): **not built**. axiscal's thermal twin has no rotary
-  table; the evaluation would be the spindle test's five-sensor evaluation on an artefact on the
-  table, with the table's rotation programme as the load. Left for a later change rather than
-  offered untested.
+* Rotary motion of components (Clause 8): a rotary table turning (its speed a fraction of its
+  maximum, constant or a programme) is the load; five sensors on an artefact on the table (a
+  test mandrel or cylinder on its axis): X1, Y1 at its reference point, X2, Y2 a distance l
+  further along it, Z on its end, read against the spindle side. The drift of the table's
+  artefact relative to the tool in X, Y, Z and its two tilts, by the same equations and figures
+  as the spindle test (axiscal's reading: the public scope names the test, not its layout).
 
 Uncertainty: the reading noise σ of each channel is estimated from its sample-to-sample steps
 (:func:`~axiscal.standards.iso230_3_data.noise_sigma`). A drift is a difference of two readings,
@@ -52,12 +54,8 @@ from axiscal.errors import InputError, one_line
 from axiscal.standards.iso230_3_data import TESTS, ThermalLog, check_log, noise_sigma
 
 __all__ = ["ThermalFigure", "ThermalResult", "evaluate_thermal", "evaluate_etve", "drift_series",
-           "evaluate_spindle", "evaluate_linear", "signed_extreme", "e_ve_from_etve",
-           "ROTARY_OUT_OF_SCOPE"]
-
-#: Why Clause 8 is not evaluated (said wherever the tests are listed).
-ROTARY_OUT_OF_SCOPE = ("ISO 230-3:2020 thermal distortion caused by rotary motion of components: "
-                       "not built; the thermal twin has no rotary table to prove it on")
+           "evaluate_spindle", "evaluate_linear", "evaluate_rotary", "signed_extreme",
+           "e_ve_from_etve"]
 
 _UNITS = {"length": ("µm", 1e6), "angle": ("µrad", 1e6), "temperature": ("K", 1.0),
           "ratio": ("µm/m", 1e6), "time": ("h", 1 / 3600)}
@@ -165,8 +163,8 @@ def signed_extreme(values) -> float:
 def evaluate_thermal(log: ThermalLog) -> ThermalResult:
     """Evaluate a thermal log by its test (see the module docstring)."""
     check_log(log)
-    return {"etve": evaluate_etve, "spindle": evaluate_spindle,
-            "linear": evaluate_linear}[log.test](log)
+    return {"etve": evaluate_etve, "spindle": evaluate_spindle, "linear": evaluate_linear,
+            "rotary": evaluate_rotary}[log.test](log)
 
 
 def evaluate_etve(log: ThermalLog) -> ThermalResult:
@@ -202,6 +200,23 @@ def evaluate_spindle(log: ThermalLog) -> ThermalResult:
     and after the stop.
     """
     _is(log, "spindle")
+    return _five_sensors(log, "mandrel", "the sensors nearest the spindle nose")
+
+
+def evaluate_rotary(log: ThermalLog) -> ThermalResult:
+    """Thermal distortion caused by rotary motion of components (ISO 230-3:2020 Clause 8): a
+    rotary table turning.
+
+    Drift in X, Y, Z and the tilts A, B of the artefact on the table, from its five sensors
+    (module docstring), while turning and after the stop: the spindle test's figures.
+    """
+    _is(log, "rotary")
+    return _five_sensors(log, "artefact on the table", "the sensors at the artefact's reference "
+                         "point")
+
+
+def _five_sensors(log: ThermalLog, what: str, near: str) -> ThermalResult:
+    """The figures of a five-sensor test (spindle, Clause 6; rotary table, Clause 8)."""
     d = log.displacements
     l = float(log.sensor_spacing)
     series = drift_series(log)
@@ -210,11 +225,12 @@ def evaluate_spindle(log: ThermalLog) -> ThermalResult:
              "A": math.hypot(sig["Y1"], sig["Y2"]) / l, "B": math.hypot(sig["X1"], sig["X2"]) / l}
     words = {"X": "drift in X", "Y": "drift in Y", "Z": "drift in Z",
              "A": "tilt about X (YZ plane)", "B": "tilt about Y (ZX plane)"}
-    figs = _drift_figures(log, series, sigma, words, TESTS["spindle"])
-    figs += _temperature_rises(log, TESTS["spindle"])
-    notes = ("X and Y at the sensors nearest the spindle nose; tilts from the sensor pairs "
-             f"{l * 1e3:g} mm apart",)
-    return ThermalResult("spindle", TESTS["spindle"], tuple(figs), log.duration, log.run_end, notes)
+    clause = TESTS[log.test]
+    figs = _drift_figures(log, series, sigma, words, clause)
+    figs += _temperature_rises(log, clause)
+    notes = (f"X and Y at {near}; tilts from the sensor pairs {l * 1e3:g} mm apart along the "
+             f"{what}",)
+    return ThermalResult(log.test, clause, tuple(figs), log.duration, log.run_end, notes)
 
 
 def evaluate_linear(log: ThermalLog) -> ThermalResult:
@@ -247,11 +263,12 @@ def evaluate_linear(log: ThermalLog) -> ThermalResult:
 def drift_series(log: ThermalLog) -> dict[str, np.ndarray]:
     """The quantities whose drift a test reports, over time (m or rad; not yet relative to the
     start): ETVE ``X``, ``Y``, ``Z`` as logged; spindle ``X, Y, Z, A, B`` from the five sensors
-    (module docstring); linear ``P1``, ``P2`` and the growth ``G = P2 − P1``. The one place these
+    (module docstring), the rotary test's alike; linear ``P1``, ``P2`` and the growth
+    ``G = P2 − P1``. The one place these
     are derived: the evaluations and the thermal model (``compensation/thermal_model.py``) use it.
     """
     d = log.displacements
-    if log.test == "spindle":
+    if log.test in ("spindle", "rotary"):
         l = float(log.sensor_spacing)
         return {"X": d["X1"], "Y": d["Y1"], "Z": d["Z"],
                 "A": (d["Y2"] - d["Y1"]) / l, "B": (d["X1"] - d["X2"]) / l}

@@ -23,6 +23,8 @@ spindle   4 h running                 spindle drift settles in hours; 4 h is rec
                                       in a public source nor checked against the 2020 text
 linear    4 h of motion               as for the spindle: screw nut and bearings settle in
                                       hours
+rotary    4 h turning                 as for the spindle: a rotary table's drive and
+                                      bearings are a spindle's kind of source
 ========  ==========================  ===================================================
 
 Samples at most 5 min apart (axiscal default: a dozen per hour follows time constants of tens
@@ -42,18 +44,18 @@ __all__ = ["ThermalLog", "TESTS", "CHANNELS", "MIN_DURATION", "MAX_INTERVAL", "c
 
 #: The tests of ISO 230-3:2020 axiscal evaluates, and the clause of each (Clause 7 named in the
 #: standard's public scope; Clause 5.2 named by ISO 13041-8 for the ETVE test method; Clause 6
-#: by the order of the scope's list). Clause 8 (rotary motion of components) is not built: see
-#: :mod:`axiscal.standards.iso230_3`.
+#: by the order of the scope's list; Clause 8, rotary motion of components, likewise).
 TESTS = {"etve": "ISO 230-3:2020 Clause 5", "spindle": "ISO 230-3:2020 Clause 6",
-         "linear": "ISO 230-3:2020 Clause 7"}
+         "linear": "ISO 230-3:2020 Clause 7", "rotary": "ISO 230-3:2020 Clause 8"}
 
 #: The displacement channels each test logs (a subset of X, Y, Z for the ETVE test).
 CHANNELS = {"etve": ("X", "Y", "Z"), "spindle": ("X1", "X2", "Y1", "Y2", "Z"),
-            "linear": ("P1", "P2")}
+            "linear": ("P1", "P2"), "rotary": ("X1", "X2", "Y1", "Y2", "Z")}
 
 #: Shortest run a test may have, s (axiscal defaults; see the module docstring). For the ETVE
 #: test the whole log, for the spindle and linear tests the running part.
-MIN_DURATION = {"etve": 12 * 3600.0, "spindle": 4 * 3600.0, "linear": 4 * 3600.0}
+MIN_DURATION = {"etve": 12 * 3600.0, "spindle": 4 * 3600.0, "linear": 4 * 3600.0,
+                "rotary": 4 * 3600.0}
 
 #: Longest interval between two samples, s (axiscal default, module docstring).
 MAX_INTERVAL = 300.0
@@ -75,7 +77,7 @@ class ThermalLog:
 
     Attributes
     ----------
-    test : {"etve", "spindle", "linear"}
+    test : {"etve", "spindle", "linear", "rotary"}
     time : ndarray, s
         Increasing sample times from the start of the test.
     temperatures : dict of str to ndarray, °C
@@ -87,7 +89,7 @@ class ThermalLog:
         When the spindle stopped (or the axis stopped cycling); None if it ran to the end.
     sensor_spacing : float or None, m
         Spindle test: distance along the mandrel between the sensor pairs X1/X2 and Y1/Y2 (X1 and
-        Y1 nearer the spindle nose).
+        Y1 nearer the spindle nose); rotary test: the same along the artefact on the table.
     targets : tuple of float or None, m
         Linear test: the positions P1 and P2.
     axis : str
@@ -171,8 +173,8 @@ def check_log(log: ThermalLog) -> ThermalLog:
         for name, v in table.items():
             _check_channel(name, np.asarray(v, dtype=float), t, kind, src)
     _check_duration(log, t)
-    if log.test == "spindle" and not (log.sensor_spacing and log.sensor_spacing > 0):
-        raise DataFormatError("spindle test: the sensor spacing along the mandrel is needed "
+    if log.test in ("spindle", "rotary") and not (log.sensor_spacing and log.sensor_spacing > 0):
+        raise DataFormatError(f"{log.test} test: the sensor spacing along the mandrel is needed "
                               "(sensor_spacing_mm in the header)", src)
     if log.test == "linear" and (log.targets is None or log.targets[0] == log.targets[1]):
         raise DataFormatError("linear test: two different target positions P1 and P2 are needed "

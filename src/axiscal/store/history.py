@@ -166,18 +166,21 @@ class Store:
     def add(self, raw: bytes, filename: str, *, machine: str | None = None,
             axis: str | None = None, kind: str | None = None, instrument: str = "",
             operator: str = "", note: str = "", date: str | None = None,
-            tables: tuple = (), uncertainty: dict | None = None) -> AddResult:
+            tables: tuple = (), uncertainty: dict | None = None,
+            drift_check: tuple[bytes, str] | None = None) -> AddResult:
         """Evaluate and store one file; a file stored before is reported, not stored again.
 
         ``tables`` are (controller, filename, text) written from this test; ``uncertainty``
-        the inputs of its budget (default: the user configuration's, :func:`prepare`).
+        the inputs of its budget (default: the user configuration's, :func:`prepare`);
+        ``drift_check`` the (bytes, name) of its drift check, kept with it (:func:`prepare`).
         """
         existing = self._find_hash(hashlib.sha256(raw).hexdigest())
         if existing is not None:
             return existing
         return self.add_all([prepare(raw, filename, machine=machine, axis=axis, kind=kind,
                                      instrument=instrument, operator=operator, note=note,
-                                     date=date, tables=tables, uncertainty=uncertainty)])[0]
+                                     date=date, tables=tables, uncertainty=uncertainty,
+                                     drift_check=drift_check)])[0]
 
     def add_all(self, items, then=None) -> list[AddResult]:
         """Store every :class:`Prepared` file in ONE transaction: all or nothing.
@@ -428,15 +431,20 @@ class Store:
 def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str | None = None,
             kind: str | None = None, instrument: str = "", operator: str = "", note: str = "",
             date: str | None = None, tables: tuple = (),
-            uncertainty: dict | None = None) -> "Prepared":
+            uncertainty: dict | None = None,
+            drift_check: tuple[bytes, str] | None = None) -> "Prepared":
     """Evaluate one file into the row it will be stored as (no database is touched).
 
     ``uncertainty``: the inputs of the test's uncertainty budget
     (:func:`axiscal.store.kinds.with_uncertainty`), stored with it so that every later view,
     report and certificate gives the U it was stored with; default the user configuration's
-    table for the kind (:func:`axiscal.store.kinds.inputs_from_config`)."""
+    table for the kind (:func:`axiscal.store.kinds.inputs_from_config`). ``drift_check``: the
+    (bytes, name) of the positioning test's drift check (ISO 230-2:2014 Annex A.5), kept in
+    the test's record (:func:`axiscal.store.kinds.drift_check_record`: its readings and E_VE)
+    and its E_VE the budget's, measured."""
     from axiscal._json import jsonable
-    from axiscal.store.kinds import inputs_from_config, with_uncertainty
+    from axiscal.store.kinds import (drift_check_record, inputs_from_config, with_drift_check,
+                                     with_uncertainty)
 
     ev = evaluate_file(raw, filename, kind)
     if Path(filename).name[:300] == filename:     # as a view evaluates it: kept for the views
@@ -450,6 +458,9 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
         inputs = inputs_from_config(ev.kind, load_user_config(), ev.dataset)
     else:
         inputs = dict(uncertainty)
+    if drift_check is not None:
+        ev, inputs = with_drift_check(ev, inputs, drift_check_record(*drift_check),
+                                      declared=uncertainty)
     from axiscal.store.limits import checked_text
     from axiscal.store.models import Axis, Machine, Test
 

@@ -26,7 +26,8 @@ from axiscal.errors import DataFormatError, InputError
 
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
            "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
-           "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE"]
+           "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE",
+           "drift_check_record", "with_drift_check"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
@@ -60,6 +61,8 @@ class Evaluated:
     budget: object = None
     inputs: dict = field(default_factory=dict)
     verdicts: tuple = ()
+    #: The drift check stored with a positioning test (:func:`drift_check_record`), or None.
+    drift_check: dict | None = None
 
     @property
     def quantities(self) -> dict:
@@ -78,7 +81,57 @@ class Evaluated:
                "uncertainty_inputs": jsonable(self.inputs)}
         if self.budget is not None:
             out["uncertainty_budget"] = jsonable(self.budget.to_json())
+        if self.drift_check is not None:
+            out["drift_check"] = jsonable(self.drift_check)
         return out
+
+
+def drift_check_record(raw: bytes, filename: str) -> dict:
+    """A drift check (ISO 230-2:2014 Annex A.5) as the history keeps it beside its positioning
+    test: the file's name and SHA-256, its readings (the test's deviation unit, file order) and
+    E_VE, their range (:func:`~axiscal.standards.iso230_9_inputs.environmental_variation`).
+    The one place a drift check becomes an E_VE: ``iso230-2 --drift-check``, the history and
+    the workbench take it from here.
+
+    Examples
+    --------
+    >>> r = drift_check_record(b"reading\\n0.1\\n0.4\\n-0.2\\n", "dc.csv")
+    >>> round(r["e_ve"], 6), r["samples"], r["standard"]
+    (0.6, 3, 'ISO 230-2:2014 Annex A.5')
+    """
+    import hashlib
+
+    from axiscal.io._files import _not_utf8
+    from axiscal.io.drift import parse_drift_check
+    from axiscal.standards.iso230_9_inputs import environmental_variation
+
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise DataFormatError(_not_utf8(raw, exc.start), str(filename)) from None
+    readings = parse_drift_check(text, source=filename)
+    return {"standard": "ISO 230-2:2014 Annex A.5", "filename": str(filename)[:300],
+            "sha256": hashlib.sha256(raw).hexdigest(), "samples": int(readings.size),
+            "readings": [float(v) for v in readings],
+            "e_ve": float(environmental_variation(readings)), "e_ve_source": "drift check"}
+
+
+def with_drift_check(ev: Evaluated, inputs: dict, record: dict,
+                     declared: dict | None = None) -> tuple[Evaluated, dict]:
+    """``ev`` with its drift check kept, and the uncertainty ``inputs`` with E_VE measured by
+    it (``e_ve_source = 'drift check'``; over a configuration's declared E_VE). ``declared``:
+    the inputs the user gave for this test; an E_VE among them as well is refused (given
+    twice). Only a positioning test (ISO 230-2) has a drift check."""
+    if ev.kind != "iso230-2":
+        raise InputError(f"a drift check (ISO 230-2:2014 Annex A.5) goes with a positioning "
+                         f"test; this file is a {ev.kind} test")
+    if declared and "e_ve" in declared:
+        raise InputError("E_VE is given twice: by the drift check (--drift-check) and by the "
+                         "uncertainty input e_ve (--uncertainty e_ve); give one")
+    unit = getattr(ev.evaluation, "deviation_unit", "")
+    kept = {**record, "unit": unit}
+    return (dataclasses.replace(ev, drift_check=kept),
+            {**inputs, "e_ve": record["e_ve"], "e_ve_source": "drift check"})
 
 
 def inputs_from_config(kind: str, cfg: dict, dataset=None) -> dict:
