@@ -17,6 +17,7 @@ import pickle
 import select
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 from axiscal.errors import MeasurementError
@@ -35,12 +36,17 @@ class ChannelProcess:
         server = Path(__file__).with_name("_nml_server.py")
         self._p = subprocess.Popen([sys.executable, "-P", str(server)], stdin=subprocess.PIPE,
                                    stdout=subprocess.PIPE, env=env)
+        self._lock = threading.Lock()     # one request and its reply at a time, any thread
 
     def new(self, what: str, *args, **kwargs) -> "Remote":
         return self.request("new", None, what, args, kwargs)
 
     def request(self, op: str, ref, name: str | None = None, args: tuple = (),
                 kwargs: dict | None = None):
+        with self._lock:
+            return self._request(op, ref, name, args, kwargs)
+
+    def _request(self, op, ref, name, args, kwargs):
         p = self._p
         if p is None:
             raise MeasurementError("LinuxCNC's session has ended")
