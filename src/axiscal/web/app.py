@@ -172,7 +172,8 @@ def _refusal(request: Request):
     if session is None and not public:
         if request.method == "GET":
             return RedirectResponse(f"/login?next={quote(request.url.path)}", 303)
-        return render_error(request, "log in first", 401)
+        return render_error(request, "not logged in, or the session has ended: log in "
+                            "first (nothing was done)", 401)
     return None
 
 
