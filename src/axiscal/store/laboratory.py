@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from axiscal.errors import InputError
 
 __all__ = ["laboratory", "set_laboratory", "add_drift_check", "drift_checks", "DriftCheckRecord",
-           "signoff_config", "LABORATORY_TABLES"]
+           "signoff_config", "last_certificate_inputs", "LABORATORY_TABLES"]
 
 #: The configuration tables the history's laboratory holds.
 LABORATORY_TABLES = ("company", "signatory", "instrument", "uncertainty")
@@ -151,10 +151,12 @@ def drift_checks(store, test_id: int) -> list[DriftCheckRecord]:
             DriftCheck.test_id == int(test_id)).order_by(DriftCheck.id.desc()))]
 
 
-def signoff_config(store, stored, user_config: dict, job: dict | None = None) -> dict:
+def signoff_config(store, stored, user_config: dict, job: dict | None = None,
+                   lab: dict | None = None) -> dict:
     """The configuration a sign-off of stored test ``stored`` is made with (see the module's
-    docstring): ``user_config``, the history's laboratory, ``job``; the uncertainty inputs the
-    test's own (stored with it) over the laboratory's, its newest drift check's E_VE over them.
+    docstring): ``user_config``, the history's laboratory (or ``lab``, the laboratory as a form
+    is about to keep it), ``job``; the uncertainty inputs the test's own (stored with it) over
+    the laboratory's, its newest drift check's E_VE over them.
 
     Raises
     ------
@@ -164,7 +166,7 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None) ->
     """
     from axiscal.io.user_config import merge
 
-    lab = laboratory(store)
+    lab = laboratory(store) if lab is None else lab
     cfg = merge(merge(user_config, lab), job or {})
     inputs = merge(dict(cfg.get("uncertainty") or {}),
                    dict(stored.record().inputs or {}))
@@ -175,6 +177,21 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None) ->
                              "the form; give one")
         inputs.update(checks[0].inputs)
     return {**cfg, "uncertainty": inputs}
+
+
+def last_certificate_inputs(store, machine_id: int) -> dict:
+    """The inputs kept with the newest certificate of any test of a machine ({} if none): what
+    a new sign-off of the machine starts from (customer, item, instruments, tolerances)."""
+    from sqlalchemy import select
+
+    from axiscal.store.models import Axis, Certificate, Test
+
+    q = (select(Certificate.inputs_json).join(Test, Test.id == Certificate.test_id)
+         .join(Axis, Axis.id == Test.axis_id).where(Axis.machine_id == int(machine_id))
+         .order_by(Certificate.id.desc()).limit(1))
+    with store._guard("read"), store._session() as s:
+        found = s.scalar(q)
+    return json.loads(found) if found else {}
 
 
 def _record(r) -> DriftCheckRecord:
