@@ -170,12 +170,14 @@ def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str
         elif field == "customer_address":
             value = [line.strip() for line in text.splitlines() if line.strip()]
         job.setdefault(table, {})[key] = value
-    rows = [{k: values.get(f"instrument{i}_{k}", "") for k in _INSTRUMENT_KEYS}
-            for i in range(1, INSTRUMENTS + 1)]
-    rows = [{k: v for k, v in r.items() if v} for r in rows if any(r.values())]
-    for r in rows:
-        if "name" not in r:
-            raise InputError("an instrument row without a name: give the instrument's name")
+    rows = []
+    for i in range(1, INSTRUMENTS + 1):
+        row = {k: values.get(f"instrument{i}_{k}", "") for k in _INSTRUMENT_KEYS}
+        if any(row.values()) and not row["name"]:
+            raise InputError(f"{LABELS[f'instrument{i}_name']}: this instrument row has no "
+                             "name; give the instrument's name (or empty the row)")
+        if any(row.values()):
+            rows.append({k: v for k, v in row.items() if v})
     if rows:
         job["instrument"] = rows
     tolerances = {p: form_number(values[f"tol_{p}"], f"tolerance {p}", 0.0, 1e6)
@@ -266,6 +268,8 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         raise InputError(f"a {ev.kind} test is signed off by its command; the workbench signs "
                          "off ISO 230-2 positioning tests")
     try:
+        if action in ("issue", "amend"):
+            _check_issue(ctx, action, values)
         job, tolerances, rule, paper = job_from_form(values, ctx["parameters"])
         kept = laboratory(st)
         lab = lab_from_form(values, kept, job.get("instrument", []))
@@ -282,7 +286,6 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         cfg = signoff_config(st, t, load_config(None), job, lab)
         _verdict(ctx, ev, cfg, tolerances, rule)
         if action in ("issue", "amend"):
-            _check_issue(ctx, action, values)
             if lab != kept:
                 if not who:
                     raise InputError(f"{LABELS['operator']}: give your name; the history "
