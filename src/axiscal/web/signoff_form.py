@@ -103,7 +103,7 @@ def missing_fields(missing, values: dict, signed_in: bool = False) -> list[tuple
                       if values.get(f"instrument{i}_name", "").strip() == row.group(1)), 1)
             key = "certificate" if "certificate number" in item else "due"
             field = f"instrument{i}_{key}"
-        if field == "signatory" and signed_in:
+        if field in ("signatory", "signatory_role") and signed_in:
             field = "lab_signatories"
         words = plain(item)
         if field == "drift_check":

@@ -160,6 +160,12 @@
     if (box) { box.remove(); }
   });
 
+  // A signed-in page the browser brings back from its back/forward cache (which may keep even
+  // a "Cache-Control: no-store" page) is asked for again: after log-out, Back shows the login.
+  window.addEventListener("pageshow", function (e) {
+    if (e.persisted && document.querySelector("header .who form")) { location.reload(); }
+  });
+
   document.addEventListener("DOMContentLoaded", function () { init(document); restore(); });
   document.addEventListener("htmx:afterSwap", function (e) { init(e.target); });
   document.addEventListener("htmx:configRequest", function (e) {
