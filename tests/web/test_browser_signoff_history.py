@@ -166,6 +166,11 @@ def test_signoff_of_a_real_file_finished_on_the_page_then_amended(bench, browser
     browser.get(base + "/tests/1#signoff")
     WebDriverWait(browser, 20).until(_ready)
     _shot(browser, "i40a_signoff_412")
+    wide = browser.execute_script(       # the sign-off's parts fit the phone's 412 px
+        "return Math.max(...['signoff-form', 'certificates'].map(i => "
+        "document.getElementById(i).closest('section, .scroll, form')"
+        ".getBoundingClientRect().right))")
+    assert wide <= 412, wide
     browser.execute_script("document.getElementById('laboratory').scrollIntoView()")
     _shot(browser, "i40a_laboratory_412")
     browser.set_window_size(1280, 1600)
