@@ -153,10 +153,27 @@ def test_workbench_certificate_is_the_command_lines(bench, tmp_path):
 
 
 def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench):
+    """Also: the laboratory's fields are refused in their label's words, kept in the history
+    when a certificate is issued with them (an audit entry), and start the next form."""
+    from axiscal.store.corrections import audit
+    from axiscal.store.laboratory import laboratory
+
+    st = bench.app.state.store
+    r = _sign(bench, "verdict", tol_E="8", lab_cmc="E:1")
+    assert r.status_code == 400
+    assert "CMC [µm] (the laboratory&#39;s least U per parameter" in r.text
     r = _sign(bench, "issue", files={"drift_check": ("drift.csv", DRIFT, "text/csv")},
               **LAB_FORM, **JOB_FORM)
     assert r.status_code == 303
-    st = bench.app.state.store
+    assert laboratory(st)["company"] == {"name": LAB_FORM["lab_name"], "code": "PM",
+                                         "address": ["Werkstrasse 1", "70173 Stuttgart"]}
+    assert laboratory(st)["uncertainty"]["linear"]["cmc"] == {"E": 1.0, "A": 1.0}
+    a = next(x for x in audit(st) if x.action == "laboratory")
+    assert (a.by, a.reason) == ("A. Operator", "used for certificate PM-2026-00001 of test 1")
+    assert next(x for x in audit(st) if x.action == "drift-check").new["e_ve"] == 0.6
+    page = bench.get("/tests/1").text                       # the form starts from it now
+    assert _value(page, "lab_name") == LAB_FORM["lab_name"]
+    assert _value(page, "lab_cmc") == "E=1, A=1"
     first = st.certificates()[0].number
     page = bench.get(f"/tests/1?certificate={first}").text
     assert 'id="issue-amendment"' in page and 'id="issue-certificate"' not in page
@@ -188,25 +205,3 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     r = _sign(bench, "amend", **LAB_FORM, **JOB_FORM, amend_reason="again")
     assert r.status_code == 400 and "a withdrawn test is never certified" in r.text
     assert len(st.certificates()) == 2
-
-
-def test_laboratory_changes_are_audited_and_refusals_named_by_label(bench):
-    r = _sign(bench, "issue", tol_E="8", lab_cmc="E:1")
-    assert r.status_code == 400
-    assert "CMC [µm] (the laboratory&#39;s least U per parameter" in r.text
-    r = _sign(bench, "issue", tol_E="8", lab_name="PM GmbH")     # no name of who changes it
-    assert "Prepared by (operator): give your name" in r.text
-    r = _sign(bench, "issue", tol_E="8", lab_name="PM GmbH", operator="A. Operator")
-    assert 'id="draft"' in r.text
-    assert '<a href="#f-drift_check">Drift check file (E_VE measured beside this test)</a>' \
-        in r.text
-    from axiscal.store.corrections import audit
-    from axiscal.store.laboratory import laboratory
-
-    st = bench.app.state.store
-    assert laboratory(st)["company"]["name"] == "PM GmbH"
-    a = audit(st)[0]
-    assert (a.action, a.by, a.reason) == ("laboratory", "A. Operator",
-                                          "entered at the sign-off of test 1")
-    page = bench.get("/tests/1").text                       # the form starts from it now
-    assert _value(page, "lab_name") == "PM GmbH"

@@ -110,7 +110,7 @@ def missing_fields(missing, values: dict, signed_in: bool = False) -> list[tuple
             words = ("E_VE, the environmental variation: upload the drift check measured "
                      "beside this test, or declare E_VE in the laboratory's fields")
         if field == "lab_name":
-            words = "the laboratory's name and address (kept in the history for every certificate)"
+            words = "the laboratory's name and address"
         out.append((LABELS.get(field, ""), f"f-{field}" if field else "", words))
     return out
 

@@ -254,8 +254,8 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
     sign-in (a workbench on one's own computer) the form's signatory approves, as on the
     command line. ``drift`` is (bytes, file name) of a drift check uploaded with the form: kept
     beside the test (:func:`axiscal.store.laboratory.add_drift_check`). The laboratory's fields
-    are kept in the history when a certificate is issued (an audit entry by ``user``, or by the
-    form's operator on one's own computer)."""
+    are kept in the history when a certificate is issued with them (an audit entry by ``user``,
+    or by the certificate's preparer on one's own computer)."""
     from axiscal.io.user_config import merge
     from axiscal.report.issue import load_config
     from axiscal.store.laboratory import (add_drift_check, laboratory, set_laboratory,
@@ -286,16 +286,13 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         cfg = signoff_config(st, t, load_config(None), job, lab)
         _verdict(ctx, ev, cfg, tolerances, rule)
         if action in ("issue", "amend"):
-            if lab != kept:
-                if not who:
-                    raise InputError(f"{LABELS['operator']}: give your name; the history "
-                                     "records who changed the laboratory")
-                set_laboratory(st, lab, by=who, reason=f"entered at the sign-off of test "
-                               f"{test_id}")
             out = _issue(st, t, ev, cfg, tolerances, rule, paper, user) if action == "issue" \
                 else _amend(st, t, ctx["current"].number, values["amend_reason"], cfg, user)
             ctx.update(missing=missing_fields(out.missing, values, bool(user)),
                        number=out.number)
+            if out.number and lab != kept:    # issued with it: the laboratory as it was used
+                set_laboratory(st, lab, by=who or out.record.prepared_by,
+                               reason=f"used for certificate {out.number} of test {test_id}")
     except AxiscalError as exc:
         ctx["error"] = plain(str(exc)) if "[" in str(exc) else str(exc)
     return ctx
