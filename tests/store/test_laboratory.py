@@ -19,8 +19,9 @@ ECMC = Path(__file__).resolve().parents[1] / "data" / "ecmc" / "mcu1025_fat_sat_
 
 
 @pytest.fixture
-def store(tmp_path):
-    st = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+def store(db_url):
+    """A history on SQLite and on PostgreSQL (migration 0006 on both)."""
+    st = open_store(db_url)
     st.add(ECMC.read_bytes(), ECMC.name, machine="MCU1025", date="2026-03-02",
            uncertainty={"resolution": 0.01, "e_ve": 0.3, "e_ve_source": "declared"})
     yield st
