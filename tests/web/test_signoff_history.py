@@ -205,3 +205,31 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     r = _sign(bench, "amend", **LAB_FORM, **JOB_FORM, amend_reason="again")
     assert r.status_code == 400 and "a withdrawn test is never certified" in r.text
     assert len(st.certificates()) == 2
+
+
+def test_laboratory_page_edits_what_the_history_keeps(bench):
+    """The laboratory page: shown from the configuration until kept; an engineer's change needs
+    a reason and is an audit entry; an emptied field removes its value."""
+    from axiscal.store.corrections import audit
+    from axiscal.store.laboratory import laboratory
+
+    st = bench.app.state.store
+    assert "Not kept in the history yet" in bench.get("/laboratory").text
+    form = {"csrf": bench.token, **LAB_FORM, "instrument1_name": "Laser XL-80",
+            "instrument1_due": "2027-01-31", "by": "A. Operator"}
+    r = bench.post("/laboratory", data=form, follow_redirects=False)
+    assert r.status_code == 400 and "Reason: say why the laboratory changes" in r.text
+    assert 'value="Präzision Messtechnik GmbH"' in r.text and laboratory(st) == {}
+    r = bench.post("/laboratory", data={**form, "reason": "accreditation renewed"},
+                   follow_redirects=False)
+    assert r.status_code == 303
+    lab = laboratory(st)
+    assert lab["signatory"] == [{"name": "B. Signatory", "role": "Head of laboratory"}]
+    assert lab["instrument"] == [{"name": "Laser XL-80", "due": "2027-01-31"}]
+    r = bench.post("/laboratory", data={**form, "lab_signatories": "", "reason": "left"},
+                   follow_redirects=False)
+    assert r.status_code == 303 and "signatory" not in laboratory(st)
+    page = bench.get("/laboratory?saved=1").text
+    assert 'id="saved"' in page and "accreditation renewed" in page
+    assert [a.reason for a in audit(st) if a.action == "laboratory"] == \
+        ["left", "accreditation renewed"]
