@@ -233,3 +233,28 @@ def test_laboratory_page_edits_what_the_history_keeps(bench):
     assert 'id="saved"' in page and "accreditation renewed" in page
     assert [a.reason for a in audit(st) if a.action == "laboratory"] == \
         ["left", "accreditation renewed"]
+
+
+def test_messages_speak_the_forms_words():
+    """The library's words of a job file become the form's labels (issue 40: "[customer] name",
+    "--uncertainty e_ve=VALUE" and "--by NAME" were shown on the page)."""
+    from axiscal.web.signoff_form import missing_fields, plain
+
+    assert plain("[customer] name: the character '☃' (U+2603, SNOWMAN) is in no font") == \
+        "Customer: the character '☃' (U+2603, SNOWMAN) is in no font"
+    assert plain("date of calibration (not in the data file; give [conditions] date)") == \
+        "date of calibration"
+    items = ["input of the uncertainty budget: environmental variation error E_VE (not given, "
+             "so U leaves it out: declare it with --uncertainty e_ve=VALUE)",
+             "calibration due date of the instrument 'Laser'",
+             "name of the person who prepared the certificate ([operator] name)",
+             "approval by an authorised signatory: 'eng' is not one of the laboratory's "
+             "(B. Signatory; [[signatory]] name and role)"]
+    out = missing_fields(items, {"instrument2_name": "Laser"}, signed_in=True)
+    assert [(label, anchor) for label, anchor, _ in out] == [
+        ("Drift check file (E_VE measured beside this test)", "f-drift_check"),
+        ("Instrument 2: due (YYYY-MM-DD)", "f-instrument2_due"),
+        ("Prepared by (operator)", "f-operator"),
+        ("Authorised signatories (one a line: name, role)", "f-lab_signatories")]
+    for _, _, words in out:
+        assert "[" not in words and "--" not in words and "VALUE" not in words, words

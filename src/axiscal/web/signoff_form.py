@@ -75,14 +75,22 @@ _FIELD_OF = (
     (r"\[operator\] name", "operator"),
     (r"signatory_role", "signatory_role"), (r"\[certificate\] signatory", "signatory"),
 )
-#: Words of the configuration file and the command line in an item's text.
-_CONFIG_WORDS = re.compile(r"\s*\((?:[^()]*?)(?:\[|--|axiscal )[^()]*\)|\s*\[\[?\w+\]\]?( \w+)?"
-                           r"|\s*--[\w-]+(?:[ =][A-Z_]+(?:=VALUE)?)?")
+#: A configuration file's hint in brackets, and its remaining table and option words.
+_HINTS = re.compile(r"\s*\((?:[^()]*?)(?:\[|--|axiscal )[^()]*\)")
+_CONFIG_WORDS = re.compile(r"\s*\[\[?\w+\]\]?( \w+)?|\s*--[\w-]+(?:[ =][A-Z_]+(?:=VALUE)?)?")
+#: ``[table] key`` of a job file -> the label of the field that gives it.
+_AS_LABEL = {**{f"[{t}] {k}": f for f, (t, k) in JOB_FIELDS.items()},
+             "[company] name": "lab_name", "[company] address": "lab_address",
+             "[company] code": "lab_code"}
 
 
 def plain(text: str) -> str:
-    """An item's text without the configuration file's and the command line's words."""
-    out = _CONFIG_WORDS.sub("", text)
+    """A message in the form's words: a configuration file's hints in brackets left out, a
+    ``[table] key`` named by its field's label, no table or option name left."""
+    out = _HINTS.sub("", text)
+    for ref, field in _AS_LABEL.items():
+        out = out.replace(ref, LABELS[field])
+    out = _CONFIG_WORDS.sub("", out)
     out = re.sub(r"\s*;\s*(?=[.;]|$)", "", out)
     return re.sub(r"\s{2,}", " ", out).strip(" ;:")
 

@@ -83,13 +83,16 @@
   }
 
   function show(elt, text) {
-    var form = (elt && elt.closest && elt.closest("form")) || elt || document.body;
-    var box = form.querySelector(":scope > .request-error");
-    if (!box) {
+    var form = elt && elt.closest && elt.closest("form");
+    var box = form ? form.querySelector(":scope > .request-error")
+                   : (elt && elt.nextElementSibling);
+    if (!box || !box.classList.contains("request-error")) {
       box = document.createElement("div");
       box.className = "error request-error";
       box.setAttribute("role", "alert");
-      form.insertBefore(box, form.firstChild);
+      if (form) { form.insertBefore(box, form.firstChild); }
+      else if (elt && elt.parentNode) { elt.parentNode.insertBefore(box, elt.nextSibling); }
+      else { document.querySelector("main").prepend(box); }
     }
     box.textContent = text;
     box.scrollIntoView({ block: "nearest" });
