@@ -343,7 +343,8 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
         return write_certificate(Path(d) / "certificate.pdf", ev.dataset, ev.evaluation, cfg,
                                  t.raw, tolerances, rule, paper, store=st,
                                  filename=t.summary.filename, config_note="",
-                                 customer_supplied=(), approved_by=user)
+                                 customer_supplied=(), approved_by=user,
+                                 draft_document=False)    # the page lists what is missing
 
 
 def _amend(st, t, number: str, reason: str, cfg: dict, user: str = ""):
