@@ -173,6 +173,15 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     assert next(x for x in audit(st) if x.action == "drift-check").new["e_ve"] == 0.6
     page = bench.get("/tests/1").text                       # the form starts from it now
     assert _value(page, "lab_name") == LAB_FORM["lab_name"]
+    for name in ("customer_name", "machine_serial", "air_temperature", "instrument1_due"):
+        assert _value(page, name) == JOB_FORM[name], name     # and from its certificate
+    r = bench.post("/upload", data={"csrf": bench.token, "machine": "MCU1025 bench",
+                                    "date": "2026-09-14"},   # the next test of the machine
+                   files={"file": ("again.dat", ECMC.read_bytes() + b"\n", "text/plain")})
+    assert "/tests/2" in str(r.url)
+    page = bench.get("/tests/2").text     # the machine's last certificate; its own date
+    assert (_value(page, "customer_name"), _value(page, "date"),
+            _value(page, "air_temperature")) == (JOB_FORM["customer_name"], "2026-09-14", "")
     assert _value(page, "lab_cmc") == "E=1, A=1"
     first = st.certificates()[0].number
     page = bench.get(f"/tests/1?certificate={first}").text

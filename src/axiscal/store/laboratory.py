@@ -179,19 +179,21 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None,
     return {**cfg, "uncertainty": inputs}
 
 
-def last_certificate_inputs(store, machine_id: int) -> dict:
-    """The inputs kept with the newest certificate of any test of a machine ({} if none): what
-    a new sign-off of the machine starts from (customer, item, instruments, tolerances)."""
+def last_certificate_inputs(store, machine_id: int) -> tuple[int | None, dict]:
+    """(test id, inputs) of the newest certificate of any test of a machine ((None, {}) if
+    none): what a new sign-off of the machine starts from (customer, item, instruments,
+    tolerances; and the conditions, when it is of the same test)."""
     from sqlalchemy import select
 
     from axiscal.store.models import Axis, Certificate, Test
 
-    q = (select(Certificate.inputs_json).join(Test, Test.id == Certificate.test_id)
+    q = (select(Certificate.test_id, Certificate.inputs_json)
+         .join(Test, Test.id == Certificate.test_id)
          .join(Axis, Axis.id == Test.axis_id).where(Axis.machine_id == int(machine_id))
          .order_by(Certificate.id.desc()).limit(1))
     with store._guard("read"), store._session() as s:
-        found = s.scalar(q)
-    return json.loads(found) if found else {}
+        found = s.execute(q).first()
+    return (found[0], json.loads(found[1])) if found else (None, {})
 
 
 def _record(r) -> DriftCheckRecord:

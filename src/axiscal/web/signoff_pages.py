@@ -125,15 +125,17 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
 
 def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
     """The form of a new sign-off: the user configuration, the laboratory kept in the history,
-    the customer, item, instruments and tolerances of the machine's last certificate, and the
-    stored test's date and the instrument typed at upload (a sign-off is of this test)."""
+    the customer, item, instruments and tolerances of the machine's last certificate (and its
+    conditions when it is of this test), and the stored test's date and the instrument typed at
+    upload (a sign-off is of this test)."""
     from axiscal.io.user_config import merge
     from axiscal.store.laboratory import laboratory, last_certificate_inputs
 
     cfg = merge(user_cfg, laboratory(st))
-    last = last_certificate_inputs(st, t.summary.machine_id)
+    of_test, last = last_certificate_inputs(st, t.summary.machine_id)
     old = last.get("config", {})
-    keep = {k: old[k] for k in ("customer", "instrument", "operator") if k in old}
+    same = ("conditions",) if of_test == t.summary.id else ()     # this test's own conditions
+    keep = {k: old[k] for k in ("customer", "instrument", "operator", *same) if k in old}
     keep["machine"] = {k: v for k, v in old.get("machine", {}).items()
                        if k in ("maker", "model", "serial", "location")}
     keep["certificate"] = {k: v for k, v in old.get("certificate", {}).items()
