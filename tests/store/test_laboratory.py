@@ -65,6 +65,16 @@ def test_drift_check_gives_e_ve_over_the_stored_inputs(store):
     with pytest.raises(InputError, match="given twice"):
         signoff_config(store, t, {}, {"uncertainty": {"e_ve": 1.0}})
     assert audit(store, test_id=1)[0].new["e_ve"] == 0.6
+    assert audit(store, test_id=1)[0].old == {"e_ve": 0.3, "e_ve_source": "declared"}
+    rec = store.get(1).record()          # the test's one record carries the drift check's E_VE
+    assert rec.inputs["e_ve"] == 0.6 and rec.inputs["e_ve_source"] == "drift check"
+    from axiscal.report.issue import budget_for
+
+    cfg = signoff_config(store, store.get(1), {})       # the sign-off: the record's inputs
+    assert rec.budget.U("E") == budget_for(rec.dataset, rec.evaluation,
+                                           {"uncertainty": rec.inputs}).U("E") < 1.0
+    assert budget_for(rec.dataset, rec.evaluation, cfg).U("E") == 1.0    # and the lab's CMC
+    assert store.get(1).result["quantities"]["E"]["U"] == pytest.approx(rec.budget.U("E"))
     with pytest.raises(AxiscalError, match="at least 2"):
         add_drift_check(store, 1, b"reading\n0.1\n", "one.csv", by="eng")
     assert len(drift_checks(store, 1)) == 1                  # nothing kept of a refusal

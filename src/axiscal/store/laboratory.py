@@ -8,7 +8,9 @@ instruments with their calibration (§7.8.4.1 c, §6.5), E_VE of the uncertainty
 §5.4). The command line reads these from the user configuration; the workbench keeps them in
 the history, where an engineer edits them (:func:`set_laboratory`, an audit entry each time,
 §7.5.2) and where they do not depend on a file on the server. A drift check uploaded for a test
-is kept with it, byte for byte (:func:`add_drift_check`).
+is kept with it, byte for byte, and its E_VE becomes an uncertainty input of the test's record
+(:func:`add_drift_check`): the test's page, its JSON, the API and the archive give the U it
+makes, as the sign-off does.
 
 :func:`signoff_config` is how a sign-off from the history resolves its configuration: the user
 configuration, the laboratory kept in the history over it, the job's tables (a form) over
@@ -102,7 +104,9 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
                     reason: str = "drift check of the test uploaded") -> DriftCheckRecord:
     """Keep a drift-check file with stored test ``test_id`` and its E_VE (the range of its
     readings in the test's deviation unit, :func:`~axiscal.standards.iso230_9_inputs.
-    environmental_variation`, the call ``axiscal iso230-2 --drift-check`` makes); an audit entry.
+    environmental_variation`, the call ``axiscal iso230-2 --drift-check`` makes) as an input of
+    the test's uncertainty budget (its stored record made again by the one call, in the same
+    transaction); an audit entry with the E_VE before and after.
 
     Raises
     ------
@@ -122,22 +126,39 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
         raise InputError(f"drift check {name}: not UTF-8 text (byte {exc.start})") from None
     readings = parse_drift_check(text, source=name)
     e_ve = environmental_variation(readings)
+    stored = store.get(test_id)
+    if stored.summary.kind != "iso230-2":
+        raise InputError(f"test {stored.summary.id} is a {stored.summary.kind} test: E_VE (a "
+                         "drift check) is an input of a positioning test's budget (ISO "
+                         "230-2:2014 Annex A)")
+    before = dict(stored.result.get("uncertainty_inputs") or {})
+    inputs = {**before, "e_ve": e_ve, "e_ve_source": "drift check"}
+    result = _with_inputs(stored, inputs)
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
         t = _test(s, test_id)
-        if t.kind != "iso230-2":
-            raise InputError(f"test {t.id} is a {t.kind} test: E_VE (a drift check) is an input "
-                             "of a positioning test's budget (ISO 230-2:2014 Annex A)")
         row = DriftCheck(test_id=t.id, filename=name, raw=raw,
                          sha256=hashlib.sha256(raw).hexdigest(), e_ve=e_ve,
                          readings=int(readings.size), created=now, by=(by or "").strip()[:200])
         s.add(row)
+        t.result_json = result            # the test's record: its budget with this E_VE
         s.flush()
         _log(s, by, reason, "drift-check", f"test {t.id}: drift check {name} kept, E_VE "
-             f"{e_ve:g}", {}, {"file": name, "sha256": row.sha256, "e_ve": e_ve,
-                               "readings": row.readings},
+             f"{e_ve:g}", {k: before.get(k) for k in ("e_ve", "e_ve_source")},
+             {"file": name, "sha256": row.sha256, "e_ve": e_ve, "e_ve_source": "drift check",
+              "readings": row.readings},
              machine_id=t.axis.machine_id, axis_id=t.axis_id, test_id=t.id)
         return _record(row)
+
+
+def _with_inputs(stored, inputs: dict) -> str:
+    """The stored result of a test with its uncertainty budget made from ``inputs``, as the
+    history stores a test (:func:`axiscal.store.kinds.with_uncertainty`, the one call)."""
+    from axiscal._json import jsonable
+    from axiscal.store.kinds import with_uncertainty
+
+    return json.dumps(jsonable(with_uncertainty(stored.evaluate_again(), inputs)
+                               .stored_result()))
 
 
 def drift_checks(store, test_id: int) -> list[DriftCheckRecord]:
