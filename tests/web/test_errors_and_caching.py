@@ -5,6 +5,7 @@ are never cached (``Cache-Control: no-store``: Back after log-out asks the serve
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 from fastapi.testclient import TestClient
 
@@ -53,3 +54,22 @@ def test_favicon_is_served_without_a_session(tmp_path, users):
     r = c.get("/favicon.ico", follow_redirects=False)
     assert r.status_code == 200 and r.headers["content-type"] == "image/x-icon"
     assert r.content[:4] == b"\x00\x00\x01\x00"          # an ICO file's header
+
+
+def test_refusals_of_an_htmx_post_carry_their_words_for_the_form(tmp_path, users):
+    """htmx swaps nothing on a 4xx/5xx answer; the page's script shows the answer's
+    ``role="alert"`` words at the form (static/axiscal.js). Each refusal of the sign-off POST
+    has them: 401 (session ended, nothing done), 403 (token), 413 (too large, before reading)."""
+    c = _client(tmp_path, users_file=users, require_login=True, upload_limit=1000)
+    hx = {"HX-Request": "true"}
+    r = c.post("/tests/1/signoff", data={"action": "verdict"}, headers=hx)
+    assert r.status_code == 401 and re.search(r'role="alert">[^<]*session has ended', r.text)
+    assert 'href="/login?' in r.text
+    assert log_in(c, "eng", "correct horse battery").status_code == 303
+    r = c.post("/tests/1/signoff", data={"csrf": "stale", "action": "verdict"}, headers=hx)
+    assert r.status_code == 403 and re.search(r'role="alert">[^<]*CSRF', r.text)
+    r = c.post("/tests/1/signoff", headers=hx, data={"csrf": "x"},
+               files={"drift_check": ("d.csv", b"0.1\n" * 2_000_000, "text/csv")})
+    assert r.status_code == 413 and re.search(r'role="alert">[^<]*MiB', r.text)
+    js = (Path(create_app.__code__.co_filename).parent / "static" / "axiscal.js").read_text()
+    assert "htmx:responseError" in js and "htmx:sendError" in js and "expired=1" in js
