@@ -22,7 +22,8 @@ ECMC = Path(__file__).resolve().parents[1] / "data" / "ecmc" / "mcu1025_fat_sat_
 DRIFT = b"time_s,reading\n0,0.05\n300,0.42\n600,-0.18\n900,0.11\n"
 #: The server's user configuration: no laboratory in it (the history keeps it).
 USER = '[certificate]\npaper = "A4"\n'
-LAB_FORM = {"lab_name": "Präzision Messtechnik GmbH", "lab_address": "Werkstrasse 1\n70173 Stuttgart",
+LAB_FORM = {"lab_name": "Präzision Messtechnik GmbH",
+            "lab_address": "Werkstrasse 1\n70173 Stuttgart",
             "lab_code": "PM", "lab_signatories": "B. Signatory, Head of laboratory",
             "lab_cmc": "E=1.0, A=1.0"}
 JOB_FORM = {"customer_name": "European Spallation Source ERIC",
