@@ -54,8 +54,8 @@ def test_full_signoff_from_upload_to_an_issued_certificate(lab_server, browser):
     _type(browser, "tol_E", "15")                      # no job yet: a DRAFT, no number
     _press(browser, "issue-certificate", "draft")
     draft = browser.find_element(By.ID, "draft").text
-    assert "customer name ([customer] name)" in draft
-    assert "name of the person authorising the certificate" in draft
+    assert "Customer: customer name" in draft                # issue 40: the field's label
+    assert "Approved by (authorised signatory): name of the person authorising" in draft
     assert "/tests/1" in browser.current_url and "certificate=" not in browser.current_url
     browser.execute_script("document.getElementById('draft').scrollIntoView()")
     shot(browser, "signoff_draft")

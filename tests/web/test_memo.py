@@ -85,13 +85,15 @@ def test_a_write_from_another_process_shows_on_the_next_view(tmp_path, monkeypat
 
 def test_a_test_page_reads_a_few_statements_and_never_the_bytes(tmp_path, monkeypatch):
     """A view of a stored test: the test (3 statements), its certificates, its audit trail and
-    the other tests of its axis; its stored bytes are not read (the evaluation is kept)."""
+    the other tests of its axis, and (issue 40) what the sign-off form starts from: the
+    laboratory, the machine's last certificate, the test's drift checks (one indexed row
+    each); its stored bytes are not read (the evaluation is kept)."""
     c, app, _ = _client(tmp_path, monkeypatch)
     c.get("/tests/2")
     seen = _selects(app)
     r = c.get("/tests/2")
     assert r.status_code == 200 and 'id="parameters"' in r.text
-    assert len(seen) <= 7
+    assert len(seen) <= 9
     assert not any(re.search(r"test\.raw\s*(,|FROM)", s) for s in seen)
 
 

@@ -344,14 +344,18 @@ def _verdict_box(outcome, rule_text: str) -> str:
 
 def item_identity(dataset, info: CertificateInfo) -> dict[str, str]:
     """The one identity of the item calibrated (ISO/IEC 17025:2017 §7.8.2.1 c, g): machine
-    (maker and model, else its name in the history or the data file), serial number, axis (the
+    (maker and model with the name the shop gives it in brackets, else that name or the data
+    file's), serial number, axis (the
     job's ``[machine] axis``, else the history's as corrected there, else the data file's) and
     location; the certificate's identification,
     its title and its figure all print these."""
     m, md = info.machine, dataset.metadata
+    made = " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
+    name = str(m.get("name") or "").strip()
+    if made and name and name not in made:       # the shop's own name of it, as in the history
+        made = f"{made} ({name})"
     return {
-        "Machine": " ".join(str(x) for x in (m.get("maker"), m.get("model")) if x)
-        or m.get("name") or md.machine or NOT_STATED,
+        "Machine": made or name or md.machine or NOT_STATED,
         "Serial number": str(m.get("serial") or NOT_STATED),
         "Location": str(m.get("location") or info.conditions.get("location") or NOT_STATED),
         "Axis": str(m.get("axis") or md.axis or NOT_STATED),

@@ -184,7 +184,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
                       *, store=None, filename: str = "data.csv", today: str | None = None,
                       config_note: str = "", customer_supplied=None, logo: str | None = None,
                       replaces: str = "", reason: str = "", prepared_by: str = "",
-                      approved_by: str = "", changes=(), as_found=None) -> CertificateOutcome:
+                      approved_by: str = "", changes=(), as_found=None,
+                      draft_document: bool = True) -> CertificateOutcome:
     """Budget, decisions and certificate of one positioning test, written to ``path``
     (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
 
@@ -215,6 +216,10 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
         who approves its issue (default ``[certificate] signatory``; the workbench passes the
         signed-in user). :func:`authorisation` checks them; both are printed and kept in the
         register.
+    draft_document : bool
+        Write the DRAFT to ``path`` when an item is missing (default). The workbench, which
+        shows the missing items on its page and keeps no DRAFT, says False: nothing is
+        rendered (a PDF takes seconds).
 
     Raises
     ------
@@ -268,7 +273,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     from axiscal.io._files import write_bytes_atomic
 
     if missing:
-        write_bytes_atomic(Path(path), render(""))
+        if draft_document:
+            write_bytes_atomic(Path(path), render(""))
         return CertificateOutcome(Path(path), tuple(decisions), missing)
     inputs = {"config": cfg, "tolerances": dict(tolerances or {}), "rule": rule, "paper": paper,
               "logo": logo, "customer_supplied": list(customer_supplied)}

@@ -17,7 +17,8 @@ import datetime as dt
 from sqlalchemy import (Double, ForeignKey, Index, LargeBinary, String, Text, UniqueConstraint)
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
-__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table", "Certificate", "Audit"]
+__all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table", "Certificate", "Audit",
+           "Laboratory", "DriftCheck"]
 
 
 class Base(DeclarativeBase):
@@ -182,3 +183,32 @@ class Audit(Base):
     test_id: Mapped[int | None] = mapped_column(nullable=True)
     old_json: Mapped[str] = mapped_column(Text)
     new_json: Mapped[str] = mapped_column(Text)
+
+
+class Laboratory(Base):
+    """The laboratory as the history keeps it (one row): the configuration tables that identify
+    it and what it certifies with, as JSON (``company``, ``signatory``, ``instrument``,
+    ``uncertainty``), edited by :mod:`axiscal.store.laboratory` with an audit entry each time."""
+
+    __tablename__ = "laboratory"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    tables_json: Mapped[str] = mapped_column(Text)
+    updated: Mapped[dt.datetime] = mapped_column()
+    updated_by: Mapped[str] = mapped_column(String(200))
+
+
+class DriftCheck(Base):
+    """A drift-check file kept beside a test, byte for byte, with the E_VE it gives (the range
+    of its readings, ISO 230-2:2014 Annex A.5) in the test's deviation unit."""
+
+    __tablename__ = "drift_check"
+    __table_args__ = (Index("ix_drift_check_test", "test_id"),)
+    id: Mapped[int] = mapped_column(primary_key=True)
+    test_id: Mapped[int] = mapped_column(ForeignKey("test.id", ondelete="CASCADE"))
+    filename: Mapped[str] = mapped_column(String(300))
+    raw: Mapped[bytes] = mapped_column(LargeBinary)
+    sha256: Mapped[str] = mapped_column(String(64))
+    e_ve: Mapped[float] = mapped_column(Double)
+    readings: Mapped[int] = mapped_column()
+    created: Mapped[dt.datetime] = mapped_column()
+    by: Mapped[str] = mapped_column(String(200))

@@ -98,6 +98,7 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     app.add_middleware(BodyLimit, limit=app.state.upload_limit + FORM_OVERHEAD)
     _add_guard(app)
     _add_error_pages(app)
+    _add_favicon(app)
     pages.add_routes(app)
     correction_pages.add_routes(app)       # rename, merge, edit, withdraw; the audit trail
     return app
@@ -128,6 +129,7 @@ class _Guard:
         from starlette.datastructures import MutableHeaders
 
         request = Request(scope)
+        public_asset = _public_asset(request.url.path)
         refusal = _refusal(request)
         session = None if refusal is not None else request.state.session
         cookie = _anon_cookie(session["anon"]) if session and session.get("new_anon") else None
@@ -140,6 +142,8 @@ class _Guard:
                         headers.append("set-cookie", cookie)
                     for name, value in _PROTECTIVE:
                         headers.setdefault(name, value)
+                    if not public_asset:        # a page of a session: never kept, so Back
+                        headers.setdefault("Cache-Control", "no-store")  # after log-out asks
                 headers["X-Axiscal-Worker"] = WORKER_ID     # which process answered (opaque)
             await send(message)
 
@@ -158,17 +162,37 @@ def _refusal(request: Request):
     if not host_allowed(request.headers.get("host"), request.app.state.hosts):
         return render_error(request, "this server does not answer to that host name "
                             "(Host header); open it by the address it was started on", 400)
-    if request.method == "POST" and not origin_allowed(request.headers, request.app.state.hosts):
+    if request.method == "POST" and not origin_allowed(request.headers, request.app.state.hosts,
+                                                       request.url.scheme):
         return render_error(request, "the form was sent from another site (Origin "
                             "header); open the workbench and send it from there", 403)
     session = _session(request)
     request.state.session = session
-    public = request.url.path.startswith("/static/") or request.url.path == "/login"
+    public = _public_asset(request.url.path) or request.url.path == "/login"
     if session is None and not public:
         if request.method == "GET":
             return RedirectResponse(f"/login?next={quote(request.url.path)}", 303)
-        return render_error(request, "log in first", 401)
+        return render_error(request, "not logged in, or the session has ended: log in "
+                            "first (nothing was done)", 401)
     return None
+
+
+def _public_asset(path: str) -> bool:
+    """The files every page loads, the same for everyone (served without a session, cacheable):
+    ``/static/`` and ``/favicon.ico``. Every other answer is a page of a session and carries
+    ``Cache-Control: no-store`` (RFC 9111 §5.2.2.5; OWASP Session Management Cheat Sheet, "Web
+    content caching"): after log-out, Back asks the server again and gets the login."""
+    return path.startswith("/static/") or path == "/favicon.ico"
+
+
+def _add_favicon(app: FastAPI) -> None:
+    """``/favicon.ico``, which every browser asks for on every page (a 404 each time before)."""
+    from fastapi.responses import FileResponse
+
+    @app.get("/favicon.ico", include_in_schema=False)
+    def favicon():
+        return FileResponse(HERE / "static" / "favicon.ico", media_type="image/x-icon",
+                            headers={"Cache-Control": "public, max-age=86400"})
 
 
 def _anon_cookie(anon: str) -> str:

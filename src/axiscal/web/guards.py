@@ -7,7 +7,9 @@
   Host header names the authority the client means) make possible.
 * **Origin check** on every POST (OWASP CSRF Prevention Cheat Sheet, "Verifying origin with
   standard headers"; RFC 6454 §7 for the ``Origin`` header): the ``Origin`` header, or the
-  ``Referer`` when the browser sent no Origin, must name an allowed host on the same port. A request
+  ``Referer`` when the browser sent no Origin, must name this server's origin: the scheme it is
+  served by, an allowed host and the same port (RFC 6454 §4: an origin is the triple scheme, host,
+  port; ``https://127.0.0.1:PORT`` is another origin than ``http://127.0.0.1:PORT``). A request
   with neither comes from no browser (browsers send Origin on every cross-origin POST), so it is
   not a cross-site request; it still needs the synchronizer CSRF token.
 * **Bounded bodies** (:class:`BodyLimit`): a declared ``Content-Length`` over the limit is refused
@@ -85,9 +87,11 @@ def host_allowed(header: str | None, allowed: frozenset) -> bool:
     return parsed is not None and parsed[0] in allowed
 
 
-def origin_allowed(headers, allowed: frozenset) -> bool:
-    """True when a POST's Origin (or, without one, its Referer) is this server: an allowed host on
-    the port of the Host header. No header at all is allowed (not sent by a browser)."""
+def origin_allowed(headers, allowed: frozenset, scheme: str = "http") -> bool:
+    """True when a POST's Origin (or, without one, its Referer) is this server's origin (RFC 6454
+    §4: scheme, host and port): the ``scheme`` the request came by (``http``, or ``https`` behind
+    a proxy that says so), an allowed host and the port of the Host header. No header at all is
+    allowed (not sent by a browser)."""
     source = headers.get("origin") or headers.get("referer")
     if source is None:
         return True
@@ -97,7 +101,8 @@ def origin_allowed(headers, allowed: frozenset) -> bool:
         name, port = there.hostname, there.port
     except ValueError:
         return False
-    if here is None or there.scheme not in ("http", "https") or not name:
+    if here is None or there.scheme not in ("http", "https") or not name \
+            or there.scheme != (scheme or "http").lower():
         return False
     default = "443" if there.scheme == "https" else "80"
     return name.lower() in allowed and str(port or default) == (here[1] or default)

@@ -22,9 +22,10 @@ COOKIE = "axiscal_session"
 def login_routes(app: FastAPI) -> None:
     """Add ``/login`` and ``/logout`` to ``app``."""
     @app.get("/login", response_class=HTMLResponse)
-    async def login_form(request: Request, next: str = "/"):
+    async def login_form(request: Request, next: str = "/", expired: str = ""):
         request.state.session = request.state.session or {}
-        return render(request, "login.html", "Log in", next=_local(next))
+        return render(request, "login.html", "Log in", next=_local(next),
+                      expired=bool(expired))
 
     @app.post("/login")
     async def login(request: Request):

@@ -24,6 +24,9 @@ def add_routes(app: FastAPI) -> None:
     from axiscal.web import signoff_pages
 
     signoff_pages.add_routes(app)
+    from axiscal.web import laboratory_pages
+
+    laboratory_pages.add_routes(app)      # the laboratory kept in the history (issue 40)
     from axiscal.web import measured_pages
 
     measured_pages.add_routes(app)        # a capture, raw readings + log, an archive

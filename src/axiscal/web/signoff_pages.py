@@ -9,7 +9,18 @@ config). :func:`job_from_form` only parses the fields into that job structure; t
 write_certificate`, the same library calls as the command line, numbered by the register of the
 workbench's history (:meth:`axiscal.store.history.Store.issue_certificate`). A certificate whose
 mandatory content (ISO/IEC 17025:2017 §7.8.2, §7.8.4) is incomplete is not numbered: the page
-names each missing item, as the command line's DRAFT does.
+names each missing item by the label of the field that gives it, with a link to the field
+(:mod:`axiscal.web.signoff_form`).
+
+The laboratory (name, address, code, signatories, E_VE declared, CMC) is kept in the history
+(:mod:`axiscal.store.laboratory`; each change an audit entry) and a drift check uploaded on the
+form is kept beside the test; the configuration of a sign-off is
+:func:`axiscal.store.laboratory.signoff_config`: the stored test's own uncertainty inputs, under its
+drift check's E_VE, with the form's job on top, so the budget is the stored test's, made by the
+one call (:func:`axiscal.report.issue.budget_for`). The form starts from the laboratory, the
+machine's last certificate and the stored test (its date and the instrument typed at upload). A
+test with a certificate is amended (a new number with the reason, the old one superseded), never
+issued twice; a withdrawn test is never certified (the register refuses both).
 """
 
 from __future__ import annotations
@@ -22,24 +33,16 @@ from axiscal.errors import AxiscalError, InputError
 from axiscal.web.inputs import TestId, checked_form, form_number, require_engineer
 from axiscal.web.plot_specs import COLORS, as_list, positioning_plot, unit_text
 from axiscal.web.rendering import download, query, render
+from axiscal.web.signoff_form import (INSTRUMENT_KEYS, INSTRUMENTS, JOB_FIELDS, LABELS,
+                                      lab_defaults, lab_from_form, missing_fields, plain)
 
 __all__ = ["add_routes", "job_from_form", "signoff_context", "signoff_plot", "INSTRUMENTS"]
 
-#: Instrument rows of the form (``[[instrument]]`` of a job file).
-INSTRUMENTS = 3
-_JOB_FIELDS = {"customer_name": ("customer", "name"), "customer_address": ("customer", "address"),
-               "machine_maker": ("machine", "maker"), "machine_model": ("machine", "model"),
-               "machine_serial": ("machine", "serial"),
-               "machine_location": ("machine", "location"),
-               "date": ("conditions", "date"),
-               "air_temperature": ("conditions", "air_temperature"),
-               "material_temperature": ("conditions", "material_temperature"),
-               "operator": ("operator", "name"),
-               "signatory": ("certificate", "signatory"),
-               "signatory_role": ("certificate", "signatory_role"),
-               "specification": ("certificate", "specification")}
+_JOB_FIELDS = JOB_FIELDS
 _TEMPERATURES = ("air_temperature", "material_temperature")
-_INSTRUMENT_KEYS = ("name", "serial", "certificate", "due")
+_INSTRUMENT_KEYS = INSTRUMENT_KEYS
+#: The largest drift-check file taken, bytes (a day of readings a second is ~1 MB).
+MAX_DRIFT_BYTES = 2 * 2**20
 #: Colours of the verdicts (table cells and the tolerance envelope of the plot).
 VERDICT_COLORS = {"PASS": "#1e7b34", "FAIL": "#d62728", "ZONE": "#ff7f0e"}
 
@@ -55,12 +58,15 @@ def add_routes(app: FastAPI) -> None:
         form = await checked_form(request)
         require_engineer(request)
         values = {k: str(v).strip() for k, v in form.items() if isinstance(v, str)}
-        issue = values.get("action") == "issue"
+        action = values.get("action") or "verdict"
+        drift = form.get("drift_check")
+        drift = (await drift.read(MAX_DRIFT_BYTES + 1), drift.filename or "drift-check.csv") \
+            if drift is not None and hasattr(drift, "read") and drift.filename else None
         from axiscal.web.workers import heavy     # a certificate: one at a time per worker
 
         user = request.state.session.get("name") or ""    # signed in: the approver
-        ctx = await (heavy if issue else run_in_threadpool)(_evaluate, store(request), test_id,
-                                                            values, issue, user)
+        ctx = await (heavy if action != "verdict" else run_in_threadpool)(
+            _evaluate, store(request), test_id, values, action, user, drift)
         partial = request.headers.get("hx-request") == "true"
         if ctx.get("number"):                  # issued: the test page lists it (POST-redirect-GET)
             url = f"/tests/{test_id}?{query(certificate=ctx['number'])}#signoff"
@@ -84,31 +90,63 @@ def add_routes(app: FastAPI) -> None:
 
 def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "",
                     cfg: dict | None = None) -> dict | None:
-    """What the test page's sign-off section shows: the form (prefilled from the user
-    configuration ``cfg``, default read now, or from the inputs kept with ``certificate`` of
-    this test, whose verdict is then shown) and the certificates of this test in the register;
-    None for a test that is not a positioning test."""
+    """What the test page's sign-off section shows: the form (filled from ``values``, or from
+    the inputs kept with ``certificate`` of this test, whose verdict is then shown, or else
+    from the user configuration ``cfg`` (default read now), the laboratory kept in the history,
+    the machine's last certificate and the stored test), the certificates of this test in the
+    register, its drift checks, and whether it may be certified; None for a test that is not a
+    positioning test."""
     if ev.kind != "iso230-2":
         return None
     from axiscal.report.issue import load_config
+    from axiscal.store.laboratory import drift_checks
 
     params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
     records = st.certificates(test_id=t.summary.id)
+    current = next((c for c in records if c.status == "issued"), None)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
-           "instruments": range(1, INSTRUMENTS + 1),
-           "unit": _unit(ev.evaluation.deviation_unit)}
+           "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
+           "unit": _unit(ev.evaluation.deviation_unit), "current": current,
+           "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id)}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
         inputs = st.certificate(issued.number, issued.laboratory).inputs
         tolerances = inputs.get("tolerances") or {}
         cfg = inputs["config"]
-        ctx["form"] = {**_defaults(cfg, params),
+        ctx["form"] = {**_defaults(cfg, params), **lab_defaults(cfg),
                        **{f"tol_{p}": f"{v:g}" for p, v in tolerances.items()}}
         _verdict(ctx, ev, cfg, tolerances, inputs.get("rule"))
+    elif values is not None:
+        ctx["form"] = values
     else:
-        ctx["form"] = values if values is not None else \
-            _defaults(load_config(None) if cfg is None else cfg, params)
+        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params)
     return ctx
+
+
+def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
+    """The form of a new sign-off: the user configuration, the laboratory kept in the history,
+    the customer, item, instruments and tolerances of the machine's last certificate (and its
+    conditions when it is of this test), and the stored test's date and the instrument typed at
+    upload (a sign-off is of this test)."""
+    from axiscal.io.user_config import merge
+    from axiscal.store.laboratory import laboratory, last_certificate_inputs
+
+    cfg = merge(user_cfg, laboratory(st))
+    of_test, last = last_certificate_inputs(st, t.summary.machine_id)
+    old = last.get("config", {})
+    same = ("conditions",) if of_test == t.summary.id else ()     # this test's own conditions
+    keep = {k: old[k] for k in ("customer", "instrument", "operator", *same) if k in old}
+    keep["machine"] = {k: v for k, v in old.get("machine", {}).items()
+                       if k in ("maker", "model", "serial", "location")}
+    keep["certificate"] = {k: v for k, v in old.get("certificate", {}).items()
+                           if k in ("specification", "rule", "paper")}
+    keep["tolerance"] = {**old.get("tolerance", {}), **(last.get("tolerances") or {})}
+    form = {**_defaults(merge(cfg, keep), params), **lab_defaults(cfg)}
+    if t.summary.date_known and not ev.dataset.metadata.date:
+        form["date"] = t.summary.tested_at.strftime("%Y-%m-%d")
+    if t.instrument and not form.get("instrument1_name"):
+        form["instrument1_name"] = t.instrument
+    return form
 
 
 def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str]:
@@ -134,12 +172,14 @@ def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str
         elif field == "customer_address":
             value = [line.strip() for line in text.splitlines() if line.strip()]
         job.setdefault(table, {})[key] = value
-    rows = [{k: values.get(f"instrument{i}_{k}", "") for k in _INSTRUMENT_KEYS}
-            for i in range(1, INSTRUMENTS + 1)]
-    rows = [{k: v for k, v in r.items() if v} for r in rows if any(r.values())]
-    for r in rows:
-        if "name" not in r:
-            raise InputError("an instrument row without a name: give the instrument's name")
+    rows = []
+    for i in range(1, INSTRUMENTS + 1):
+        row = {k: values.get(f"instrument{i}_{k}", "") for k in _INSTRUMENT_KEYS}
+        if any(row.values()) and not row["name"]:
+            raise InputError(f"{LABELS[f'instrument{i}_name']}: this instrument row has no "
+                             "name; give the instrument's name (or empty the row)")
+        if any(row.values()):
+            rows.append({k: v for k, v in row.items() if v})
     if rows:
         job["instrument"] = rows
     tolerances = {p: form_number(values[f"tol_{p}"], f"tolerance {p}", 0.0, 1e6)
@@ -206,13 +246,23 @@ def _envelopes(r, so, tolerances: dict) -> list:
     return out
 
 
-def _evaluate(st, test_id: int, values: dict, issue: bool, user: str = "") -> dict:
-    """The sign-off's verdict and, with ``issue``, the certificate (library calls only).
+def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
+              drift: tuple | None = None) -> dict:
+    """The sign-off's verdict and, with ``action`` ``issue`` or ``amend``, the certificate or
+    its amendment (library calls only).
 
     ``user`` is the signed-in account: the approver of the issue, who must be one of the
     laboratory's authorised signatories (:func:`axiscal.report.issue.authorisation`); without
     sign-in (a workbench on one's own computer) the form's signatory approves, as on the
-    command line."""
+    command line. ``drift`` is (bytes, file name) of a drift check uploaded with the form: kept
+    beside the test (:func:`axiscal.store.laboratory.add_drift_check`). The laboratory's fields
+    are kept in the history when a certificate is issued with them (an audit entry by ``user``,
+    or by the certificate's preparer on one's own computer)."""
+    from axiscal.io.user_config import merge
+    from axiscal.report.issue import load_config
+    from axiscal.store.laboratory import (add_drift_check, laboratory, set_laboratory,
+                                          signoff_config)
+
     t = st.get(test_id)
     ev = t.evaluate_again()
     ctx = signoff_context(st, t, ev, values)
@@ -220,18 +270,60 @@ def _evaluate(st, test_id: int, values: dict, issue: bool, user: str = "") -> di
         raise InputError(f"a {ev.kind} test is signed off by its command; the workbench signs "
                          "off ISO 230-2 positioning tests")
     try:
+        if action in ("issue", "amend"):
+            _check_issue(ctx, action, values)
         job, tolerances, rule, paper = job_from_form(values, ctx["parameters"])
-        from axiscal.io.user_config import config_problem, merge
-        from axiscal.report.issue import load_config
-
-        cfg = merge(load_config(None), job)
+        kept = laboratory(st)
+        lab = lab_from_form(values, kept, job.get("instrument", []))
+        who = user or values.get("operator", "")
+        if drift is not None:
+            if len(drift[0]) > MAX_DRIFT_BYTES:
+                raise InputError(f"{LABELS['drift_check']}: {drift[1]} is over "
+                                 f"{MAX_DRIFT_BYTES // 2**20} MiB")
+            if not who:
+                raise InputError(f"{LABELS['operator']}: give your name; the history records "
+                                 "who kept the drift check")
+            add_drift_check(st, test_id, drift[0], drift[1], by=who)
+            ctx["drift_checks"] = _drift_checks(st, test_id)
+        cfg = signoff_config(st, t, load_config(None), job, lab)
         _verdict(ctx, ev, cfg, tolerances, rule)
-        if issue:
-            out = _issue(st, t, ev, cfg, tolerances, rule, paper, config_problem(), user)
-            ctx.update(missing=out.missing, number=out.number)
+        if action in ("issue", "amend"):
+            out = _issue(st, t, ev, cfg, tolerances, rule, paper, user) if action == "issue" \
+                else _amend(st, t, ctx["current"].number, values["amend_reason"], cfg, user)
+            ctx.update(missing=missing_fields(out.missing, values, bool(user)),
+                       number=out.number)
+            if out.number and lab != kept:    # issued with it: the laboratory as it was used
+                set_laboratory(st, lab, by=who or out.record.prepared_by,
+                               reason=f"used for certificate {out.number} of test {test_id}")
     except AxiscalError as exc:
-        ctx["error"] = str(exc)
+        ctx["error"] = plain(str(exc)) if "[" in str(exc) else str(exc)
     return ctx
+
+
+def _drift_checks(st, test_id: int):
+    from axiscal.store.laboratory import drift_checks
+
+    return drift_checks(st, test_id)
+
+
+def _check_issue(ctx: dict, action: str, values: dict) -> None:
+    """The register's rules in the form's words, before anything is kept: a withdrawn test is
+    never certified; a test with a certificate is amended, with a reason, never issued again."""
+    if ctx["withdrawn"]:
+        raise InputError(f"test {ctx['test_id']} is withdrawn ({ctx['withdrawn']}): a "
+                         "withdrawn test is never certified; reinstate it first (Correct this "
+                         "test) if the withdrawal was wrong")
+    current = ctx["current"]
+    if action == "issue" and current is not None:
+        raise InputError(f"this test has certificate {current.number}: a second certificate "
+                         f"is an amendment; give the {LABELS['amend_reason'].lower()} and "
+                         "press \"Issue an amendment\"")
+    if action == "amend":
+        if current is None:
+            raise InputError("this test has no certificate to amend: issue one")
+        if not values.get("amend_reason"):
+            raise InputError(f"{LABELS['amend_reason']}: say why {current.number} is amended "
+                             "(printed on the new certificate)")
 
 
 def _verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
@@ -243,7 +335,7 @@ def _verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
                rows=_rows(ev.evaluation, so, tolerances), budget=so.budget)
 
 
-def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note, user: str = ""):
+def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
     import tempfile
     from pathlib import Path
 
@@ -252,8 +344,25 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, config_note, user: str = "")
     with tempfile.TemporaryDirectory() as d:
         return write_certificate(Path(d) / "certificate.pdf", ev.dataset, ev.evaluation, cfg,
                                  t.raw, tolerances, rule, paper, store=st,
-                                 filename=t.summary.filename, config_note=config_note,
-                                 customer_supplied=(), approved_by=user)
+                                 filename=t.summary.filename, config_note="",
+                                 customer_supplied=(), approved_by=user,
+                                 draft_document=False)    # the page lists what is missing
+
+
+def _amend(st, t, number: str, reason: str, cfg: dict, user: str = ""):
+    """Amend ``number`` with the form's configuration over the inputs kept with it, the
+    machine named as the history names it now (:func:`axiscal.report.issue.
+    reissue_certificate`: a new number, the reason and the changes printed; a DRAFT refused)."""
+    import tempfile
+    from pathlib import Path
+
+    from axiscal.report.issue import reissue_certificate
+
+    m = st.machine(t.summary.machine_id)
+    corrections = {**cfg, "machine": {**cfg.get("machine", {}), "name": m.name}}
+    with tempfile.TemporaryDirectory() as d:
+        return reissue_certificate(st, number, reason, Path(d) / "certificate.pdf",
+                                   corrections, approved_by=user)
 
 
 def _rows(result, so, tolerances: dict) -> list:

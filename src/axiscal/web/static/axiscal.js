@@ -1,4 +1,5 @@
-// axiscal workbench: interactive plots (uPlot, vendored) and the CSRF header for htmx requests.
+// axiscal workbench: interactive plots (uPlot, vendored), the CSRF header for htmx requests and
+// every failed htmx request shown where the user acted.
 // Every element with class "uplot-chart" names a <script type="application/json"> holding
 // {"title", "x_label", "y_label", "x": [...], "x_time" (optional: x are dates, seconds since 1970 UTC),
 //  "series": [{"label", "values", "color", "dash", "points", "size" (of the points, px), "thin" (a 1 px line),
@@ -58,7 +59,117 @@
     });
   }
 
-  document.addEventListener("DOMContentLoaded", function () { init(document); });
+  // Errors are never silent (issue 40). htmx swaps nothing on a 4xx/5xx answer; the answer
+  // (the workbench's error page, or a fragment) is read for its words and shown at the top of
+  // the form the user sent, which keeps everything typed. An ended session (401) keeps what was
+  // typed in this tab (sessionStorage) and goes to the login, which comes back here; the page
+  // then fills the form in again.
+  var KEPT = "axiscal-kept:";
+  var WORDS = { 401: "Your session has ended: log in again.",
+                403: "Refused (403).", 404: "Not found (404).",
+                413: "Too large for the workbench (413).",
+                422: "The form could not be read (422).", 429: "Too many requests (429).",
+                500: "The server could not do it (500): its log has the details." };
+
+  function wordsOf(xhr) {
+    var found = "";
+    try {
+      var doc = new DOMParser().parseFromString(xhr.responseText || "", "text/html");
+      var el = doc.querySelector('[role="alert"]');
+      found = el ? el.textContent.replace(/\s+/g, " ").trim() : "";
+    } catch (err) { found = ""; }
+    var head = WORDS[xhr.status] || ("The request failed (HTTP " + xhr.status + ").");
+    return found ? head.replace(/\.$/, ":") + " " + found : head;
+  }
+
+  function show(elt, text) {
+    var form = elt && elt.closest && elt.closest("form");
+    var box = form ? form.querySelector(":scope > .request-error")
+                   : (elt && elt.nextElementSibling);
+    if (!box || !box.classList.contains("request-error")) {
+      box = document.createElement("div");
+      box.className = "error request-error";
+      box.setAttribute("role", "alert");
+      if (form) { form.insertBefore(box, form.firstChild); }
+      else if (elt && elt.parentNode) { elt.parentNode.insertBefore(box, elt.nextSibling); }
+      else { document.querySelector("main").prepend(box); }
+    }
+    box.textContent = text;
+    box.scrollIntoView({ block: "nearest" });
+  }
+
+  function fields(form) {
+    var out = {};
+    form.querySelectorAll("input, textarea, select").forEach(function (el) {
+      if (!el.name || el.type === "hidden" || el.type === "file" || el.type === "password" ||
+          el.type === "submit") { return; }
+      if ((el.type === "checkbox" || el.type === "radio") && !el.checked) { return; }
+      out[el.name] = el.value;
+    });
+    return out;
+  }
+
+  function keep(elt) {
+    var form = elt && elt.closest && elt.closest("form");
+    if (!form) { return; }
+    try {
+      sessionStorage.setItem(KEPT + location.pathname, JSON.stringify(
+        { form: form.id || "", values: fields(form) }));
+    } catch (err) { /* storage refused: the login still comes back here */ }
+  }
+
+  function restore() {
+    var raw = null;
+    try { raw = sessionStorage.getItem(KEPT + location.pathname); } catch (err) { raw = null; }
+    if (!raw) { return; }
+    sessionStorage.removeItem(KEPT + location.pathname);
+    var kept = JSON.parse(raw);
+    var form = kept.form ? document.getElementById(kept.form) : document.querySelector("main form");
+    if (!form) { return; }
+    Object.keys(kept.values).forEach(function (name) {
+      form.querySelectorAll('[name="' + name.replace(/"/g, "") + '"]').forEach(function (el) {
+        if (el.type === "checkbox" || el.type === "radio") { el.checked = el.value === kept.values[name]; }
+        else { el.value = kept.values[name]; }
+      });
+    });
+    var note = document.createElement("div");
+    note.className = "card warning request-error";
+    note.setAttribute("role", "status");
+    note.id = "restored";
+    note.textContent = "You were logged in again: what you had typed here is filled in again. " +
+      "Send it again when it is right.";
+    form.insertBefore(note, form.firstChild);
+    form.scrollIntoView({ block: "start" });
+  }
+
+  document.addEventListener("htmx:responseError", function (e) {
+    var xhr = e.detail.xhr;
+    if (xhr.status === 401) {
+      keep(e.detail.elt);
+      show(e.detail.elt, WORDS[401] + " Taking you to the login; what you typed is kept.");
+      location.assign("/login?expired=1&next=" +
+                      encodeURIComponent(location.pathname + location.search));
+      return;
+    }
+    show(e.detail.elt, wordsOf(xhr));
+  });
+  document.addEventListener("htmx:sendError", function (e) {
+    show(e.detail.elt, "The workbench did not answer (stopped, or the network is down): " +
+         "nothing was sent; what you typed is still here.");
+  });
+  document.addEventListener("htmx:beforeRequest", function (e) {
+    var form = e.detail.elt && e.detail.elt.closest && e.detail.elt.closest("form");
+    var box = form && form.querySelector(":scope > .request-error");
+    if (box) { box.remove(); }
+  });
+
+  // A signed-in page the browser brings back from its back/forward cache (which may keep even
+  // a "Cache-Control: no-store" page) is asked for again: after log-out, Back shows the login.
+  window.addEventListener("pageshow", function (e) {
+    if (e.persisted && document.querySelector("header .who form")) { location.reload(); }
+  });
+
+  document.addEventListener("DOMContentLoaded", function () { init(document); restore(); });
   document.addEventListener("htmx:afterSwap", function (e) { init(e.target); });
   document.addEventListener("htmx:configRequest", function (e) {
     var meta = document.querySelector('meta[name="csrf-token"]');
