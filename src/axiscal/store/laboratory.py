@@ -23,7 +23,6 @@ from that configuration, the one call every path makes.
 from __future__ import annotations
 
 import datetime as dt
-import hashlib
 import json
 from dataclasses import dataclass
 
@@ -114,32 +113,28 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
         Not a drift check (:func:`~axiscal.io.drift.parse_drift_check`), fewer than 2 readings,
         a test that is not a positioning test.
     """
-    from axiscal.io.drift import parse_drift_check
-    from axiscal.standards.iso230_9_inputs import environmental_variation
+    from axiscal._json import jsonable
     from axiscal.store.corrections import _change, _log, _test
+    from axiscal.store.kinds import drift_check_record, with_drift_check, with_uncertainty
     from axiscal.store.models import DriftCheck
 
     name = (filename or "drift-check.csv").replace("\\", "/").rsplit("/", 1)[-1][:300]
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"drift check {name}: not UTF-8 text (byte {exc.start})") from None
-    readings = parse_drift_check(text, source=name)
-    e_ve = environmental_variation(readings)
+    record = drift_check_record(raw, name)     # the one place a drift check becomes E_VE
+    e_ve = record["e_ve"]
     stored = store.get(test_id)
     if stored.summary.kind != "iso230-2":
         raise InputError(f"test {stored.summary.id} is a {stored.summary.kind} test: E_VE (a "
                          "drift check) is an input of a positioning test's budget (ISO "
                          "230-2:2014 Annex A)")
     before = dict(stored.result.get("uncertainty_inputs") or {})
-    inputs = {**before, "e_ve": e_ve, "e_ve_source": "drift check"}
-    result = _with_inputs(stored, inputs)
+    ev, inputs = with_drift_check(stored.evaluate_again(), before, record)
+    result = json.dumps(jsonable(with_uncertainty(ev, inputs).stored_result()))
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
         t = _test(s, test_id)
         row = DriftCheck(test_id=t.id, filename=name, raw=raw,
-                         sha256=hashlib.sha256(raw).hexdigest(), e_ve=e_ve,
-                         readings=int(readings.size), created=now, by=(by or "").strip()[:200])
+                         sha256=record["sha256"], e_ve=e_ve,
+                         readings=int(record["samples"]), created=now, by=(by or "").strip()[:200])
         s.add(row)
         t.result_json = result            # the test's record: its budget with this E_VE
         s.flush()
@@ -149,16 +144,6 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
               "readings": row.readings},
              machine_id=t.axis.machine_id, axis_id=t.axis_id, test_id=t.id)
         return _record(row)
-
-
-def _with_inputs(stored, inputs: dict) -> str:
-    """The stored result of a test with its uncertainty budget made from ``inputs``, as the
-    history stores a test (:func:`axiscal.store.kinds.with_uncertainty`, the one call)."""
-    from axiscal._json import jsonable
-    from axiscal.store.kinds import with_uncertainty
-
-    return json.dumps(jsonable(with_uncertainty(stored.evaluate_again(), inputs)
-                               .stored_result()))
 
 
 def drift_checks(store, test_id: int) -> list[DriftCheckRecord]:
