@@ -8,8 +8,10 @@ As Renishaw CARTO's Capture → Explore → Compensate does by hand, in one run:
 2. the simulated laser records all the time: LinuxCNC's sampler gives the drive's position every
    servo period, and the laser reads where the simulated machine axis behind the drive is there,
    ``x + e(x, d)`` (its systematic deviation for the direction ``d`` it last moved, ISO 230-2
-   §3.1; :meth:`~axiscal.machines.linear.LinearAxis.systematic_deviation`), with the axis's
-   repeatability as one draw per approach and the instrument's noise on every reading;
+   §3.1; :meth:`~axiscal.machines.linear.LinearAxis.systematic_deviation`, on a rotary axis
+   :meth:`~axiscal.machines.rotary.RotaryAxis.systematic_error`), with the axis's repeatability
+   as one draw per approach and the instrument's noise on every reading; each test is dated the
+   day it ran;
 3. ``axiscal capture``'s stillness trigger (:func:`axiscal.procedures.capture.capture_test`)
    turns the record into the test's dataset;
 4. :func:`axiscal.compensation.loop.run_compensation_loop` evaluates it (ISO 230-2), writes the
@@ -52,7 +54,7 @@ class ByProgram:
     dwell : float, s
         The program's dwell at each target (the plan's own is for a real machine's settling; the
         simulated drive settles in 0.1 s).
-    feed : float, mm/min
+    feed : float, mm/min (deg/min on a rotary axis)
     progress : callable, optional
         ``progress(done, total)`` as LinuxCNC works through the program, over both runs (the
         program's lines: ``total`` is twice one program's).
@@ -74,11 +76,15 @@ class ByProgram:
         from axiscal.procedures.capture import Record, capture_test
         from axiscal.programs import MachineOptions, write_program
 
-        if plan.target_unit != "mm":
-            raise ConfigError("axiscal calibrate runs a linear axis (mm) for now")
+        rotary = plan.target_unit == "deg"
         run_plan = replace(plan, dwell=self.dwell)
-        lo, hi = (v * 1e3 for v in axis.travel)
-        letter = (plan.axis or "X").upper()
+        letter = (plan.axis or ("C" if rotary else "X")).upper()
+        if rotary:         # a turntable: the full turn and its overruns, no roll-over
+            steps = [s.position for s in run_plan.steps()]
+            lo, hi = (math.degrees(v) for v in axis.travel) if axis.travel else (
+                min(steps), max(steps))
+        else:
+            lo, hi = (v * 1e3 for v in axis.travel)
         text = write_program(run_plan, "linuxcnc", MachineOptions(
             feed=self.feed, limits={letter: (lo, hi)}, trigger=0.6 * self.dwell))
         comp = None if controller_file is None else controller_file.text
@@ -91,38 +97,55 @@ class ByProgram:
                 if callable(self.progress):
                     self.progress(done * lines + line, 2 * lines)
 
-            rec = m.run(text, timeout=3600.0, progress=step)
-        x = rec.positions[letter]
-        readings = self._laser(x, axis, rng, measurement_sigma) - plan.targets[0] * 1e-3
-        record = Record(rec.times, readings, "linear", sample_rate=1000.0)
+            rec = m.run(text, timeout=self.timeout(run_plan), progress=step)
+        si = math.pi / 180 if rotary else 1e-3            # deg or mm -> rad or m
+        noise = measurement_sigma * (math.pi / 180 / 3600 if rotary else 1e-6)
+        readings = self._laser(rec.positions[letter] * si, axis, rng, noise, rotary) \
+            - plan.targets[0] * si
+        record = Record(rec.times, readings, "rotary" if rotary else "linear",
+                        sample_rate=1000.0)
         cap = capture_test(record, plan_rows(run_plan), window=1.0)
         self.runs.append(dict(samples=int(rec.times.size), seconds=float(rec.times[-1]),
                               stops=len(cap.stops), measurements=len(cap.assigned),
                               gaps=rec.gaps, compensated=controller_file is not None))
         ds = cap.dataset
-        return replace(ds, metadata=replace(ds.metadata, notes=ds.metadata.notes + (
+        import datetime
+
+        return replace(ds, metadata=replace(ds.metadata, date=ds.metadata.date or str(
+            datetime.date.today()), notes=ds.metadata.notes + (
             "; measured through a headless LinuxCNC running axiscal's part program"
             + (" with the compensation table loaded" if controller_file is not None else ""))))
 
+    def timeout(self, plan) -> float:
+        """How long a run may take, s: five times the program's dwells and its path at the
+        feed, and a minute (a LinuxCNC that stalls is reported, not waited for)."""
+        pos = np.array([s.position for s in plan.steps()])
+        path = float(np.abs(np.diff(pos)).sum())
+        return 60.0 + 5.0 * (plan.n_measurements * self.dwell + path / (self.feed / 60.0))
+
     @staticmethod
-    def _laser(x_mm, axis, rng, measurement_sigma_um):
-        """Where the simulated axis is, m, at each sample of the drive's position ``x_mm``: the
-        systematic deviation for the direction it last moved, one repeatability draw per approach
-        (from one stop to the next) and the instrument's noise on each reading."""
-        x = np.asarray(x_mm) * 1e-3
+    def _laser(x, axis, rng, noise_si, rotary=False):
+        """Where the simulated axis is (m, or rad on a rotary axis) at each sample of the drive's
+        position ``x`` (m or rad): the systematic deviation for the direction it last moved, one
+        repeatability draw per approach (from one stop to the next) and the instrument's noise
+        (``noise_si``, m or rad) on each reading."""
+        x = np.asarray(x, float)
         v = np.diff(x, prepend=x[0])
-        moving = np.abs(v) > 1e-7          # 0.1 mm/s: the drive's settling tail is at rest
+        # at rest below 0.1 mm/s (0.1 deg/s): the drive's settling tail
+        moving = np.abs(v) > (math.radians(1e-4) if rotary else 1e-7)
         d = np.sign(np.where(moving, v, 0.0))
         idx = np.where(moving, np.arange(x.size), 0)
         np.maximum.accumulate(idx, out=idx)
         direction = np.where(d[idx] == 0, 1.0, d[idx])
         starts = moving & ~np.concatenate(([False], moving[:-1]))
         approach = np.cumsum(starts)
-        noise = rng.normal(0.0, axis.repeatability_sigma, approach[-1] + 1)[approach] \
+        rand = rng.normal(0.0, axis.repeatability_sigma, approach[-1] + 1)[approach] \
             if axis.repeatability_sigma > 0 else 0.0
-        reading = x + axis.systematic_deviation(x, direction) + noise
-        if measurement_sigma_um > 0:
-            reading = reading + rng.normal(0.0, measurement_sigma_um * 1e-6, x.size)
+        error = (axis.systematic_error(x, direction) if rotary
+                 else axis.systematic_deviation(x, direction))
+        reading = x + error + rand
+        if noise_si > 0:
+            reading = reading + rng.normal(0.0, noise_si, x.size)
         return reading
 
 
@@ -139,9 +162,6 @@ def calibrate(config: dict, seed: int = 1, *, dwell: float = 0.3, feed: float = 
     if not (math.isfinite(dwell) and dwell >= 0.2):
         raise ConfigError(f"dwell {dwell!r} s: give 0.2 s or more (the drive settles in 0.1 s; "
                           "capture needs the rest)")
-    if str(config.get("axis", {}).get("kind", "linear")) != "linear":
-        raise ConfigError("axiscal calibrate runs a linear axis for now: the configuration's "
-                          "[axis] kind is not linear")
     hook = ByProgram(dwell=dwell, feed=feed, progress=progress)
     over = dict(overrides, controller="linuxcnc", options={"file_type": 1})
     r = run_compensation_loop(config, seed=seed, machine=hook, **over)
