@@ -43,7 +43,7 @@ def runs():
     from axiscal.instruments.linuxcnc_program import LinuxCNCProgramMachine
 
     linear = plan_linear(100.0, n_targets=5, runs=2, dwell=DWELL, overrun=2.0, axis="X")
-    rotary = plan_rotary(360.0, step=45.0, runs=2, dwell=DWELL, overrun=5.0, axis="C")
+    rotary = plan_rotary(360.0, step=45.0, runs=1, dwell=DWELL, overrun=5.0, axis="C")
     circle = plan_circular(30.0, (100.0, 0.0), feed=6000.0, overshoot_deg=45.0)
     out = {"progress": []}
     with LinuxCNCProgramMachine(axes=AXES, velocity=720.0, acceleration=20000.0) as m:
