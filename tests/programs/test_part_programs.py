@@ -203,6 +203,13 @@ def test_api_plan_program_is_the_writer():
                      name="AXISCAL_CIRCULAR") == program("circular", "linuxcnc")
     with pytest.raises(ProgramError, match="controller 'okuma'"):
         p.program("okuma")
+    t = axiscal.plan("thermal", test="linear", run_h=300 / 3600, duration_h=420 / 3600)
+    assert t.program("linuxcnc", limits={"X": (0.0, 800.0)}, max_feed=30000.0,
+                     name="AXISCAL_THERMAL_LINEAR") == program("thermal_linear", "linuxcnc")
+    f = axiscal.plan("fiveaxis")
+    _, options = cases()["fiveaxis"]
+    assert f.program("heidenhain", feed=1000.0, safe=options.safe, limits=options.limits,
+                     name="AXISCAL_FIVEAXIS") == program("fiveaxis", "heidenhain")
 
 
 # -- refusals ----------------------------------------------------------------------------------
