@@ -1,7 +1,8 @@
 """The motion of an ISO 230-3 thermal test's plan (:class:`~axiscal.procedures.thermal.ThermalPlan`).
 
 What each test's program does (the plan's durations, speeds and targets, as
-:func:`~axiscal.procedures.thermal.simulate_thermal` runs them on the twin):
+:func:`~axiscal.procedures.thermal.simulate_thermal` runs them on the twin; the spindle test is
+ISO 230-3:2020 Clause 6, the linear-axis test Clause 7):
 
 =============  =================================================================================
 spindle        ``S`` at the plan's speed (its fraction of ``MachineOptions.spindle``, the highest
