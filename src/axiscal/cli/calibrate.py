@@ -9,7 +9,8 @@ calls), numbered as the as-left test's with the as-found test named beside it in
 
 ``--json`` prints ``before`` and ``after`` (the ISO 230-2 parameters of each test), ``reduction``
 (of E), ``unit``, ``runs`` (per LinuxCNC run: ``samples``, ``seconds`` of servo time, ``stops``,
-``measurements``, ``gaps``, ``compensated``), ``history`` (the stored tests' ``id`` and
+``measurements``, ``gaps``, ``compensated``, ``travel``: the lowest and highest position in
+LinuxCNC's record, mm or deg), ``history`` (the stored tests' ``id`` and
 ``duplicate``, ``before`` then ``after``), ``table`` (``points``, ``spacing``) and
 ``certificate`` (null without ``--certificate``; else ``path``, ``draft``, ``number`` (null for a
 DRAFT) and ``missing``: what a DRAFT lacks).

@@ -60,7 +60,8 @@ class ByProgram:
         program's lines: ``total`` is twice one program's).
     runs : list of dict
         What each run found: ``samples``, ``seconds`` (servo time), ``stops``, ``measurements``,
-        ``gaps``.
+        ``gaps``, ``compensated``, ``travel`` (the lowest and highest position LinuxCNC's record
+        holds, mm or deg).
     """
 
     dwell: float = 0.3
@@ -105,9 +106,11 @@ class ByProgram:
         record = Record(rec.times, readings, "rotary" if rotary else "linear",
                         sample_rate=1000.0)
         cap = capture_test(record, plan_rows(run_plan), window=1.0)
+        x = rec.positions[letter]
         self.runs.append(dict(samples=int(rec.times.size), seconds=float(rec.times[-1]),
                               stops=len(cap.stops), measurements=len(cap.assigned),
-                              gaps=rec.gaps, compensated=controller_file is not None))
+                              gaps=rec.gaps, compensated=controller_file is not None,
+                              travel=[float(x.min()), float(x.max())]))
         ds = cap.dataset
         import datetime
 
