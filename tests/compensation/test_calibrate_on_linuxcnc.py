@@ -126,9 +126,9 @@ def test_calibrate_a_rotary_table_on_linuxcnc(tmp_path):
     text = text.replace("step_deg = 10", "step_deg = 45").replace("runs = 5", "runs = 2")
     assert cfg["test"]["step_deg"] == 10 and cfg["test"]["runs"] == 5   # what is shortened
     (tmp_path / "rotary.toml").write_text(text)
-    # a dwell of 0.4 s: the C drive settles to capture's 1″ window in about 0.09 s (9.7 time
-    # constants from its 4.75° following error at 500°/s), which left a 0.3 s stop only 28 ms
-    # above capture's 60 % under a loaded computer's lost servo periods (2 of 3 runs missed a stop)
+    # a dwell of 0.4 s: the C drive settles to capture's 1″ window in about 0.09 s of servo time
+    # (9.7 time constants from its 4.75° following error at 500°/s), and a loaded computer's
+    # servo thread falls behind the clock LinuxCNC times the dwell by (ByProgram.stop_share)
     r = runner.invoke(app, ["calibrate", str(tmp_path / "rotary.toml"), "--spacing", "45",
                             "--dwell", "0.4", "--db", f"sqlite:///{tmp_path / 'h.sqlite'}", "--json"])
     assert r.exit_code == 0, r.output

@@ -66,6 +66,14 @@ class ByProgram:
 
     dwell: float = 0.3
     feed: float = 12000.0
+    #: Shortest stop capture takes, as a share of the dwell (``axiscal capture``'s default is
+    #: 60 %). LinuxCNC times a dwell on the computer's clock while the sampler counts servo
+    #: periods; on a loaded computer (load average 8 on 2 cores) the servo thread falls behind
+    #: the clock, and a 0.3 s or 0.4 s dwell, less the drive's ~0.09 s of settling into the
+    #: 1 µm (1″) window, has held fewer than 60 % (and fewer than 30 %) of its servo periods:
+    #: rotary runs missed a stop in 4 of 6 attempts. A stop of 20 % (0.06 s at 0.3 s) is still
+    #: hundreds of times longer than the drive's stillness at a reversal.
+    stop_share = 0.2
     progress: object = None
     runs: list = field(default_factory=list)
 
@@ -87,7 +95,7 @@ class ByProgram:
         else:
             lo, hi = (v * 1e3 for v in axis.travel)
         text = write_program(run_plan, "linuxcnc", MachineOptions(
-            feed=self.feed, limits={letter: (lo, hi)}, trigger=0.6 * self.dwell))
+            feed=self.feed, limits={letter: (lo, hi)}, trigger=self.stop_share * self.dwell))
         comp = None if controller_file is None else controller_file.text
         with LinuxCNCProgramMachine(axes={letter: (lo - 1.0, hi + 1.0)}, velocity=500.0,
                                     acceleration=20000.0, comp_file=comp,
@@ -105,7 +113,8 @@ class ByProgram:
             - plan.targets[0] * si
         record = Record(rec.times, readings, "rotary" if rotary else "linear",
                         sample_rate=1000.0)
-        cap = capture_test(record, plan_rows(run_plan), window=1.0)
+        cap = capture_test(record, plan_rows(run_plan), window=1.0,
+                           dwell=self.stop_share * self.dwell)
         x = rec.positions[letter]
         self.runs.append(dict(samples=int(rec.times.size), seconds=float(rec.times[-1]),
                               stops=len(cap.stops), measurements=len(cap.assigned),
