@@ -109,9 +109,14 @@ class ByProgram:
             rec = m.run(text, timeout=self.timeout(run_plan), progress=step)
         si = math.pi / 180 if rotary else 1e-3            # deg or mm -> rad or m
         noise = measurement_sigma * (math.pi / 180 / 3600 if rotary else 1e-6)
-        readings = self._laser(rec.positions[letter] * si, axis, rng, noise, rotary) \
+        # the record from the program's first move to its last: the machine at rest before the
+        # program starts (at home) and after it ends (at the safe start) is no stop of the plan,
+        # and at a short stop share (stop_share) it could pass for one
+        moving = np.flatnonzero(np.abs(np.diff(rec.positions[letter])) > 1e-4)   # 0.1 /s
+        cut = slice(int(moving[0]), int(moving[-1]) + 2) if moving.size else slice(None)
+        readings = self._laser(rec.positions[letter][cut] * si, axis, rng, noise, rotary) \
             - plan.targets[0] * si
-        record = Record(rec.times, readings, "rotary" if rotary else "linear",
+        record = Record(rec.times[cut], readings, "rotary" if rotary else "linear",
                         sample_rate=1000.0)
         cap = capture_test(record, plan_rows(run_plan), window=1.0,
                            dwell=self.stop_share * self.dwell)
