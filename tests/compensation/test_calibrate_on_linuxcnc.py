@@ -114,11 +114,13 @@ def test_calibrate_refuses_a_short_dwell_and_a_bad_certificate(tmp_path):
 @pytest.mark.skipif(WHY is not None, reason=f"LinuxCNC cannot run here: {WHY}")
 def test_calibrate_a_rotary_table_on_linuxcnc(tmp_path):
     """The shipped rotary example (a turntable: eccentricity, mounting distortion, graduation
-    error, 1.5″ backlash), shortened to every 45° over the full turn, 2 runs, a 45° table: the
+    error, 1.5″ backlash), shortened to every 45° over the full turn, 2 runs, its 10° table: the
     program turns C from −5° to 365° (the full turn and both overruns) on LinuxCNC, capture finds
     every stop and no other (capture assigns each stop to the plan's next measurement: same
     targets, runs, directions and order, or refuses), the LinuxCNC table (in degrees, an angular
-    joint) is loaded and the run again gives E ≥ 80 % smaller, both measured through LinuxCNC
+    joint) is loaded and the run again gives E ≥ 75 % smaller (the simulated loop over 40 seeds:
+    81.8 % at worst, 89.3 % median; through LinuxCNC 84–89 % in four runs), both measured through
+    LinuxCNC
     (issue 41, "Proven on LinuxCNC" for the rotary plan, which the program test's module leaves
     to this one)."""
     import tomllib
@@ -131,12 +133,12 @@ def test_calibrate_a_rotary_table_on_linuxcnc(tmp_path):
     # a dwell of 0.4 s: the C drive settles to capture's 1″ window in about 0.09 s of servo time
     # (9.7 time constants from its 4.75° following error at 500°/s), and a loaded computer's
     # servo thread falls behind the clock LinuxCNC times the dwell by (ByProgram.stop_share)
-    r = runner.invoke(app, ["calibrate", str(tmp_path / "rotary.toml"), "--spacing", "45",
+    r = runner.invoke(app, ["calibrate", str(tmp_path / "rotary.toml"),
                             "--dwell", "0.4", "--db", f"sqlite:///{tmp_path / 'h.sqlite'}", "--json"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["unit"] == "arcsec"
-    assert d["before"]["E"] > 3.0 and d["reduction"] >= 0.80, (d["before"]["E"], d["after"]["E"])
+    assert d["before"]["E"] > 3.0 and d["reduction"] >= 0.75, (d["before"]["E"], d["after"]["E"])
     for run in d["runs"]:   # every stop of the plan and no other, in the plan's order
         assert run["stops"] == run["measurements"] == 9 * 2 * 2 and run["gaps"] == 0
         # the full turn and both overruns, commanded -5 to 365 deg: C rests at -5 (the safe
