@@ -326,3 +326,15 @@ def test_five_axis_program_visits_every_r_test_pose():
                     cy + (x0 - cx) * math.sin(t) + (y0 - cy) * math.cos(t), z0)
             assert nests[k] == pytest.approx(want, abs=1e-3)
             assert outs[k][2] - nests[k][2] == pytest.approx(10.0, abs=1e-3)
+
+
+def test_five_axis_plan_without_an_r_test_is_refused():
+    """Probing set-ups alone: nothing to program (the touches are the controller's cycle)."""
+    from axiscal.procedures.five_axis import FiveAxisPlan
+    from axiscal.programs import FiveAxisProgram
+
+    job, options = cases()["fiveaxis"]
+    probing = FiveAxisPlan(tuple(s for s in job.plan.setups if s.kind != "r-test"))
+    with pytest.raises(ProgramError, match="no R-test set-up") as e:
+        write_program(FiveAxisProgram(probing, job.machine), "fanuc", options)
+    assert e.value.option == "setup"

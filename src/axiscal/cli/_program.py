@@ -108,11 +108,13 @@ def make_program(plan, axes: str, program: Optional[Path], controller: Optional[
             trigger=DEFAULT_TRIGGER_S if trigger is None else trigger, spindle=spindle)
         return write_program(plan, controller, opts, name=name, number=number)
     except ProgramError as exc:
-        raise InputError(f"{exc} (--{_OPTION.get(exc.option, exc.option)})") from None
+        raise InputError(f"{exc} ({_OPTION.get(exc.option, '--' + exc.option)})") from None
 
 
-#: A ProgramError's option where the command's option has another name.
-_OPTION = {"spindle": "spindle-max"}
+#: A ProgramError's option where the command's option (or input) has another name.
+_OPTION = {"spindle": "--spindle-max", "programme": "--speed-programme",
+           "interval": "--interval-s", "setup": "CONFIG's [[setup]]",
+           "poses": "CONFIG's [[setup]]"}
 
 
 def write_program_file(path: Optional[Path], text: Optional[str], controller: Optional[str]) -> None:
