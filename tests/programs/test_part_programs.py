@@ -1,6 +1,7 @@
 """Part programs from test plans (issue 41): goldens, LinuxCNC's interpreter, grammars, refusals.
 
-* For each plan kind (linear, rotary full turn, pilgrim, ISO 230-4 circular, squareness lines) and
+* For each plan kind (linear, rotary full turn, pilgrim, ISO 230-4 circular, squareness lines,
+  the ISO 230-3 linear-axis and spindle cycles, the ISO 230-2 drift check, a five-axis R-test) and
   each controller, the program axiscal writes is the golden one in ``tests/data/programs/``,
   reviewed by hand (``tests/programs/program_cases.py`` names the plans and machine options).
 * The ISO dialects where LinuxCNC shares their syntax (Fanuc, Haas, LinuxCNC) go through
@@ -27,7 +28,7 @@ from axiscal.cli import app
 from axiscal.procedures.positioning import plan_linear
 from axiscal.programs import CONTROLLERS, MachineOptions, ProgramError, write_program
 
-from program_cases import cases, golden_path, program
+from program_cases import cases, dwell, golden_path, program
 
 KINDS = tuple(cases())
 runner = CliRunner()
@@ -79,8 +80,8 @@ def test_iso_dialects_run_through_linuxcncs_interpreter(kind, tmp_path):
             want = tuple(v * factor for v in ref) if call == "DWELL" else ref
             assert nums == pytest.approx(want, abs=1e-4)
     dwells = [n[0] for call, n in got["linuxcnc"] if call == "DWELL"]
-    if kind != "circular":                           # a ballbar test contours without a stop
-        assert dwells and all(d == pytest.approx(plan.dwell) for d in dwells)
+    if dwell(kind) is not None:     # a ballbar test contours without a stop; thermal: below
+        assert dwells and all(d == pytest.approx(dwell(kind)) for d in dwells[:-1])
 
 
 @needs_rs274
@@ -128,28 +129,30 @@ _SIN = re.compile(
     r"^(%_N_[A-Z0-9_]+_MPF|;\$PATH=/_N_MPF_DIR|;.*|G7[01] G17 G40 G90 G94|M30"
     r"|G0( [XYZABC]-?\d+\.\d{3,4})+|G1( [XYZABC]-?\d+\.\d{3,4})+ F\d+\.\d"
     r"|(G1[89] )?G[23]( [XYZ]-?\d+\.\d{3,4}){2}( [IJK]-?\d+\.\d{3,4}){2} F\d+\.\d"
-    r"|G4 F\d+\.\d{3})$")
+    r"|G4 F\d+\.\d{3}|S\d+ M3|M5)$")
 _HEI = re.compile(
     r"^(BEGIN PGM [A-Z0-9_]+ (MM|INCH)|END PGM [A-Z0-9_]+ (MM|INCH)|; .*"
     r"|L( [XYZABC][+-]\d+\.\d{3,4})+ R0 (FMAX|F\d+)( M30)?|CC( [XYZ][+-]\d+\.\d{3,4}){2}"
     r"|C( [XYZ][+-]\d+\.\d{3,4}){2} DR[+-] R0 F\d+"
-    r"|CYCL DEF 9\.0 DWELL TIME|CYCL DEF 9\.1 DWELL \d+\.\d{3})$")
+    r"|CYCL DEF 9\.0 DWELL TIME|CYCL DEF 9\.1 DWELL \d+\.\d{3}|TOOL CALL Z S\d+|L M[35]|L M30)$")
 
 
 def test_grammars_accept_the_manuals_block_forms():
     """The grammars accept the block forms the manuals document (SINUMERIK 840D sl
     Programming Manual Fundamentals: G4 dwell with F in seconds, G2/G3 with I, J; HEIDENHAIN
     TNC 640 Klartext: L … R0 FMAX, CC, C … DR+, Cycle 9) and refuse the other dialects' forms."""
-    for line in ("G4 F2.500", "G1 X10.000 Y20.000 F300.0",
+    for line in ("G4 F2.500", "G1 X10.000 Y20.000 F300.0", "S1000 M3", "M5",
                  "G2 X50.000 Y40.000 I10.000 J-7.000 F300.0", "; comment", "M30", "%_N_TEST_MPF", ";$PATH=/_N_MPF_DIR"):
         assert _SIN.match(line), line
     for line in ("G04 P2000", "G4 P2.000", "L X+10 R0 FMAX", "(COMMENT)"):
         assert not _SIN.match(line), line
     for line in ("BEGIN PGM NEW MM", "L X+40.000 Y+50.000 R0 FMAX", "CC X+25.000 Y+25.000",
                  "C X+45.000 Y+25.000 DR+ R0 F200", "CYCL DEF 9.0 DWELL TIME",
-                 "CYCL DEF 9.1 DWELL 1.500", "END PGM NEW MM"):
+                 "CYCL DEF 9.1 DWELL 1.500", "END PGM NEW MM", "TOOL CALL Z S3000", "L M3",
+                 "L M5"):
         assert _HEI.match(line), line
-    for line in ("L X40 R0 FMAX", "G04 P1000", "CYCL DEF 9.1 V.ZEIT 1.5", "C X+45 Y+25 DR+"):
+    for line in ("L X40 R0 FMAX", "G04 P1000", "CYCL DEF 9.1 V.ZEIT 1.5", "C X+45 Y+25 DR+",
+                 "S1000 M03", "TOOL CALL 1 Z S3000 M3"):
         assert not _HEI.match(line), line
 
 
@@ -200,6 +203,13 @@ def test_api_plan_program_is_the_writer():
                      name="AXISCAL_CIRCULAR") == program("circular", "linuxcnc")
     with pytest.raises(ProgramError, match="controller 'okuma'"):
         p.program("okuma")
+    t = axiscal.plan("thermal", test="linear", run_h=300 / 3600, duration_h=420 / 3600)
+    assert t.program("linuxcnc", limits={"X": (0.0, 800.0)}, max_feed=30000.0,
+                     name="AXISCAL_THERMAL_LINEAR") == program("thermal_linear", "linuxcnc")
+    f = axiscal.plan("fiveaxis")
+    _, options = cases()["fiveaxis"]
+    assert f.program("heidenhain", feed=1000.0, safe=options.safe, limits=options.limits,
+                     name="AXISCAL_FIVEAXIS") == program("fiveaxis", "heidenhain")
 
 
 # -- refusals ----------------------------------------------------------------------------------
@@ -217,6 +227,18 @@ REFUSALS = [
      "--radius", "X to -100"),
     (["linear", "--length", "100", "--controller", "okuma"], "--controller", "'okuma'"),
     (["linear", "--length", "100", "--limits", "0-100"], "--limits", "give LO:HI"),
+    # the thermal and five-axis cycles
+    (["thermal", "--test", "etve"], "--test", "no program running"),
+    (["thermal", "--test", "spindle"], "--spindle-max", "highest speed"),
+    (["thermal", "--test", "linear", "--max-feed", "1000"], "--duty",
+     "beyond the machine's max-feed 1000"),
+    (["thermal", "--test", "linear", "--limits", "X=100:800"], "--limits", "P1 40 mm"),
+    (["thermal", "--test", "linear", "--interval-s", "10", "--duty", "0.95"], "--dwell",
+     "dwell 0.25 s is shorter"),
+    (["fiveaxis", "--machine", "ac"], "--safe", "safe Z"),
+    (["fiveaxis", "--machine", "ac", "--safe", "Z=250", "--limits", "A=-60:30"], "--limits",
+     "takes A to -90 deg"),
+    (["fiveaxis", "--machine", "head", "--safe", "Z=250"], "--machine", "spindle head"),
 ]
 
 
@@ -245,3 +267,74 @@ def test_program_written_with_the_csv(tmp_path):
                             "--limits=-10:210", "--name", "AXISCAL_LINEAR"])
     assert r.exit_code == 0, r.output
     assert prog.read_text() == program("linear", "linuxcnc") and csv.exists()
+
+
+# -- the thermal and five-axis cycles ----------------------------------------------------------
+@needs_rs274
+def test_thermal_linear_cycle_keeps_the_plans_duty(tmp_path):
+    """ISO 230-3 linear-axis test, as LinuxCNC reads the program: one cycle P1-P2-P1 per sampling
+    interval, moving ``duty`` of it (2 |P2 - P1| / F = 0.8 x 60 s = 48 s), a dwell of
+    (1 - duty) x interval / 2 = 6 s at each end, then at P1 for the stop: the program lasts the
+    plan's duration (7 min) within the rapid's time."""
+    plan, _ = cases()["thermal_linear"]
+    calls = _canonical(program("thermal_linear", "linuxcnc"), tmp_path, "t.ngc")
+    feed = {n[0] for call, n in calls if call == "SET_FEED_RATE" and n[0] > 0}
+    ends = [n[0] for call, n in calls if call == "STRAIGHT_FEED"]
+    p1, p2 = (t * 1e3 for t in plan.targets)
+    assert ends == pytest.approx([p2, p1] * 5, abs=1e-9)
+    (f,) = feed
+    moving = 2 * (p2 - p1) / (f / 60.0)
+    assert moving == pytest.approx(plan.duty * plan.interval, rel=1e-9)
+    dwells = [n[0] for call, n in calls if call == "DWELL"]
+    assert dwells[:-1] == [pytest.approx(6.0)] * 10
+    total = sum(dwells) + 5 * moving
+    assert total == pytest.approx(plan.duration, rel=1e-9)
+
+
+def test_spindle_program_follows_the_speed_programme():
+    """ISO 230-3 spindle test: the programme's steps (25 % for 10 min, 100 % for 5 min of
+    12 000 rpm) repeated through the 30 min run, then M5 and 15 min stopped (the dwells, in ms
+    for Fanuc, add up to the plan's duration)."""
+    text = program("thermal_spindle", "fanuc")
+    assert re.findall(r"^S(\d+) M03$", text, re.M) == ["3000", "12000", "3000", "12000"]
+    dwell_ms = [int(v) for v in re.findall(r"^G04 P(\d+)$", text, re.M)]
+    assert dwell_ms == [600000, 300000, 600000, 300000, 900000]
+    assert text.index("M05") < text.rindex("G04 P900000")
+
+
+def test_five_axis_program_visits_every_r_test_pose():
+    """The shipped A/C example's R-test set-up: one dwell per pose (18), the probing set-ups
+    named as not programmed; at A = 0 the nest is its table place turned by C about the C axis
+    (the nominal kinematics, ISO 230-1 Annex A's table rotation written out), and every approach
+    point is the clearance (10 mm) from the nest, straight up (+Z) at A = 0."""
+    job, _ = cases()["fiveaxis"]
+    (setup,) = [s for s in job.plan.setups if s.kind == "r-test"]
+    text = program("fiveaxis", "linuxcnc")
+    assert text.count("G4 P1.000") == setup.poses == 18
+    assert text.count("IS NOT PROGRAMMED") == 2
+    nests = [tuple(map(float, m)) for m in re.findall(
+        r"^G1 X(-?[\d.]+) Y(-?[\d.]+) Z(-?[\d.]+) F1000.0\nG4", text, re.M)]
+    outs = [tuple(map(float, m)) for m in re.findall(
+        r"^G4 P1.000\nG1 X(-?[\d.]+) Y(-?[\d.]+) Z(-?[\d.]+)", text, re.M)]
+    cx, cy = (v * 1e3 for v in job.machine.geometry.c_position)
+    x0, y0, z0 = (v * 1e3 for v in setup.place)
+    for k, (a, c) in enumerate(np.degrees(np.column_stack([setup.tilt_angle, setup.c_angle]))):
+        assert math.dist(nests[k], outs[k]) == pytest.approx(10.0, abs=2e-3)
+        if a == 0:
+            t = math.radians(c)
+            want = (cx + (x0 - cx) * math.cos(t) - (y0 - cy) * math.sin(t),
+                    cy + (x0 - cx) * math.sin(t) + (y0 - cy) * math.cos(t), z0)
+            assert nests[k] == pytest.approx(want, abs=1e-3)
+            assert outs[k][2] - nests[k][2] == pytest.approx(10.0, abs=1e-3)
+
+
+def test_five_axis_plan_without_an_r_test_is_refused():
+    """Probing set-ups alone: nothing to program (the touches are the controller's cycle)."""
+    from axiscal.procedures.five_axis import FiveAxisPlan
+    from axiscal.programs import FiveAxisProgram
+
+    job, options = cases()["fiveaxis"]
+    probing = FiveAxisPlan(tuple(s for s in job.plan.setups if s.kind != "r-test"))
+    with pytest.raises(ProgramError, match="no R-test set-up") as e:
+        write_program(FiveAxisProgram(probing, job.machine), "fanuc", options)
+    assert e.value.option == "setup"

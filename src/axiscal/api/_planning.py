@@ -12,7 +12,10 @@ The plan kinds and their arguments are those of :func:`axiscal.procedures.positi
 :func:`axiscal.procedures.circular_plan.plan_circular` (``circular``),
 :func:`~axiscal.procedures.circular_plan.plan_squareness` (``squareness``) and
 :func:`~axiscal.procedures.circular_plan.plan_straightness` (``straightness``); ``cycle="pilgrim"``
-makes a pilgrim-step positioning plan. :meth:`Plan.program` takes the options of
+makes a pilgrim-step positioning plan; ``thermal`` takes the arguments of
+:func:`axiscal.api._thermal.plan_thermal` (an ISO 230-3 test on the thermal twin, as ``axiscal
+thermal plan``) and ``fiveaxis`` a five-axis configuration (``config``, default the shipped A/C
+example; ``dwell``, s, and ``clearance``, mm, of its R-test program). :meth:`Plan.program` takes the options of
 :class:`axiscal.programs.MachineOptions` and calls :func:`axiscal.programs.write_program`, the
 one writer ``axiscal plan … --program`` and the workbench also call.
 """
@@ -30,7 +33,9 @@ _KINDS = {"linear": ("axiscal.procedures.positioning", "plan_linear"),
           "rotary": ("axiscal.procedures.positioning", "plan_rotary"),
           "circular": ("axiscal.procedures.circular_plan", "plan_circular"),
           "squareness": ("axiscal.procedures.circular_plan", "plan_squareness"),
-          "straightness": ("axiscal.procedures.circular_plan", "plan_straightness")}
+          "straightness": ("axiscal.procedures.circular_plan", "plan_straightness"),
+          "thermal": ("axiscal.api._thermal", "plan_thermal"),
+          "fiveaxis": ("axiscal.api._planning", "_fiveaxis")}
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,7 +83,7 @@ class Plan:
 
 def plan(kind: str = "linear", **arguments) -> Plan:
     """Make a test plan of ``kind`` (``linear``, ``rotary``, ``circular``, ``squareness``,
-    ``straightness``).
+    ``straightness``, ``thermal``, ``fiveaxis``).
 
     Examples
     --------
@@ -97,3 +102,20 @@ def plan(kind: str = "linear", **arguments) -> Plan:
     except TypeError as exc:
         raise InputError(f"plan {kind}: {exc}") from None
     return Plan(kind, made)
+
+
+
+def _fiveaxis(config=None, dwell: float = 1.0, clearance: float = 10.0):
+    """A five-axis plan with its machine (:class:`axiscal.programs.FiveAxisProgram`): ``config``
+    a path or a parsed configuration, default the shipped A/C example."""
+    from axiscal.api import fiveaxis
+    from axiscal.programs import FiveAxisProgram
+
+    if config is None:
+        from importlib import resources
+
+        from axiscal.io._files import load_toml
+
+        config = load_toml(resources.files("axiscal.data").joinpath(fiveaxis.EXAMPLES["A/C"]))
+    planned = fiveaxis.plan(config)
+    return FiveAxisProgram(planned.plan, planned.machine, dwell=dwell, clearance=clearance)

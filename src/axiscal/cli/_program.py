@@ -78,7 +78,7 @@ def make_program(plan, axes: str, program: Optional[Path], controller: Optional[
                  feed: float, max_feed: Optional[float], limits: Optional[List[str]],
                  safe: Optional[List[str]], sign: Optional[List[str]],
                  origin: Optional[List[str]], inch: bool, trigger: Optional[float], name: str,
-                 number: Optional[int]) -> Optional[str]:
+                 number: Optional[int], spindle: Optional[float] = None) -> Optional[str]:
     """The program's text (None without ``--program``), every option checked; nothing written."""
     from axiscal.programs import DEFAULT_TRIGGER_S, MachineOptions, ProgramError, write_program
     from axiscal.programs import _dialect_class
@@ -88,7 +88,7 @@ def make_program(plan, axes: str, program: Optional[Path], controller: Optional[
             raise InputError("--controller without --program: give --program FILE to write it to")
         given = [o for o, v in (("--max-feed", max_feed), ("--limits", limits), ("--safe", safe),
                                 ("--sign", sign), ("--origin", origin), ("--trigger", trigger),
-                                ("--number", number)) if v]
+                                ("--number", number), ("--spindle-max", spindle)) if v]
         if given or inch:
             raise InputError(f"{(given or ['--inch'])[0]} describes the machine for the part "
                              "program: give --program FILE --controller NAME")
@@ -105,10 +105,16 @@ def make_program(plan, axes: str, program: Optional[Path], controller: Optional[
             feed=feed, max_feed=max_feed, limits=_specs(limits, axes, "--limits", _limits),
             safe=_specs(safe, axes, "--safe", float), sign=_specs(sign, axes, "--sign", _sign),
             origin=_specs(origin, axes, "--origin", float), units="inch" if inch else "mm",
-            trigger=DEFAULT_TRIGGER_S if trigger is None else trigger)
+            trigger=DEFAULT_TRIGGER_S if trigger is None else trigger, spindle=spindle)
         return write_program(plan, controller, opts, name=name, number=number)
     except ProgramError as exc:
-        raise InputError(f"{exc} (--{exc.option})") from None
+        raise InputError(f"{exc} ({_OPTION.get(exc.option, '--' + exc.option)})") from None
+
+
+#: A ProgramError's option where the command's option (or input) has another name.
+_OPTION = {"spindle": "--spindle-max", "programme": "--speed-programme",
+           "interval": "--interval-s", "setup": "CONFIG's [[setup]]",
+           "poses": "CONFIG's [[setup]]"}
 
 
 def write_program_file(path: Optional[Path], text: Optional[str], controller: Optional[str]) -> None:

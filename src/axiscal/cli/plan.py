@@ -1,5 +1,8 @@
-"""``axiscal plan linear|rotary|circular|squareness|straightness``: test plans, printed, exported as CSV, or
-written as part programs (``--program FILE --controller NAME``, :mod:`axiscal.cli._program`).
+"""``axiscal plan linear|rotary|circular|squareness|straightness|thermal|fiveaxis``: test plans,
+printed, exported as CSV, or written as part programs (``--program FILE --controller NAME``,
+:mod:`axiscal.cli._program`). ``plan thermal`` takes ``axiscal thermal plan``'s options and prints
+its plan; ``plan fiveaxis`` takes ``axiscal fiveaxis plan``'s and writes the R-test set-ups'
+program (:mod:`axiscal.programs._five_axis`).
 
 The CSV (``--csv FILE``) has the columns ``seq,kind,position,direction,run,target_index,dwell_s``
 after one comment line; ``kind`` is ``measure`` (take a reading after the dwell) or ``overrun``
@@ -25,6 +28,7 @@ import typer
 
 from axiscal.cli import _program as P
 from axiscal.cli._common import note, print_json, typed_path
+from axiscal.cli.thermal import _OPTS as _T
 
 #: Bounds of the counts a plan is asked for: beyond them a typing slip would only exhaust memory.
 MAX_TARGETS, MAX_RUNS = 10_000, 100
@@ -323,3 +327,89 @@ def _emit(p, csv: Optional[Path], json_out: bool) -> None:
 def register(app: typer.Typer) -> None:
     """Add the ``plan`` command group."""
     app.add_typer(plan_app, name="plan")
+
+
+@plan_app.command("thermal")
+def plan_thermal_cmd(
+    test: str = _T["test"], config: Optional[Path] = _T["config"],
+    duration_h: Optional[float] = _T["duration_h"], run_h: Optional[float] = _T["run_h"],
+    interval_s: float = _T["interval_s"], speed: float = _T["speed"], axis: str = _T["axis"],
+    p1_mm: Optional[float] = _T["p1_mm"], p2_mm: Optional[float] = _T["p2_mm"],
+    duty: float = _T["duty"], position_mm: Optional[float] = _T["position_mm"],
+    start_h: float = _T["start_h"], programme: Optional[str] = _T["programme"],
+    spindle_max: Optional[float] = typer.Option(None, "--spindle-max", help="Spindle test: the spindle's highest speed, rpm (the plan's --speed is a fraction of it)."),
+    json_out: bool = _JSON,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    sign: Optional[List[str]] = P.SIGN,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
+) -> None:
+    """Plan an ISO 230-3 thermal test's cycle (spindle, linear axis) or a drift check.
+
+    The linear test's feed follows from the plan (P1 to P2 and back in --duty of each
+    --interval-s); an ETVE test has no program (the machine stands still).
+
+    Example: axiscal plan thermal --test linear --run-h 4 --program heat.nc --controller fanuc
+    """
+    from axiscal.api._thermal import plan_thermal
+    from axiscal.cli.thermal import _plan_options
+
+    p = plan_thermal(**_plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
+                                     p1_mm, p2_mm, duty, position_mm, 0.0, start_h, programme))
+    machine = _machine(dict(locals(), feed=1000.0, safe=None))
+    text = P.make_program(p, p.axis.upper(), program, controller, spindle=spindle_max, **machine)
+    d = p.to_dict()
+    if json_out:
+        print_json(d)
+    else:
+        typer.echo("\n".join(f"{k}: {v:g}" if isinstance(v, float) else f"{k}: {v}"
+                             for k, v in d.items()))
+    P.write_program_file(program, text, controller)
+
+
+@plan_app.command("fiveaxis")
+def plan_fiveaxis_cmd(
+    config: Optional[Path] = typer.Argument(None, help="Five-axis configuration (TOML); default: the shipped example (--machine)."),
+    machine_: str = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' or 'bc' (table-table)."),
+    dwell: float = typer.Option(1.0, "--dwell", min=0.0, max=3600.0, help="Dwell at each pose for the R-test's reading, s."),
+    clearance: float = typer.Option(10.0, "--clearance", help="How far the sphere leaves the nest between poses, along the nest's axis, mm."),
+    json_out: bool = _JSON,
+    program: Optional[Path] = P.PROGRAM,
+    controller: Optional[str] = P.CONTROLLER,
+    feed: float = P.FEED,
+    max_feed: Optional[float] = P.MAX_FEED,
+    limits: Optional[List[str]] = P.LIMITS,
+    safe: Optional[List[str]] = P.SAFE,
+    origin: Optional[List[str]] = P.ORIGIN,
+    inch: bool = P.INCH,
+    trigger: Optional[float] = P.TRIGGER,
+    name: str = P.NAME,
+    number: Optional[int] = P.NUMBER,
+) -> None:
+    """Plan a five-axis test and write its R-test set-ups' part program (pose by pose).
+
+    Each pose: out of the nest, up to the safe Z (--safe Z=...), the rotary axes to the pose, down
+    and into the nest at --feed, a dwell for the reading; nominal kinematics, no TCP needed.
+
+    Example: axiscal plan fiveaxis --machine ac --program rtest.ngc --controller linuxcnc --safe Z=200
+    """
+    from axiscal.api import fiveaxis
+    from axiscal.cli.fiveaxis import _config
+    from axiscal.programs import FiveAxisProgram
+
+    planned = fiveaxis.plan(_config(config, machine_))
+    tilt = planned.machine.tilt
+    job = FiveAxisProgram(planned.plan, planned.machine, dwell=dwell, clearance=clearance)
+    text = P.make_program(job, f"XYZ{tilt}C", program, controller,
+                          **_machine(dict(locals(), sign=None)))
+    if json_out:
+        print_json(planned.to_dict())
+    else:
+        typer.echo(str(planned))
+    P.write_program_file(program, text, controller)

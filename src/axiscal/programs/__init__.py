@@ -1,7 +1,9 @@
 """Part programs that drive a machine through an axiscal test plan, in the controller's language.
 
 :func:`write_program` turns a plan (an ISO 230-2 positioning plan, linear or rotary, linear or
-pilgrim cycle; an ISO 230-4 circular plan; squareness or straightness lines) and the machine's
+pilgrim cycle; an ISO 230-4 circular plan; squareness or straightness lines; an ISO 230-3 thermal
+test's cycle, :mod:`axiscal.programs._thermal`; a five-axis R-test, :class:`FiveAxisProgram`,
+:mod:`axiscal.programs._five_axis`) and the machine's
 options (:class:`MachineOptions`: feed, limits, safe start, sign convention, units, the trigger's
 stillness) into the program a controller runs: a safe-start block, every move of the plan in
 order at the feed, a dwell after each measurement, the return to the safe start and the end of
@@ -24,11 +26,12 @@ controller      module                       dwell, framing
 
 from __future__ import annotations
 
+from axiscal.programs._five_axis import FiveAxisProgram
 from axiscal.programs._motion import (DEFAULT_TRIGGER_S, MachineOptions, Motion, ProgramError,
                                       build_motion)
 
 __all__ = ["write_program", "program_motion", "MachineOptions", "ProgramError", "CONTROLLERS",
-           "DEFAULT_TRIGGER_S", "extension", "manual"]
+           "DEFAULT_TRIGGER_S", "FiveAxisProgram", "extension", "manual"]
 
 #: Controller name -> (module, class) of its dialect.
 _DIALECTS = {"fanuc": ("iso", "Fanuc"), "haas": ("iso", "Haas"),
@@ -51,7 +54,20 @@ def _dialect_class(controller: str):
 
 def program_motion(plan, options: MachineOptions | None = None) -> Motion:
     """The checked motion of ``plan`` (what every dialect writes)."""
-    return build_motion(plan, options or MachineOptions())
+    from axiscal.procedures.five_axis import FiveAxisPlan
+    from axiscal.procedures.thermal import ThermalPlan
+
+    options = options or MachineOptions()
+    if isinstance(plan, ThermalPlan):
+        from axiscal.programs._thermal import thermal_motion
+
+        return thermal_motion(plan, options)
+    if isinstance(getattr(plan, "plan", None), FiveAxisPlan):     # a plan with its machine
+        from axiscal.programs._five_axis import five_axis_motion
+
+        return five_axis_motion(plan.plan, plan.machine, options, getattr(plan, "dwell", 1.0),
+                                getattr(plan, "clearance", 10.0))
+    return build_motion(plan, options)
 
 
 def write_program(plan, controller: str, options: MachineOptions | None = None, *,
@@ -60,7 +76,7 @@ def write_program(plan, controller: str, options: MachineOptions | None = None, 
 
     Parameters
     ----------
-    plan : TestPlan, CircularPlan or LinePlan
+    plan : TestPlan, CircularPlan, LinePlan, ThermalPlan or FiveAxisProgram
     controller : str
         One of :data:`CONTROLLERS`.
     options : MachineOptions, optional

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import re
 
-from axiscal.programs._motion import ArcMove, Comment, Dwell, Feed, Motion, ProgramError, Rapid
+from axiscal.programs._motion import (ArcMove, Comment, Dwell, Feed, Motion, ProgramError,
+                                      Rapid, Spindle)
 
 __all__ = ["Dialect", "number", "plain"]
 
@@ -77,6 +78,9 @@ class Dialect:
             elif isinstance(b, Dwell):
                 for line in self.dwell(b.seconds):
                     self.emit(line)
+            elif isinstance(b, Spindle):
+                for line in self.spindle(b.rpm):
+                    self.emit(line)
         self.end()
         return "\n".join(self.lines) + "\n"
 
@@ -119,6 +123,11 @@ class Dialect:
 
     def dwell(self, seconds: float) -> list:
         raise NotImplementedError
+
+    def spindle(self, rpm: int) -> list:
+        """Spindle on clockwise at ``rpm`` (``S… M3``), or off (``M5``) when 0: the ISO 6983
+        words every G-code dialect here shares."""
+        return [f"S{rpm:d} M03"] if rpm else ["M05"]
 
     def centre_offsets(self, b: ArcMove) -> str:
         """``I… J…`` (``J… K…``, ``K… I…``): the centre from the start, incremental."""

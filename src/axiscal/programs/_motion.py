@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from axiscal.errors import InputError, ProgramError  # noqa: F401 (ProgramError: raised here, defined with the others)
 
 __all__ = ["ProgramError", "MachineOptions", "Rapid", "Feed", "ArcMove", "Dwell", "Comment",
-           "Motion", "build_motion", "DEFAULT_TRIGGER_S"]
+           "Spindle", "Motion", "build_motion", "DEFAULT_TRIGGER_S"]
 
 #: The stillness a trigger needs at a stop by default, s: a dwell shorter than this is refused.
 #: axiscal's reading, not a vendor's figure: ``axiscal capture`` takes a stop of 60 % of the
@@ -57,6 +57,8 @@ class MachineOptions:
         ``mm`` or ``inch`` (linear axes in the program).
     trigger : float, s
         Stillness the trigger needs at each stop: a shorter dwell is refused.
+    spindle : float, optional, rpm
+        The spindle's highest speed (an ISO 230-3 spindle test runs at a fraction of it).
     """
 
     feed: float = 1000.0
@@ -67,6 +69,7 @@ class MachineOptions:
     origin: dict = field(default_factory=dict)
     units: str = "mm"
     trigger: float = DEFAULT_TRIGGER_S
+    spindle: float | None = None
 
     def __post_init__(self) -> None:
         if self.units not in ("mm", "inch"):
@@ -76,6 +79,9 @@ class MachineOptions:
         if self.max_feed is not None:
             if not (math.isfinite(self.max_feed) and self.max_feed > 0):
                 raise ProgramError("max-feed", f"max-feed {self.max_feed!r}: give a feed above 0")
+        if self.spindle is not None and not (math.isfinite(self.spindle) and self.spindle > 0):
+            raise ProgramError("spindle", f"spindle {self.spindle!r} rpm: give the spindle's "
+                               "highest speed, above 0")
         if not (math.isfinite(self.trigger) and self.trigger >= 0):
             raise ProgramError("trigger", f"trigger {self.trigger!r} s: give 0 s or more")
         for a, s in self.sign.items():
@@ -143,6 +149,13 @@ class ArcMove:
 @dataclass(frozen=True)
 class Dwell:
     seconds: float
+
+
+@dataclass(frozen=True)
+class Spindle:
+    """Spindle on clockwise at ``rpm`` (whole revolutions per minute), or off when 0."""
+
+    rpm: int
 
 
 @dataclass(frozen=True)
@@ -214,7 +227,8 @@ _ADVICE = {"overrun": "give a smaller overrun or wider limits",
            "limits": "move the targets inside (start, length or travel) or widen the limits",
            "safe": "give a safe start inside the limits",
            "radius": "give a smaller radius, another centre or wider limits",
-           "set-in": "give a smaller set-in or wider limits"}
+           "set-in": "give a smaller set-in or wider limits",
+           "clearance": "give a smaller clearance or wider limits"}
 
 
 def _header(plan) -> list:

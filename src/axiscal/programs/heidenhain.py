@@ -6,7 +6,10 @@ functions" (``L`` straight line, ``FMAX`` rapid traverse, ``R0`` no radius compe
 mm/min, in an inch program in 0.1 inch/min; ``CC`` circle centre, ``C`` circular path with
 ``DR+`` counter-clockwise and ``DR−`` clockwise; coordinates with their sign), "Comments" (``;``);
 Cycle Programming manual, "DWELL TIME (Cycle 9)": ``CYCL DEF 9.0 DWELL TIME`` then
-``CYCL DEF 9.1 DWELL <s>``; M30 (end of program) in the last move.
+``CYCL DEF 9.1 DWELL <s>`` (0 to 3600 s: a longer dwell is written as several); "Tool call"
+(``TOOL CALL Z S<rpm>``: a tool call without a tool number changes the spindle speed) and
+"Miscellaneous functions" (``L M3`` spindle on clockwise, ``L M5`` off: an ``L`` block with only an
+M function); M30 (end of program) in the last move, or ``L M30`` after a last block that is not one.
 
 The circle is in the working plane, which the TOOL CALL's tool axis sets (Z: the XY plane): a
 test in YZ or ZX needs a tool call with the X or Y axis before it (the program's comment says so).
@@ -17,6 +20,9 @@ from __future__ import annotations
 from axiscal.programs._dialect import Dialect, number, plain
 
 __all__ = ["Heidenhain"]
+
+#: Cycle 9's input range ends at an hour, s.
+MAX_DWELL_S = 3600.0
 
 
 class Heidenhain(Dialect):
@@ -35,6 +41,8 @@ class Heidenhain(Dialect):
                                    f"{'X' if self.m.plane == 'YZ' else 'Y'} TOOL AXIS BEFORE THIS"))
 
     def end(self) -> None:
+        if not self.lines[-1].endswith(" M30"):
+            self.emit("L M30")
         self.emit(f"END PGM {self.program_name} {self.unit_word()}")
 
     def emit(self, line: str) -> None:
@@ -63,4 +71,12 @@ class Heidenhain(Dialect):
         return f"C {self.words(b.end, True)} DR{'+' if b.ccw else '-'} R0 {self.f(b.feed)}"
 
     def dwell(self, seconds: float) -> list:
-        return ["CYCL DEF 9.0 DWELL TIME", f"CYCL DEF 9.1 DWELL {number(seconds, 3)}"]
+        out = []
+        while seconds > 1e-9:
+            piece = min(seconds, MAX_DWELL_S)
+            out += ["CYCL DEF 9.0 DWELL TIME", f"CYCL DEF 9.1 DWELL {number(piece, 3)}"]
+            seconds -= piece
+        return out
+
+    def spindle(self, rpm: int) -> list:
+        return [f"TOOL CALL Z S{rpm:d}", "L M3"] if rpm else ["L M5"]

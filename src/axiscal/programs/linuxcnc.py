@@ -40,3 +40,6 @@ class LinuxCNC(Fanuc):
 
     def dwell(self, seconds: float) -> list:
         return [f"G4 P{number(seconds, 3)}"]
+
+    def spindle(self, rpm: int) -> list:
+        return [f"S{rpm:d} M3"] if rpm else ["M5"]

@@ -2,7 +2,8 @@
 
 SINUMERIK 840D sl Programming Manual "Fundamentals": comments after ``;``, G70/G71 inch/metric,
 G17-G19 planes, G90 absolute, G94 feed in mm/min, G0, G1, G2/G3 with I, J, K the centre from the
-start point (incremental by default), "Dwell time (G4)": ``G4 F…`` in seconds, M30 end of program.
+start point (incremental by default), "Dwell time (G4)": ``G4 F…`` in seconds, "Spindle speed
+(S), direction of rotation (M3, M4, M5)", M30 end of program.
 The first two lines are the header of the punched-tape (archive) format in which a main program
 (``_MPF``) travels to the control: ``%_N_<NAME>_MPF`` and ``;$PATH=/_N_MPF_DIR`` (SINUMERIK
 Operate operating manual, "Archiving programs in punched tape format").
@@ -56,3 +57,6 @@ class Sinumerik(Fanuc):
 
     def dwell(self, seconds: float) -> list:
         return [f"G4 F{number(seconds, 3)}"]
+
+    def spindle(self, rpm: int) -> list:
+        return [f"S{rpm:d} M3"] if rpm else ["M5"]

@@ -1,0 +1,11 @@
+0 BEGIN PGM AXISCAL_DRIFT_CHECK MM
+1 ; ISO 230-2:2014 Annex A.5 drift check: 90 min, a reading
+2 ; every 60 s
+3 ; written by axiscal: check it on the machine before the test
+4 L X+400.000 R0 FMAX
+5 CYCL DEF 9.0 DWELL TIME
+6 CYCL DEF 9.1 DWELL 2700.000
+7 CYCL DEF 9.0 DWELL TIME
+8 CYCL DEF 9.1 DWELL 2700.000
+9 L X+400.000 R0 FMAX M30
+10 END PGM AXISCAL_DRIFT_CHECK MM
