@@ -33,6 +33,9 @@ def add_routes(app: FastAPI) -> None:
     from axiscal.store import open_store
 
     app.state.store = open_store(app.state.db_url)
+    from axiscal.web import squareness_pages
+
+    squareness_pages.add_routes(app)        # squareness from two straightness tests
 
     def store(request: Request):
         return request.app.state.store
@@ -72,6 +75,7 @@ def add_routes(app: FastAPI) -> None:
         from axiscal.store.corrections import audit
         from axiscal.web.correction_pages import SHOWN
         from axiscal.web.signoff_pages import signoff_context
+        from axiscal.web.squareness_pages import partners
 
         st, env = store(request), request.app.state.templates.env
         t = st.get(test_id)
@@ -85,6 +89,7 @@ def add_routes(app: FastAPI) -> None:
                                               request.query_params.get("certificate", ""), cfg),
                       controllers=sorted(CONTROLLERS),
                       others=[o for o in others if o.id != test_id],
+                      partners=partners(st, t),
                       audit_entries=audit(st, test_id=test_id, limit=SHOWN))
 
     @app.get("/tests/{test_id}/raw")
@@ -121,7 +126,17 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/tests/{test_id}/report.html")
     async def report(request: Request, test_id: TestId):
-        html = await _product(request, test_id, "HTML report", "report.html", _report_html)
+        """The test's HTML report, of every kind: ``axiscal history show ID --report``'s, by
+        the same call (:meth:`axiscal.api.History.report`), kept per stored bytes, names and
+        uncertainty inputs (a rename makes it again with the new name)."""
+        from axiscal.store.cache import digest
+
+        t = await run_in_threadpool(request.app.state.store.get, test_id)
+        what = "report-" + digest([t.summary.machine, t.summary.axis,
+                                   t.result.get("uncertainty_inputs")]) + ".html"
+        html = await _product(request, test_id, "HTML report", what,
+                              lambda t, ev: _report_html(request.app.state.store, t),
+                              any_kind=True)
         return _sent(html, f"test_{test_id}_report.html", "text/html")
 
     @app.get("/tests/{test_id}/standards.html")
@@ -148,14 +163,30 @@ def add_routes(app: FastAPI) -> None:
 
     @app.post("/tests/{test_id}/compensation")
     async def compensation(request: Request, test_id: TestId):
+        """Write a compensation table from the test (kept with it). From the page (htmx): the
+        lines ``axiscal compensate`` prints about it (:meth:`ControllerFile.summary`: reference
+        point, shift, backlash value, what to enable), its download, its companion files, and
+        the list of the test's tables, without a reload; a plain form post: the file."""
+        from axiscal.errors import AxiscalError
+
         form = await checked_form(request)
         require_engineer(request)
-        controller = str(form.get("controller", ""))
-        spacing = _positive(form.get("spacing"), "spacing")
-        axis = str(form.get("axis", "") or "").strip()      # as `compensate --axis`
-        f = await run_in_threadpool(_write_table, store(request), test_id, controller, spacing,
-                                    axis)
-        return download(f.text, f.filename, "text/plain")
+        htmx = request.headers.get("hx-request") == "true"
+        try:
+            controller = str(form.get("controller", ""))
+            spacing = _positive(form.get("spacing"), "spacing")
+            axis = str(form.get("axis", "") or "").strip()      # as `compensate --axis`
+            f = await run_in_threadpool(_write_table, store(request), test_id, controller,
+                                        spacing, axis)
+        except AxiscalError as exc:
+            if not htmx:
+                raise
+            return render(request, "_compensation_result.html", "", error=str(exc))
+        if not htmx:
+            return download(f.text, f.filename, "text/plain")
+        t = store(request).get(test_id)
+        return render(request, "_compensation_result.html", "", t=t, f=f,
+                      number=len(t.tables))
 
     @app.get("/compare", response_class=HTMLResponse)
     def compare(request: Request, a: QueryId, b: QueryId):
@@ -177,13 +208,34 @@ def add_routes(app: FastAPI) -> None:
     @app.get("/trend", response_class=HTMLResponse)
     def trend_page(request: Request, machine: str, axis: str, parameter: str = "E",
                    tolerance: str = ""):
+        """A parameter of one axis over time. ``parameter`` is a key (``R_up``, as ``history
+        trend --parameter``) or the symbol the pages show (``R↑``); the form offers the
+        parameters the axis's tests have, by their symbols. A name the axis has no value of is
+        said on the page, beside the chooser, never as an error page."""
+        from axiscal.report.labels import name as quantity_name
         from axiscal.store import trend
 
-        tol = _positive(tolerance, "tolerance") if tolerance else None
-        tr = trend(store(request), machine, axis, parameter, tol)
-        return render(request, "trend.html", f"Trend of {parameter}: {machine} {axis}", tr=tr,
-                      plot=trend_plot(tr), machine=machine, axis=axis, parameter=parameter,
-                      tolerance=tolerance)
+        st = store(request)
+        choices = [(k, quantity_name(k, axis), u) for k, u in st.parameter_names(machine, axis)]
+        if not choices:
+            raise _missing(f"no test of {machine} axis {axis} is counted in trends "
+                           "(none stored, or every one withdrawn)")
+        key = _parameter_key(parameter, choices)
+        error, tr, tol = None, None, None
+        try:
+            tol = _positive(tolerance, "tolerance") if tolerance else None
+        except InputError as exc:
+            error = str(exc)
+        if key is None:
+            error = (f"{machine} axis {axis} has no parameter {parameter[:40]!r}: choose one "
+                     "of the list")
+        elif error is None:
+            tr = trend(st, machine, axis, key, tol)
+        shown = quantity_name(key, axis) if key else parameter[:40]
+        return render(request, "trend.html", f"Trend of {shown}: {machine} {axis}",
+                      400 if error else 200, tr=tr, plot=trend_plot(tr, shown) if tr else None,
+                      machine=machine, axis=axis, parameter=key or "", shown=shown,
+                      tolerance=tolerance, choices=choices, error=error)
 
     @app.get("/upload", response_class=HTMLResponse)
     def upload_form(request: Request):
@@ -215,10 +267,23 @@ def add_routes(app: FastAPI) -> None:
                 raise
             return render(request, "upload.html", "Upload a test", 400, form=fields,
                           error=str(exc))
-        typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
-            if r.duplicate else {}        # not stored: shown, offered as a correction
-        return RedirectResponse(f"/tests/{r.id}?" + query(
-            stored="again" if r.duplicate else "new", **typed), 303)
+        return stored_page(r, fields)
+
+
+def stored_page(r, fields: dict):
+    """The answer to an upload: the stored test's page, told what of the form was not used as
+    typed (shown there): for a file stored before, the date, instrument and note (offered as a
+    correction); a machine typed where the file names its own (the form's machine is taken
+    only when the file names none); an axis name stored in capitals (``Axis1`` as ``AXIS1``:
+    the history keeps axis names in capitals, so ``x`` and ``X`` are one axis)."""
+    typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
+        if r.duplicate else {}        # not stored: shown, offered as a correction
+    if fields.get("machine") and fields["machine"] != r.machine:
+        typed["typed_machine"] = fields["machine"]
+    if fields.get("axis") and fields["axis"] != r.axis:
+        typed["typed_axis"] = fields["axis"]
+    return RedirectResponse(f"/tests/{r.id}?" + query(
+        stored="again" if r.duplicate else "new", **typed), 303)
 
 
 def _store_upload(app, raw: bytes, filename: str, fields: dict):
@@ -232,7 +297,7 @@ def _store_upload(app, raw: bytes, filename: str, fields: dict):
     from axiscal import api
 
     r = api.History(store=app.state.store).add(
-        raw, filename=filename, machine=fields["machine"] or None,
+        raw, filename=filename, machine_default=fields["machine"] or None,
         axis=fields["axis"] or None, note=fields["note"], instrument=fields["instrument"],
         date=fields["date"] or None)
     if not r.duplicate:
@@ -240,15 +305,17 @@ def _store_upload(app, raw: bytes, filename: str, fields: dict):
     return r
 
 
-async def _product(request: Request, test_id: int, words: str, what: str, make):
-    """A report or certificate of a stored positioning test: kept, once made, under the test's
-    stored-bytes SHA-256 and the axiscal version (:func:`axiscal.store.cache.kept`); made off the
-    event loop, one at a time per worker (:func:`axiscal.web.workers.heavy`)."""
+async def _product(request: Request, test_id: int, words: str, what: str, make,
+                   any_kind: bool = False):
+    """A report or certificate of a stored test (positioning only unless ``any_kind``): kept,
+    once made, under the test's stored-bytes SHA-256 and the axiscal version
+    (:func:`axiscal.store.cache.kept`); made off the event loop, one at a time per worker
+    (:func:`axiscal.web.workers.heavy`)."""
     from axiscal.store.cache import kept_file
     from axiscal.web.workers import heavy
 
     t = await run_in_threadpool(request.app.state.store.get, test_id)
-    if t.summary.kind != "iso230-2":
+    if t.summary.kind != "iso230-2" and not any_kind:
         raise InputError(f"a {t.summary.kind} test has no {words} here; download its JSON")
     path = kept_file(t.sha256, what)
     return path if path is not None else await heavy(_make, t, what, make)
@@ -275,10 +342,18 @@ def _make(t, what: str, make):
     return kept_file(t.sha256, what) or data
 
 
-def _report_html(t, ev) -> str:
-    from axiscal.report.html import positioning_report
+def _report_html(store, t) -> bytes:
+    """The report ``axiscal history show ID --report`` writes (:meth:`axiscal.api.History.
+    report`), as bytes."""
+    import tempfile
+    from pathlib import Path
 
-    return positioning_report(ev.dataset, ev.evaluation).html()
+    from axiscal import api
+
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "report.html"
+        api.History(store=store).report(t.summary.id, path)
+        return path.read_bytes()
 
 
 def _standards_html(t, ev) -> str:
@@ -457,6 +532,21 @@ def _f(v):
     import math
 
     return None if v is None or math.isnan(float(v)) else float(v)
+
+
+def _parameter_key(text: str, choices) -> str | None:
+    """The key of the parameter ``text`` names among ``choices`` (key, name, unit): a key
+    (``R_up``) or the name the pages show (``R↑``, ``Reversal spike X``), spaces and case
+    aside; None when it names none."""
+    text = (text or "").strip()
+    for key, shown, _ in choices:
+        if text in (key, shown):
+            return key
+    folded = text.casefold().replace(" ", "")
+    for key, shown, _ in choices:
+        if folded in (key.casefold(), shown.casefold().replace(" ", "")):
+            return key
+    return None
 
 
 def _positive(text, what: str) -> float:
