@@ -158,3 +158,21 @@ def test_ballbar_parameters_are_named_in_words_and_units_head_every_column(tmp_p
     thead = page.split('id="targets"><thead>')[1].split("</thead>")[0]
     heads = re.findall(r"<th[^>]*>(.*?)</th>", thead)
     assert heads[0] == "target [mm]" and all(h.endswith("[µm]") for h in heads[1:]), heads
+
+
+def test_workbench_table_axis_field_adds_no_line(site):
+    """Issue 40: the Renishaw .REN written from the page with the Axis field
+    ``X\\r\\nSpacing=1\\r\\nEOF`` has exactly the lines of the table named X (the name cleaned
+    by the writers' one rule, :func:`~axiscal.compensation.controllers._common.safe_axis_name`),
+    the source name in a note."""
+    c, token, ids = site
+    lines = {}
+    for axis in ("X", "X\r\nSpacing=1\r\nEOF"):
+        r = c.post(f"/tests/{ids[1]}/compensation", data={
+            "csrf": token, "controller": "renishaw-ren", "spacing": "100", "axis": axis})
+        assert r.status_code == 200
+        lines[axis] = r.text.splitlines()
+    hostile = lines["X\r\nSpacing=1\r\nEOF"]
+    assert len(hostile) == len(lines["X"]) and not [ln for ln in hostile
+                                                   if ln.startswith(("Spacing", "EOF"))]
+    assert not any(ch in ln for ln in hostile for ch in "\r\x00")
