@@ -4,13 +4,15 @@ same pages for one person alone, in :data:`RUNS` runs.
 
 A person browsing loops: the machine's history page (1,000 tests, the newest 100 shown, as the
 workbench pages them), then a test page. A person uploading loops: an upload of a new test (the
-POST and the stored test's page it is sent on to). No pause between requests: the busiest shop
-floor, not a typical one. Each run: one person browsing alone and one uploading alone
-(:data:`SINGLE_SECONDS` each: the reference), then the 23 at once (:data:`SECONDS`). Reported: the
-median over the runs of each run's p95 latency per page kind (with the runs' lowest and highest)
-beside the median of the single-person p95 (ratio = 23 people / 1 person; aims: pages p95 under
-200 ms, an upload under 500 ms, no error), requests per second, errors, and whether every
-accepted upload is in the database afterwards. Evaluations are kept by :mod:`axiscal.store.cache`
+POST and the stored test's page it is sent on to). Two loads: *people* pause between their
+requests (:data:`PAUSES`: a second's look at each page, two seconds to pick the next file), and
+*no pause* (each of the 23 sends its next request as soon as the last is answered: a load
+generator, the busiest case, as issue 31 measured it). Each run: one person browsing alone and one
+uploading alone (:data:`SINGLE_SECONDS` each, no pause: the reference), then the 23 at once,
+with pauses and without (:data:`SECONDS` each). Reported: the median over the runs of each run's
+p95 latency per page kind (with every run's figure) beside the median of the single-person p95
+(ratio = 23 people / 1 person; aims: pages p95 under 200 ms, an upload under 500 ms, no error),
+requests per second, errors, and whether every accepted upload is in the database afterwards. Evaluations are kept by :mod:`axiscal.store.cache`
 in a cache folder of this run (``AXISCAL_CACHE``), made when the history is filled, as an upload
 does.
 """
@@ -33,7 +35,9 @@ from axiscal.datasets import Metadata, PositioningDataset
 from axiscal.io.csv import format_positioning_csv
 from axiscal.store import open_store
 
-BROWSING, UPLOADING, SECONDS, SINGLE_SECONDS, TESTS, WORKERS, RUNS = 20, 3, 30.0, 8.0, 1000, 2, 5
+BROWSING, UPLOADING, SECONDS, SINGLE_SECONDS, TESTS, WORKERS, RUNS = 20, 3, 20.0, 6.0, 1000, 2, 5
+#: Seconds a person pauses after a page (browsing) and after an upload (picking the next file).
+PAUSES = (1.0, 2.0)
 #: Most requests one phase makes (a bound besides the time).
 MAX_REQUESTS = 20_000
 #: The page kinds and their aims (p95, ms).
@@ -50,9 +54,12 @@ def _file(k: int) -> bytes:
                  date=f"{1990 + k // 365 % 30}-{k // 31 % 12 + 1:02d}-{k % 28 + 1:02d}"))).encode()
 
 
-def _browse(c, lat, errors, k: int, seed: int) -> None:
-    for kind, call in (("history page (1,000 tests)", lambda: c.get("/machine/1")),
-                       ("test page", lambda: c.get(f"/tests/{1 + (k * 37 + seed) % TESTS}"))):
+def _browse(c, lat, errors, k: int, seed: int, pause: float = 0.0, stop=None) -> None:
+    for i, (kind, call) in enumerate((
+            ("history page (1,000 tests)", lambda: c.get("/machine/1")),
+            ("test page", lambda: c.get(f"/tests/{1 + (k * 37 + seed) % TESTS}")))):
+        if i and pause:
+            stop.wait(pause)
         t0 = time.perf_counter()
         r = call()
         lat.setdefault(kind, []).append(time.perf_counter() - t0)
@@ -72,29 +79,34 @@ def _upload(c, token, lat, errors, uploaded, k: int, seed: int) -> None:
         uploaded.append(n)
 
 
-def _person(base, stop, lat, errors, uploaded, seed, budget, uploads: bool):
+def _person(base, stop, lat, errors, uploaded, seed, budget, uploads: bool, pauses):
     import httpx
 
     c = httpx.Client(base_url=base, timeout=60, follow_redirects=True)
     token = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    rng = np.random.default_rng(seed)
+    stop.wait(rng.uniform(0, pauses[1]))             # people do not start in step
     k = 0
     while not stop.is_set() and next(budget, None) is not None:
         if uploads:
             _upload(c, token, lat, errors, uploaded, k, seed)
         else:
-            _browse(c, lat, errors, k, seed)
+            _browse(c, lat, errors, k, seed, pauses[0], stop)
         k += 1
+        stop.wait(pauses[1] if uploads else pauses[0])
 
 
-def _phase(base, browsing: int, uploading: int, seconds: float, first_seed: int):
+def _phase(base, browsing: int, uploading: int, seconds: float, first_seed: int,
+           pauses=(0.0, 0.0)):
     """``browsing`` + ``uploading`` people for ``seconds`` (or :data:`MAX_REQUESTS` loops at
-    most): (latencies by kind, errors, uploads, seconds elapsed)."""
+    most), pausing ``pauses`` (after a page, after an upload): (latencies by kind, errors,
+    uploads, seconds elapsed)."""
     lat, errors, uploaded = {}, [], []
     stop = threading.Event()
     budget = iter(range(MAX_REQUESTS // 2))          # shared by the people's loops
     people = [False] * browsing + [True] * uploading
     threads = [threading.Thread(target=_person, args=(base, stop, lat, errors, uploaded,
-                                                      first_seed + i, budget, up))
+                                                      first_seed + i, budget, up, pauses))
                for i, up in enumerate(people)]
     t0 = time.perf_counter()
     for t in threads:
@@ -153,7 +165,9 @@ def _run(runs: int) -> list[dict]:
                 seed = 1000 * (r + 1)
                 alone = _merged(_phase(base, 1, 0, SINGLE_SECONDS, seed),
                                 _phase(base, 0, 1, SINGLE_SECONDS, seed + 100))
-                results.append((alone, _phase(base, BROWSING, UPLOADING, SECONDS, seed + 200)))
+                results.append((alone,
+                                _phase(base, BROWSING, UPLOADING, SECONDS, seed + 200, PAUSES),
+                                _phase(base, BROWSING, UPLOADING, SECONDS, seed + 300)))
         finally:
             proc.terminate()
             proc.wait(30)
@@ -168,30 +182,34 @@ def _merged(a, b):
 
 def _rows(results, stored) -> list[dict]:
     people = f"{BROWSING} browsing + {UPLOADING} uploading"
-    n1 = sum(sum(len(v) for v in one[0].values()) for one, _ in results)
-    t1 = sum(one[3] for one, _ in results)
-    n = sum(sum(len(v) for v in many[0].values()) for _, many in results)
-    t = sum(many[3] for _, many in results)
-    errors = [e for one, many in results for e in one[1] + many[1]]
-    uploads = sum(len(one[2]) + len(many[2]) for one, many in results)
-    rows = [dict(name=f"workbench, {WORKERS} workers, {people}: requests per second "
-                 "(/ 1 person)", value=n / t, unit="req/s",
-                 reference=f"1 person {n1 / t1:.0f} req/s", ratio=(n / t) / (n1 / t1)),
-            dict(name=f"workbench: errors ({len(results)} runs)", value=len(errors),
+    loads = ((f"{people}, pausing {PAUSES[0]:g} s / {PAUSES[1]:g} s", 1),
+             (f"{people}, no pause", 2))
+    n1 = sum(sum(len(v) for v in r[0][0].values()) for r in results)
+    t1 = sum(r[0][3] for r in results)
+    errors = [e for r in results for phase in r for e in phase[1]]
+    uploads = sum(len(phase[2]) for r in results for phase in r)
+    rows = [dict(name=f"workbench: errors ({len(results)} runs)", value=len(errors),
                  unit="requests", aim="0",
                  reference=", ".join(sorted({f"{k} {c}" for k, c in errors})) or None),
             dict(name="workbench: uploads lost (accepted but not in the database)",
                  value=TESTS + uploads - stored, unit="tests", aim="0")]
-    for kind, aim in AIMS.items():
-        p95 = [float(np.percentile(many[0][kind], 95)) * 1e3 for _, many in results
-               if many[0].get(kind)]
-        ref = [float(np.percentile(one[0][kind], 95)) * 1e3 for one, _ in results
-               if one[0].get(kind)]
-        if not p95 or not ref:
-            continue
-        mid, alone = float(np.median(p95)), float(np.median(ref))
-        rows.append(dict(
-            name=f"workbench p95, {people}: {kind} (/ 1 person)", value=mid, unit="ms",
-            reference=f"1 person p95 {alone:.0f} ms; runs {' '.join(f'{v:.0f}' for v in p95)}"
-                      f" ms", ratio=mid / alone, aim=f"< {aim} ms"))
+    for load, j in loads:
+        n = sum(sum(len(v) for v in r[j][0].values()) for r in results)
+        t = sum(r[j][3] for r in results)
+        rows.append(dict(name=f"workbench, {WORKERS} workers, {load}: requests per second "
+                         "(/ 1 person)", value=n / t, unit="req/s",
+                         reference=f"1 person {n1 / t1:.0f} req/s", ratio=(n / t) / (n1 / t1)))
+        for kind, aim in AIMS.items():
+            p95 = [float(np.percentile(r[j][0][kind], 95)) * 1e3 for r in results
+                   if r[j][0].get(kind)]
+            ref = [float(np.percentile(r[0][0][kind], 95)) * 1e3 for r in results
+                   if r[0][0].get(kind)]
+            if not p95 or not ref:
+                continue
+            mid, alone = float(np.median(p95)), float(np.median(ref))
+            rows.append(dict(
+                name=f"workbench p95, {load}: {kind} (/ 1 person)", value=mid, unit="ms",
+                reference=f"1 person p95 {alone:.0f} ms; runs "
+                          f"{' '.join(f'{v:.0f}' for v in p95)} ms",
+                ratio=mid / alone, aim=f"< {aim} ms"))
     return rows

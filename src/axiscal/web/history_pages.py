@@ -495,12 +495,35 @@ def _machine_view(st, env, machine_id: int, axis: str, kind: str, page: int) -> 
                      offset=(page - 1) * PAGE, parameters=_KEY)
     newest = tests if page == 1 and not axis and not kind else []
     rows = [(t, _key(t)) for t in tests[:PAGE]]
-    return dict(name=m.name, machine_id=m.id,
-                rows_html=Markup(env.get_template("_machine_rows.html").render(rows=rows)),
+    return dict(name=m.name, machine_id=m.id, rows_html=Markup(_rows_html(env, rows)),
                 trends=_trend_parameters(st, m.name, m.axes, newest), axes=list(m.axes),
                 axis=axis, page=page, more=len(tests) > PAGE, total=m.tests,
                 audit_entries=audit(st, machine=m.id, limit=SHOWN),
                 machines=queries.machine_names(st))
+
+
+#: Rendered rows of machine pages kept by this process, by everything a row shows (so a row is
+#: made again only when one of its fields changes): a write (an upload every few seconds by
+#: three people) changes the history's generation and so the page's reads, but only its own row.
+_ROWS: dict = {}
+_ROWS_KEPT = 20_000
+
+
+def _rows_html(env, rows) -> str:
+    """The rows of a machine's page (``_machine_rows.html``), each rendered once per process
+    while its fields are unchanged."""
+    template = env.get_template("_machine_rows.html")
+    out = []
+    for t, key in rows:
+        k = (t.id, t.tested_at, t.date_known, t.axis, t.kind, t.filename, t.note, t.withdrawn,
+             key)
+        html = _ROWS.get(k)
+        if html is None:
+            if len(_ROWS) >= _ROWS_KEPT:
+                _ROWS.clear()
+            html = _ROWS[k] = template.render(rows=[(t, key)])
+        out.append(html)
+    return "".join(out)
 
 
 def _trend_parameters(st, machine: str, axes, newest=()) -> dict:
