@@ -176,3 +176,24 @@ def test_workbench_table_axis_field_adds_no_line(site):
     assert len(hostile) == len(lines["X"]) and not [ln for ln in hostile
                                                    if ln.startswith(("Spacing", "EOF"))]
     assert not any(ch in ln for ln in hostile for ch in "\r\x00")
+
+
+def test_plot_and_report_name_the_machine_and_axis_as_corrected(tmp_path, monkeypatch):
+    """After a rename in the history, the test page's plot and its report name the machine and
+    axis as the history keeps them, not as the file wrote them."""
+    monkeypatch.setenv("AXISCAL_CACHE", str(tmp_path / "cache"))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"), base_url="http://127.0.0.1")
+    token = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    r = c.post("/upload", data={"csrf": token},
+               files={"file": ("p.csv", _positioning("2024-02-02", 1.0, "VMC old"), "text/csv")})
+    tid = int(str(r.url).split("/tests/")[1].split("?")[0])
+    assert "positioning deviations, X axis" in r.text
+    mid = c.app.state.store.get(tid).summary.machine_id
+    for path, data in ((f"/machine/{mid}/rename", {"name": "VMC Nord"}),
+                       (f"/machine/{mid}/rename-axis", {"axis": "X", "name": "X1"})):
+        assert c.post(path, data={"csrf": token, "by": "A. Ng", "reason": "plate",
+                                  **data}).status_code == 200
+    page = c.get(f"/tests/{tid}").text
+    assert "positioning deviations, X1 axis" in page
+    report = c.get(f"/tests/{tid}/report.html").text
+    assert "VMC Nord X1" in re.search(r"<h1>(.*?)</h1>", report).group(1)

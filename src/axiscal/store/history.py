@@ -118,6 +118,11 @@ class StoredTest:
         return evaluated(lambda: self.raw, self.sha256, self.summary.filename,
                          self.summary.kind, self.size)
 
+    def named(self, ev: Evaluated) -> Evaluated:
+        """``ev`` (this test's evaluation) with the machine and axis names the history keeps,
+        in its dataset's metadata too: what every plot and report of the test names."""
+        return _as_stored(ev, self.summary)
+
     def record(self) -> Evaluated:
         """The test's one record: :meth:`evaluate_again` with the uncertainty budget made from
         the inputs stored with it (a test stored before inputs were kept: none, each assumed

@@ -425,15 +425,17 @@ def _test_view(env, t, kept_only: bool = False) -> tuple | None:
     from axiscal.store.cache import derived, digest, lookup
 
     cfg = load_config(None)
-    what = f"test-page-{digest([cfg, t.result.get('uncertainty_inputs')])}"
+    # the page names the machine and axis as the history keeps them (a rename makes it again)
+    names = [t.summary.machine, t.summary.axis]
+    what = f"test-page-{digest([cfg, t.result.get('uncertainty_inputs'), *names])}"
     if kept_only:
         ev = lookup(t.sha256, "evaluated", t.size)
         parts = lookup(t.sha256, what) if ev is not None else None
         if parts is None:
             return None
-        ev, parts = ev[0], parts[0]
+        ev, parts = t.named(ev[0]), parts[0]
     else:
-        ev = t.evaluate_again()
+        ev = t.named(t.evaluate_again())
         parts = derived(t.sha256, what, lambda: _test_parts(t, ev))   # computed once, then kept
     html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
         "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
