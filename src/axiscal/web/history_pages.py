@@ -132,8 +132,8 @@ def add_routes(app: FastAPI) -> None:
         from axiscal.store.cache import digest
 
         t = await run_in_threadpool(request.app.state.store.get, test_id)
-        what = "report-" + digest([t.summary.machine, t.summary.axis,
-                                   t.result.get("uncertainty_inputs")]) + ".html"
+        what = digest([t.summary.machine, t.summary.axis,
+                       t.result.get("uncertainty_inputs")]) + ".report.html"
         html = await _product(request, test_id, "HTML report", what,
                               lambda t, ev: _report_html(request.app.state.store, t),
                               any_kind=True)
