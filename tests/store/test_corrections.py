@@ -60,7 +60,7 @@ def test_merge_machines_moves_every_test_and_deletes_none(db_url):
     s, a = _history(db_url, "VMC-800", 2)
     _, b = _history(db_url, "VMC 800", 2, axis="Y")
     s.add(_raw(_dataset(np.random.default_rng(5), machine="VMC 800", axis="X",
-                        date="2027-01-01")), "x.csv")
+                        date="2026-01-01")), "x.csv")
     before = _test_rows(s)
     dst = c.machine_id(s, "VMC-800")
     e = c.merge_machines(s, "VMC 800", "VMC-800", **WHO)
@@ -74,7 +74,7 @@ def test_merge_machines_moves_every_test_and_deletes_none(db_url):
 
 def test_merge_axes(db_url):
     s, _ = _history(db_url, n=2)
-    s.add(_raw(_dataset(np.random.default_rng(6), axis="X2", date="2027-01-01")), "x2.csv")
+    s.add(_raw(_dataset(np.random.default_rng(6), axis="X2", date="2026-01-01")), "x2.csv")
     e = c.merge_axes(s, "VMC-800", "x2", "x", **WHO)
     assert s.machines()[0].axes == ("X",) and e.new["tests_moved"] == 1
     assert len(trend(s, "VMC-800", "X", "E").values) == 3

@@ -93,8 +93,13 @@ def test_upload_history_compare_table_trend(server, browser, demo_files):
     shot(browser, "compare")
 
     browser.get(server + "/tests/1")
+    browser.find_element(By.CSS_SELECTOR, "#compensation summary").click()     # folded
     browser.find_element(By.NAME, "controller").send_keys("linuxcnc")
-    browser.find_element(By.XPATH, "//button[contains(., 'Write and download')]").click()
+    browser.find_element(By.XPATH, "//button[contains(., 'Write the table')]").click()
+    WebDriverWait(browser, 20).until(lambda d: d.find_elements(By.ID, "table-download"))
+    assert browser.current_url.endswith("/tests/1")          # answered in the page (htmx)
+    assert "linuxcnc" in browser.find_element(By.ID, "tables").text
+    browser.find_element(By.ID, "table-download").click()
     deadline = time.monotonic() + 20
     while time.monotonic() < deadline and not [p for p in browser.downloads.iterdir()
                                                if not p.name.endswith(".crdownload")]:

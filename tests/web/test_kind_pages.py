@@ -326,3 +326,83 @@ def test_plan_form_keeps_rotary(tmp_path):
     assert '<option value="linear" selected>' not in r.text
     r = c.post("/plan", data={"csrf": token, "kind": "linear", "travel": "800"})
     assert '<option value="linear" selected>' in r.text
+
+
+def _h1(html_text: str) -> str:
+    return html.unescape(re.search(r"<h1>(.*?)</h1>", html_text, re.S).group(1))
+
+
+def test_every_kind_has_the_report_of_history_show(site, tmp_path):
+    """Issue 40: each test page links a report, and it is the report ``axiscal history show ID
+    --report`` writes (one call, :meth:`axiscal.api.History.report`): the same heading, which
+    names the machine and axis kept in the history, and the same figures."""
+    from axiscal import api
+
+    c, _, files, _ = site
+    for kind in files:
+        tid = next(t.id for t in c.app.state.store.tests(machine="DMU 50")
+                   if t.filename == files[kind][0].name)
+        page = c.get(f"/tests/{tid}").text
+        assert f'href="/tests/{tid}/report.html"' in page, kind
+        r = c.get(f"/tests/{tid}/report.html")
+        assert r.status_code == 200 and "attachment" in r.headers["content-disposition"], kind
+        path = api.History(store=c.app.state.store).report(tid, tmp_path / f"{tid}.html")
+        assert _h1(r.text) == _h1(path.read_text()), kind
+        assert "DMU 50" in _h1(r.text), kind
+
+
+def test_squareness_from_two_straightness_tests_equals_squareness_biaxial(site):
+    """A straightness test's page offers the other axis's straightness tests; the squareness
+    page gives ``axiscal squareness biaxial X Y --json``'s squareness and U (ISO 230-1:2012
+    §3.6.7; ISO/TR 230-9), and its report downloads."""
+    c, token, _, _ = site
+    y = EXAMPLES / "squareness_L180_y.csv"
+    r = c.post("/upload", data={"csrf": token, "machine": "DMU 50"},
+               files={"file": (y.name, y.read_bytes(), "text/csv")})
+    second = int(str(r.url).split("/tests/")[1].split("?")[0])
+    first = next(t.id for t in c.app.state.store.tests(machine="DMU 50", axis="X")
+                 if t.kind == "straightness")
+    page = c.get(f"/tests/{first}").text
+    assert 'id="squareness-with"' in page and f'<option value="{second}">' in page
+    j = _cli("squareness", "biaxial", EXAMPLES / "squareness_L180_x.csv", y, "--orientation",
+             "180")
+    q = {"first": first, "second": second, "config": "L", "orientation": 180}
+    page = c.get("/squareness", params=q)
+    assert page.status_code == 200
+    shown = re.search(r'id="squareness-value">([^<]+)<', page.text).group(1)
+    assert shown == f"{j['squareness']['um_per_m']:+.2f}"
+    from axiscal.standards.iso230_9 import format_uncertainty
+
+    assert f"U (k = 2) = {format_uncertainty(j['U_um_per_m'])}" in page.text
+    rep = c.get("/squareness/report.html", params=q)
+    assert rep.status_code == 200 and "Squareness, bi-axial L 180°" in rep.text
+    same = c.get("/squareness", params={**q, "second": first})
+    assert same.status_code == 400 and "with itself" in same.text
+
+
+def test_compensation_from_the_page_lists_the_table_and_the_cli_notes(site):
+    """Written from the page (htmx), the answer carries what ``axiscal compensate`` prints
+    (:meth:`ControllerFile.summary`: reference point, the 840D backlash machine datum as a value,
+    the shift to zero at the reference point) and the tables list, swapped in without reload."""
+    from axiscal.compensation.controllers.convert import convert
+    from axiscal.compensation.tables import table_from_result
+
+    c, token = site[0], site[1]
+    r = c.post("/upload", data={"csrf": token},
+               files={"file": ("comp.csv", _positioning("2024-03-03", 2.5), "text/csv")})
+    tid = int(str(r.url).split("/tests/")[1].split("?")[0])
+    r = c.post(f"/tests/{tid}/compensation", headers={"HX-Request": "true"},
+               data={"csrf": token, "controller": "siemens-840d", "spacing": "100"})
+    assert r.status_code == 200 and "<html" not in r.text
+    ev = c.app.state.store.get(tid).evaluate_again()
+    f = convert(table_from_result(ev.evaluation, 100.0, axis="X", bidirectional=True),
+                "siemens-840d")
+    summary = html.unescape(re.search(r'id="compensation-summary">(.*?)</pre>', r.text,
+                                      re.S).group(1))
+    assert summary.splitlines() == f.summary()
+    assert any("$MA_BACKLASH" in s and " mm" in s for s in f.summary())
+    assert any("zero at the reference point" in s for s in f.summary())
+    assert 'hx-swap-oob="true"' in r.text and f'/tests/{tid}/tables/1"' in r.text
+    bad = c.post(f"/tests/{tid}/compensation", headers={"HX-Request": "true"},
+                 data={"csrf": token, "controller": "siemens-840d", "spacing": "-1"})
+    assert 'role="alert"' in bad.text and "spacing" in bad.text

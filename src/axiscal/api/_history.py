@@ -99,6 +99,22 @@ class History:
 
         return Evaluation(**record_fields(self.store.get(test_id).record()))
 
+    def report(self, test_id: int, path: PathLike) -> Path:
+        """Write a stored test's HTML report, of any kind (``axiscal history show ID --report``
+        and the workbench's "Report" link): :meth:`evaluation`'s ``report()``, titled with
+        the machine and axis names the history keeps (as corrected), which a positioning
+        report takes from its dataset; returns the path."""
+        from axiscal.report.evaluations import REPORT_TITLES
+
+        t = self.store.get(test_id).summary
+        ev = self.evaluation(test_id)
+        title = None
+        if ev.kind != "iso230-2":
+            kind = ("Ballbar diagnosis" if ev.kind == "ballbar" and hasattr(ev.result, "circular")
+                    else REPORT_TITLES[ev.kind])
+            title = f"{kind} — {t.machine} axis {t.axis} (test {t.id}, {t.filename})"
+        return Path(ev.report(path, title))
+
     def trend(self, machine: str, axis: str, parameter: str,
               tolerance: float | None = None) -> Any:
         """The trend of one parameter of one axis (axiscal.store.analysis.Trend)."""

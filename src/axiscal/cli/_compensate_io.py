@@ -127,22 +127,8 @@ def _render_table(cf, out, json_out) -> None:
         d.update(_table_json(t))
         print_json(d)
         return
-    from axiscal.report.labels import unit_text
-
-    pu, cu = t.position_unit, unit_text(t.correction_unit)   # µm, as every other output writes it
-    typer.echo(f"{cf.controller} compensation table for axis {t.axis or '-'} "
-               f"({'bidirectional' if t.bidirectional else 'one table for both directions'})")
-    typer.echo(f"  points           {t.n_points}")
-    typer.echo(f"  spacing          {t.spacing:g} {pu}")
-    typer.echo(f"  range            {t.start:g} … {t.end:g} {pu}{' (modulo 360)' if t.modulo else ''}")
-    typer.echo(f"  reference point  {t.reference_index} at {t.reference_position:g} {pu}")
-    typer.echo(f"  largest corr.    {t.largest:.4g} {cu} (correction = −deviation)")
-    if t.bidirectional:
-        typer.echo(f"  mean reversal    {t.backlash:+.4g} {cu}")
-    for e in cf.enable:
-        typer.echo(f"  enable: {e}")
-    for n in cf.notes:
-        typer.echo(f"  note: {n}")
+    for line in cf.summary():          # the lines the workbench shows too
+        typer.echo(line)
     if out is None:
         typer.echo("")
         typer.echo(cf.text.rstrip("\n"))

@@ -132,9 +132,9 @@ def list_(
     Example: axiscal history list --machine VMC-800 --axis X
     """
     from axiscal.report.labels import unit_text
-    from axiscal.store.history import _date
+    from axiscal.store.history import _parse_date
 
-    when = _date(since)[0] if since else None
+    when = _parse_date(since.strip()) if since else None     # a filter: any date
     rows = _store(db).tests(machine=machine, axis=axis, kind=kind, since=when)
     if json_out:
         print_json([_row(t) for t in rows])
@@ -368,9 +368,7 @@ def _figures(store, test_id: int, plot, report, stored) -> None:
 
         save_figure(ev.plot(), plot)
     if report:
-        title = (f"Ballbar diagnosis {stored.summary.filename}"
-                 if ev.kind == "ballbar" and hasattr(ev.result, "circular") else None)
-        ev.report(report, title)
+        History(store=store).report(test_id, report)     # as the workbench's Report link
     for p, what in ((plot, "plot"), (report, "report")):
         if p:
             note(f"wrote {what} {p}")

@@ -152,38 +152,15 @@ def biaxial(
 
     Example: axiscal squareness biaxial examples/squareness_L180_x.csv examples/squareness_L180_y.csv --config L --orientation 180
     """
-    from axiscal.errors import InputError
     from axiscal.io.straightness import read_straightness
-    from axiscal.standards.iso230_1 import correct_reference_angle, squareness_from_trajectories
-    from axiscal.units import ARCSEC
+    from axiscal.standards.squareness_biaxial import evaluate_biaxial
 
-    if config.upper() not in ("L", "T", "+"):
-        raise InputError(f"--config {config!r}: must be L, T or +")
     _outputs(plot, report)
     one, two = read_straightness(xfile), read_straightness(yfile)
-    axes = (one.axis or "X", two.axis or "Y")
-    _check_crossed(one, two, axes)
-    correction = correct_reference_angle(prism_error * ARCSEC, orientation)
-    r = squareness_from_trajectories(one.positions, one.deviations, two.positions,
-                                     two.deviations, axes=axes, method=_reference(reference),  # type: ignore[arg-type]
-                                     datum=datum, reference_excess=correction)
-    import numpy as np
-
-    from axiscal.standards.iso230_9_geometry import slope_uncertainty
-
-    if square not in ("optics", "square", "reversal"):
-        raise InputError(f"--square {square!r}: use optics, square or reversal")
-    budget = _budget(square, length_x=float(np.ptp(one.positions)),
-                     length_y=float(np.ptp(two.positions)),
-                     slope_fit_x=slope_uncertainty(one.positions, one.deviations),
-                     slope_fit_y=slope_uncertainty(two.positions, two.deviations))
-    d = {**_budget_json(budget), "squareness": r.squareness.as_dict(), "config": config.upper(),
-         "orientation": orientation, "reference": _reference(reference),
-         "prism_error_arcsec": prism_error, "correction_um_per_m": correction * 1e6,
-         "slope_first_um_per_m": r.slope_first * 1e6,
-         "slope_second_um_per_m": r.slope_second * 1e6,
-         "straightness_first_um": r.first.deviation * 1e6,
-         "straightness_second_um": r.second.deviation * 1e6}
+    b = evaluate_biaxial(one, two, config=config, orientation=orientation,
+                         prism_error=prism_error, reference=_reference(reference), datum=datum,
+                         square=square, inputs=_uncertainty_table())   # as the workbench's
+    r, budget, d = b.result, b.budget, b.summary
     if plot is not None or report is not None:
         from axiscal.report.squareness_plots import biaxial_figure
 
@@ -193,16 +170,10 @@ def biaxial(
 
             save_figure(biaxial_figure(one, two, r, title), plot)
         if report is not None:
-            from axiscal.report.html import write_result_report
+            from axiscal.report.squareness_plots import write_biaxial_report
 
-            write_result_report(report, f"Squareness, bi-axial {config.upper()} {orientation}° — "
-                                f"{xfile.name}, {yfile.name}", d,
-                                figure=biaxial_figure(one, two, r, title),
-                                method="Squareness from the slopes of the reference straight "
-                                       "lines of two trajectories, ISO 230-1:2012 §3.6.7 "
-                                       "(Chapman, Calibration of machine squareness, Methods "
-                                       "1-3), with the reference square's angle error corrected "
-                                       "for its orientation; U by ISO/TR 230-9.")
+            write_biaxial_report(report, one, two, b, f"{xfile.name}, {yfile.name}", config,
+                                 orientation)
     if json_out:
         print_json(d)
     else:
@@ -238,17 +209,6 @@ def _budget_line(b) -> str:
 
     names = "; ".join(c.quantity for c in b.contributors)
     return f"U (k = 2) = {format_uncertainty(b.U('squareness'))} µm/m (ISO/TR 230-9) from: {names}"
-
-
-def _check_crossed(one, two, axes) -> None:
-    """Each trajectory's deviations must be read along the other axis (ISO 230-1 §3.6.7)."""
-    from axiscal.errors import InputError
-
-    for data, other in ((one, axes[1]), (two, axes[0])):
-        if data.direction and data.direction != other:
-            raise InputError(f"{data.source} reads the {data.axis or '?'} axis's deviations along "
-                             f"{data.direction}; a bi-axial {''.join(axes)} test needs them along "
-                             f"{other}")
 
 
 def diagonal(

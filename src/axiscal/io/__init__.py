@@ -61,14 +61,7 @@ def read_positioning(path, target_unit: str | None = None, deviation_unit: str |
                                              progress=progress)
     text, used = _text(path)
     if used != "utf-8":                      # a Renishaw export in UTF-16 or a code page
-        if epics:
-            raise DataFormatError(f"--{next(iter(epics)).replace('_', '-')} applies to an EPICS "
-                                  "camonitor log; this file is a Renishaw export", str(path))
-        from axiscal.io import renishaw as _renishaw
-
-        return _renishaw.parse_renishaw(text, source=str(path), target_unit=target_unit,
-                                        deviation_unit=deviation_unit, axis_kind=axis_kind,
-                                        encoding=used)
+        return _renishaw_text(text, used, path, target_unit, deviation_unit, axis_kind, epics)
     return parse_positioning(text, str(path), target_unit, deviation_unit, axis_kind,
                              epics=epics)
 
@@ -85,6 +78,13 @@ def _read_renishaw_in(path, encoding, target_unit, deviation_unit, axis_kind, ep
         raise InputError(f"--encoding {encoding} is the code page of a Renishaw .rtl/.rta export; "
                          f"{path} is not one (axiscal reads its other files as UTF-8): drop "
                          "--encoding")
+    return _renishaw_text(text, used, path, target_unit, deviation_unit, axis_kind, epics)
+
+
+def _renishaw_text(text, used, path, target_unit, deviation_unit, axis_kind, epics):
+    """A Renishaw export's decoded ``text`` (code page ``used``) parsed; EPICS options refused."""
+    from axiscal.io import renishaw as _renishaw
+
     if epics:
         raise DataFormatError(f"--{next(iter(epics)).replace('_', '-')} applies to an EPICS "
                               "camonitor log; this file is a Renishaw export", str(path))

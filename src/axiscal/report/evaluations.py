@@ -26,6 +26,13 @@ KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "i
                  "diagonal": "iso230-6", "motion": "iso230-7"}
 
 
+#: The title of the report of each kind of test other than positioning.
+REPORT_TITLES = {"straightness": "Straightness (ISO 230-1)",
+                 "diagonal": "Diagonal squareness (ISO 230-6)",
+                 "motion": "Error motions of a rotary axis (ISO 230-7)",
+                 "ballbar": "Circular test (ISO 230-4)"}
+
+
 def kind_of_file(path: Any) -> str:
     """The kind of test a data file holds, told by its content (as the history does); a
     Renishaw export in UTF-16 or a Windows code page is a positioning test, as
@@ -430,7 +437,5 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
 
         kw = {} if title is None else {"title": title}
         return write_diagnosis_report(path, ev.dataset.runs, ev.result, **kw)
-    title = title or {"straightness": "Straightness (ISO 230-1)", "diagonal": "Diagonal "
-                      "squareness (ISO 230-6)", "motion": "Error motions of a rotary axis "
-                      "(ISO 230-7)", "ballbar": "Circular test (ISO 230-4)"}[ev.kind]
+    title = title or REPORT_TITLES[ev.kind]
     return write_result_report(path, title, ev._json, figure=evaluation_figure(ev))

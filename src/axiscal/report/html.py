@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any, Iterable, Sequence
 
 from axiscal import __version__
+from axiscal.standards.iso230_2 import PARAMETER_SYMBOLS
 
 __all__ = ["Report", "figure_svg", "write_positioning_report", "target_label"]
 
@@ -225,8 +226,8 @@ def positioning_report(dataset, result, title: str | None = None, verdicts=(), *
     return rep
 
 
-_PARAM_LABEL = {"A": "A", "A_up": "A↑", "A_down": "A↓", "E": "E", "E_up": "E↑", "E_down": "E↓",
-                "M": "M", "R": "R", "R_up": "R↑", "R_down": "R↓", "B": "B", "B_mean": "B̄"}
+#: The symbols of ISO 230-2:2014 clause 3, from the one table every page and report reads.
+_PARAM_LABEL = PARAMETER_SYMBOLS
 _PARAM_MEANING = {
     "A": "Bidirectional accuracy of positioning", "A_up": "Unidirectional accuracy, positive",
     "A_down": "Unidirectional accuracy, negative",

@@ -35,8 +35,10 @@ import math
 import re
 from typing import Any
 
-__all__ = ["DECIMALS", "QUANTITIES", "decimals", "fmt", "label", "split_key", "symbol_html",
-           "unit_text", "value_text"]
+from axiscal.standards.iso230_2 import PARAMETER_SYMBOLS
+
+__all__ = ["DECIMALS", "QUANTITIES", "decimals", "fmt", "label", "name", "split_key",
+           "symbol_html", "unit_text", "value_text"]
 
 #: Key suffixes naming a unit, longest first (``slope_um_per_m`` is µm/m, not m).
 SUFFIX_UNITS = (
@@ -54,12 +56,12 @@ DECIMALS = {"µm": 2, "µm/m": 2, "arcsec": 2, "mm": 3, "°": 3, "s": 3, "ms": 2
 #: Key (without its unit suffix) → (label, unit). ``None`` as unit: the suffix's or the result's
 #: own ``unit``. ``{x}`` and ``{y}`` stand for the plane's first and second axis.
 QUANTITIES: dict[str, tuple[str, str | None]] = {
-    # positioning (ISO 230-2:2014 clause 3)
-    "A": ("A, bidirectional accuracy", None), "A_up": ("A↑", None), "A_down": ("A↓", None),
-    "E": ("E, bidirectional systematic error", None), "E_up": ("E↑", None),
-    "E_down": ("E↓", None), "M": ("M, range of mean bidirectional error", None),
-    "R": ("R, bidirectional repeatability", None), "R_up": ("R↑", None), "R_down": ("R↓", None),
-    "B": ("B, reversal value", None), "B_mean": ("B̄, mean reversal value", None),
+    # positioning (ISO 230-2:2014 clause 3): the symbols of PARAMETER_SYMBOLS, with words
+    **{k: (s, None) for k, s in PARAMETER_SYMBOLS.items()},
+    "A": ("A, bidirectional accuracy", None), "E": ("E, bidirectional systematic error", None),
+    "M": ("M, range of mean bidirectional error", None),
+    "R": ("R, bidirectional repeatability", None), "B": ("B, reversal value", None),
+    "B_mean": ("B̄, mean reversal value", None),
     "before": ("Before compensation", None), "after": ("After compensation", None),
     "truth_before": ("Simulation's truth before compensation", None),
     "truth_after": ("Simulation's truth after compensation", None),
@@ -125,6 +127,8 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "scope": ("Scope", ""), "readings": ("Readings", ""), "file": ("File", ""),
     # straightness (ISO 230-1:2012 §8.2)
     "straightness": ("Straightness", None), "slope": ("Slope", None),
+    "straightness_min_zone": ("Straightness, minimum-zone line", None),
+    "vibration_hz": ("Vibration frequency", "Hz"),
     "intercept": ("Intercept", None),
     "reference": ("Reference line", ""), "methods": ("By each reference line", None),
     "end_point": ("End-point line", ""), "least_squares": ("Least-squares line", ""),
@@ -219,6 +223,36 @@ def quantity(key: str, unit: str | None = None, axes=("X", "Y")) -> tuple[str, s
     if u is None:
         u = unit_text(unit) if unit else ""
     return name.format(x=axes[0], y=axes[1]), u
+
+
+def name(key: str, axes=("X", "Y")) -> str:
+    """What the interface calls a stored parameter ``key`` (the key itself is the API's and
+    ``history trend --parameter``'s name): the symbol of ISO 230-2:2014 clause 3 (``R↑`` for
+    ``R_up``, :data:`~axiscal.standards.iso230_2.PARAMETER_SYMBOLS`), else the label of
+    :data:`QUANTITIES` (``Reversal spike X decay length``); a key of another standard
+    (``jis-b6192:R``) as its symbol and the standard (``R (jis-b6192)``).
+
+    >>> name("R_up"), name("B_mean"), name("reversal_spike_x_decay"), name("jis-b6192:R")
+    ('R↑', 'B̄', 'Reversal spike X decay length', 'R (jis-b6192)')
+    """
+    if key in PARAMETER_SYMBOLS:
+        return PARAMETER_SYMBOLS[key]
+    if ":" in key:
+        std, _, rest = key.rpartition(":")
+        words = name(rest, axes) if std.startswith("iso230-4") else \
+            PARAMETER_SYMBOLS.get(rest, rest.replace("_", " "))   # another standard's symbol
+        return f"{words} ({std})"
+    if key.endswith("_total") and key not in QUANTITIES:      # ISO 230-7:2015 §3.1 motions
+        base = key[:-len("_total")].replace("_", " ")
+        return f"{base[:1].upper()}{base[1:]} error motion, total"
+    return quantity(key, None, _axes(axes))[0]
+
+
+def _axes(axes) -> tuple[str, str]:
+    """A plane's two axis names from ``("X", "Y")`` or a stored axis name ``"XY"``."""
+    if isinstance(axes, str):
+        return (axes[0], axes[1]) if len(axes) == 2 else ("X", "Y")
+    return tuple(axes)
 
 
 def label(key: str, unit: str | None = None, axes=("X", "Y")) -> str:

@@ -163,8 +163,10 @@ def default_title(dataset=None) -> str:
 
 
 def _parameter_box(result, u: str) -> str:
-    labels = [("A", "A"), ("A_up", "A↑"), ("A_down", "A↓"), ("E", "E"), ("M", "M"), ("R", "R"),
-              ("R_up", "R↑"), ("R_down", "R↓"), ("B", "B"), ("B_mean", "B̄")]
+    from axiscal.standards.iso230_2 import PARAMETER_SYMBOLS
+
+    labels = [(k, PARAMETER_SYMBOLS[k]) for k in ("A", "A_up", "A_down", "E", "M", "R", "R_up",
+                                                  "R_down", "B", "B_mean")]
     lines = [f"ISO 230-2 [{u}]"]
     for key, label in labels:
         v = getattr(result, key)

@@ -16,7 +16,8 @@ from axiscal.report._figures import nice_step, polar_frame, polar_rings, pyplot,
 from axiscal.report.labels import fmt
 
 __all__ = ["comparison_figure", "save_comparison_plot", "ballbar_figure", "save_ballbar_plot",
-           "straightness_figure", "save_straightness_plot", "magnification"]
+           "straightness_figure", "save_straightness_plot", "magnification",
+           "write_biaxial_report"]
 
 _PANELS = (("a", "ballbar", "Circular test (ballbar)"), ("b", "diagonal", "Laser diagonal test"),
            ("c", "+", "Bi-axial straightness, “+”"), ("d", "T", "Bi-axial straightness, “T”"),
@@ -134,6 +135,24 @@ def biaxial_figure(one, two, r, title: str = "Bi-axial squareness"):
                  f"{sq.angle_note}", fontsize=10.5)
     fig.tight_layout()
     return fig
+
+
+def write_biaxial_report(path, one, two, b, sources: str, config: str = "L",
+                         orientation: int = 0) -> Path:
+    """The report of a bi-axial squareness (:func:`axiscal.standards.squareness_biaxial.
+    evaluate_biaxial`'s ``b``), as ``axiscal squareness biaxial --report`` and the workbench
+    write it: both trajectories with their reference lines, then every figure of its JSON.
+    ``sources`` names the two trajectories (files, or stored tests with their machine)."""
+    from axiscal.report.html import write_result_report
+
+    title = f"Bi-axial {config.upper()} {orientation}°"
+    return write_result_report(
+        path, f"Squareness, bi-axial {config.upper()} {orientation}° — {sources}", b.summary,
+        figure=biaxial_figure(one, two, b.result, title),
+        method="Squareness from the slopes of the reference straight lines of two "
+               "trajectories, ISO 230-1:2012 §3.6.7 (Chapman, Calibration of machine "
+               "squareness, Methods 1-3), with the reference square's angle error corrected "
+               "for its orientation; U by ISO/TR 230-9.")
 
 
 def diagonal_figure(d, r, title: str = "Diagonal squareness"):

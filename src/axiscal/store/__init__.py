@@ -52,4 +52,4 @@ def trend(store: "Store", machine: str, axis: str, parameter: str,
     if not rows:
         raise NotFoundError(f"no {parameter!r} stored for {machine} {axis.upper()}")
     return fit_trend(parameter, [r[0] for r in rows], [r[1] for r in rows], rows[0][2],
-                     tolerance, [r[3] for r in rows])
+                     tolerance, [r[3] for r in rows], dated=[bool(r[4]) for r in rows])

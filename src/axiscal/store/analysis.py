@@ -16,6 +16,10 @@ earlier end of ``t* ± k u(t*)`` with k = 2 (ILAC-G24:2007 / OIML D 10, "Guideli
 determination of calibration intervals of measuring instruments": intervals from the
 instrument's drift history). With fewer than three tests there is no residual to estimate the
 scatter from, and no prediction is made.
+
+A test whose file gave no date carries the day it was stored, not the day it was measured: it is
+shown, marked, but left out of the fit (a date the drift would be read against that nobody
+measured at).
 """
 
 from __future__ import annotations
@@ -55,6 +59,9 @@ class Trend:
         Standard uncertainty of ``crossing``, days.
     recalibrate_by : datetime or None
         ``crossing − 2 u``: the cautious recalibration date.
+    dated : tuple of bool
+        Per point: whether its file gave the date (False: the day it was stored; left out of
+        the fit). Empty: every point dated.
     """
 
     parameter: str
@@ -69,12 +76,39 @@ class Trend:
     u_crossing_days: float | None
     recalibrate_by: dt.datetime | None
     test_ids: tuple = ()
+    dated: tuple = ()
+
+    def is_dated(self, i: int) -> bool:
+        """Whether point ``i`` has the date its file gave (so is in the fit)."""
+        return not self.dated or bool(self.dated[i])
+
+    @property
+    def undated(self) -> int:
+        """How many points have no date of their own (left out of the fit)."""
+        return sum(not d for d in self.dated)
+
+    def drift_text(self) -> str:
+        """The drift with its standard uncertainty, rounded as a certificate rounds a value
+        and its uncertainty (:func:`~axiscal.standards.uncertainty_reporting.format_value`,
+        ILAC-P14:09/2020 §5.3: U to two significant digits, the value to the same last digit):
+        ``+3.1 ± 1.4 µm/year``; empty without a drift."""
+        from axiscal.report.labels import unit_text
+        from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+
+        if self.drift is None:
+            return ""
+        value = format_value(self.drift, self.u_drift)
+        sign = "+" if not value.startswith("-") else ""
+        return (f"{sign}{value} ± {format_uncertainty(self.u_drift)} "
+                f"{unit_text(self.unit)}/year")
 
     def as_dict(self) -> dict:
         iso = (lambda d: d.isoformat() if d else None)
         return {"parameter": self.parameter, "unit": self.unit,
-                "points": [{"date": d.isoformat(), "value": float(v), "test": i}
-                           for d, v, i in zip(self.dates, self.values, self.test_ids)],
+                "points": [{"date": d.isoformat(), "value": float(v), "test": i,
+                            "dated": self.is_dated(k)}
+                           for k, (d, v, i) in enumerate(zip(self.dates, self.values,
+                                                             self.test_ids))],
                 "model": "least-squares straight line, ISO/TS 28037:2010 clause 6",
                 "drift_per_year": self.drift, "u_drift_per_year": self.u_drift,
                 "level": self.level, "tolerance": self.tolerance,
@@ -88,10 +122,13 @@ class Trend:
         lines = [f"{self.parameter} over {len(self.values)} tests "
                  f"({self.dates[0]:%Y-%m-%d} … {self.dates[-1]:%Y-%m-%d})"
                  if self.dates else f"{self.parameter}: no tests"]
+        if self.undated:
+            lines.append(f"  {self.undated} test(s) without a date in the file (the day stored "
+                         "shown instead) left out of the drift fit")
         if self.drift is not None:
-            lines.append(f"  drift {self.drift:+.4g} ± {self.u_drift:.2g} {unit}/year "
-                         f"(standard uncertainty), level now {self.level:.4g} {unit}")
-        elif len(self.values) < 3:
+            lines.append(f"  drift {self.drift_text()} (standard uncertainty), level now "
+                         f"{self.level:.4g} {unit}")
+        elif len(self.values) - self.undated < 3:
             lines.append("  no drift estimate: three tests at least are needed")
         else:
             lines.append("  no drift estimate: the tests were all taken on one date; a "
@@ -107,8 +144,11 @@ class Trend:
 
 
 def fit_trend(parameter: str, dates, values, unit: str, tolerance: float | None = None,
-              test_ids=()) -> Trend:
+              test_ids=(), dated=()) -> Trend:
     """Fit the drift of ``values`` (at ``dates``) and predict when it reaches ``tolerance``.
+
+    ``dated``: per point, whether its date is the one its file gave; a point without
+    (False) is kept in the trend, marked, and left out of the fit (module docstring).
 
     Examples
     --------
@@ -128,8 +168,14 @@ def fit_trend(parameter: str, dates, values, unit: str, tolerance: float | None 
         # ISO 230-2:2014 (E, A, R, B, M) are ranges and spans; 1e100 is _parse.MAX_MAGNITUDE
         raise InputError(f"tolerance = {tolerance!r}: a positive finite number (up to 1e100) "
                          "in the parameter's unit")
+    dated = tuple(bool(d) for d in dated)
+    if dated and len(dated) != v.size:
+        raise InputError("as many dated flags as values are needed")
     base = dict(parameter=parameter, dates=dates, values=v, unit=unit, tolerance=tolerance,
-                test_ids=tuple(test_ids))
+                test_ids=tuple(test_ids), dated=dated if not all(dated) else ())
+    if dated:                                   # the fit: the tests with a date of their own
+        dates = tuple(d for d, k in zip(dates, dated) if k)
+        v = v[np.asarray(dated, dtype=bool)]
     if v.size < 3:
         return Trend(drift=None, u_drift=None, level=None, crossing=None,
                      u_crossing_days=None, recalibrate_by=None, **base)
@@ -197,6 +243,8 @@ class Comparison:
 def compare_tests(first, second) -> Comparison:
     """Compare two :class:`~axiscal.store.history.StoredTest` of the same kind and axis."""
     s1, s2 = first.summary, second.summary
+    if s1.id == s2.id:
+        raise InputError(f"test {s1.id} compared with itself: choose two different tests")
     for s in (s1, s2):        # a withdrawn test leaves compares (axiscal.store.corrections)
         if getattr(s, "withdrawn", ""):
             raise InputError(f"test {s.id} is withdrawn ({s.withdrawn}); reinstate it to "

@@ -118,13 +118,34 @@ class StoredTest:
         return evaluated(lambda: self.raw, self.sha256, self.summary.filename,
                          self.summary.kind, self.size)
 
+    def named(self, ev: Evaluated) -> Evaluated:
+        """``ev`` (this test's evaluation) with the machine and axis names the history keeps,
+        in its dataset's metadata too: what every plot and report of the test names."""
+        return _as_stored(ev, self.summary)
+
     def record(self) -> Evaluated:
         """The test's one record: :meth:`evaluate_again` with the uncertainty budget made from
         the inputs stored with it (a test stored before inputs were kept: none, each assumed
         and said), so its U is the U it was stored with."""
         from axiscal.store.kinds import with_uncertainty
 
-        return with_uncertainty(self.evaluate_again(), self.result.get("uncertainty_inputs"))
+        return _as_stored(with_uncertainty(self.evaluate_again(),
+                                           self.result.get("uncertainty_inputs")), self.summary)
+
+
+def _as_stored(ev, summary):
+    """``ev`` with the machine and axis names the history keeps for the test (as corrected:
+    renamed, merged), also in its dataset's metadata, so every plot and report made from the
+    record names them, not the names in the file."""
+    from dataclasses import replace
+
+    md = getattr(ev.dataset, "metadata", None)
+    names = {"machine": summary.machine, "axis": summary.axis}
+    if md is not None and all(hasattr(md, k) for k in names) and \
+            (md.machine, md.axis) != (summary.machine, summary.axis):
+        ev = replace(ev, dataset=replace(ev.dataset, metadata=replace(md, **names)))
+    return replace(ev, **names) if (ev.machine, ev.axis) != (summary.machine, summary.axis) \
+        else ev
 
 
 def default_url() -> str:
@@ -167,12 +188,15 @@ class Store:
             axis: str | None = None, kind: str | None = None, instrument: str = "",
             operator: str = "", note: str = "", date: str | None = None,
             tables: tuple = (), uncertainty: dict | None = None,
-            drift_check: tuple[bytes, str] | None = None) -> AddResult:
+            drift_check: tuple[bytes, str] | None = None,
+            machine_default: str | None = None) -> AddResult:
         """Evaluate and store one file; a file stored before is reported, not stored again.
 
         ``tables`` are (controller, filename, text) written from this test; ``uncertainty``
         the inputs of its budget (default: the user configuration's, :func:`prepare`);
         ``drift_check`` the (bytes, name) of its drift check, kept with it (:func:`prepare`).
+        ``machine`` replaces the name the file gives; ``machine_default`` is taken only when
+        the file names no machine (the workbench's "Machine (if the file does not name it)").
         """
         existing = self._find_hash(hashlib.sha256(raw).hexdigest())
         if existing is not None:
@@ -180,7 +204,8 @@ class Store:
         return self.add_all([prepare(raw, filename, machine=machine, axis=axis, kind=kind,
                                      instrument=instrument, operator=operator, note=note,
                                      date=date, tables=tables, uncertainty=uncertainty,
-                                     drift_check=drift_check)])[0]
+                                     drift_check=drift_check,
+                                     machine_default=machine_default)])[0]
 
     def add_all(self, items, then=None) -> list[AddResult]:
         """Store every :class:`Prepared` file in ONE transaction: all or nothing.
@@ -323,19 +348,34 @@ class Store:
         return bytes(raw)
 
     def parameter_series(self, machine: str, axis: str, parameter: str,
-                         kind: str | None = None) -> list[tuple[dt.datetime, float, str, int]]:
-        """(date, value, unit, test id) of one parameter of one axis, oldest first."""
+                         kind: str | None = None) -> list[tuple[dt.datetime, float, str, int, bool]]:
+        """(date, value, unit, test id, whether the file gave the date) of one parameter of one
+        axis, oldest first."""
         from sqlalchemy import select
 
         from axiscal.store.models import Axis, Machine, Parameter, Test
 
-        q = (select(Test.tested_at, Parameter.value, Parameter.unit, Test.id)
+        q = (select(Test.tested_at, Parameter.value, Parameter.unit, Test.id, Test.date_known)
              .join(Parameter, Parameter.test_id == Test.id).join(Axis).join(Machine)
              .where(Machine.name == machine, Axis.name == axis.upper(),
                     Parameter.name == parameter, Test.withdrawn == "")   # withdrawn: out
              .order_by(Test.tested_at, Test.id))
         if kind:
             q = q.where(Test.kind == kind)
+        with self._guard("read"), self._session() as s:
+            return [tuple(r) for r in s.execute(q).all()]
+
+    def parameter_names(self, machine: str, axis: str) -> list[tuple[str, str]]:
+        """(name, unit) of every parameter the counted (not withdrawn) tests of one axis have,
+        sorted by name: what a trend of the axis can follow."""
+        from sqlalchemy import select
+
+        from axiscal.store.models import Axis, Machine, Parameter, Test
+
+        q = (select(Parameter.name, Parameter.unit).distinct()
+             .join(Test, Parameter.test_id == Test.id).join(Axis).join(Machine)
+             .where(Machine.name == machine, Axis.name == axis.upper(), Test.withdrawn == "")
+             .order_by(Parameter.name))
         with self._guard("read"), self._session() as s:
             return [tuple(r) for r in s.execute(q).all()]
 
@@ -432,8 +472,12 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
             kind: str | None = None, instrument: str = "", operator: str = "", note: str = "",
             date: str | None = None, tables: tuple = (),
             uncertainty: dict | None = None,
-            drift_check: tuple[bytes, str] | None = None) -> "Prepared":
+            drift_check: tuple[bytes, str] | None = None,
+            machine_default: str | None = None) -> "Prepared":
     """Evaluate one file into the row it will be stored as (no database is touched).
+
+    ``machine`` replaces the machine the file names; ``machine_default`` is used only where
+    the file names none.
 
     ``uncertainty``: the inputs of the test's uncertainty budget
     (:func:`axiscal.store.kinds.with_uncertainty`), stored with it so that every later view,
@@ -467,7 +511,8 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
     return Prepared(
         hashlib.sha256(raw).hexdigest(), raw,
         checked_text(Path(filename).name[:300], "file name", Test, "filename"),
-        checked_text(_name(machine or ev.machine, "machine", filename), "machine name",
+        checked_text(_name(machine or ev.machine or machine_default, "machine", filename),
+                     "machine name",
                      Machine, "name"),
         checked_text(_name(axis or ev.axis, "axis", filename).upper(), "axis name", Axis,
                      "name"), ev.axis_kind, ev.kind, when, known,
@@ -587,18 +632,37 @@ def _name(value: str, what: str, filename: str) -> str:
     return checked_text(v, f"{what} name")
 
 
+#: The earliest test date taken (axiscal's rule: no numerically controlled machine tool was
+#: calibrated by these methods before it; ISO 230-2's first edition is of 1972): an earlier date
+#: is a typing or clock error, refused with its reason.
+EARLIEST_TEST_DATE = dt.date(1950, 1, 1)
+
+
 def _date(text: str) -> tuple[dt.datetime, bool]:
+    """(date of the test, whether it was given). A date before :data:`EARLIEST_TEST_DATE` or
+    after today (UTC, one day of grace for the time zones) is refused, naming the rule."""
     if not text:
         return dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0), False
-    t = str(text).strip()
+    when = _parse_date(str(text).strip())
+    today = dt.datetime.now(dt.timezone.utc).date()
+    if when.date() < EARLIEST_TEST_DATE:
+        raise InputError(f"date {when:%Y-%m-%d} is before {EARLIEST_TEST_DATE:%Y}: give the "
+                         "day the test was measured (YYYY-MM-DD)")
+    if when.date() > today + dt.timedelta(days=1):
+        raise InputError(f"date {when:%Y-%m-%d} is in the future (today is {today:%Y-%m-%d}): "
+                         "give the day the test was measured (YYYY-MM-DD)")
+    return when, True
+
+
+def _parse_date(t: str) -> dt.datetime:
     for fmt in ("%Y-%m-%d", "%Y-%m-%dT%H:%M:%S", "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M",
                 "%Y-%m-%d %H:%M", "%d.%m.%Y", "%Y/%m/%d"):
         try:
-            return dt.datetime.strptime(t, fmt), True
+            return dt.datetime.strptime(t, fmt)
         except ValueError:
             continue
     try:
         d = dt.datetime.fromisoformat(t)
-        return (d.astimezone(dt.timezone.utc).replace(tzinfo=None) if d.tzinfo else d), True
+        return d.astimezone(dt.timezone.utc).replace(tzinfo=None) if d.tzinfo else d
     except ValueError:
         raise InputError(f"date {t!r}: write it as YYYY-MM-DD (or an ISO 8601 date and time)")

@@ -82,24 +82,16 @@ def parameters(store, ids: list, names: tuple | None) -> dict[int, dict]:
     """{test id: {name: (value, unit)}} of tests ``ids``, in the order they were stored: all
     their parameters, or those named in ``names`` and each test's first (none for an empty
     ``names``)."""
-    from sqlalchemy import func, or_, select
-
-    from axiscal.store.models import Parameter
-
     out: dict[int, dict] = {i: {} for i in ids}
     if names is not None and not names:
         return out
-    p = Parameter.__table__.c
+    q = _statements()["parameters_of" if names is None else "parameters_named"]
     with store._guard("read"), store.engine.connect() as c:
         for k in range(0, len(ids), 900):                     # SQLite's bound-parameter limit
-            chunk = ids[k:k + 900]
-            q = (select(p.test_id, p.name, p.value, p.unit).where(p.test_id.in_(chunk))
-                 .order_by(p.id))
+            bound = {"ids": ids[k:k + 900]}
             if names is not None:
-                first = (select(func.min(p.id)).where(p.test_id.in_(chunk))
-                         .group_by(p.test_id))
-                q = q.where(or_(p.name.in_(list(names)), p.id.in_(first)))
-            for tid, name, value, unit in c.execute(q):
+                bound["names"] = list(names)
+            for tid, name, value, unit in c.execute(q, bound):
                 out[tid][name] = (value, unit)
     return out
 
@@ -127,7 +119,7 @@ def generation(store) -> tuple:
 @lru_cache(maxsize=None)
 def _statements() -> dict:
     """The statements with bound parameters, built once."""
-    from sqlalchemy import bindparam, func, select
+    from sqlalchemy import bindparam, func, or_, select
 
     from axiscal.store.models import Audit, Axis, Machine, Parameter, Table, Test
 
@@ -150,7 +142,13 @@ def _statements() -> dict:
     counts = [part for table in (Test, Audit, Machine) for part in (
         select(func.count()).select_from(table.__table__).scalar_subquery(),
         select(func.max(table.__table__.c.id)).scalar_subquery())]
-    return {"test": test,
+    # the parameters of a page of tests (all, or those named and each test's first): built
+    # once with expanding parameters, so a page's view does not build and compile them again
+    ids, names = bindparam("ids", expanding=True), bindparam("names", expanding=True)
+    of = select(p.test_id, p.name, p.value, p.unit).where(p.test_id.in_(ids)).order_by(p.id)
+    first = select(func.min(p.id)).where(p.test_id.in_(ids)).group_by(p.test_id)
+    named = of.where(or_(p.name.in_(names), p.id.in_(first)))
+    return {"test": test, "parameters_of": of, "parameters_named": named,
             "parameters": select(p.name, p.value, p.unit).where(p.test_id == one)
             .order_by(p.id),
             "tables": select(tb.controller, tb.filename, tb.text).where(tb.test_id == one)

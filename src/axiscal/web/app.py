@@ -27,7 +27,8 @@ from fastapi.staticfiles import StaticFiles
 from fastapi.templating import Jinja2Templates
 
 from axiscal.errors import AxiscalError, InputError
-from axiscal.standards.iso230_2 import PARAMETER_SYMBOLS
+from axiscal.report.labels import name as quantity_name
+from axiscal.report.labels import unit_text
 from axiscal.web.guards import FORM_OVERHEAD, BodyLimit, allowed_hosts, host_allowed, origin_allowed
 from axiscal.web.inputs import MAX_ID
 from axiscal.web.login import COOKIE
@@ -91,9 +92,10 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     app.state.db_url = db_url
     app.state.templates = Jinja2Templates(directory=str(HERE / "templates"))
     app.state.templates.env.globals.update(zip=zip, query=query)
-    app.state.templates.env.filters["unit"] = lambda u: {"um": "µm", "um/m": "µm/m"}.get(u, u)
-    # a parameter by its symbol in ISO 230-2:2014 clause 3 (A↑, B̄), the key where it has none
-    app.state.templates.env.filters["symbol"] = lambda k: PARAMETER_SYMBOLS.get(k, k)
+    app.state.templates.env.filters["unit"] = unit_text
+    # a parameter as the interface names it: its symbol in ISO 230-2:2014 clause 3 (A↑, B̄),
+    # else its label (Reversal spike X decay length); the key goes in a title attribute
+    app.state.templates.env.filters["symbol"] = lambda k, axes="XY": quantity_name(k, axes)
     app.mount("/static", StaticFiles(directory=str(HERE / "static")), name="static")
     app.add_middleware(BodyLimit, limit=app.state.upload_limit + FORM_OVERHEAD)
     _add_guard(app)

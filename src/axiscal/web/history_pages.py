@@ -23,9 +23,7 @@ from axiscal.web.rendering import download, query, render
 
 __all__ = ["add_routes", "positioning_plot", "trend_plot"]
 
-_KEY = ("E", "A", "R", "B", "squareness", "straightness")
-#: Tests shown on one page of a machine's history (newest first).
-PAGE = 100
+from axiscal.web.machine_view import PAGE, machine_view as _machine_view  # noqa: F401
 
 
 def add_routes(app: FastAPI) -> None:
@@ -33,6 +31,9 @@ def add_routes(app: FastAPI) -> None:
     from axiscal.store import open_store
 
     app.state.store = open_store(app.state.db_url)
+    from axiscal.web import squareness_pages
+
+    squareness_pages.add_routes(app)        # squareness from two straightness tests
 
     def store(request: Request):
         return request.app.state.store
@@ -72,6 +73,7 @@ def add_routes(app: FastAPI) -> None:
         from axiscal.store.corrections import audit
         from axiscal.web.correction_pages import SHOWN
         from axiscal.web.signoff_pages import signoff_context
+        from axiscal.web.squareness_pages import partners
 
         st, env = store(request), request.app.state.templates.env
         t = st.get(test_id)
@@ -85,6 +87,7 @@ def add_routes(app: FastAPI) -> None:
                                               request.query_params.get("certificate", ""), cfg),
                       controllers=sorted(CONTROLLERS),
                       others=[o for o in others if o.id != test_id],
+                      partners=partners(st, t),
                       audit_entries=audit(st, test_id=test_id, limit=SHOWN))
 
     @app.get("/tests/{test_id}/raw")
@@ -121,7 +124,17 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/tests/{test_id}/report.html")
     async def report(request: Request, test_id: TestId):
-        html = await _product(request, test_id, "HTML report", "report.html", _report_html)
+        """The test's HTML report, of every kind: ``axiscal history show ID --report``'s, by
+        the same call (:meth:`axiscal.api.History.report`), kept per stored bytes, names and
+        uncertainty inputs (a rename makes it again with the new name)."""
+        from axiscal.store.cache import digest
+
+        t = await run_in_threadpool(request.app.state.store.get, test_id)
+        what = digest([t.summary.machine, t.summary.axis,
+                       t.result.get("uncertainty_inputs")]) + ".report.html"
+        html = await _product(request, test_id, "HTML report", what,
+                              lambda t, ev: _report_html(request.app.state.store, t),
+                              any_kind=True)
         return _sent(html, f"test_{test_id}_report.html", "text/html")
 
     @app.get("/tests/{test_id}/standards.html")
@@ -148,14 +161,30 @@ def add_routes(app: FastAPI) -> None:
 
     @app.post("/tests/{test_id}/compensation")
     async def compensation(request: Request, test_id: TestId):
+        """Write a compensation table from the test (kept with it). From the page (htmx): the
+        lines ``axiscal compensate`` prints about it (:meth:`ControllerFile.summary`: reference
+        point, shift, backlash value, what to enable), its download, its companion files, and
+        the list of the test's tables, without a reload; a plain form post: the file."""
+        from axiscal.errors import AxiscalError
+
         form = await checked_form(request)
         require_engineer(request)
-        controller = str(form.get("controller", ""))
-        spacing = _positive(form.get("spacing"), "spacing")
-        axis = str(form.get("axis", "") or "").strip()      # as `compensate --axis`
-        f = await run_in_threadpool(_write_table, store(request), test_id, controller, spacing,
-                                    axis)
-        return download(f.text, f.filename, "text/plain")
+        htmx = request.headers.get("hx-request") == "true"
+        try:
+            controller = str(form.get("controller", ""))
+            spacing = _positive(form.get("spacing"), "spacing")
+            axis = str(form.get("axis", "") or "").strip()      # as `compensate --axis`
+            f = await run_in_threadpool(_write_table, store(request), test_id, controller,
+                                        spacing, axis)
+        except AxiscalError as exc:
+            if not htmx:
+                raise
+            return render(request, "_compensation_result.html", "", error=str(exc))
+        if not htmx:
+            return download(f.text, f.filename, "text/plain")
+        t = store(request).get(test_id)
+        return render(request, "_compensation_result.html", "", t=t, f=f,
+                      number=len(t.tables))
 
     @app.get("/compare", response_class=HTMLResponse)
     def compare(request: Request, a: QueryId, b: QueryId):
@@ -177,13 +206,34 @@ def add_routes(app: FastAPI) -> None:
     @app.get("/trend", response_class=HTMLResponse)
     def trend_page(request: Request, machine: str, axis: str, parameter: str = "E",
                    tolerance: str = ""):
+        """A parameter of one axis over time. ``parameter`` is a key (``R_up``, as ``history
+        trend --parameter``) or the symbol the pages show (``R↑``); the form offers the
+        parameters the axis's tests have, by their symbols. A name the axis has no value of is
+        said on the page, beside the chooser, never as an error page."""
+        from axiscal.report.labels import name as quantity_name
         from axiscal.store import trend
 
-        tol = _positive(tolerance, "tolerance") if tolerance else None
-        tr = trend(store(request), machine, axis, parameter, tol)
-        return render(request, "trend.html", f"Trend of {parameter}: {machine} {axis}", tr=tr,
-                      plot=trend_plot(tr), machine=machine, axis=axis, parameter=parameter,
-                      tolerance=tolerance)
+        st = store(request)
+        choices = [(k, quantity_name(k, axis), u) for k, u in st.parameter_names(machine, axis)]
+        if not choices:
+            raise _missing(f"no test of {machine} axis {axis} is counted in trends "
+                           "(none stored, or every one withdrawn)")
+        key = _parameter_key(parameter, choices)
+        error, tr, tol = None, None, None
+        try:
+            tol = _positive(tolerance, "tolerance") if tolerance else None
+        except InputError as exc:
+            error = str(exc)
+        if key is None:
+            error = (f"{machine} axis {axis} has no parameter {parameter[:40]!r}: choose one "
+                     "of the list")
+        elif error is None:
+            tr = trend(st, machine, axis, key, tol)
+        shown = quantity_name(key, axis) if key else parameter[:40]
+        return render(request, "trend.html", f"Trend of {shown}: {machine} {axis}",
+                      400 if error else 200, tr=tr, plot=trend_plot(tr, shown) if tr else None,
+                      machine=machine, axis=axis, parameter=key or "", shown=shown,
+                      tolerance=tolerance, choices=choices, error=error)
 
     @app.get("/upload", response_class=HTMLResponse)
     def upload_form(request: Request):
@@ -215,10 +265,23 @@ def add_routes(app: FastAPI) -> None:
                 raise
             return render(request, "upload.html", "Upload a test", 400, form=fields,
                           error=str(exc))
-        typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
-            if r.duplicate else {}        # not stored: shown, offered as a correction
-        return RedirectResponse(f"/tests/{r.id}?" + query(
-            stored="again" if r.duplicate else "new", **typed), 303)
+        return stored_page(r, fields)
+
+
+def stored_page(r, fields: dict):
+    """The answer to an upload: the stored test's page, told what of the form was not used as
+    typed (shown there): for a file stored before, the date, instrument and note (offered as a
+    correction); a machine typed where the file names its own (the form's machine is taken
+    only when the file names none); an axis name stored in capitals (``Axis1`` as ``AXIS1``:
+    the history keeps axis names in capitals, so ``x`` and ``X`` are one axis)."""
+    typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
+        if r.duplicate else {}        # not stored: shown, offered as a correction
+    if fields.get("machine") and fields["machine"] != r.machine:
+        typed["typed_machine"] = fields["machine"]
+    if fields.get("axis") and fields["axis"] != r.axis:
+        typed["typed_axis"] = fields["axis"]
+    return RedirectResponse(f"/tests/{r.id}?" + query(
+        stored="again" if r.duplicate else "new", **typed), 303)
 
 
 def _store_upload(app, raw: bytes, filename: str, fields: dict):
@@ -232,7 +295,7 @@ def _store_upload(app, raw: bytes, filename: str, fields: dict):
     from axiscal import api
 
     r = api.History(store=app.state.store).add(
-        raw, filename=filename, machine=fields["machine"] or None,
+        raw, filename=filename, machine_default=fields["machine"] or None,
         axis=fields["axis"] or None, note=fields["note"], instrument=fields["instrument"],
         date=fields["date"] or None)
     if not r.duplicate:
@@ -240,15 +303,17 @@ def _store_upload(app, raw: bytes, filename: str, fields: dict):
     return r
 
 
-async def _product(request: Request, test_id: int, words: str, what: str, make):
-    """A report or certificate of a stored positioning test: kept, once made, under the test's
-    stored-bytes SHA-256 and the axiscal version (:func:`axiscal.store.cache.kept`); made off the
-    event loop, one at a time per worker (:func:`axiscal.web.workers.heavy`)."""
+async def _product(request: Request, test_id: int, words: str, what: str, make,
+                   any_kind: bool = False):
+    """A report or certificate of a stored test (positioning only unless ``any_kind``): kept,
+    once made, under the test's stored-bytes SHA-256 and the axiscal version
+    (:func:`axiscal.store.cache.kept`); made off the event loop, one at a time per worker
+    (:func:`axiscal.web.workers.heavy`)."""
     from axiscal.store.cache import kept_file
     from axiscal.web.workers import heavy
 
     t = await run_in_threadpool(request.app.state.store.get, test_id)
-    if t.summary.kind != "iso230-2":
+    if t.summary.kind != "iso230-2" and not any_kind:
         raise InputError(f"a {t.summary.kind} test has no {words} here; download its JSON")
     path = kept_file(t.sha256, what)
     return path if path is not None else await heavy(_make, t, what, make)
@@ -275,10 +340,18 @@ def _make(t, what: str, make):
     return kept_file(t.sha256, what) or data
 
 
-def _report_html(t, ev) -> str:
-    from axiscal.report.html import positioning_report
+def _report_html(store, t) -> bytes:
+    """The report ``axiscal history show ID --report`` writes (:meth:`axiscal.api.History.
+    report`), as bytes."""
+    import tempfile
+    from pathlib import Path
 
-    return positioning_report(ev.dataset, ev.evaluation).html()
+    from axiscal import api
+
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "report.html"
+        api.History(store=store).report(t.summary.id, path)
+        return path.read_bytes()
 
 
 def _standards_html(t, ev) -> str:
@@ -350,15 +423,17 @@ def _test_view(env, t, kept_only: bool = False) -> tuple | None:
     from axiscal.store.cache import derived, digest, lookup
 
     cfg = load_config(None)
-    what = f"test-page-{digest([cfg, t.result.get('uncertainty_inputs')])}"
+    # the page names the machine and axis as the history keeps them (a rename makes it again)
+    names = [t.summary.machine, t.summary.axis]
+    what = f"test-page-{digest([cfg, t.result.get('uncertainty_inputs'), *names])}"
     if kept_only:
         ev = lookup(t.sha256, "evaluated", t.size)
         parts = lookup(t.sha256, what) if ev is not None else None
         if parts is None:
             return None
-        ev, parts = ev[0], parts[0]
+        ev, parts = t.named(ev[0]), parts[0]
     else:
-        ev = t.evaluate_again()
+        ev = t.named(t.evaluate_again())
         parts = derived(t.sha256, what, lambda: _test_parts(t, ev))   # computed once, then kept
     html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
         "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
@@ -404,59 +479,25 @@ def _target_rows(ev) -> list:
             zip(r.targets, r.mean_up, r.mean_down, r.mean_bi, r.reversal, r.R_i)]
 
 
-def _machine_view(st, env, machine_id: int, axis: str, kind: str, page: int) -> dict:
-    """What a machine's history page shows (kept by :func:`axiscal.web.memo.memoised` while the
-    history is unchanged): the page's tests with their key parameters (their rows rendered with
-    the templates of ``env``, the same for every user), the trend parameter of each axis, the
-    audit trail and the machines it may be merged into."""
-    from markupsafe import Markup
-
-    from axiscal.store import queries
-    from axiscal.store.corrections import audit
-    from axiscal.web.correction_pages import SHOWN
-
-    m = st.machine(machine_id)
-    tests = st.tests(machine=m.name, axis=axis or None, kind=kind or None, limit=PAGE + 1,
-                     offset=(page - 1) * PAGE, parameters=_KEY)
-    newest = tests if page == 1 and not axis and not kind else []
-    rows = [(t, _key(t)) for t in tests[:PAGE]]
-    return dict(name=m.name, machine_id=m.id,
-                rows_html=Markup(env.get_template("_machine_rows.html").render(rows=rows)),
-                trends=_trend_parameters(st, m.name, m.axes, newest), axes=list(m.axes),
-                axis=axis, page=page, more=len(tests) > PAGE, total=m.tests,
-                audit_entries=audit(st, machine=m.id, limit=SHOWN),
-                machines=queries.machine_names(st))
-
-
-def _trend_parameters(st, machine: str, axes, newest=()) -> dict:
-    """The parameter a trend of each axis follows: the key parameter of its newest test (E of a
-    positioning test, squareness of a ballbar or diagonal test, ...). ``newest``: the machine's
-    newest tests, newest first (its first page), where an axis's first is its newest."""
-    out = {}
-    for a in axes:
-        t = next((x for x in newest if x.axis == a), None)
-        if t is None:
-            found = st.tests(machine=machine, axis=a, limit=1, parameters=_KEY)
-            t = found[0] if found else None
-        key = _key(t) if t is not None else None
-        if key:
-            out[a] = key[0]
-    return out
-
-
-def _key(t):
-    """The key parameter of a test: the first of :data:`_KEY` it has, else its first (the
-    total radial error motion of a five-error test)."""
-    for k in _KEY:
-        if k in t.parameters:
-            return k, t.parameters[k]
-    return next(iter(t.parameters.items()), None)
-
-
 def _f(v):
     import math
 
     return None if v is None or math.isnan(float(v)) else float(v)
+
+
+def _parameter_key(text: str, choices) -> str | None:
+    """The key of the parameter ``text`` names among ``choices`` (key, name, unit): a key
+    (``R_up``) or the name the pages show (``R↑``, ``Reversal spike X``), spaces and case
+    aside; None when it names none."""
+    text = (text or "").strip()
+    for key, shown, _ in choices:
+        if text in (key, shown):
+            return key
+    folded = text.casefold().replace(" ", "")
+    for key, shown, _ in choices:
+        if folded in (key.casefold(), shown.casefold().replace(" ", "")):
+            return key
+    return None
 
 
 def _positive(text, what: str) -> float:

@@ -83,10 +83,9 @@ def add_routes(app: FastAPI) -> None:
         except AxiscalError as exc:
             return render(request, "upload.html", _TITLE, getattr(exc, "status", 400),
                           form=fields, error=str(exc))
-        typed = {k: fields[k] for k in ("date", "instrument", "note") if fields[k]} \
-            if r.duplicate else {}        # not stored: shown, offered as a correction
-        return RedirectResponse(f"/tests/{r.id}?" + query(
-            stored="again" if r.duplicate else "new", **typed), 303)
+        from axiscal.web.history_pages import stored_page
+
+        return stored_page(r, fields)
 
     @app.post("/upload/archive")
     async def upload_archive(request: Request):
@@ -198,7 +197,7 @@ def _store_measured(store, kind: str, first, second, fields: dict):
             "epics": "iso230-2"}[kind]
     note = "; ".join(x for x in (fields["note"], f"from {what} of {inputs}: {words}") if x)
     return store.add(text.encode(), f"{Path(first[0]).stem}_{kind}.csv",
-                     machine=fields["machine"] or None, axis=fields["axis"] or None,
+                     machine_default=fields["machine"] or None, axis=fields["axis"] or None,
                      note=note, instrument=fields["instrument"], date=fields["date"] or None)
 
 

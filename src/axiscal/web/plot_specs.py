@@ -27,27 +27,37 @@ def positioning_plot(ev) -> dict:
             "x": as_list(r.targets), "series": series}
 
 
-def trend_plot(tr) -> dict:
-    """uPlot spec of a trend on a date axis (x: seconds since 1970, UTC): the values, the fitted
-    line (ISO/TS 28037:2010 clause 6, as :func:`axiscal.store.trend` fits it) drawn on to the
-    predicted crossing of the tolerance, the tolerance, and the crossing as a point."""
+def trend_plot(tr, shown: str | None = None) -> dict:
+    """uPlot spec of a trend on a date axis (x: seconds since 1970, UTC): the values (those
+    without a date of their own apart, out of the fit), the fitted line (ISO/TS 28037:2010
+    clause 6, as :func:`axiscal.store.trend` fits it) drawn on to the predicted crossing of the
+    tolerance, the tolerance, and the crossing as a point. ``shown``: the parameter's name on
+    the pages (its symbol; default the key)."""
     def seconds(d):
         import datetime as dt
 
         return (d if d.tzinfo else d.replace(tzinfo=dt.timezone.utc)).timestamp()
 
+    shown = shown or tr.parameter
     x = [seconds(d) for d in tr.dates]
     values = [float(v) for v in tr.values]
+    dated = [tr.is_dated(i) for i in range(len(values))]
     crossing = seconds(tr.crossing) if tr.crossing is not None else None
     if crossing is not None:          # one more x: the fitted line and the tolerance reach it
         x.append(crossing)
         values.append(None)
+        dated.append(True)
     order = sorted(range(len(x)), key=x.__getitem__)
     x = [x[i] for i in order]
-    series = [{"label": tr.parameter, "values": [values[i] for i in order],
+    series = [{"label": shown, "values": [values[i] if dated[i] else None for i in order],
                "color": COLORS["up"], "points": True}]
+    if tr.undated:
+        series.append({"label": "no date in the file (day stored; not in the fit)",
+                       "values": [None if dated[i] else values[i] for i in order],
+                       "color": COLORS["line"], "points": True})
     if tr.drift is not None:
-        last = seconds(tr.dates[-1])      # the level is the fitted value at the last test
+        last = seconds(max(d for i, d in enumerate(tr.dates) if tr.is_dated(i)))
+        # the level is the fitted value at the last test in the fit
         series.append({"label": "fitted drift", "values": [
             tr.level + tr.drift * (t - last) / (365.25 * 86400) for t in x],
             "color": COLORS["line"], "dash": True})
@@ -58,8 +68,8 @@ def trend_plot(tr) -> dict:
         series.append({"label": f"predicted crossing {tr.crossing:%Y-%m-%d}", "values": [
             tr.tolerance if t == crossing else None for t in x], "color": COLORS["down"],
             "points": True, "size": 11})
-    return {"title": f"{tr.parameter} over time", "x_label": "date of the test (UTC)",
-            "x_time": True, "y_label": f"{tr.parameter} [{unit_text(tr.unit)}]", "x": x,
+    return {"title": f"{shown} over time", "x_label": "date of the test (UTC)",
+            "x_time": True, "y_label": f"{shown} [{unit_text(tr.unit)}]", "x": x,
             "series": series}
 
 

@@ -59,6 +59,30 @@ class ControllerFile:
         return replace(self, filename=name, enable=tuple(
             e.replace(f"= {self.filename}", f"= {name}") for e in self.enable))
 
+    def summary(self) -> list[str]:
+        """What ``axiscal compensate`` prints about the file before its text, line by line, and
+        the workbench shows beside its download: the table's points, spacing, range, reference
+        point and largest correction, the mean reversal of a bidirectional table, then every
+        step to enable it (``enable: …``) and every note (``note: …``: the shift to zero at the
+        reference point, the backlash machine datum's value ...)."""
+        from axiscal.units import display
+
+        t = self.table
+        pu, cu = t.position_unit, display(t.correction_unit)   # µm, as every output writes
+        lines = [f"{self.controller} compensation table for axis {t.axis or '-'} "
+                 f"({'bidirectional' if t.bidirectional else 'one table for both directions'})",
+                 f"  points           {t.n_points}",
+                 f"  spacing          {t.spacing:g} {pu}",
+                 f"  range            {t.start:g} … {t.end:g} {pu}"
+                 f"{' (modulo 360)' if t.modulo else ''}",
+                 f"  reference point  {t.reference_index} at {t.reference_position:g} {pu}",
+                 f"  largest corr.    {t.largest:.4g} {cu} (correction = −deviation)"]
+        if t.bidirectional:
+            lines.append(f"  mean reversal    {t.backlash:+.4g} {cu}")
+        lines += [f"  enable: {e}" for e in self.enable]
+        lines += [f"  note: {n}" for n in self.notes]
+        return lines
+
     def __str__(self) -> str:
         lines = [f"{self.controller}: {self.filename} ({len(self.text.splitlines())} lines)"]
         lines += [f"  enable: {e}" for e in self.enable]

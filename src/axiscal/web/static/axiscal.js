@@ -170,6 +170,12 @@
   });
 
   document.addEventListener("DOMContentLoaded", function () { init(document); restore(); });
+  document.addEventListener("DOMContentLoaded", function () { init(document); });
+  // a form with data-confirm (merging machines or axes: every test moves) asks first
+  document.addEventListener("submit", function (e) {
+    var form = e.target, words = form && form.dataset ? form.dataset.confirm : null;
+    if (words && !window.confirm(words)) { e.preventDefault(); e.stopImmediatePropagation(); }
+  }, true);
   document.addEventListener("htmx:afterSwap", function (e) { init(e.target); });
   document.addEventListener("htmx:configRequest", function (e) {
     var meta = document.querySelector('meta[name="csrf-token"]');

@@ -1,0 +1,130 @@
+"""Squareness from two stored straightness tests (issue 40): the page and its report.
+
+The same evaluation as ``axiscal squareness biaxial X.csv Y.csv``
+(:func:`axiscal.standards.squareness_biaxial.evaluate_biaxial`) on the two tests' stored
+trajectories, with the user configuration's ``[squareness_uncertainty]`` inputs as the command
+reads them; the report is the command's ``--report``
+(:func:`axiscal.report.squareness_plots.write_biaxial_report`). Nothing is stored: the page is a
+function of the two stored tests and the form.
+"""
+
+from __future__ import annotations
+
+from fastapi import FastAPI, Request
+from fastapi.responses import HTMLResponse
+from starlette.concurrency import run_in_threadpool
+
+from axiscal.errors import InputError
+from axiscal.web.inputs import QueryId
+from axiscal.web.rendering import download, render
+
+__all__ = ["add_routes", "partners"]
+
+#: The form's choices (``axiscal squareness biaxial`` options).
+REFERENCES = ("least_squares", "end_point", "minimum_zone")
+
+
+def add_routes(app: FastAPI) -> None:
+    """``GET /squareness`` (the page) and ``GET /squareness/report.html``."""
+
+    @app.get("/squareness", response_class=HTMLResponse)
+    async def squareness_page(request: Request, first: QueryId, second: QueryId,
+                              config: str = "L", orientation: int = 0, prism_error: str = "0",
+                              reference: str = "least_squares", square: str = "optics"):
+        form = dict(first=first, second=second, config=config, orientation=orientation,
+                    prism_error=prism_error, reference=reference, square=square)
+        st = request.app.state.store
+        one, two, b = await run_in_threadpool(_evaluate, st, form)
+        figure = await run_in_threadpool(_figure, one, two, b, form)
+        a, c = st.get(first).summary, st.get(second).summary
+        return render(request, "squareness.html",
+                      f"Squareness {a.axis}{c.axis} from tests {first} and {second}", b=b,
+                      form=form, figure=figure, a=a, c=c, references=REFERENCES,
+                      report_query=request.url.query)
+
+    @app.get("/squareness/report.html")
+    async def squareness_report(request: Request, first: QueryId, second: QueryId,
+                                config: str = "L", orientation: int = 0,
+                                prism_error: str = "0", reference: str = "least_squares",
+                                square: str = "optics"):
+        form = dict(first=first, second=second, config=config, orientation=orientation,
+                    prism_error=prism_error, reference=reference, square=square)
+        st = request.app.state.store
+        data = await run_in_threadpool(_report, st, form)
+        return download(data, f"squareness_tests_{first}_{second}.html", "text/html")
+
+
+def partners(store, t) -> list:
+    """The straightness tests of ``t``'s machine on another axis (counted ones), newest
+    first: what a straightness test can give a squareness with."""
+    if t.summary.kind != "straightness":
+        return []
+    return [o for o in store.tests(machine=t.summary.machine, kind="straightness",
+                                   parameters=())
+            if o.axis != t.summary.axis and not o.withdrawn][:20]
+
+
+def _trajectories(store, form: dict):
+    firsts = []
+    for key in ("first", "second"):
+        t = store.get(form[key])
+        s = t.summary
+        if s.kind != "straightness":
+            raise InputError(f"test {s.id} is a {s.kind} test: squareness from trajectories "
+                             "takes two straightness tests")
+        if s.withdrawn:
+            raise InputError(f"test {s.id} is withdrawn ({s.withdrawn}); reinstate it first")
+        firsts.append((s, t.record().dataset))
+    (a, one), (b, two) = firsts
+    if a.id == b.id:
+        raise InputError(f"test {a.id} with itself: choose the other axis's straightness test")
+    if a.machine != b.machine:
+        raise InputError(f"test {a.id} is of {a.machine}, test {b.id} of {b.machine}: two "
+                         "tests of one machine")
+    return one, two
+
+
+def _evaluate(store, form: dict):
+    from axiscal.io.user_config import load_user_config
+    from axiscal.standards.squareness_biaxial import evaluate_biaxial
+
+    one, two = _trajectories(store, form)
+    if form["reference"] not in REFERENCES:
+        raise InputError(f"reference {form['reference']!r}: least_squares, end_point or "
+                         "minimum_zone")
+    try:
+        prism = float(str(form["prism_error"]).replace(",", "."))
+    except ValueError:
+        raise InputError(f"prism error {form['prism_error']!r}: a number of arcsec") from None
+    if not abs(prism) <= 3600:
+        raise InputError(f"prism error {form['prism_error']!r}: at most ±3600 arcsec")
+    table = dict(load_user_config().get("squareness_uncertainty", {}))
+    b = evaluate_biaxial(one, two, config=form["config"], orientation=form["orientation"],
+                         prism_error=prism, reference=form["reference"], square=form["square"],
+                         inputs=table)
+    return one, two, b
+
+
+def _figure(one, two, b, form) -> str:
+    from axiscal.report.squareness_plots import biaxial_figure
+    from axiscal.web.kind_pages import _figure as as_image
+
+    return as_image(biaxial_figure, one, two, b.result,
+                    f"Bi-axial {str(form['config']).upper()} {form['orientation']}°")
+
+
+def _report(store, form: dict) -> bytes:
+    import tempfile
+    from pathlib import Path
+
+    from axiscal.report.squareness_plots import write_biaxial_report
+    from axiscal.web.kind_pages import _PLOT_LOCK
+
+    one, two, b = _evaluate(store, form)
+    a, c = store.get(form["first"]).summary, store.get(form["second"]).summary
+    sources = (f"{a.machine}: test {a.id} ({a.filename}, axis {a.axis}), test {c.id} "
+               f"({c.filename}, axis {c.axis})")
+    with tempfile.TemporaryDirectory() as d, _PLOT_LOCK:
+        path = Path(d) / "report.html"
+        write_biaxial_report(path, one, two, b, sources, form["config"], form["orientation"])
+        return path.read_bytes()
