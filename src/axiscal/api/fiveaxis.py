@@ -235,8 +235,9 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
     z_rot_point : float, mm
         The ``z-rot-point`` pin as set now (kept; only its sum with ``z-offset`` counts).
     on_controller : bool
-        With ``verify``: run the configuration's R-tests through a live LinuxCNC (its trt
-        kinematics compute the joints the twin then reads), before and after the correction
+        With ``verify``: run the configuration's probing and R-test set-ups through a live
+        LinuxCNC (its trt kinematics, and after the correction the external offsets, compute
+        the joints the twin then reads), before and after the correction
         (:mod:`axiscal.compensation.on_controller_five_axis`).
     """
     from axiscal.compensation.five_axis import trt_correction, verify_on_twin

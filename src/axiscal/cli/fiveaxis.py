@@ -20,10 +20,12 @@ JSON output (``--json``), stable keys, µm and µrad:
 * ``compensate``: ``component`` (``xyzac-trt-kins`` or ``xyzbc-trt-kins``), ``pins_mm`` (pin ->
   ``before``, ``after``), ``home_offset_change_deg`` (tilting axis -> change of HOME_OFFSET),
   ``not_held_urad`` (orientation errors no pin holds), ``sources`` (pin -> the location errors
-  it takes), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
+  it takes), ``external_offsets`` (null, or what ``axiscal_trtcomp.py`` reads: ``tilt``,
+  ``unit``, ``nominal`` and ``actual`` axis lines, each ``tilt`` and ``c`` as [point mm, unit
+  direction, zero deg]), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
   ``reduction``, ``after_unmodelled_um`` (after, without noise: what the errors the correction
   cannot hold leave): deviation range of each set-up on the twin, or with ``--on-controller`` of each
-  R-test run through LinuxCNC), ``on_controller``.
+  probing and R-test set-up run through LinuxCNC), ``on_controller``.
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero
   counted in the positions across) and ``deviation`` (identified − true), ``files`` (written, or empty).
@@ -164,11 +166,15 @@ def compensate(
                                        "(.hal)."),
     table: Optional[Path] = typer.Option(None, "--table", help="Write the neutral table (CSV: "
                                          "parameter, before, after, unit, what it takes)."),
+    offsets: Optional[Path] = typer.Option(None, "--offsets", help="Write the external-offset "
+                                           "correction of the orientation errors no pin holds "
+                                           "(trtcomp.json, read by axiscal_trtcomp.py)."),
     verify: bool = typer.Option(False, "--verify", help="Re-measure the configuration's twin "
                                 "before and after the correction (simulated configurations)."),
     on_controller: bool = typer.Option(False, "--on-controller", help="With --verify: run the "
-                                       "R-tests through a live LinuxCNC (xyzac/xyzbc-trt-kins) "
-                                       "before and after."),
+                                       "probing and R-test set-ups through a live LinuxCNC "
+                                       "(xyzac/xyzbc-trt-kins, external offsets) before and "
+                                       "after."),
     as_json: bool = _JSON,
 ):
     """The correction as LinuxCNC trt kinematics pins and HOME_OFFSET, with its sign convention.
@@ -178,22 +184,33 @@ def compensate(
     from axiscal.api import fiveaxis
     from axiscal.cli._common import out_path
 
-    for path, what in ((out, "the HAL file"), (table, "the neutral table")):
+    for path, what in ((out, "the HAL file"), (table, "the neutral table"),
+                       (offsets, "the external-offset file")):
         if path is not None:
             out_path(path, what)
     comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify,
                                on_controller=on_controller)
     from axiscal.io._files import write_bytes_atomic
 
+    eo = comp.correction.external_offsets
+    if offsets is not None and eo is None:
+        from axiscal.errors import InputError
+
+        raise InputError("--offsets: no orientation error was identified, so there is no "
+                         "external-offset correction to write")
     if out is not None:
         write_bytes_atomic(out, comp.correction.hal().encode("utf-8"))
     if table is not None:
         write_bytes_atomic(table, comp.correction.table_csv().encode("utf-8"))
+    if offsets is not None:
+        import json
+
+        write_bytes_atomic(offsets, (json.dumps(eo, indent=1) + "\n").encode("utf-8"))
     if as_json:
         print_json(comp.to_dict())
         return
     typer.echo(str(comp))
-    for path in (out, table):
+    for path in (out, table, offsets):
         if path is not None:
             typer.echo(f"wrote {path}")
 
