@@ -134,3 +134,35 @@ def test_no_pin_for_an_unidentified_position(tmp_path):
 
 def _files(cfg, folder):
     return list(fiveaxis.simulate(cfg, seed=2, out=folder).files)
+
+
+@pytest.mark.parametrize("name", ["fiveaxis_ac.toml", "fiveaxis_bc.toml"])
+def test_the_sinumerik_chain_is_the_identified_kinematics(tmp_path, name):
+    """SINUMERIK Operate Commissioning Manual 10/2015, 7.7 'Swiveling' (kinematics with a rotary
+    table): l2 to rotary axis 1, l3 from axis 1 to axis 2, l4 = -(l2 + l3), directions v1, v2.
+    The chain p -> l2 + R1(v1, a - CARR24)(l3 + R2(v2, c)(l4 + p)) built from the written
+    values equals axiscal's kinematics with the identified errors within 1e-9 mm."""
+    from axiscal.compensation.five_axis_sinumerik import swivel_data
+    from axiscal.physics.rotary_location import rotate_about_line, table_to_machine
+
+    cfg = _config(name)
+    sim = fiveaxis.simulate(cfg, seed=2, out=tmp_path)
+    g = sim.machine.geometry
+    carr = swivel_data(g, sim.result).values
+    v = lambda first: np.array([carr[f"$TC_CARR{first + i}"] for i in range(3)])  # noqa: E731
+    l2, v1, v2, l3, l4 = v(4), v(7), v(10), v(15), v(18)
+    np.testing.assert_allclose(l2 + l3 + l4, 0.0, atol=1e-12)
+    assert carr["$TC_CARR23"] == "P" and carr["$TC_CARR22"] == "C"
+    got = {e.name: e.value for e in sim.result.errors}
+    t = g.tilt
+    errors = {n: got[n] for n in got if "+" not in n}
+    errors[f"E_{t}0{t}"] = got[f"E_{t}0{t}+E_{t}0C"]
+    p = np.array([[120.0, -35.0, 40.0]])
+    for a, c in ((0.0, 0.0), (-70.0, 200.0), (35.0, -95.0)):
+        a_rad, c_rad = np.radians(a), np.radians(c)
+        inner = rotate_about_line(l4 + p, np.zeros(3), v2, np.array([c_rad]))
+        chain = l2 + rotate_about_line(l3 + inner, np.zeros(3), v1,
+                                       np.array([a_rad - np.radians(carr["$TC_CARR24"])]))
+        want = table_to_machine(g, errors, a_rad, c_rad, p * 1e-3) * 1e3
+        np.testing.assert_allclose(chain, want, atol=1e-9)
+    assert "$TC_CARR24[1]=" in swivel_data(g, sim.result).program()

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -124,18 +125,21 @@ class Compensated:
     result: LocationIdentification
     verification: Verification | None = None
     on_controller: bool = False
+    sinumerik: Any = None
 
     def to_dict(self) -> dict:
         """The ``--json`` object of ``axiscal fiveaxis compensate``."""
         out = self.correction.to_dict()
         out["verify"] = None if self.verification is None else self.verification.to_dict()
         out["on_controller"] = self.on_controller
+        out["sinumerik"] = None if self.sinumerik is None else self.sinumerik.to_dict()
         return out
 
     def __str__(self) -> str:
         text = self.correction.hal().rstrip()
         if self.verification is not None:
-            text += ("\nverified through LinuxCNC (trt kinematics; R-test deviation ranges):\n"
+            text += ("\nverified through LinuxCNC (trt kinematics; sphere-centre and R-test "
+                     "deviation ranges):\n"
                      if self.on_controller else
                      "\nverified on the twin (sphere-centre and R-test deviation ranges):\n")
             text += str(self.verification)
@@ -249,6 +253,9 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
 
     geometry = five_axis_from_config(cfg).geometry
     correction = trt_correction(geometry, result, z_rot_point * 1e-3)
+    from axiscal.compensation.five_axis_sinumerik import swivel_data
+
+    swivel = swivel_data(geometry, result)
     check = None
     if on_controller and not verify:
         raise InputError("--on-controller verifies through LinuxCNC: give --verify too")
@@ -258,7 +265,7 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
         check = verify_on_linuxcnc(machine, p, correction, seed, z_rot_point)
     elif verify:
         check = verify_on_twin(machine, p, correction, seed)
-    return Compensated(correction, result, check, bool(verify and on_controller))
+    return Compensated(correction, result, check, bool(verify and on_controller), swivel)
 
 
 def figure(config, result):

@@ -25,7 +25,10 @@ JSON output (``--json``), stable keys, µm and µrad:
   direction, zero deg]), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
   ``reduction``, ``after_unmodelled_um`` (after, without noise: what the errors the correction
   cannot hold leave): deviation range of each set-up on the twin, or with ``--on-controller`` of each
-  probing and R-test set-up run through LinuxCNC), ``on_controller``.
+  probing and R-test set-up run through LinuxCNC), ``on_controller``, ``sinumerik`` (null, or
+  the SINUMERIK 840D swivel data of :mod:`axiscal.compensation.five_axis_sinumerik`:
+  ``carrier``, ``values`` (``$TC_CARRn`` -> mm, unit-vector component, deg or letter),
+  ``meaning``, ``manuals``).
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero
   counted in the positions across) and ``deviation`` (identified − true), ``files`` (written, or empty).
@@ -169,6 +172,9 @@ def compensate(
     offsets: Optional[Path] = typer.Option(None, "--offsets", help="Write the external-offset "
                                            "correction of the orientation errors no pin holds "
                                            "(trtcomp.json, read by axiscal_trtcomp.py)."),
+    sinumerik: Optional[Path] = typer.Option(None, "--sinumerik", help="Write the SINUMERIK "
+                                             "840D swivel data ($TC_CARR of toolholder 1, "
+                                             "kinematics type P) as a part-program fragment."),
     verify: bool = typer.Option(False, "--verify", help="Re-measure the configuration's twin "
                                 "before and after the correction (simulated configurations)."),
     on_controller: bool = typer.Option(False, "--on-controller", help="With --verify: run the "
@@ -177,7 +183,8 @@ def compensate(
                                        "after."),
     as_json: bool = _JSON,
 ):
-    """The correction as LinuxCNC trt kinematics pins and HOME_OFFSET, with its sign convention.
+    """The correction as LinuxCNC trt kinematics pins, HOME_OFFSET and external offsets, and as
+    SINUMERIK 840D swivel data ($TC_CARR), with their sign conventions.
 
     Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify --on-controller
     """
@@ -185,7 +192,8 @@ def compensate(
     from axiscal.cli._common import out_path
 
     for path, what in ((out, "the HAL file"), (table, "the neutral table"),
-                       (offsets, "the external-offset file")):
+                       (offsets, "the external-offset file"),
+                       (sinumerik, "the SINUMERIK swivel data")):
         if path is not None:
             out_path(path, what)
     comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify,
@@ -202,6 +210,8 @@ def compensate(
         write_bytes_atomic(out, comp.correction.hal().encode("utf-8"))
     if table is not None:
         write_bytes_atomic(table, comp.correction.table_csv().encode("utf-8"))
+    if sinumerik is not None:
+        write_bytes_atomic(sinumerik, comp.sinumerik.program().encode("utf-8"))
     if offsets is not None:
         import json
 
@@ -210,7 +220,7 @@ def compensate(
         print_json(comp.to_dict())
         return
     typer.echo(str(comp))
-    for path in (out, table, offsets):
+    for path in (out, table, offsets, sinumerik):
         if path is not None:
             typer.echo(f"wrote {path}")
 
