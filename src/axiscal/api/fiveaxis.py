@@ -180,7 +180,7 @@ def simulate(config, seed: int = 1, out=None) -> Simulated:
         from axiscal.io._files import write_bytes_atomic
 
         folder = Path(out)
-        texts = [(folder / f"{i}_{r.kind}.csv", format_five_axis(r))
+        texts = [(folder / f"{i}_{r.kind}.csv", format_five_axis(r, machine.geometry))
                  for i, r in enumerate(records, 1)]
         try:
             folder.mkdir(parents=True, exist_ok=True)
