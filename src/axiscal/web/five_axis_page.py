@@ -14,11 +14,12 @@ from __future__ import annotations
 __all__ = ["five_axis_view"]
 
 
-def five_axis_view(ev) -> dict:
-    """The page's view (keys of :func:`axiscal.web.kind_pages.kind_view`)."""
+def five_axis_view(ev, figure, fmt) -> dict:
+    """The page's view (keys of :func:`axiscal.web.kind_pages.kind_view`); ``figure`` and
+    ``fmt`` are that module's figure-to-image and number writers, passed in (so this module
+    does not import its caller)."""
     from axiscal.physics.rotary_location import Geometry
     from axiscal.report.five_axis_plots import location_figure
-    from axiscal.web.kind_pages import _figure, fmt
 
     r, res = ev.evaluation, ev.result
     g = Geometry(res["tilt_axis"], tuple(v * 1e-3 for v in res["tilt_position_mm"]),
@@ -34,7 +35,7 @@ def five_axis_view(ev) -> dict:
            ("chi² per degree of freedom", f"{r.chi2_per_dof:.3g}", "")]
     what = "sphere probed at many rotary poses" if res["kind_of_test"] == "probing" \
         else "R-test"
-    return {"figure": _figure(location_figure, g, r),
+    return {"figure": figure(location_figure, g, r),
             "alt": "The rotary axes' lines in 3-D, nominal and identified (magnified), beside "
                    "the identified values with U",
             "source": "Location errors of the rotary axes, ISO 230-1:2012 and ISO 230-7:2015 "

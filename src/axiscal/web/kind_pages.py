@@ -35,7 +35,7 @@ def kind_view(ev) -> dict | None:
     if ev.kind == "fiveaxis":              # its own module (issue 43)
         from axiscal.web.five_axis_page import five_axis_view
 
-        return five_axis_view(ev)
+        return five_axis_view(ev, _figure, fmt)
     view = _VIEWS.get(ev.kind)
     return None if view is None else view(ev)
 
