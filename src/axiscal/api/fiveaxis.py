@@ -94,7 +94,7 @@ class Simulated:
                 t["E_Y0C"], t["E_Y0A"] = t["E_Y0C"] - zero, t["E_Y0A"] - zero
         out = {}
         for e in self.result.errors:
-            out[e.name] = sum(t[n] for n in e.name.split("+"))
+            out[e.name] = sum(t.get(n, 0.0) for n in e.name.split("+"))
         return out
 
     def to_dict(self) -> dict:
@@ -156,25 +156,28 @@ def load(config):
     return machine, plan_from_config(cfg, machine)
 
 
-def plan(config) -> Planned:
+def plan(config, squareness: bool = False) -> Planned:
     """What the configuration's set-ups can separate, before measuring (rank, condition, the
-    unseen location errors with the test that would see them)."""
+    unseen location errors with the test that would see them); with ``squareness`` also the
+    linear axes' three squareness errors."""
     from axiscal.standards.location_errors import check_plan
 
     machine, p = load(config)
-    return Planned(check_plan(machine.geometry, [s.nominal_setup() for s in p.setups]), p,
-                   machine)
+    return Planned(check_plan(machine.geometry, [s.nominal_setup() for s in p.setups],
+                              squareness), p, machine)
 
 
-def simulate(config, seed: int = 1, out=None) -> Simulated:
-    """Measure the twin with its simulated instruments, identify, and (with ``out``, a folder)
-    write one CSV per set-up (``1_probing.csv``, ``2_r-test.csv`` ...)."""
+def simulate(config, seed: int = 1, out=None, squareness: bool = False) -> Simulated:
+    """Measure the twin with its simulated instruments, identify (with ``squareness``, the
+    linear axes' squareness too), and (with ``out``, a folder) write one CSV per set-up
+    (``1_probing.csv``, ``2_r-test.csv`` ...)."""
     from axiscal.io.five_axis import format_five_axis
     from axiscal.standards.location_errors import identify_location_errors
 
     machine, p = load(config)
     records = _measure(machine, p, seed)
-    result = identify_location_errors(machine.geometry, [r.setup() for r in records])
+    result = identify_location_errors(machine.geometry, [r.setup() for r in records],
+                                      squareness=squareness)
     files: tuple = ()
     if out is not None:
         from axiscal.io._files import write_bytes_atomic
@@ -190,8 +193,10 @@ def simulate(config, seed: int = 1, out=None) -> Simulated:
     return Simulated(records, result, machine, files)
 
 
-def identify(config, files):
-    """Identify the location errors from measured files (probing and R-test CSVs, any mix).
+def identify(config, files, squareness: bool = False):
+    """Identify the location errors from measured files (probing and R-test CSVs, any mix);
+    with ``squareness`` also the linear axes' three squareness errors (ISO 230-1 names
+    E_C(0X)Y, E_B(0X)Z, E_A(0Y)Z).
 
     Parameters
     ----------
@@ -225,7 +230,7 @@ def identify(config, files):
             setups.append(r.setup())
         except InputError as exc:
             raise InputError(f"{f}: {exc}") from None
-    return identify_location_errors(machine.geometry, setups)
+    return identify_location_errors(machine.geometry, setups, squareness=squareness)
 
 
 def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,

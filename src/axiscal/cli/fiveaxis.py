@@ -52,6 +52,8 @@ app = typer.Typer(help="Five-axis machines: the location errors of both rotary a
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, module docs).")
 _MACHINE = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' "
                         "(A/C table-table), 'bc' (B/C) or 'head' (B spindle head over C).")
+_SQUARENESS = typer.Option(False, "--squareness", help="Also identify the linear axes' three "
+                           "squareness errors (E_C(0X)Y, E_B(0X)Z, E_A(0Y)Z, ISO 230-1).")
 _CONFIG = typer.Argument(None, help="Five-axis configuration (TOML); default: the shipped "
                          "example (--machine).")
 
@@ -73,14 +75,15 @@ def _config(config: Optional[Path], machine: str):
 
 
 @app.command("plan")
-def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE, as_json: bool = _JSON):
+def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
+         squareness: bool = _SQUARENESS, as_json: bool = _JSON):
     """What the planned set-ups can separate before measuring: rank, condition, the unseen.
 
     Example: axiscal fiveaxis plan --machine bc
     """
     from axiscal.api import fiveaxis
 
-    planned = fiveaxis.plan(_config(config, machine))
+    planned = fiveaxis.plan(_config(config, machine), squareness)
     if as_json:
         print_json(planned.to_dict())
         return
@@ -96,6 +99,7 @@ def simulate(
                                        "(one CSV per set-up; created if missing)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write the report with the "
                                           "twin's truth beside: HTML (.html) or PDF (.pdf)."),
+    squareness: bool = _SQUARENESS,
     as_json: bool = _JSON,
 ):
     """Measure the twin with its simulated probe and R-test, identify, compare with the truth.
@@ -108,7 +112,7 @@ def simulate(
     if report is not None:
         report_path(report)
     cfg = _config(config, machine)
-    sim = fiveaxis.simulate(cfg, seed=seed, out=out)
+    sim = fiveaxis.simulate(cfg, seed=seed, out=out, squareness=squareness)
     if report is not None:
         fiveaxis.report(cfg, sim.result, report, files=sim.files, truth=sim.truth())
     if as_json:
@@ -132,6 +136,7 @@ def identify(
     report: Optional[Path] = typer.Option(None, "--report", help="Write the report (values, "
                                           "budget, unseen, correlations, residual, figure): "
                                           "HTML (.html) or PDF (.pdf, WeasyPrint)."),
+    squareness: bool = _SQUARENESS,
     as_json: bool = _JSON,
 ):
     """Identify the location errors from measured files, with U (k = 2) and correlations.
@@ -146,7 +151,7 @@ def identify(
     if report is not None:
         report_path(report)
     cfg = _config(config, machine)
-    result = fiveaxis.identify(cfg, files)
+    result = fiveaxis.identify(cfg, files, squareness=squareness)
     if plot is not None:
         fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
     if report is not None:
