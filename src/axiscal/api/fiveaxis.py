@@ -167,15 +167,24 @@ def plan(config, squareness: bool = False) -> Planned:
                               squareness), p, machine)
 
 
-def simulate(config, seed: int = 1, out=None, squareness: bool = False) -> Simulated:
+def simulate(config, seed: int = 1, out=None, squareness: bool = False,
+             on_controller: bool = False) -> Simulated:
     """Measure the twin with its simulated instruments, identify (with ``squareness``, the
     linear axes' squareness too), and (with ``out``, a folder) write one CSV per set-up
-    (``1_probing.csv``, ``2_r-test.csv`` ...)."""
+    (``1_probing.csv``, ``2_r-test.csv`` ...). With ``on_controller`` the set-ups are run
+    through a live LinuxCNC (trt kinematics with the nominal pins: the controller runs the
+    probing moves and the R-test poses, the twin measures from its joints;
+    :func:`axiscal.compensation.on_controller_five_axis.measure_on_linuxcnc`)."""
     from axiscal.io.five_axis import format_five_axis
     from axiscal.standards.location_errors import identify_location_errors
 
     machine, p = load(config)
-    records = _measure(machine, p, seed)
+    if on_controller:
+        from axiscal.compensation.on_controller_five_axis import measure_on_linuxcnc
+
+        records = measure_on_linuxcnc(machine, p, _seed(seed))
+    else:
+        records = _measure(machine, p, seed)
     result = identify_location_errors(machine.geometry, [r.setup() for r in records],
                                       squareness=squareness)
     files: tuple = ()
@@ -296,9 +305,13 @@ def report(config, result, path, files=(), truth=None):
 def _measure(machine, p, seed: int):
     from axiscal.procedures.five_axis import measure
 
+    return measure(machine, p, np.random.default_rng(_seed(seed)))
+
+
+def _seed(seed) -> int:
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise InputError(f"seed = {seed!r} must be a whole number >= 0")
-    return measure(machine, p, np.random.default_rng(seed))
+    return seed
 
 
 def _config(config) -> dict:

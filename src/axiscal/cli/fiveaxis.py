@@ -100,6 +100,10 @@ def simulate(
     report: Optional[Path] = typer.Option(None, "--report", help="Write the report with the "
                                           "twin's truth beside: HTML (.html) or PDF (.pdf)."),
     squareness: bool = _SQUARENESS,
+    on_controller: bool = typer.Option(False, "--on-controller", help="Run the probing and "
+                                       "R-test set-ups through a live LinuxCNC "
+                                       "(xyzac/xyzbc-trt-kins, nominal pins); the twin "
+                                       "measures from its joints."),
     as_json: bool = _JSON,
 ):
     """Measure the twin with its simulated probe and R-test, identify, compare with the truth.
@@ -112,7 +116,8 @@ def simulate(
     if report is not None:
         report_path(report)
     cfg = _config(config, machine)
-    sim = fiveaxis.simulate(cfg, seed=seed, out=out, squareness=squareness)
+    sim = fiveaxis.simulate(cfg, seed=seed, out=out, squareness=squareness,
+                            on_controller=on_controller)
     if report is not None:
         fiveaxis.report(cfg, sim.result, report, files=sim.files, truth=sim.truth())
     if as_json:

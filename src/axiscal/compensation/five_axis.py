@@ -38,7 +38,7 @@ import numpy as np
 from axiscal.errors import InputError
 from axiscal.physics.rotary_location import Geometry
 
-__all__ = ["TrtCorrection", "trt_correction", "corrected_geometry", "corrected_machine",
+__all__ = ["TrtCorrection", "trt_correction", "nominal_pins", "corrected_geometry", "corrected_machine",
            "Verification", "verify_on_twin"]
 
 
@@ -113,6 +113,23 @@ class TrtCorrection:
                 "home_offset_change_deg": dict(self.home_offset),
                 "not_held_urad": dict(self.not_held), "sources": dict(self.sources),
                 "external_offsets": self.external_offsets}
+
+
+def nominal_pins(geometry: Geometry, z_rot_point: float = 0.0) -> dict:
+    """The trt pins (mm) that hold the nominal ``geometry`` (m), ``z-rot-point`` as given (m):
+    what the controller holds before a correction (module docstring)."""
+    if geometry.head:
+        raise InputError("a spindle head: LinuxCNC's trt pins are for table-table machines "
+                         "(its 5axiskins holds only pivot-length); no pin values are given")
+    cx, cy = geometry.c_position
+    t1, tz = geometry.tilt_position
+    pins = {"x-rot-point": cx * 1e3, "y-rot-point": cy * 1e3, "z-rot-point": z_rot_point * 1e3,
+            "z-offset": (tz - z_rot_point) * 1e3}
+    if geometry.tilt == "A":
+        pins["y-offset"] = (t1 - cy) * 1e3
+    else:
+        pins["x-offset"] = (t1 - cx) * 1e3
+    return pins
 
 
 def trt_correction(geometry: Geometry, result, z_rot_point: float = 0.0) -> TrtCorrection:

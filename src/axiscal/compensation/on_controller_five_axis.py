@@ -1,6 +1,9 @@
 """The five-axis correction proven through a live LinuxCNC (issue 43): the twin reads the joint
 positions LinuxCNC's own trt kinematics compute while it runs the probing and R-test poses.
 
+:func:`measure_on_linuxcnc` measures the planned set-ups so (the records the identification
+reads); :func:`verify_on_linuxcnc` re-measures them before and after the correction.
+
 Every planned set-up is run through the controller, with ``xyzac-trt-kins`` (``xyzbc-trt-kins``)
 active, twice: with the pins as they were, and after the correction of
 :func:`~axiscal.compensation.five_axis.trt_correction` (pins set by ``setp``, the tilting joint's
@@ -32,11 +35,12 @@ import numpy as np
 
 from axiscal.compensation.five_axis import TrtCorrection, Verification
 from axiscal.physics.rotary_location import machine_to_table
-from axiscal.procedures.five_axis import PROBING, R_TEST, RTestRecord
+from axiscal.procedures.five_axis import PROBING, R_TEST, ProbingRecord, RTestRecord
 from axiscal.standards.sphere_fit import fit_sphere
 from axiscal.units import DEG, MM
 
-__all__ = ["verify_on_linuxcnc", "r_test_on_linuxcnc", "world_poses", "PROBE_CLEARANCE"]
+__all__ = ["verify_on_linuxcnc", "measure_on_linuxcnc", "r_test_on_linuxcnc", "world_poses",
+           "PROBE_CLEARANCE"]
 
 #: Distance (m) outside the nominal sphere at which the controller puts the probe before a touch.
 PROBE_CLEARANCE = 2e-3
@@ -93,6 +97,43 @@ def probing_on_linuxcnc(machine, setup, joints, rng=None) -> np.ndarray:
         out.append(machine_to_table(g, {}, ta, tc, dev)[0]
                    - machine_to_table(g, {}, ta, tc, np.zeros(3))[0])
     return np.array(out)
+
+
+def measure_on_linuxcnc(machine, plan, seed: int = 1, z_rot_point: float = 0.0) -> tuple:
+    """Every planned set-up measured through a live LinuxCNC holding the machine's nominal
+    geometry in its trt pins (one session): the probing cycle's moves and the R-test's poses
+    run by the controller, the twin measuring from the joints it reached (module docstring).
+    Returns the records :func:`axiscal.procedures.five_axis.measure` returns (touches and
+    commanded positions are the joints' X, Y, Z; the angles those the drives reached); the
+    identification reads them as it reads files. ``z_rot_point`` in mm."""
+    from axiscal.compensation.five_axis import nominal_pins
+    from axiscal.instruments.linuxcnc_trt import joints_for_world_poses
+
+    poses = [world_poses(machine, s) for s in plan.setups]
+    cuts = np.cumsum([0] + [len(p) for p in poses])
+    joints = joints_for_world_poses(machine.tilt, nominal_pins(machine.geometry,
+                                                               z_rot_point * 1e-3),
+                                    0.0, np.vstack(poses))
+    rng = np.random.default_rng(seed)
+    out = []
+    for s, lo, hi in zip(plan.setups, cuts[:-1], cuts[1:]):
+        j = joints[lo:hi]
+        if s.kind == R_TEST:
+            rec, _ = r_test_on_linuxcnc(machine, s, j, rng)
+            out.append(RTestRecord(rec.tilt, rec.tilt_angle, rec.c_angle, rec.commanded,
+                                   rec.displacement, s.instrument.noise, s.u_gain, s.place,
+                                   s.label, s.u_direction,
+                                   np.asarray(s.instrument.directions, float)))
+            continue
+        n = len(_directions(s.instrument))
+        a, c = j[::n, 3] * DEG, j[::n, 4] * DEG
+        touches = tuple(s.instrument.touch_from(machine, a[i], c[i], s.place,
+                                                j[i * n:(i + 1) * n, :3] * MM, rng)
+                        for i in range(s.poses))
+        p = s.instrument
+        out.append(ProbingRecord(s.tilt, a, c, touches, p.sphere_radius, p.stylus_radius,
+                                 p.noise, s.u_offset, s.tolerance, s.place, s.label))
+    return tuple(out)
 
 
 def verify_on_linuxcnc(machine, plan, correction: TrtCorrection, seed: int = 7,
