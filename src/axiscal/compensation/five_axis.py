@@ -161,19 +161,21 @@ def trt_correction(geometry: Geometry, result, z_rot_point: float = 0.0) -> TrtC
     mm = 1e3
     cx, cy = geometry.c_position
     t1, tz = geometry.tilt_position
+    before = nominal_pins(geometry, z_rot_point)
     xr, yr = cx + got["E_X0C"], cy + got["E_Y0C"]
-    pins = {"x-rot-point": (cx * mm, xr * mm), "y-rot-point": (cy * mm, yr * mm)}
+    pins = {"x-rot-point": (before["x-rot-point"], xr * mm),
+            "y-rot-point": (before["y-rot-point"], yr * mm)}
     sources = {"x-rot-point": "E_X0C", "y-rot-point": "E_Y0C"}
     if t == "A":
-        pins["y-offset"] = ((t1 - cy) * mm, (t1 + got["E_Y0A"] - yr) * mm)
+        pins["y-offset"] = (before["y-offset"], (t1 + got["E_Y0A"] - yr) * mm)
         sources["y-offset"] = "E_Y0A − E_Y0C"
-        pins["z-offset"] = ((tz - z_rot_point) * mm, (tz + got["E_Z0A"] - z_rot_point) * mm)
+        pins["z-offset"] = (before["z-offset"], (tz + got["E_Z0A"] - z_rot_point) * mm)
         sources["z-offset"] = "E_Z0A"
         tilts = ("E_B0A", "E_C0A", "E_B0C")
     else:
-        pins["x-offset"] = ((t1 - cx) * mm, (t1 + got["E_X0B"] - xr) * mm)
+        pins["x-offset"] = (before["x-offset"], (t1 + got["E_X0B"] - xr) * mm)
         sources["x-offset"] = "E_X0B − E_X0C"
-        pins["z-offset"] = ((tz - z_rot_point) * mm, (tz + got["E_Z0B"] - z_rot_point) * mm)
+        pins["z-offset"] = (before["z-offset"], (tz + got["E_Z0B"] - z_rot_point) * mm)
         sources["z-offset"] = "E_Z0B"
         tilts = ("E_A0B", "E_C0B", "E_A0C")
     zero = f"E_{t}0{t}+E_{t}0C"
