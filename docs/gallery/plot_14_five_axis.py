@@ -6,7 +6,8 @@ A table-table A/C machine whose rotary axes carry the ten location errors of ISO
 ISO 230-7:2015 Clause 3. Before measuring, the plan says what its set-ups can separate (rank and
 condition of the sensitivity matrix, the unseen named). The twin is then measured by a touch
 probe on two spheres and an R-test, written to CSV files as real instruments' exports would be
-read, identified with U (k = 2), drawn, and turned into LinuxCNC's trt kinematics pins.
+read, identified with U (k = 2), drawn, and turned into LinuxCNC's trt kinematics pins (with
+the external offsets for the tilts no pin holds) and SINUMERIK 840D swivel data.
 """
 
 from pathlib import Path
@@ -35,7 +36,16 @@ for e in result.errors:
 fig = axiscal.fiveaxis.figure(config, result)
 
 # %%
-# The correction in LinuxCNC's terms (xyzac-trt-kins pins and the A joint's HOME_OFFSET),
-# verified by re-measuring the twin.
+# The correction in LinuxCNC's terms (xyzac-trt-kins pins, the A joint's HOME_OFFSET and the
+# external offsets of axiscal_trtcomp.py for the tilts), verified by re-measuring the twin.
 comp = axiscal.fiveaxis.compensate(config, sim.files, verify=True)
 print(comp)
+
+# %%
+# The same axis lines as SINUMERIK 840D swivel data for CYCLE800 (toolholder $TC_CARR, type P).
+print(comp.sinumerik.program())
+
+# %%
+# The linear axes' squareness can be identified with the location errors (here the twin has
+# none, so the values are zero within U).
+print(axiscal.fiveaxis.identify(config, sim.files, squareness=True))

@@ -100,7 +100,8 @@ def test_compensate_writes_the_pins_and_the_neutral_table(run, tmp_path):
     out, _ = run
     files = [str(f) for f in sorted(out.glob("*.csv"))]
     d = _json("fiveaxis", "compensate", *files, "--out", tmp_path / "trt.hal", "--table",
-              tmp_path / "trt.csv", "--verify")
+              tmp_path / "trt.csv", "--offsets", tmp_path / "trtcomp.json", "--sinumerik",
+              tmp_path / "carr.spf", "--verify")
     assert d["component"] == "xyzac-trt-kins"
     assert d["pins_mm"]["x-rot-point"]["after"] == pytest.approx(0.020, abs=0.001)
     assert set(d["not_held_urad"]) == {"E_B0A", "E_C0A", "E_B0C"}
@@ -109,6 +110,11 @@ def test_compensate_writes_the_pins_and_the_neutral_table(run, tmp_path):
     assert "setp xyzac-trt-kins.z-offset -60.01" in hal and "HOME_OFFSET += +0.003" in hal
     table = (tmp_path / "trt.csv").read_text("utf-8").splitlines()
     assert table[0] == "parameter,before,after,unit,takes" and len(table) == 9
+    eo = json.loads((tmp_path / "trtcomp.json").read_text("utf-8"))
+    assert eo == d["external_offsets"] and eo["tilt"] == "A"
+    assert eo["nominal"]["c"][1] == [0.0, 0.0, 1.0] and eo["actual"]["c"][1][0] != 0.0
+    spf = (tmp_path / "carr.spf").read_text("utf-8")
+    assert '$TC_CARR23[1]="P"' in spf and d["sinumerik"]["values"]["$TC_CARR21"] == "A"
     doc = __import__("axiscal.cli.fiveaxis", fromlist=["x"]).__doc__
     documented = set(re.findall(r"``([A-Za-z_][A-Za-z0-9_-]*)``", doc))
     keys = set(d) | set(d["verify"]) | set(d["verify"]["setups"][0])

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -93,7 +94,7 @@ class Simulated:
                 t["E_Y0C"], t["E_Y0A"] = t["E_Y0C"] - zero, t["E_Y0A"] - zero
         out = {}
         for e in self.result.errors:
-            out[e.name] = sum(t[n] for n in e.name.split("+"))
+            out[e.name] = sum(t.get(n, 0.0) for n in e.name.split("+"))
         return out
 
     def to_dict(self) -> dict:
@@ -124,18 +125,21 @@ class Compensated:
     result: LocationIdentification
     verification: Verification | None = None
     on_controller: bool = False
+    sinumerik: Any = None
 
     def to_dict(self) -> dict:
         """The ``--json`` object of ``axiscal fiveaxis compensate``."""
         out = self.correction.to_dict()
         out["verify"] = None if self.verification is None else self.verification.to_dict()
         out["on_controller"] = self.on_controller
+        out["sinumerik"] = None if self.sinumerik is None else self.sinumerik.to_dict()
         return out
 
     def __str__(self) -> str:
         text = self.correction.hal().rstrip()
         if self.verification is not None:
-            text += ("\nverified through LinuxCNC (trt kinematics; R-test deviation ranges):\n"
+            text += ("\nverified through LinuxCNC (trt kinematics; sphere-centre and R-test "
+                     "deviation ranges):\n"
                      if self.on_controller else
                      "\nverified on the twin (sphere-centre and R-test deviation ranges):\n")
             text += str(self.verification)
@@ -152,31 +156,43 @@ def load(config):
     return machine, plan_from_config(cfg, machine)
 
 
-def plan(config) -> Planned:
+def plan(config, squareness: bool = False) -> Planned:
     """What the configuration's set-ups can separate, before measuring (rank, condition, the
-    unseen location errors with the test that would see them)."""
+    unseen location errors with the test that would see them); with ``squareness`` also the
+    linear axes' three squareness errors."""
     from axiscal.standards.location_errors import check_plan
 
     machine, p = load(config)
-    return Planned(check_plan(machine.geometry, [s.nominal_setup() for s in p.setups]), p,
-                   machine)
+    return Planned(check_plan(machine.geometry, [s.nominal_setup() for s in p.setups],
+                              squareness), p, machine)
 
 
-def simulate(config, seed: int = 1, out=None) -> Simulated:
-    """Measure the twin with its simulated instruments, identify, and (with ``out``, a folder)
-    write one CSV per set-up (``1_probing.csv``, ``2_r-test.csv`` ...)."""
+def simulate(config, seed: int = 1, out=None, squareness: bool = False,
+             on_controller: bool = False) -> Simulated:
+    """Measure the twin with its simulated instruments, identify (with ``squareness``, the
+    linear axes' squareness too), and (with ``out``, a folder) write one CSV per set-up
+    (``1_probing.csv``, ``2_r-test.csv`` ...). With ``on_controller`` the set-ups are run
+    through a live LinuxCNC (trt kinematics with the nominal pins: the controller runs the
+    probing moves and the R-test poses, the twin measures from its joints;
+    :func:`axiscal.compensation.on_controller_five_axis.measure_on_linuxcnc`)."""
     from axiscal.io.five_axis import format_five_axis
     from axiscal.standards.location_errors import identify_location_errors
 
     machine, p = load(config)
-    records = _measure(machine, p, seed)
-    result = identify_location_errors(machine.geometry, [r.setup() for r in records])
+    if on_controller:
+        from axiscal.compensation.on_controller_five_axis import measure_on_linuxcnc
+
+        records = measure_on_linuxcnc(machine, p, _seed(seed))
+    else:
+        records = _measure(machine, p, seed)
+    result = identify_location_errors(machine.geometry, [r.setup() for r in records],
+                                      squareness=squareness)
     files: tuple = ()
     if out is not None:
         from axiscal.io._files import write_bytes_atomic
 
         folder = Path(out)
-        texts = [(folder / f"{i}_{r.kind}.csv", format_five_axis(r))
+        texts = [(folder / f"{i}_{r.kind}.csv", format_five_axis(r, machine.geometry))
                  for i, r in enumerate(records, 1)]
         try:
             folder.mkdir(parents=True, exist_ok=True)
@@ -186,8 +202,10 @@ def simulate(config, seed: int = 1, out=None) -> Simulated:
     return Simulated(records, result, machine, files)
 
 
-def identify(config, files):
-    """Identify the location errors from measured files (probing and R-test CSVs, any mix).
+def identify(config, files, squareness: bool = False):
+    """Identify the location errors from measured files (probing and R-test CSVs, any mix);
+    with ``squareness`` also the linear axes' three squareness errors (ISO 230-1 names
+    E_C(0X)Y, E_B(0X)Z, E_A(0Y)Z).
 
     Parameters
     ----------
@@ -221,7 +239,7 @@ def identify(config, files):
             setups.append(r.setup())
         except InputError as exc:
             raise InputError(f"{f}: {exc}") from None
-    return identify_location_errors(machine.geometry, setups)
+    return identify_location_errors(machine.geometry, setups, squareness=squareness)
 
 
 def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
@@ -235,8 +253,9 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
     z_rot_point : float, mm
         The ``z-rot-point`` pin as set now (kept; only its sum with ``z-offset`` counts).
     on_controller : bool
-        With ``verify``: run the configuration's R-tests through a live LinuxCNC (its trt
-        kinematics compute the joints the twin then reads), before and after the correction
+        With ``verify``: run the configuration's probing and R-test set-ups through a live
+        LinuxCNC (its trt kinematics, and after the correction the external offsets, compute
+        the joints the twin then reads), before and after the correction
         (:mod:`axiscal.compensation.on_controller_five_axis`).
     """
     from axiscal.compensation.five_axis import trt_correction, verify_on_twin
@@ -248,6 +267,9 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
 
     geometry = five_axis_from_config(cfg).geometry
     correction = trt_correction(geometry, result, z_rot_point * 1e-3)
+    from axiscal.compensation.five_axis_sinumerik import swivel_data
+
+    swivel = swivel_data(geometry, result)
     check = None
     if on_controller and not verify:
         raise InputError("--on-controller verifies through LinuxCNC: give --verify too")
@@ -257,7 +279,7 @@ def compensate(config, files, z_rot_point: float = 0.0, verify: bool = False,
         check = verify_on_linuxcnc(machine, p, correction, seed, z_rot_point)
     elif verify:
         check = verify_on_twin(machine, p, correction, seed)
-    return Compensated(correction, result, check, bool(verify and on_controller))
+    return Compensated(correction, result, check, bool(verify and on_controller), swivel)
 
 
 def figure(config, result):
@@ -283,9 +305,13 @@ def report(config, result, path, files=(), truth=None):
 def _measure(machine, p, seed: int):
     from axiscal.procedures.five_axis import measure
 
+    return measure(machine, p, np.random.default_rng(_seed(seed)))
+
+
+def _seed(seed) -> int:
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise InputError(f"seed = {seed!r} must be a whole number >= 0")
-    return measure(machine, p, np.random.default_rng(seed))
+    return seed
 
 
 def _config(config) -> dict:

@@ -20,10 +20,15 @@ JSON output (``--json``), stable keys, µm and µrad:
 * ``compensate``: ``component`` (``xyzac-trt-kins`` or ``xyzbc-trt-kins``), ``pins_mm`` (pin ->
   ``before``, ``after``), ``home_offset_change_deg`` (tilting axis -> change of HOME_OFFSET),
   ``not_held_urad`` (orientation errors no pin holds), ``sources`` (pin -> the location errors
-  it takes), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
+  it takes), ``external_offsets`` (null, or what ``axiscal_trtcomp.py`` reads: ``tilt``,
+  ``unit``, ``nominal`` and ``actual`` axis lines, each ``tilt`` and ``c`` as [point mm, unit
+  direction, zero deg]), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
   ``reduction``, ``after_unmodelled_um`` (after, without noise: what the errors the correction
   cannot hold leave): deviation range of each set-up on the twin, or with ``--on-controller`` of each
-  R-test run through LinuxCNC), ``on_controller``.
+  probing and R-test set-up run through LinuxCNC), ``on_controller``, ``sinumerik`` (null, or
+  the SINUMERIK 840D swivel data of :mod:`axiscal.compensation.five_axis_sinumerik`:
+  ``carrier``, ``values`` (``$TC_CARRn`` -> mm, unit-vector component, deg or letter),
+  ``meaning``, ``manuals``).
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero
   counted in the positions across) and ``deviation`` (identified − true), ``files`` (written, or empty).
@@ -47,6 +52,8 @@ app = typer.Typer(help="Five-axis machines: the location errors of both rotary a
 _JSON = typer.Option(False, "--json", help="Print the result as JSON (stable keys, module docs).")
 _MACHINE = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' "
                         "(A/C table-table), 'bc' (B/C) or 'head' (B spindle head over C).")
+_SQUARENESS = typer.Option(False, "--squareness", help="Also identify the linear axes' three "
+                           "squareness errors (E_C(0X)Y, E_B(0X)Z, E_A(0Y)Z, ISO 230-1).")
 _CONFIG = typer.Argument(None, help="Five-axis configuration (TOML); default: the shipped "
                          "example (--machine).")
 
@@ -68,14 +75,15 @@ def _config(config: Optional[Path], machine: str):
 
 
 @app.command("plan")
-def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE, as_json: bool = _JSON):
+def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
+         squareness: bool = _SQUARENESS, as_json: bool = _JSON):
     """What the planned set-ups can separate before measuring: rank, condition, the unseen.
 
     Example: axiscal fiveaxis plan --machine bc
     """
     from axiscal.api import fiveaxis
 
-    planned = fiveaxis.plan(_config(config, machine))
+    planned = fiveaxis.plan(_config(config, machine), squareness)
     if as_json:
         print_json(planned.to_dict())
         return
@@ -91,6 +99,11 @@ def simulate(
                                        "(one CSV per set-up; created if missing)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write the report with the "
                                           "twin's truth beside: HTML (.html) or PDF (.pdf)."),
+    squareness: bool = _SQUARENESS,
+    on_controller: bool = typer.Option(False, "--on-controller", help="Run the probing and "
+                                       "R-test set-ups through a live LinuxCNC "
+                                       "(xyzac/xyzbc-trt-kins, nominal pins); the twin "
+                                       "measures from its joints."),
     as_json: bool = _JSON,
 ):
     """Measure the twin with its simulated probe and R-test, identify, compare with the truth.
@@ -103,7 +116,8 @@ def simulate(
     if report is not None:
         report_path(report)
     cfg = _config(config, machine)
-    sim = fiveaxis.simulate(cfg, seed=seed, out=out)
+    sim = fiveaxis.simulate(cfg, seed=seed, out=out, squareness=squareness,
+                            on_controller=on_controller)
     if report is not None:
         fiveaxis.report(cfg, sim.result, report, files=sim.files, truth=sim.truth())
     if as_json:
@@ -127,6 +141,7 @@ def identify(
     report: Optional[Path] = typer.Option(None, "--report", help="Write the report (values, "
                                           "budget, unseen, correlations, residual, figure): "
                                           "HTML (.html) or PDF (.pdf, WeasyPrint)."),
+    squareness: bool = _SQUARENESS,
     as_json: bool = _JSON,
 ):
     """Identify the location errors from measured files, with U (k = 2) and correlations.
@@ -141,7 +156,7 @@ def identify(
     if report is not None:
         report_path(report)
     cfg = _config(config, machine)
-    result = fiveaxis.identify(cfg, files)
+    result = fiveaxis.identify(cfg, files, squareness=squareness)
     if plot is not None:
         fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
     if report is not None:
@@ -164,36 +179,58 @@ def compensate(
                                        "(.hal)."),
     table: Optional[Path] = typer.Option(None, "--table", help="Write the neutral table (CSV: "
                                          "parameter, before, after, unit, what it takes)."),
+    offsets: Optional[Path] = typer.Option(None, "--offsets", help="Write the external-offset "
+                                           "correction of the orientation errors no pin holds "
+                                           "(trtcomp.json, read by axiscal_trtcomp.py)."),
+    sinumerik: Optional[Path] = typer.Option(None, "--sinumerik", help="Write the SINUMERIK "
+                                             "840D swivel data ($TC_CARR of toolholder 1, "
+                                             "kinematics type P) as a part-program fragment."),
     verify: bool = typer.Option(False, "--verify", help="Re-measure the configuration's twin "
                                 "before and after the correction (simulated configurations)."),
     on_controller: bool = typer.Option(False, "--on-controller", help="With --verify: run the "
-                                       "R-tests through a live LinuxCNC (xyzac/xyzbc-trt-kins) "
-                                       "before and after."),
+                                       "probing and R-test set-ups through a live LinuxCNC "
+                                       "(xyzac/xyzbc-trt-kins, external offsets) before and "
+                                       "after."),
     as_json: bool = _JSON,
 ):
-    """The correction as LinuxCNC trt kinematics pins and HOME_OFFSET, with its sign convention.
+    """The correction as LinuxCNC trt kinematics pins, HOME_OFFSET and external offsets, and as
+    SINUMERIK 840D swivel data ($TC_CARR), with their sign conventions.
 
     Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify --on-controller
     """
     from axiscal.api import fiveaxis
     from axiscal.cli._common import out_path
 
-    for path, what in ((out, "the HAL file"), (table, "the neutral table")):
+    for path, what in ((out, "the HAL file"), (table, "the neutral table"),
+                       (offsets, "the external-offset file"),
+                       (sinumerik, "the SINUMERIK swivel data")):
         if path is not None:
             out_path(path, what)
     comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify,
                                on_controller=on_controller)
     from axiscal.io._files import write_bytes_atomic
 
+    eo = comp.correction.external_offsets
+    if offsets is not None and eo is None:
+        from axiscal.errors import InputError
+
+        raise InputError("--offsets: no orientation error was identified, so there is no "
+                         "external-offset correction to write")
     if out is not None:
         write_bytes_atomic(out, comp.correction.hal().encode("utf-8"))
     if table is not None:
         write_bytes_atomic(table, comp.correction.table_csv().encode("utf-8"))
+    if sinumerik is not None:
+        write_bytes_atomic(sinumerik, comp.sinumerik.program().encode("utf-8"))
+    if offsets is not None:
+        import json
+
+        write_bytes_atomic(offsets, (json.dumps(eo, indent=1) + "\n").encode("utf-8"))
     if as_json:
         print_json(comp.to_dict())
         return
     typer.echo(str(comp))
-    for path in (out, table):
+    for path in (out, table, offsets, sinumerik):
         if path is not None:
             typer.echo(f"wrote {path}")
 

@@ -50,7 +50,8 @@ app = typer.Typer(help="Calibration history: every machine, axis, test, result a
 @app.command("add")
 def add(
     file: Path = typer.Argument(..., help="A data file axiscal evaluates (positioning, "
-                                "straightness, ballbar, diagonal or five-error CSV, JSON)."),
+                                "straightness, ballbar, diagonal or five-error CSV, JSON; a "
+                                "five-axis probing or R-test CSV stating its geometry)."),
     machine: Optional[str] = typer.Option(None, "--machine", help="Machine name (default: the "
                                           "file's)."),
     axis: Optional[str] = typer.Option(None, "--axis", help="Axis name (default: the file's)."),

@@ -19,9 +19,14 @@ table turning right-handed by the commanded angle (LinuxCNC's trt sign), a comma
 ``a + E``; after homing the joint reads ``HOME_OFFSET`` at the switch, so ``HOME_OFFSET`` grows by
 ``E`` (degrees) and the joint then reads the angle the table really has. E_C0C is not seen by the
 set-ups (the C zero is the set-up's) and is left as it is. The orientation errors (E_B0A, E_C0A,
-E_B0C for A/C; E_A0B, E_C0B, E_A0C for B/C) have no pin: they are listed with the largest
-displacement they leave at the measured places, for an external-offset correction (not made
-here).
+E_B0C for A/C; E_A0B, E_C0B, E_A0C for B/C) have no pin: they are listed as not held by any pin
+and corrected through LinuxCNC's external offsets of X, Y, Z by axiscal's HAL component
+``axiscal_trtcomp.py`` (package data; LinuxCNC documentation, "External Axis Offsets"), which
+reads the commanded world pose and asks for ``o = R_nomᵀ (T_act p − T_nom p)``: the table point
+``p`` moved to where the identified axis lines (``T_act``: the pins' lines with the identified
+orientation errors) put it, expressed in the world frame, which turns with the table (the
+component's docstring). :attr:`TrtCorrection.external_offsets` holds the two sets of lines it
+reads (``trtcomp.json``).
 """
 
 from __future__ import annotations
@@ -33,7 +38,7 @@ import numpy as np
 from axiscal.errors import InputError
 from axiscal.physics.rotary_location import Geometry
 
-__all__ = ["TrtCorrection", "trt_correction", "corrected_geometry", "corrected_machine",
+__all__ = ["TrtCorrection", "trt_correction", "nominal_pins", "corrected_geometry", "corrected_machine",
            "Verification", "verify_on_twin"]
 
 
@@ -53,6 +58,10 @@ class TrtCorrection:
         Location errors no parameter holds -> value (µrad).
     sources : dict of str to str
         Each pin or offset -> the location error(s) it takes.
+    external_offsets : dict or None
+        What ``axiscal_trtcomp.py`` reads (``trtcomp.json``): ``tilt`` and the ``nominal`` and
+        ``actual`` lines, each ``{"tilt": [point mm, unit direction, zero deg], "c": [...]}``;
+        None when no orientation error was identified.
     """
 
     component: str
@@ -60,6 +69,7 @@ class TrtCorrection:
     home_offset: dict
     not_held: dict
     sources: dict
+    external_offsets: dict | None = None
 
     def hal(self) -> str:
         """``setp`` lines for halcmd (idle, rotary axes at 0), with the convention as comments."""
@@ -71,7 +81,9 @@ class TrtCorrection:
         for axis, d in self.home_offset.items():
             lines.append(f"# [JOINT of {axis}] HOME_OFFSET += {d:+.6f} deg ({self.sources[axis]})")
         for name, v in self.not_held.items():
-            lines.append(f"# not held by any pin: {name} = {v:+.2f} urad")
+            lines.append(f"# not held by any pin: {name} = {v:+.2f} urad"
+                         + (" (external offsets: axiscal_trtcomp.hal, trtcomp.json)"
+                            if self.external_offsets else ""))
         return "\n".join(lines).replace("\u2212", "-") + "\n"   # halcmd reads ASCII
 
     def neutral_table(self) -> list[dict]:
@@ -99,7 +111,25 @@ class TrtCorrection:
         return {"component": self.component,
                 "pins_mm": {p: {"before": o, "after": n} for p, (o, n) in self.pins.items()},
                 "home_offset_change_deg": dict(self.home_offset),
-                "not_held_urad": dict(self.not_held), "sources": dict(self.sources)}
+                "not_held_urad": dict(self.not_held), "sources": dict(self.sources),
+                "external_offsets": self.external_offsets}
+
+
+def nominal_pins(geometry: Geometry, z_rot_point: float = 0.0) -> dict:
+    """The trt pins (mm) that hold the nominal ``geometry`` (m), ``z-rot-point`` as given (m):
+    what the controller holds before a correction (module docstring)."""
+    if geometry.head:
+        raise InputError("a spindle head: LinuxCNC's trt pins are for table-table machines "
+                         "(its 5axiskins holds only pivot-length); no pin values are given")
+    cx, cy = geometry.c_position
+    t1, tz = geometry.tilt_position
+    pins = {"x-rot-point": cx * 1e3, "y-rot-point": cy * 1e3, "z-rot-point": z_rot_point * 1e3,
+            "z-offset": (tz - z_rot_point) * 1e3}
+    if geometry.tilt == "A":
+        pins["y-offset"] = (t1 - cy) * 1e3
+    else:
+        pins["x-offset"] = (t1 - cx) * 1e3
+    return pins
 
 
 def trt_correction(geometry: Geometry, result, z_rot_point: float = 0.0) -> TrtCorrection:
@@ -131,26 +161,39 @@ def trt_correction(geometry: Geometry, result, z_rot_point: float = 0.0) -> TrtC
     mm = 1e3
     cx, cy = geometry.c_position
     t1, tz = geometry.tilt_position
+    before = nominal_pins(geometry, z_rot_point)
     xr, yr = cx + got["E_X0C"], cy + got["E_Y0C"]
-    pins = {"x-rot-point": (cx * mm, xr * mm), "y-rot-point": (cy * mm, yr * mm)}
+    pins = {"x-rot-point": (before["x-rot-point"], xr * mm),
+            "y-rot-point": (before["y-rot-point"], yr * mm)}
     sources = {"x-rot-point": "E_X0C", "y-rot-point": "E_Y0C"}
     if t == "A":
-        pins["y-offset"] = ((t1 - cy) * mm, (t1 + got["E_Y0A"] - yr) * mm)
+        pins["y-offset"] = (before["y-offset"], (t1 + got["E_Y0A"] - yr) * mm)
         sources["y-offset"] = "E_Y0A − E_Y0C"
-        pins["z-offset"] = ((tz - z_rot_point) * mm, (tz + got["E_Z0A"] - z_rot_point) * mm)
+        pins["z-offset"] = (before["z-offset"], (tz + got["E_Z0A"] - z_rot_point) * mm)
         sources["z-offset"] = "E_Z0A"
         tilts = ("E_B0A", "E_C0A", "E_B0C")
     else:
-        pins["x-offset"] = ((t1 - cx) * mm, (t1 + got["E_X0B"] - xr) * mm)
+        pins["x-offset"] = (before["x-offset"], (t1 + got["E_X0B"] - xr) * mm)
         sources["x-offset"] = "E_X0B − E_X0C"
-        pins["z-offset"] = ((tz - z_rot_point) * mm, (tz + got["E_Z0B"] - z_rot_point) * mm)
+        pins["z-offset"] = (before["z-offset"], (tz + got["E_Z0B"] - z_rot_point) * mm)
         sources["z-offset"] = "E_Z0B"
         tilts = ("E_A0B", "E_C0B", "E_A0C")
     zero = f"E_{t}0{t}+E_{t}0C"
     home = {t: got[zero] * 180.0 / 3.141592653589793} if zero in got else {}
     sources[t] = zero
     not_held = {n: got[n] * 1e6 for n in tilts if n in got}
-    return TrtCorrection(f"xyz{t.lower()}c-trt-kins", pins, home, not_held, sources)
+    corr = TrtCorrection(f"xyz{t.lower()}c-trt-kins", pins, home, not_held, sources)
+    if not not_held:
+        return corr
+    from dataclasses import replace
+
+    after = corrected_geometry(geometry, corr)
+    lines = lambda e: dict(zip(("tilt", "c"), (  # noqa: E731 - the two lines in mm, deg
+        [(q * 1e3).tolist(), u.tolist(), z * 180.0 / 3.141592653589793]
+        for q, u, z in after.lines(e))))
+    eo = {"tilt": t, "unit": "mm, deg", "nominal": lines({}),
+          "actual": lines({n: got[n] for n in tilts if n in got})}
+    return replace(corr, external_offsets=eo)
 
 
 def corrected_geometry(geometry: Geometry, correction: TrtCorrection) -> Geometry:
@@ -203,7 +246,9 @@ class Verification:
 
 def corrected_machine(machine, correction: TrtCorrection):
     """The twin as its controller sees it after the correction: the same physical axis lines,
-    the corrected nominal geometry, and the zero of the tilting axis shifted by HOME_OFFSET."""
+    the corrected nominal geometry, the zero of the tilting axis shifted by HOME_OFFSET and, with
+    the external offsets, the orientation errors less those the offsets correct (to first order
+    in the small angles: the offsets put the table point where the identified lines have it)."""
     from dataclasses import replace
 
     g0, g1 = machine.geometry, corrected_geometry(machine.geometry, correction)
@@ -216,6 +261,9 @@ def corrected_machine(machine, correction: TrtCorrection):
     e[f"E_Z0{t}"] = e.get(f"E_Z0{t}", 0.0) + g0.tilt_position[1] - g1.tilt_position[1]
     e[f"E_{t}0{t}"] = e.get(f"E_{t}0{t}", 0.0) - correction.home_offset.get(t, 0.0) \
         * 3.141592653589793 / 180.0
+    if correction.external_offsets:
+        for n, v in correction.not_held.items():
+            e[n] = e.get(n, 0.0) - v * 1e-6
     return replace(machine, geometry=g1, errors=e)
 
 

@@ -11,10 +11,18 @@ tool point in the table frame and the two rotary angles) by MDI with the trt kin
 and reads the five joints' ``motor-pos-cmd`` (mm, degrees: the drives' frame, so a changed
 HOME_OFFSET shows in it) through an in-process HAL component (``axiscal-trt``), after
 :data:`~axiscal.instruments.linuxcnc_controller.SETTLE_PERIODS` runs of the servo thread.
+
+With ``trtcomp`` (the lines :func:`axiscal.compensation.five_axis.trt_external_offsets` writes),
+axiscal's userspace component ``axiscal_trtcomp.py`` (``axiscal_trtcomp.hal``) corrects the
+orientation errors no pin holds through LinuxCNC's external offsets of X, Y, Z (LinuxCNC
+documentation, "External Axis Offsets": ``[AXIS_L] OFFSET_AV_RATIO``, ``axis.L.eoffset-*``),
+and :meth:`LinuxCNCTrt.move_world` reads the joints once those offsets have settled (as
+:class:`~axiscal.instruments.linuxcnc_xyz.LinuxCNCXYZ` waits for its volumetric offsets).
 """
 
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from dataclasses import dataclass, field
@@ -26,12 +34,13 @@ import numpy as np
 
 from axiscal.errors import InputError
 from axiscal.instruments.linuxcnc_controller import SETTLE_PERIODS, LinuxCNC
+from axiscal.instruments.linuxcnc_xyz import ExternalOffsets, offset_pins
 
 __all__ = ["LinuxCNCTrt"]
 
 
 @dataclass
-class LinuxCNCTrt(LinuxCNC):
+class LinuxCNCTrt(ExternalOffsets, LinuxCNC):
     """One headless LinuxCNC session on a simulated table-table machine (a context manager).
 
     Parameters
@@ -45,6 +54,9 @@ class LinuxCNCTrt(LinuxCNC):
         ``[JOINT_3] HOME_OFFSET`` of the tilting joint.
     travel : dict of str to (float, float)
         Limits of X, Y, Z (mm) and of the tilting axis (degrees); C turns ±36000°.
+    trtcomp : dict, optional
+        The nominal and actual axis lines ``axiscal_trtcomp.py`` reads (``trtcomp.json``);
+        None: no external offsets.
     """
 
     limits: tuple = (0.0, 0.0)
@@ -56,6 +68,9 @@ class LinuxCNCTrt(LinuxCNC):
                                                    "B": (-120.0, 120.0)})
     velocity: float = 5000.0
     acceleration: float = 1.0e5
+    trtcomp: dict | None = None
+    av_ratio: float = 0.2
+    settle_timeout: float = 5.0
 
     _PINS = ("x-rot-point", "y-rot-point", "z-rot-point", "x-offset", "y-offset", "z-offset")
 
@@ -84,11 +99,22 @@ class LinuxCNCTrt(LinuxCNC):
                 letter=a, joint=j, min_limit=repr(lo), max_limit=repr(hi),
                 velocity=repr(float(self.velocity)), acceleration=repr(float(self.acceleration)),
                 joint_type="ANGULAR" if j >= 3 else "LINEAR",
-                home_offset=repr(float(self.home_offset)) if j == 3 else "0"))
+                home_offset=repr(float(self.home_offset)) if j == 3 else "0",
+                axis_lines=f"OFFSET_AV_RATIO = {float(self.av_ratio)!r}\n"
+                if self.trtcomp is not None and j < 3 else ""))
+        trtcomp = ""
+        if self.trtcomp is not None:
+            trtcomp = "HALFILE = axiscal_trtcomp.hal"
+            (self.folder / "trtcomp.json").write_text(json.dumps(self.trtcomp))
+            (self.folder / "axiscal_trtcomp.hal").write_text(
+                Template((data / "axiscal_trtcomp.hal").read_text())
+                .substitute(tilt=self.tilt.lower()))
+            for name in ("axiscal_trtcomp.py", "axiscal_volcomp.py"):
+                (self.folder / name).write_text((data / name).read_text())
         pins = "\n".join(f"HALCMD = setp {self.component}.{p} {float(self.pins.get(p, 0.0))!r}"
                          for p in self._PINS)
         self.ini_text = Template((data / "axiscal_trt.ini").read_text()).substitute(
-            tilt=self.tilt, kins=self.component, pin_lines=pins,
+            tilt=self.tilt, kins=self.component, pin_lines=pins, trtcomp_hal=trtcomp,
             velocity=repr(float(self.velocity)), axes="\n".join(axes))
         (self.folder / "config.ini").write_text(self.ini_text)
         (self.folder / "axiscal_trt.hal").write_text((data / "axiscal_trt.hal").read_text())
@@ -102,14 +128,19 @@ class LinuxCNCTrt(LinuxCNC):
         for j in range(5):
             comp.newpin(f"j{j}-motor-pos-cmd", hal.HAL_FLOAT, hal.HAL_IN)
             nets.append((f"j{j}-motor-pos-cmd", f"axiscal-trt.j{j}-motor-pos-cmd"))
+        if self.trtcomp is not None:
+            nets += offset_pins(comp, "axiscal-trtcomp")
         self._ready(comp, nets)
         self._switch_on_and_home(5)
 
     def move_world(self, x: float, y: float, z: float, tilt: float, c: float) -> np.ndarray:
         """G0 to a world pose (mm; degrees) with the trt kinematics; the joints'
-        ``motor-pos-cmd`` (5,), mm and degrees, SETTLE_PERIODS servo runs later."""
+        ``motor-pos-cmd`` (5,), mm and degrees, SETTLE_PERIODS servo runs later (and, with
+        ``trtcomp``, once the external offsets have settled)."""
         self.mdi(f"G90 G0 X{x:.9f} Y{y:.9f} Z{z:.9f} {self.tilt}{tilt:.9f} C{c:.9f}")
         self.wait_periods(SETTLE_PERIODS)
+        if self.trtcomp is not None:
+            self.wait_offsets("axiscal-trtcomp", (x, y, z, tilt, c))
         return np.array([self._comp[f"j{j}-motor-pos-cmd"] for j in range(5)], dtype=float)
 
     def move(self, *args, **kwargs):
@@ -117,20 +148,20 @@ class LinuxCNCTrt(LinuxCNC):
 
 
 def joints_for_world_poses(tilt: str, pins: dict, home_offset: float, poses,
-                           timeout: float = 600.0) -> np.ndarray:
+                           timeout: float = 600.0, trtcomp: dict | None = None) -> np.ndarray:
     """The joints' ``motor-pos-cmd`` (N, 5; mm, degrees) LinuxCNC reaches for world poses
     (N, 5: X, Y, Z mm, tilt and C degrees), in one :class:`LinuxCNCTrt` session run in a fresh
     Python process: a second session in one process lost its MDI moves every other time (tried:
     the joints stayed where homing left them while the moves were reported done), so each
-    session gets a process of its own (the request and the joints pass as JSON)."""
-    import json
+    session gets a process of its own (the request and the joints pass as JSON). ``trtcomp``:
+    the external-offset correction's lines (:class:`LinuxCNCTrt`)."""
     import subprocess
     import sys
 
     from axiscal.errors import MeasurementError
 
     request = json.dumps({"tilt": tilt, "pins": {k: float(v) for k, v in pins.items()},
-                          "home_offset": float(home_offset),
+                          "home_offset": float(home_offset), "trtcomp": trtcomp,
                           "poses": np.asarray(poses, float).tolist()})
     try:
         r = subprocess.run([sys.executable, "-c", "from axiscal.instruments.linuxcnc_trt import "
@@ -150,6 +181,7 @@ def _session_main() -> None:
     import sys
 
     q = json.loads(sys.stdin.read())
-    with LinuxCNCTrt(tilt=q["tilt"], pins=q["pins"], home_offset=q["home_offset"]) as cnc:
+    with LinuxCNCTrt(tilt=q["tilt"], pins=q["pins"], home_offset=q["home_offset"],
+                     trtcomp=q.get("trtcomp")) as cnc:
         out = [cnc.move_world(*p).tolist() for p in q["poses"]]
     sys.stdout.write(json.dumps(out))

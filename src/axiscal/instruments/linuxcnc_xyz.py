@@ -38,7 +38,7 @@ from axiscal.errors import MeasurementError
 from axiscal.instruments.linuxcnc_controller import (CREEP, CREEP_FEED, SETTLE_PERIODS,
                                                      LinuxCNC, _wait)
 
-__all__ = ["LinuxCNCXYZ", "EOFFSET_SCALE"]
+__all__ = ["LinuxCNCXYZ", "EOFFSET_SCALE", "ExternalOffsets", "offset_pins"]
 
 AXES = "XYZ"
 #: mm per count of the external offsets (``axis.L.eoffset-scale``): 1 nm.
@@ -52,8 +52,64 @@ EOFFSET_SCALE = 1e-6
 SETTLED = 5e-5
 
 
+def offset_pins(comp, source: str) -> list:
+    """Give the in-process component ``comp`` the pins :class:`ExternalOffsets` reads (each
+    axis's ``L-eoffset`` and ``L-request``, and ``cycles``) and return their ``halcmd net``
+    arguments; ``source`` is the userspace component that drives the offsets (its HAL file nets
+    ``vc-L-request``)."""
+    import hal
+
+    nets = []
+    for a in "xyz":
+        comp.newpin(f"{a}-eoffset", hal.HAL_FLOAT, hal.HAL_IN)
+        comp.newpin(f"{a}-request", hal.HAL_FLOAT, hal.HAL_IN)
+        nets += [(f"vc-{a}-eoffset", f"axis.{a}.eoffset", f"{comp.getprefix()}.{a}-eoffset"),
+                 (f"vc-{a}-request", f"{comp.getprefix()}.{a}-request")]
+    comp.newpin("cycles", hal.HAL_U32, hal.HAL_IN)
+    nets.append(("vc-cycles", f"{source}.cycles", f"{comp.getprefix()}.cycles"))
+    return nets
+
+
+class ExternalOffsets:
+    """Waiting for the external offsets of X, Y, Z that a userspace component drives (a mixin
+    of a :class:`~axiscal.instruments.linuxcnc_controller.LinuxCNC` session whose component has
+    the pins of :func:`offset_pins`)."""
+
+    settle_timeout: float
+
+    def wait_offsets(self, source: str, target) -> None:
+        """Until ``source`` has run two cycles since now (so it evaluated the final position,
+        even on a loaded computer) and the offsets have settled (:meth:`_settled`)."""
+        c0 = self._comp["cycles"]
+        try:
+            _wait(lambda: (self._comp["cycles"] - c0) % 2 ** 31 >= 2, self.settle_timeout,
+                  f"{source} to evaluate the final position")
+            _wait(self._settled, self.settle_timeout, "the external offsets to settle")
+        except MeasurementError as exc:
+            c = self._comp
+            raise MeasurementError(f"{exc} at {list(target)} (offset, request mm: " + ", ".join(
+                f"{c[f'{a}-eoffset']:.6f} {c[f'{a}-request']:.6f}" for a in "xyz")
+                + ")") from None
+
+    def _settled(self) -> bool:
+        """The offsets are where the component asks, within :data:`SETTLED`, and neither they
+        nor the requests changed over SETTLE_PERIODS runs of the servo thread (the request
+        follows the counts at the next run; the joints follow the offset through the cubic
+        interpolator)."""
+        before = self._offsets()
+        if any(abs(v - w) > SETTLED for v, w in zip(before[:3], before[3:])):
+            return False
+        self.wait_periods(SETTLE_PERIODS)
+        return self._offsets() == before
+
+    def _offsets(self) -> list:
+        """``axis.L.eoffset`` then ``axis.L.eoffset-request`` of X, Y, Z now, mm."""
+        c = self._comp
+        return [c[f"{a}-eoffset"] for a in "xyz"] + [c[f"{a}-request"] for a in "xyz"]
+
+
 @dataclass
-class LinuxCNCXYZ(LinuxCNC):
+class LinuxCNCXYZ(ExternalOffsets, LinuxCNC):
     """One headless LinuxCNC session on a simulated XYZ machine (a context manager), mm.
 
     Parameters
@@ -130,15 +186,8 @@ class LinuxCNCXYZ(LinuxCNC):
             for pin in ("motor-pos-cmd", "pos-cmd"):
                 comp.newpin(f"j{j}-{pin}", hal.HAL_FLOAT, hal.HAL_IN)
                 nets.append((f"j{j}-{pin}", f"axiscal-xyz.j{j}-{pin}"))
-            if self._offsets_driven():
-                a = a.lower()
-                comp.newpin(f"{a}-eoffset", hal.HAL_FLOAT, hal.HAL_IN)
-                comp.newpin(f"{a}-request", hal.HAL_FLOAT, hal.HAL_IN)
-                nets += [(f"vc-{a}-eoffset", f"axis.{a}.eoffset", f"axiscal-xyz.{a}-eoffset"),
-                         (f"vc-{a}-request", f"axiscal-xyz.{a}-request")]
         if self._offsets_driven():
-            comp.newpin("cycles", hal.HAL_U32, hal.HAL_IN)
-            nets.append(("vc-cycles", f"{self.offset_component}.cycles", "axiscal-xyz.cycles"))
+            nets += offset_pins(comp, self.offset_component)
         self._extra_pins(comp, nets)
         self._ready(comp, nets)
         self._switch_on_and_home(len(AXES))
@@ -152,38 +201,13 @@ class LinuxCNCXYZ(LinuxCNC):
         self.mdi(f"o<axiscal_approach_xyz> call {start} {end} [{CREEP_FEED:g}]")
         self.wait_periods(SETTLE_PERIODS)
         if self._offsets_driven():
-            c0 = self._comp["cycles"]
-            try:
-                _wait(lambda: (self._comp["cycles"] - c0) % 2 ** 31 >= 2, self.settle_timeout,
-                      f"{self.offset_component} to evaluate the final position")
-                _wait(self._settled, self.settle_timeout, "the external offsets to settle")
-            except MeasurementError as exc:
-                c = self._comp
-                raise MeasurementError(f"{exc} at {t} mm (offset, request mm: " + ", ".join(
-                    f"{c[f'{a}-eoffset']:.6f} {c[f'{a}-request']:.6f}" for a in "xyz")
-                    + ")") from None
+            self.wait_offsets(self.offset_component, t)
         c = self._comp
         return np.array([c[f"j{j}-motor-pos-cmd"] for j in range(3)], dtype=float)
 
     def commanded(self) -> np.ndarray:
         """The joints' ``pos-cmd`` now (the offset included, the trim not), mm."""
         return np.array([self._comp[f"j{j}-pos-cmd"] for j in range(3)], dtype=float)
-
-    def _settled(self) -> bool:
-        """The offsets are where the component asks, within :data:`SETTLED`, and neither they
-        nor the requests changed over SETTLE_PERIODS runs of the servo thread (the request
-        follows the counts at the next run; the joints follow the offset through the cubic
-        interpolator)."""
-        before = self._offsets()
-        if any(abs(v - w) > SETTLED for v, w in zip(before[:3], before[3:])):
-            return False
-        self.wait_periods(SETTLE_PERIODS)
-        return self._offsets() == before
-
-    def _offsets(self) -> list:
-        """``axis.L.eoffset`` then ``axis.L.eoffset-request`` of X, Y, Z now, mm."""
-        c = self._comp
-        return [c[f"{a}-eoffset"] for a in "xyz"] + [c[f"{a}-request"] for a in "xyz"]
 
     def move(self, *args, **kwargs):
         raise MeasurementError("LinuxCNCXYZ moves three joints: use move_to")

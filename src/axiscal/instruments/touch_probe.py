@@ -85,10 +85,52 @@ class SimulatedTouchProbe:
             Draws the touches' noise and the axes' random errors.
         """
         centre = machine.to_machine(np.array([tilt_angle]), np.array([c_angle]),
-                                    np.asarray(place, float), rng)[0]
+                                    np.asarray(place, float), rng, readings=False)[0]
         d = np.asarray(self.directions, float)
         d = d / np.linalg.norm(d, axis=1, keepdims=True)
         r = self.effective_radius
         if rng is not None and self.noise > 0:
             r = r + rng.normal(0.0, self.noise, len(d))[:, None]
-        return centre + r * d - np.asarray(self.offset, float)
+        return machine.readings(centre + r * d) - np.asarray(self.offset, float)
+
+    def touch_from(self, machine, tilt_angle, c_angle, place, starts, rng=None) -> np.ndarray:
+        """Recorded stylus-ball centres when the probe starts at given machine positions and
+        moves along the negative of each contact normal until it touches (m, machine frame).
+
+        This is how a controller's probing cycle is measured (issue 43): the controller puts the
+        probe at ``starts`` (one per direction of :attr:`directions`, outside the sphere; read
+        from its joints) and the probe travels ``-d`` until its stylus-ball centre is the
+        effective radius from the true sphere centre: the smaller root ``s`` of
+        ``|start − s d − centre| = R``.
+
+        Parameters
+        ----------
+        machine : FiveAxisMachine
+        tilt_angle, c_angle : float, rad
+            The angles the rotary drives reached.
+        place : array_like, shape (3,), m
+            True sphere centre in the table frame.
+        starts : array_like, shape (n, 3), m
+            Start of each touch in the machine frame, in the order of :attr:`directions`.
+        rng : numpy.random.Generator, optional
+
+        Raises
+        ------
+        InputError
+            A start inside the sphere, or whose path misses it.
+        """
+        centre = machine.to_machine(np.array([tilt_angle]), np.array([c_angle]),
+                                    np.asarray(place, float), rng, readings=False)[0]
+        d = np.asarray(self.directions, float)
+        d = d / np.linalg.norm(d, axis=1, keepdims=True)
+        r = np.full(len(d), self.effective_radius)
+        if rng is not None and self.noise > 0:
+            r = r + rng.normal(0.0, self.noise, len(d))
+        true_starts = machine.positions(starts)
+        w = true_starts - centre
+        b = (w * d).sum(axis=1)
+        disc = b * b - (w * w).sum(axis=1) + r * r
+        if np.any((w * w).sum(axis=1) < r * r) or np.any(disc < 0) or np.any(b < 0):
+            raise InputError("probe: a start point is inside the sphere or its path misses it")
+        s = b - np.sqrt(disc)
+        return machine.readings(true_starts - s[:, None] * d) - np.asarray(self.offset, float)

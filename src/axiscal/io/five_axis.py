@@ -31,6 +31,12 @@ three readings into X, Y, Z.
     pose,A_deg,C_deg,X_mm,Y_mm,Z_mm,dx_um,dy_um,dz_um
     1,0,0,-60.0,-40.0,80.0,0.12,-0.30,0.05
 
+Either file may also state the machine's nominal geometry (what its controller holds; mm, as in
+the machine's configuration), which the history needs to evaluate the file alone::
+
+    # tilt_position_mm = 0, -60      (A: Y, Z of the A axis; B: X, Z of the B axis)
+    # c_position_mm = 0, 0           (X, Y of the C axis at tilt 0)
+
 Poses are numbered 1, 2, ... with no gap; a probing pose's rows are together and share their
 angles, and each needs at least 4 touches; every sphere fit is checked against
 ``sphere_radius_mm + stylus_radius_mm`` when the file is read. A missing pose, an empty cell, a
@@ -49,13 +55,14 @@ from axiscal.procedures.five_axis import ProbingRecord, RTestRecord
 from axiscal.standards.sphere_fit import RADIUS_TOLERANCE
 from axiscal.units import DEG, MM, UM
 
-__all__ = ["read_five_axis", "parse_five_axis", "format_five_axis", "write_five_axis",
-           "PROBING_COLUMNS", "RTEST_COLUMNS"]
+__all__ = ["read_five_axis", "parse_five_axis", "parse_five_axis_geometry", "format_five_axis",
+           "write_five_axis", "PROBING_COLUMNS", "RTEST_COLUMNS"]
 
 PROBING_COLUMNS = ("x_mm", "y_mm", "z_mm")
 RTEST_COLUMNS = ("X_mm", "Y_mm", "Z_mm", "dx_um", "dy_um", "dz_um")
 _SETTINGS = {"sphere_radius_mm", "stylus_radius_mm", "noise_um", "u_offset_um",
-             "radius_tolerance_mm", "place_mm", "label", "u_gain", "u_direction_mrad"}
+             "radius_tolerance_mm", "place_mm", "label", "u_gain", "u_direction_mrad",
+             "tilt_position_mm", "c_position_mm"}
 #: Most rows a file may hold (a probing of 20 000 poses with 10 touches each).
 MAX_ROWS = 200_000
 
@@ -84,10 +91,44 @@ def parse_five_axis(text: str, source: str = "<text>") -> ProbingRecord | RTestR
     return _rtest(settings, rows, tilt, source)
 
 
-def format_five_axis(record: ProbingRecord | RTestRecord) -> str:
-    """The CSV text of a record (module docstring), which :func:`parse_five_axis` reads back."""
+def parse_five_axis_geometry(text: str, source: str = "<text>"):
+    """The nominal geometry a probing or R-test CSV states (``# tilt_position_mm``, ``#
+    c_position_mm``), or None where it states neither.
+
+    Returns
+    -------
+    Geometry or None
+        Table-table, the file's tilting axis, positions in m.
+
+    Raises
+    ------
+    DataFormatError
+        One of the two lines without the other, or not two finite numbers.
+    """
+    from axiscal.physics.rotary_location import Geometry
+
+    settings, header, _ = _split(text, source)
+    tilt, _ = _columns(header, source)
+    given = [k for k in ("tilt_position_mm", "c_position_mm") if k in settings]
+    if not given:
+        return None
+    if len(given) == 1:
+        other = ({"tilt_position_mm", "c_position_mm"} - set(given)).pop()
+        raise DataFormatError(f"{source}:{settings[given[0]][0]}: {given[0]} without {other}; "
+                              "the machine's nominal geometry needs both")
+    pos = [_pair(settings, k, source) for k in ("tilt_position_mm", "c_position_mm")]
+    return Geometry(tilt, tuple(v * MM for v in pos[0]), tuple(v * MM for v in pos[1]))
+
+
+def format_five_axis(record: ProbingRecord | RTestRecord, geometry=None) -> str:
+    """The CSV text of a record (module docstring), which :func:`parse_five_axis` reads back;
+    with a table-table ``geometry``, its nominal positions too."""
     t = record.tilt
     lines = []
+    if geometry is not None and not geometry.head:
+        for key, pos in (("tilt_position_mm", geometry.tilt_position),
+                         ("c_position_mm", geometry.c_position)):
+            lines.append(f"# {key} = {', '.join(f'{v / MM:.6f}' for v in pos)}")
     if isinstance(record, ProbingRecord):
         lines += [f"# sphere_radius_mm = {record.sphere_radius / MM:.6f}",
                   f"# stylus_radius_mm = {record.stylus_radius / MM:.6f}",
@@ -312,6 +353,18 @@ def _vector(settings, key, default, source) -> tuple[float, float, float]:
         raise DataFormatError(f"{source}:{n}: {key} = {text[:60]!r} must be three finite numbers "
                               "separated by commas")
     return tuple(v)
+
+
+def _pair(settings, key, source) -> tuple[float, float]:
+    n, text = settings[key]
+    try:
+        v = [float(p) for p in text.split(",")]
+    except ValueError:
+        v = []
+    if len(v) != 2 or not all(math.isfinite(x) and abs(x) <= 1e6 for x in v):
+        raise DataFormatError(f"{source}:{n}: {key} = {text[:60]!r} must be two finite numbers "
+                              "separated by a comma")
+    return v[0], v[1]
 
 
 def _place(settings, source):

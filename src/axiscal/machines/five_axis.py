@@ -32,6 +32,7 @@ Configuration (TOML), lengths in mm, location errors in µm and µrad::
     [location_errors]                # the twin's truth, shown only in simulation reports
     E_Y0A = 12.0                     # µm
     E_B0A = 25.0                     # µrad
+    "E_C(0X)Y" = 20.0                # µrad: squareness of the linear axes (ISO 230-1), optional
 """
 
 from __future__ import annotations
@@ -45,8 +46,9 @@ import numpy as np
 from axiscal.errors import ConfigError, InputError
 from axiscal.machines.config import refuse_unknown_keys, rotary_axis_from_config
 from axiscal.machines.rotary import RotaryAxis
-from axiscal.physics.rotary_location import (AxisMotion, Geometry, is_angle, machine_to_table,
-                                              table_to_machine)
+from axiscal.physics.rotary_location import (SQUARENESS, AxisMotion, Geometry, is_angle,
+                                              linear_to_true, machine_to_table,
+                                              table_to_machine, true_to_linear)
 from axiscal.units import MM
 
 __all__ = ["FiveAxisMachine", "five_axis_from_config", "MACHINE_KEYS"]
@@ -77,7 +79,7 @@ class FiveAxisMachine:
     name: str = "simulated five-axis machine"
 
     def __post_init__(self) -> None:
-        unknown = set(self.errors) - set(self.geometry.names)
+        unknown = set(self.errors) - set(self.geometry.names) - set(SQUARENESS)
         if unknown:
             raise InputError(f"location errors {sorted(unknown)} are not those of a "
                              f"{self.geometry.tilt}/C machine: {', '.join(self.geometry.names)}")
@@ -98,21 +100,46 @@ class FiveAxisMachine:
         """Position-dependent errors of both axes at the poses (``None`` for a perfect axis)."""
         return _motion(self.tilt_axis, tilt_angle, rng), _motion(self.c_axis, c_angle, rng)
 
-    def to_machine(self, tilt_angle, c_angle, points, rng: np.random.Generator | None = None):
-        """True machine-frame position (m) of table points at commanded angles (rad)."""
+    def to_machine(self, tilt_angle, c_angle, points, rng: np.random.Generator | None = None,
+                   readings: bool = True):
+        """The linear axes' readings (m) that put the tool on table points at commanded angles
+        (rad); with ``readings`` False, where those points truly are (m, orthogonal machine
+        frame: the two differ by the linear axes' squareness,
+        :func:`~axiscal.physics.rotary_location.squareness_matrix`)."""
         self.check_pose(tilt_angle, c_angle)
         mt, mc = self.motions(tilt_angle, c_angle, rng)
-        return table_to_machine(self.geometry, self.errors, tilt_angle, c_angle, points, mt, mc)
+        p = table_to_machine(self.geometry, self.errors, tilt_angle, c_angle, points, mt, mc)
+        return self.readings(p) if readings else p
 
     def to_table(self, tilt_angle, c_angle, points, rng: np.random.Generator | None = None):
-        """True table-frame position (m) of machine points at commanded angles (rad)."""
+        """True table-frame position (m) of the tool at readings ``points`` of the linear axes
+        (m) and commanded angles (rad)."""
         self.check_pose(tilt_angle, c_angle)
         mt, mc = self.motions(tilt_angle, c_angle, rng)
-        return machine_to_table(self.geometry, self.errors, tilt_angle, c_angle, points, mt, mc)
+        return machine_to_table(self.geometry, self.errors, tilt_angle, c_angle,
+                                self.positions(points), mt, mc)
+
+    def readings(self, points) -> np.ndarray:
+        """The linear axes' readings (m) with the tool at true positions ``points`` (m)."""
+        return true_to_linear(points, self.errors) if self._square else \
+            np.atleast_2d(np.asarray(points, float))
+
+    def positions(self, points) -> np.ndarray:
+        """Where the tool truly is (m) at readings ``points`` of the linear axes (m)."""
+        return linear_to_true(points, self.errors) if self._square else \
+            np.atleast_2d(np.asarray(points, float))
+
+    @property
+    def _square(self) -> bool:
+        return any(self.errors.get(n, 0.0) for n in SQUARENESS)
 
     def truth_display(self) -> dict[str, float]:
-        """The true location errors in µm and µrad, every one of the ten named."""
-        return {n: round(float(self.errors.get(n, 0.0)) * 1e6, 9) for n in self.geometry.names}
+        """The true location errors in µm and µrad, every one of the ten named, and the linear
+        axes' squareness errors (µrad) where the twin has them."""
+        out = {n: round(float(self.errors.get(n, 0.0)) * 1e6, 9) for n in self.geometry.names}
+        out.update({n: round(float(self.errors[n]) * 1e6, 9) for n in SQUARENESS
+                    if n in self.errors})
+        return out
 
 
 def _motion(axis: RotaryAxis, theta, rng) -> AxisMotion | None:
@@ -214,7 +241,7 @@ def _pair_mm(m: dict, key: str) -> tuple[float, float]:
 
 def _location_errors(cfg: dict, geometry: Geometry) -> dict[str, float]:
     t = cfg.get("location_errors", {})
-    refuse_unknown_keys("[location_errors]", t, set(geometry.names))
+    refuse_unknown_keys("[location_errors]", t, set(geometry.names) | set(SQUARENESS))
     out = {}
     for name, v in t.items():
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \

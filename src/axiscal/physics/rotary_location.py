@@ -77,7 +77,8 @@ import numpy as np
 from axiscal.errors import InputError
 
 __all__ = ["KINDS", "TABLE_TABLE", "HEAD_TABLE", "TILT_AXES", "parameter_names", "Geometry", "AxisMotion", "table_to_machine",
-           "machine_to_table", "rotate_about_line", "is_angle", "transform_many"]
+           "machine_to_table", "rotate_about_line", "is_angle", "transform_many", "SQUARENESS",
+           "squareness_matrix", "linear_to_true", "true_to_linear"]
 
 TABLE_TABLE = "table-table"
 HEAD_TABLE = "head-table"
@@ -110,6 +111,36 @@ def parameter_names(tilt: str) -> tuple[str, ...]:
     else:
         raise InputError(f"tilting axis {tilt!r}: a table-table machine tilts about A or B")
     return head + ("E_X0C", "E_Y0C", "E_A0C", "E_B0C", "E_C0C")
+
+
+#: The squareness errors of the linear axes (ISO 230-1:2012 names): Y to X (about Z), Z to X
+#: (about Y), Z to Y (about X).
+SQUARENESS = ("E_C(0X)Y", "E_B(0X)Z", "E_A(0Y)Z")
+
+
+def squareness_matrix(errors) -> np.ndarray:
+    """``I + S``: where the tool is (machine frame, orthogonal) for unit readings of X, Y, Z.
+
+    The reading chosen (ISO 230-1:2012 names the errors; the reference is the machine builder's):
+    X is the reference line, Y lies in the XY plane; each error is the right-handed rotation of
+    the later axis's line about the named axis, small (first order): the Y axis moves along
+    ``(−E_C(0X)Y, 1, 0)`` and the Z axis along ``(E_B(0X)Z, −E_A(0Y)Z, 1)``.
+    """
+    e = errors or {}
+    c, b, a = (float(e.get(n, 0.0)) for n in SQUARENESS)
+    return np.array([[1.0, -c, b], [0.0, 1.0, -a], [0.0, 0.0, 1.0]])
+
+
+def linear_to_true(points, errors) -> np.ndarray:
+    """Where the tool is (m) for readings of the linear axes ``points`` (N, 3), m."""
+    return np.atleast_2d(np.asarray(points, float)) @ squareness_matrix(errors).T
+
+
+def true_to_linear(points, errors) -> np.ndarray:
+    """The linear axes' readings (m) that put the tool at ``points`` (N, 3), m: the exact
+    inverse of :func:`linear_to_true`."""
+    m = squareness_matrix(errors)
+    return np.linalg.solve(m, np.atleast_2d(np.asarray(points, float)).T).T
 
 
 def is_angle(name: str) -> bool:

@@ -23,7 +23,7 @@ __all__ = ["FIGURES", "kind_figure", "notebook_html", "positioning_evaluation",
 ISO230_2 = "iso230-2:2014"
 #: The standard of each kind of test file (:func:`axiscal.store.kinds.detect_kind`).
 KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "iso230-4",
-                 "diagonal": "iso230-6", "motion": "iso230-7"}
+                 "diagonal": "iso230-6", "motion": "iso230-7", "fiveaxis": "iso230-7:location"}
 
 
 #: The title of the report of each kind of test other than positioning.

@@ -36,6 +36,15 @@ calibration input of an instrument that acts on all readings of a set-up at once
 of the readings per unit of input k times its standard uncertainty): the probe's stylus offset
 and length (x, y, z; fully correlated with E_Z0A, E_X0C and E_Y0C, calibrated separately) and
 the R-test's sensor gains. Expanded uncertainty U = k·u with k = 2.
+
+Squareness of the linear axes (``squareness=True``)
+---------------------------------------------------
+The three squareness errors of X, Y, Z (ISO 230-1:2012 names E_C(0X)Y, E_B(0X)Z, E_A(0Y)Z;
+:func:`~axiscal.physics.rotary_location.squareness_matrix`) may be added to the unknowns: the
+linear axes' readings of a probed centre are ``(I + S)⁻¹`` of where it is, and an R-test's tool
+is at ``(I + S)`` of its commanded readings. A rotary axis turning the sphere traces circles in
+the XY, YZ and XZ planes, which a squareness makes elliptical and no location error does, so the
+shipped plans separate them (rank 20 of 20, condition 7.6 for the A/C example).
 """
 
 from __future__ import annotations
@@ -45,8 +54,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import InputError
-from axiscal.physics.rotary_location import (Geometry, is_angle, machine_to_table,
-                                              table_to_machine, transform_many)
+from axiscal.physics.rotary_location import (SQUARENESS, Geometry, is_angle, machine_to_table,
+                                              squareness_matrix, table_to_machine,
+                                              transform_many)
 from axiscal.standards.location_budget import systematic_inputs
 
 __all__ = ["SetUp", "PlanCheck", "LocationError", "Unidentified", "LocationIdentification",
@@ -330,7 +340,7 @@ def conventions(tilt: str, head: bool = False) -> str:
             "ISO 841)")
 
 
-def check_plan(geometry: Geometry, setups) -> PlanCheck:
+def check_plan(geometry: Geometry, setups, squareness: bool = False) -> PlanCheck:
     """Rank, condition and the unseen location errors of planned set-ups, before measuring.
 
     Parameters
@@ -338,6 +348,8 @@ def check_plan(geometry: Geometry, setups) -> PlanCheck:
     geometry : Geometry
     setups : sequence of SetUp
         Their ``nominal`` places and angles are used; values are not needed.
+    squareness : bool
+        Also the linear axes' three squareness errors (module docstring).
 
     Returns
     -------
@@ -345,13 +357,14 @@ def check_plan(geometry: Geometry, setups) -> PlanCheck:
     """
     setups = _checked(setups)
     places = [np.asarray(s.nominal, float) for s in setups]
-    theta = np.zeros(10)
-    J = _jacobian(geometry, setups, theta, places, _nominal_commands(geometry, setups))[0]
-    return _plan(geometry, setups, J * _weights(setups)[:, None])[0]
+    names = _names(geometry, squareness)
+    theta = np.zeros(len(names))
+    J = _jacobian(geometry, setups, theta, places, _nominal_commands(geometry, setups), names)[0]
+    return _plan(geometry, setups, J * _weights(setups)[:, None], names)[0]
 
 
-def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
-                             ) -> LocationIdentification:
+def identify_location_errors(geometry: Geometry, setups, iterations: int = 4,
+                             squareness: bool = False) -> LocationIdentification:
     """Identify the location errors from measured set-ups (module docstring).
 
     Parameters
@@ -362,6 +375,8 @@ def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
         Each with ``values`` (and for an R-test ``commanded``).
     iterations : int
         Gauss–Newton iterations.
+    squareness : bool
+        Also the linear axes' three squareness errors (module docstring).
 
     Returns
     -------
@@ -379,18 +394,20 @@ def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
     commands = [s.commanded for s in setups]
     w = _weights(setups)
     y = np.concatenate([s.values.ravel() for s in setups])
-    theta = np.zeros(10)
+    names = _names(geometry, squareness)
+    n = len(names)
+    theta = np.zeros(n)
     places = _start_places(geometry, setups)
-    J, f = _jacobian(geometry, setups, theta, places, commands)
-    plan, free = _plan(geometry, setups, J * w[:, None])
+    J, f = _jacobian(geometry, setups, theta, places, commands, names)
+    plan, free = _plan(geometry, setups, J * w[:, None], names)
     for _ in range(iterations):
         Jw = J[:, free] * w[:, None]
         step = np.linalg.lstsq(Jw, (y - f) * w, rcond=None)[0]
         full = np.zeros(J.shape[1])
         full[free] = step
-        theta = theta + full[:10]
-        places = [p + full[10 + 3 * i:13 + 3 * i] for i, p in enumerate(places)]
-        J, f = _jacobian(geometry, setups, theta, places, commands)
+        theta = theta + full[:n]
+        places = [p + full[n + 3 * i:n + 3 + 3 * i] for i, p in enumerate(places)]
+        J, f = _jacobian(geometry, setups, theta, places, commands, names)
         if np.abs(step).max() < 1e-12:
             break
     r = y - f
@@ -412,8 +429,7 @@ def identify_location_errors(geometry: Geometry, setups, iterations: int = 4
         d = K @ g
         cov += np.outer(d, d)
         contributions[name] = np.abs(d)
-    names = geometry.names
-    loc = [i for i in free if i < 10]
+    loc = [i for i in free if i < n]
     idx = [free.index(i) for i in loc]
     sd = np.sqrt(np.diag(cov))[idx]
     corr = cov[np.ix_(idx, idx)] / np.outer(sd, sd)
@@ -462,11 +478,17 @@ def _start_places(geometry, setups):
     return out
 
 
-def _jacobian(geometry, setups, theta, places, commands):
-    """Model values ``f`` and their derivatives ``J`` by the ten location errors and the
-    set-ups' places (central differences of the exact kinematics, all in one vectorised pass
-    per set-up)."""
-    names = geometry.names
+def _names(geometry: Geometry, squareness: bool) -> tuple[str, ...]:
+    """The fit's parameters: the ten location errors, then (``squareness``) the linear axes'."""
+    return geometry.names + (SQUARENESS if squareness else ())
+
+
+def _jacobian(geometry, setups, theta, places, commands, names=None):
+    """Model values ``f`` and their derivatives ``J`` by the parameters ``names`` (the ten
+    location errors, and the three squareness errors where named) and the set-ups' places
+    (central differences of the exact kinematics, all in one vectorised pass per set-up)."""
+    names = geometry.names if names is None else names
+    n = len(names)
     base = dict(zip(names, theta))
     sets = [base]
     for name in names:
@@ -477,21 +499,27 @@ def _jacobian(geometry, setups, theta, places, commands):
     sets += [base] * 6
     shifts = np.zeros((len(sets), 1, 3))
     for j in range(3):
-        shifts[21 + 2 * j, 0, j], shifts[22 + 2 * j, 0, j] = _H, -_H
+        shifts[1 + 2 * n + 2 * j, 0, j], shifts[2 + 2 * n + 2 * j, 0, j] = _H, -_H
+    square = n > 10
+    if square:
+        M = np.array([squareness_matrix(e) for e in sets])          # (sets, 3, 3)
     rows, fs = [], []
-    ncol = 10 + 3 * len(setups)
+    ncol = n + 3 * len(setups)
     for k, (s, place, cmd) in enumerate(zip(setups, places, commands)):
         if s.kind == PROBING:
             v = transform_many(geometry, sets, s.tilt_angle, s.c_angle, place + shifts)
+            if square:                       # the readings of where the centre is
+                v = np.linalg.solve(M, np.swapaxes(v, 1, 2)).swapaxes(1, 2)
         else:
-            v = transform_many(geometry, sets, s.tilt_angle, s.c_angle, cmd, inverse=True)
+            pts = np.einsum("kij,nj->kni", M, cmd) if square else cmd
+            v = transform_many(geometry, sets, s.tilt_angle, s.c_angle, pts, inverse=True)
             v = v - (place + shifts)
         v = v.reshape(len(sets), -1)
         fs.append(v[0])
-        d = (v[1::2][:13] - v[2::2][:13]) / (2 * _H)     # 10 errors, then the 3 place shifts
+        d = (v[1::2][:n + 3] - v[2::2][:n + 3]) / (2 * _H)   # the parameters, then the place
         block = np.zeros((v.shape[1], ncol))
-        block[:, :10] = d[:10].T
-        block[:, 10 + 3 * k:13 + 3 * k] = d[10:13].T
+        block[:, :n] = d[:n].T
+        block[:, n + 3 * k:n + 3 + 3 * k] = d[n:n + 3].T
         rows.append(block)
     return np.vstack(rows), np.concatenate(fs)
 
@@ -510,9 +538,11 @@ def _label(name: str, tilt: str, head: bool = False) -> str:
     return f"{zero}+E_{tilt}0C" if name == zero and not head else name
 
 
-def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
+def _plan(geometry, setups, Jw, names=None) -> tuple[PlanCheck, list[int]]:
     """Equilibrated SVD of the weighted sensitivity matrix: rank, condition, the unseen."""
     tilt, head = geometry.tilt, geometry.head
+    names = geometry.names if names is None else names
+    n = len(names)
     cols = [i for i in range(Jw.shape[1]) if i not in _fixed(tilt, head)]
     unseen: list[int] = []
     for _ in range(10):
@@ -520,7 +550,7 @@ def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
         norms = np.linalg.norm(A, axis=0)
         dead = [c for c, n in zip(cols, norms) if n == 0.0]
         if dead:
-            unseen += [c for c in dead if c < 10]
+            unseen += [c for c in dead if c < n]
             cols = [c for c in cols if c not in dead]
             continue
         _, sv, vt = np.linalg.svd(A / norms, full_matrices=False)
@@ -530,7 +560,7 @@ def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
         if null.shape[0] == 0:
             break
         weight = np.linalg.norm(null, axis=0)
-        loc = [(weight[j], c) for j, c in enumerate(cols) if c < 10 and weight[j] > _SEEN]
+        loc = [(weight[j], c) for j, c in enumerate(cols) if c < n and weight[j] > _SEEN]
         if not loc:
             break
         worst = max(loc)[1]
@@ -540,7 +570,6 @@ def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
     sv = np.linalg.svd(A / np.linalg.norm(A, axis=0), compute_uv=False)
     rank = int((sv > _NULL * sv[0]).sum()) if len(sv) else 0
     cond = float(sv[0] / sv[-1]) if len(sv) and sv[-1] > 0 else float("inf")
-    names = geometry.names
     fixed = [Unidentified(names[9], "a sphere or nest of unknown place on the table sees no C "
                           "zero; set by the convention E_C0C := 0 (the C zero is the set-up's); "
                           "measure it against a datum on the table at a known angle")]
@@ -555,7 +584,7 @@ def _plan(geometry, setups, Jw) -> tuple[PlanCheck, list[int]]:
     plan = PlanCheck(tilt=tilt, head=head, poses=sum(s.poses for s in setups), observations=Jw.shape[0],
                      rank=rank, columns=len(cols) + len(unseen),
                      condition=cond,
-                     identifiable=tuple(_label(names[c], tilt, head) for c in cols if c < 10),
+                     identifiable=tuple(_label(names[c], tilt, head) for c in cols if c < n),
                      unidentified=tuple(out + fixed))
     return plan, cols
 
@@ -568,6 +597,9 @@ def _complement(vt, n):
 
 def _hint(name: str, tilt: str) -> str:
     """Why no planned pose sees ``name`` and the test that would."""
+    if name in SQUARENESS:
+        return ("no planned pose moves the sphere along both linear axes of this squareness; "
+                "probe it at several C and tilt angles so that it traces circles in that plane")
     if name == f"E_{tilt}0{tilt}":
         return (f"seen as the tilt of the C line about {tilt}: probe at three or more C angles, "
                 f"or at two or more {tilt} angles besides 0")

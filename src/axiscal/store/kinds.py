@@ -4,7 +4,10 @@ A file is recognised by its content (or given a kind): a positioning test (tidy 
 JSON or EPICS ecmc; ISO 230-2:2014, linear or rotary, which includes a rotary calibration's
 result), a straightness trajectory (ISO 230-1), a ballbar circular test (the full diagnosis
 with its ISO 230-4 figures, :func:`evaluate_ballbar`), a multi-point diagonal test of squareness
-(ISO 230-6), and five motion errors of a rotary axis (ISO 230-7). :func:`evaluate_file` returns
+(ISO 230-6), five motion errors of a rotary axis (ISO 230-7), and a five-axis kinematics test
+(a sphere probed at many rotary poses or an R-test, with the machine's nominal geometry in the
+file: the location errors of ISO 230-1 / ISO 230-7 Clause 3 identified from it,
+:func:`axiscal.api.fiveaxis.identify`'s one call). :func:`evaluate_file` returns
 what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
 metadata the file declares. Evaluating the same bytes again gives the same numbers, which is how
 a stored test is shown again; and they are the numbers of the command a user runs on the file
@@ -27,13 +30,13 @@ from axiscal.errors import DataFormatError, InputError
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
            "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
            "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE",
-           "drift_check_record", "with_drift_check"]
+           "drift_check_record", "with_drift_check", "IdentificationBudget"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
 
-KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion")
+KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis")
 
 
 @dataclass
@@ -172,6 +175,8 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         from axiscal.standards.iso230_9_geometry import diagonal_budget
 
         return diagonal_budget(evaluation, inputs)
+    if kind == "fiveaxis":
+        return IdentificationBudget(evaluation)
     return None
 
 
@@ -199,11 +204,14 @@ def detect_kind(text: str) -> str:
             return "diagonal"
         if {"run", "angle_deg"} <= head:
             return "motion"
+        if "pose" in head and "c_deg" in head:
+            return "fiveaxis"
         if {"position", "deviation"} <= head:
             return "straightness"
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
-                          "straightness, ballbar, diagonal or five-error CSV, or axiscal JSON")
+                          "straightness, ballbar, diagonal, five-error, five-axis probing or "
+                          "R-test CSV, or axiscal JSON")
 
 
 def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluated:
@@ -403,8 +411,67 @@ def _motion(text: str, filename: str) -> Evaluated:
     return Evaluated("motion", "rotary", jsonable(res), params, dataset=d, evaluation=r)
 
 
+@dataclass(frozen=True)
+class IdentificationBudget:
+    """The uncertainty of a five-axis identification in the shape the quantities read
+    (:func:`~axiscal.standards.quantities.make_quantities`): ``U(name)`` in µm or µrad, ``k``,
+    ``to_json()``: each error's standard uncertainty by input (JCGM 100:2008 5.1.3: the
+    residual, the probe's offset, the R-test's gains and directions) as the identification
+    gives it (:attr:`~axiscal.standards.location_errors.LocationError.components`)."""
+
+    result: object
+    method: str = "least squares, JCGM 100:2008 5.1.3"
+
+    @property
+    def k(self) -> float:
+        return self.result.errors[0].k if self.result.errors else 2.0
+
+    def U(self, name: str) -> float | None:
+        return next((e.U_display for e in self.result.errors if e.name == name), None)
+
+    def U_text(self, name: str) -> str:
+        U = self.U(name)
+        return "—" if U is None else f"{U:.3f}"
+
+    def to_json(self) -> dict:
+        return {"method": self.method, "k": self.k,
+                "u_components": {e.name: {k: v * 1e6 for k, v in e.components.items()}
+                                 for e in self.result.errors}}
+
+
+def _fiveaxis(text: str, filename: str) -> Evaluated:
+    """A probing or R-test CSV that states its machine's nominal geometry (``#
+    tilt_position_mm``, ``# c_position_mm``): the location errors by
+    :func:`~axiscal.standards.location_errors.identify_location_errors`, as ``axiscal fiveaxis
+    identify`` gives them with that geometry (the axes' travel is not in the file and not
+    checked here)."""
+    from axiscal.io.five_axis import parse_five_axis, parse_five_axis_geometry
+    from axiscal.standards.location_errors import identify_location_errors
+
+    geometry = parse_five_axis_geometry(text, filename)
+    if geometry is None:
+        raise DataFormatError("a five-axis test kept in the history states its machine's "
+                              "nominal geometry: add '# tilt_position_mm = ..' and '# "
+                              "c_position_mm = ..' (mm) before the header", filename)
+    rec = parse_five_axis(text, source=filename)
+    try:
+        r = identify_location_errors(geometry, [rec.setup()])
+    except InputError as exc:
+        raise InputError(f"{filename}: {exc}") from None
+    params = {e.name: (e.value_display, "urad" if e.unit == "µrad" else "um")
+              for e in r.errors}
+    params["residual_rms"] = (r.residual_rms * 1e6, "um")
+    res = {**r.to_dict(), "tilt_axis": geometry.tilt, "kind_of_test": rec.kind,
+           "label": rec.label, "convention": r.plan.convention,
+           "tilt_position_mm": [v * 1e3 for v in geometry.tilt_position],
+           "c_position_mm": [v * 1e3 for v in geometry.c_position]}
+    return Evaluated("fiveaxis", "rotary", jsonable(res), params, axis=f"{geometry.tilt}C",
+                     instrument="touch probe" if rec.kind == "probing" else "R-test",
+                     dataset=rec, evaluation=r)
+
+
 _EVALUATORS = {"iso230-2": _positioning, "straightness": _straightness, "ballbar": _ballbar,
-               "diagonal": _diagonal, "motion": _motion}
+               "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis}
 
 
 def result_text(ev: Evaluated) -> str:

@@ -32,6 +32,10 @@ def kind_view(ev) -> dict | None:
     """The page's view of an evaluated test (None for ISO 230-2, which has its own page):
     ``figure`` (a ``data:`` URI), ``alt``, ``tables`` (caption, id, headers, rows of text),
     ``statements`` and ``warnings`` (lines of text) and ``source`` (the standard and clause)."""
+    if ev.kind == "fiveaxis":              # its own module (issue 43)
+        from axiscal.web.five_axis_page import five_axis_view
+
+        return five_axis_view(ev, _figure, fmt)
     view = _VIEWS.get(ev.kind)
     return None if view is None else view(ev)
 

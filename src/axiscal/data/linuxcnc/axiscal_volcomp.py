@@ -84,19 +84,27 @@ class CorrectionMap:
 
 
 def main(argv):
-    import hal
-
     with open(argv[1]) as f:
         m = CorrectionMap(json.load(f))
-    c = hal.component("axiscal-volcomp")
-    for a in AXES:
+    run(make_component("axiscal-volcomp", AXES), m, AXES)
+
+
+def make_component(name, inputs):
+    """The component ``name``: an ``L-pos-cmd`` input for each axis letter of ``inputs``, and
+    for X, Y, Z the ``L-request`` input and ``L-counts`` output; ``scale``, ``arm``, ``enable``
+    and ``cycles`` (evaluations so far, so a reader can wait); ready, enabled."""
+    import hal
+
+    c = hal.component(name)
+    for a in inputs:
         c.newpin(f"{a}-pos-cmd", hal.HAL_FLOAT, hal.HAL_IN)
+    for a in AXES:
         c.newpin(f"{a}-request", hal.HAL_FLOAT, hal.HAL_IN)   # axis.L.eoffset-request
         c.newpin(f"{a}-counts", hal.HAL_S32, hal.HAL_OUT)
     c.newpin("scale", hal.HAL_FLOAT, hal.HAL_IN)
     c.newpin("arm", hal.HAL_BIT, hal.HAL_IN)        # motion.coord-mode (or teleop): applied
     c.newpin("enable", hal.HAL_BIT, hal.HAL_OUT)
-    c.newpin("cycles", hal.HAL_U32, hal.HAL_OUT)     # evaluations so far (a reader can wait)
+    c.newpin("cycles", hal.HAL_U32, hal.HAL_OUT)
 
     def stop(*_):
         raise KeyboardInterrupt
@@ -104,14 +112,15 @@ def main(argv):
     signal.signal(signal.SIGTERM, stop)
     c.ready()
     c["enable"] = 1
-    run(c, m)
+    return c
 
 
-def run(c, m):
+def run(c, m, inputs=AXES):
     """The loop: LinuxCNC applies changes of eoffset-counts (times the scale) only while the
     offsets are active (coordinated or teleop mode, machine on), like jog counts; so at each
     arming the base is taken from the offset already requested, and the counts then make the
-    request equal the correction."""
+    request equal the correction. ``m.correction`` takes the commanded positions of the axes
+    ``inputs`` names, in that order."""
     n, armed, base = 0, False, [0, 0, 0]
     try:
         while True:
@@ -120,7 +129,7 @@ def run(c, m):
                 if not armed:
                     base = [c[f"{a}-counts"] - int(round(c[f"{a}-request"] / s)) for a in AXES]
                     armed = True
-                corr = m.correction([c[f"{a}-pos-cmd"] for a in AXES])
+                corr = m.correction([c[f"{a}-pos-cmd"] for a in inputs])
                 for a, b, v in zip(AXES, base, corr):
                     c[f"{a}-counts"] = b + int(round(v / s))
             else:
