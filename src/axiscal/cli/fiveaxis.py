@@ -193,8 +193,9 @@ def compensate(
                                        "after."),
     as_json: bool = _JSON,
 ):
-    """The correction as LinuxCNC trt kinematics pins, HOME_OFFSET and external offsets, and as
-    SINUMERIK 840D swivel data ($TC_CARR), with their sign conventions.
+    """The correction as LinuxCNC trt pins, HOME_OFFSET, external offsets and SINUMERIK $TC_CARR.
+
+    The sign conventions of each are printed with the values.
 
     Example: axiscal fiveaxis compensate run/*.csv --out trt.hal --verify --on-controller
     """

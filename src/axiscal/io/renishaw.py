@@ -119,6 +119,7 @@ import numpy as np
 from axiscal import units
 from axiscal._parse import finite_number, strict_int
 from axiscal.datasets import AxisKind, Environment, Metadata, PositioningDataset
+from axiscal.io.rta_unit import RTA_CONVERTED, file_unit_block  # noqa: F401  (kept here too)
 from axiscal.errors import AxiscalError, DataFormatError, InputError
 from axiscal.io.detect import looks_like_renishaw
 
@@ -140,27 +141,6 @@ NO_SENSOR = -10.0
 _SECTION = re.compile(r"^([A-Z][A-Z0-9 \-]*)::$")
 _REQUIRED = ("HEADER", "TARGET DATA", "RUNS", "DEVIATIONS")
 _TARGETS_PER_LINE = 5
-
-
-#: The note of a ``.rta`` read in arcsec: its results' ``--json`` also gives them in the file's
-#: µrad (:func:`file_unit_block`).
-RTA_CONVERTED = ("deviations converted from the file's µrad to arcsec, the unit of every rotary "
-                 "result in axiscal (read with deviation_unit=urad for the file's own numbers)")
-
-
-def file_unit_block(notes: str, parameters: dict) -> dict | None:
-    """The ISO 230-2 parameters in the ``.rta`` file's own unit, µrad, for ``--json`` beside the
-    arcsec shown (``parameters`` in arcsec); None for a dataset not read from a ``.rta`` in
-    arcsec (``notes``: the dataset's, which say :data:`RTA_CONVERTED`).
-
-    1″ = π/648000 rad = 4.8481 µrad (ISO 80000-3 angle units; Read Laser Plot's 0.2063 ″/µrad
-    is its inverse).
-    """
-    if RTA_CONVERTED not in (notes or ""):
-        return None
-    k = units.convert(1.0, "arcsec", "urad")
-    return {"deviation_unit": "urad", "source": "the .rta file's unit",
-            "parameters": {n: None if v is None else v * k for n, v in parameters.items()}}
 
 
 #: Windows code pages a Renishaw export may be written in (``encoding=``); 1252 by default.

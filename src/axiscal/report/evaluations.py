@@ -217,8 +217,8 @@ def positioning_evaluation(ds: Any, key: str, tolerances: dict, rule: str | None
 
 def _in_file_unit(ds: Any, results: Any) -> dict | None:
     """Each standard's parameters in the deviation unit, in a ``.rta`` file's own µrad
-    (:func:`axiscal.io.renishaw.file_unit_block`); None for any other dataset."""
-    from axiscal.io.renishaw import file_unit_block
+    (:func:`axiscal.io.rta_unit.file_unit_block`); None for any other dataset."""
+    from axiscal.io.rta_unit import file_unit_block
 
     blocks = {std.key: file_unit_block(ds.metadata.notes, {
         name: v for name, (v, u, _) in res.parameters().items() if u == ds.deviation_unit})
@@ -341,7 +341,7 @@ def record_fields(record: Any, **extra: Any) -> dict:
         ds = record.dataset
         d = {**result_json(record.evaluation, record.verdicts, record.budget),
              "machine": ds.metadata.machine, "axis": ds.metadata.axis, "notes": ds.metadata.notes}
-        from axiscal.io.renishaw import file_unit_block
+        from axiscal.io.rta_unit import file_unit_block
 
         block = file_unit_block(ds.metadata.notes, record.evaluation.parameters())
         if block is not None:       # a .rta: shown in arcsec, the file's µrad kept (issue 42)
