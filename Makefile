@@ -68,8 +68,10 @@ $(DEMO_STAMP): pyproject.toml | demodeps
 demo: $(DEMO_STAMP)
 	$(VENV)/bin/axiscal demo --out $(OUT)
 
+# Three workers on the two cores: the LinuxCNC tests run on one of them (conftest.py), mostly
+# waiting for LinuxCNC's servo thread; the other two compute the rest.
 test: $(STAMP) sysdeps linuxcnc
-	$(PY) -m pytest -n 2 --dist loadgroup -q
+	$(PY) -m pytest -n 3 --dist loadgroup -q
 
 bench: $(STAMP) sysdeps
 	$(PY) benchmarks/run.py
