@@ -210,10 +210,10 @@ def detect_kind(text: str) -> str:
             return "motion"
         if "pose" in head and "c_deg" in head:
             return "fiveaxis"
-        if s.split(",")[0].strip().lower() == "time_s" and "reading" not in head:
-            return "thermal"        # an ISO 230-3 log (a drift check is time_s,reading)
         if {"position", "deviation"} <= head:
             return "straightness"
+        if s.split(",")[0].strip().lower() == "time_s" and "reading" not in head:
+            return "thermal"        # an ISO 230-3 log (a drift check is time_s,reading)
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
                           "straightness, ballbar, diagonal, five-error, five-axis probing, "
