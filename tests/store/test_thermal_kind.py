@@ -5,8 +5,8 @@ History.evaluation, a workbench upload and its page); ``history show --report`` 
 ``thermal evaluate --report``'s report; a damaged log (a gap, time going backwards) is refused
 by ``history add`` with one line, exit 2, and nothing stored.
 
-The logs are the thermal twin's (``thermal simulate``, 5-minute samples: the shortest interval
-the twin's tests allow keeps the test fast); the figures' reference is the command itself."""
+The logs are the thermal twin's (``thermal simulate``, 5-minute samples: the longest interval
+a log may have, which keeps the test fast); the figures' reference is the command itself."""
 
 from __future__ import annotations
 
