@@ -32,7 +32,8 @@ REPORT_TITLES = {"straightness": "Straightness (ISO 230-1)",
                  "diagonal": "Diagonal squareness (ISO 230-6)",
                  "motion": "Error motions of a rotary axis (ISO 230-7)",
                  "ballbar": "Circular test (ISO 230-4)",
-                 "thermal": "Thermal effects (ISO 230-3)"}
+                 "thermal": "Thermal effects (ISO 230-3)",
+                 "fiveaxis": "Five-axis location errors (ISO 230-1 / ISO 230-7)"}
 
 
 def kind_of_file(path: Any) -> str:
@@ -451,6 +452,17 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
         from axiscal.report.thermal_plots import thermal_report
 
         rep = thermal_report(ev.dataset, ev.result)
+        if title is not None:
+            rep.title = title
+        return rep.write(path)
+    if ev.kind == "fiveaxis":       # ``axiscal fiveaxis identify --report``'s report
+        from axiscal.physics.rotary_location import Geometry
+        from axiscal.report.five_axis_plots import location_report
+
+        d = ev._json                # the stored record states the nominal geometry it used
+        geometry = Geometry(d["tilt_axis"], tuple(v * 1e-3 for v in d["tilt_position_mm"]),
+                            tuple(v * 1e-3 for v in d["c_position_mm"]))
+        rep = location_report(geometry, ev.result, name=ev.dataset.label or "five-axis test")
         if title is not None:
             rep.title = title
         return rep.write(path)
