@@ -95,3 +95,26 @@ def test_the_workbench_page_shows_the_errors_in_iso_names_with_u(files, tmp_path
         assert f"{e['U']:.3f}" in table
     assert "E_C0C" in page.split('<table id="unidentified">')[1].split("</table>")[0]
     assert 'id="kind-figure" src="data:image/svg+xml;base64,' in page
+
+
+def test_its_report_from_the_history_is_the_identifications(files, tmp_path):
+    """``history show ID --report`` (the workbench's Report link, :meth:`History.report`) of a
+    five-axis test writes ``fiveaxis identify --report``'s report of the same file (its values
+    with U), titled with the names the history keeps; it raised KeyError before."""
+    path = files[1]
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    store = open_store(url)
+    try:
+        added = store.add(path.read_bytes(), path.name, machine="5AX", axis="AC")
+    finally:
+        store.close()
+    r = runner.invoke(cli_app, ["history", "show", str(added.id), "--db", url, "--report",
+                                str(tmp_path / "h.html")])
+    assert r.exit_code == 0, r.output
+    r = runner.invoke(cli_app, ["fiveaxis", "identify", str(path), "--report",
+                                str(tmp_path / "c.html")])
+    assert r.exit_code == 0, r.output
+    stored, cli = ((tmp_path / n).read_text("utf-8") for n in ("h.html", "c.html"))
+    assert "Five-axis location errors (ISO 230-1 / ISO 230-7) — 5AX axis AC" in stored
+    rows = re.compile(r"<tr><td>(E<sub>[A-Z0-9]+</sub>[^<]*)</td><td>([^<]+)</td><td>([^<]+)</td>")
+    assert rows.findall(stored) and rows.findall(stored) == rows.findall(cli)

@@ -23,14 +23,17 @@ __all__ = ["FIGURES", "kind_figure", "notebook_html", "positioning_evaluation",
 ISO230_2 = "iso230-2:2014"
 #: The standard of each kind of test file (:func:`axiscal.store.kinds.detect_kind`).
 KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "iso230-4",
-                 "diagonal": "iso230-6", "motion": "iso230-7", "fiveaxis": "iso230-7:location"}
+                 "diagonal": "iso230-6", "motion": "iso230-7", "fiveaxis": "iso230-7:location",
+                 "thermal": "iso230-3"}
 
 
 #: The title of the report of each kind of test other than positioning.
 REPORT_TITLES = {"straightness": "Straightness (ISO 230-1)",
                  "diagonal": "Diagonal squareness (ISO 230-6)",
                  "motion": "Error motions of a rotary axis (ISO 230-7)",
-                 "ballbar": "Circular test (ISO 230-4)"}
+                 "ballbar": "Circular test (ISO 230-4)",
+                 "thermal": "Thermal effects (ISO 230-3)",
+                 "fiveaxis": "Five-axis location errors (ISO 230-1 / ISO 230-7)"}
 
 
 def kind_of_file(path: Any) -> str:
@@ -99,15 +102,23 @@ def _motion_figure(data: Any, r: Any) -> Any:
 
 
 #: The figure of each kind other than a positioning test: the one its command's --plot draws.
+def _thermal_figure(log: Any, r: Any) -> Any:
+    """``axiscal thermal evaluate --plot``'s figure: drifts and temperatures over time."""
+    from axiscal.report.thermal_plots import plot_thermal
+
+    return plot_thermal(log)
+
+
 FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
-           "diagonal": _diagonal_figure, "motion": _motion_figure}
+           "diagonal": _diagonal_figure, "motion": _motion_figure, "thermal": _thermal_figure}
 
 
 #: A kind of test in words, as the reports head it.
 KIND_WORDS = {"iso230-2": "Positioning test", "positioning": "Positioning test",
               "standards": "Positioning test", "ballbar": "Ballbar test",
               "straightness": "Straightness", "diagonal": "Squareness by diagonals",
-              "motion": "Motion errors of a rotary axis"}
+              "motion": "Motion errors of a rotary axis",
+              "thermal": "Thermal test (ISO 230-3)"}
 
 
 def notebook_html(kind: str, standard: str, d: dict, fig: Any, quantities: Any = None) -> str:
@@ -437,5 +448,23 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
 
         kw = {} if title is None else {"title": title}
         return write_diagnosis_report(path, ev.dataset.runs, ev.result, **kw)
+    if ev.kind == "thermal":        # ``axiscal thermal evaluate --report``'s report
+        from axiscal.report.thermal_plots import thermal_report
+
+        rep = thermal_report(ev.dataset, ev.result)
+        if title is not None:
+            rep.title = title
+        return rep.write(path)
+    if ev.kind == "fiveaxis":       # ``axiscal fiveaxis identify --report``'s report
+        from axiscal.physics.rotary_location import Geometry
+        from axiscal.report.five_axis_plots import location_report
+
+        d = ev._json                # the stored record states the nominal geometry it used
+        geometry = Geometry(d["tilt_axis"], tuple(v * 1e-3 for v in d["tilt_position_mm"]),
+                            tuple(v * 1e-3 for v in d["c_position_mm"]))
+        rep = location_report(geometry, ev.result, name=ev.dataset.label or "five-axis test")
+        if title is not None:
+            rep.title = title
+        return rep.write(path)
     title = title or REPORT_TITLES[ev.kind]
     return write_result_report(path, title, ev._json, figure=evaluation_figure(ev))

@@ -7,7 +7,9 @@ with its ISO 230-4 figures, :func:`evaluate_ballbar`), a multi-point diagonal te
 (ISO 230-6), five motion errors of a rotary axis (ISO 230-7), and a five-axis kinematics test
 (a sphere probed at many rotary poses or an R-test, with the machine's nominal geometry in the
 file: the location errors of ISO 230-1 / ISO 230-7 Clause 3 identified from it,
-:func:`axiscal.api.fiveaxis.identify`'s one call). :func:`evaluate_file` returns
+:func:`axiscal.api.fiveaxis.identify`'s one call), and an ISO 230-3:2020 thermal test's log
+(ETVE, spindle, linear axis, rotary table: :func:`axiscal.standards.iso230_3.evaluate_thermal`,
+the call of ``axiscal thermal evaluate``). :func:`evaluate_file` returns
 what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
 metadata the file declares. Evaluating the same bytes again gives the same numbers, which is how
 a stored test is shown again; and they are the numbers of the command a user runs on the file
@@ -30,13 +32,13 @@ from axiscal.errors import DataFormatError, InputError
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
            "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
            "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE",
-           "drift_check_record", "with_drift_check", "IdentificationBudget"]
+           "drift_check_record", "with_drift_check", "IdentificationBudget", "ThermalBudget"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
 
-KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis")
+KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal")
 
 
 @dataclass
@@ -177,6 +179,8 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         return diagonal_budget(evaluation, inputs)
     if kind == "fiveaxis":
         return IdentificationBudget(evaluation)
+    if kind == "thermal":
+        return ThermalBudget(evaluation)
     return None
 
 
@@ -208,10 +212,12 @@ def detect_kind(text: str) -> str:
             return "fiveaxis"
         if {"position", "deviation"} <= head:
             return "straightness"
+        if s.split(",")[0].strip().lower() == "time_s" and "reading" not in head:
+            return "thermal"        # an ISO 230-3 log (a drift check is time_s,reading)
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
-                          "straightness, ballbar, diagonal, five-error, five-axis probing or "
-                          "R-test CSV, or axiscal JSON")
+                          "straightness, ballbar, diagonal, five-error, five-axis probing, "
+                          "R-test or ISO 230-3 thermal log CSV, or axiscal JSON")
 
 
 def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluated:
@@ -470,8 +476,56 @@ def _fiveaxis(text: str, filename: str) -> Evaluated:
                      dataset=rec, evaluation=r)
 
 
+#: The store's unit names of the ISO 230-3 figures' display units (ASCII, as the store writes).
+_THERMAL_UNITS = {"µm": "um", "µrad": "urad", "K": "K", "µm/m": "um/m", "h": "h"}
+
+
+@dataclass(frozen=True)
+class ThermalBudget:
+    """The U of an ISO 230-3 test's figures in the shape the quantities read
+    (:func:`~axiscal.standards.quantities.make_quantities`): ``U(name)`` in the figure's display
+    unit (the number of ``thermal evaluate --json``) and ``k`` = 2, as
+    :mod:`axiscal.standards.iso230_3` gives them (the sensors' noise from
+    their sample-to-sample steps; an extreme's bias added; sensor calibration not included)."""
+
+    result: object
+    method: str = ("ISO 230-3:2020 figures: reading noise from sample-to-sample steps, u = "
+                   "sqrt(2) sigma, an extreme's bias added; sensor calibration not included")
+    k: float = 2.0
+
+    def U(self, name: str) -> float | None:
+        """U of figure ``name`` as ``thermal evaluate --json`` writes it (None: no such figure)."""
+        return next((f["U"] for f in self.result.to_dict()["figures"] if f["name"] == name),
+                    None)
+
+    def U_text(self, name: str) -> str:
+        U = self.U(name)
+        return "—" if U is None else f"{U:.3f}"
+
+    def to_json(self) -> dict:
+        return {"method": self.method, "k": self.k}
+
+
+def _thermal(text: str, filename: str) -> Evaluated:
+    """An ISO 230-3:2020 thermal test's log (:mod:`axiscal.io.thermal`): its figures by
+    :func:`~axiscal.standards.iso230_3.evaluate_thermal`, the one call of ``axiscal thermal
+    evaluate``; the stored result is that command's ``--json`` object (``to_dict()``), each
+    figure a parameter in its display unit."""
+    from axiscal.io.thermal import parse_thermal_log
+    from axiscal.standards.iso230_3 import evaluate_thermal
+
+    log = parse_thermal_log(text, source=filename)
+    r = evaluate_thermal(log)
+    d = r.to_dict()
+    params = {f["name"]: (f["value"], _THERMAL_UNITS[f["unit"]]) for f in d["figures"]}
+    return Evaluated("thermal", "rotary" if log.test == "rotary" else "linear",
+                     jsonable(d), params, axis=log.axis or "",
+                     dataset=log, evaluation=r)
+
+
 _EVALUATORS = {"iso230-2": _positioning, "straightness": _straightness, "ballbar": _ballbar,
-               "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis}
+               "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis,
+               "thermal": _thermal}
 
 
 def result_text(ev: Evaluated) -> str:

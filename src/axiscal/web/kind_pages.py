@@ -15,7 +15,9 @@ write them (a share in % with one). Nothing is computed here.
   (:func:`axiscal.standards.iso230_9_geometry.diagonal_budget`, ISO/TR 230-9; the user
   configuration's ``[squareness_uncertainty]`` inputs), its contributors, its inputs and each
   assumed one in words;
-- motion: the ISO 230-7:2015 error motion values and their polar plots.
+- motion: the ISO 230-7:2015 error motion values and their polar plots;
+- fiveaxis and thermal: their own modules (:mod:`axiscal.web.five_axis_page`,
+  :mod:`axiscal.web.thermal_page`).
 """
 
 from __future__ import annotations
@@ -36,6 +38,10 @@ def kind_view(ev) -> dict | None:
         from axiscal.web.five_axis_page import five_axis_view
 
         return five_axis_view(ev, _figure, fmt)
+    if ev.kind == "thermal":               # its own module (issue 44)
+        from axiscal.web.thermal_page import thermal_view
+
+        return thermal_view(ev, _figure, fmt)
     view = _VIEWS.get(ev.kind)
     return None if view is None else view(ev)
 
