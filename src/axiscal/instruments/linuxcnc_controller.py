@@ -432,13 +432,35 @@ class LinuxCNC:
 
     # -- use -----------------------------------------------------------------------------------
     def mdi(self, line: str, timeout: float = 30.0) -> None:
-        """Run one MDI line and wait until it is done."""
-        self._cmd.mdi(line)
-        if self._cmd.wait_complete(timeout) == -1:
-            raise MeasurementError(f"LinuxCNC did not finish {line!r} within {timeout:g} s")
+        """Run one MDI line and wait until it is done.
+
+        A line LinuxCNC has not finished within ``timeout`` while its interpreter is idle again
+        was lost on the way (``wait_complete`` then waits for a command no one runs; seen as a
+        30 s timeout of a creep approach on a loaded computer, in about one ``make test`` of
+        three) and is sent once more: every line axiscal sends is absolute (G90 moves, dwells,
+        the approach subroutine), so running it twice leaves the machine where running it once
+        does. A line still running gets one more ``timeout``, and no second sending."""
+        import linuxcnc
+
+        for _ in range(2):
+            self._cmd.mdi(line)
+            if self._cmd.wait_complete(timeout) != -1:
+                break
+            self._stat.poll()
+            if self._stat.interp_state != linuxcnc.INTERP_IDLE:
+                if self._cmd.wait_complete(timeout) != -1:
+                    break
+                self._mdi_failed(line, f"{2 * timeout:g} s")
+        else:
+            self._mdi_failed(line, f"{timeout:g} s, sent twice")
         self._stat.poll()
         if self._stat.state != 1:        # linuxcnc.RCS_DONE
             raise MeasurementError(f"LinuxCNC refused {line!r} (state {self._stat.state})")
+
+    def _mdi_failed(self, line: str, what: str) -> None:
+        self._stat.poll()
+        raise MeasurementError(f"LinuxCNC did not finish {line!r} within {what} (interpreter "
+                               f"state {self._stat.interp_state}, task {self._stat.exec_state})")
 
     def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
