@@ -434,10 +434,11 @@ class LinuxCNC:
     def mdi(self, line: str, timeout: float = 30.0) -> None:
         """Run one MDI line and wait until it is done.
 
-        A line LinuxCNC has not finished within ``timeout`` while its interpreter is idle again
-        was lost on the way (``wait_complete`` then waits for a command no one runs; seen as a
-        30 s timeout of a creep approach on a loaded computer, in about one ``make test`` of
-        three) and is sent once more: every line axiscal sends is absolute (G90 moves, dwells,
+        ``wait_complete`` can miss the end of a line (seen as a 30 s timeout of a creep approach on
+        a loaded computer, in about one ``make test`` of three): a line the task has taken
+        (``echo_serial_number`` at the command's ``serial``) with the interpreter idle and the
+        task done is done. A line not taken while the interpreter is idle was lost on the way
+        and is sent once more: every line axiscal sends is absolute (G90 moves, dwells,
         the approach subroutine), so running it twice leaves the machine where running it once
         does. A line still running gets one more ``timeout``, and no second sending."""
         import linuxcnc
@@ -447,6 +448,10 @@ class LinuxCNC:
             if self._cmd.wait_complete(timeout) != -1:
                 break
             self._stat.poll()
+            if (self._stat.interp_state == linuxcnc.INTERP_IDLE
+                    and self._stat.echo_serial_number >= self._cmd.serial
+                    and self._stat.state == 1):          # linuxcnc.RCS_DONE
+                break          # the task took the line and is done: wait_complete missed it
             if self._stat.interp_state != linuxcnc.INTERP_IDLE:
                 if self._cmd.wait_complete(timeout) != -1:
                     break
