@@ -54,6 +54,7 @@ import signal
 import subprocess
 import tempfile
 import time
+import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from importlib import resources
@@ -251,6 +252,8 @@ class LinuxCNC:
     _lock: object = field(default=None, init=False, repr=False)
     _comp: object = field(default=None, init=False, repr=False)
     _channels: object = field(default=None, init=False, repr=False)
+    #: MDI lines sent a second time, with what was seen (:meth:`mdi`).
+    recoveries: list = field(default_factory=list, init=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.units not in _UNITS_MM:
@@ -431,36 +434,84 @@ class LinuxCNC:
         c.wait_complete()
 
     # -- use -----------------------------------------------------------------------------------
-    def mdi(self, line: str, timeout: float = 30.0) -> None:
+    def mdi(self, line: str, timeout: float = 30.0, stall: float = 3.0) -> None:
         """Run one MDI line and wait until it is done.
 
-        ``wait_complete`` can miss the end of a line (seen as a 30 s timeout of a creep approach on
-        a loaded computer, in about one ``make test`` of three): a line the task has taken
-        (``echo_serial_number`` at the command's ``serial``) with the interpreter idle and the
-        task done is done. A line not taken while the interpreter is idle was lost on the way
-        and is sent once more: every line axiscal sends is absolute (G90 moves, dwells,
-        the approach subroutine), so running it twice leaves the machine where running it once
-        does. A line still running gets one more ``timeout``, and no second sending."""
+        LinuxCNC 2.9's task can lose track of an MDI line in three ways, each seen on loaded
+        computers (about one line in several thousand of a ``make test``), each handled here:
+
+        * ``wait_complete`` misses the end: the task took the line (``echo_serial_number`` at the
+          command's ``serial``), the interpreter is idle and the task done: the line is done;
+        * the line never reaches the task (not taken, the interpreter idle): it is sent again;
+        * the interpreter stays "reading" an O-word subroutine call while nothing runs: the task
+          done (``exec_state`` EXEC_DONE), the motion queue empty and the joints in position, for
+          ``stall`` seconds. LinuxCNC's task (``emctaskmain.cc``, ``mdi_execute_hook``) ends an MDI
+          call only when all of ``interp_list`` empty, task and motion done and its
+          ``mdi_execute_wait``/``mdi_execute_next`` flags clear hold in one cycle; the state
+          seen for minutes (interpreter READING, task DONE) is one where that no longer happens.
+          The call is aborted (which returns the interpreter to idle, ``mdi_execute_abort``), MDI
+          mode set again, and the line sent again.
+
+        Sending a line again is safe: every line axiscal sends is absolute (G90 moves, dwells,
+        the approach subroutines), so running it twice leaves the machine where once does. A line
+        is sent at most twice; each recovery is kept in :attr:`recoveries` (line, what was seen).
+        A line still running after ``timeout`` is an error that names the interpreter's and the
+        task's states.
+        """
         import linuxcnc
 
-        for _ in range(2):
+        for attempt in range(2):
             self._cmd.mdi(line)
-            if self._cmd.wait_complete(timeout) != -1:
+            serial = self._cmd.serial
+            seen = self._await_mdi(serial, timeout, stall)
+            if seen == "done":
                 break
-            self._stat.poll()
-            if (self._stat.interp_state == linuxcnc.INTERP_IDLE
-                    and self._stat.echo_serial_number >= self._cmd.serial
-                    and self._stat.state == 1):          # linuxcnc.RCS_DONE
-                break          # the task took the line and is done: wait_complete missed it
-            if self._stat.interp_state != linuxcnc.INTERP_IDLE:
-                if self._cmd.wait_complete(timeout) != -1:
-                    break
-                self._mdi_failed(line, f"{2 * timeout:g} s")
+            if seen == "running":
+                self._mdi_failed(line, f"{timeout:g} s")
+            self.recoveries.append((line, seen))
+            warnings.warn(f"LinuxCNC: MDI line {line!r} {seen}; "
+                          + ("aborted and sent again" if seen == "stalled" else "sent again"),
+                          RuntimeWarning, stacklevel=2)
+            if seen == "stalled":
+                self._cmd.abort()
+                self._cmd.wait_complete(5.0)
+                _wait(lambda: (self._stat.poll(), self._stat.interp_state)[1]
+                      == linuxcnc.INTERP_IDLE, 10.0, "LinuxCNC's interpreter to stop after abort")
+                self._cmd.mode(linuxcnc.MODE_MDI)
+                self._cmd.wait_complete(5.0)
         else:
-            self._mdi_failed(line, f"{timeout:g} s, sent twice")
+            self._mdi_failed(line, f"{timeout:g} s, sent twice ({self.recoveries[-1][1]})")
         self._stat.poll()
         if self._stat.state != 1:        # linuxcnc.RCS_DONE
             raise MeasurementError(f"LinuxCNC refused {line!r} (state {self._stat.state})")
+
+    def _await_mdi(self, serial: int, timeout: float, stall: float) -> str:
+        """Wait for the MDI line ``serial``: "done", "lost" (never taken, the interpreter idle
+        for ``stall`` s), "stalled" (taken, nothing running, the interpreter not idle for
+        ``stall`` s) or "running" (still going after ``timeout``); :meth:`mdi`."""
+        import linuxcnc
+
+        s = self._stat
+        end = time.monotonic() + timeout
+        since: dict[str, float] = {}
+        while True:
+            if self._cmd.wait_complete(0.5) != -1:
+                return "done"
+            s.poll()
+            now = time.monotonic()
+            taken = s.echo_serial_number >= serial
+            idle = s.interp_state == linuxcnc.INTERP_IDLE
+            if taken and idle and s.state == 1:                  # linuxcnc.RCS_DONE
+                return "done"                   # the task took the line and is done
+            quiet = (s.exec_state == linuxcnc.EXEC_DONE and s.queue == 0 and bool(s.inpos))
+            states = {"lost": idle and not taken, "stalled": taken and not idle and quiet}
+            for what, now_so in states.items():
+                if not now_so:
+                    since.pop(what, None)
+                elif now - since.setdefault(what, now) >= stall:
+                    return what
+            if now >= end:
+                return "running"
 
     def _mdi_failed(self, line: str, what: str) -> None:
         self._stat.poll()
@@ -481,7 +532,7 @@ class LinuxCNC:
         if approach:
             k = _UNITS_MM[self.units]
             self.mdi(f"o<axiscal_approach> call [{position - approach * CREEP / k:.9f}] "
-                     f"[{position:.9f}] [{CREEP_FEED / k:.6g}] [{dwell:g}]")
+                     f"[{position:.9f}] [{CREEP_FEED / k:.6g}] [{dwell:g}]", stall=3.0 + dwell)
             return self.read()
         self.mdi(f"G0 {self.letter}{position:.9f}")
         if dwell > 0:

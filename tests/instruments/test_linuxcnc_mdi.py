@@ -1,0 +1,119 @@
+"""How :meth:`LinuxCNC.mdi` ends a line LinuxCNC 2.9's task lost track of.
+
+The states are the ones seen on fresh-clone ``make test`` runs (CI log of stop 45: an approach
+subroutine's MDI call with the interpreter READING and the task DONE for 60 s). LinuxCNC cannot
+be made to lose a line on demand, so its two channels are stand-ins here that replay those states;
+LinuxCNC itself runs the lines in ``test_linuxcnc_live.py``. Needs LinuxCNC's Python module only
+for its constants; no LinuxCNC is started.
+"""
+
+import pytest
+
+from axiscal.errors import MeasurementError
+from axiscal.instruments.linuxcnc_controller import LinuxCNC, platform_reason
+
+linuxcnc = pytest.importorskip("linuxcnc", reason=f"LinuxCNC cannot run here: {platform_reason()}")
+
+
+class Task:
+    """LinuxCNC's task as the two channels see it: ``behaviour`` per sending of the line,
+    "done", "stall" (taken, interpreter READING, nothing running, for ever), "lost" (never
+    taken) or "run" (taken, moving for ever)."""
+
+    def __init__(self, *behaviour):
+        self.behaviour = list(behaviour)
+        self.serial = 0
+        self.sent, self.aborts, self.modes = [], 0, []
+        self.echo_serial_number, self.state = 0, 1
+        self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
+        self.queue, self.inpos = 0, True
+
+    # linuxcnc.command
+    def mdi(self, line):
+        self.serial += 1
+        self.sent.append(line)
+        how = self.behaviour.pop(0)
+        if how == "lost":
+            return
+        self.echo_serial_number = self.serial
+        if how == "stall":
+            self.interp_state = linuxcnc.INTERP_READING
+        elif how == "run":
+            self.interp_state, self.exec_state = (linuxcnc.INTERP_READING,
+                                                  linuxcnc.EXEC_WAITING_FOR_MOTION)
+            self.queue, self.inpos = 1, False
+
+    def wait_complete(self, timeout=5.0):
+        done = self.echo_serial_number == self.serial and self.interp_state == linuxcnc.INTERP_IDLE
+        return 1 if done else -1
+
+    def abort(self):
+        self.aborts += 1
+        self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
+        self.queue, self.inpos = 0, True
+
+    def mode(self, m):
+        self.modes.append(m)
+
+    # linuxcnc.stat
+    def poll(self):
+        pass
+
+
+def _cnc(task):
+    cnc = LinuxCNC((-10.0, 10.0))
+    cnc._cmd = cnc._stat = task
+    return cnc
+
+
+def _quick(monkeypatch):
+    """wait_complete's 0.5 s becomes instant: the stand-in answers at once."""
+    import axiscal.instruments.linuxcnc_controller as m
+    clock = iter(range(0, 10_000))
+    monkeypatch.setattr(m.time, "monotonic", lambda: float(next(clock)))
+
+
+def test_a_stalled_subroutine_call_is_aborted_and_sent_again(monkeypatch):
+    _quick(monkeypatch)
+    task = Task("stall", "done")
+    cnc = _cnc(task)
+    with pytest.warns(RuntimeWarning, match="stalled; aborted and sent again"):
+        cnc.mdi("o<axiscal_approach> call [3.01] [3] [60] [0]")
+    assert task.aborts == 1 and task.modes == [linuxcnc.MODE_MDI]
+    assert task.sent == ["o<axiscal_approach> call [3.01] [3] [60] [0]"] * 2
+    assert cnc.recoveries == [(task.sent[0], "stalled")]
+
+
+def test_a_lost_line_is_sent_again_without_abort(monkeypatch):
+    _quick(monkeypatch)
+    task = Task("lost", "done")
+    cnc = _cnc(task)
+    with pytest.warns(RuntimeWarning, match="lost; sent again"):
+        cnc.mdi("G0 X1")
+    assert task.aborts == 0 and len(task.sent) == 2 and cnc.recoveries == [("G0 X1", "lost")]
+
+
+def test_a_line_done_at_once_is_sent_once(monkeypatch):
+    _quick(monkeypatch)
+    task = Task("done")
+    cnc = _cnc(task)
+    cnc.mdi("G0 X1")
+    assert task.sent == ["G0 X1"] and cnc.recoveries == [] and task.aborts == 0
+
+
+def test_a_line_still_moving_is_an_error_naming_the_states(monkeypatch):
+    _quick(monkeypatch)
+    cnc = _cnc(Task("run"))
+    with pytest.raises(MeasurementError, match=r"did not finish 'G0 X1' within 30 s "
+                                               r"\(interpreter state 2, task 3\)"):
+        cnc.mdi("G0 X1")
+
+
+def test_a_line_stalled_twice_is_an_error(monkeypatch):
+    _quick(monkeypatch)
+    task = Task("stall", "stall")
+    cnc = _cnc(task)
+    with pytest.raises(MeasurementError, match=r"sent twice \(stalled\)"), \
+            pytest.warns(RuntimeWarning):
+        cnc.mdi("G0 X1")
+    assert task.aborts == 2
