@@ -103,3 +103,25 @@ def test_a_refused_drift_check_is_said_at_the_form_and_nothing_is_kept(bench):
         assert 'id="drift-error"' in form                    # said at the form
         assert drift_checks(bench.app.state.store, 1) == []
         assert bench.get("/tests/1/result.json").text == before
+
+
+def test_a_drift_check_goes_only_with_a_positioning_test(bench, tmp_path):
+    """A thermal log's page has no drift-check form; a drift check posted for it is refused in
+    the library's words (E_VE is an input of a positioning test's budget), shown on its page."""
+    import axiscal
+    from axiscal.io.thermal import write_thermal_log
+    from axiscal.store.laboratory import drift_checks
+
+    log = tmp_path / "linear.csv"
+    write_thermal_log(log, axiscal.simulate_thermal("linear", seed=1, interval_s=300.0).log)
+    r = bench.post("/upload", data={"csrf": bench.token, "machine": "VMC", "axis": "X"},
+                   files={"file": (log.name, log.read_bytes(), "text/csv")})
+    assert r.status_code == 200 and "/tests/2" in str(r.url)
+    assert 'id="drift-check-form"' not in r.text and 'id="drift-check"' not in r.text
+    r = bench.post("/tests/2/drift-check", data={"csrf": bench.token, "by": "A. Operator"},
+                   files={"drift_check": ("drift.csv", DRIFT, "text/csv")},
+                   follow_redirects=False)
+    assert r.status_code == 400
+    said = re.search(r'id="drift-error">(.*?)</p>', r.text, re.S).group(1)
+    assert "is a thermal test" in said and "positioning test" in said
+    assert drift_checks(bench.app.state.store, 2) == []
