@@ -1,9 +1,9 @@
-"""ISO 230-3:2020 evaluations against the thermal twin's truth, and the log checks.
+"""ISO 230-3:2020 evaluations: the figures' equations on the thermal twin, and the log checks.
 
-Truth tests (CONVENTIONS habit 8): the twin of ``axiscal/data/thermal_vmc.toml`` with known heat
-sources runs each test through its simulated sensors (0.1 µm displacement noise, 0.01 K
-temperature noise); every figure the evaluation reports must equal the twin's noiseless figure
-within the figure's own U (the sensors' uncertainty, module docstring of iso230_3)."""
+The truth test of every figure (within its U at about 95 %, counted over 200 seeds against a
+binomial bound) is ``test_iso230_3_coverage.py``; here the equations themselves (tilts from the
+sensor pairs, growth from the two targets, a speed programme held, the rotary test's figures
+those of the spindle test's equations) and the refusals."""
 
 import dataclasses
 
@@ -22,20 +22,6 @@ CONFIG = "src/axiscal/data/thermal_vmc.toml"
 @pytest.fixture(scope="module")
 def twin():
     return parse_thermal_config(open(CONFIG).read(), CONFIG)
-
-
-@pytest.mark.parametrize("test", ["etve", "spindle", "linear"])
-@pytest.mark.parametrize("seed", [1, 7])
-def test_every_figure_equals_the_twins_truth_within_its_uncertainty(twin, test, seed):
-    sim = simulate_thermal(twin, plan_thermal(twin, test), np.random.default_rng(seed))
-    result = evaluate_thermal(sim.log)
-    assert sim.truth, "the twin reports its truth"
-    for name, true in sim.truth.items():
-        f = result[name]
-        assert abs(f.value - true) <= f.uncertainty, (name, f.value, true, f.uncertainty)
-    # the drift is real, not noise: the largest figures are many times their U
-    big = max(sim.truth, key=lambda k: abs(sim.truth[k]))
-    assert abs(result[big].value) > 5 * result[big].uncertainty
 
 
 def test_spindle_tilts_come_from_the_sensor_pairs(twin):
@@ -157,9 +143,10 @@ def test_drift_figures_ignore_each_sensors_zero_and_flip_with_the_sign(spindle_l
             assert other[f.name].uncertainty == pytest.approx(f.uncertainty, rel=1e-9, abs=1e-15)
 
 
-def test_a_speed_programme_is_held_step_by_step_and_evaluated_against_the_truth(twin):
+def test_a_speed_programme_is_held_step_by_step(twin):
     """Steps of 25 %, 50 % and 100 % speed for 30 min each, repeated through the 4 h run: the
-    spindle node follows the steps, and every figure still equals the truth within its U."""
+    spindle node follows the steps (its figures against the truth:
+    ``test_iso230_3_coverage.py``, case "spindle programme")."""
     from axiscal.procedures.thermal import _speeds
 
     plan = plan_thermal(twin, "spindle", programme=((0.25, 1800.0), (0.5, 1800.0), (1.0, 1800.0)))
@@ -167,37 +154,22 @@ def test_a_speed_programme_is_held_step_by_step_and_evaluated_against_the_truth(
     t = plan.times
     assert u[t == 0][0] == 0.25 and u[t == 1800][0] == 0.5 and u[t == 3600 + 1740][0] == 1.0
     assert u[t == 5400][0] == 0.25                              # the programme repeats
-    sim = simulate_thermal(twin, plan, np.random.default_rng(5))
-    result = evaluate_thermal(sim.log)
-    for name, true in sim.truth.items():
-        assert abs(result[name].value - true) <= result[name].uncertainty, name
 
 
 ROTARY = "src/axiscal/data/thermal_rotary_table.toml"
 
 
-def test_rotary_table_test_figures_equal_the_truth_within_their_u_at_95_percent():
+def test_rotary_table_test_is_clause_8_with_the_spindle_tests_equations():
     """ISO 230-3:2020 Clause 8 (a rotary table turning) on the twin of thermal_rotary_table.toml:
-    each of the 20 drift figures is a k = 2 bound (about 95 % per figure), so over 10 seeds at
-    least 90 % of the 200 figures lie within their U (measured: 191 of 200, worst 1.26 U; the
-    VMC twin's spindle test 198 of 200, linear 129 of 130) and none beyond
-    1.5 U; the table's heat is seen (Z drift while turning many times its U) and the figures
-    are those of the spindle test's equations (Clause 6) on the artefact's five sensors."""
+    the result names Clause 8 and the figures are those of the spindle test's equations
+    (Clause 6) on the artefact's five sensors (against the truth: ``test_iso230_3_coverage.py``,
+    case "rotary")."""
     from axiscal.standards.iso230_3 import evaluate_spindle
 
     twin = parse_thermal_config(open(ROTARY).read(), ROTARY)
-    inside, total = 0, 0
-    for seed in range(1, 11):
-        sim = simulate_thermal(twin, plan_thermal(twin, "rotary"), np.random.default_rng(seed))
-        result = evaluate_thermal(sim.log)
-        assert result.clause == "ISO 230-3:2020 Clause 8" and result.test == "rotary"
-        for name, true in sim.truth.items():
-            f = result[name]
-            total += 1
-            inside += abs(f.value - true) <= f.uncertainty
-            assert abs(f.value - true) <= 1.5 * f.uncertainty, (seed, name)
-        assert abs(result["delta_Z_max_run"].value) > 10 * result["delta_Z_max_run"].uncertainty
-    assert total == 200 and inside >= 0.9 * total, inside
+    sim = simulate_thermal(twin, plan_thermal(twin, "rotary"), np.random.default_rng(1))
+    result = evaluate_thermal(sim.log)
+    assert result.clause == "ISO 230-3:2020 Clause 8" and result.test == "rotary"
     as_spindle = evaluate_spindle(dataclasses.replace(sim.log, test="spindle"))
     assert [f.value for f in as_spindle.figures] == [f.value for f in result.figures]
 

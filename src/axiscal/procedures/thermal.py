@@ -135,7 +135,9 @@ class ThermalSimulation:
     plan : ThermalPlan
     log : ThermalLog
     truth : dict of str to float
-        The evaluation's figures as the twin knows them (SI), by figure name.
+        The evaluation's figures as the twin knows them (SI), by figure name: every drift,
+        range and rise (a temperature's from its sensor's noiseless readings); not the
+        duration.
     history : ThermalHistory
     """
 
@@ -254,6 +256,7 @@ def simulate_thermal(twin: ThermalTwin, plan: ThermalPlan,
     running = t <= end + 1e-9             # the reading at the moment it stops is the run's last
     history = _history(twin, plan, t < end - 1e-9)   # the load held from one sample to the next
     temps = twin.read_temperatures(history, rng)
+    quiet = twin.read_temperatures(history, None)      # what each sensor sees, without noise
     noise = twin.displacement_noise
     d = history.displacement
 
@@ -281,6 +284,7 @@ def simulate_thermal(twin: ThermalTwin, plan: ThermalPlan,
         truth = _drift_truth({"P1": e[:, 0], "P2": e[:, 1], "G": e[:, 1] - e[:, 0]}, running)
         truth["growth_per_length_max_run"] = (truth["delta_G_max_run"]
                                               / abs(plan.targets[1] - plan.targets[0]))
+    truth |= _temperature_truth(quiet, running, plan.test)
     return ThermalSimulation(plan, log, truth, history)
 
 
@@ -344,6 +348,17 @@ def _drift_truth(series: dict[str, np.ndarray], running: np.ndarray) -> dict[str
             out[f"delta_{k}_end_stop"] = float(d[-1])
             out[f"delta_{k}_recovery"] = float(d[-1] - d[end])
     return out
+
+
+def _temperature_truth(quiet: dict[str, np.ndarray], running: np.ndarray,
+                       test: str) -> dict[str, float]:
+    """The temperature figures of :mod:`axiscal.standards.iso230_3` from each sensor's noiseless
+    readings (its node seen through its lag: the temperature where the sensor sits): the range
+    over an ETVE log, else the rise by the end of the run."""
+    if test == "etve":
+        return {f"range_{k}": float(np.ptp(v)) for k, v in quiet.items()}
+    end = int(np.flatnonzero(running)[-1])
+    return {f"rise_{k}": float(v[end] - v[0]) for k, v in quiet.items()}
 
 
 def _default_targets(lo: float, hi: float) -> tuple[float, float]:

@@ -19,6 +19,7 @@ from axiscal.web.inputs import Page, QueryId, TestId, checked_form, require_engi
 from axiscal.web.plot_specs import COLORS as _COLORS
 from axiscal.web.plot_specs import positioning_plot, trend_plot, unit_text
 from axiscal.web.rendering import download, query, render
+from axiscal.web.signoff_pages import MAX_DRIFT_BYTES
 
 
 __all__ = ["add_routes", "positioning_plot", "trend_plot"]
@@ -69,26 +70,32 @@ def add_routes(app: FastAPI) -> None:
         """Served on the event loop when the test's evaluation and page parts are kept (a few
         plain reads and the rendering); made in a thread when they are not (a figure of a
         ballbar or five-error test takes a second)."""
-        from axiscal.compensation.controllers import CONTROLLERS
-        from axiscal.store.corrections import audit
-        from axiscal.web.correction_pages import SHOWN
-        from axiscal.web.signoff_pages import signoff_context
-        from axiscal.web.squareness_pages import partners
+        return await _test_page(request, test_id)
 
-        st, env = store(request), request.app.state.templates.env
-        t = st.get(test_id)
-        ev, cfg, parts = _test_view(env, t, kept_only=True) or \
-            await run_in_threadpool(_test_view, env, t)
-        others = st.tests(machine=t.summary.machine, axis=t.summary.axis, kind=t.summary.kind,
-                          limit=11, parameters=())
-        return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
-                      f"{t.summary.axis}", t=t, ev=ev, **parts,
-                      signoff=signoff_context(st, t, ev, None,
-                                              request.query_params.get("certificate", ""), cfg),
-                      controllers=sorted(CONTROLLERS),
-                      others=[o for o in others if o.id != test_id],
-                      partners=partners(st, t),
-                      audit_entries=audit(st, test_id=test_id, limit=SHOWN))
+    @app.post("/tests/{test_id}/drift-check", response_class=HTMLResponse)
+    async def drift_check(request: Request, test_id: TestId):
+        """Keep a drift check (ISO 230-2:2014 Annex A.5) with a stored positioning test, as the
+        sign-off form does (:func:`axiscal.store.laboratory.add_drift_check`, the one call): its
+        E_VE becomes an input of the test's budget. Kept: back to the test's page at its drift
+        check; refused: the test's page again with the reason at the form (400)."""
+        from axiscal.errors import AxiscalError
+
+        form = await checked_form(request)
+        require_engineer(request)
+        by = request.state.session.get("name") or str(form.get("by", "") or "").strip()
+        reason = str(form.get("reason", "") or "").strip()
+        try:
+            f = form.get("drift_check")
+            if f is None or not hasattr(f, "read") or not f.filename:
+                raise InputError("choose the drift-check file to upload (a CSV with a 'reading' "
+                                 "column, or one reading a line, in the test's deviation "
+                                 "unit)")
+            raw = await f.read(MAX_DRIFT_BYTES + 1)
+            await run_in_threadpool(_keep_drift_check, store(request), test_id, raw,
+                                    f.filename, by, reason)
+        except AxiscalError as exc:
+            return await _test_page(request, test_id, 400, drift_error=str(exc))
+        return RedirectResponse(f"/tests/{test_id}?drift=kept#drift-check", 303)
 
     @app.get("/tests/{test_id}/raw")
     def raw(request: Request, test_id: TestId):
@@ -266,6 +273,46 @@ def add_routes(app: FastAPI) -> None:
             return render(request, "upload.html", "Upload a test", 400, form=fields,
                           error=str(exc))
         return stored_page(r, fields)
+
+
+async def _test_page(request: Request, test_id: int, status: int = 200, **extra):
+    """A stored test's page (``extra``: what a refused form says at the form)."""
+    from axiscal.compensation.controllers import CONTROLLERS
+    from axiscal.store.corrections import audit
+    from axiscal.web.correction_pages import SHOWN
+    from axiscal.web.signoff_pages import signoff_context
+    from axiscal.web.squareness_pages import partners
+
+    st, env = request.app.state.store, request.app.state.templates.env
+    t = st.get(test_id)
+    ev, cfg, parts = _test_view(env, t, kept_only=True) or \
+        await run_in_threadpool(_test_view, env, t)
+    others = st.tests(machine=t.summary.machine, axis=t.summary.axis, kind=t.summary.kind,
+                      limit=11, parameters=())
+    return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
+                  f"{t.summary.axis}", status, t=t, ev=ev, **parts,
+                  signoff=signoff_context(st, t, ev, None,
+                                          request.query_params.get("certificate", ""), cfg),
+                  controllers=sorted(CONTROLLERS),
+                  others=[o for o in others if o.id != test_id],
+                  partners=partners(st, t),
+                  audit_entries=audit(st, test_id=test_id, limit=SHOWN), **extra)
+
+
+def _keep_drift_check(st, test_id: int, raw: bytes, filename: str, by: str, reason: str):
+    """The drift-check form's checks in its words, then the one call that keeps it."""
+    from axiscal.store.laboratory import add_drift_check
+
+    name = filename.replace("\\", "/").rsplit("/", 1)[-1]
+    if len(raw) > MAX_DRIFT_BYTES:
+        raise InputError(f"drift check {name}: the file is over {MAX_DRIFT_BYTES // 2**20} MiB "
+                         "(a day of readings a second is about 1 MiB)")
+    if not raw.strip():
+        raise InputError(f"drift check {name}: the file is empty")
+    if not by:
+        raise InputError("your name: the history records who kept the drift check")
+    return add_drift_check(st, test_id, raw, name, by=by,
+                           **({"reason": reason} if reason else {}))
 
 
 def stored_page(r, fields: dict):
