@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.api import fiveaxis_ballbar as ballbar   # axiscal.fiveaxis.ballbar.plan | ...
 from axiscal.errors import InputError
 
 TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing
@@ -35,7 +36,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers
     from axiscal.standards.location_errors import LocationIdentification, PlanCheck
 
 __all__ = ["plan", "simulate", "identify", "compensate", "figure", "report", "load", "Simulated", "Planned",
-           "Compensated", "EXAMPLES"]
+           "Compensated", "EXAMPLES", "ballbar"]
 
 #: The example configurations shipped with the package (``axiscal.data``).
 EXAMPLES = {"A/C": "fiveaxis_ac.toml", "B/C": "fiveaxis_bc.toml",
