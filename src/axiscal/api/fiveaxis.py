@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.api import fiveaxis_ballbar as ballbar   # axiscal.fiveaxis.ballbar.plan | ...
+from axiscal.api._fiveaxis_common import config_dict as _config, check_seed as _seed
 from axiscal.errors import InputError
 
 TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing
@@ -307,17 +308,3 @@ def _measure(machine, p, seed: int):
     from axiscal.procedures.five_axis import measure
 
     return measure(machine, p, np.random.default_rng(_seed(seed)))
-
-
-def _seed(seed) -> int:
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise InputError(f"seed = {seed!r} must be a whole number >= 0")
-    return seed
-
-
-def _config(config) -> dict:
-    if isinstance(config, dict):
-        return config
-    from axiscal.io._files import load_toml
-
-    return load_toml(config)

@@ -136,11 +136,11 @@ def simulate(config, seed: int = 1, out=None) -> BallbarSimulated:
     ``out``, a folder) write one CSV per set-up (``1_ballbar.csv`` ...)."""
     from dataclasses import replace
 
-    from axiscal.api.fiveaxis import _seed
+    from axiscal.api._fiveaxis_common import check_seed
     from axiscal.procedures.five_axis_ballbar import measure_ballbar
 
     machine, setups = _load(config)
-    records = measure_ballbar(machine, setups, np.random.default_rng(_seed(seed)))
+    records = measure_ballbar(machine, setups, np.random.default_rng(check_seed(seed)))
     quiet = [replace(s, ballbar=replace(s.ballbar, noise=0.0)) for s in setups]
     truth = tuple(float(np.ptp(r.deviation)) for r in measure_ballbar(machine, quiet))
     results = tuple(r.evaluate() for r in records)
@@ -169,11 +169,11 @@ def evaluate(files) -> BallbarEvaluated:
 
 
 def _load(config):
-    from axiscal.api.fiveaxis import _config
+    from axiscal.api._fiveaxis_common import config_dict
     from axiscal.machines.five_axis import five_axis_from_config
     from axiscal.procedures.five_axis_ballbar import ballbar_plan_from_config
 
-    cfg = _config(config)
+    cfg = config_dict(config)
     machine = five_axis_from_config(cfg)
     return machine, ballbar_plan_from_config(cfg, machine)
 

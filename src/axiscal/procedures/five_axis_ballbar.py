@@ -130,7 +130,8 @@ class BallbarRecord:
     u_length: float = 0.0
 
     def evaluate(self):
-        """The range with its uncertainty (:func:`axiscal.standards.iso10791_6.evaluate_ballbar`)."""
+        """The range with its uncertainty
+        (:func:`axiscal.standards.iso10791_6.evaluate_ballbar`)."""
         from axiscal.standards.iso10791_6 import evaluate_ballbar
 
         return evaluate_ballbar(self.deviation, noise=self.noise, u_gain=self.u_gain,

@@ -117,7 +117,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import InputError
-from axiscal.physics.rotary_location import SQUARENESS, Geometry, is_angle, table_to_machine
+from axiscal.physics.rotary_location import SQUARENESS, Geometry, table_to_machine
 from axiscal.standards.iso230_9 import Contributor, UncertaintyBudget, combine
 
 __all__ = ["DIRECTIONS", "BLIND", "bar_direction", "reading_sensitivity", "range_sensitivity",
@@ -404,8 +404,4 @@ def _dT(name, geometry, p, q_c, q_t, u_c, u_t, r_c, r_t, v_c, x1, v_t) -> np.nda
         inner = np.cross(k, v_c) - np.einsum("nij,j->ni", r_c, np.cross(k, p - q_c))
         return np.einsum("nij,nj->ni", r_t, inner)
     return np.cross(k, v_t) - np.einsum("nij,nj->ni", r_t, np.cross(k, x1 - q_t))
-
-
-def _unit(name: str) -> str:
-    return "µrad" if is_angle(name) else "µm"
 
