@@ -89,3 +89,14 @@ def test_a_bad_configuration_writes_nothing(tmp_path):
     r = runner.invoke(app, ["fiveaxis", "ballbar", "simulate", str(cfg), "--out", str(out)])
     assert r.exit_code == 2 and "no rotary axis moves" in r.output, r.output
     assert not out.exists()
+
+
+def test_the_commands_json_is_the_apis_to_dict():
+    """One record, every path: ``--json`` is ``axiscal.fiveaxis.ballbar``'s ``to_dict()`` for the
+    same input (docs/api.rst)."""
+    from axiscal.api import fiveaxis
+
+    assert _json("fiveaxis", "ballbar", "plan") == json.loads(json.dumps(
+        fiveaxis.ballbar.plan(_ac()).to_dict()))
+    assert _json("fiveaxis", "ballbar", "simulate", "--seed", 5) == json.loads(json.dumps(
+        fiveaxis.ballbar.simulate(_ac(), seed=5).to_dict()))

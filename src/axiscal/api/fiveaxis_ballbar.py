@@ -24,6 +24,10 @@ import numpy as np
 
 from axiscal.errors import InputError
 
+TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing
+if TYPE_CHECKING:   # pragma: no cover - for type checkers
+    from axiscal.machines.five_axis import FiveAxisMachine
+
 __all__ = ["plan", "simulate", "evaluate", "BallbarPlanned", "BallbarSimulated",
            "BallbarEvaluated"]
 
@@ -34,7 +38,7 @@ class BallbarPlanned:
     sensitivity to each location error (``names``; ``sensitivity`` (S, P): µm per µm or per
     µrad, :func:`~axiscal.standards.iso10791_6.range_sensitivity`)."""
 
-    machine: object
+    machine: FiveAxisMachine
     setups: tuple
     names: tuple
     sensitivity: np.ndarray
