@@ -31,8 +31,8 @@ of a rotary axis's average line) and BK4 ("all 5-axes are moving"). Kato, Tsutsu
 (2012) measure the circular path of simultaneous five-axis motion with a ballbar and show that
 the reading depends on the bar's *sensitive direction*; Tsutsumi and Saito (2003) identify the
 location errors of a five-axis machine from ballbar paths of one rotary axis moving with two
-linear axes; Jiang and Cripps (2015) test a tilting-rotary machine's rotary axes with a ballbar
-one axis at a time. The path above, the three bar directions, the figure (range) and its
+linear axes; a paper in Proc. IMechE Part B (doi:10.1177/0954405415617448) tests a
+tilting-rotary machine's rotary axes with a ballbar one axis at a time. The path above, the three bar directions, the figure (range) and its
 uncertainty budget are **this module's reading** of those descriptions, not the standard's text;
 its test codes (AK1, BK1, CK1 ...), set-up dimensions and tolerances are not claimed.
 
@@ -95,16 +95,21 @@ ISO 10791-6:2014, Test conditions for machining centres — Part 6: Accuracy of 
 interpolations, Scope (ISO catalogue; https://standards.iteh.ai/catalog/standards/iso/
 758ac355-b56f-48ca-96b4-e22def85fe29/iso-10791-6-2014).
 G. Florussen, K. Houben, H. Spaan, T. Spaan-Burke, "Automating Accuracy Evaluation of 5-Axis
-Machine Tools", Int. J. of Automation Technology 14(3) (2020) (https://fdocuments.in/document/
-automating-accuracy-evaluation-of-5-axis-machine-tools.html).
+Machine Tools", Int. J. of Automation Technology (received 30 October 2019, accepted
+27 December 2019; https://fdocuments.in/document/automating-accuracy-evaluation-of-5-axis-machine-
+tools.html), its abstract.
 N. Kato, M. Tsutsumi, R. Sato, "Analysis of circular trajectory equivalent to cone-frustum
 milling in five-axis machining centers using motion simulator", Int. J. of Machine Tools and
-Manufacture 64 (2013) 1-11 (https://id.scribd.com/document/223394946/).
+Manufacture (available online 8 August 2012; https://id.scribd.com/document/223394946/), its
+abstract.
 M. Tsutsumi, A. Saito, "Identification and compensation of systematic deviations particular to
-5-axis machining centers", Int. J. of Machine Tools and Manufacture 43(8) (2003) 771-780.
-Z. Jiang, R. Cripps et al., "A method of testing position independent geometric errors in rotary
-axes of a five-axis machine tool using a double ball bar", Proc. IMechE Part B (2015),
-doi:10.1177/0954405415617448 (https://sage.cnpereading.com/doi/10.1177/0954405415617448).
+5-axis machining centers", Int. J. of Machine Tools and Manufacture 43(8) (2003) 771-780 (title
+and journal from a reference list; that it uses ballbar paths of one rotary axis with two linear
+axes is this work's recollection, not checked against its text).
+"A method having two steps to identify the imprecision of the rotary axes caused by the
+position-independent geometric errors ... using a DBB", Proc. IMechE Part B: J. Engineering
+Manufacture, doi:10.1177/0954405415617448 (https://sage.cnpereading.com/doi/10.1177/
+0954405415617448), its abstract (Hermle C600U, one axis moving at a time).
 ISO 230-1:2012 3.4 and ISO 230-7:2015 Clause 3 (the location errors' names).
 JCGM 100:2008 (GUM), 5.1.2.
 """
