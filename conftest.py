@@ -19,7 +19,8 @@ collect_ignore = ([] if importlib.util.find_spec("numba") is not None
 #: sessions are timed by LinuxCNC's servo thread, which wants a core the others leave free.
 LINUXCNC_FILES = {"test_programs_on_linuxcnc.py", "test_linuxcnc_live.py", "test_on_linuxcnc.py",
                   "test_calibrate_on_linuxcnc.py", "test_on_linuxcnc_volumetric.py",
-                  "test_five_axis_linuxcnc.py", "test_thermal_on_linuxcnc.py"}
+                  "test_five_axis_linuxcnc.py", "test_thermal_on_linuxcnc.py",
+                  "test_five_axis_ballbar_linuxcnc.py"}
 
 
 def pytest_xdist_make_scheduler(config, log):

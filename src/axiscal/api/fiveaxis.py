@@ -25,6 +25,8 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.api import fiveaxis_ballbar as ballbar   # axiscal.fiveaxis.ballbar.plan | ...
+from axiscal.api._fiveaxis_common import config_dict as _config, check_seed as _seed
 from axiscal.errors import InputError
 
 TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing
@@ -35,7 +37,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers
     from axiscal.standards.location_errors import LocationIdentification, PlanCheck
 
 __all__ = ["plan", "simulate", "identify", "compensate", "figure", "report", "load", "Simulated", "Planned",
-           "Compensated", "EXAMPLES"]
+           "Compensated", "EXAMPLES", "ballbar"]
 
 #: The example configurations shipped with the package (``axiscal.data``).
 EXAMPLES = {"A/C": "fiveaxis_ac.toml", "B/C": "fiveaxis_bc.toml",
@@ -306,17 +308,3 @@ def _measure(machine, p, seed: int):
     from axiscal.procedures.five_axis import measure
 
     return measure(machine, p, np.random.default_rng(_seed(seed)))
-
-
-def _seed(seed) -> int:
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise InputError(f"seed = {seed!r} must be a whole number >= 0")
-    return seed
-
-
-def _config(config) -> dict:
-    if isinstance(config, dict):
-        return config
-    from axiscal.io._files import load_toml
-
-    return load_toml(config)

@@ -29,6 +29,14 @@ JSON output (``--json``), stable keys, µm and µrad:
   the SINUMERIK 840D swivel data of :mod:`axiscal.compensation.five_axis_sinumerik`:
   ``carrier``, ``values`` (``$TC_CARRn`` -> mm, unit-vector component, deg or letter),
   ``meaning``, ``manuals``).
+* ``ballbar plan``: ``machine``, ``tilt_axis``, ``units`` (error -> ``µm/µm`` or ``µm/µrad``),
+  ``setups`` (``label``, ``kind`` (``rotary+linear`` or ``five-axis``), ``swept``,
+  ``direction``, ``points``, ``pivot_mm``, ``bar``, ``length_mm``, ``spindle_ball_mm``,
+  ``start_deg``, ``end_deg`` ([tilt, C]), ``sensitivity`` (error -> range per unit error),
+  ``blind`` (names)).
+* ``ballbar evaluate``: ``setups`` (``label``, ``range_um``, ``U_um``, ``k``, ``max_um``,
+  ``min_um``, ``scatter_um``, ``points``, ``budget``, ``direction``, ``swept``), ``files``;
+  ``ballbar simulate`` adds ``true_range_um`` and ``deviation_um`` per set-up.
 * ``simulate``: the keys of ``identify``, and ``truth`` (the ten true location errors), per error
   ``true`` (the truth in the result's convention: sums added, on a spindle head the head's zero
   counted in the positions across) and ``deviation`` (identified − true), ``files`` (written, or empty).
@@ -234,6 +242,72 @@ def compensate(
     for path in (out, table, offsets, sinumerik):
         if path is not None:
             typer.echo(f"wrote {path}")
+
+
+ballbar_app = typer.Typer(help="Ballbar tests of the rotary axes moving with the linear axes "
+                          "(ISO 10791-6:2014 kinematic tests as axiscal reads them): what each "
+                          "set-up sees, the twin's readings, the range with U.",
+                          no_args_is_help=True)
+app.add_typer(ballbar_app, name="ballbar")
+
+
+@ballbar_app.command("plan")
+def ballbar_plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
+                 as_json: bool = _JSON):
+    """The \\[\\[ballbar]] set-ups, their paths, and which location errors each can see.
+
+    Example: axiscal fiveaxis ballbar plan --machine bc
+    """
+    from axiscal.api import fiveaxis
+
+    planned = fiveaxis.ballbar.plan(_config(config, machine))
+    if as_json:
+        print_json(planned.to_dict())
+        return
+    typer.echo(str(planned))
+
+
+@ballbar_app.command("simulate")
+def ballbar_simulate(
+    config: Optional[Path] = _CONFIG,
+    machine: str = _MACHINE,
+    seed: int = typer.Option(1, "--seed", min=0, help="Random seed of the ballbar's noise."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Folder for the readings (one CSV "
+                                       "per set-up; created if missing)."),
+    as_json: bool = _JSON,
+):
+    """Run the ballbar set-ups on the twin, evaluate each range, compare with the truth.
+
+    Example: axiscal fiveaxis ballbar simulate --out bb && axiscal fiveaxis ballbar evaluate bb/*.csv
+    """
+    from axiscal.api import fiveaxis
+
+    sim = fiveaxis.ballbar.simulate(_config(config, machine), seed=seed, out=out)
+    if as_json:
+        print_json(sim.to_dict())
+        return
+    typer.echo(str(sim))
+    for f in sim.files:
+        typer.echo(f"wrote {f}")
+
+
+@ballbar_app.command("evaluate")
+def ballbar_evaluate(
+    files: List[Path] = typer.Argument(..., help="Ballbar CSV files (README, 'Five-axis "
+                                       "ballbar tests')."),
+    as_json: bool = _JSON,
+):
+    """The range of each ballbar file's readings with its uncertainty budget (k = 2).
+
+    Example: axiscal fiveaxis ballbar evaluate bb/1_ballbar.csv --json
+    """
+    from axiscal.api import fiveaxis
+
+    done = fiveaxis.ballbar.evaluate(files)
+    if as_json:
+        print_json(done.to_dict())
+        return
+    typer.echo(str(done))
 
 
 def register(root: typer.Typer) -> None:

@@ -379,6 +379,8 @@ def plan_fiveaxis_cmd(
     machine_: str = typer.Option("ac", "--machine", help="The shipped example used without CONFIG: 'ac' or 'bc' (table-table)."),
     dwell: float = typer.Option(1.0, "--dwell", min=0.0, max=3600.0, help="Dwell at each pose for the R-test's reading, s."),
     clearance: float = typer.Option(10.0, "--clearance", help="How far the sphere leaves the nest between poses, along the nest's axis, mm."),
+    ballbar: bool = typer.Option(False, "--ballbar", help="Write the \\[\\[ballbar]] set-ups' paths instead (axiscal fiveaxis ballbar)."),
+    tolerance: float = typer.Option(1.0, "--tolerance", help="With --ballbar: how far, µm, the spindle ball may leave its place on the table between two programmed points."),
     json_out: bool = _JSON,
     program: Optional[Path] = P.PROGRAM,
     controller: Optional[str] = P.CONTROLLER,
@@ -394,6 +396,9 @@ def plan_fiveaxis_cmd(
 ) -> None:
     """Plan a five-axis test and write its R-test set-ups' part program (pose by pose).
 
+    With --ballbar, the ballbar set-ups' paths instead: the spindle ball held on the table by
+    the nominal kinematics, points within --tolerance, a dwell at each path's ends.
+
     Each pose: out of the nest, up to the safe Z (--safe Z=...), the rotary axes to the pose, down
     and into the nest at --feed, a dwell for the reading; nominal kinematics, no TCP needed.
 
@@ -401,8 +406,19 @@ def plan_fiveaxis_cmd(
     """
     from axiscal.api import fiveaxis
     from axiscal.cli.fiveaxis import _config
-    from axiscal.programs import FiveAxisProgram
+    from axiscal.programs import BallbarProgram, FiveAxisProgram
 
+    if ballbar:
+        bb = fiveaxis.ballbar.plan(_config(config, machine_))
+        job = BallbarProgram(bb.setups, bb.machine, dwell=dwell, tolerance=tolerance)
+        text = P.make_program(job, f"XYZ{bb.machine.tilt}C", program, controller,
+                              **_machine(dict(locals(), sign=None)))
+        if json_out:
+            print_json(bb.to_dict())
+        else:
+            typer.echo(str(bb))
+        P.write_program_file(program, text, controller)
+        return
     planned = fiveaxis.plan(_config(config, machine_))
     tilt = planned.machine.tilt
     job = FiveAxisProgram(planned.plan, planned.machine, dwell=dwell, clearance=clearance)

@@ -70,9 +70,20 @@ class Ballbar:
     def read(self, x, y, centre, rng: np.random.Generator | None = None) -> np.ndarray:
         """Deviation readings (reported length minus nominal), m, for tool positions (x, y)."""
         d = np.hypot(np.asarray(x) - centre[0], np.asarray(y) - centre[1])
-        r = d - self.length + self.offset()
+        return self._noisy(d - self.length + self.offset(), rng)
+
+    def _noisy(self, r: np.ndarray, rng) -> np.ndarray:
         if self.noise > 0:
             if rng is None:
                 raise InputError("ballbar noise needs a random generator (seed)")
             r = r + rng.normal(0.0, self.noise, r.shape)
         return r
+
+    def read_between(self, points, centre, rng: np.random.Generator | None = None) -> np.ndarray:
+        """Deviation readings (reported length minus nominal), m, with the spindle ball at 3-D
+        ``points`` (N, 3), m, and the table ball at ``centre`` (3,), m, in one frame: the bar
+        of a five-axis test (:mod:`axiscal.procedures.five_axis_ballbar`)."""
+        d = np.linalg.norm(np.atleast_2d(np.asarray(points, float))
+                           - np.asarray(centre, float), axis=1)
+        return self._noisy(d - self.length + self.offset(), rng)
+

@@ -167,7 +167,8 @@ def write_five_axis(record, path):
 
 # -- the pieces -------------------------------------------------------------------------------
 
-def _split(text: str, source: str):
+def _split(text: str, source: str, known=None):
+    known = _SETTINGS if known is None else known
     settings: dict[str, tuple[int, str]] = {}
     header = None
     rows = []
@@ -179,9 +180,9 @@ def _split(text: str, source: str):
             if header is None and "=" in line:
                 key, _, value = line[1:].partition("=")
                 key = key.strip()
-                if key not in _SETTINGS:
+                if key not in known:
                     raise DataFormatError(f"{source}:{n}: unknown setting {key!r}; known: "
-                                          f"{', '.join(sorted(_SETTINGS))}")
+                                          f"{', '.join(sorted(known))}")
                 if key in settings:
                     raise DataFormatError(f"{source}:{n}: {key} given twice")
                 settings[key] = (n, value.strip())

@@ -3,7 +3,8 @@
 :func:`write_program` turns a plan (an ISO 230-2 positioning plan, linear or rotary, linear or
 pilgrim cycle; an ISO 230-4 circular plan; squareness or straightness lines; an ISO 230-3 thermal
 test's cycle, :mod:`axiscal.programs._thermal`; a five-axis R-test, :class:`FiveAxisProgram`,
-:mod:`axiscal.programs._five_axis`) and the machine's
+and a five-axis ballbar path, :class:`BallbarProgram`, :mod:`axiscal.programs._five_axis`) and
+the machine's
 options (:class:`MachineOptions`: feed, limits, safe start, sign convention, units, the trigger's
 stillness) into the program a controller runs: a safe-start block, every move of the plan in
 order at the feed, a dwell after each measurement, the return to the safe start and the end of
@@ -26,12 +27,12 @@ controller      module                       dwell, framing
 
 from __future__ import annotations
 
-from axiscal.programs._five_axis import FiveAxisProgram
+from axiscal.programs._five_axis import BallbarProgram, FiveAxisProgram
 from axiscal.programs._motion import (DEFAULT_TRIGGER_S, MachineOptions, Motion, ProgramError,
                                       build_motion)
 
 __all__ = ["write_program", "program_motion", "MachineOptions", "ProgramError", "CONTROLLERS",
-           "DEFAULT_TRIGGER_S", "FiveAxisProgram", "extension", "manual"]
+           "DEFAULT_TRIGGER_S", "FiveAxisProgram", "BallbarProgram", "extension", "manual"]
 
 #: Controller name -> (module, class) of its dialect.
 _DIALECTS = {"fanuc": ("iso", "Fanuc"), "haas": ("iso", "Haas"),
@@ -62,6 +63,10 @@ def program_motion(plan, options: MachineOptions | None = None) -> Motion:
         from axiscal.programs._thermal import thermal_motion
 
         return thermal_motion(plan, options)
+    if isinstance(plan, BallbarProgram):
+        from axiscal.programs._five_axis import ballbar_motion
+
+        return ballbar_motion(plan, options)
     if isinstance(getattr(plan, "plan", None), FiveAxisPlan):     # a plan with its machine
         from axiscal.programs._five_axis import five_axis_motion
 

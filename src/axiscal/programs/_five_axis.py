@@ -29,7 +29,7 @@ import numpy as np
 from axiscal.programs._motion import (MAX_BLOCKS, Comment, Dwell, Feed, MachineOptions, Motion,
                                       ProgramError, Rapid, _Builder, _check_dwell)
 
-__all__ = ["FiveAxisProgram", "five_axis_motion"]
+__all__ = ["FiveAxisProgram", "five_axis_motion", "BallbarProgram", "ballbar_motion", "path_points"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,3 +112,116 @@ def five_axis_motion(plan, machine, options: MachineOptions, dwell: float = 1.0,
             for a in letters if a in options.safe and a != "Z"]
     blocks[-1] = Rapid((z_safe, *back))         # the last pose's rise, with the way back
     return Motion("five-axis", str(blocks[0].text), letters, unit, tuple(blocks))
+
+
+@dataclass(frozen=True, eq=False)
+class BallbarProgram:
+    """The ballbar set-ups of a five-axis configuration with their machine
+    (:mod:`axiscal.procedures.five_axis_ballbar`) and what the program adds.
+
+    Attributes
+    ----------
+    setups : tuple of BallbarSetUp
+    machine : FiveAxisMachine
+    dwell : float, s
+        At the start and the end of each set-up's path (the ballbar's reading starts and ends).
+    tolerance : float, µm
+        Largest distance, in the table frame, of the spindle ball from its place between two
+        programmed points (the chord of the joint-space straight move).
+    """
+
+    setups: tuple
+    machine: object
+    dwell: float = 1.0
+    tolerance: float = 1.0
+
+
+def ballbar_motion(job: BallbarProgram, options: MachineOptions) -> Motion:
+    """The checked motion of the ballbar set-ups of ``job`` (joint space, no TCP).
+
+    For each set-up: up to the safe Z, the rotary axes and X, Y to the path's start, Z down to
+    it, a dwell (the bar is mounted before the program starts; the ballbar starts reading), the
+    path at the feed through points dense enough that the spindle ball stays within
+    ``tolerance`` of its place on the table between them (each segment's chord is measured with
+    the nominal kinematics at its middle and the segment split until it is within), a dwell, and
+    up to the safe Z. Every position is the nominal kinematics' (what the controller holds),
+    angles as LinuxCNC's trt kinematics count them. axiscal writes no program stop: move the bar
+    to the next set-up's balls during the controller's own stop (single block) or with one
+    program per set-up.
+    """
+    machine = job.machine
+    g = machine.geometry
+    if g.head:
+        raise ProgramError("machine", f"{machine.name} has a spindle head: its ballbar path "
+                           "needs the controller's tool centre point control (table-table "
+                           "machines only)")
+    if not (np.isfinite(job.tolerance) and job.tolerance > 0):
+        raise ProgramError("tolerance", f"tolerance {job.tolerance!r} µm: give a distance "
+                           "above 0")
+    _check_dwell(job.dwell, options)
+    options.check_feed(options.feed, "mm")
+    if "Z" not in options.safe:
+        raise ProgramError("safe", "give the safe Z (safe Z=…), the machine position the "
+                           "spindle rises to between set-ups")
+    tilt = g.tilt
+    letters = ("X", "Y", "Z", tilt, "C")
+    unit = {a: options.units for a in "XYZ"} | {tilt: "deg", "C": "deg"}
+    b = _Builder(options, unit)
+    z_safe = b.at_machine("Z", float(options.safe["Z"]), "the safe Z", "safe")
+    f = b.feed(options.feed, "X")
+    blocks = [Comment(f"ballbar tests of {machine.name}: the spindle ball held on the table by "
+                      "the nominal kinematics, no TCP needed"),
+              Comment("written by axiscal: check it on the machine before the test"),
+              Rapid((z_safe,))]
+    for s in job.setups:
+        a, c, xyz = path_points(machine, s, job.tolerance * 1e-6, resolution=1e-3)
+        if len(blocks) + len(a) + 8 > MAX_BLOCKS:
+            raise ProgramError("tolerance", f"a program holds at most {MAX_BLOCKS} moves: give "
+                               "a larger tolerance or fewer set-ups")
+        blocks.append(Comment(f"set-up {s.label}: {s.direction} bar {s.length * 1e3:g} mm from "
+                              f"the table ball at {', '.join(f'{v * 1e3:g}' for v in s.pivot)} "
+                              f"mm, {len(a)} points"))
+        pts = [tuple(b.at(ax, float(v), f"{s.label} point {k + 1}", "limits")
+                     for ax, v in zip(letters, (*(xyz[k] * 1e3), np.degrees(a[k]),
+                                                np.degrees(c[k]))))
+               for k in range(len(a))]
+        blocks += [Rapid((*pts[0][:2], *pts[0][3:])), Rapid((pts[0][2],)), Dwell(job.dwell)]
+        blocks += [Feed(p, f) for p in pts[1:]]
+        blocks += [Dwell(job.dwell), Rapid((z_safe,))]
+    back = [b.at_machine(ax, float(options.safe[ax]), "the safe start", "safe")
+            for ax in letters if ax in options.safe and ax != "Z"]
+    if back:
+        blocks.append(Rapid(tuple(back)))
+    return Motion("five-axis ballbar", str(blocks[0].text), letters, unit, tuple(blocks))
+
+
+def path_points(machine, setup, tolerance: float, resolution: float | None = None):
+    """The set-up's path densified so that a straight joint-space move between two points keeps
+    the spindle ball within ``tolerance`` (m) of its place on the table (nominal kinematics):
+    ``(tilt_angle, c_angle, commanded)``, rad, rad, (N, 3) m. With ``resolution`` (degrees, the
+    program's least increment of an angle) the angles are rounded to it first and the linear
+    positions computed for the rounded angles, so that the program's rounding of an angle moves
+    no point (0.001° is 4.4 µm at 250 mm); the linear positions' own rounding (0.001 mm) stays."""
+    from axiscal.physics.rotary_location import machine_to_table, table_to_machine
+
+    g = machine.geometry
+    place = setup.spindle_ball
+    a, c = np.asarray(setup.tilt_angle, float), np.asarray(setup.c_angle, float)
+    for _ in range(12):
+        q = table_to_machine(g, {}, a, c, place)
+        mid = machine_to_table(g, {}, (a[1:] + a[:-1]) / 2, (c[1:] + c[:-1]) / 2,
+                               (q[1:] + q[:-1]) / 2)
+        err = np.linalg.norm(mid - place, axis=1)
+        if err.max() <= tolerance:
+            if resolution is None:
+                return a, c, q
+            a, c = (np.radians(np.round(np.degrees(x) / resolution) * resolution) for x in (a, c))
+            keep = np.r_[True, (np.diff(a) != 0) | (np.diff(c) != 0)]
+            a, c = a[keep], c[keep]
+            return a, c, table_to_machine(g, {}, a, c, place)
+        split = np.maximum(1, np.ceil(np.sqrt(err / tolerance) * 1.05)).astype(int)
+        frac = [np.arange(k) / k for k in split]
+        a = np.concatenate([a[i] + (a[i + 1] - a[i]) * t for i, t in enumerate(frac)] + [a[-1:]])
+        c = np.concatenate([c[i] + (c[i + 1] - c[i]) * t for i, t in enumerate(frac)] + [c[-1:]])
+    raise ProgramError("tolerance", f"the path of {setup.label} does not reach the tolerance "
+                       f"{tolerance * 1e6:g} µm")
