@@ -32,7 +32,8 @@ from axiscal.errors import DataFormatError, InputError
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
            "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
            "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE",
-           "drift_check_record", "with_drift_check", "IdentificationBudget", "ThermalBudget"]
+           "drift_check_record", "drift_check_from_readings", "with_drift_check",
+           "IdentificationBudget", "ThermalBudget"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
@@ -119,6 +120,48 @@ def drift_check_record(raw: bytes, filename: str) -> dict:
             "sha256": hashlib.sha256(raw).hexdigest(), "samples": int(readings.size),
             "readings": [float(v) for v in readings],
             "e_ve": float(environmental_variation(readings)), "e_ve_source": "drift check"}
+
+
+def drift_check_from_readings(kept: dict) -> dict:
+    """The drift check a stored record keeps (``result["drift_check"]``: its file's name and
+    SHA-256 and its readings, :func:`drift_check_record`) made again from its readings, where
+    the file itself was not kept (``iso230-2 --drift-check --history`` keeps the readings):
+    E_VE their range again (:func:`~axiscal.standards.iso230_9_inputs.
+    environmental_variation`), as :func:`drift_check_record` makes it. An archive brings it.
+
+    Raises
+    ------
+    InputError
+        Not a name, a SHA-256 and at least 2 finite readings (the count stated if one is).
+
+    Examples
+    --------
+    >>> r = drift_check_from_readings({"filename": "dc.csv", "sha256": "0" * 64,
+    ...                                "readings": [0.1, 0.4, -0.2]})
+    >>> round(r["e_ve"], 6), r["samples"]
+    (0.6, 3)
+    """
+    import numpy as np
+
+    from axiscal._parse import MAX_MAGNITUDE
+    from axiscal.standards.iso230_9_inputs import environmental_variation
+
+    readings = kept.get("readings")
+    if not (isinstance(readings, list) and len(readings) >= 2 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+            and abs(v) <= MAX_MAGNITUDE for v in readings)):
+        raise InputError("the drift check's readings are not a list of at least 2 finite "
+                         f"numbers within ±{MAX_MAGNITUDE:g}")
+    name, sha = kept.get("filename"), kept.get("sha256")
+    if not (isinstance(name, str) and name.strip() and isinstance(sha, str) and len(sha) == 64):
+        raise InputError("the drift check has no file name or SHA-256")
+    if kept.get("samples", len(readings)) != len(readings):
+        raise InputError(f"the drift check states {kept.get('samples')!r:.20} readings and "
+                         f"holds {len(readings)}")
+    values = np.asarray(readings, dtype=float)
+    return {"standard": "ISO 230-2:2014 Annex A.5", "filename": name[:300], "sha256": sha,
+            "samples": int(values.size), "readings": [float(v) for v in values],
+            "e_ve": float(environmental_variation(values)), "e_ve_source": "drift check"}
 
 
 def with_drift_check(ev: Evaluated, inputs: dict, record: dict,
