@@ -9,7 +9,9 @@ with its ISO 230-4 figures, :func:`evaluate_ballbar`), a multi-point diagonal te
 file: the location errors of ISO 230-1 / ISO 230-7 Clause 3 identified from it,
 :func:`axiscal.api.fiveaxis.identify`'s one call), and an ISO 230-3:2020 thermal test's log
 (ETVE, spindle, linear axis, rotary table: :func:`axiscal.standards.iso230_3.evaluate_thermal`,
-the call of ``axiscal thermal evaluate``). :func:`evaluate_file` returns
+the call of ``axiscal thermal evaluate``), and a volumetric test: a volumetric configuration
+holding its 21 errors inline, mapped by ISO/TR 16907:2015 with the body diagonals of ISO
+230-6:2002 (the call of ``axiscal volumetric map``). :func:`evaluate_file` returns
 what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
 metadata the file declares. Evaluating the same bytes again gives the same numbers, which is how
 a stored test is shown again; and they are the numbers of the command a user runs on the file
@@ -22,6 +24,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import re
 from dataclasses import dataclass, field
 
 
@@ -39,7 +42,8 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
 #: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
 
-KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal")
+KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
+         "volumetric")
 
 
 @dataclass
@@ -227,11 +231,17 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
     return None
 
 
+_VOLUMETRIC = re.compile(r"^[ \t]*\[machine\][ \t]*(#.*)?$", re.M)
+_ERRORS = re.compile(r"^[ \t]*\[errors\][ \t]*(#.*)?$", re.M)
+
+
 def detect_kind(text: str) -> str:
     """The kind of a data file from its content (its header line)."""
     stripped = text.lstrip("\ufeff \t\r\n")
     if stripped.startswith("{"):
         return "iso230-2"
+    if _VOLUMETRIC.search(text) and _ERRORS.search(text):    # a TOML [machine] and [errors]
+        return "volumetric"
     if "TGT_DATA[" in text or stripped.startswith("HEADER::"):   # ecmc; Renishaw .rtl/.rta
         return "iso230-2"
     from axiscal.io.epics import looks_like_camonitor
@@ -260,7 +270,8 @@ def detect_kind(text: str) -> str:
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
                           "straightness, ballbar, diagonal, five-error, five-axis probing, "
-                          "R-test or ISO 230-3 thermal log CSV, or axiscal JSON")
+                          "R-test or ISO 230-3 thermal log CSV, axiscal JSON, or a volumetric "
+                          "configuration (TOML) with its errors inline")
 
 
 def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluated:
@@ -566,9 +577,34 @@ def _thermal(text: str, filename: str) -> Evaluated:
                      dataset=log, evaluation=r)
 
 
+def _volumetric(text: str, filename: str) -> Evaluated:
+    """A volumetric configuration holding its 21 errors inline (:mod:`axiscal.io.volumetric`,
+    ``base=None``): the map on the command's default 11³ grid and the body diagonals by
+    :func:`axiscal.io.simulation_results.volumetric_map`, the one call of ``axiscal volumetric
+    map``; the stored result is that command's ``--json`` object, the figures (largest |E|,
+    each axis's range, each diagonal's range, in µm) its parameters. The evaluation is the
+    ``VolumetricMap``, the dataset the command's run (its ``parts``: the configuration, the
+    body diagonals, a simulation's truth), from which its figure and report are drawn."""
+    from axiscal.io.simulation_results import volumetric_map
+    from axiscal.io.volumetric import parse_volumetric_config
+
+    cfg = parse_volumetric_config(text, filename, base=None)
+    run = volumetric_map(cfg, VOLUMETRIC_GRID)
+    d = run.json
+    params = {"largest": (d["largest_um"], "um"),
+              **{f"range_{a}": (v, "um") for a, v in d["range_um"].items()},
+              **{f"diagonal_{g['name']}": (g["range_um"], "um") for g in d["diagonals"]}}
+    return Evaluated("volumetric", "linear", jsonable(d), params, machine=cfg.name, axis="XYZ",
+                     dataset=run, evaluation=run.record)
+
+
+#: Grid points per axis of a stored volumetric test's map (``volumetric map``'s default).
+VOLUMETRIC_GRID = 11
+
+
 _EVALUATORS = {"iso230-2": _positioning, "straightness": _straightness, "ballbar": _ballbar,
                "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis,
-               "thermal": _thermal}
+               "thermal": _thermal, "volumetric": _volumetric}
 
 
 def result_text(ev: Evaluated) -> str:
