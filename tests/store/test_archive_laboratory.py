@@ -201,6 +201,21 @@ def test_a_history_keeping_another_laboratory_or_the_test_refuses(source, tmp_pa
     assert _rows(dst, Laboratory) == [] and dst.certificates() == []
 
 
+def test_one_machines_archive_carries_the_laboratory_and_its_trail(source, tmp_path):
+    """``history export --machine``: the laboratory goes with the machine's tests, with the
+    audit entries of its edits (they name no machine)."""
+    d, src, ids = source
+    machine = src.get(ids["t1"]).summary.machine
+    assert export_history(src, tmp_path / "m.zip", machine=machine) == 2
+    with zipfile.ZipFile(tmp_path / "m.zip") as z:
+        head = json.loads(z.read("history.jsonl").decode().splitlines()[0])
+        actions = [json.loads(x)["action"] for x in z.read("audit.jsonl").decode().splitlines()]
+    assert (head["laboratory"], head["drift_checks"]) == (1, 2)
+    assert actions.count("laboratory") == 2 and actions.count("drift-check") == 2
+    dst = _dst(tmp_path)
+    assert import_history(dst, tmp_path / "m.zip") == (2, 0) and laboratory(dst) == LAB
+
+
 def test_an_archive_of_format_2_imports_and_a_newer_one_is_refused(source, tmp_path):
     d, _, _ = source
 
@@ -262,8 +277,15 @@ def _no_test(e):
     e["test"] = "0" * 64
 
 
-def _record_drift(e):            # the record of the test stored by iso230-2 --drift-check
-    e["drift_check"]["readings"] = ["x", 1]
+def _record_drift(z):
+    """Every record's drift check given readings that are not numbers: the test stored with
+    its readings only (no file) is refused; the other's record is made from its file."""
+    lines = z.read("history.jsonl").decode().splitlines()
+    records = [json.loads(x) for x in lines[1:]]
+    assert sum(bool(r["drift_check"]) for r in records) == 2
+    for r in records:
+        r["drift_check"]["readings"] = ["x", 1]
+    return "\n".join([lines[0], *map(json.dumps, records)]) + "\n"
 
 
 def _two_labs(z):
@@ -304,7 +326,7 @@ HOSTILE = {
     "laboratory instrument without a name": (_lab(["instrument"], [{"serial": "1"}]),
                                              "has no name"),
     "two laboratories": (("laboratory.jsonl", _two_labs), "holds 2 laboratories"),
-    "a record's kept drift check": (_line("history.jsonl", _record_drift, which=2),
+    "a record's kept drift check": (("history.jsonl", _record_drift),
                                     "readings are not a list of at least 2 finite numbers"),
 }
 
