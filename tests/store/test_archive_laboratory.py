@@ -313,6 +313,8 @@ HOSTILE = {
                                      "'file' must be drift_checks/<its sha256>"),
     "drift check created not a date": (_line("drift_checks.jsonl", _set("created", "soon")),
                                        "'soon' is not a date and time"),
+    "laboratory updated with an offset": (_line("laboratory.jsonl", _set(
+        "updated", "2026-11-24T10:00:00+05:00")), "has an offset; the history keeps UTC"),
     "laboratory tables a list": (_line("laboratory.jsonl", _set("tables", [1])),
                                  "'tables' is a JSON list, not a dict"),
     "laboratory company a string": (_lab(["company"], "PM"), "'company' is a JSON str"),

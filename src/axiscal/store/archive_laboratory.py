@@ -200,11 +200,15 @@ def _fields(e: dict, fields: dict, name: str, n: int, p) -> None:
 
 
 def _when(text: str, name: str, n: int, p) -> None:
+    """A date and time as the history keeps it: ISO 8601, UTC without an offset."""
     try:
-        dt.datetime.fromisoformat(text)
+        when = dt.datetime.fromisoformat(text)
     except ValueError:
         raise DataFormatError(f"{name} line {n}: {text[:40]!r} is not a date and time",
                               str(p)) from None
+    if when.tzinfo is not None:
+        raise DataFormatError(f"{name} line {n}: {text[:40]!r} has an offset; the history "
+                              "keeps UTC without one", str(p))
 
 
 def _text(value: str, field: str, model) -> None:
