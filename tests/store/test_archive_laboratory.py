@@ -179,11 +179,9 @@ def test_export_import_keeps_laboratory_drift_checks_and_the_certificate(source,
     assert len(_rows(dst, DriftCheck)) == 2 and len(_rows(dst, Laboratory)) == 1
 
 
-def test_a_history_keeping_another_laboratory_or_the_test_refuses(source, tmp_path):
-    """The rules: another laboratory in the history imported into refuses the archive (which
-    laboratory certifies is its decision, never an import's); so does a drift check for a test
-    the history held before without it (it would change a stored U without an audit entry
-    there); nothing of the archive is stored."""
+def test_a_history_keeping_another_laboratory_refuses_the_archive(source, tmp_path):
+    """The rule: another laboratory in the history imported into refuses the archive (which
+    laboratory certifies is its decision, never an import's); nothing of it is stored."""
     d, src, ids = source
     dst = _dst(tmp_path, "other-lab.sqlite")
     set_laboratory(dst, {"company": {"name": "Other Lab", "code": "OL"}}, by="x", reason="ours")
@@ -192,13 +190,22 @@ def test_a_history_keeping_another_laboratory_or_the_test_refuses(source, tmp_pa
         import_history(dst, d / "h.zip")
     assert dst.tests() == [] and dst.certificates() == [] and len(cx.audit(dst)) == 1
     assert laboratory(dst) == {"company": {"name": "Other Lab", "code": "OL"}}
+
+
+def test_drift_checks_of_a_test_held_before_are_merged(source, tmp_path):
+    """The rule: the history imported into holds the test already, without drift checks (a
+    backup refreshed from an earlier export); the archive's drift checks are added and the
+    test's record is made again with the newest one's E_VE over the inputs it was stored with,
+    as the test's page does: the same record, E_VE 0.6 µm, as the source's."""
+    d, src, ids = source
     dst = _dst(tmp_path, "had-test.sqlite")
     own = dst.add(src.get(ids["t1"]).raw, "x.csv", uncertainty={"resolution": 0.1})
-    with pytest.raises(AxiscalError, match="drift check 'dc-old.csv': its test .test 1 here. "
-                       "was in this history before the import"):
-        import_history(dst, d / "h.zip")
-    assert [t.id for t in dst.tests()] == [own.id] and _rows(dst, DriftCheck) == []
-    assert _rows(dst, Laboratory) == [] and dst.certificates() == []
+    assert "drift_check" not in dst.get(own.id).result
+    assert import_history(dst, d / "h.zip") == (1, 1)
+    assert [r.filename for r in drift_checks(dst, own.id)] == ["dc.csv", "dc-old.csv"]
+    assert dst.get(own.id).result == src.get(ids["t1"]).result
+    assert dst.get(own.id).result["uncertainty_inputs"]["e_ve"] == 0.6
+    assert [a.action for a in cx.audit(dst, test_id=own.id)].count("drift-check") == 2
 
 
 def test_one_machines_archive_carries_the_laboratory_and_its_trail(source, tmp_path):

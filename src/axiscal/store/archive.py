@@ -41,8 +41,8 @@ Import is all or nothing. The archive is distrusted and checked whole before the
 Then every test is stored in one transaction (:meth:`~axiscal.store.history.Store.add_all`),
 with the withdrawals, the audit trail, the certificates, the laboratory and the drift checks in
 the same transaction: a damaged archive, an error, a certificate number the register gave
-another document, another laboratory kept in the history, a drift check for a test stored here
-before (the rules: :mod:`axiscal.store.archive_laboratory`), or a killed process leaves the
+another document, another laboratory kept in the history (the rules for the laboratory and the
+drift checks: :mod:`axiscal.store.archive_laboratory`), or a killed process leaves the
 database exactly as it was; files already stored (same SHA-256), audit entries, certificates
 and drift checks already kept are counted, not stored again, so an import can be run again.
 """

@@ -28,9 +28,12 @@ history imported into holds already:
 * **drift check**: one the history already keeps with its test (same test, same file SHA-256)
   is counted, not kept twice; one for a test this import stores is kept (the test's record is
   made with the newest one's E_VE, :func:`axiscal.store.history.prepare`); one for a test the
-  history held before the import and keeps without it is **refused**: it would change the U of
-  a record stored here, which only the test's page does, with an audit entry
-  (:func:`axiscal.store.laboratory.add_drift_check`).
+  history held before the import is **merged**: kept after the drift checks the history keeps
+  of the test, and the test's record made again with its newest drift check's E_VE over the
+  inputs it was stored with, as the test's page does
+  (:func:`axiscal.store.laboratory.add_drift_check`); the audit entry saying so comes with the
+  archive's trail. So a backup refreshed by importing each new export takes the drift checks
+  added since.
 """
 
 from __future__ import annotations
@@ -277,24 +280,48 @@ def _restore_laboratory(s, lab: dict | None, p) -> int:
 
 
 def _restore_drift_checks(s, checks: list[tuple[dict, bytes]], new: set[str], p) -> int:
+    """Add the drift checks not kept; a test held before that gets one has its record made
+    again with its newest drift check (:func:`_remade`)."""
     from sqlalchemy import select
 
     from axiscal.store.models import DriftCheck, Test
 
-    added = 0
+    added, before = 0, set()
     for e, raw in checks:
         tid = s.scalar(select(Test.id).where(Test.sha256 == e["test"]))
         if s.scalar(select(DriftCheck.id).where(DriftCheck.test_id == tid,
                                                 DriftCheck.sha256 == e["sha256"])) is not None:
             continue
         if e["test"] not in new:
-            raise DataFormatError(f"drift check {e['filename'][:80]!r}: its test (test {tid} "
-                                  "here) was in this history before the import, without it; "
-                                  "a drift check changes the test's U, so it is added on the "
-                                  "test's page (an audit entry); nothing was imported", str(p))
+            before.add(tid)
         s.add(DriftCheck(test_id=tid, filename=e["filename"], raw=raw, sha256=e["sha256"],
                          e_ve=float(e["e_ve"]), readings=e["readings"],
                          created=dt.datetime.fromisoformat(e["created"]), by=e["by"]))
         added += 1
     s.flush()
+    for tid in sorted(before):
+        _remade(s, tid, p)
+    s.flush()
     return added
+
+
+def _remade(s, tid: int, p) -> None:
+    """Test ``tid``'s record made again with its newest drift check's E_VE over the inputs it
+    was stored with, as :func:`axiscal.store.laboratory.add_drift_check` makes it."""
+    from sqlalchemy import select
+
+    from axiscal.store.kinds import drift_check_record, evaluate_file
+    from axiscal.store.laboratory import result_with_drift_check
+    from axiscal.store.models import DriftCheck, Test
+
+    t = s.get(Test, tid)
+    newest = s.scalars(select(DriftCheck).where(DriftCheck.test_id == tid)
+                       .order_by(DriftCheck.id.desc()).limit(1)).one()
+    inputs = dict(json.loads(t.result_json).get("uncertainty_inputs") or {})
+    try:
+        t.result_json = result_with_drift_check(
+            evaluate_file(t.raw, t.filename, t.kind), inputs,
+            drift_check_record(newest.raw, newest.filename))
+    except AxiscalError as exc:
+        raise DataFormatError(f"drift check {newest.filename[:80]!r} of test {tid} here: {exc}; "
+                              "nothing was imported", str(p)) from None
