@@ -50,8 +50,8 @@ JOB = {"operator": {"name": "J. Keller"},
        "certificate": {"signatory": "Dr. M. Braun", "specification": "Contract 4711"}}
 TOL = {"E": 25.0, "R": 8.0}
 TODAY = "2026-11-24"
-#: Drift checks: E_VE = 0.4 − (−0.2) = 0.6 µm and 0.5 − 0.1 = 0.4 µm (the range, ISO 230-2:2014
-#: Annex A.5).
+#: Drift checks: E_VE = 0.4 − (−0.2) = 0.6 µm and 0.5 − 0.1 = 0.4 µm (the range of the
+#: readings, ISO 230-2:2014 Annex A.5).
 DC1 = b"time_s,reading\n0,0.1\n60,0.4\n120,-0.2\n"
 DC2 = b"reading\n0.1\n0.5\n0.3\n"
 

@@ -270,7 +270,8 @@ def _restore_laboratory(s, lab: dict | None, p) -> int:
     kept = json.loads(row.tables_json)
     if kept == lab["tables"]:
         return 0
-    differ = sorted(k for k in set(kept) | set(lab["tables"]) if kept.get(k) != lab["tables"].get(k))
+    new = lab["tables"]
+    differ = sorted(k for k in set(kept) | set(new) if kept.get(k) != new.get(k))
     code = str((kept.get("company") or {}).get("code", "") or "")[:40]
     raise DataFormatError(f"this history keeps another laboratory{f' ({code})' if code else ''} "
                           f"than the archive's ({', '.join(differ)} differ): which one "
