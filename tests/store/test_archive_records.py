@@ -67,7 +67,8 @@ def test_an_archive_round_trip_keeps_the_audit_trail_and_the_register(tmp_path, 
     assert export_history(src, tmp_path / "h.zip") == 5
     with zipfile.ZipFile(tmp_path / "h.zip") as z:
         head = json.loads(z.read("history.jsonl").decode().splitlines()[0])
-    assert head == {"format": "axiscal.history/2", "tests": 5, "audit": 7, "certificates": 2}
+    assert head == {"format": "axiscal.history/3", "tests": 5, "audit": 7, "certificates": 2,
+                    "laboratory": 0, "drift_checks": 0}
     dst = open_store(db_url)
     assert import_history(dst, tmp_path / "h.zip") == (5, 0)
     assert _trail(dst) == _trail(src) and len(_trail(dst)) == 7      # who, when, what, why

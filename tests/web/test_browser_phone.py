@@ -23,6 +23,21 @@ def _upload(browser, base, path) -> str:
     return browser.current_url.split("?")[0]
 
 
+def _volumetric_file(tmp_path):
+    """A volumetric configuration with its errors inline (``volumetric simulate`` then
+    ``volumetric map --inline``), the file the history keeps of a volumetric test."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    for args in (["volumetric", "simulate", "--out", tmp_path / "vol", "--points", "5"],
+                 ["volumetric", "map", tmp_path / "vol" / "volumetric.toml", "--inline",
+                  tmp_path / "vol.toml"]):
+        r = CliRunner().invoke(app, [str(a) for a in args])
+        assert r.exit_code == 0, r.output
+    return tmp_path / "vol.toml"
+
+
 def _overflow(browser) -> list[str]:
     """What sticks out beyond the screen's width outside a scrolling box (empty: nothing)."""
     return browser.execute_script(
@@ -39,8 +54,10 @@ def test_pages_fit_a_412_px_screen(server, browser, tmp_path):
     p.write_bytes(positioning_file())
     test = _upload(browser, server, p)
     ballbar = _upload(browser, server, _ballbar_file(tmp_path))
+    volumetric = _upload(browser, server, _volumetric_file(tmp_path))
     machine = browser.find_element(By.CSS_SELECTOR, "a[href^='/machine/']").get_attribute("href")
-    pages = {"test": test, "ballbar": ballbar, "machine": machine, "upload": server + "/upload",
+    pages = {"test": test, "ballbar": ballbar, "volumetric": volumetric, "machine": machine,
+             "upload": server + "/upload",
              "trend": server + "/trend?machine=VMC-800&axis=X&parameter=R%E2%86%91"}
     try:
         for name, url in pages.items():

@@ -109,7 +109,9 @@ class History:
         t = self.store.get(test_id).summary
         ev = self.evaluation(test_id)
         title = None
-        if ev.kind != "iso230-2":
+        if ev.kind == "volumetric":          # the command's heading, the history's name
+            title = f"{REPORT_TITLES[ev.kind]} — {t.machine}"
+        elif ev.kind != "iso230-2":
             kind = ("Ballbar diagnosis" if ev.kind == "ballbar" and hasattr(ev.result, "circular")
                     else REPORT_TITLES[ev.kind])
             title = f"{kind} — {t.machine} axis {t.axis} (test {t.id}, {t.filename})"

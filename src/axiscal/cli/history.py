@@ -51,13 +51,13 @@ app = typer.Typer(help="Calibration history: every machine, axis, test, result a
 def add(
     file: Path = typer.Argument(..., help="A data file axiscal evaluates (positioning, "
                                 "straightness, ballbar, diagonal or five-error CSV, JSON; a "
-                                "five-axis probing or R-test CSV stating its geometry; an ISO 230-3 thermal log)."),
+                                "five-axis probing or R-test CSV stating its geometry; an ISO 230-3 thermal log; a volumetric configuration with its errors inline)."),
     machine: Optional[str] = typer.Option(None, "--machine", help="Machine name (default: the "
                                           "file's)."),
     axis: Optional[str] = typer.Option(None, "--axis", help="Axis name (default: the file's)."),
     kind: Optional[str] = typer.Option(None, "--kind", help="iso230-2, straightness, ballbar, "
-                                       "diagonal, motion, fiveaxis or thermal (default: from "
-                                       "the content)."),
+                                       "diagonal, motion, fiveaxis, thermal or volumetric "
+                                       "(default: from the content)."),
     instrument: str = typer.Option("", "--instrument", help="Instrument and its serial."),
     note_: str = typer.Option("", "--note", help="A note kept with the test."),
     date: Optional[str] = typer.Option(None, "--date", help="Test date YYYY-MM-DD (default: the "

@@ -3,7 +3,8 @@ compensated and verified on the body diagonals.
 
 Commands: ``simulate [--out DIR]`` (a simulated machine with all 21 errors, measured by the
 simulated laser tests; ``--out`` writes the measured files and a configuration), ``map CONFIG``
-(the volumetric error field, its figures and the body diagonals), ``compensate CONFIG
+(the volumetric error field, its figures and the body diagonals; ``--inline FILE`` writes the
+configuration with every error inline, the one file ``history add`` keeps), ``compensate CONFIG
 --controller C`` (positioning and cross-axis tables; ``--verify`` re-measures a simulated
 machine with them applied). The configuration format is in :mod:`axiscal.io.volumetric`.
 
@@ -111,6 +112,7 @@ def map_(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the 3-D grid and slices "
                                         "(.png, .svg, .pdf)."),
     report: Optional[Path] = typer.Option(None, "--report", help="Write the map's report (error field, body diagonals, inputs): HTML (.html) or PDF (.pdf, WeasyPrint)."),
+    inline: Optional[Path] = typer.Option(None, "--inline", help="Write the configuration with every measured file's error inline (.toml): one self-contained file, the one 'axiscal history add' keeps as a volumetric test."),
     as_json: bool = _JSON,
 ):
     """The volumetric error at every point of the working volume, and the body diagonals.
@@ -121,9 +123,15 @@ def map_(
 
     plot = plot_path(plot) if plot else None
     report = report_path(report) if report else None
+    if inline:
+        from axiscal.cli._common import typed_path
+
+        inline = typed_path(inline, "--inline", (".toml",))
     mapped = api.volumetric_map(config, grid)
     sim = mapped.test
     cfg = sim.parts["config"]
+    if inline:
+        _write_inline(config, inline, cfg)
     e = cfg.errors
     vmap, diags, truth, out = sim.record, sim.parts["diagonals"], sim.parts["truth"], sim.json
     if plot:
@@ -211,6 +219,20 @@ def compensate(
         typer.echo(f"wrote {', '.join(written)} in {out}{where}")
     if result is not None:
         typer.echo(str(result))
+
+
+def _write_inline(config: Path, out: Path, cfg) -> None:
+    """``--inline``: the configuration with its errors inline
+    (:func:`axiscal.io.volumetric.format_volumetric_inline`), never over one of its inputs."""
+    from axiscal.errors import InputError
+    from axiscal.io._files import read_text, write_text_atomic
+    from axiscal.io.volumetric import format_volumetric_inline
+
+    if any(out.resolve() == Path(p).resolve() for p in cfg.inputs):
+        raise InputError(f"--inline {out}: it is one of the files the configuration is read "
+                         "from; write it elsewhere")
+    write_text_atomic(out, format_volumetric_inline(read_text(config), cfg))
+    note(f"wrote {out} (every error inline)")
 
 
 def _folder(out: Path) -> None:

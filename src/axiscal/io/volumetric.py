@@ -53,7 +53,7 @@ from axiscal.standards.volumetric import (AXES, ERROR_NAMES, PAIRS, ErrorFunctio
                                           GeometricErrors, KinematicChain)
 
 __all__ = ["VolumetricConfig", "read_volumetric_config", "parse_volumetric_config",
-           "parse_angular", "format_angular", "write_simulation"]
+           "parse_angular", "format_angular", "write_simulation", "format_volumetric_inline"]
 
 _SECTIONS = {"machine", "errors", "squareness", "compensation", "simulation"}
 _MACHINE_KEYS = {"name", "chain", "travel_mm", "reference_mm", "measured_tool_offset_mm",
@@ -86,7 +86,8 @@ def read_volumetric_config(path) -> VolumetricConfig:
 def parse_volumetric_config(text: str, source: str = "<text>", base=".") -> VolumetricConfig:
     """Check a volumetric configuration's TOML ``text`` (format in the module docstring) and read
     every file it names, a relative name taken from the folder ``base``; messages name
-    ``source``.
+    ``source``. ``base=None``: the configuration must hold every error inline (the one file the
+    calibration history keeps of a volumetric test); a file name is refused, all named.
 
     Raises
     ------
@@ -113,7 +114,13 @@ def parse_volumetric_config(text: str, source: str = "<text>", base=".") -> Volu
     tool = np.asarray(_triple(m.get("tool_offset_mm", list(tm * 1e3)), p, "tool_offset_mm")) * 1e-3
     errs = _table(cfg, "errors", p)
     _known(errs, set(ERROR_NAMES), p, "[errors]")
-    functions = {name: _function(name, spec, p, Path(base)) for name, spec in errs.items()}
+    named = [f"{k} = {v[:60]!r}" for k, v in errs.items() if isinstance(v, str)]
+    if base is None and named:
+        raise ConfigError(f"{p}: [errors] names files ({', '.join(named[:3])}"
+                          f"{f' and {len(named) - 3} more' if len(named) > 3 else ''}); a "
+                          "volumetric test kept as one file holds every error inline: write it "
+                          "with 'axiscal volumetric map CONFIG --inline FILE'")
+    functions = {name: _function(name, spec, p, Path(base or ".")) for name, spec in errs.items()}
     sq = _table(cfg, "squareness", p)
     _known(sq, set(PAIRS), p, "[squareness]")
     squareness = {k: _number(v, p, f"[squareness] {k}", 1e4) * 1e-6 for k, v in sq.items()}
@@ -126,7 +133,8 @@ def parse_volumetric_config(text: str, source: str = "<text>", base=".") -> Volu
     except AxiscalError as exc:
         raise ConfigError(f"{p}: {exc}") from None
     out = VolumetricConfig(errors, tool, str(m.get("name", p.stem)), comp, sim, p)
-    out.inputs = (p, *(Path(base) / spec for spec in errs.values() if isinstance(spec, str)))
+    out.inputs = (p, *(Path(base or ".") / spec for spec in errs.values()
+                       if isinstance(spec, str)))
     return out
 
 
@@ -215,6 +223,75 @@ def write_simulation(out_dir, machine, errors: GeometricErrors, datasets: dict, 
     texts[cfg.name] = "\n".join(lines) + "\n"
     write_files_atomic(out, texts)
     return cfg
+
+
+def format_volumetric_inline(text: str, cfg: VolumetricConfig) -> str:
+    """The configuration ``text`` (read as ``cfg``) with every error it names by file written
+    inline, as the reader took it from the file (``positions_mm`` and ``values`` in µm, or µrad
+    for an angle: a positioning test's mean bidirectional deviation, a straightness or angular
+    file's points), every other table as it was: one self-contained file, the one a
+    calibration history keeps of a volumetric test. Numbers are written as Python's shortest
+    repr (a double round-trips; scaled to mm and µm the map agrees with the files' to about
+    1e-15 relative).
+
+    Examples
+    --------
+    The file ``x.csv`` read as three points (here given inline to the reader):
+
+    >>> head = '''[machine]
+    ... chain = "X Y | Z"
+    ... travel_mm = { X = [0, 100], Y = [0, 100], Z = [-100, 0] }
+    ... [errors]
+    ... '''
+    >>> cfg = parse_volumetric_config(head + "EXX = { positions_mm = [0, 50, 100], "
+    ...                               "values = [0, 1, 2] }", "vol.toml")
+    >>> print(format_volumetric_inline(head + 'EXX = "x.csv"', cfg).splitlines()[-1])
+    EXX = { positions_mm = [0.0, 50.0, 100.0], values = [0.0, 1.0, 2.0], unit = "um" }
+    """
+    from axiscal._schema import loads_toml
+
+    doc = loads_toml(text, str(cfg.path))
+    errors = dict(doc.get("errors", {}))
+    for name, spec in errors.items():
+        if isinstance(spec, str):
+            f = cfg.errors.functions[name]
+            angular = name[1] in "ABC"
+            errors[name] = {"positions_mm": [float(v) * 1e3 for v in f.positions],
+                            "values": [float(v) * 1e6 for v in f.values],
+                            "unit": "urad" if angular else "um"}
+    doc["errors"] = errors
+    doc["machine"] = {"name": cfg.name, **doc["machine"]}   # as read (default: the file's stem)
+    lines = [f"# axiscal volumetric configuration of {cfg.name}, every error inline "
+             "(axiscal volumetric map --inline)"]
+    for section, table in doc.items():
+        lines += ["", f"[{section}]"]
+        lines += [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in table.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _toml_key(k: str) -> str:
+    import json
+    import re
+
+    return k if re.fullmatch(r"[A-Za-z0-9_-]+", k) else json.dumps(k)
+
+
+def _toml_value(v) -> str:
+    """A value of a volumetric configuration as TOML (strings, numbers, booleans, arrays and
+    inline tables: what its reader takes)."""
+    import json
+
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)                # the shortest text a double round-trips through
+    if isinstance(v, str):
+        return json.dumps(v)          # JSON's escapes are TOML basic-string escapes
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{_toml_key(k)} = {_toml_value(x)}" for k, x in v.items()) + " }"
+    raise ConfigError(f"a value of type {type(v).__name__} cannot be written to TOML")
 
 
 # -- helpers ---------------------------------------------------------------------------------

@@ -24,7 +24,7 @@ ISO230_2 = "iso230-2:2014"
 #: The standard of each kind of test file (:func:`axiscal.store.kinds.detect_kind`).
 KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "iso230-4",
                  "diagonal": "iso230-6", "motion": "iso230-7", "fiveaxis": "iso230-7:location",
-                 "thermal": "iso230-3"}
+                 "thermal": "iso230-3", "volumetric": "iso-tr-16907"}
 
 
 #: The title of the report of each kind of test other than positioning.
@@ -33,7 +33,8 @@ REPORT_TITLES = {"straightness": "Straightness (ISO 230-1)",
                  "motion": "Error motions of a rotary axis (ISO 230-7)",
                  "ballbar": "Circular test (ISO 230-4)",
                  "thermal": "Thermal effects (ISO 230-3)",
-                 "fiveaxis": "Five-axis location errors (ISO 230-1 / ISO 230-7)"}
+                 "fiveaxis": "Five-axis location errors (ISO 230-1 / ISO 230-7)",
+                 "volumetric": "Volumetric accuracy"}
 
 
 def kind_of_file(path: Any) -> str:
@@ -109,8 +110,16 @@ def _thermal_figure(log: Any, r: Any) -> Any:
     return plot_thermal(log)
 
 
+def _volumetric_figure(run: Any, vmap: Any) -> Any:
+    """``axiscal volumetric map --plot``'s figure: the grid magnified and the |E| slices."""
+    from axiscal.report.volumetric_plots import volumetric_figure
+
+    return volumetric_figure(vmap, f"Volumetric error map — {run.parts['config'].name}")
+
+
 FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
-           "diagonal": _diagonal_figure, "motion": _motion_figure, "thermal": _thermal_figure}
+           "diagonal": _diagonal_figure, "motion": _motion_figure, "thermal": _thermal_figure,
+           "volumetric": _volumetric_figure}
 
 
 #: A kind of test in words, as the reports head it.
@@ -118,7 +127,8 @@ KIND_WORDS = {"iso230-2": "Positioning test", "positioning": "Positioning test",
               "standards": "Positioning test", "ballbar": "Ballbar test",
               "straightness": "Straightness", "diagonal": "Squareness by diagonals",
               "motion": "Motion errors of a rotary axis",
-              "thermal": "Thermal test (ISO 230-3)"}
+              "thermal": "Thermal test (ISO 230-3)",
+              "volumetric": "Volumetric accuracy (ISO/TR 16907)"}
 
 
 def notebook_html(kind: str, standard: str, d: dict, fig: Any, quantities: Any = None) -> str:
@@ -452,6 +462,16 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
         from axiscal.report.thermal_plots import thermal_report
 
         rep = thermal_report(ev.dataset, ev.result)
+        if title is not None:
+            rep.title = title
+        return rep.write(path)
+    if ev.kind == "volumetric":     # ``axiscal volumetric map --report``'s report
+        from axiscal.report.volumetric_plots import volumetric_report
+
+        run = ev.dataset
+        cfg = run.parts["config"]
+        rep = volumetric_report(ev.result, run.parts["diagonals"], cfg.errors, name=cfg.name,
+                                truth=run.parts["truth"])
         if title is not None:
             rep.title = title
         return rep.write(path)

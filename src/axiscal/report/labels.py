@@ -183,6 +183,13 @@ QUANTITIES: dict[str, tuple[str, str | None]] = {
     "skew_before_sync": ("Skew before synchronisation", "counts"),
     "switch_sigma": ("Switch repeatability σ", None), "virtual_1": ("Virtual count X1", "counts"),
     "virtual_2": ("Virtual count X2", "counts"), "worst_case": ("Worst cases", None),
+    # volumetric accuracy (ISO/TR 16907:2015; body diagonals, ISO 230-6:2002)
+    "largest": ("Largest volumetric error |E|", "µm"),
+    "range_X": ("Range of the volumetric error along X", "µm"),
+    "range_Y": ("Range of the volumetric error along Y", "µm"),
+    "range_Z": ("Range of the volumetric error along Z", "µm"),
+    **{f"diagonal_{d}": (f"Body diagonal {d}, range", "µm") for d in ("PPP", "NPP", "PNP",
+                                                                      "PPN")},
     # history comparisons and trends
     "first": ("First test", ""), "second": ("Second test", ""), "parameters": ("Parameters", None),
     "change": ("Change", None), "warnings": ("Warnings", ""),

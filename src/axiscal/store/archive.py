@@ -1,14 +1,19 @@
 """Export and import of the history as a portable archive.
 
 The archive is a ZIP file holding ``history.jsonl`` (one JSON object a line: first the header,
-``{"format": "axiscal.history/2", "tests": N, "audit": A, "certificates": C}``, then one record a
-test: the machine, the axis, the test's fields, why it was withdrawn ("" if it counts), its
-parameters and compensation tables, and the name of its raw file),
-``raw/<sha256>-<filename>``, the files as they came, and the records kept beside them (ISO/IEC
-17025:2017 §7.5, §8.4): ``audit.jsonl`` (the audit trail of the corrections),
-``certificates.jsonl`` and ``certificates/<sha256>`` (the certificate register and its issued
-documents), :mod:`axiscal.store.archive_records`. An archive of ``axiscal.history/1`` (written
-before those records) imports as before, without them.
+``{"format": "axiscal.history/3", "tests": N, "audit": A, "certificates": C, "laboratory": L,
+"drift_checks": D}``, then one record a test: the machine, the axis, the test's fields, why it
+was withdrawn ("" if it counts), its parameters and compensation tables, the drift check its
+record was made with, and the name of its raw file), ``raw/<sha256>-<filename>``, the files as
+they came, and the records kept beside them (ISO/IEC 17025:2017 §7.5, §8.4): ``audit.jsonl``
+(the audit trail of the corrections), ``certificates.jsonl`` and ``certificates/<sha256>`` (the
+certificate register and its issued documents), :mod:`axiscal.store.archive_records`;
+``laboratory.jsonl`` (the laboratory kept in the history) and ``drift_checks.jsonl`` with
+``drift_checks/<sha256>`` (the drift checks kept beside their tests, files as uploaded),
+:mod:`axiscal.store.archive_laboratory`. An archive of ``axiscal.history/2`` (before the
+laboratory and the drift checks) or ``/1`` (before the audit trail and the register) imports
+as before, without what it does not carry; one of a newer format (``/4`` …) is refused in one
+line naming the update it needs.
 
 Export writes a temporary file beside the archive and renames it into place, so a full disk or
 an error leaves no partial archive; the archive gets the mode a plain write gives (0666 less the
@@ -28,15 +33,18 @@ Import is all or nothing. The archive is distrusted and checked whole before the
   text]``, every raw file present and matching its SHA-256;
 * every raw file not stored before evaluated again (one that no longer evaluates refuses the
   archive);
-* ``audit.jsonl`` and ``certificates.jsonl``: the counts the header announces, every entry of
-  its fields and types, every test it names in the archive, every document present and matching
-  its SHA-256.
+* ``audit.jsonl``, ``certificates.jsonl``, ``laboratory.jsonl`` and ``drift_checks.jsonl``:
+  the counts the header announces, every entry of its fields and types, every test it names in
+  the archive, every document and drift-check file present and matching its SHA-256, every
+  drift check giving the E_VE it states.
 
 Then every test is stored in one transaction (:meth:`~axiscal.store.history.Store.add_all`),
-with the withdrawals, the audit trail and the certificates in the same transaction: a damaged
-archive, an error, a certificate number the register gave another document, or a killed process
-leaves the database exactly as it was; files already stored (same SHA-256), audit entries and
-certificates already kept are counted, not stored again, so an import can be run again.
+with the withdrawals, the audit trail, the certificates, the laboratory and the drift checks in
+the same transaction: a damaged archive, an error, a certificate number the register gave
+another document, another laboratory kept in the history (the rules for the laboratory and the
+drift checks: :mod:`axiscal.store.archive_laboratory`), or a killed process leaves the
+database exactly as it was; files already stored (same SHA-256), audit entries, certificates
+and drift checks already kept are counted, not stored again, so an import can be run again.
 """
 
 from __future__ import annotations
@@ -53,9 +61,11 @@ from axiscal.errors import AxiscalError, DataFormatError, InputError, one_line
 __all__ = ["FORMAT", "export_history", "import_history", "MAX_ENTRIES", "MAX_ENTRY_BYTES",
            "MAX_TOTAL_BYTES", "MAX_RATIO"]
 
-FORMAT = "axiscal.history/2"
-#: The formats an import reads (/1: before the audit trail and the register were carried).
-FORMATS = ("axiscal.history/1", FORMAT)
+FORMAT = "axiscal.history/3"
+#: The formats an import reads (/1: before the audit trail and the register were carried; /2:
+#: before the laboratory and the drift checks were).
+FORMATS = ("axiscal.history/1", "axiscal.history/2", FORMAT)
+_FORMAT = re.compile(r"axiscal\.history/([0-9]{1,9})")
 #: At most this many entries in an archive's ZIP directory.
 MAX_ENTRIES = 200_000
 #: No entry larger than a file axiscal reads (``axiscal.io._files.MAX_TEXT_BYTES``, 256 MiB).
@@ -73,7 +83,7 @@ _FIELDS = {"machine": (str, None), "axis": (str, None), "kind": (str, None),
            "raw": (str, None), "date_known": (bool, True), "instrument": (str, ""),
            "operator": (str, ""), "note": (str, ""), "parameters": (dict, {}),
            "tables": (list, []), "withdrawn": (str, ""), "uncertainty_inputs": (dict, {}),
-           "quantities": (dict, {}), "schema_version": (int, 0)}
+           "quantities": (dict, {}), "schema_version": (int, 0), "drift_check": (dict, {})}
 
 
 def export_history(store, path, machine: str | None = None) -> int:
@@ -106,6 +116,7 @@ def export_history(store, path, machine: str | None = None) -> int:
 
 def _write(z: zipfile.ZipFile, store, tests, machine) -> None:
     """The tests' records and raw files, then the audit trail and the certificates."""
+    from axiscal.store.archive_laboratory import DRIFT_CHECKS, LABORATORY, export_laboratory
     from axiscal.store.archive_records import AUDIT, CERTIFICATES, export_records
 
     lines, shas = [], {}
@@ -125,25 +136,38 @@ def _write(z: zipfile.ZipFile, store, tests, machine) -> None:
             "uncertainty_inputs": t.result.get("uncertainty_inputs", {}),
             "schema_version": t.result.get("schema_version", 0),
             "quantities": t.result.get("quantities", {}),
+            # the drift check the record was made with (its readings, where no file was kept)
+            "drift_check": t.result.get("drift_check") or {},
             "tables": [list(x) for x in t.tables]}))
     audit, certs = export_records(store, shas, machine)
+    lab, checks = export_laboratory(store, shas)
     head = {"format": FORMAT, "tests": len(tests), "audit": len(audit),
-            "certificates": len(certs)}
+            "certificates": len(certs), "laboratory": len(lab), "drift_checks": len(checks)}
     z.writestr("history.jsonl", "\n".join([json.dumps(head)] + lines) + "\n")
     z.writestr(AUDIT, "".join(json.dumps(e, ensure_ascii=False) + "\n" for e in audit))
+    written = set()
     for entry, doc in certs:
-        if entry["document"] not in z.namelist():
+        if entry["document"] not in written:
             z.writestr(entry["document"], doc)
+            written.add(entry["document"])
     z.writestr(CERTIFICATES, "".join(json.dumps(e, ensure_ascii=False) + "\n"
                                      for e, _ in certs))
+    z.writestr(LABORATORY, "".join(json.dumps(e, ensure_ascii=False) + "\n" for e in lab))
+    for entry, raw in checks:
+        if entry["file"] not in written:
+            z.writestr(entry["file"], raw)
+            written.add(entry["file"])
+    z.writestr(DRIFT_CHECKS, "".join(json.dumps(e, ensure_ascii=False) + "\n"
+                                     for e, _ in checks))
 
 
 def import_history(store, path, progress=None) -> tuple[int, int]:
-    """Store every test of the archive ``path`` with its audit trail and certificates, all or
-    nothing; returns (added, already stored).
+    """Store every test of the archive ``path`` with its audit trail, certificates, laboratory
+    and drift checks, all or nothing; returns (added, already stored).
 
     ``progress(done, total)`` is called as the records are checked and evaluated.
     """
+    from axiscal.store import archive_laboratory
     from axiscal.store.archive_records import restore
 
     p = Path(path)
@@ -161,35 +185,48 @@ def import_history(store, path, progress=None) -> tuple[int, int]:
                 raise DataFormatError(f"history.jsonl line {n} ({rec['filename']}): its raw file "
                                       f"{rec['raw']} is missing from the archive; nothing was "
                                       "imported", str(p))
-        audit, certs = _kept_records(z, p, head, {rec["sha256"] for _, rec in records})
+        kept = _kept_records(z, p, head, {rec["sha256"]: rec["kind"] for _, rec in records})
+        audit, certs, lab, checks = kept
         known = store.stored([rec["sha256"] for _, rec in records])
         items = []
         for k, (n, rec) in enumerate(records, start=1):
             if rec["sha256"] not in known:
-                items.append(_prepared(z, p, n, rec))
+                items.append(_prepared(z, p, n, rec, checks))
             if progress:
                 progress(k, len(records))
     by_sha = {rec["sha256"]: rec for _, rec in records}
     new = {i.sha256 for i in items}
 
     def then(s, _results):
+        archive_laboratory.restore(s, lab, checks, new, p)
         restore(s, by_sha, new, audit, certs, p)
 
-    results = store.add_all(items, then=then) if items or audit or certs else []
+    results = (store.add_all(items, then=then) if items or audit or certs or lab or checks
+               else [])
     added = sum(not r.duplicate for r in results)
     return added, len(records) - added
 
 
-def _kept_records(z: zipfile.ZipFile, p: Path, head: dict, tests: set) -> tuple[list, list]:
-    """The audit entries and certificates of an ``axiscal.history/2`` archive, checked whole
-    (none in one of /1)."""
-    from axiscal.store.archive_records import (AUDIT, CERTIFICATES, check_audit,
-                                               check_certificates)
+#: The records kept beside the tests: (entry, key of its count in the header), by format.
+def _kept_names() -> dict[str, tuple[tuple[str, str], ...]]:
+    from axiscal.store.archive_laboratory import DRIFT_CHECKS, LABORATORY
+    from axiscal.store.archive_records import AUDIT, CERTIFICATES
 
-    if head["format"] == FORMATS[0]:
-        return [], []
+    two = ((AUDIT, "audit"), (CERTIFICATES, "certificates"))
+    return {FORMATS[0]: (), FORMATS[1]: two,
+            FORMAT: two + ((LABORATORY, "laboratory"), (DRIFT_CHECKS, "drift_checks"))}
+
+
+def _kept_records(z: zipfile.ZipFile, p: Path, head: dict, tests: dict[str, str]
+                  ) -> tuple[list, list, dict | None, list]:
+    """The audit entries, certificates, laboratory and drift checks an archive carries (by its
+    format: none in /1, no laboratory and drift checks in /2), each checked whole; ``tests``:
+    the kind of each test of the archive by its SHA-256."""
+    from axiscal.store.archive_laboratory import check_drift_checks, check_laboratory
+    from axiscal.store.archive_records import check_audit, check_certificates
+
     parts = []
-    for name, key in ((AUDIT, "audit"), (CERTIFICATES, "certificates")):
+    for name, key in _kept_names()[head["format"]]:
         if name not in z.namelist():
             raise DataFormatError(f"no {name} inside: the archive is truncated or altered",
                                   str(p))
@@ -201,8 +238,14 @@ def _kept_records(z: zipfile.ZipFile, p: Path, head: dict, tests: set) -> tuple[
                                   f"{name} holds {len(lines)}: the archive is truncated or "
                                   "altered", str(p))
         parts.append(lines)
-    return (check_audit(parts[0], tests, p),
-            check_certificates(parts[1], tests, lambda n: _read_entry(z, p, n), p))
+    parts += [[]] * (4 - len(parts))
+
+    def read(n):
+        return _read_entry(z, p, n)
+
+    return (check_audit(parts[0], set(tests), p),
+            check_certificates(parts[1], set(tests), read, p),
+            check_laboratory(parts[2], p), check_drift_checks(parts[3], tests, read, p))
 
 
 # -- checking ----------------------------------------------------------------------------------
@@ -277,6 +320,11 @@ def _records(text: str, p: Path) -> tuple[dict, list[tuple[int, dict]]]:
     if not lines:
         raise DataFormatError("history.jsonl is empty: not an axiscal history archive", str(p))
     head = _json_object(lines[0][1], lines[0][0], p, "the archive's header")
+    found = _FORMAT.fullmatch(str(head.get("format")))
+    if found and int(found.group(1)) > int(FORMAT.rsplit("/", 1)[1]):
+        raise DataFormatError(f"format {head['format']} was written by a newer axiscal than "
+                              f"this one, which reads {FORMATS[0]} … {FORMAT}; update axiscal "
+                              "to import it; nothing was imported", str(p))
     if head.get("format") not in FORMATS:
         raise DataFormatError(f"history.jsonl line {lines[0][0]}: format "
                               f"{str(head.get('format'))[:60]!r}; expected "
@@ -334,21 +382,31 @@ def _record(rec: dict, n: int, p: Path) -> dict:
     return out
 
 
-def _prepared(z: zipfile.ZipFile, p: Path, n: int, rec: dict):
-    """The record's raw file read, checked against its SHA-256 and evaluated again."""
+def _prepared(z: zipfile.ZipFile, p: Path, n: int, rec: dict, checks: list):
+    """The record's raw file read, checked against its SHA-256 and evaluated again, with the
+    newest of its drift checks the archive carries (or, where no file was kept, the one its
+    record holds: :func:`axiscal.store.kinds.drift_check_from_readings`) as the record was."""
     from axiscal.store.history import prepare
 
     raw = _read_entry(z, p, rec["raw"])
     if hashlib.sha256(raw).hexdigest() != rec["sha256"]:
         raise DataFormatError(f"history.jsonl line {n} ({rec['filename'][:80]}): the raw file "
                               "does not match its SHA-256; nothing was imported", str(p))
+    files = [(data, e["filename"]) for e, data in checks if e["test"] == rec["sha256"]]
+    inputs, drift = rec["uncertainty_inputs"], {}
+    if files:
+        drift = {"drift_check": files[-1]}
+    elif rec["drift_check"]:
+        drift = {"kept_drift_check": rec["drift_check"]}
+    if drift:           # E_VE is the drift check's again, not given twice
+        inputs = {k: v for k, v in inputs.items() if k not in ("e_ve", "e_ve_source")}
     try:
         return prepare(raw, rec["filename"], machine=rec["machine"], axis=rec["axis"],
                        kind=rec["kind"], instrument=rec["instrument"],
                        operator=rec["operator"], note=rec["note"],
                        date=rec["tested_at"] if rec["date_known"] else None,
                        tables=tuple(tuple(x) for x in rec["tables"]),
-                       uncertainty=rec["uncertainty_inputs"])
+                       uncertainty=inputs, **drift)
     except AxiscalError as exc:
         raise DataFormatError(f"history.jsonl line {n} ({rec['filename'][:80]}): "
                               f"{one_line(str(exc))}; nothing was imported", str(p)) from None

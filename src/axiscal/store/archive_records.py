@@ -86,7 +86,8 @@ def export_records(store, shas: dict[int, str], machine: str | None = None
 
             mid = next((i for i, n in machines.items() if n == machine), None)
             ids = _merged_ids(s, mid) if mid is not None else []
-            q = q.where(Audit.machine_id.in_(ids) | Audit.test_id.in_(list(shas)))
+            q = q.where(Audit.machine_id.in_(ids) | Audit.test_id.in_(list(shas))
+                        | (Audit.action == "laboratory"))    # the laboratory goes with it
         audit = [_audit_entry(a, shas, machines, axes) for a in s.scalars(q)]
         certs = [_certificate_entry(c, shas) for c in s.scalars(
             select(Certificate).order_by(Certificate.id)) if c.test_id in shas]

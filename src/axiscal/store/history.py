@@ -473,7 +473,8 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
             date: str | None = None, tables: tuple = (),
             uncertainty: dict | None = None,
             drift_check: tuple[bytes, str] | None = None,
-            machine_default: str | None = None) -> "Prepared":
+            machine_default: str | None = None,
+            kept_drift_check: dict | None = None) -> "Prepared":
     """Evaluate one file into the row it will be stored as (no database is touched).
 
     ``machine`` replaces the machine the file names; ``machine_default`` is used only where
@@ -485,10 +486,12 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
     table for the kind (:func:`axiscal.store.kinds.inputs_from_config`). ``drift_check``: the
     (bytes, name) of the positioning test's drift check (ISO 230-2:2014 Annex A.5), kept in
     the test's record (:func:`axiscal.store.kinds.drift_check_record`: its readings and E_VE)
-    and its E_VE the budget's, measured."""
+    and its E_VE the budget's, measured. ``kept_drift_check``: instead, the drift check a
+    stored record kept without its file (its readings,
+    :func:`axiscal.store.kinds.drift_check_from_readings`), as an archive brings it."""
     from axiscal._json import jsonable
-    from axiscal.store.kinds import (drift_check_record, inputs_from_config, with_drift_check,
-                                     with_uncertainty)
+    from axiscal.store.kinds import (drift_check_from_readings, drift_check_record,
+                                     inputs_from_config, with_drift_check, with_uncertainty)
 
     ev = evaluate_file(raw, filename, kind)
     if Path(filename).name[:300] == filename:     # as a view evaluates it: kept for the views
@@ -504,6 +507,9 @@ def prepare(raw: bytes, filename: str, *, machine: str | None = None, axis: str 
         inputs = dict(uncertainty)
     if drift_check is not None:
         ev, inputs = with_drift_check(ev, inputs, drift_check_record(*drift_check),
+                                      declared=uncertainty)
+    elif kept_drift_check is not None:
+        ev, inputs = with_drift_check(ev, inputs, drift_check_from_readings(kept_drift_check),
                                       declared=uncertainty)
     from axiscal.store.limits import checked_text
     from axiscal.store.models import Axis, Machine, Test

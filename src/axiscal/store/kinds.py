@@ -9,7 +9,9 @@ with its ISO 230-4 figures, :func:`evaluate_ballbar`), a multi-point diagonal te
 file: the location errors of ISO 230-1 / ISO 230-7 Clause 3 identified from it,
 :func:`axiscal.api.fiveaxis.identify`'s one call), and an ISO 230-3:2020 thermal test's log
 (ETVE, spindle, linear axis, rotary table: :func:`axiscal.standards.iso230_3.evaluate_thermal`,
-the call of ``axiscal thermal evaluate``). :func:`evaluate_file` returns
+the call of ``axiscal thermal evaluate``), and a volumetric test: a volumetric configuration
+holding its 21 errors inline, mapped by ISO/TR 16907:2015 with the body diagonals of ISO
+230-6:2002 (the call of ``axiscal volumetric map``). :func:`evaluate_file` returns
 what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
 metadata the file declares. Evaluating the same bytes again gives the same numbers, which is how
 a stored test is shown again; and they are the numbers of the command a user runs on the file
@@ -22,6 +24,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import re
 from dataclasses import dataclass, field
 
 
@@ -32,13 +35,15 @@ from axiscal.errors import DataFormatError, InputError
 __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_ballbar",
            "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
            "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE",
-           "drift_check_record", "with_drift_check", "IdentificationBudget", "ThermalBudget"]
+           "drift_check_record", "drift_check_from_readings", "with_drift_check",
+           "IdentificationBudget", "ThermalBudget"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
 
-KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal")
+KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
+         "volumetric")
 
 
 @dataclass
@@ -121,6 +126,48 @@ def drift_check_record(raw: bytes, filename: str) -> dict:
             "e_ve": float(environmental_variation(readings)), "e_ve_source": "drift check"}
 
 
+def drift_check_from_readings(kept: dict) -> dict:
+    """The drift check a stored record keeps (``result["drift_check"]``: its file's name and
+    SHA-256 and its readings, :func:`drift_check_record`) made again from its readings, where
+    the file itself was not kept (``iso230-2 --drift-check --history`` keeps the readings):
+    E_VE their range again (:func:`~axiscal.standards.iso230_9_inputs.
+    environmental_variation`), as :func:`drift_check_record` makes it. An archive brings it.
+
+    Raises
+    ------
+    InputError
+        Not a name, a SHA-256 and at least 2 finite readings (the count stated if one is).
+
+    Examples
+    --------
+    >>> r = drift_check_from_readings({"filename": "dc.csv", "sha256": "0" * 64,
+    ...                                "readings": [0.1, 0.4, -0.2]})
+    >>> round(r["e_ve"], 6), r["samples"]
+    (0.6, 3)
+    """
+    import numpy as np
+
+    from axiscal._parse import MAX_MAGNITUDE
+    from axiscal.standards.iso230_9_inputs import environmental_variation
+
+    readings = kept.get("readings")
+    if not (isinstance(readings, list) and len(readings) >= 2 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+            and abs(v) <= MAX_MAGNITUDE for v in readings)):
+        raise InputError("the drift check's readings are not a list of at least 2 finite "
+                         f"numbers within ±{MAX_MAGNITUDE:g}")
+    name, sha = kept.get("filename"), kept.get("sha256")
+    if not (isinstance(name, str) and name.strip() and isinstance(sha, str) and len(sha) == 64):
+        raise InputError("the drift check has no file name or SHA-256")
+    if kept.get("samples", len(readings)) != len(readings):
+        raise InputError(f"the drift check states {kept.get('samples')!r:.20} readings and "
+                         f"holds {len(readings)}")
+    values = np.asarray(readings, dtype=float)
+    return {"standard": "ISO 230-2:2014 Annex A.5", "filename": name[:300], "sha256": sha,
+            "samples": int(values.size), "readings": [float(v) for v in values],
+            "e_ve": float(environmental_variation(values)), "e_ve_source": "drift check"}
+
+
 def with_drift_check(ev: Evaluated, inputs: dict, record: dict,
                      declared: dict | None = None) -> tuple[Evaluated, dict]:
     """``ev`` with its drift check kept, and the uncertainty ``inputs`` with E_VE measured by
@@ -184,11 +231,17 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
     return None
 
 
+_VOLUMETRIC = re.compile(r"^[ \t]*\[machine\][ \t]*(#.*)?$", re.M)
+_ERRORS = re.compile(r"^[ \t]*\[errors\][ \t]*(#.*)?$", re.M)
+
+
 def detect_kind(text: str) -> str:
     """The kind of a data file from its content (its header line)."""
     stripped = text.lstrip("\ufeff \t\r\n")
     if stripped.startswith("{"):
         return "iso230-2"
+    if _VOLUMETRIC.search(text) and _ERRORS.search(text):    # a TOML [machine] and [errors]
+        return "volumetric"
     if "TGT_DATA[" in text or stripped.startswith("HEADER::"):   # ecmc; Renishaw .rtl/.rta
         return "iso230-2"
     from axiscal.io.epics import looks_like_camonitor
@@ -217,7 +270,8 @@ def detect_kind(text: str) -> str:
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
                           "straightness, ballbar, diagonal, five-error, five-axis probing, "
-                          "R-test or ISO 230-3 thermal log CSV, or axiscal JSON")
+                          "R-test or ISO 230-3 thermal log CSV, axiscal JSON, or a volumetric "
+                          "configuration (TOML) with its errors inline")
 
 
 def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluated:
@@ -523,9 +577,34 @@ def _thermal(text: str, filename: str) -> Evaluated:
                      dataset=log, evaluation=r)
 
 
+def _volumetric(text: str, filename: str) -> Evaluated:
+    """A volumetric configuration holding its 21 errors inline (:mod:`axiscal.io.volumetric`,
+    ``base=None``): the map on the command's default 11³ grid and the body diagonals by
+    :func:`axiscal.io.simulation_results.volumetric_map`, the one call of ``axiscal volumetric
+    map``; the stored result is that command's ``--json`` object, the figures (largest |E|,
+    each axis's range, each diagonal's range, in µm) its parameters. The evaluation is the
+    ``VolumetricMap``, the dataset the command's run (its ``parts``: the configuration, the
+    body diagonals, a simulation's truth), from which its figure and report are drawn."""
+    from axiscal.io.simulation_results import volumetric_map
+    from axiscal.io.volumetric import parse_volumetric_config
+
+    cfg = parse_volumetric_config(text, filename, base=None)
+    run = volumetric_map(cfg, VOLUMETRIC_GRID)
+    d = run.json
+    params = {"largest": (d["largest_um"], "um"),
+              **{f"range_{a}": (v, "um") for a, v in d["range_um"].items()},
+              **{f"diagonal_{g['name']}": (g["range_um"], "um") for g in d["diagonals"]}}
+    return Evaluated("volumetric", "linear", jsonable(d), params, machine=cfg.name, axis="XYZ",
+                     dataset=run, evaluation=run.record)
+
+
+#: Grid points per axis of a stored volumetric test's map (``volumetric map``'s default).
+VOLUMETRIC_GRID = 11
+
+
 _EVALUATORS = {"iso230-2": _positioning, "straightness": _straightness, "ballbar": _ballbar,
                "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis,
-               "thermal": _thermal}
+               "thermal": _thermal, "volumetric": _volumetric}
 
 
 def result_text(ev: Evaluated) -> str:

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from axiscal.errors import InputError
 
 __all__ = ["laboratory", "set_laboratory", "add_drift_check", "drift_checks", "DriftCheckRecord",
+           "result_with_drift_check",
            "signoff_config", "last_certificate_inputs", "LABORATORY_TABLES"]
 
 #: The configuration tables the history's laboratory holds.
@@ -113,9 +114,8 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
         Not a drift check (:func:`~axiscal.io.drift.parse_drift_check`), fewer than 2 readings,
         a test that is not a positioning test.
     """
-    from axiscal._json import jsonable
     from axiscal.store.corrections import _change, _log, _test
-    from axiscal.store.kinds import drift_check_record, with_drift_check, with_uncertainty
+    from axiscal.store.kinds import drift_check_record
     from axiscal.store.models import DriftCheck
 
     name = (filename or "drift-check.csv").replace("\\", "/").rsplit("/", 1)[-1][:300]
@@ -127,8 +127,7 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
                          "drift check) is an input of a positioning test's budget (ISO "
                          "230-2:2014 Annex A)")
     before = dict(stored.result.get("uncertainty_inputs") or {})
-    ev, inputs = with_drift_check(stored.evaluate_again(), before, record)
-    result = json.dumps(jsonable(with_uncertainty(ev, inputs).stored_result()))
+    result = result_with_drift_check(stored.evaluate_again(), before, record)
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
         t = _test(s, test_id)
@@ -144,6 +143,19 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
               "readings": row.readings},
              machine_id=t.axis.machine_id, axis_id=t.axis_id, test_id=t.id)
         return _record(row)
+
+
+def result_with_drift_check(ev, before: dict, record: dict) -> str:
+    """A positioning test's stored result (JSON) with drift check ``record``
+    (:func:`~axiscal.store.kinds.drift_check_record`) kept and its E_VE over the uncertainty
+    inputs ``before``: ``ev`` (the test's evaluation) with the budget made again by the one call
+    (:func:`~axiscal.store.kinds.with_uncertainty`). :func:`add_drift_check` and an archive's
+    import (:mod:`axiscal.store.archive_laboratory`) make the test's record with it."""
+    from axiscal._json import jsonable
+    from axiscal.store.kinds import with_drift_check, with_uncertainty
+
+    ev, inputs = with_drift_check(ev, before, record)
+    return json.dumps(jsonable(with_uncertainty(ev, inputs).stored_result()))
 
 
 def drift_checks(store, test_id: int) -> list[DriftCheckRecord]:

@@ -16,8 +16,8 @@ write them (a share in % with one). Nothing is computed here.
   configuration's ``[squareness_uncertainty]`` inputs), its contributors, its inputs and each
   assumed one in words;
 - motion: the ISO 230-7:2015 error motion values and their polar plots;
-- fiveaxis and thermal: their own modules (:mod:`axiscal.web.five_axis_page`,
-  :mod:`axiscal.web.thermal_page`).
+- fiveaxis, thermal and volumetric: their own modules (:mod:`axiscal.web.five_axis_page`,
+  :mod:`axiscal.web.thermal_page`, :mod:`axiscal.web.volumetric_page`).
 """
 
 from __future__ import annotations
@@ -42,6 +42,10 @@ def kind_view(ev) -> dict | None:
         from axiscal.web.thermal_page import thermal_view
 
         return thermal_view(ev, _figure, fmt)
+    if ev.kind == "volumetric":            # its own module (issue 40)
+        from axiscal.web.volumetric_page import volumetric_view
+
+        return volumetric_view(ev, _figure, fmt)
     view = _VIEWS.get(ev.kind)
     return None if view is None else view(ev)
 

@@ -35,9 +35,10 @@ ROLES = ("viewer", "engineer")
 MAX_UPLOAD_BYTES = 20 * 1024 * 1024
 #: Content types a browser sends for the files axiscal reads.
 UPLOAD_TYPES = ("text/csv", "text/plain", "application/json", "application/octet-stream",
-                "application/vnd.ms-excel", "text/x-csv", "application/csv", "")
+                "application/vnd.ms-excel", "text/x-csv", "application/csv", "application/toml",
+                "")
 #: File name endings of the data files the workbench evaluates.
-UPLOAD_SUFFIXES = (".csv", ".json", ".txt", ".dat", ".ecmc", ".rtl", ".rta")
+UPLOAD_SUFFIXES = (".csv", ".json", ".txt", ".dat", ".ecmc", ".rtl", ".rta", ".toml")
 
 
 @dataclass(frozen=True)
