@@ -17,7 +17,8 @@ linuxcnc = pytest.importorskip("linuxcnc", reason=f"LinuxCNC cannot run here: {p
 
 class Task:
     """LinuxCNC's task as the two channels see it: ``behaviour`` per sending of the line,
-    "done", "stall" (taken, interpreter READING, nothing running, for ever), "lost" (never
+    "done", "stall" (taken, interpreter READING, nothing running, for ever), "stall, a segment
+    queued" (the same with a segment in the motion queue that does not move), "lost" (never
     taken) or "run" (taken, moving for ever)."""
 
     def __init__(self, *behaviour):
@@ -26,7 +27,7 @@ class Task:
         self.sent, self.aborts, self.modes = [], 0, []
         self.echo_serial_number, self.state = 0, 1
         self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
-        self.queue, self.inpos = 0, True
+        self.queue, self.inpos, self.current_vel, self.position = 0, True, 0.0, (0.0,) * 9
 
     # linuxcnc.command
     def mdi(self, line):
@@ -38,10 +39,12 @@ class Task:
         self.echo_serial_number = self.serial
         if how == "stall":
             self.interp_state = linuxcnc.INTERP_READING
+        elif how == "stall, a segment queued":          # the motion holds it, not moving
+            self.interp_state, self.queue, self.inpos = linuxcnc.INTERP_READING, 1, False
         elif how == "run":
             self.interp_state, self.exec_state = (linuxcnc.INTERP_READING,
                                                   linuxcnc.EXEC_WAITING_FOR_MOTION)
-            self.queue, self.inpos = 1, False
+            self.queue, self.inpos, self.current_vel = 1, False, 100.0
 
     def wait_complete(self, timeout=5.0):
         done = self.echo_serial_number == self.serial and self.interp_state == linuxcnc.INTERP_IDLE
@@ -50,14 +53,15 @@ class Task:
     def abort(self):
         self.aborts += 1
         self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
-        self.queue, self.inpos = 0, True
+        self.queue, self.inpos, self.current_vel = 0, True, 0.0
 
     def mode(self, m):
         self.modes.append(m)
 
     # linuxcnc.stat
     def poll(self):
-        pass
+        if self.current_vel:             # moving: the commanded position changes
+            self.position = (self.position[0] + 1e-3,) + self.position[1:]
 
 
 def _cnc(task):
@@ -73,9 +77,10 @@ def _quick(monkeypatch):
     monkeypatch.setattr(m.time, "monotonic", lambda: float(next(clock)))
 
 
-def test_a_stalled_subroutine_call_is_aborted_and_sent_again(monkeypatch):
+@pytest.mark.parametrize("stall", ["stall", "stall, a segment queued"])
+def test_a_stalled_subroutine_call_is_aborted_and_sent_again(monkeypatch, stall):
     _quick(monkeypatch)
-    task = Task("stall", "done")
+    task = Task(stall, "done")
     cnc = _cnc(task)
     with pytest.warns(RuntimeWarning, match="stalled; aborted and sent again"):
         cnc.mdi("o<axiscal_approach> call [3.01] [3] [60] [0]")
@@ -105,7 +110,8 @@ def test_a_line_still_moving_is_an_error_naming_the_states(monkeypatch):
     _quick(monkeypatch)
     cnc = _cnc(Task("run"))
     with pytest.raises(MeasurementError, match=r"did not finish 'G0 X1' within 30 s "
-                                               r"\(interpreter state 2, task 3\)"):
+                                               r"\(interpreter state 2, task 3, motion queue 1, "
+                                               r"in position False, speed 100\)"):
         cnc.mdi("G0 X1")
 
 

@@ -443,20 +443,22 @@ class LinuxCNC:
         * ``wait_complete`` misses the end: the task took the line (``echo_serial_number`` at the
           command's ``serial``), the interpreter is idle and the task done: the line is done;
         * the line never reaches the task (not taken, the interpreter idle): it is sent again;
-        * the interpreter stays "reading" an O-word subroutine call while nothing runs: the task
-          done (``exec_state`` EXEC_DONE), the motion queue empty and the joints in position, for
-          ``stall`` seconds. LinuxCNC's task (``emctaskmain.cc``, ``mdi_execute_hook``) ends an MDI
-          call only when all of ``interp_list`` empty, task and motion done and its
-          ``mdi_execute_wait``/``mdi_execute_next`` flags clear hold in one cycle; the state
-          seen for minutes (interpreter READING, task DONE) is one where that no longer happens.
-          The call is aborted (which returns the interpreter to idle, ``mdi_execute_abort``), MDI
-          mode set again, and the line sent again.
+        * the interpreter stays "reading" an O-word subroutine call while nothing moves: the task
+          waits for nothing (``exec_state`` EXEC_DONE), the commanded position stands still and
+          its speed is 0, for ``stall`` seconds. LinuxCNC's task (``emctaskmain.cc``,
+          ``mdi_execute_hook``) ends an MDI call only when ``interp_list`` is empty, the task and
+          the motion queue are done and its ``mdi_execute_wait``/``mdi_execute_next`` flags are
+          clear, in one cycle; the state seen for 30 to 60 s on CI runs (interpreter READING,
+          task DONE, also on the three-joint configuration with external offsets) is one where
+          that no longer happens. The call is aborted (which clears the motion queue and returns
+          the interpreter to idle, ``mdi_execute_abort``), MDI mode set again, and the line sent
+          again.
 
         Sending a line again is safe: every line axiscal sends is absolute (G90 moves, dwells,
         the approach subroutines), so running it twice leaves the machine where once does. A line
         is sent at most twice; each recovery is kept in :attr:`recoveries` (line, what was seen).
-        A line still running after ``timeout`` is an error that names the interpreter's and the
-        task's states.
+        A line still running after ``timeout`` is an error that names the interpreter's, the
+        task's and the motion's states.
         """
         import linuxcnc
 
@@ -494,6 +496,7 @@ class LinuxCNC:
         s = self._stat
         end = time.monotonic() + timeout
         since: dict[str, float] = {}
+        last = None
         while True:
             if self._cmd.wait_complete(0.5) != -1:
                 return "done"
@@ -503,7 +506,10 @@ class LinuxCNC:
             idle = s.interp_state == linuxcnc.INTERP_IDLE
             if taken and idle and s.state == 1:                  # linuxcnc.RCS_DONE
                 return "done"                   # the task took the line and is done
-            quiet = (s.exec_state == linuxcnc.EXEC_DONE and s.queue == 0 and bool(s.inpos))
+            position = tuple(s.position)
+            quiet = (s.exec_state == linuxcnc.EXEC_DONE and s.current_vel == 0.0
+                     and position == last)          # nothing moves, the task waits for nothing
+            last = position
             states = {"lost": idle and not taken, "stalled": taken and not idle and quiet}
             for what, now_so in states.items():
                 if not now_so:
@@ -515,8 +521,10 @@ class LinuxCNC:
 
     def _mdi_failed(self, line: str, what: str) -> None:
         self._stat.poll()
+        s = self._stat
         raise MeasurementError(f"LinuxCNC did not finish {line!r} within {what} (interpreter "
-                               f"state {self._stat.interp_state}, task {self._stat.exec_state})")
+                               f"state {s.interp_state}, task {s.exec_state}, motion queue "
+                               f"{s.queue}, in position {bool(s.inpos)}, speed {s.current_vel:g})")
 
     def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
