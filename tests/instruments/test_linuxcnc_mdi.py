@@ -28,6 +28,7 @@ class Task:
         self.echo_serial_number, self.state = 0, 1
         self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
         self.queue, self.inpos, self.current_vel, self.position = 0, True, 0.0, (0.0,) * 9
+        self.still = False
 
     # linuxcnc.command
     def mdi(self, line):
@@ -39,8 +40,9 @@ class Task:
         self.echo_serial_number = self.serial
         if how == "stall":
             self.interp_state = linuxcnc.INTERP_READING
-        elif how == "stall, a segment queued":          # the motion holds it, not moving
-            self.interp_state, self.queue, self.inpos = linuxcnc.INTERP_READING, 1, False
+        elif how == "stall, a segment queued":    # the motion holds it "moving", going nowhere
+            self.interp_state, self.queue, self.inpos = linuxcnc.INTERP_READING, 2, False
+            self.current_vel, self.still = 1.0, True
         elif how == "run":
             self.interp_state, self.exec_state = (linuxcnc.INTERP_READING,
                                                   linuxcnc.EXEC_WAITING_FOR_MOTION)
@@ -53,20 +55,32 @@ class Task:
     def abort(self):
         self.aborts += 1
         self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
-        self.queue, self.inpos, self.current_vel = 0, True, 0.0
+        self.queue, self.inpos, self.current_vel, self.still = 0, True, 0.0, False
 
     def mode(self, m):
         self.modes.append(m)
 
     # linuxcnc.stat
     def poll(self):
-        if self.current_vel:             # moving: the commanded position changes
+        if self.current_vel and not self.still:      # moving: the commanded position changes
             self.position = (self.position[0] + 1e-3,) + self.position[1:]
+
+
+class Clock:
+    """The servo thread's run count (``axiscal-servo-clock``): 500 runs between two looks."""
+
+    def __init__(self):
+        self.runs = 0.0
+
+    def __getitem__(self, pin):
+        self.runs += 500.0
+        return self.runs
 
 
 def _cnc(task):
     cnc = LinuxCNC((-10.0, 10.0))
     cnc._cmd = cnc._stat = task
+    cnc._comp = Clock()
     return cnc
 
 
@@ -111,7 +125,8 @@ def test_a_line_still_moving_is_an_error_naming_the_states(monkeypatch):
     cnc = _cnc(Task("run"))
     with pytest.raises(MeasurementError, match=r"did not finish 'G0 X1' within 30 s "
                                                r"\(interpreter state 2, task 3, motion queue 1, "
-                                               r"in position False, speed 100\)"):
+                                               r"in position False, speed 100, servo thread "
+                                               r"periods in the last look 500\)"):
         cnc.mdi("G0 X1")
 
 
@@ -123,3 +138,15 @@ def test_a_line_stalled_twice_is_an_error(monkeypatch):
             pytest.warns(RuntimeWarning):
         cnc.mdi("G0 X1")
     assert task.aborts == 2
+
+
+def test_a_line_is_not_called_stalled_while_the_servo_thread_does_not_run(monkeypatch):
+    """A computer so loaded that the servo thread did not run: nothing moves because nothing ran;
+    the line is given its timeout, and the error says the thread did not run."""
+    _quick(monkeypatch)
+    task = Task("stall")
+    cnc = _cnc(task)
+    cnc._comp = {"servo-clock": 7.0}               # the count does not advance
+    with pytest.raises(MeasurementError, match="servo thread periods in the last look 0"):
+        cnc.mdi("G0 X1")
+    assert task.aborts == 0 and cnc.recoveries == []

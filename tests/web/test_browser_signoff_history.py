@@ -122,7 +122,8 @@ def test_signoff_of_a_real_file_finished_on_the_page_then_amended(bench, browser
 
     _form(browser, {**LAB_FORM, **JOB_FORM,      # signed in: eng approves, one of the list
                     "lab_signatories": "B. Signatory, Head of laboratory\neng, Deputy head"})
-    browser.find_element(By.NAME, "drift_check").send_keys(str(d / "drift.csv"))
+    # the sign-off form's field, not the drift-check box of the test page above it
+    browser.find_element(By.ID, "i-drift_check").send_keys(str(d / "drift.csv"))
     browser.execute_script("document.getElementById('laboratory').scrollIntoView()")
     _shot(browser, "i40a_form_1280")
     _press(browser, "issue-certificate", "certificates")

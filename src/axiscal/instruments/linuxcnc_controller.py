@@ -254,6 +254,7 @@ class LinuxCNC:
     _channels: object = field(default=None, init=False, repr=False)
     #: MDI lines sent a second time, with what was seen (:meth:`mdi`).
     recoveries: list = field(default_factory=list, init=False, repr=False)
+    _servo_seen: object = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.units not in _UNITS_MM:
@@ -443,9 +444,11 @@ class LinuxCNC:
         * ``wait_complete`` misses the end: the task took the line (``echo_serial_number`` at the
           command's ``serial``), the interpreter is idle and the task done: the line is done;
         * the line never reaches the task (not taken, the interpreter idle): it is sent again;
-        * the interpreter stays "reading" an O-word subroutine call while nothing moves: the task
-          waits for nothing (``exec_state`` EXEC_DONE), the commanded position stands still and
-          its speed is 0, for ``stall`` seconds. LinuxCNC's task (``emctaskmain.cc``,
+        * the interpreter stays "reading" an O-word subroutine call while nothing moves: the
+          commanded position stands still while the servo thread runs (50 periods or more between
+          two looks), for ``stall`` seconds, whatever the task, the motion queue and the reported
+          speed say (seen: task DONE and queue empty; and a queue of 2 segments "moving" at the
+          creep feed that never arrived). LinuxCNC's task (``emctaskmain.cc``,
           ``mdi_execute_hook``) ends an MDI call only when ``interp_list`` is empty, the task and
           the motion queue are done and its ``mdi_execute_wait``/``mdi_execute_next`` flags are
           clear, in one cycle; the state seen for 30 to 60 s on CI runs (interpreter READING,
@@ -489,14 +492,15 @@ class LinuxCNC:
 
     def _await_mdi(self, serial: int, timeout: float, stall: float) -> str:
         """Wait for the MDI line ``serial``: "done", "lost" (never taken, the interpreter idle
-        for ``stall`` s), "stalled" (taken, nothing running, the interpreter not idle for
-        ``stall`` s) or "running" (still going after ``timeout``); :meth:`mdi`."""
+        for ``stall`` s), "stalled" (taken, the interpreter not idle and the commanded position
+        still while the servo thread runs, for ``stall`` s) or "running" (still going after
+        ``timeout``); :meth:`mdi`."""
         import linuxcnc
 
         s = self._stat
         end = time.monotonic() + timeout
         since: dict[str, float] = {}
-        last = None
+        last, runs = None, self._servo_runs_now()
         while True:
             if self._cmd.wait_complete(0.5) != -1:
                 return "done"
@@ -506,11 +510,14 @@ class LinuxCNC:
             idle = s.interp_state == linuxcnc.INTERP_IDLE
             if taken and idle and s.state == 1:                  # linuxcnc.RCS_DONE
                 return "done"                   # the task took the line and is done
-            position = tuple(s.position)
-            quiet = (s.exec_state == linuxcnc.EXEC_DONE and s.current_vel == 0.0
-                     and position == last)          # nothing moves, the task waits for nothing
+            position, runs_before, runs = tuple(s.position), runs, self._servo_runs_now()
+            ran = None if runs is None or runs_before is None else runs - runs_before
+            self._servo_seen = ran
+            # the controller runs (the servo thread did 50 periods or more since the last look)
+            # and nothing moves: stalled, whatever the task and the motion queue say
+            still = position == last and (ran is None or ran >= 50)
             last = position
-            states = {"lost": idle and not taken, "stalled": taken and not idle and quiet}
+            states = {"lost": idle and not taken, "stalled": taken and not idle and still}
             for what, now_so in states.items():
                 if not now_so:
                     since.pop(what, None)
@@ -519,12 +526,18 @@ class LinuxCNC:
             if now >= end:
                 return "running"
 
+    def _servo_runs_now(self) -> float | None:
+        """:meth:`servo_runs`, None before the HAL component is ready."""
+        return None if self._comp is None else self.servo_runs()
+
     def _mdi_failed(self, line: str, what: str) -> None:
         self._stat.poll()
-        s = self._stat
+        s, ran = self._stat, self._servo_seen
+        ran = "unknown" if ran is None else f"{ran:g}"
         raise MeasurementError(f"LinuxCNC did not finish {line!r} within {what} (interpreter "
                                f"state {s.interp_state}, task {s.exec_state}, motion queue "
-                               f"{s.queue}, in position {bool(s.inpos)}, speed {s.current_vel:g})")
+                               f"{s.queue}, in position {bool(s.inpos)}, speed {s.current_vel:g}, "
+                               f"servo thread periods in the last look {ran})")
 
     def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
