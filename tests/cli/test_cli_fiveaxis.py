@@ -117,7 +117,10 @@ def test_compensate_writes_the_pins_and_the_neutral_table(run, tmp_path):
     assert '$TC_CARR23[1]="P"' in spf and d["sinumerik"]["values"]["$TC_CARR21"] == "A"
     doc = __import__("axiscal.cli.fiveaxis", fromlist=["x"]).__doc__
     documented = set(re.findall(r"``([A-Za-z_][A-Za-z0-9_-]*)``", doc))
-    keys = set(d) | set(d["verify"]) | set(d["verify"]["setups"][0])
+    e = d["verify"]["setups"][0]["explained"]
+    assert e["expected_um"] == pytest.approx(e["unmodelled_um"] + e["noise_um"])
+    assert e["unmodelled_um"] == d["verify"]["setups"][0]["after_unmodelled_um"]
+    keys = set(d) | set(d["verify"]) | set(d["verify"]["setups"][0]) | set(e)
     assert keys <= documented, keys - documented
 
 

@@ -46,3 +46,22 @@ def test_noisy_points_give_the_centre_within_the_noise():
 def test_bad_points_are_refused(pts, rule):
     with pytest.raises(InputError, match=rule):
         fit_sphere(pts)
+
+
+def test_the_centre_sensitivity_is_the_fits_own_first_order_response():
+    """centre_sensitivity (JCGM 100:2008, 5.1.2: ∂c/∂ε_i) against central finite differences
+    of fit_sphere itself: each of the probe's five touch directions (12.5 mm + 1.5 mm stylus)
+    moved by ±0.1 µm along its normal; equal within 1e-6 (second order). The same error on
+    every touch moves no centre (the radius is fitted)."""
+    from axiscal.standards.sphere_fit import centre_sensitivity
+
+    d = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1.0]])
+    d = np.vstack([d[:4] * np.sqrt(0.5) + [0, 0, np.sqrt(0.5)], d[4:]])   # a probing cycle's 45°
+    r, c, h = 14e-3, np.array([0.15, 0.02, 0.06]), 1e-7
+    g = centre_sensitivity(d)
+    for i in range(len(d)):
+        up, down = (c + (r + s * (np.arange(len(d)) == i))[:, None] * d for s in (h, -h))
+        fd = (fit_sphere(up).center - fit_sphere(down).center) / (2 * h)
+        np.testing.assert_allclose(fd, g[:, i], atol=1e-6)
+    # the same error on every touch is a larger radius, not a moved centre
+    np.testing.assert_allclose(g.sum(axis=1), 0.0, atol=1e-12)

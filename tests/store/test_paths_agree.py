@@ -105,12 +105,29 @@ def _motion(rng):
                                                               **arrays)), "C"
 
 
+def _fiveaxis_ballbar(rng):
+    """A ballbar radial to C on an A/C machine (axiscal.io.five_axis_ballbar's CSV): the
+    pattern of a C centre offset ``e (cos φ − cos(c + φ))`` plus noise."""
+    from axiscal.io.five_axis_ballbar import format_ballbar as format_5x
+    from axiscal.procedures.five_axis_ballbar import BallbarRecord
+
+    n = int(rng.integers(20, 200))
+    c = np.linspace(0.0, 2 * np.pi, n)
+    e, phi, noise = rng.uniform(1e-6, 30e-6), rng.uniform(0, 2 * np.pi), 0.2e-6
+    dev = e * (np.cos(phi) - np.cos(c + phi)) + rng.normal(0, noise, n)
+    pivot = np.array([0.15, 0.0, 0.06])
+    rec = BallbarRecord("C radial", "A", "C", "radial", pivot, np.array([1.0, 0.0, 0.0]), 0.1,
+                        np.zeros(n), c, np.tile(pivot + [0.1, 0, 0], (n, 1)), dev, noise,
+                        u_gain=1e-3, drift=0.1)
+    return "bb5x.csv", format_5x(rec), "AC"
+
+
 KINDS = {"iso230-2 linear": lambda r: _positioning(r, False),
          "iso230-2 rotary": lambda r: _positioning(r, True),
          "straightness": _straightness, "ballbar": _ballbar,
          "ballbar one direction": lambda r: _ballbar(r, (str(r.choice(["ccw", "cw"])),)),
          "diagonal": _diagonal,
-         "motion": _motion}
+         "motion": _motion, "fiveaxis-ballbar": _fiveaxis_ballbar}
 
 
 # --- the command a user runs on the file, its numbers under the stored parameters' names ---------
@@ -142,6 +159,9 @@ def _command_numbers(kind: str, path) -> tuple[dict, dict | None]:
     if kind == "motion":
         return {f"{m['name'].replace(' ', '_')}_total": m["total"]
                 for m in _cli("motion", "analyze", path)["iso230_7"]["motions"]}, None
+    if kind == "fiveaxis-ballbar":
+        return {"range": _cli("fiveaxis", "ballbar", "evaluate", path)["setups"][0]
+                ["range_um"]}, None
     if kind == "ballbar one direction":     # no diagnosis: the ISO 230-4 evaluation is the result
         j = _cli("squareness", "circular", path)
         out = {"H": j["H_um"], "G_ccw": j["G_ccw_um"], "G_cw": j["G_cw_um"],

@@ -89,8 +89,7 @@ class BallbarEvaluated:
 
     def to_dict(self) -> dict:
         """The ``--json`` object of ``axiscal fiveaxis ballbar evaluate``."""
-        return {"setups": [r.to_dict() | {"direction": rec.direction, "swept": rec.swept}
-                           for rec, r in zip(self.records, self.results)],
+        return {"setups": [rec.result_dict(r) for rec, r in zip(self.records, self.results)],
                 "files": [str(f) for f in self.files]}
 
     def __str__(self) -> str:

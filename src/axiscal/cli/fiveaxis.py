@@ -24,7 +24,11 @@ JSON output (``--json``), stable keys, µm and µrad:
   ``unit``, ``nominal`` and ``actual`` axis lines, each ``tilt`` and ``c`` as [point mm, unit
   direction, zero deg]), ``verify`` (null, or ``setups``: ``label``, ``before_um``, ``after_um``,
   ``reduction``, ``after_unmodelled_um`` (after, without noise: what the errors the correction
-  cannot hold leave): deviation range of each set-up on the twin, or with ``--on-controller`` of each
+  cannot hold leave), ``explained`` (what ``after_um`` is expected to be: ``unmodelled_um``,
+  ``noise_um`` (what the instruments' noise adds on average), ``expected_um`` (their sum),
+  ``interval_95_um`` ([2.5 %, 97.5 %] of the range with noise), ``unexplained_um`` (after −
+  expected), ``within_95``, ``explained`` (true when within 1 µm of expected), ``draws``):
+  deviation range of each set-up on the twin, or with ``--on-controller`` of each
   probing and R-test set-up run through LinuxCNC), ``on_controller``, ``sinumerik`` (null, or
   the SINUMERIK 840D swivel data of :mod:`axiscal.compensation.five_axis_sinumerik`:
   ``carrier``, ``values`` (``$TC_CARRn`` -> mm, unit-vector component, deg or letter),

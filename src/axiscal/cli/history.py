@@ -56,8 +56,8 @@ def add(
                                           "file's)."),
     axis: Optional[str] = typer.Option(None, "--axis", help="Axis name (default: the file's)."),
     kind: Optional[str] = typer.Option(None, "--kind", help="iso230-2, straightness, ballbar, "
-                                       "diagonal, motion, fiveaxis, thermal or volumetric "
-                                       "(default: from the content)."),
+                                       "diagonal, motion, fiveaxis, fiveaxis-ballbar, thermal "
+                                       "or volumetric (default: from the content)."),
     instrument: str = typer.Option("", "--instrument", help="Instrument and its serial."),
     note_: str = typer.Option("", "--note", help="A note kept with the test."),
     date: Optional[str] = typer.Option(None, "--date", help="Test date YYYY-MM-DD (default: the "

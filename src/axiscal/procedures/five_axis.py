@@ -256,11 +256,12 @@ def _u_reading(s: PlannedSetUp) -> float:
 
 def _centre_factor(points, centre) -> float:
     """Largest standard deviation of a fitted centre coordinate per unit touch noise:
-    ``sqrt(max diag((DᵀD)⁻¹))`` with rows ``[n_i, 1]`` (n_i the contact normals; JCGM 100, F.2)."""
-    n = np.asarray(points, float) - centre
-    n = n / np.linalg.norm(n, axis=1, keepdims=True)
-    D = np.column_stack([n, np.ones(len(n))])
-    return float(np.sqrt(np.max(np.diag(np.linalg.inv(D.T @ D))[:3])))
+    ``sqrt(max diag(G Gᵀ))`` = ``sqrt(max diag((DᵀD)⁻¹))`` with rows ``[n_i, 1]`` (n_i the contact
+    normals; :func:`~axiscal.standards.sphere_fit.centre_sensitivity`; JCGM 100, F.2)."""
+    from axiscal.standards.sphere_fit import centre_sensitivity
+
+    g = centre_sensitivity(np.asarray(points, float) - centre)
+    return float(np.sqrt(np.max((g * g).sum(axis=1))))
 
 
 def _poses(t: dict, tilt: str, where: str) -> tuple[np.ndarray, np.ndarray]:

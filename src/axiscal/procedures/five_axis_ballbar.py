@@ -138,6 +138,12 @@ class BallbarRecord:
                                 length=self.length, drift=self.drift, u_length=self.u_length,
                                 label=self.label)
 
+    def result_dict(self, result) -> dict:
+        """One set-up of ``axiscal fiveaxis ballbar evaluate --json``: the figure's keys
+        (:meth:`~axiscal.standards.iso10791_6.BallbarRange.to_dict`) with the set-up's
+        ``direction`` and ``swept``; the history keeps the same object."""
+        return result.to_dict() | {"direction": self.direction, "swept": self.swept}
+
 
 def ballbar_plan_from_config(cfg: dict[str, Any], machine) -> tuple[BallbarSetUp, ...]:
     """Read the ``[[ballbar]]`` tables (module docstring) for ``machine``; every pose is checked

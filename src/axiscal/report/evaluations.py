@@ -24,7 +24,8 @@ ISO230_2 = "iso230-2:2014"
 #: The standard of each kind of test file (:func:`axiscal.store.kinds.detect_kind`).
 KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "iso230-4",
                  "diagonal": "iso230-6", "motion": "iso230-7", "fiveaxis": "iso230-7:location",
-                 "thermal": "iso230-3", "volumetric": "iso-tr-16907"}
+                 "thermal": "iso230-3", "volumetric": "iso-tr-16907",
+                 "fiveaxis-ballbar": "iso10791-6"}
 
 
 #: The title of the report of each kind of test other than positioning.
@@ -34,7 +35,8 @@ REPORT_TITLES = {"straightness": "Straightness (ISO 230-1)",
                  "ballbar": "Circular test (ISO 230-4)",
                  "thermal": "Thermal effects (ISO 230-3)",
                  "fiveaxis": "Five-axis location errors (ISO 230-1 / ISO 230-7)",
-                 "volumetric": "Volumetric accuracy"}
+                 "volumetric": "Volumetric accuracy",
+                 "fiveaxis-ballbar": "Five-axis ballbar test (ISO 10791-6 as axiscal reads it)"}
 
 
 def kind_of_file(path: Any) -> str:
@@ -117,9 +119,16 @@ def _volumetric_figure(run: Any, vmap: Any) -> Any:
     return volumetric_figure(vmap, f"Volumetric error map — {run.parts['config'].name}")
 
 
+def _fiveaxis_ballbar_figure(record: Any, r: Any) -> Any:
+    """A five-axis ballbar set-up's readings along its path with the range and U."""
+    from axiscal.report.five_axis_plots import ballbar_path_figure
+
+    return ballbar_path_figure(record, r)
+
+
 FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
            "diagonal": _diagonal_figure, "motion": _motion_figure, "thermal": _thermal_figure,
-           "volumetric": _volumetric_figure}
+           "volumetric": _volumetric_figure, "fiveaxis-ballbar": _fiveaxis_ballbar_figure}
 
 
 #: A kind of test in words, as the reports head it.
@@ -128,7 +137,8 @@ KIND_WORDS = {"iso230-2": "Positioning test", "positioning": "Positioning test",
               "straightness": "Straightness", "diagonal": "Squareness by diagonals",
               "motion": "Motion errors of a rotary axis",
               "thermal": "Thermal test (ISO 230-3)",
-              "volumetric": "Volumetric accuracy (ISO/TR 16907)"}
+              "volumetric": "Volumetric accuracy (ISO/TR 16907)",
+              "fiveaxis-ballbar": "Five-axis ballbar test (ISO 10791-6)"}
 
 
 def notebook_html(kind: str, standard: str, d: dict, fig: Any, quantities: Any = None) -> str:

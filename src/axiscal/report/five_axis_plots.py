@@ -14,7 +14,7 @@ import numpy as np
 from axiscal.physics.rotary_location import Geometry
 from axiscal.report._figures import pyplot as _pyplot
 
-__all__ = ["location_figure", "location_report"]
+__all__ = ["location_figure", "location_report", "ballbar_path_figure"]
 
 
 def location_figure(geometry: Geometry, result, magnification: float | None = None,
@@ -121,3 +121,31 @@ def location_report(geometry: Geometry, result, *, name: str, truth: dict | None
                       [[e.name, e.value_display, truth[e.name], e.value_display - truth[e.name],
                         e.unit] for e in result.errors], digits=2, formulas=(0,))
     return rep
+
+
+def ballbar_path_figure(record, result):
+    """A five-axis ballbar set-up's readings along its path (µm against the swept angles, the
+    path's points in order), with the largest and smallest reading and the range with U
+    (:class:`~axiscal.standards.iso10791_6.BallbarRange`): the figure of a stored
+    ``fiveaxis-ballbar`` test (history, workbench, report)."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7.0, 3.6))
+    swept = record.c_angle if record.swept in ("C", "both", "") else record.tilt_angle
+    x = np.degrees(np.asarray(swept, float))
+    if np.ptp(x) == 0:
+        x = np.arange(1, len(record.deviation) + 1, dtype=float)
+        ax.set_xlabel("point along the path")
+    else:
+        ax.set_xlabel(f"{'C' if record.swept in ('C', 'both', '') else record.tilt} (deg, "
+                      "LinuxCNC sign)")
+    d = np.asarray(record.deviation, float) * 1e6
+    ax.plot(x, d, ".-", lw=1.0, ms=3, label="reading − nominal length")
+    for v, what in ((result.maximum, "largest"), (result.minimum, "smallest")):
+        ax.axhline(v * 1e6, ls="--", lw=0.8, color="0.4")
+        ax.annotate(what, (x[0], v * 1e6), fontsize=7, va="bottom", color="0.3")
+    ax.set_ylabel("deviation (µm)")
+    ax.set_title(f"{result.label}: range {result.range * 1e6:.2f} µm, U = "
+                 f"{result.U * 1e6:.2f} µm (k = {result.budget.k:g})", fontsize=9)
+    ax.grid(True, lw=0.3)
+    fig.tight_layout()
+    return fig

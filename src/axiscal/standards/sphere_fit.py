@@ -21,7 +21,7 @@ import numpy as np
 
 from axiscal.errors import InputError
 
-__all__ = ["SphereFit", "fit_sphere", "RADIUS_TOLERANCE"]
+__all__ = ["SphereFit", "fit_sphere", "centre_sensitivity", "RADIUS_TOLERANCE"]
 
 #: Default largest |fitted − expected| radius, m (0.02 mm as KinematicsOpt's check).
 RADIUS_TOLERANCE = 0.02e-3
@@ -119,3 +119,38 @@ def fit_sphere(points, expected_radius: float | None = None,
             f"{(fit.radius - expected_radius) * 1e3:+.4f} mm, beyond the tolerance "
             f"{tolerance * 1e3:g} mm; check the sphere, the stylus calibration and the touches")
     return fit
+
+
+def centre_sensitivity(normals) -> np.ndarray:
+    """How the fitted centre moves with each point's error along its contact normal.
+
+    Parameters
+    ----------
+    normals : array_like, shape (N, 3)
+        Directions from the sphere's centre to the probed points (normalised here), N >= 4.
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, N), m per m
+        ``G`` with ``δc = G ε`` to first order, ``ε_i`` the error of point ``i`` along its
+        normal (a touch probe's noise is along its travel).
+
+    Notes
+    -----
+    At the solution the geometric residuals ``|p_i − c| − r`` of :func:`fit_sphere` change by
+    ``ε_i − n_i·δc − δr``; least squares over ``(δc, δr)`` gives
+    ``(δc, δr) = (DᵀD)⁻¹ Dᵀ ε`` with the rows of ``D`` equal to ``[n_i, 1]``, and ``G`` is the
+    first three rows (the linear propagation of JCGM 100:2008, 5.1.2, sensitivity coefficients
+    ``∂c/∂ε_i``). With independent errors of standard deviation ``σ`` the centre's covariance is
+    ``σ² G Gᵀ``, the top-left 3 × 3 block of ``σ² (DᵀD)⁻¹``.
+
+    Examples
+    --------
+    >>> d = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1.0]])
+    >>> np.round(centre_sensitivity(d), 3).tolist()[0]
+    [0.5, -0.5, 0.0, 0.0, 0.0]
+    """
+    n = np.asarray(normals, float)
+    n = n / np.linalg.norm(n, axis=1, keepdims=True)
+    D = np.column_stack([n, np.ones(len(n))])
+    return (np.linalg.inv(D.T @ D) @ D.T)[:3]

@@ -9,7 +9,9 @@ with its ISO 230-4 figures, :func:`evaluate_ballbar`), a multi-point diagonal te
 file: the location errors of ISO 230-1 / ISO 230-7 Clause 3 identified from it,
 :func:`axiscal.api.fiveaxis.identify`'s one call), and an ISO 230-3:2020 thermal test's log
 (ETVE, spindle, linear axis, rotary table: :func:`axiscal.standards.iso230_3.evaluate_thermal`,
-the call of ``axiscal thermal evaluate``), and a volumetric test: a volumetric configuration
+the call of ``axiscal thermal evaluate``), a five-axis ballbar test (a rotary axis, or both,
+moving with the linear axes; ISO 10791-6:2014 as :mod:`axiscal.standards.iso10791_6` reads it:
+the range with U of ``axiscal fiveaxis ballbar evaluate``), and a volumetric test: a volumetric configuration
 holding its 21 errors inline, mapped by ISO/TR 16907:2015 with the body diagonals of ISO
 230-6:2002 (the call of ``axiscal volumetric map``). :func:`evaluate_file` returns
 what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
@@ -43,7 +45,7 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
-         "volumetric")
+         "volumetric", "fiveaxis-ballbar")
 
 
 @dataclass
@@ -228,6 +230,8 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         return IdentificationBudget(evaluation)
     if kind == "thermal":
         return ThermalBudget(evaluation)
+    if kind == "fiveaxis-ballbar":      # the range's own budget, made by its one evaluation
+        return evaluation.budget
     return None
 
 
@@ -262,7 +266,7 @@ def detect_kind(text: str) -> str:
         if {"run", "angle_deg"} <= head:
             return "motion"
         if "pose" in head and "c_deg" in head:
-            return "fiveaxis"
+            return "fiveaxis-ballbar" if "deviation_um" in head else "fiveaxis"
         if {"position", "deviation"} <= head:
             return "straightness"
         if s.split(",")[0].strip().lower() == "time_s" and "reading" not in head:
@@ -270,7 +274,7 @@ def detect_kind(text: str) -> str:
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
                           "straightness, ballbar, diagonal, five-error, five-axis probing, "
-                          "R-test or ISO 230-3 thermal log CSV, axiscal JSON, or a volumetric "
+                          "R-test, five-axis ballbar or ISO 230-3 thermal log CSV, axiscal JSON, or a volumetric "
                           "configuration (TOML) with its errors inline")
 
 
@@ -530,6 +534,25 @@ def _fiveaxis(text: str, filename: str) -> Evaluated:
                      dataset=rec, evaluation=r)
 
 
+def _fiveaxis_ballbar(text: str, filename: str) -> Evaluated:
+    """A five-axis ballbar CSV (:mod:`axiscal.io.five_axis_ballbar`): the range of its readings
+    with U by the record's one evaluation
+    (:meth:`~axiscal.procedures.five_axis_ballbar.BallbarRecord.evaluate`, the call of
+    ``axiscal fiveaxis ballbar evaluate``); the stored result is that command's ``--json``
+    set-up (:meth:`~axiscal.procedures.five_axis_ballbar.BallbarRecord.result_dict`), the
+    range (µm) its parameter, with the range's own budget (k = 2)."""
+    from axiscal.io.five_axis_ballbar import parse_ballbar
+
+    rec = parse_ballbar(text, source=filename)
+    try:
+        r = rec.evaluate()
+    except InputError as exc:
+        raise InputError(f"{filename}: {exc}") from None
+    return Evaluated("fiveaxis-ballbar", "rotary", jsonable(rec.result_dict(r)),
+                     {"range": (r.range * 1e6, "um")}, axis=f"{rec.tilt}C",
+                     instrument="ballbar", dataset=rec, evaluation=r)
+
+
 #: The store's unit names of the ISO 230-3 figures' display units (ASCII, as the store writes).
 _THERMAL_UNITS = {"µm": "um", "µrad": "urad", "K": "K", "µm/m": "um/m", "h": "h"}
 
@@ -604,7 +627,8 @@ VOLUMETRIC_GRID = 11
 
 _EVALUATORS = {"iso230-2": _positioning, "straightness": _straightness, "ballbar": _ballbar,
                "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis,
-               "thermal": _thermal, "volumetric": _volumetric}
+               "thermal": _thermal, "volumetric": _volumetric,
+               "fiveaxis-ballbar": _fiveaxis_ballbar}
 
 
 def result_text(ev: Evaluated) -> str:

@@ -16,7 +16,8 @@ write them (a share in % with one). Nothing is computed here.
   configuration's ``[squareness_uncertainty]`` inputs), its contributors, its inputs and each
   assumed one in words;
 - motion: the ISO 230-7:2015 error motion values and their polar plots;
-- fiveaxis, thermal and volumetric: their own modules (:mod:`axiscal.web.five_axis_page`,
+- fiveaxis, fiveaxis-ballbar, thermal and volumetric: their own modules
+  (:mod:`axiscal.web.five_axis_page`, :mod:`axiscal.web.five_axis_ballbar_page`,
   :mod:`axiscal.web.thermal_page`, :mod:`axiscal.web.volumetric_page`).
 """
 
@@ -38,6 +39,10 @@ def kind_view(ev) -> dict | None:
         from axiscal.web.five_axis_page import five_axis_view
 
         return five_axis_view(ev, _figure, fmt)
+    if ev.kind == "fiveaxis-ballbar":      # its own module (issue 43)
+        from axiscal.web.five_axis_ballbar_page import five_axis_ballbar_view
+
+        return five_axis_ballbar_view(ev, _figure, fmt)
     if ev.kind == "thermal":               # its own module (issue 44)
         from axiscal.web.thermal_page import thermal_view
 
