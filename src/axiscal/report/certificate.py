@@ -558,7 +558,8 @@ def _instruments(rep: Report, info: CertificateInfo, md) -> None:
         for i in info.instruments
     ]
     if not rows:
-        rows = [[md.instrument or NOT_STATED, NOT_STATED, NOT_STATED, NOT_STATED]]
+        rows = [[getattr(md, "instrument", "") or NOT_STATED, NOT_STATED, NOT_STATED,
+                 NOT_STATED]]
     rep.add_table(
         ["Instrument", "Serial number", "Calibration certificate", "Calibration due"],
         rows,

@@ -471,9 +471,9 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
     from axiscal.store.register import check_issue_date
 
     check_issue_date(info.issued)
-    md = dataset.metadata
+    named = getattr(getattr(dataset, "metadata", None), "machine", "")  # a file naming it
     m = info.machine
-    machine = None if md.machine else " ".join(
+    machine = None if named else " ".join(
         str(m.get(k)) for k in ("maker", "model", "serial") if m.get(k)) or None
     test = store.add(data_bytes, Path(filename).name, machine=machine)
     lab, series, number_for = number_format(inputs["config"], info.issued)

@@ -227,7 +227,7 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
     if kind == "fiveaxis":
         return IdentificationBudget(evaluation)
     if kind == "thermal":
-        return ThermalBudget(evaluation)
+        return ThermalBudget(evaluation, log=dataset)
     return None
 
 
@@ -546,6 +546,9 @@ class ThermalBudget:
     method: str = ("ISO 230-3:2020 figures: reading noise from sample-to-sample steps, u = "
                    "sqrt(2) sigma, an extreme's bias added; sensor calibration not included")
     k: float = 2.0
+    #: The log the figures came from (:class:`~axiscal.standards.iso230_3_data.ThermalLog`):
+    #: each channel's reading noise σ, the budget's inputs (None: not listed).
+    log: object = None
 
     def U(self, name: str) -> float | None:
         """U of figure ``name`` as ``thermal evaluate --json`` writes it (None: no such figure)."""
@@ -557,7 +560,22 @@ class ThermalBudget:
         return "—" if U is None else f"{U:.3f}"
 
     def to_json(self) -> dict:
-        return {"method": self.method, "k": self.k}
+        """``method``, ``k`` and ``inputs``: each channel's reading noise σ (µm, or °C for a
+        temperature sensor) by :func:`~axiscal.standards.iso230_3_data.noise_sigma`, the
+        one estimate the figures' U are made from."""
+        out = {"method": self.method, "k": self.k}
+        if self.log is not None:
+            from axiscal.standards.iso230_3_data import noise_sigma
+
+            rule = "measured: the channel's sample-to-sample steps (robust)"
+            out["inputs"] = {
+                **{f"sigma_{c}": {"label": f"reading noise σ of {c}", "unit": "µm",
+                                  "value": noise_sigma(v) * 1e6, "assumed": False, "rule": rule}
+                   for c, v in self.log.displacements.items()},
+                **{f"sigma_{c}": {"label": f"reading noise σ of {c}", "unit": "°C",
+                                  "value": noise_sigma(v), "assumed": False, "rule": rule}
+                   for c, v in self.log.temperatures.items()}}
+        return out
 
 
 def _thermal(text: str, filename: str) -> Evaluated:
