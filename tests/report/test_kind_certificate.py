@@ -135,3 +135,50 @@ def test_a_kind_without_a_budget_is_refused_in_one_line(files, tmp_path, kind):
     assert str(e.value).startswith(f"no uncertainty budget for {kind} tests in axiscal: ")
     assert "\n" not in str(e.value)
     assert not (tmp_path / "x.html").exists() and st.certificates(test_id=t.summary.id) == []
+
+
+def _toml(cfg: dict) -> str:
+    """A job file of ``cfg`` (tables of strings, numbers and lists of them)."""
+    def val(v):
+        return json.dumps(v, ensure_ascii=False)
+    out = []
+    for table, body in cfg.items():
+        rows = body if isinstance(body, list) else [body]
+        for row in rows:
+            out.append(f"[[{table}]]" if isinstance(body, list) else f"[{table}]")
+            out += [f"{k} = {val(v)}" for k, v in row.items()]
+    return "\n".join(out) + "\n"
+
+
+def test_certificate_issue_on_the_command_line(files, tmp_path):
+    """``axiscal certificate issue ID``: a diagonal test numbered by the register, its
+    squareness and U in the document; a ballbar test refused in one line, exit 2, nothing
+    issued."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app as cli_app
+
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    st = open_store(url)
+    d = st.add(files["diagonal"].read_bytes(), "diagonal.csv", machine="VMC").id
+    b = st.add(files["ballbar"].read_bytes(), "ballbar.csv", machine="VMC").id
+    job = tmp_path / "job.toml"
+    job.write_text(_toml(COMPLETE))
+    runner = CliRunner()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(d), "--db", url, "--job", str(job),
+                                "--tolerance", "squareness=20", "--prepared-by", "J. Keller",
+                                "--out", str(tmp_path / "sq.html"), "--json"])
+    assert r.exit_code == 0, r.output
+    got = json.loads(r.stdout)
+    assert got["test_id"] == d and got["number"].startswith("PM-2026-")
+    f = certificate_record(st.get(d).record(), {"squareness": 20.0}).figures[0]
+    assert f"<td>{f.value_text}</td><td>{f.U_text}</td>" in (tmp_path / "sq.html").read_text()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(b), "--db", url, "--job", str(job),
+                                "--out", str(tmp_path / "bb.html")])
+    assert r.exit_code == 2
+    assert r.output.strip().splitlines() == [
+        "axiscal: error: no uncertainty budget for ballbar tests in axiscal: a certificate "
+        "states "
+        "each result with its expanded uncertainty U (ILAC-P14:09/2020 §5; ISO 14253-1:2017 "
+        "§5), so this test gets none"]
+    assert not (tmp_path / "bb.html").exists()

@@ -34,7 +34,8 @@ from typing import Any
 from axiscal.errors import InputError
 
 __all__ = ["CertifiedFigure", "KindCertificate", "KIND_NAMES", "require_budget",
-           "certificate_record", "kind_certificate", "write_kind_certificate"]
+           "certificate_record", "kind_certificate", "write_kind_certificate",
+           "certify_stored"]
 
 #: Each kind of test in words, with the document that evaluates it.
 KIND_NAMES = {
@@ -250,7 +251,7 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
                            tolerances: dict | None = None, rule: str | None = None, *,
                            store=None, filename: str = "data.csv", today: str | None = None,
                            prepared_by: str = "", approved_by: str = "",
-                           draft_document: bool = True):
+                           paper: str | None = None, draft_document: bool = True):
     """The certificate of a stored test's record ``ev`` written to ``path`` (.html or .pdf):
     issued and numbered through ``store``'s register when every mandatory item is there (ISO/IEC
     17025:2017 §7.8.2, §7.8.4), else a DRAFT naming what is missing (not written with
@@ -277,7 +278,7 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
     from axiscal.io._files import write_bytes_atomic
     from axiscal.report.certificate_content import (_identity, _instruments, check_dates)
     from axiscal.report.issue import (CertificateOutcome, _info, _register, _with_history_item,
-                                      authorisation)
+                                      _with_paper, authorisation)
 
     require_budget(ev)
     if store is not None and not callable(store):
@@ -285,6 +286,7 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
     tol = {**cfg.get("tolerance", {}), **(tolerances or {})}
     tol = {k: v for k, v in tol.items() if k in ev.parameters}
     record = certificate_record(ev, tol, rule or cfg.get("certificate", {}).get("rule"))
+    cfg = _with_paper(cfg, paper)
     info = _info(cfg, today, "", ())
     tested = str(ev.date or info.conditions.get("date") or "")
     check_dates(tested, info.issued)
@@ -325,6 +327,45 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
     rec = _register(store, ev.dataset, info, data_bytes, filename, render, inputs, path)
     write_bytes_atomic(Path(path), rec.document)
     return CertificateOutcome(Path(path), record.decisions, (), rec.number, rec)
+
+
+def certify_stored(store, test_id: int, path, cfg: dict, tolerances: dict | None = None,
+                   rule: str | None = None, *, paper: str | None = None,
+                   today: str | None = None, prepared_by: str = "", approved_by: str = "",
+                   draft_document: bool = True):
+    """The certificate of stored test ``test_id``, whatever its kind: the one entry of
+    ``axiscal certificate issue`` and the workbench's sign-off of a test that is not a
+    positioning test.
+
+    The configuration is the sign-off's (:func:`axiscal.store.laboratory.signoff_config`: the
+    laboratory kept in the history under ``cfg``); the figures and their U are the stored
+    record's (:meth:`axiscal.store.history.StoredTest.record`, the budget made from the inputs
+    kept with the test). A positioning test takes its own certificate
+    (:func:`axiscal.report.issue.write_certificate`: per-target table, figure, conditions of
+    ISO 230-2:2014 §6); every other kind :func:`write_kind_certificate`.
+
+    Raises
+    ------
+    InputError
+        The kind has no uncertainty budget (one line naming it); a bad tolerance.
+    """
+    from axiscal.store.laboratory import signoff_config
+
+    t = store.get(test_id)
+    ev = t.record()
+    require_budget(ev)
+    cfg = signoff_config(store, t, cfg)
+    if ev.kind == "iso230-2":
+        from axiscal.report.issue import write_certificate
+
+        return write_certificate(path, ev.dataset, ev.evaluation, cfg, t.raw, tolerances, rule,
+                                 paper, store=store, filename=t.summary.filename, today=today,
+                                 customer_supplied=(), prepared_by=prepared_by,
+                                 approved_by=approved_by, draft_document=draft_document)
+    return write_kind_certificate(path, ev, cfg, t.raw, tolerances, rule, store=store,
+                                  filename=t.summary.filename, today=today,
+                                  prepared_by=prepared_by, approved_by=approved_by, paper=paper,
+                                  draft_document=draft_document)
 
 
 class _Stated:
