@@ -307,6 +307,17 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
         cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
     if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
         raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    if ev.kind != "iso230-2":              # a certificate of another kind with a budget
+        from axiscal.report.kind_certificate import kind_changes, write_kind_certificate
+
+        rec = stored.record()
+        changes = kind_changes(rec, (inputs["config"], inputs["tolerances"], inputs["rule"]),
+                               (cfg, inputs["tolerances"], inputs["rule"]))
+        return _draft_refused(path, lambda p: write_kind_certificate(
+            p, rec, cfg, stored.raw, inputs["tolerances"], inputs["rule"], store=store,
+            filename=stored.summary.filename, today=today, prepared_by=prepared_by,
+            approved_by=approved_by, paper=inputs["paper"], replaces=number,
+            reason=reason.strip(), changes=changes), number)
     changes = amendment_changes(ev.dataset, ev.evaluation, (inputs["config"], inputs["tolerances"],
                                                             inputs["rule"]),
                                 (cfg, inputs["tolerances"], inputs["rule"]))

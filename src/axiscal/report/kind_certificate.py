@@ -35,7 +35,7 @@ from axiscal.errors import InputError
 
 __all__ = ["CertifiedFigure", "KindCertificate", "KIND_NAMES", "require_budget",
            "certificate_record", "kind_certificate", "write_kind_certificate",
-           "certify_stored"]
+           "certify_stored", "kind_changes"]
 
 #: Each kind of test in words, with the document that evaluates it.
 KIND_NAMES = {
@@ -251,7 +251,8 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
                            tolerances: dict | None = None, rule: str | None = None, *,
                            store=None, filename: str = "data.csv", today: str | None = None,
                            prepared_by: str = "", approved_by: str = "",
-                           paper: str | None = None, draft_document: bool = True):
+                           paper: str | None = None, draft_document: bool = True,
+                           replaces: str = "", reason: str = "", changes=()):
     """The certificate of a stored test's record ``ev`` written to ``path`` (.html or .pdf):
     issued and numbered through ``store``'s register when every mandatory item is there (ISO/IEC
     17025:2017 §7.8.2, §7.8.4), else a DRAFT naming what is missing (not written with
@@ -265,6 +266,8 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
         The configuration (laboratory, customer, item, instruments, signatory).
     tolerances : dict of str to float
         Over the configuration's ``[tolerance]``, keyed by figure.
+    replaces, reason, changes
+        An amendment's (:func:`axiscal.report.issue.reissue_certificate`).
 
     Returns
     -------
@@ -307,7 +310,8 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
     if store is None and not missing:
         missing = ("certificate number: a certificate is numbered only by the certificate "
                    "register (a calibration history, --db)",)
-    info = dataclasses.replace(info, missing=missing)
+    info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason,
+                               changes=tuple(changes))
 
     def render(number: str) -> bytes:
         rep = kind_certificate(ev, record, dataclasses.replace(info, number=number))
@@ -366,6 +370,31 @@ def certify_stored(store, test_id: int, path, cfg: dict, tolerances: dict | None
                                   filename=t.summary.filename, today=today,
                                   prepared_by=prepared_by, approved_by=approved_by, paper=paper,
                                   draft_document=draft_document)
+
+
+def kind_changes(ev, before, after) -> list[dict]:
+    """What an amendment of a certificate of ``ev`` changes (ISO/IEC 17025:2017 §7.8.8.3), as
+    :func:`axiscal.report.issue.amendment_changes` says it for a positioning test: each field
+    of the inputs whose text changed, each figure whose tolerance or verdict changed.
+    ``before``, ``after``: ``(config, tolerances, rule)``."""
+    from axiscal.report.issue import _flat
+
+    old, new = _flat(before[0]), _flat(after[0])
+    out = [{"what": k, "old": old.get(k, "—"), "new": new.get(k, "—")}
+           for k in sorted(set(old) | set(new)) if old.get(k) != new.get(k)]
+    states = []
+    for cfg, tol, rule in (before, after):
+        tol = {k: v for k, v in {**cfg.get("tolerance", {}), **(tol or {})}.items()
+               if k in ev.parameters}
+        rec = certificate_record(ev, tol, rule or cfg.get("certificate", {}).get("rule"))
+        row = {}
+        for f in rec.figures:
+            row[f"tolerance {f.name}"] = "—" if f.tolerance is None else f"{f.tolerance:g}"
+            row[f"verdict {f.name}"] = f.verdict or "—"
+        row["overall verdict"] = rec.overall.value if rec.overall else "no tolerance"
+        states.append(row)
+    return out + [{"what": k, "old": states[0][k], "new": states[1][k]} for k in states[0]
+                  if states[0][k] != states[1].get(k)]
 
 
 class _Stated:
