@@ -173,6 +173,17 @@ def test_certificate_issue_on_the_command_line(files, tmp_path):
     assert got["test_id"] == d and got["number"].startswith("PM-2026-")
     f = certificate_record(st.get(d).record(), {"squareness": 20.0}).figures[0]
     assert f"<td>{f.value_text}</td><td>{f.U_text}</td>" in (tmp_path / "sq.html").read_text()
+    fix = tmp_path / "fix.toml"
+    fix.write_text('[customer]\nname = "Example Machining GmbH"\n')
+    r = runner.invoke(cli_app, ["certificate", "reissue", got["number"], "--db", url,
+                                "--reason", "customer renamed", "--job", str(fix),
+                                "--out", str(tmp_path / "sq2.html"), "--json"])
+    assert r.exit_code == 0, r.output
+    again = json.loads(r.stdout)
+    assert again["replaces"] == got["number"] and again["test_id"] == d
+    assert {"what": "[customer] name", "old": "Example Machining AG",
+            "new": "Example Machining GmbH"} in again["changes"]
+    assert "This certificate replaces certificate" in (tmp_path / "sq2.html").read_text()
     r = runner.invoke(cli_app, ["certificate", "issue", str(b), "--db", url, "--job", str(job),
                                 "--out", str(tmp_path / "bb.html")])
     assert r.exit_code == 2
