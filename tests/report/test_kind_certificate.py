@@ -40,6 +40,9 @@ COMPLETE = {
 DIAGONAL = ("# length_x_mm=600 length_y_mm=800\ndiagonal,position,error\n"
             "D1,100,0.6\nD1,500,3.0\nD1,1000,6.0\nD2,100,-0.3\nD2,500,-1.5\nD2,1000,-3.0\n")
 
+STRAIGHTNESS = ("# position_unit=mm deviation_unit=um axis=X direction=Y\nposition,deviation\n"
+                "0,0\n100,1\n200,3\n300,2\n")
+
 BALLBAR = ("# radius_mm=100\nangle,direction,deviation\n"
            + "".join(f"{a},{d},{0.001 * (a % 7):.4f}\n" for d in ("ccw", "cw")
                      for a in range(0, 360, 10)))
@@ -63,6 +66,8 @@ def files(tmp_path_factory):
     out["fiveaxis"] = fiveaxis.simulate(cfg, seed=3, out=folder).files[0]
     out["ballbar"] = folder / "ballbar.csv"
     out["ballbar"].write_text(BALLBAR)
+    out["straightness"] = folder / "straightness.csv"
+    out["straightness"].write_text(STRAIGHTNESS)
     return out
 
 
@@ -72,7 +77,7 @@ def _stored(tmp_path, path):
     return st, st.get(added.id)
 
 
-@pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis"])
+@pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar"])
 def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
     """Value, U and k of every figure are the stored record's (``history show --json``'s
     ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""
@@ -127,7 +132,7 @@ def test_a_missing_item_makes_a_draft_and_a_bad_tolerance_is_refused(files, tmp_
         certificate_record(t.record(), {next(iter(t.record().parameters)): -1.0})
 
 
-@pytest.mark.parametrize("kind", ["ballbar"])
+@pytest.mark.parametrize("kind", ["straightness"])
 def test_a_kind_without_a_budget_is_refused_in_one_line(files, tmp_path, kind):
     st, t = _stored(tmp_path, files[kind])
     with pytest.raises(InputError) as e:
@@ -152,8 +157,8 @@ def _toml(cfg: dict) -> str:
 
 def test_certificate_issue_on_the_command_line(files, tmp_path):
     """``axiscal certificate issue ID``: a diagonal test numbered by the register, its
-    squareness and U in the document; a ballbar test refused in one line, exit 2, nothing
-    issued."""
+    squareness and U in the document; a straightness test (no budget in axiscal) refused in one
+    line, exit 2, nothing issued."""
     from typer.testing import CliRunner
 
     from axiscal.cli import app as cli_app
@@ -161,7 +166,7 @@ def test_certificate_issue_on_the_command_line(files, tmp_path):
     url = f"sqlite:///{tmp_path / 'h.sqlite'}"
     st = open_store(url)
     d = st.add(files["diagonal"].read_bytes(), "diagonal.csv", machine="VMC").id
-    b = st.add(files["ballbar"].read_bytes(), "ballbar.csv", machine="VMC").id
+    b = st.add(files["straightness"].read_bytes(), "straightness.csv", machine="VMC").id
     job = tmp_path / "job.toml"
     job.write_text(_toml(COMPLETE))
     runner = CliRunner()
@@ -188,7 +193,7 @@ def test_certificate_issue_on_the_command_line(files, tmp_path):
                                 "--out", str(tmp_path / "bb.html")])
     assert r.exit_code == 2
     assert r.output.strip().splitlines() == [
-        "axiscal: error: no uncertainty budget for ballbar tests in axiscal: a certificate "
+        "axiscal: error: no uncertainty budget for straightness tests in axiscal: a certificate "
         "states "
         "each result with its expanded uncertainty U (ILAC-P14:09/2020 §5; ISO 14253-1:2017 "
         "§5), so this test gets none"]

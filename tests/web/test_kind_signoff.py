@@ -2,8 +2,8 @@
 offered only where the kind has an uncertainty budget (a diagonal squareness test here), its
 verdict is the certificate's own call (:func:`axiscal.report.kind_certificate.
 certificate_record` of the stored record), and a complete form ends in a numbered certificate;
-a ballbar test (no budget in axiscal) has no form, and a sign-off posted for it is refused in
-one line naming why."""
+a straightness test (no budget in axiscal) has no form, and a sign-off posted for it is
+refused in one line naming why; a ballbar test's form offers its G and H (the figures with U)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from axiscal.web.app import create_app
-from tests.report.test_kind_certificate import BALLBAR, DIAGONAL
+from tests.report.test_kind_certificate import BALLBAR, DIAGONAL, STRAIGHTNESS
 from tests.web.test_signoff import JOB, LAB
 
 
@@ -24,14 +24,15 @@ def client(tmp_path, monkeypatch):
     monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
     c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"), base_url="http://127.0.0.1")
     c.token = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
-    for name, text in (("diagonal.csv", DIAGONAL), ("ballbar.csv", BALLBAR)):
+    for name, text in (("diagonal.csv", DIAGONAL), ("straightness.csv", STRAIGHTNESS),
+                       ("ballbar.csv", BALLBAR)):
         r = c.post("/upload", data={"csrf": c.token, "machine": "VMC-800"},
                    files={"file": (name, text.encode(), "text/csv")})
         assert r.status_code == 200, r.text[-500:]
     return c
 
 
-def test_a_diagonal_test_is_signed_off_and_a_ballbar_test_is_not(client, tmp_path):
+def test_a_diagonal_test_is_signed_off_and_a_straightness_test_is_not(client, tmp_path):
     """Squareness 9.375 µm/m (tests/report/test_kind_certificate.py) against 20 µm/m:
     conformance proven, with the U the certificate prints; then issued and numbered."""
     from axiscal.report.kind_certificate import certificate_record
@@ -41,11 +42,14 @@ def test_a_diagonal_test_is_signed_off_and_a_ballbar_test_is_not(client, tmp_pat
     assert 'id="signoff-form"' in page and 'name="tol_squareness"' in page
     assert 'id="signoff-link"' in page and 'name="drift_check"' not in page
     assert 'name="air_temperature"' not in page
-    ballbar = client.get("/tests/2").text
-    assert 'id="signoff-form"' not in ballbar and 'id="signoff-link"' not in ballbar
+    straight = client.get("/tests/2").text
+    assert 'id="signoff-form"' not in straight and 'id="signoff-link"' not in straight
     r = client.post("/tests/2/signoff", data={"csrf": client.token, "action": "verdict"})
-    assert r.status_code == 400 and "no uncertainty budget for ballbar tests in axiscal: " \
+    assert r.status_code == 400 and "no uncertainty budget for straightness tests in axiscal: " \
         in r.text
+    ballbar = client.get("/tests/3").text       # G and H have U (iso230_9_ballbar)
+    assert 'id="signoff-form"' in ballbar and 'name="tol_G_ccw"' in ballbar
+    assert 'name="tol_H"' in ballbar and 'name="tol_residual_rms"' not in ballbar
 
     r = client.post("/tests/1/signoff", data={"csrf": client.token, "action": "verdict",
                                               "tol_squareness": "20"})

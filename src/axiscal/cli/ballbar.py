@@ -74,6 +74,10 @@ def analyze(
     from axiscal.report.labels import quantity
 
     typer.echo(result.text(lambda key, ax: quantity(key, axes=ax)[0]))
+    with_u = [str(q) for q in ev.quantities.values() if q.U is not None]
+    if with_u:            # the budget of G and H (standards/iso230_9_ballbar.py)
+        typer.echo("With their expanded uncertainty ([ballbar_uncertainty]): "
+                   + "; ".join(with_u))
     for path in (plot, report):
         if path is not None:
             note(f"wrote {path}")

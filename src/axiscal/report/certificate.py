@@ -61,6 +61,7 @@ _SECTIONS = {
     "uncertainty": None,  # checked by the budget's own inputs
     "tolerance": None,  # NAME = value, checked against the standard's parameters
     "squareness_uncertainty": None,  # read by the squareness commands
+    "ballbar_uncertainty": None,  # a ballbar test's budget (standards/iso230_9_ballbar.py)
 }
 
 
