@@ -74,10 +74,15 @@ def analyze(
     from axiscal.report.labels import quantity
 
     typer.echo(result.text(lambda key, ax: quantity(key, axes=ax)[0]))
-    with_u = [str(q) for q in ev.quantities.values() if q.U is not None]
+    from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+    from axiscal.units import display
+
+    with_u = [f"{quantity(q.name, axes=axes)[0]} = {format_value(q.value, q.U)} ± "
+              f"{format_uncertainty(q.U)} {display(q.unit)} (k = {q.k:g})"
+              for q in ev.quantities.values() if q.U is not None]
     if with_u:            # the budget of G and H (standards/iso230_9_ballbar.py)
-        typer.echo("With their expanded uncertainty ([ballbar_uncertainty]): "
-                   + "; ".join(with_u))
+        typer.echo("With their expanded uncertainty (ISO/TR 230-9; inputs in the user "
+                   "configuration's ballbar uncertainty table): " + "; ".join(with_u))
     for path in (plot, report):
         if path is not None:
             note(f"wrote {path}")

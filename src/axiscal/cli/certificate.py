@@ -125,7 +125,7 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     """
     from axiscal.cli._common import report_path
     from axiscal.io.user_config import load_job
-    from axiscal.report.issue import reissue_certificate
+    from axiscal.report.kind_certificate import reissue as reissue_certificate
 
     report_path(out)
     corrections = load_job(job) if job is not None else None
@@ -151,9 +151,9 @@ def issue(test_id: int = typer.Argument(..., help="The stored test (history list
           db: Optional[str] = _DB, json_out: bool = _JSON) -> None:
     """Certify a stored test of any kind with an uncertainty budget, numbered by the register.
 
-    Positioning (ISO 230-2), diagonal squareness, five-axis location errors and ISO 230-3
-    thermal tests: each result with its U and k, decided by ISO 14253-1 against the
-    tolerances given. A kind without a budget (ballbar, straightness, five motion errors,
+    Positioning (ISO 230-2), diagonal squareness, ballbar (G and H), five-axis location
+    errors and ISO 230-3 thermal tests: each result with its U and k, decided by ISO 14253-1
+    against the tolerances given. A kind without a budget (straightness, five motion errors,
     volumetric) is refused: a statement of conformity needs U.
 
     Example: axiscal certificate issue 4 --job job.toml --tolerance squareness=20 --out sq.pdf

@@ -28,7 +28,8 @@ from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
            "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off",
-           "signatories", "authorisation", "amendment_changes", "write_as_found_as_left"]
+           "signatories", "authorisation", "amendment_changes", "write_as_found_as_left",
+           "amendment_inputs"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -292,32 +293,12 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
     ``reason``, rebuilt from the stored test and the inputs kept with the old one, with
     ``corrections`` (job-file tables) on top; the old one is marked superseded. A reissue that
     would be a DRAFT is refused and changes nothing."""
-    from axiscal.io.user_config import merge
-
-    if not reason.strip():
-        raise InputError("a reissue states its reason (--reason)")
-    old = store.certificate(number, laboratory)
-    stored = store.get(old.test_id)
+    old, stored, inputs, cfg = amendment_inputs(store, number, reason, path, corrections,
+                                                laboratory)
     ev = stored.evaluate_again()
-    inputs = old.inputs
-    cfg = merge(inputs["config"], corrections or {})
-    cfg["certificate"] = {k: v for k, v in cfg.get("certificate", {}).items()
-                          if k not in ("number", "issued")}
-    if (corrections or {}).get("certificate", {}).get("issued"):
-        cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
-    if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
-        raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
-    if ev.kind != "iso230-2":              # a certificate of another kind with a budget
-        from axiscal.report.kind_certificate import kind_changes, write_kind_certificate
-
-        rec = stored.record()
-        changes = kind_changes(rec, (inputs["config"], inputs["tolerances"], inputs["rule"]),
-                               (cfg, inputs["tolerances"], inputs["rule"]))
-        return _draft_refused(path, lambda p: write_kind_certificate(
-            p, rec, cfg, stored.raw, inputs["tolerances"], inputs["rule"], store=store,
-            filename=stored.summary.filename, today=today, prepared_by=prepared_by,
-            approved_by=approved_by, paper=inputs["paper"], replaces=number,
-            reason=reason.strip(), changes=changes), number)
+    if ev.kind != "iso230-2":
+        raise InputError(f"certificate {number} is of a {ev.kind} test: amend it by "
+                         "axiscal.report.kind_certificate.reissue")
     changes = amendment_changes(ev.dataset, ev.evaluation, (inputs["config"], inputs["tolerances"],
                                                             inputs["rule"]),
                                 (cfg, inputs["tolerances"], inputs["rule"]))
@@ -328,6 +309,30 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
         reason=reason.strip(), prepared_by=prepared_by, approved_by=approved_by,
         changes=changes), number)
     return out
+
+
+def amendment_inputs(store, number: str, reason: str, path, corrections: dict | None = None,
+                     laboratory: str | None = None):
+    """(old record, stored test, inputs kept with it, amended configuration) of an amendment of
+    certificate ``number``: the checks every amendment makes (a reason; a PDF stays a PDF) and
+    the configuration kept with the old one with ``corrections`` on top (no number, date of
+    issue only when corrected). The one preamble of :func:`reissue_certificate` and
+    :func:`axiscal.report.kind_certificate.reissue`."""
+    from axiscal.io.user_config import merge
+
+    if not reason.strip():
+        raise InputError("a reissue states its reason (--reason)")
+    old = store.certificate(number, laboratory)
+    stored = store.get(old.test_id)
+    inputs = old.inputs
+    cfg = merge(inputs["config"], corrections or {})
+    cfg["certificate"] = {k: v for k, v in cfg.get("certificate", {}).items()
+                          if k not in ("number", "issued")}
+    if (corrections or {}).get("certificate", {}).get("issued"):
+        cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
+    if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
+        raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    return old, stored, inputs, cfg
 
 
 def signatories(cfg: dict) -> dict[str, str]:

@@ -6,7 +6,7 @@ axiscal makes a budget for it: :func:`axiscal.store.kinds.budget_of` (the one ca
 :func:`axiscal.store.kinds.with_uncertainty`; :data:`axiscal.store.kinds.UNCERTAINTY_TABLE`).
 Today that is a positioning test (ISO 230-2:2014 Annex A, which keeps its own, fuller
 certificate: :mod:`axiscal.report.certificate`), a diagonal squareness test (ISO/TR 230-9), a
-five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
+ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
 thermal test. Any other kind is refused in one line naming why.
 
 The path is one for every kind, keyed by nothing but the stored record
@@ -35,7 +35,7 @@ from axiscal.errors import InputError
 
 __all__ = ["CertifiedFigure", "KindCertificate", "KIND_NAMES", "require_budget",
            "certificate_record", "kind_certificate", "write_kind_certificate",
-           "certify_stored", "kind_changes"]
+           "certify_stored", "kind_changes", "reissue"]
 
 #: Each kind of test in words, with the document that evaluates it.
 KIND_NAMES = {
@@ -232,7 +232,7 @@ def kind_certificate(ev, record: KindCertificate, info) -> Any:
     for note in record.notes:
         rep.add_text(note)
     rep.add_html(c._statements(info, record.decisions, record.rule_text))
-    rows = [(f.symbol, f.value_text, f.U_text, f"{f.k:g}", units.display(f.unit),
+    rows = [(_label(ev, f), f.value_text, f.U_text, f"{f.k:g}", units.display(f.unit),
              "—" if f.tolerance is None else f"{f.tolerance:g}", f.verdict or "—")
             for f in record.figures]
     head = "".join(f"<th>{h}</th>" for h in ("Result", "Value", "U", "k", "Unit",
@@ -267,7 +267,7 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
     tolerances : dict of str to float
         Over the configuration's ``[tolerance]``, keyed by figure.
     replaces, reason, changes
-        An amendment's (:func:`axiscal.report.issue.reissue_certificate`).
+        An amendment's (:func:`reissue`).
 
     Returns
     -------
@@ -395,6 +395,45 @@ def kind_changes(ev, before, after) -> list[dict]:
         states.append(row)
     return out + [{"what": k, "old": states[0][k], "new": states[1][k]} for k in states[0]
                   if states[0][k] != states[1].get(k)]
+
+
+def _label(ev, f: CertifiedFigure) -> str:
+    """A figure in words with its symbol: a thermal test's own label (ISO 230-3:2020), else the
+    label of :func:`axiscal.report.labels.quantity` where it knows the key."""
+    from axiscal.report.labels import QUANTITIES, quantity
+
+    words = next((g.get("label") for g in ev.result.get("figures", ())
+                  if isinstance(g, dict) and g.get("name") == f.name), None)
+    if words is None and f.name in QUANTITIES:
+        words = quantity(f.name)[0]
+    return f.symbol if not words or words.casefold() == f.symbol.casefold() \
+        else f"{words} ({f.symbol})"
+
+
+def reissue(store, number: str, reason: str, path, corrections: dict | None = None,
+            today: str | None = None, laboratory: str | None = None, prepared_by: str = "",
+            approved_by: str = ""):
+    """Amend certificate ``number`` (ISO/IEC 17025:2017 §7.8.8), whatever its test's kind: a
+    positioning test's by :func:`axiscal.report.issue.reissue_certificate`, another kind's by
+    :func:`write_kind_certificate` of the stored record with the inputs kept with the old one
+    and ``corrections`` on top (:func:`axiscal.report.issue.amendment_inputs`), the changes
+    listed (:func:`kind_changes`); a reissue that would be a DRAFT is refused. The one call
+    of ``axiscal certificate reissue`` and the workbench's amendment."""
+    from axiscal.report.issue import _draft_refused, amendment_inputs, reissue_certificate
+
+    _, stored, inputs, cfg = amendment_inputs(store, number, reason, path, corrections,
+                                              laboratory)
+    if stored.summary.kind == "iso230-2":
+        return reissue_certificate(store, number, reason, path, corrections, today, laboratory,
+                                   prepared_by, approved_by)
+    rec = stored.record()
+    kept = (inputs["config"], inputs["tolerances"], inputs["rule"])
+    changes = kind_changes(rec, kept, (cfg, inputs["tolerances"], inputs["rule"]))
+    return _draft_refused(path, lambda p: write_kind_certificate(
+        p, rec, cfg, stored.raw, inputs["tolerances"], inputs["rule"], store=store,
+        filename=stored.summary.filename, today=today, prepared_by=prepared_by,
+        approved_by=approved_by, paper=inputs["paper"], replaces=number,
+        reason=reason.strip(), changes=changes), number)
 
 
 class _Stated:

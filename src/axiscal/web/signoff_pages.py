@@ -97,7 +97,7 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     register, its drift checks, and whether it may be certified; None for a test that is not a
     test of a kind without an uncertainty budget (no form: a statement of conformity needs U,
     :func:`axiscal.report.kind_certificate.require_budget`). A test of another kind with a
-    budget (diagonal, five-axis, thermal) has the same form without what only a positioning
+    budget (diagonal, ballbar, five-axis, thermal) has the same form without what only a positioning
     test has (E_VE, temperatures, the plot): its figures, U and verdicts are
     :func:`axiscal.report.kind_certificate.certificate_record` of the stored record."""
     from axiscal.report.issue import load_config
@@ -396,12 +396,12 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
 
 def _amend(st, t, number: str, reason: str, cfg: dict, user: str = ""):
     """Amend ``number`` with the form's configuration over the inputs kept with it, the
-    machine named as the history names it now (:func:`axiscal.report.issue.
-    reissue_certificate`: a new number, the reason and the changes printed; a DRAFT refused)."""
+    machine named as the history names it now (:func:`axiscal.report.kind_certificate.reissue`,
+    any kind: a new number, the reason and the changes printed; a DRAFT refused)."""
     import tempfile
     from pathlib import Path
 
-    from axiscal.report.issue import reissue_certificate
+    from axiscal.report.kind_certificate import reissue as reissue_certificate
 
     m = st.machine(t.summary.machine_id)
     corrections = {**cfg, "machine": {**cfg.get("machine", {}), "name": m.name}}
