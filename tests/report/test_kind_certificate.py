@@ -198,3 +198,7 @@ def test_certificate_issue_on_the_command_line(files, tmp_path):
         "each result with its expanded uncertainty U (ILAC-P14:09/2020 §5; ISO 14253-1:2017 "
         "§5), so this test gets none"]
     assert not (tmp_path / "bb.html").exists()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(d), "--db", url, "--job", str(job),
+                                "--tolerance", "E=20", "--out", str(tmp_path / "e.html")])
+    assert r.exit_code == 2 and "tolerance for 'E': not a parameter of this result; use one " \
+        "of squareness" in r.output and not (tmp_path / "e.html").exists()

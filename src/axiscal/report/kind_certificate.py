@@ -286,8 +286,10 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
     require_budget(ev)
     if store is not None and not callable(store):
         cfg = _with_history_item(cfg, store, data_bytes)
-    tol = {**cfg.get("tolerance", {}), **(tolerances or {})}
-    tol = {k: v for k, v in tol.items() if k in ev.parameters}
+    # the configuration's tolerances that name this test's results (it may hold a positioning
+    # test's A, E ...), under those given for this test (an unknown name among them refused)
+    tol = {**{k: v for k, v in cfg.get("tolerance", {}).items() if k in ev.parameters},
+           **(tolerances or {})}
     record = certificate_record(ev, tol, rule or cfg.get("certificate", {}).get("rule"))
     cfg = _with_paper(cfg, paper)
     info = _info(cfg, today, "", ())
