@@ -47,6 +47,7 @@ KIND_NAMES = {
     "fiveaxis": "five-axis location error (ISO 230-1:2012, ISO 230-7:2015)",
     "thermal": "thermal (ISO 230-3:2020)",
     "volumetric": "volumetric (ISO/TR 16907:2015)",
+    "fiveaxis-ballbar": "five-axis ballbar (ISO 10791-6:2014)",     # main's kind (issue 43)
 }
 
 
