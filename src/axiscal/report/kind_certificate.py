@@ -153,6 +153,7 @@ def certificate_record(ev, tolerances: dict | None = None,
     §7.2.6), so the verdict follows from the numbers on the page, as for a positioning test.
     """
     from axiscal.standards.iso14253_1 import RULE_TEXT, _rule, decide_all, overall, unprovable
+    from axiscal.units import display
     from axiscal.standards.uncertainty_reporting import (format_uncertainty, format_value,
                                                          round_up)
 
@@ -178,7 +179,8 @@ def certificate_record(ev, tolerances: dict | None = None,
     budget = ev.budget.to_json()
     return KindCertificate(ev.kind, figures, tuple(decisions), overall(decisions),
                            RULE_TEXT[r] if decisions else "",
-                           tuple(unprovable(decisions, units.pop() if len(units) == 1 else "")),
+                           tuple(unprovable(decisions, display(units.pop())
+                                            if len(units) == 1 else "")),
                            str(budget.get("method", "")), _inputs(budget, ev.inputs),
                            tuple(budget.get("notes", ())))
 

@@ -151,4 +151,6 @@ def ballbar_budget(result, radius: float, table: Mapping[str, float] | None = No
         "not included: the roundness of the balls and the form of the magnetic cups",)
     from dataclasses import replace
 
-    return replace(combine(c, "um", v["k"], tuple(figures), notes), inputs=inputs)
+    return replace(combine(c, "um", v["k"], tuple(figures), notes), inputs=inputs,
+                   method="ISO/TR 230-9:2005 general form as axiscal reads it for a ballbar; "
+                   "GUM eq. 10 (root sum of squares)")
