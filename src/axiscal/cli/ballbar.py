@@ -15,6 +15,9 @@ JSON output (``--json``), stable keys:
   ``difference``, ``folded`` (term -> amount), ``material``, ``statement``. The history stores
   this same object (with ``plane``) for a two-direction ballbar file
   (:func:`axiscal.store.kinds.evaluate_ballbar`). ``x``/``y`` are the plane's first and second axis.
+  ``quantities`` (schema 1): H, G_ccw and G_cw carry ``U`` and ``k`` from the budget of
+  :mod:`axiscal.standards.iso230_9_ballbar` (inputs: the user configuration's
+  ``[ballbar_uncertainty]``), and ``uncertainty_budget`` holds it (contributors, inputs, notes).
 * ``ballbar volumetric``: ``planes`` (per file: ``plane``, ``squareness_um_per_m``,
   ``scale_mismatch_um_per_m``, ``backlash_x_um``, ``backlash_y_um``), ``squareness_um_per_m``
   (object by plane), ``scale_mismatch_um_per_m`` (object by plane).
