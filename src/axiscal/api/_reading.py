@@ -316,8 +316,11 @@ def evaluate(data: Any, standard: str = DEFAULT_STANDARD, *,
             data, key, dict(tolerances or {}), rule, dict(uncertainty or {}), form=how, job=job,
             drift_check=drift_check, full_turn=full_turn))
     from axiscal.report.evaluations import ballbar_evaluation
+    from axiscal.store.kinds import inputs_from_config
 
-    return Evaluation(**ballbar_evaluation(data, feed=feed, plane=plane))
+    table = inputs_from_config("ballbar", _user_config())
+    return Evaluation(**ballbar_evaluation(data, feed=feed, plane=plane,
+                                           uncertainty={**table, **(uncertainty or {})}))
 
 
 def _simulated(sim: Any) -> Any:

@@ -15,6 +15,9 @@ JSON output (``--json``), stable keys:
   ``difference``, ``folded`` (term -> amount), ``material``, ``statement``. The history stores
   this same object (with ``plane``) for a two-direction ballbar file
   (:func:`axiscal.store.kinds.evaluate_ballbar`). ``x``/``y`` are the plane's first and second axis.
+  ``quantities`` (schema 1): H, G_ccw and G_cw carry ``U`` and ``k`` from the budget of
+  :mod:`axiscal.standards.iso230_9_ballbar` (inputs: the user configuration's
+  ``[ballbar_uncertainty]``), and ``uncertainty_budget`` holds it (contributors, inputs, notes).
 * ``ballbar volumetric``: ``planes`` (per file: ``plane``, ``squareness_um_per_m``,
   ``scale_mismatch_um_per_m``, ``backlash_x_um``, ``backlash_y_um``), ``squareness_um_per_m``
   (object by plane), ``scale_mismatch_um_per_m`` (object by plane).
@@ -74,6 +77,15 @@ def analyze(
     from axiscal.report.labels import quantity
 
     typer.echo(result.text(lambda key, ax: quantity(key, axes=ax)[0]))
+    from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+    from axiscal.units import display
+
+    with_u = [f"{quantity(q.name, axes=axes)[0]} = {format_value(q.value, q.U)} ± "
+              f"{format_uncertainty(q.U)} {display(q.unit)} (k = {q.k:g})"
+              for q in ev.quantities.values() if q.U is not None]
+    if with_u:            # the budget of G and H (standards/iso230_9_ballbar.py)
+        typer.echo("With their expanded uncertainty (ISO/TR 230-9; inputs in the user "
+                   "configuration's ballbar uncertainty table): " + "; ".join(with_u))
     for path in (plot, report):
         if path is not None:
             note(f"wrote {path}")

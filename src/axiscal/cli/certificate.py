@@ -1,6 +1,8 @@
-"""``axiscal certificate list|show|reissue``: the certificate register of the calibration history.
+"""``axiscal certificate list|show|issue|reissue``: the certificate register of the calibration
+history.
 
-Certificates are issued by ``axiscal iso230-2 FILE --report CERT.pdf`` (and ``make demo``) when
+Certificates are issued by ``axiscal iso230-2 FILE --report CERT.pdf`` (and ``make demo``), and
+for a stored test of any kind with an uncertainty budget by ``axiscal certificate issue ID``, when
 every mandatory item of ISO/IEC 17025:2017 §7.8 is given; each has a number unique per
 laboratory, and the issued document and its SHA-256 are kept with the test
 (:mod:`axiscal.store.register`, :mod:`axiscal.report.issue`). An amendment (§7.8.8) is a reissue:
@@ -123,7 +125,7 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     """
     from axiscal.cli._common import report_path
     from axiscal.io.user_config import load_job
-    from axiscal.report.issue import reissue_certificate
+    from axiscal.report.kind_certificate import reissue as reissue_certificate
 
     report_path(out)
     corrections = load_job(job) if job is not None else None
@@ -135,6 +137,42 @@ def reissue(number: str = typer.Argument(..., help="The number of the certificat
     else:
         typer.echo(str(o.record))
     note(f"issued certificate {o.record.number}, replacing {number}: {out}")
+
+
+@app.command("issue")
+def issue(test_id: int = typer.Argument(..., help="The stored test (history list)."),
+          out: Path = typer.Option(..., "--out", help="The certificate (.pdf or .html)."),
+          job: Optional[Path] = JOB,
+          tolerance: list[str] = typer.Option([], "--tolerance", help="Acceptance tolerance "
+                                              "as NAME=VALUE, NAME a result of the test "
+                                              "(history show --json: quantities)."),
+          rule: Optional[str] = RULE, paper: Optional[str] = PAPER, draft: bool = DRAFT,
+          prepared_by: str = PREPARED_BY, approved_by: str = APPROVED_BY,
+          db: Optional[str] = _DB, json_out: bool = _JSON) -> None:
+    """Certify a stored test of any kind with an uncertainty budget, numbered by the register.
+
+    Positioning (ISO 230-2), diagonal squareness, ballbar (G and H), five-axis location
+    errors and ISO 230-3 thermal tests: each result with its U and k, decided by ISO 14253-1
+    against the tolerances given. A kind without a budget (straightness, five motion errors,
+    volumetric) is refused: a statement of conformity needs U.
+
+    Example: axiscal certificate issue 4 --job job.toml --tolerance squareness=20 --out sq.pdf
+    """
+    from axiscal.cli._certificate import tell_outcome
+    from axiscal.cli._common import report_path
+    from axiscal.cli.iso230_2 import parse_tolerances
+    from axiscal.report.issue import load_config
+    from axiscal.report.kind_certificate import certify_stored
+
+    report_path(out)
+    outcome = certify_stored(open_db(db), test_id, out, load_config(job),
+                             parse_tolerances(tolerance), rule, paper=paper,
+                             prepared_by=prepared_by, approved_by=approved_by)
+    if json_out and not outcome.draft:
+        print_json({**record_json(outcome.record), "path": str(out)})
+    elif json_out:
+        print_json({"draft": True, "missing": list(outcome.missing), "path": str(out)})
+    tell_outcome(outcome, draft)
 
 
 @app.command("as-found-as-left")

@@ -61,6 +61,7 @@ _SECTIONS = {
     "uncertainty": None,  # checked by the budget's own inputs
     "tolerance": None,  # NAME = value, checked against the standard's parameters
     "squareness_uncertainty": None,  # read by the squareness commands
+    "ballbar_uncertainty": None,  # a ballbar test's budget (standards/iso230_9_ballbar.py)
 }
 
 
@@ -558,7 +559,8 @@ def _instruments(rep: Report, info: CertificateInfo, md) -> None:
         for i in info.instruments
     ]
     if not rows:
-        rows = [[md.instrument or NOT_STATED, NOT_STATED, NOT_STATED, NOT_STATED]]
+        rows = [[getattr(md, "instrument", "") or NOT_STATED, NOT_STATED, NOT_STATED,
+                 NOT_STATED]]
     rep.add_table(
         ["Instrument", "Serial number", "Calibration certificate", "Calibration due"],
         rows,

@@ -404,14 +404,18 @@ def _drift_e_ve(drift_check: Any, uncertainty: dict) -> dict:
 
 
 def ballbar_evaluation(data: Any, *, feed: float | None = None,
-                       plane: str | None = None) -> dict:
+                       plane: str | None = None, uncertainty: dict | None = None) -> dict:
     """The fields of :class:`axiscal.api.Evaluation` of a ballbar dataset evaluated in memory
     (ISO 230-4:2005 and the diagnosis; ``feed`` mm/min and ``plane`` over the file's, as
-    ``axiscal ballbar analyze --feed --plane``); the other kinds are evaluated from their file."""
+    ``axiscal ballbar analyze --feed --plane``), with the budget of G and H made from
+    ``uncertainty`` (the ``[ballbar_uncertainty]`` inputs) by the one
+    :func:`~axiscal.store.kinds.with_uncertainty`; the other kinds are evaluated from their
+    file."""
     from axiscal.errors import InputError
     from axiscal.io.ballbar import BallbarData
     from axiscal._json import jsonable
-    from axiscal.store.kinds import Evaluated, ballbar_parameters, evaluate_ballbar
+    from axiscal.store.kinds import (Evaluated, ballbar_parameters, evaluate_ballbar,
+                                     with_uncertainty)
 
     if not isinstance(data, BallbarData):
         raise InputError(f"evaluate: give the file's path for a {type(data).__name__} "
@@ -425,8 +429,9 @@ def ballbar_evaluation(data: Any, *, feed: float | None = None,
         axes = (plane.upper()[0], plane.upper()[1])
     r = evaluate_ballbar(data, feed=None if feed is None else feed / 6e4, axes=axes)
     res = jsonable({"plane": "".join(axes), **r.as_dict()})
-    return record_fields(Evaluated("ballbar", "linear", res, ballbar_parameters(r),
-                                   axis=res["plane"], dataset=data, evaluation=r))
+    return record_fields(with_uncertainty(Evaluated(
+        "ballbar", "linear", res, ballbar_parameters(r), axis=res["plane"], dataset=data,
+        evaluation=r), uncertainty))
 
 
 def evaluation_figure(ev: Any) -> Any:

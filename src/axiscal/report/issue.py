@@ -28,7 +28,8 @@ from axiscal.errors import ConfigError, InputError
 
 __all__ = ["load_config", "budget_for", "decisions_for", "write_certificate",
            "reissue_certificate", "CertificateOutcome", "number_format", "SignOff", "sign_off",
-           "signatories", "authorisation", "amendment_changes", "write_as_found_as_left"]
+           "signatories", "authorisation", "amendment_changes", "write_as_found_as_left",
+           "amendment_inputs"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -292,21 +293,12 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
     ``reason``, rebuilt from the stored test and the inputs kept with the old one, with
     ``corrections`` (job-file tables) on top; the old one is marked superseded. A reissue that
     would be a DRAFT is refused and changes nothing."""
-    from axiscal.io.user_config import merge
-
-    if not reason.strip():
-        raise InputError("a reissue states its reason (--reason)")
-    old = store.certificate(number, laboratory)
-    stored = store.get(old.test_id)
+    old, stored, inputs, cfg = amendment_inputs(store, number, reason, path, corrections,
+                                                laboratory)
     ev = stored.evaluate_again()
-    inputs = old.inputs
-    cfg = merge(inputs["config"], corrections or {})
-    cfg["certificate"] = {k: v for k, v in cfg.get("certificate", {}).items()
-                          if k not in ("number", "issued")}
-    if (corrections or {}).get("certificate", {}).get("issued"):
-        cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
-    if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
-        raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    if ev.kind != "iso230-2":
+        raise InputError(f"certificate {number} is of a {ev.kind} test: amend it by "
+                         "axiscal.report.kind_certificate.reissue")
     changes = amendment_changes(ev.dataset, ev.evaluation, (inputs["config"], inputs["tolerances"],
                                                             inputs["rule"]),
                                 (cfg, inputs["tolerances"], inputs["rule"]))
@@ -317,6 +309,30 @@ def reissue_certificate(store, number: str, reason: str, path, corrections: dict
         reason=reason.strip(), prepared_by=prepared_by, approved_by=approved_by,
         changes=changes), number)
     return out
+
+
+def amendment_inputs(store, number: str, reason: str, path, corrections: dict | None = None,
+                     laboratory: str | None = None):
+    """(old record, stored test, inputs kept with it, amended configuration) of an amendment of
+    certificate ``number``: the checks every amendment makes (a reason; a PDF stays a PDF) and
+    the configuration kept with the old one with ``corrections`` on top (no number, date of
+    issue only when corrected). The one preamble of :func:`reissue_certificate` and
+    :func:`axiscal.report.kind_certificate.reissue`."""
+    from axiscal.io.user_config import merge
+
+    if not reason.strip():
+        raise InputError("a reissue states its reason (--reason)")
+    old = store.certificate(number, laboratory)
+    stored = store.get(old.test_id)
+    inputs = old.inputs
+    cfg = merge(inputs["config"], corrections or {})
+    cfg["certificate"] = {k: v for k, v in cfg.get("certificate", {}).items()
+                          if k not in ("number", "issued")}
+    if (corrections or {}).get("certificate", {}).get("issued"):
+        cfg["certificate"]["issued"] = corrections["certificate"]["issued"]
+    if Path(path).suffix.lower() != ".pdf" and old.media_type == "application/pdf":
+        raise InputError(f"--out {path}: certificate {number} was issued as a PDF; write .pdf")
+    return old, stored, inputs, cfg
 
 
 def signatories(cfg: dict) -> dict[str, str]:
@@ -471,9 +487,9 @@ def _register(store, dataset, info, data_bytes: bytes, filename: str, render, in
     from axiscal.store.register import check_issue_date
 
     check_issue_date(info.issued)
-    md = dataset.metadata
+    named = getattr(getattr(dataset, "metadata", None), "machine", "")  # a file naming it
     m = info.machine
-    machine = None if md.machine else " ".join(
+    machine = None if named else " ".join(
         str(m.get(k)) for k in ("maker", "model", "serial") if m.get(k)) or None
     test = store.add(data_bytes, Path(filename).name, machine=machine)
     lab, series, number_for = number_format(inputs["config"], info.issued)

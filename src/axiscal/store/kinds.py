@@ -41,8 +41,9 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
            "IdentificationBudget", "ThermalBudget"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
-#: ISO/TR 230-9 for squareness); a kind not named here has no uncertainty budget in axiscal.
-UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty"}
+#: ISO/TR 230-9 for squareness and, axiscal's reading of it, a ballbar's G and H); a kind not named here has no uncertainty budget in axiscal.
+UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty",
+                     "ballbar": "ballbar_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
          "volumetric", "fiveaxis-ballbar")
@@ -207,8 +208,9 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     """``ev`` with its uncertainty budget made from ``inputs`` (absent ones assumed and said):
     ISO 230-2:2014 Annex A for a positioning test
     (:func:`~axiscal.standards.iso230_9.positioning_budget`), ISO/TR 230-9 for a diagonal
-    squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`); the
-    other kinds keep none. Every path that shows a U (command, history, workbench, report,
+    squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`), G and H
+    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), a five-axis
+    identification's and a thermal test's own; the other kinds keep none. Every path that shows a U (command, history, workbench, report,
     certificate, API) takes it from here."""
     inputs = dict(inputs or {})
     return dataclasses.replace(ev, budget=budget_of(ev.kind, ev.dataset, ev.evaluation, inputs),
@@ -226,10 +228,14 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         from axiscal.standards.iso230_9_geometry import diagonal_budget
 
         return diagonal_budget(evaluation, inputs)
+    if kind == "ballbar":
+        from axiscal.standards.iso230_9_ballbar import ballbar_budget
+
+        return ballbar_budget(evaluation, dataset.radius, inputs)
     if kind == "fiveaxis":
         return IdentificationBudget(evaluation)
     if kind == "thermal":
-        return ThermalBudget(evaluation)
+        return ThermalBudget(evaluation, log=dataset)
     if kind == "fiveaxis-ballbar":      # the range's own budget, made by its one evaluation
         return evaluation.budget
     return None
@@ -569,6 +575,9 @@ class ThermalBudget:
     method: str = ("ISO 230-3:2020 figures: reading noise from sample-to-sample steps, u = "
                    "sqrt(2) sigma, an extreme's bias added; sensor calibration not included")
     k: float = 2.0
+    #: The log the figures came from (:class:`~axiscal.standards.iso230_3_data.ThermalLog`):
+    #: each channel's reading noise σ, the budget's inputs (None: not listed).
+    log: object = None
 
     def U(self, name: str) -> float | None:
         """U of figure ``name`` as ``thermal evaluate --json`` writes it (None: no such figure)."""
@@ -580,7 +589,22 @@ class ThermalBudget:
         return "—" if U is None else f"{U:.3f}"
 
     def to_json(self) -> dict:
-        return {"method": self.method, "k": self.k}
+        """``method``, ``k`` and ``inputs``: each channel's reading noise σ (µm, or °C for a
+        temperature sensor) by :func:`~axiscal.standards.iso230_3_data.noise_sigma`, the
+        one estimate the figures' U are made from."""
+        out = {"method": self.method, "k": self.k}
+        if self.log is not None:
+            from axiscal.standards.iso230_3_data import noise_sigma
+
+            rule = "measured: the channel's sample-to-sample steps (robust)"
+            out["inputs"] = {
+                **{f"sigma_{c}": {"label": f"reading noise σ of {c}", "unit": "µm",
+                                  "value": noise_sigma(v) * 1e6, "assumed": False, "rule": rule}
+                   for c, v in self.log.displacements.items()},
+                **{f"sigma_{c}": {"label": f"reading noise σ of {c}", "unit": "°C",
+                                  "value": noise_sigma(v), "assumed": False, "rule": rule}
+                   for c, v in self.log.temperatures.items()}}
+        return out
 
 
 def _thermal(text: str, filename: str) -> Evaluated:

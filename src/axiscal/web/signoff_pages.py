@@ -95,18 +95,33 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     from the user configuration ``cfg`` (default read now), the laboratory kept in the history,
     the machine's last certificate and the stored test), the certificates of this test in the
     register, its drift checks, and whether it may be certified; None for a test that is not a
-    positioning test."""
-    if ev.kind != "iso230-2":
-        return None
+    test of a kind without an uncertainty budget (no form: a statement of conformity needs U,
+    :func:`axiscal.report.kind_certificate.require_budget`). A test of another kind with a
+    budget (diagonal, ballbar, five-axis, thermal) has the same form without what only a positioning
+    test has (E_VE, temperatures, the plot): its figures, U and verdicts are
+    :func:`axiscal.report.kind_certificate.certificate_record` of the stored record."""
     from axiscal.report.issue import load_config
     from axiscal.store.laboratory import drift_checks
 
-    params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
+    positioning = ev.kind == "iso230-2"
+    if positioning:
+        params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
+        units = {}
+    else:
+        from axiscal.report.kind_certificate import certificate_record
+
+        ev = rec = t.record()             # with its budget: what the verdict decides with
+        if rec.budget is None:
+            return None
+        figures = certificate_record(rec).figures
+        params = [f.name for f in figures]
+        units = {f.name: _unit(f.unit) for f in figures}
     records = st.certificates(test_id=t.summary.id)
     current = next((c for c in records if c.status == "issued"), None)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
            "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
-           "unit": _unit(ev.evaluation.deviation_unit), "current": current,
+           "unit": _unit(ev.evaluation.deviation_unit) if positioning else "",
+           "units": units, "positioning": positioning, "current": current,
            "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id)}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
@@ -142,7 +157,8 @@ def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
                            if k in ("specification", "rule", "paper")}
     keep["tolerance"] = {**old.get("tolerance", {}), **(last.get("tolerances") or {})}
     form = {**_defaults(merge(cfg, keep), params), **lab_defaults(cfg)}
-    if t.summary.date_known and not ev.dataset.metadata.date:
+    if t.summary.date_known and not getattr(getattr(ev.dataset, "metadata", None), "date",
+                                            ev.date):
         form["date"] = t.summary.tested_at.strftime("%Y-%m-%d")
     if t.instrument and not form.get("instrument1_name"):
         form["instrument1_name"] = t.instrument
@@ -265,10 +281,13 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
 
     t = st.get(test_id)
     ev = t.evaluate_again()
+    if ev.kind != "iso230-2":
+        ev = t.record()                  # the stored record, with its budget
     ctx = signoff_context(st, t, ev, values)
     if ctx is None:
-        raise InputError(f"a {ev.kind} test is signed off by its command; the workbench signs "
-                         "off ISO 230-2 positioning tests")
+        from axiscal.report.kind_certificate import require_budget
+
+        require_budget(t.record())      # the one line naming why (no budget for the kind)
     try:
         if action in ("issue", "amend"):
             _check_issue(ctx, action, values)
@@ -276,7 +295,7 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         kept = laboratory(st)
         lab = lab_from_form(values, kept, job.get("instrument", []))
         who = user or values.get("operator", "")
-        if drift is not None:
+        if drift is not None and ctx["positioning"]:
             if len(drift[0]) > MAX_DRIFT_BYTES:
                 raise InputError(f"{LABELS['drift_check']}: {drift[1]} is over "
                                  f"{MAX_DRIFT_BYTES // 2**20} MiB")
@@ -330,9 +349,28 @@ def _verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
     """The sign-off's verdict, verdict table and plot into ``ctx``."""
     from axiscal.report.issue import sign_off
 
+    if not ctx["positioning"]:
+        _kind_verdict(ctx, ev, cfg, tolerances, rule)
+        return
     so = sign_off(ev.dataset, ev.evaluation, cfg, tolerances, rule)
     ctx.update(result=so, plot=signoff_plot(ev, so, tolerances),
                rows=_rows(ev.evaluation, so, tolerances), budget=so.budget)
+
+
+def _kind_verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
+    """The verdict of a test of another kind with a budget: its stored record's figures
+    decided (:func:`axiscal.report.kind_certificate.certificate_record`, the certificate's own
+    call), tolerances of the configuration under the form's."""
+    from axiscal.report.kind_certificate import certificate_record
+
+    given = {**cfg.get("tolerance", {}), **tolerances}
+    rec = certificate_record(ev, {k: v for k, v in given.items() if k in ev.parameters},
+                             rule or cfg.get("certificate", {}).get("rule"))
+    ctx.update(result=rec, plot=None, budget=rec, rows=[
+        (f"{f.symbol} [{_unit(f.unit)}]", f.value, f.U_text, f.tolerance,
+         "the sign-off" if f.name in tolerances else "user configuration", f.verdict,
+         next(d.outcome.short for d in rec.decisions if d.parameter == f.name))
+        for f in rec.figures if f.verdict is not None])
 
 
 def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
@@ -342,6 +380,13 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
     from axiscal.report.issue import write_certificate
 
     with tempfile.TemporaryDirectory() as d:
+        if ev.kind != "iso230-2":
+            from axiscal.report.kind_certificate import write_kind_certificate
+
+            return write_kind_certificate(Path(d) / "certificate.pdf", ev, cfg, t.raw,
+                                          tolerances, rule, store=st,
+                                          filename=t.summary.filename, approved_by=user,
+                                          paper=paper, draft_document=False)
         return write_certificate(Path(d) / "certificate.pdf", ev.dataset, ev.evaluation, cfg,
                                  t.raw, tolerances, rule, paper, store=st,
                                  filename=t.summary.filename, config_note="",
@@ -351,12 +396,12 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
 
 def _amend(st, t, number: str, reason: str, cfg: dict, user: str = ""):
     """Amend ``number`` with the form's configuration over the inputs kept with it, the
-    machine named as the history names it now (:func:`axiscal.report.issue.
-    reissue_certificate`: a new number, the reason and the changes printed; a DRAFT refused)."""
+    machine named as the history names it now (:func:`axiscal.report.kind_certificate.reissue`,
+    any kind: a new number, the reason and the changes printed; a DRAFT refused)."""
     import tempfile
     from pathlib import Path
 
-    from axiscal.report.issue import reissue_certificate
+    from axiscal.report.kind_certificate import reissue as reissue_certificate
 
     m = st.machine(t.summary.machine_id)
     corrections = {**cfg, "machine": {**cfg.get("machine", {}), "name": m.name}}

@@ -1,0 +1,204 @@
+"""A certificate for every kind of stored test that has an uncertainty budget (issue 40): the
+figures it states are the stored record's, field by field (value, U, k), each value rounded to
+the last digit of its U (ILAC-P14:09/2020 §5.3), decided by ISO 14253-1:2017 against the
+tolerance given; a kind without a budget is refused in one line naming why.
+
+The files are the project's own generators (the diagonal of tests/store/test_paths_agree.py,
+the thermal twin, the five-axis twin); the references are the stored records themselves
+(one record, every path: the certificate recomputes nothing)."""
+
+from __future__ import annotations
+
+import copy
+import json
+import tomllib
+from importlib import resources
+
+import pytest
+
+import axiscal
+from axiscal.errors import InputError
+from axiscal.report.kind_certificate import certificate_record, write_kind_certificate
+from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+from axiscal.store import open_store
+
+#: Every mandatory item given, as tests/report/test_certificate_issue.py's COMPLETE.
+COMPLETE = {
+    "company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "Stuttgart"],
+                "code": "PM"},
+    "operator": {"name": "J. Keller"},
+    "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
+    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042",
+                "location": "Example Machining AG, hall 2"},
+    "conditions": {"date": "2026-11-20"},
+    "instrument": [{"name": "Laser interferometer", "serial": "L-1", "certificate": "C-77",
+                    "due": "2027-04-30"}],
+    "certificate": {"signatory": "Dr. M. Braun", "signatory_role": "Head of laboratory",
+                    "specification": "Contract 4711", "issued": "2026-11-25"},
+}
+
+DIAGONAL = ("# length_x_mm=600 length_y_mm=800\ndiagonal,position,error\n"
+            "D1,100,0.6\nD1,500,3.0\nD1,1000,6.0\nD2,100,-0.3\nD2,500,-1.5\nD2,1000,-3.0\n")
+
+STRAIGHTNESS = ("# position_unit=mm deviation_unit=um axis=X direction=Y\nposition,deviation\n"
+                "0,0\n100,1\n200,3\n300,2\n")
+
+BALLBAR = ("# radius_mm=100\nangle,direction,deviation\n"
+           + "".join(f"{a},{d},{0.001 * (a % 7):.4f}\n" for d in ("ccw", "cw")
+                     for a in range(0, 360, 10)))
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    from axiscal.io.thermal import write_thermal_log
+
+    folder = tmp_path_factory.mktemp("kinds")
+    out = {"diagonal": folder / "diagonal.csv"}
+    out["diagonal"].write_text(DIAGONAL)
+    sim = axiscal.simulate_thermal("linear", seed=1, interval_s=300.0)
+    out["thermal"] = folder / "thermal.csv"
+    write_thermal_log(out["thermal"], sim.log)
+    from axiscal.api import fiveaxis
+
+    cfg = tomllib.loads(resources.files("axiscal.data").joinpath("fiveaxis_ac.toml")
+                        .read_text("utf-8"))
+    cfg["setup"] = cfg["setup"][0:1]
+    out["fiveaxis"] = fiveaxis.simulate(cfg, seed=3, out=folder).files[0]
+    out["ballbar"] = folder / "ballbar.csv"
+    out["ballbar"].write_text(BALLBAR)
+    out["straightness"] = folder / "straightness.csv"
+    out["straightness"].write_text(STRAIGHTNESS)
+    return out
+
+
+def _stored(tmp_path, path):
+    st = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    added = st.add(path.read_bytes(), path.name, machine="VMC", axis="X")
+    return st, st.get(added.id)
+
+
+@pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar"])
+def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
+    """Value, U and k of every figure are the stored record's (``history show --json``'s
+    ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""
+    st, t = _stored(tmp_path, files[kind])
+    ev = t.record()
+    assert ev.kind == kind
+    stored = t.result["quantities"]
+    rec = certificate_record(ev)
+    assert rec.figures and rec.overall is None
+    for f in rec.figures:
+        q = stored[f.name]
+        assert (f.value, f.U, f.k, f.unit) == (q["value"], q["U"], q["k"], q["unit"]), f.name
+        assert f.U_text == format_uncertainty(q["U"])
+        assert f.value_text == format_value(q["value"], q["U"])
+    assert {f.name for f in rec.figures} == {n for n, q in stored.items()
+                                             if q["U"] is not None and q["value"] is not None}
+    assert rec.inputs, "the budget's inputs are listed"
+
+
+def test_a_diagonal_certificate_is_issued_with_its_verdict(files, tmp_path):
+    """Squareness (D1 − D2)·D0/(2XY) of ISO 230-6:2002 §4 with D0 = 1000 mm, X = 600, Y =
+    800 mm: errors growing along each diagonal to 6 and −3 µm at 1000 mm give
+    9·1000/(2·600·800) = 9.375 µm/m; against 20 µm/m
+    with its U (about 0.7 µm/m, ISO/TR 230-9) conformance is proven (ISO 14253-1:2017 §5.2)
+    and the register numbers the certificate."""
+    st, t = _stored(tmp_path, files["diagonal"])
+    ev = t.record()
+    sq = ev.parameters["squareness"][0]
+    assert sq == pytest.approx(9.375, abs=1e-6)
+    out = write_kind_certificate(tmp_path / "c.html", ev, copy.deepcopy(COMPLETE), t.raw,
+                                 {"squareness": 20.0}, store=st, filename=t.summary.filename,
+                                 today="2026-11-25", prepared_by="J. Keller")
+    assert out.missing == () and out.number.startswith("PM-2026-")
+    assert out.decisions[0].outcome.value == "conformance proven"
+    page = (tmp_path / "c.html").read_text()
+    f = certificate_record(ev, {"squareness": 20.0}).figures[0]
+    assert f"<td>{f.value_text}</td><td>{f.U_text}</td><td>2</td>" in page
+    assert "Contract 4711" in page and out.number in page
+    assert st.certificate(out.number).test_id == t.summary.id
+
+
+def test_a_missing_item_makes_a_draft_and_a_bad_tolerance_is_refused(files, tmp_path):
+    st, t = _stored(tmp_path, files["thermal"])
+    cfg = copy.deepcopy(COMPLETE)
+    del cfg["customer"]["address"]
+    out = write_kind_certificate(tmp_path / "d.html", t.record(), cfg, t.raw, store=st,
+                                 prepared_by="J. Keller", draft_document=False)
+    assert out.draft and out.missing == ("customer address ([customer] address)",)
+    with pytest.raises(InputError, match="not a parameter of this result"):
+        certificate_record(t.record(), {"R_up": 3.0})
+    with pytest.raises(InputError, match="a positive number"):
+        certificate_record(t.record(), {next(iter(t.record().parameters)): -1.0})
+
+
+@pytest.mark.parametrize("kind", ["straightness"])
+def test_a_kind_without_a_budget_is_refused_in_one_line(files, tmp_path, kind):
+    st, t = _stored(tmp_path, files[kind])
+    with pytest.raises(InputError) as e:
+        write_kind_certificate(tmp_path / "x.html", t.record(), COMPLETE, t.raw, store=st)
+    assert str(e.value).startswith(f"no uncertainty budget for {kind} tests in axiscal: ")
+    assert "\n" not in str(e.value)
+    assert not (tmp_path / "x.html").exists() and st.certificates(test_id=t.summary.id) == []
+
+
+def _toml(cfg: dict) -> str:
+    """A job file of ``cfg`` (tables of strings, numbers and lists of them)."""
+    def val(v):
+        return json.dumps(v, ensure_ascii=False)
+    out = []
+    for table, body in cfg.items():
+        rows = body if isinstance(body, list) else [body]
+        for row in rows:
+            out.append(f"[[{table}]]" if isinstance(body, list) else f"[{table}]")
+            out += [f"{k} = {val(v)}" for k, v in row.items()]
+    return "\n".join(out) + "\n"
+
+
+def test_certificate_issue_on_the_command_line(files, tmp_path):
+    """``axiscal certificate issue ID``: a diagonal test numbered by the register, its
+    squareness and U in the document; a straightness test (no budget in axiscal) refused in one
+    line, exit 2, nothing issued."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app as cli_app
+
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    st = open_store(url)
+    d = st.add(files["diagonal"].read_bytes(), "diagonal.csv", machine="VMC").id
+    b = st.add(files["straightness"].read_bytes(), "straightness.csv", machine="VMC").id
+    job = tmp_path / "job.toml"
+    job.write_text(_toml(COMPLETE))
+    runner = CliRunner()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(d), "--db", url, "--job", str(job),
+                                "--tolerance", "squareness=20", "--prepared-by", "J. Keller",
+                                "--out", str(tmp_path / "sq.html"), "--json"])
+    assert r.exit_code == 0, r.output
+    got = json.loads(r.stdout)
+    assert got["test_id"] == d and got["number"].startswith("PM-2026-")
+    f = certificate_record(st.get(d).record(), {"squareness": 20.0}).figures[0]
+    assert f"<td>{f.value_text}</td><td>{f.U_text}</td>" in (tmp_path / "sq.html").read_text()
+    fix = tmp_path / "fix.toml"
+    fix.write_text('[customer]\nname = "Example Machining GmbH"\n')
+    r = runner.invoke(cli_app, ["certificate", "reissue", got["number"], "--db", url,
+                                "--reason", "customer renamed", "--job", str(fix),
+                                "--out", str(tmp_path / "sq2.html"), "--json"])
+    assert r.exit_code == 0, r.output
+    again = json.loads(r.stdout)
+    assert again["replaces"] == got["number"] and again["test_id"] == d
+    assert {"what": "[customer] name", "old": "Example Machining AG",
+            "new": "Example Machining GmbH"} in again["changes"]
+    assert "This certificate replaces certificate" in (tmp_path / "sq2.html").read_text()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(b), "--db", url, "--job", str(job),
+                                "--out", str(tmp_path / "bb.html")])
+    assert r.exit_code == 2
+    assert r.output.strip().splitlines() == [
+        "axiscal: error: no uncertainty budget for straightness tests in axiscal: a certificate "
+        "states "
+        "each result with its expanded uncertainty U (ILAC-P14:09/2020 §5; ISO 14253-1:2017 "
+        "§5), so this test gets none"]
+    assert not (tmp_path / "bb.html").exists()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(d), "--db", url, "--job", str(job),
+                                "--tolerance", "E=20", "--out", str(tmp_path / "e.html")])
+    assert r.exit_code == 2 and "tolerance for 'E': not a parameter of this result; use one " \
+        "of squareness" in r.output and not (tmp_path / "e.html").exists()
