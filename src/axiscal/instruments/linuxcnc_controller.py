@@ -157,6 +157,22 @@ def running_processes(marked_only: bool = True) -> list[int]:
     return out
 
 
+def process_states() -> str:
+    """What LinuxCNC's processes are doing, for an error that says LinuxCNC stopped answering:
+    ``name state wchan`` of each (``/proc/PID/stat`` state R running, S sleeping, D waiting on
+    the disk; ``/proc/PID/wchan`` the kernel function it sleeps in)."""
+    out = []
+    for pid in running_processes(marked_only=False):
+        try:
+            stat = Path(f"/proc/{pid}/stat").read_text()
+            wchan = Path(f"/proc/{pid}/wchan").read_text().strip() or "-"
+        except OSError:
+            continue
+        comm = stat[stat.index("(") + 1:stat.rindex(")")]
+        out.append(f"{comm} {stat.rsplit(')', 1)[1].split()[0]} {wchan}")
+    return "; ".join(sorted(out)) or "none running"
+
+
 def leftover_segments() -> list[int]:
     """LinuxCNC's shared-memory keys still present (``ipcs -m``)."""
     text = subprocess.run(["ipcs", "-m"], capture_output=True, text=True).stdout
@@ -474,14 +490,17 @@ class LinuxCNC:
             if seen == "running":
                 self._mdi_failed(line, f"{timeout:g} s")
             self.recoveries.append((line, seen))
-            warnings.warn(f"LinuxCNC: MDI line {line!r} {seen}; "
+            warnings.warn(f"LinuxCNC: MDI line {line!r} {seen} (processes: {process_states()}); "
                           + ("aborted and sent again" if seen == "stalled" else "sent again"),
                           RuntimeWarning, stacklevel=2)
             if seen == "stalled":
                 self._cmd.abort()
                 self._cmd.wait_complete(5.0)
-                _wait(lambda: (self._stat.poll(), self._stat.interp_state)[1]
-                      == linuxcnc.INTERP_IDLE, 10.0, "LinuxCNC's interpreter to stop after abort")
+                try:
+                    _wait(lambda: (self._stat.poll(), self._stat.interp_state)[1]
+                          == linuxcnc.INTERP_IDLE, 10.0, "LinuxCNC's interpreter to stop")
+                except MeasurementError:
+                    self._mdi_failed(line, f"{timeout:g} s, and did not stop when aborted")
                 self._cmd.mode(linuxcnc.MODE_MDI)
                 self._cmd.wait_complete(5.0)
         else:
@@ -537,7 +556,8 @@ class LinuxCNC:
         raise MeasurementError(f"LinuxCNC did not finish {line!r} within {what} (interpreter "
                                f"state {s.interp_state}, task {s.exec_state}, motion queue "
                                f"{s.queue}, in position {bool(s.inpos)}, speed {s.current_vel:g}, "
-                               f"servo thread periods in the last look {ran})")
+                               f"servo thread periods in the last look {ran}; processes: "
+                               f"{process_states()})")
 
     def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
