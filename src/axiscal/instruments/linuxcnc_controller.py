@@ -394,9 +394,12 @@ class LinuxCNC:
         self._cmd = self._channels.new("linuxcnc.command")
         return self._channels.new("hal.component", component)
 
-    def _log_tail(self) -> str:
-        lines = (self.folder / "linuxcnc.log").read_text(errors="replace").strip().splitlines()
-        return " | ".join(lines[-3:]) or "no output"
+    def _log_tail(self, n: int = 3) -> str:
+        try:
+            text = (self.folder / "linuxcnc.log").read_text(errors="replace")
+        except (OSError, TypeError):
+            return "no log"
+        return " | ".join(text.strip().splitlines()[-n:]) or "no output"
 
     def _connect(self) -> None:
         import hal
@@ -557,7 +560,7 @@ class LinuxCNC:
                                f"state {s.interp_state}, task {s.exec_state}, motion queue "
                                f"{s.queue}, in position {bool(s.inpos)}, speed {s.current_vel:g}, "
                                f"servo thread periods in the last look {ran}; processes: "
-                               f"{process_states()})")
+                               f"{process_states()}; LinuxCNC's log ends: {self._log_tail(6)})")
 
     def move(self, position: float, dwell: float = 0.0, approach: int = 0) -> Reading:
         """G0 to ``position`` (machine units), dwell (G4, seconds), then read both pins.
