@@ -27,8 +27,8 @@ import pytest
 from axiscal.compensation.controllers import linuxcnc as writer
 from axiscal.compensation.tables import table_from_deviations
 from axiscal.instruments.linuxcnc_controller import (
-    LINUXCNC_LOCK, SETTLE_PERIODS, LinuxCNC, clean_leftovers, leftover_segments,
-    running_processes, session_lock, platform_reason)
+    LINUXCNC_LOCK, SETTLE_PERIODS, LinuxCNC, LinuxCNCRecovery, clean_leftovers,
+    leftover_segments, running_processes, session_lock, platform_reason)
 
 # Skipped only where no install can help (not Debian, not root); on Debian as root a missing
 # LinuxCNC fails these tests: make test installs it (make linuxcnc).
@@ -174,4 +174,28 @@ def test_a_reading_waits_for_runs_of_the_servo_thread_not_for_time():
         reader.join(10.0)
         assert len(got) == 1 and cnc.servo_runs() - stopped_at >= SETTLE_PERIODS
         assert got[0].pos_cmd == got[0].motor_pos_cmd == pytest.approx(5.0, abs=1e-12)
+    _nothing_left()
+
+
+def test_a_task_process_that_ends_is_started_again_and_the_move_done():
+    """LinuxCNC 2.9's task process (``milltask``) was seen gone in the middle of a CI run (the
+    other processes running, the next MDI line never taken). Killed here on purpose between two
+    moves: the next move starts LinuxCNC again (warning ``LinuxCNCRecovery``), sends its line
+    again and reads the table's trim there, as a session that never lost its task does."""
+    table = _table(20.0)
+    cf = writer.write(table, file_type=1)
+    back = writer.parse(cf.text, file_type=1)
+    with LinuxCNC((-20.0, 820.0), comp_file=cf.text, comp_file_type=1) as cnc:
+        first = cnc.move(100.0, approach=1)
+        task = [p for p in running_processes()
+                if Path(f"/proc/{p}/comm").read_text().strip() == "milltask"]
+        assert len(task) == 1
+        os.kill(task[0], signal.SIGKILL)
+        with pytest.warns(LinuxCNCRecovery, match="started again"):
+            r = cnc.move(300.0, approach=-1)
+        assert cnc.recoveries[-1][1] == "task ended"
+        assert abs(r.pos_cmd - 300.0) < 1e-9
+        want = float(back.correction_at(np.array([300.0]), -1)[0])
+        assert abs(r.trim * 1e3 - want) * 1e-3 <= TOL_MM
+        assert abs(first.trim * 1e3 - float(back.correction_at(np.array([100.0]), 1)[0])) < 1e-3
     _nothing_left()

@@ -10,7 +10,7 @@ for its constants; no LinuxCNC is started.
 import pytest
 
 from axiscal.errors import MeasurementError
-from axiscal.instruments.linuxcnc_controller import LinuxCNC, platform_reason
+from axiscal.instruments.linuxcnc_controller import LinuxCNC, LinuxCNCRecovery, platform_reason
 
 linuxcnc = pytest.importorskip("linuxcnc", reason=f"LinuxCNC cannot run here: {platform_reason()}")
 
@@ -29,6 +29,7 @@ class Task:
         self.interp_state, self.exec_state = linuxcnc.INTERP_IDLE, linuxcnc.EXEC_DONE
         self.queue, self.inpos, self.current_vel, self.position = 0, True, 0.0, (0.0,) * 9
         self.still = self.deaf = False
+        self.alive = True
 
     # linuxcnc.command
     def mdi(self, line):
@@ -83,6 +84,7 @@ def _cnc(task):
     cnc = LinuxCNC((-10.0, 10.0))
     cnc._cmd = cnc._stat = task
     cnc._comp = Clock()
+    cnc._task_alive = lambda: task.alive
     return cnc
 
 
@@ -98,7 +100,7 @@ def test_a_stalled_subroutine_call_is_aborted_and_sent_again(monkeypatch, stall)
     _quick(monkeypatch)
     task = Task(stall, "done")
     cnc = _cnc(task)
-    with pytest.warns(RuntimeWarning, match=r"stalled \(processes: .*\); aborted and sent again"):
+    with pytest.warns(LinuxCNCRecovery, match=r"stalled \(processes: .*\); aborted and sent again"):
         cnc.mdi("o<axiscal_approach> call [3.01] [3] [60] [0]")
     assert task.aborts == 1 and task.modes == [linuxcnc.MODE_MDI]
     assert task.sent == ["o<axiscal_approach> call [3.01] [3] [60] [0]"] * 2
@@ -109,7 +111,7 @@ def test_a_lost_line_is_sent_again_without_abort(monkeypatch):
     _quick(monkeypatch)
     task = Task("lost", "done")
     cnc = _cnc(task)
-    with pytest.warns(RuntimeWarning, match=r"lost \(processes: .*\); sent again"):
+    with pytest.warns(LinuxCNCRecovery, match=r"lost \(processes: .*\); sent again"):
         cnc.mdi("G0 X1")
     assert task.aborts == 0 and len(task.sent) == 2 and cnc.recoveries == [("G0 X1", "lost")]
 
@@ -137,7 +139,7 @@ def test_a_line_stalled_twice_is_an_error(monkeypatch):
     task = Task("stall", "stall")
     cnc = _cnc(task)
     with pytest.raises(MeasurementError, match=r"sent twice \(stalled\)"), \
-            pytest.warns(RuntimeWarning):
+            pytest.warns(LinuxCNCRecovery):
         cnc.mdi("G0 X1")
     assert task.aborts == 2
 
@@ -161,6 +163,37 @@ def test_a_task_that_does_not_answer_an_abort_is_an_error_saying_so(monkeypatch)
     task = Task("stall")
     task.deaf = True
     with pytest.raises(MeasurementError, match="did not stop when aborted.*processes: "), \
-            pytest.warns(RuntimeWarning):
+            pytest.warns(LinuxCNCRecovery):
         _cnc(task).mdi("G0 X1")
     assert task.aborts == 1
+
+
+def test_a_task_process_that_ended_means_linuxcnc_is_started_again(monkeypatch):
+    """Seen on CI (three workers): LinuxCNC's ``milltask`` was gone from the processes (io,
+    linuxcnc, linuxcncsvr and rtapi_app left) and the next line was never taken. The session
+    starts LinuxCNC again and sends the line again; a second end is an error."""
+    _quick(monkeypatch)
+    task = Task("lost", "done")
+    task.alive = False
+    cnc = _cnc(task)
+    restarts = []
+
+    def restart():
+        restarts.append(1)
+        task.alive = True
+    cnc._restart = restart
+    with pytest.warns(LinuxCNCRecovery, match=r"milltask\) ended .* started again"):
+        cnc.mdi("G0 X1")
+    assert restarts == [1] and task.sent == ["G0 X1"] * 2
+    assert cnc.recoveries == [("G0 X1", "task ended")]
+
+
+def test_a_session_that_cannot_start_again_says_the_task_ended(monkeypatch):
+    _quick(monkeypatch)
+    task = Task("lost")
+    task.alive = False
+    cnc = _cnc(task)
+    cnc.restartable = False
+    with pytest.raises(MeasurementError, match=r"task process \(milltask\) ended while running "
+                                               r"'G0 X1'"):
+        cnc.mdi("G0 X1")

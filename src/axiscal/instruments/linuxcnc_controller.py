@@ -66,7 +66,7 @@ import numpy as np
 from axiscal.errors import InputError, MeasurementError
 from axiscal.machines.seen_through import AxisSeenThrough
 
-__all__ = ["LinuxCNC", "LinuxCNCAxis", "Reading", "platform_reason", "unavailable_reason",
+__all__ = ["LinuxCNC", "LinuxCNCAxis", "LinuxCNCRecovery", "Reading", "platform_reason", "unavailable_reason",
            "clean_leftovers", "running_processes", "leftover_segments", "session_lock", "SESSION_LOCK",
            "LINUXCNC_LOCK", "SETTLE_PERIODS"]
 
@@ -212,6 +212,10 @@ def clean_leftovers() -> list[str]:
     return done
 
 
+class LinuxCNCRecovery(UserWarning):
+    """A line LinuxCNC lost, sent again, or its session started again (:meth:`LinuxCNC.mdi`)."""
+
+
 @dataclass(frozen=True)
 class Reading:
     """The joint's two HAL positions after a move, machine units.
@@ -270,6 +274,9 @@ class LinuxCNC:
     _channels: object = field(default=None, init=False, repr=False)
     #: MDI lines sent a second time, with what was seen (:meth:`mdi`).
     recoveries: list = field(default_factory=list, init=False, repr=False)
+    #: Whether a session whose task process ended may be started again to go on (False where
+    #: the session holds state a new start would lose: a thermal model's history).
+    restartable = True
     _servo_seen: object = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -493,9 +500,20 @@ class LinuxCNC:
             if seen == "running":
                 self._mdi_failed(line, f"{timeout:g} s")
             self.recoveries.append((line, seen))
+            if not self._task_alive():
+                log = self._log_tail(6)
+                if not self.restartable or attempt:
+                    raise MeasurementError(f"LinuxCNC's task process (milltask) ended while "
+                                           f"running {line!r}; LinuxCNC's log ends: {log}")
+                warnings.warn(f"LinuxCNC's task process (milltask) ended while running {line!r} "
+                              f"(log: {log}); LinuxCNC started again and the line sent again",
+                              LinuxCNCRecovery, stacklevel=2)
+                self.recoveries[-1] = (line, "task ended")
+                self._restart()
+                continue
             warnings.warn(f"LinuxCNC: MDI line {line!r} {seen} (processes: {process_states()}); "
                           + ("aborted and sent again" if seen == "stalled" else "sent again"),
-                          RuntimeWarning, stacklevel=2)
+                          LinuxCNCRecovery, stacklevel=2)
             if seen == "stalled":
                 self._cmd.abort()
                 self._cmd.wait_complete(5.0)
@@ -547,6 +565,29 @@ class LinuxCNC:
                     return what
             if now >= end:
                 return "running"
+
+    def _task_alive(self) -> bool:
+        """Whether LinuxCNC's task process (``milltask``) runs."""
+        for pid in running_processes():
+            try:
+                if Path(f"/proc/{pid}/comm").read_text().strip() == "milltask":
+                    return True
+            except OSError:
+                continue
+        return False
+
+    def _restart(self) -> None:
+        """Start this session's LinuxCNC again (its configuration written anew, homed, in MDI),
+        keeping the session lock: what :meth:`mdi` does once when the task process ended."""
+        lock, self._lock = self._lock, None          # close() neither cleans nor unlocks
+        try:
+            self.close()
+        finally:
+            self._lock = lock
+        clean_leftovers()
+        self._write_config()
+        self._start()
+        self._connect()
 
     def _servo_runs_now(self) -> float | None:
         """:meth:`servo_runs`, None before the HAL component is ready."""

@@ -37,6 +37,10 @@ class LinuxCNCThermal(LinuxCNCXYZ):
     """
 
     thermcomp: dict = field(default_factory=dict)
+    #: What the component was given since its last start (``("start"|"feed", t, temps)``) and
+    #: whether it is active: replayed when the session starts again (:meth:`_restart`).
+    _given: list = field(default_factory=list, init=False, repr=False)
+    _active: bool = field(default=False, init=False, repr=False)
 
     offset_component = "axiscal-thermcomp"
 
@@ -76,12 +80,17 @@ class LinuxCNCThermal(LinuxCNCXYZ):
 
     def set_active(self, on: bool) -> None:
         """Switch the correction on or off (the component's ``active`` pin)."""
-        self._comp["active"] = bool(on)
+        self._active = bool(on)
+        self._comp["active"] = self._active
 
     def start(self, t: float, temperatures) -> None:
         """Start the component's filters afresh from this first reading (°C) at ``t`` (s):
         ``reset`` held while the pins take it, then released (the component takes the reading
         at the release)."""
+        self._given = [("start", float(t), [float(v) for v in temperatures])]
+        self._start_filters(t, temperatures)
+
+    def _start_filters(self, t: float, temperatures) -> None:
         c = self._comp
         c["reset"] = True
         self._cycles(2, "axiscal-thermcomp to empty its filters")
@@ -102,6 +111,10 @@ class LinuxCNCThermal(LinuxCNCXYZ):
         first, then the time (the component takes a reading when the time moves, so it never
         sees a new time with old temperatures); returns once the component has run twice
         since."""
+        self._given.append(("feed", float(t), [float(v) for v in temperatures]))
+        self._feed(t, temperatures)
+
+    def _feed(self, t: float, temperatures) -> None:
         c = self._comp
         for i, v in enumerate(temperatures):
             c[f"temp-{i}"] = float(v)
@@ -111,6 +124,15 @@ class LinuxCNCThermal(LinuxCNCXYZ):
         # both read the old time could pass for it: a reading merged into the next (seen once,
         # ΔK 57 nm off the model's)
         self._cycles(2, "axiscal-thermcomp to take the temperatures")
+
+    def _restart(self) -> None:
+        """Start LinuxCNC again (:meth:`LinuxCNC._restart`), then give the new component what
+        the old one was given, in order: its filters are where they were (the model's lags
+        depend on every reading since the start)."""
+        super()._restart()
+        self._comp["active"] = self._active
+        for what, t, temps in self._given:
+            (self._start_filters if what == "start" else self._feed)(t, temps)
 
     def correction_error(self) -> float:
         """ΔK the component evaluates now (mm; 0 while ``active`` is off)."""
