@@ -70,7 +70,9 @@ _CONFIG = typer.Argument(None, help="Five-axis configuration (TOML); default: th
                          "example (--machine).")
 
 
-def _config(config: Optional[Path], machine: str):
+def config_for(config: Optional[Path], machine: str):
+    """``--config`` when given, else the shipped example of ``--machine`` (ac, bc, head); the
+    one reading of these two options, also for ``axiscal plan fiveaxis``."""
     if config is not None:
         return config
     from importlib import resources
@@ -95,7 +97,7 @@ def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
     """
     from axiscal.api import fiveaxis
 
-    planned = fiveaxis.plan(_config(config, machine), squareness)
+    planned = fiveaxis.plan(config_for(config, machine), squareness)
     if as_json:
         print_json(planned.to_dict())
         return
@@ -127,7 +129,7 @@ def simulate(
 
     if report is not None:
         report_path(report)
-    cfg = _config(config, machine)
+    cfg = config_for(config, machine)
     sim = fiveaxis.simulate(cfg, seed=seed, out=out, squareness=squareness,
                             on_controller=on_controller)
     if report is not None:
@@ -167,7 +169,7 @@ def identify(
         plot_path(plot)
     if report is not None:
         report_path(report)
-    cfg = _config(config, machine)
+    cfg = config_for(config, machine)
     result = fiveaxis.identify(cfg, files, squareness=squareness)
     if plot is not None:
         fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
@@ -219,7 +221,7 @@ def compensate(
                        (sinumerik, "the SINUMERIK swivel data")):
         if path is not None:
             out_path(path, what)
-    comp = fiveaxis.compensate(_config(config, machine), files, z_rot_point, verify,
+    comp = fiveaxis.compensate(config_for(config, machine), files, z_rot_point, verify,
                                on_controller=on_controller)
     from axiscal.io._files import write_bytes_atomic
 
@@ -264,7 +266,7 @@ def ballbar_plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
     """
     from axiscal.api import fiveaxis
 
-    planned = fiveaxis.ballbar.plan(_config(config, machine))
+    planned = fiveaxis.ballbar.plan(config_for(config, machine))
     if as_json:
         print_json(planned.to_dict())
         return
@@ -286,7 +288,7 @@ def ballbar_simulate(
     """
     from axiscal.api import fiveaxis
 
-    sim = fiveaxis.ballbar.simulate(_config(config, machine), seed=seed, out=out)
+    sim = fiveaxis.ballbar.simulate(config_for(config, machine), seed=seed, out=out)
     if as_json:
         print_json(sim.to_dict())
         return

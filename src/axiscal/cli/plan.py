@@ -28,7 +28,7 @@ import typer
 
 from axiscal.cli import _program as P
 from axiscal.cli._common import note, print_json, typed_path
-from axiscal.cli.thermal import _OPTS as _T
+from axiscal.cli.thermal import PLAN_OPTIONS as _T
 
 #: Bounds of the counts a plan is asked for: beyond them a typing slip would only exhaust memory.
 MAX_TARGETS, MAX_RUNS = 10_000, 100
@@ -358,9 +358,9 @@ def plan_thermal_cmd(
     Example: axiscal plan thermal --test linear --run-h 4 --program heat.nc --controller fanuc
     """
     from axiscal.api._thermal import plan_thermal
-    from axiscal.cli.thermal import _plan_options
+    from axiscal.cli.thermal import plan_options
 
-    p = plan_thermal(**_plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
+    p = plan_thermal(**plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
                                      p1_mm, p2_mm, duty, position_mm, 0.0, start_h, programme))
     machine = _machine(dict(locals(), feed=1000.0, safe=None))
     text = P.make_program(p, p.axis.upper(), program, controller, spindle=spindle_max, **machine)
@@ -405,11 +405,11 @@ def plan_fiveaxis_cmd(
     Example: axiscal plan fiveaxis --machine ac --program rtest.ngc --controller linuxcnc --safe Z=200
     """
     from axiscal.api import fiveaxis
-    from axiscal.cli.fiveaxis import _config
+    from axiscal.cli.fiveaxis import config_for
     from axiscal.programs import BallbarProgram, FiveAxisProgram
 
     if ballbar:
-        bb = fiveaxis.ballbar.plan(_config(config, machine_))
+        bb = fiveaxis.ballbar.plan(config_for(config, machine_))
         job = BallbarProgram(bb.setups, bb.machine, dwell=dwell, tolerance=tolerance)
         text = P.make_program(job, f"XYZ{bb.machine.tilt}C", program, controller,
                               **_machine(dict(locals(), sign=None)))
@@ -419,7 +419,7 @@ def plan_fiveaxis_cmd(
             typer.echo(str(bb))
         P.write_program_file(program, text, controller)
         return
-    planned = fiveaxis.plan(_config(config, machine_))
+    planned = fiveaxis.plan(config_for(config, machine_))
     tilt = planned.machine.tilt
     job = FiveAxisProgram(planned.plan, planned.machine, dwell=dwell, clearance=clearance)
     text = P.make_program(job, f"XYZ{tilt}C", program, controller,

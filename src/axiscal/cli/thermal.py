@@ -50,8 +50,10 @@ _TESTS = ("etve, spindle, linear, rotary (a rotary table turning: a twin with on
           "src/axiscal/data/thermal_rotary_table.toml) or drift-check (ISO 230-2 Annex A.5)")
 
 
-def _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm, duty,
+def plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm, duty,
                   position_mm, instrument_drift, start_h, programme=None) -> dict:
+    """The keyword arguments of ``plan_thermal`` from the plan's options (:data:`PLAN_OPTIONS`),
+    for ``axiscal thermal plan`` and ``axiscal plan thermal`` alike."""
     return dict(test=test, config=config, duration_h=duration_h, run_h=run_h,
                 interval_s=interval_s, speed=speed, axis=axis, p1_mm=p1_mm, p2_mm=p2_mm,
                 duty=duty, position_mm=position_mm, instrument_drift_um_per_h=instrument_drift,
@@ -82,7 +84,8 @@ def _programme(text):
 
 
 # The options every planned test shares (plan and simulate), declared once.
-_OPTS = dict(
+#: The plan's options, shared with ``axiscal plan thermal`` (one definition, one help text).
+PLAN_OPTIONS = dict(
     test=typer.Option(..., "--test", help=f"The test: {_TESTS}."),
     config=typer.Option(None, "--config", help="Thermal twin (TOML); default the shipped VMC."),
     duration_h=typer.Option(None, "--duration-h", min=0.0, help="Whole test, h (default: etve "
@@ -106,14 +109,14 @@ _OPTS = dict(
 )
 
 
-def plan(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
-         duration_h: Optional[float] = _OPTS["duration_h"], run_h: Optional[float] = _OPTS["run_h"],
-         interval_s: float = _OPTS["interval_s"], speed: float = _OPTS["speed"],
-         axis: str = _OPTS["axis"], p1_mm: Optional[float] = _OPTS["p1_mm"],
-         p2_mm: Optional[float] = _OPTS["p2_mm"], duty: float = _OPTS["duty"],
-         position_mm: Optional[float] = _OPTS["position_mm"],
-         instrument_drift: float = _OPTS["instrument_drift"], start_h: float = _OPTS["start_h"],
-         programme: Optional[str] = _OPTS["programme"],
+def plan(test: str = PLAN_OPTIONS["test"], config: Optional[Path] = PLAN_OPTIONS["config"],
+         duration_h: Optional[float] = PLAN_OPTIONS["duration_h"], run_h: Optional[float] = PLAN_OPTIONS["run_h"],
+         interval_s: float = PLAN_OPTIONS["interval_s"], speed: float = PLAN_OPTIONS["speed"],
+         axis: str = PLAN_OPTIONS["axis"], p1_mm: Optional[float] = PLAN_OPTIONS["p1_mm"],
+         p2_mm: Optional[float] = PLAN_OPTIONS["p2_mm"], duty: float = PLAN_OPTIONS["duty"],
+         position_mm: Optional[float] = PLAN_OPTIONS["position_mm"],
+         instrument_drift: float = PLAN_OPTIONS["instrument_drift"], start_h: float = PLAN_OPTIONS["start_h"],
+         programme: Optional[str] = PLAN_OPTIONS["programme"],
          json_out: bool = typer.Option(False, "--json", help="Print the plan as JSON.")) -> None:
     """Plan an ISO 230-3 thermal test or an ISO 230-2 drift check: durations, samples, targets.
 
@@ -121,7 +124,7 @@ def plan(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
     """
     from axiscal.api._thermal import plan_thermal
 
-    p = plan_thermal(**_plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
+    p = plan_thermal(**plan_options(test, config, duration_h, run_h, interval_s, speed, axis,
                                      p1_mm, p2_mm, duty, position_mm, instrument_drift, start_h,
                                      programme))
     d = p.to_dict()
@@ -132,14 +135,14 @@ def plan(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
                          for k, v in d.items()))
 
 
-def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"],
-             duration_h: Optional[float] = _OPTS["duration_h"],
-             run_h: Optional[float] = _OPTS["run_h"], interval_s: float = _OPTS["interval_s"],
-             speed: float = _OPTS["speed"], axis: str = _OPTS["axis"],
-             p1_mm: Optional[float] = _OPTS["p1_mm"], p2_mm: Optional[float] = _OPTS["p2_mm"],
-             duty: float = _OPTS["duty"], position_mm: Optional[float] = _OPTS["position_mm"],
-             instrument_drift: float = _OPTS["instrument_drift"],
-             start_h: float = _OPTS["start_h"], programme: Optional[str] = _OPTS["programme"],
+def simulate(test: str = PLAN_OPTIONS["test"], config: Optional[Path] = PLAN_OPTIONS["config"],
+             duration_h: Optional[float] = PLAN_OPTIONS["duration_h"],
+             run_h: Optional[float] = PLAN_OPTIONS["run_h"], interval_s: float = PLAN_OPTIONS["interval_s"],
+             speed: float = PLAN_OPTIONS["speed"], axis: str = PLAN_OPTIONS["axis"],
+             p1_mm: Optional[float] = PLAN_OPTIONS["p1_mm"], p2_mm: Optional[float] = PLAN_OPTIONS["p2_mm"],
+             duty: float = PLAN_OPTIONS["duty"], position_mm: Optional[float] = PLAN_OPTIONS["position_mm"],
+             instrument_drift: float = PLAN_OPTIONS["instrument_drift"],
+             start_h: float = PLAN_OPTIONS["start_h"], programme: Optional[str] = PLAN_OPTIONS["programme"],
              seed: int = typer.Option(0, "--seed", min=0, help="Seed of the sensors' noise."),
              out: Optional[Path] = typer.Option(None, "--out", help="Write the log CSV (a drift "
                                                 "check: the file iso230-2 --drift-check reads)."),
@@ -162,7 +165,7 @@ def simulate(test: str = _OPTS["test"], config: Optional[Path] = _OPTS["config"]
         plot_path(plot)
     if report is not None:
         report_path(report)
-    opts = _plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm,
+    opts = plan_options(test, config, duration_h, run_h, interval_s, speed, axis, p1_mm, p2_mm,
                          duty, position_mm, instrument_drift, start_h, programme)
     sim = simulate_thermal(opts.pop("test"), opts.pop("config"), seed, **opts)
     if sim.plan.test == "drift-check":
@@ -287,9 +290,9 @@ def compensate(fit: List[Path] = typer.Argument(..., help="Linear-axis log(s) to
                                                             "and setting data (MD32750, "
                                                             "SD43920, SD43900, SD43910) with "
                                                             "the PLC's formulas as comments."),
-               config: Optional[Path] = _OPTS["config"],
+               config: Optional[Path] = PLAN_OPTIONS["config"],
                seed: int = typer.Option(0, "--seed", min=0, help="--verify: seed of the run."),
-               duty: float = _OPTS["duty"], start_h: float = _OPTS["start_h"],
+               duty: float = PLAN_OPTIONS["duty"], start_h: float = PLAN_OPTIONS["start_h"],
                json_out: bool = typer.Option(False, "--json", help="Print the parameters and "
                                              "the model as JSON.")) -> None:
     """SINUMERIK temperature compensation from linear-axis runs (ISO 230-3:2020 Clause 7).
