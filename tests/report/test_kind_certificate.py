@@ -66,6 +66,11 @@ def files(tmp_path_factory):
     out["fiveaxis"] = fiveaxis.simulate(cfg, seed=3, out=folder).files[0]
     out["ballbar"] = folder / "ballbar.csv"
     out["ballbar"].write_text(BALLBAR)
+    whole = tomllib.loads(resources.files("axiscal.data").joinpath("fiveaxis_ac.toml")
+                          .read_text("utf-8"))
+    fiveaxis.ballbar.simulate(dict(whole, ballbar=whole["ballbar"][:1]), seed=3,
+                              out=folder / "bb")
+    out["fiveaxis-ballbar"] = folder / "bb" / "1_ballbar.csv"
     out["straightness"] = folder / "straightness.csv"
     out["straightness"].write_text(STRAIGHTNESS)
     return out
@@ -77,7 +82,8 @@ def _stored(tmp_path, path):
     return st, st.get(added.id)
 
 
-@pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar"])
+@pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar",
+                                  "fiveaxis-ballbar"])
 def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
     """Value, U and k of every figure are the stored record's (``history show --json``'s
     ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""
@@ -95,6 +101,7 @@ def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path
     assert {f.name for f in rec.figures} == {n for n, q in stored.items()
                                              if q["U"] is not None and q["value"] is not None}
     assert rec.inputs, "the budget's inputs are listed"
+    assert all(v.strip() for row in rec.inputs for v in row[:2]), rec.inputs
 
 
 def test_a_diagonal_certificate_is_issued_with_its_verdict(files, tmp_path):

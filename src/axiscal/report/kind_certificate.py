@@ -454,7 +454,8 @@ class _Stated:
 def _inputs(budget: dict, given: dict) -> tuple[tuple[str, str, str], ...]:
     """(input, value, how) of a budget's JSON: its declared inputs where it lists them (ISO/TR
     230-9 budgets), else the standard uncertainties by figure and input (a five-axis
-    identification), else the inputs given to it."""
+    identification), else its contributors (a five-axis ballbar range: each u with its basis),
+    else the inputs given to it."""
     rows = []
     for name, i in (budget.get("inputs") or {}).items():
         how = "assumed" if i.get("assumed") else "given"
@@ -463,6 +464,11 @@ def _inputs(budget: dict, given: dict) -> tuple[tuple[str, str, str], ...]:
     for fig, comps in (budget.get("u_components") or {}).items():
         for comp, u in comps.items():
             rows.append((f"u({fig}) from {comp}", f"{u:.3g}", "standard uncertainty, µm or µrad"))
+    if not rows:
+        unit = str(budget.get("unit", "")).replace("um", "µm")
+        rows = [(f"{c.get('name')}: {c.get('quantity')}", f"u = {c.get('u', 0.0):.3g} {unit}",
+                 f"{c.get('basis', '')} ({c.get('clause', '')})")
+                for c in budget.get("contributors") or ()]
     if not rows:
         rows = [(str(k), str(v), "given") for k, v in (given or {}).items()]
     return tuple(rows)
