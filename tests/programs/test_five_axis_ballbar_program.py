@@ -6,8 +6,6 @@ tolerance and the program's resolution, and LinuxCNC's own interpreter reads it 
 from __future__ import annotations
 
 import re
-import shutil
-import subprocess
 import tomllib
 from importlib import resources
 
@@ -53,22 +51,15 @@ def test_every_programmed_point_and_move_keeps_the_spindle_ball_in_place():
         assert pts[-1, 4] == pytest.approx(90.0) and np.degrees(s.c_angle[-1]) == 90.0
 
 
-@pytest.mark.skipif(shutil.which("rs274") is None, reason="rs274 (linuxcnc-uspace) is not "
-                    "installed: run 'make linuxcnc'")
-def test_linuxcncs_interpreter_reads_the_program_to_its_end(tmp_path):
+def test_linuxcncs_interpreter_reads_the_program_to_its_end(tmp_path, rs274):
     f = tmp_path / "bb.ngc"
     r = CliRunner().invoke(app, ["plan", "fiveaxis", "--ballbar", "--program", str(f),
                                  "--controller", "linuxcnc", "--safe", "Z=300", "--tolerance",
                                  "5", "--json"])
     assert r.exit_code == 0, r.output
     feeds = sum(line.startswith("G1 ") for line in f.read_text().splitlines())
-    for _ in range(2):       # rs274 ended by SIGBUS once beside a LinuxCNC (test_part_programs)
-        out = subprocess.run([shutil.which("rs274"), "-g", str(f)], capture_output=True,
-                             text=True, timeout=120)
-        if out.returncode >= 0:
-            break
-    assert out.returncode == 0, out.stderr[-300:]
-    assert out.stdout.count("STRAIGHT_FEED(") == feeds and "PROGRAM_END" in out.stdout
+    out = rs274(f)
+    assert out.count("STRAIGHT_FEED(") == feeds and "PROGRAM_END" in out
 
 
 def test_a_bad_tolerance_or_no_safe_z_is_refused():

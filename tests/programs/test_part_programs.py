@@ -16,8 +16,6 @@
 
 import math
 import re
-import shutil
-import subprocess
 
 import numpy as np
 import pytest
@@ -42,24 +40,16 @@ def test_generation_reproduces_the_golden_program(kind, controller):
 
 
 # -- LinuxCNC's interpreter ---------------------------------------------------------------------
-RS274 = shutil.which("rs274")
-needs_rs274 = pytest.mark.skipif(RS274 is None, reason="rs274 (linuxcnc-uspace) is not installed: "
-                                 "run 'make linuxcnc'")
 _CANON = re.compile(r"^\s*\d+\s+N\.+\s+(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|DWELL|"
                     r"SET_FEED_RATE|PROGRAM_END)\((.*)\)\s*$")
 
 
-def _canonical(text, tmp_path, name):
+def _canonical(rs274, text, tmp_path, name):
     """LinuxCNC's canonical calls for ``text``: [(call, (numbers...)), ...]."""
     f = tmp_path / name
     f.write_text(text)
-    for _ in range(2):       # rs274 ended by SIGBUS once in a make test while a LinuxCNC ran
-        r = subprocess.run([RS274, "-g", str(f)], capture_output=True, text=True, timeout=60)
-        if r.returncode >= 0:     # beside it (cause not found): a signal gets one more try;
-            break                 # the interpreter's own answers are never retried
-    assert r.returncode == 0, r.stdout[-500:] + r.stderr
     calls = []
-    for line in r.stdout.splitlines():
+    for line in rs274(f, timeout=60).splitlines():
         m = _CANON.match(line)
         if m:
             nums = tuple(float(v) for v in re.findall(r"-?\d+\.\d+|-?\d+", m.group(2)))
@@ -68,12 +58,11 @@ def _canonical(text, tmp_path, name):
     return calls
 
 
-@needs_rs274
 @pytest.mark.parametrize("kind", KINDS)
-def test_iso_dialects_run_through_linuxcncs_interpreter(kind, tmp_path):
+def test_iso_dialects_run_through_linuxcncs_interpreter(kind, tmp_path, rs274):
     """Fanuc, Haas and LinuxCNC programs give LinuxCNC the same motion; the dwells are the plan's
     in each controller's unit (Fanuc ms, Haas and LinuxCNC s)."""
-    got = {c: _canonical(program(kind, c), tmp_path, f"{kind}.{c}.ngc")
+    got = {c: _canonical(rs274, program(kind, c), tmp_path, f"{kind}.{c}.ngc")
            for c in ("linuxcnc", "fanuc", "haas")}
     plan, _ = cases()[kind]
     for c, factor in (("fanuc", 1000.0), ("haas", 1.0)):
@@ -87,13 +76,12 @@ def test_iso_dialects_run_through_linuxcncs_interpreter(kind, tmp_path):
         assert dwells and all(d == pytest.approx(dwell(kind)) for d in dwells[:-1])
 
 
-@needs_rs274
 @pytest.mark.parametrize("kind", ["linear", "rotary", "pilgrim"])
-def test_linuxcnc_moves_are_the_plans_steps_in_order(kind, tmp_path):
+def test_linuxcnc_moves_are_the_plans_steps_in_order(kind, tmp_path, rs274):
     """Each feed move ends at the next step of the plan (machine coordinate = sign × plan); a
     dwell follows every measurement and no overrun."""
     plan, options = cases()[kind]
-    calls = _canonical(program(kind, "linuxcnc"), tmp_path, "p.ngc")
+    calls = _canonical(rs274, program(kind, "linuxcnc"), tmp_path, "p.ngc")
     index = "XYZABC".index(plan.axis)
     sign = options.sign.get(plan.axis, 1)
     ends, after = [], []
@@ -111,12 +99,11 @@ def test_linuxcnc_moves_are_the_plans_steps_in_order(kind, tmp_path):
         assert (nxt == "DWELL") == (s.kind == "measure")
 
 
-@needs_rs274
-def test_circular_program_contours_the_plans_arcs(tmp_path):
+def test_circular_program_contours_the_plans_arcs(tmp_path, rs274):
     """The circular program's arcs, as LinuxCNC reads them: about the plan's centre, at its
     radius, CCW then CW, 2 × (180 + 360 + 180)° in 180° pieces, at the feed."""
     plan, _ = cases()["circular"]
-    calls = _canonical(program("circular", "linuxcnc"), tmp_path, "c.ngc")
+    calls = _canonical(rs274, program("circular", "linuxcnc"), tmp_path, "c.ngc")
     arcs = [n for call, n in calls if call == "ARC_FEED"]
     assert len(arcs) == 8
     for n in arcs:   # ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, ...)
@@ -273,14 +260,13 @@ def test_program_written_with_the_csv(tmp_path):
 
 
 # -- the thermal and five-axis cycles ----------------------------------------------------------
-@needs_rs274
-def test_thermal_linear_cycle_keeps_the_plans_duty(tmp_path):
+def test_thermal_linear_cycle_keeps_the_plans_duty(tmp_path, rs274):
     """ISO 230-3 linear-axis test, as LinuxCNC reads the program: one cycle P1-P2-P1 per sampling
     interval, moving ``duty`` of it (2 |P2 - P1| / F = 0.8 x 60 s = 48 s), a dwell of
     (1 - duty) x interval / 2 = 6 s at each end, then at P1 for the stop: the program lasts the
     plan's duration (7 min) within the rapid's time."""
     plan, _ = cases()["thermal_linear"]
-    calls = _canonical(program("thermal_linear", "linuxcnc"), tmp_path, "t.ngc")
+    calls = _canonical(rs274, program("thermal_linear", "linuxcnc"), tmp_path, "t.ngc")
     feed = {n[0] for call, n in calls if call == "SET_FEED_RATE" and n[0] > 0}
     ends = [n[0] for call, n in calls if call == "STRAIGHT_FEED"]
     p1, p2 = (t * 1e3 for t in plan.targets)
