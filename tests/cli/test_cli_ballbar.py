@@ -140,3 +140,29 @@ def test_squareness_circular_states_what_its_fit_folds_in(tmp_path):
         assert abs(f["iso230_4"] - true) > 15                     # the confounded figure
         assert f"the full diagnosis gives {f['diagnosis']:+.3f} µm" in f["statement"]
     assert lines[0].strip() in html.read_text().replace("&#x27;", "'")
+
+
+def test_the_configurations_ballbar_inputs_reach_the_budget_in_the_unit_they_are_typed(
+        tmp_path, monkeypatch):
+    """``[ballbar_uncertainty]`` of the user configuration (AXISCAL_CONFIG) is the budget's:
+    α typed 23 (µm/(m·K), aluminium) doubles the thermal term of α = 11.5 (ISO/TR 230-9 general
+    form, standards/iso230_9_ballbar.py), and α typed in 1/K without its unit (2.3e-05) is
+    refused in one line naming the range, nothing printed on stdout."""
+    cfg = tmp_path / "config.toml"
+    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
+    budgets = {}
+    for alpha in (11.5, 23):
+        cfg.write_text(f"[ballbar_uncertainty]\nalpha = {alpha}\n", encoding="utf-8")
+        res = runner.invoke(app, ["ballbar", "analyze", str(EXAMPLE), "--json"])
+        assert res.exit_code == 0, res.output
+        budget = json.loads(res.stdout)["uncertainty_budget"]
+        thermal = next(c for c in budget["contributors"] if c["name"] == "u_THERMAL")
+        budgets[alpha] = thermal["u"]
+        assert budget["inputs"]["alpha"]["value"] == alpha
+        assert budget["inputs"]["alpha"]["unit"] == "µm/(m·K)"
+    assert budgets[23] == pytest.approx(2 * budgets[11.5], rel=1e-12)
+    cfg.write_text("[ballbar_uncertainty]\nalpha = 2.3e-05\n", encoding="utf-8")
+    res = runner.invoke(app, ["ballbar", "analyze", str(EXAMPLE), "--json"])
+    assert res.exit_code == 2 and res.stdout == ""
+    assert "alpha = 2.3e-05 µm/(m·K) is implausible" in res.stderr
+    assert "Traceback" not in res.output

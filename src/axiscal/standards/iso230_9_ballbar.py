@@ -38,11 +38,12 @@ from __future__ import annotations
 import math
 from typing import Mapping
 
-from axiscal.errors import ConfigError
+from axiscal.errors import ConfigError, InputError
 from axiscal.standards.iso230_9 import Contributor, combine
+from axiscal.standards.iso230_9_entry import EntryRule, entered
 from axiscal.standards.iso230_9_inputs import BudgetInput
 
-__all__ = ["BALLBAR_INPUTS", "ballbar_budget"]
+__all__ = ["BALLBAR_INPUTS", "BALLBAR_ENTRY", "ballbar_budget"]
 
 #: key -> (label, unit, default, rule of the default). Defaults are assumptions, marked so on
 #: every budget that takes them: set each from the ballbar's and the calibrator's certificates.
@@ -53,13 +54,29 @@ BALLBAR_INPUTS = {
              "assumed: a typical telescoping ballbar's specification; set it from yours"),
     "resolution": ("resolution of the transducer", "µm", 0.1,
                    "assumed: a typical telescoping ballbar's"),
-    "alpha": ("thermal expansion coefficient of the bar", "1/K", 11.5e-6,
+    "alpha": ("thermal expansion coefficient of the bar", "µm/(m·K)", 11.5,
               "assumed: steel"),
     "delta_t": ("change of the bar's temperature during the test", "K", 0.5,
                 "assumed: a workshop held within ±0.25 K over the test"),
     "centring": ("centring offset of the set-up", "mm", 0.1,
                  "assumed: the set-up centred with the centring ball within 0.1 mm"),
     "k": ("coverage factor", "", 2.0, "ISO/TR 230-9:2005: k = 2"),
+}
+#: How each input is typed (:mod:`axiscal.standards.iso230_9_entry`): in the unit shown
+#: beside it (α 11.5, as every report prints it, not 1.15e-05), or as text with its unit
+#: (``"1.15e-5 1/K"``), and within a plausible range, so a value typed in another unit is
+#: refused instead of making U wrong by orders of magnitude.
+BALLBAR_ENTRY = {
+    "calibration_u": EntryRule("µm", "um", 0.0, 100.0, "0.5 um",
+                               "a ballbar calibrator's standard uncertainty"),
+    "gain": EntryRule("%", "percent", 0.0, 10.0, "0.3 %", "a transducer's gain error"),
+    "resolution": EntryRule("µm", "um", 0.0, 100.0, "0.1 um", "a transducer's resolution"),
+    "alpha": EntryRule("µm/(m·K)", "um/(m*K)", 0.001, 100.0, "11.5 um/(m K)",
+                       "steel 11.5, aluminium 23, Invar 1.2, carbon fibre about 0", zero=True),
+    "delta_t": EntryRule("K", "K", 0.0, 20.0, "0.5 K", "a bar's temperature change over a test",
+                         difference=True),
+    "centring": EntryRule("mm", "mm", 0.0, 10.0, "0.1 mm", "a set-up's centring offset"),
+    "k": EntryRule("", "", 1.0, 10.0, "2", "a coverage factor, usually 2"),
 }
 #: How a user sets an input.
 SET_WITH = "[ballbar_uncertainty] {key} in the user configuration"
@@ -104,19 +121,20 @@ def ballbar_budget(result, radius: float, table: Mapping[str, float] | None = No
     (0.672, 0.669)
 
     By hand (defaults; G = 10 µm): gain 10·0.003/√3 = 0.0173, resolution √2·0.1/√12 = 0.0408,
-    thermal 11.5e-6·100 mm·0.5 K/√3 = 0.3320, centring (0.1 mm)²/(200 mm)/√3 = 0.0289 µm:
+    thermal 11.5 µm/(m·K)·100 mm·0.5 K/√3 = 0.3320, centring (0.1 mm)²/(200 mm)/√3 = 0.0289 µm:
     u_c = 0.3362, U = 0.672 µm; H = 3 µm (no centring term): u_c = 0.3345, U = 0.669 µm.
     """
     table = dict(table or {})
-    for key, value in table.items():
+    for key in table:
         if key not in BALLBAR_INPUTS:
             raise ConfigError(f"[ballbar_uncertainty] {key}: no such input; use "
                               f"{', '.join(BALLBAR_INPUTS)}")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value) or value < 0 or (key == "k" and value <= 0):
-            raise ConfigError(f"[ballbar_uncertainty] {key} = {value!r}: a finite number "
-                              f"≥ 0 in {BALLBAR_INPUTS[key][1] or 'no unit'}")
-    v = {key: float(table.get(key, default)) for key, (_, _, default, _) in
+    try:
+        typed = {key: entered(key, value, BALLBAR_ENTRY[key], "[ballbar_uncertainty]")
+                 for key, value in table.items()}
+    except InputError as e:
+        raise ConfigError(str(e)) from None
+    v = {key: float(typed.get(key, default)) for key, (_, _, default, _) in
          BALLBAR_INPUTS.items()}
     circ = getattr(result, "circular", result)
     figures = {n: getattr(circ, n) * 1e6 for n in ("G_ccw", "G_cw", "H")
@@ -132,10 +150,10 @@ def ballbar_budget(result, radius: float, table: Mapping[str, float] | None = No
     c.append(Contributor("u_RES", "transducer resolution (two readings)",
                          math.sqrt(2) * v["resolution"] / math.sqrt(12), "rectangular", clause,
                          f"√2 × {v['resolution']:g} µm / √12", tuple(figures)))
-    thermal = v["alpha"] * radius * v["delta_t"] * 1e6
+    thermal = v["alpha"] * 1e-6 * radius * v["delta_t"] * 1e6      # α typed in µm/(m·K)
     c.append(Contributor("u_THERMAL", "bar length change during the test",
                          thermal / math.sqrt(3), "rectangular", clause,
-                         f"{v['alpha']:g} /K × {radius * 1e3:g} mm × {v['delta_t']:g} K / √3",
+                         f"{v['alpha']:g} µm/(m·K) × {radius * 1e3:g} mm × {v['delta_t']:g} K / √3",
                          tuple(figures)))
     e = v["centring"] * 1e-3
     c.append(Contributor("u_CENTRE", "second-order effect of the centring offset",
