@@ -249,9 +249,10 @@ def name(key: str, axes=("X", "Y")) -> str:
         words = name(rest, axes) if std.startswith("iso230-4") else \
             PARAMETER_SYMBOLS.get(rest, rest.replace("_", " "))   # another standard's symbol
         return f"{words} ({std})"
-    if key.endswith("_total") and key not in QUANTITIES:      # ISO 230-7:2015 §3.1 motions
-        base = key[:-len("_total")].replace("_", " ")
-        return f"{base[:1].upper()}{base[1:]} error motion, total"
+    for fig in ("_total", "_synchronous", "_asynchronous"):   # ISO 230-7:2015 §3 motions
+        if key.endswith(fig) and key not in QUANTITIES:
+            base = key[:-len(fig)].replace("_", " ")
+            return f"{base[:1].upper()}{base[1:]} error motion, {fig[1:]}"
     return quantity(key, None, _axes(axes))[0]
 
 
