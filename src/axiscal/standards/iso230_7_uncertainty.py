@@ -102,7 +102,7 @@ _RES = {"dx": _DESIGN.displacement / UM, "dy": _DESIGN.displacement / UM,
         "ey": _DESIGN.angular / ARCSEC}
 _WHAT = {"dx": "δx (radial X)", "dy": "δy (radial Y)", "dz": "δz (axial)",
          "ex": "εx (tilt about X)", "ey": "εy (tilt about Y)"}
-_DESIGN_RULE = ("assumed: the five-DOF method's sensor design (Optics Express 2018 §3: f1 = "
+_DESIGN_RULE = ("the five-DOF method's sensor design (Optics Express 2018 §3: f1 = "
                 "200 mm, h = 30 mm, PSD 0.5 µm, QD 0.08 µm); the data file does not state it")
 
 
@@ -116,22 +116,22 @@ def _inputs() -> dict:
         out[f"resolution_{ch}"] = (f"resolution of {_WHAT[ch]}", _unit(ch), round(r, 4),
                                    _DESIGN_RULE)
     out["calibration"] = ("relative standard uncertainty of each detector's scale calibration",
-                          "%", 1.0, "assumed: 1 % of the figure (the source's calibration, "
+                          "%", 1.0, "1 % of the figure (the source's calibration, "
                           "§3.1, states fits, not a scale uncertainty)")
     for ch in _RES:
         sigma = STABILITY_SIGMA.get(ch, STABILITY_SIGMA["dy"])
         src = ("as δy, the same quadrant detector; the source measures no δx" if ch == "dx"
                else "the five-DOF method §3.2, 60 min stability σ")
-        out[f"drift_{ch}"] = (f"reading noise and drift σ of {_WHAT[ch]} (still set-up)",
-                              _unit(ch), sigma, f"assumed: {src}; the data file holds no "
+        out[f"drift_{ch}"] = (f"reading noise and drift σ of {_WHAT[ch]}, still set-up",
+                              _unit(ch), sigma, f"{src}; the data file holds no "
                               "still-set-up record")
     for ch in _RES:
         out[f"crosstalk_{ch}"] = (f"crosstalk left in {_WHAT[ch]} (peak-to-valley)", _unit(ch),
-                                  0.0, "assumed 0: not evaluated; axiscal motion simulate "
+                                  0.0, "0, not evaluated: axiscal motion simulate "
                                   "quantifies a set-up's crosstalk residual")
     for group, unit in (("radial", "µm"), ("axial", "µm"), ("tilt", "arcsec")):
         out[f"reference_{group}"] = (f"{group} total error motion of the reference rotary axis",
-                                     unit, 0.0, "assumed 0: not stated by the source; take it "
+                                     unit, 0.0, "0, not stated by the source: take it "
                                      "from the reference axis's own ISO 230-7 test")
     out["k"] = ("coverage factor", "", 2.0, "ISO/TR 230-9:2005: k = 2")
     return out
@@ -263,15 +263,38 @@ def motion_budget(result, table: Mapping[str, float] | None = None):
                    for key, (label, unit, _, rule) in MOTION_INPUTS.items()
                    if key in used or key in ("calibration", "k"))
     inputs += tuple(_measured(result))
-    notes = tuple(f"assumed: {i.label} {i.value:g} {i.unit} ({i.rule}); set with {i.set_with}"
-                  for i in inputs if i.assumed and i.name != "k") + (
+    notes = _notes(inputs) + (
         "not included: the detectors' non-linearity over their range (Optics Express 2018 "
-        "§3.1: σ 0.76 µm over ±80 µm, 0.58 arcsec over ±120 arcsec) and the upward bias of a "
-        "peak-to-valley of noisy readings",
+        "§3.1: σ 0.76 µm over ±80 µm, 0.58 arcsec over ±120 arcsec), the upward bias noise "
+        "gives a peak-to-valley of many readings, and the sampling of R runs (more runs can "
+        "only widen a total or asynchronous value)",
         "εz (angular positioning) is not an error motion value of ISO 230-7 and has no U here")
     return replace(combine(c, "µm or arcsec (the figure's)", v["k"], tuple(params), notes),
                    inputs=inputs, method="ISO/TR 230-9:2005 general form as axiscal reads it "
                    "for the five-DOF method; GUM eq. 10 (root sum of squares)")
+
+
+#: The assumed inputs in groups, each said once (prefix of the keys, what the default is).
+_GROUPS = (("resolution_", "assumed from the five-DOF method's sensor design (Optics Express "
+            "2018 §3), the data file not stating it"),
+           ("drift_", "assumed from the five-DOF method's 60 min stability experiment (Optics "
+            "Express 2018 §3.2), the data file holding no still-set-up record"),
+           ("calibration", "assumed"),
+           ("crosstalk_", "assumed 0, so not included until given"),
+           ("reference_", "assumed 0, so not included until given"))
+
+
+def _notes(inputs) -> tuple:
+    """The assumed inputs in plain words, a note per group with its values and keys."""
+    out = []
+    for prefix, why in _GROUPS:
+        group = [i for i in inputs if i.assumed and i.name.startswith(prefix)]
+        if group:
+            values = "; ".join(f"{i.label} {i.value_text}" for i in group)
+            keys = ", ".join(i.name for i in group)
+            out.append(f"{why}: {values}; set with {keys} in [motion_uncertainty] of the user "
+                       "configuration")
+    return tuple(out)
 
 
 def _checked(table) -> dict:
@@ -303,6 +326,6 @@ def _measured(result):
         ch = MOTION_CHANNEL[m.name]
         scale = UM if m.kind == "length" else ARCSEC
         yield BudgetInput(f"scatter_{ch}", f"run-to-run scatter s of {_WHAT[ch]}",
-                          round(_pooled_sd(runs / scale), 6), _unit(ch), False,
+                          float(f"{_pooled_sd(runs / scale):.4g}"), _unit(ch), False,
                           "nothing: measured from the file's runs",
                           f"measured: pooled over {runs.shape[1]} angles of {runs.shape[0]} runs")
