@@ -209,7 +209,9 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     ISO 230-2:2014 Annex A for a positioning test
     (:func:`~axiscal.standards.iso230_9.positioning_budget`), ISO/TR 230-9 for a diagonal
     squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`), G and H
-    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), a five-axis
+    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), the ISO
+    230-7 values of a five-motion-error test
+    (:func:`~axiscal.standards.iso230_7_uncertainty.motion_budget`), a five-axis
     identification's and a thermal test's own; the other kinds keep none. Every path that shows a U (command, history, workbench, report,
     certificate, API) takes it from here."""
     inputs = dict(inputs or {})
