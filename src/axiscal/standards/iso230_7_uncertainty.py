@@ -2,7 +2,7 @@
 sensor of "Method for simultaneous measurement of five DOF motion errors of a rotary axis using a
 single-mode fiber-coupled laser" (Optics Express, 2018; below "the five-DOF method").
 
-The figures (:func:`axiscal.store.kinds` ``_motion`` names them ``<motion>_total``,
+The figures (:mod:`axiscal.store.kinds` stores them as ``<motion>_total``,
 ``<motion>_synchronous``, ``<motion>_asynchronous``; ``<motion>`` is ``radial_Y``, ``radial_X``,
 ``axial``, ``tilt_X`` or ``tilt_Y``) are all *ranges* of readings of one channel
 (:mod:`axiscal.standards.iso230_7`, ISO 230-7:2015 §3 and §5.4):
@@ -67,9 +67,8 @@ ISO 230-7:2015, Test code for machine tools — Part 7: Geometric accuracy of ax
 §3 (total, synchronous, asynchronous error motion; fundamental), §5.4 (polar plot, PC centre).
 ISO/TR 230-9:2005, Test code for machine tools — Part 9: Estimation of measurement uncertainty
 for machine tool tests according to series ISO 230, basic equations. JCGM 100:2008 (GUM) §4.2,
-§4.3.7, §5.1.2 eq. 10. F. Qibo et al. (Optics Express, 2018), "Method for simultaneous
-measurement of five DOF motion errors of a rotary axis using a single-mode fiber-coupled laser",
-§2, §3, §3.1-§3.3.
+§4.3.7, §5.1.2 eq. 10. "Method for simultaneous measurement of five DOF motion errors of a
+rotary axis using a single-mode fiber-coupled laser", Optics Express (2018), §2, §3, §3.1-§3.3.
 """
 
 from __future__ import annotations
