@@ -201,7 +201,27 @@ def uncertainty_inputs_page() -> str:
                          r["rule"])
                 out += "   * - " + "\n     - ".join(_escape(c) for c in cells) + "\n"
         out += "\n"
-    return out
+    return out + _motion_inputs()
+
+
+def _motion_inputs() -> str:
+    """The ``[motion_uncertainty]`` table of a five-motion-error test (ISO 230-7), from
+    :data:`axiscal.standards.iso230_7_uncertainty.MOTION_INPUTS`."""
+    from axiscal.standards.iso230_7_uncertainty import MOTION_INPUTS
+
+    out = _title("Five-motion-error test (ISO 230-7; the [motion_uncertainty] table)", "-")
+    out += ("The budget of :mod:`axiscal.standards.iso230_7_uncertainty` (read by ``motion "
+            "analyze``, the history, the workbench and the certificate). Channel keys: ``dx``, "
+            "``dy`` (radial), ``dz`` (axial), ``ex``, ``ey`` (tilt). With two runs or more the "
+            "run-to-run scatter of each channel is measured from the file.\n\n")
+    out += ".. list-table::\n   :header-rows: 1\n   :widths: 18 26 9 9 10 28\n\n"
+    out += ("   * - name\n     - what it is\n     - unit\n     - default\n"
+            "     - plausible range\n     - rule of the default\n")
+    for name, (label, unit, default, rule) in MOTION_INPUTS.items():
+        cells = (name, label, unit or "—", f"{default:g}", "> 0" if name == "k" else "≥ 0",
+                 rule)
+        out += "   * - " + "\n     - ".join(_escape(c) for c in cells) + "\n"
+    return out + "\n"
 
 
 def generate() -> None:

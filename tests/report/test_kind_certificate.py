@@ -13,6 +13,7 @@ import copy
 import json
 import tomllib
 from importlib import resources
+from pathlib import Path
 
 import pytest
 
@@ -43,6 +44,8 @@ DIAGONAL = ("# length_x_mm=600 length_y_mm=800\ndiagonal,position,error\n"
 STRAIGHTNESS = ("# position_unit=mm deviation_unit=um axis=X direction=Y\nposition,deviation\n"
                 "0,0\n100,1\n200,3\n300,2\n")
 
+MOTION = Path(__file__).resolve().parents[2] / "examples" / "motion_indexing_table_3runs.csv"
+
 BALLBAR = ("# radius_mm=100\nangle,direction,deviation\n"
            + "".join(f"{a},{d},{0.001 * (a % 7):.4f}\n" for d in ("ccw", "cw")
                      for a in range(0, 360, 10)))
@@ -71,6 +74,7 @@ def files(tmp_path_factory):
     fiveaxis.ballbar.simulate(dict(whole, ballbar=whole["ballbar"][:1]), seed=3,
                               out=folder / "bb")
     out["fiveaxis-ballbar"] = folder / "bb" / "1_ballbar.csv"
+    out["motion"] = MOTION             # the shipped three-run five-DOF file (ISO 230-7)
     out["straightness"] = folder / "straightness.csv"
     out["straightness"].write_text(STRAIGHTNESS)
     return out
@@ -83,7 +87,7 @@ def _stored(tmp_path, path):
 
 
 @pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar",
-                                  "fiveaxis-ballbar"])
+                                  "fiveaxis-ballbar", "motion"])
 def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
     """Value, U and k of every figure are the stored record's (``history show --json``'s
     ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""
@@ -123,6 +127,34 @@ def test_a_diagonal_certificate_is_issued_with_its_verdict(files, tmp_path):
     f = certificate_record(ev, {"squareness": 20.0}).figures[0]
     assert f"<td>{f.value_text}</td><td>{f.U_text}</td><td>2</td>" in page
     assert "Contract 4711" in page and out.number in page
+    assert st.certificate(out.number).test_id == t.summary.id
+
+
+def test_a_motion_certificate_is_issued_with_its_verdicts(files, tmp_path):
+    """The shipped three-run five-DOF file (ISO 230-7:2015 §3): radial Y total 7.19 µm with U
+    about 0.19 µm (:mod:`axiscal.standards.iso230_7_uncertainty`, defaults) against 10 µm is
+    conformance proven; tilt Y total 15.86 arcsec, U about 0.42, against 15 arcsec is
+    non-conformance proven; the synchronous radial Y value of three runs, 2.2 µm with U about
+    3.4 µm (the run-to-run scatter of the mean), against 5 µm is in the uncertainty zone
+    (ISO 14253-1:2017 §5.2-5.3). Issued and numbered; each figure's row is the record's."""
+    st, t = _stored(tmp_path, files["motion"])
+    ev = t.record()
+    tol = {"radial_Y_total": 10.0, "tilt_Y_total": 15.0, "radial_Y_synchronous": 5.0}
+    out = write_kind_certificate(tmp_path / "m.html", ev, copy.deepcopy(COMPLETE), t.raw, tol,
+                                 store=st, filename=t.summary.filename, today="2026-11-25",
+                                 prepared_by="J. Keller")
+    assert out.missing == () and out.number.startswith("PM-2026-")
+    got = {d.parameter: d.outcome.value for d in out.decisions}
+    assert got == {"radial_Y_total": "conformance proven",
+                   "tilt_Y_total": "non-conformance proven",
+                   "radial_Y_synchronous": "uncertainty zone"}
+    page = (tmp_path / "m.html").read_text()
+    figs = {f.name: f for f in certificate_record(ev, tol).figures}
+    f = figs["radial_Y_total"]
+    assert (f.value_text, f.U_text) == ("7.19", "0.19")
+    assert f"<td>{f.value_text}</td><td>{f.U_text}</td><td>2</td>" in page
+    assert "Radial Y error motion, total (radial_Y_total)" in page
+    assert "resolution of δy (radial Y)" in page and "run-to-run scatter s of δy" in page
     assert st.certificate(out.number).test_id == t.summary.id
 
 
@@ -209,3 +241,31 @@ def test_certificate_issue_on_the_command_line(files, tmp_path):
                                 "--tolerance", "E=20", "--out", str(tmp_path / "e.html")])
     assert r.exit_code == 2 and "tolerance for 'E': not a parameter of this result; use one " \
         "of squareness" in r.output and not (tmp_path / "e.html").exists()
+
+
+def test_certificate_issue_of_a_motion_test_on_the_command_line(files, tmp_path):
+    """``axiscal certificate issue ID`` of a stored five-motion-error test: numbered, each
+    decided figure's value and U as the record's; a tolerance that is no figure is refused."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app as cli_app
+
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    st = open_store(url)
+    m = st.add(files["motion"].read_bytes(), "motion.csv", machine="HSD-200RT", axis="C").id
+    job = tmp_path / "job.toml"
+    job.write_text(_toml(COMPLETE))
+    runner = CliRunner()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(m), "--db", url, "--job", str(job),
+                                "--tolerance", "axial_total=10", "--prepared-by", "J. Keller",
+                                "--out", str(tmp_path / "m.html"), "--json"])
+    assert r.exit_code == 0, r.output
+    got = json.loads(r.stdout)
+    assert got["test_id"] == m and got["number"].startswith("PM-2026-")
+    f = {g.name: g for g in certificate_record(st.get(m).record(),
+                                               {"axial_total": 10.0}).figures}["axial_total"]
+    assert f"<td>{f.value_text}</td><td>{f.U_text}</td>" in (tmp_path / "m.html").read_text()
+    r = runner.invoke(cli_app, ["certificate", "issue", str(m), "--db", url, "--job", str(job),
+                                "--tolerance", "ez_total=20", "--out", str(tmp_path / "e.html")])
+    assert r.exit_code == 2 and "tolerance for 'ez_total': not a parameter of this result" \
+        in r.output and not (tmp_path / "e.html").exists()

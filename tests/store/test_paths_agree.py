@@ -156,9 +156,10 @@ def _command_numbers(kind: str, path) -> tuple[dict, dict | None]:
     if kind == "diagonal":
         return {"squareness": _cli("squareness", "diagonal", "--file", path)["squareness"]
                 ["um_per_m"]}, None
-    if kind == "motion":
-        return {f"{m['name'].replace(' ', '_')}_total": m["total"]
-                for m in _cli("motion", "analyze", path)["iso230_7"]["motions"]}, None
+    if kind == "motion":      # ISO 230-7 §3: total, synchronous, asynchronous (2 runs or more)
+        return {f"{m['name'].replace(' ', '_')}_{f}": m[f]
+                for m in _cli("motion", "analyze", path)["iso230_7"]["motions"]
+                for f in ("total", "synchronous", "asynchronous") if m[f] is not None}, None
     if kind == "fiveaxis-ballbar":
         return {"range": _cli("fiveaxis", "ballbar", "evaluate", path)["setups"][0]
                 ["range_um"]}, None
@@ -255,6 +256,8 @@ def test_every_path_gives_the_same_numbers(places, kind, seed):
     assert shown["quantities"] == web["quantities"] == imported.result["quantities"] == quantities
     assert shown["schema_version"] == web["schema_version"] == 1
     _api_record_equals(stores["library"], added.id, path, quantities)
+    if kind == "motion":      # motion analyze --json carries the record's U (one budget)
+        assert _cli("motion", "analyze", path)["quantities"] == quantities
     if whole is not None:                                          # ballbar: the whole object
         assert stored.result == whole
 
@@ -272,7 +275,7 @@ def _api_record_equals(store, test_id: int, path, quantities: dict) -> None:
     direct = axiscal.evaluate(path, uncertainty=store.get(test_id).result["uncertainty_inputs"])
     assert {k: q.to_dict() for k, q in direct.quantities.items()} == got
     assert direct.to_dict() == ev.to_dict()
-    if ev.kind in ("iso230-2", "diagonal"):        # the kinds with an uncertainty budget
+    if ev.kind in ("iso230-2", "diagonal", "motion"):   # kinds with an uncertainty budget
         assert all(q["U"] is not None and q["U"] > 0 for k, q in got.items()
                    if q["value"] is not None)
 

@@ -74,3 +74,52 @@ def test_a_diagonal_test_is_signed_off_and_a_straightness_test_is_not(client, tm
     text = " ".join(pdf_text(tmp_path / "c.pdf"))
     assert "DRAFT" not in text and number in text and "conformance proven" in text.lower()
     assert f"{f.value_text} {f.U_text} 2 µm/m 20" in " ".join(text.split()), text[-1500:]
+
+
+def test_a_motion_test_page_shows_U_beside_each_figure_and_offers_the_sign_off(client,
+                                                                              tmp_path):
+    """A five-motion-error test (ISO 230-7:2015; the shipped three-run file): each total,
+    synchronous and asynchronous value on the page has the record's U beside it
+    (:mod:`axiscal.standards.iso230_7_uncertainty`), its budget's contributors and inputs are
+    listed, and the sign-off offers a tolerance for each figure; a verdict against radial Y
+    total 10 µm (7.19 ± 0.19 µm) is conformance proven with the certificate's own U."""
+    from axiscal.report.kind_certificate import certificate_record
+    from axiscal.store import open_store
+    from tests.report.test_kind_certificate import MOTION
+
+    r = client.post("/upload", data={"csrf": client.token, "machine": "HSD-200RT", "axis": "C"},
+                    files={"file": ("motion.csv", MOTION.read_bytes(), "text/csv")})
+    assert r.status_code == 200, r.text[-500:]
+    page = client.get("/tests/4").text
+    rec = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}").get(4).record()
+    rows = {row[0]: row for row in _rows(page, "motion")}
+    assert set(rows) == {"radial Y", "axial", "tilt X", "tilt Y"}
+    for name, row in rows.items():
+        key = name.replace(" ", "_")
+        for i, fig in ((2, "total"), (4, "synchronous"), (6, "asynchronous")):
+            assert row[i] == rec.budget.U_text(f"{key}_{fig}") != "—", (name, fig)
+    assert rows["radial Y"][1:3] == ["7.187", "0.19"]
+    contributors = [row[0] for row in _rows(page, "budget")]
+    assert "u_RES,dy" in contributors and "u_REPEAT,dy" in contributors
+    assert any(row[0] == "resolution of δy (radial Y)" and row[2] == "assumed"
+               for row in _rows(page, "budget-inputs"))
+    assert 'id="signoff-form"' in page and 'name="tol_radial_Y_total"' in page
+    assert 'name="tol_tilt_Y_asynchronous"' in page
+
+    r = client.post("/tests/4/signoff", data={"csrf": client.token, "action": "verdict",
+                                              "tol_radial_Y_total": "10"})
+    assert r.status_code == 200
+    f = {g.name: g for g in certificate_record(rec, {"radial_Y_total": 10.0}).figures}
+    row = re.search(r'<table id="verdicts">.*?<tbody>(.*?)</tbody>', r.text, re.S).group(1)
+    assert f'<td class="num">{f["radial_Y_total"].U_text}</td>' in row
+    assert "PASS: conformance proven" in row
+
+
+def _rows(page: str, table_id: str) -> list[list[str]]:
+    """The body cells of a table of the page, as text."""
+    import html
+
+    body = re.search(rf'<table id="{table_id}">.*?<tbody>(.*?)</tbody>', page, re.S).group(1)
+    return [[html.unescape(re.sub(r"<[^>]+>", "", c)).strip()
+             for c in re.findall(r"<td[^>]*>(.*?)</td>", tr, re.S)]
+            for tr in re.findall(r"<tr>(.*?)</tr>", body, re.S)]

@@ -21,7 +21,19 @@ JSON output (``--json``), stable keys. Units are in the key names (``_arcsec``, 
   ``std_uncompensated`` (five keys), ``published_std`` (the paper's figures, five keys).
 * ``repeatability``: ``runs``, ``repeatability`` (± per channel, five keys), ``published_repeatability``,
   ``iso230_7``.
-* ``analyze``: ``file``, ``title``, ``iso230_7``.
+* ``analyze``: ``file``, ``title``, ``iso230_7``, and the stored record's figures with their U
+  (:mod:`axiscal.standards.iso230_7_uncertainty`; inputs: the user configuration's
+  ``[motion_uncertainty]``): ``schema_version``, ``quantities`` (per error motion
+  ``<motion>_total``, ``<motion>_synchronous`` and, for two runs or more,
+  ``<motion>_asynchronous``, ``<motion>`` one of ``radial_Y``, ``radial_X``, ``axial``,
+  ``tilt_X``, ``tilt_Y``; e.g. ``radial_Y_total``, ``radial_Y_synchronous``,
+  ``radial_Y_asynchronous``, ``radial_X_total``, ``radial_X_synchronous``,
+  ``radial_X_asynchronous``, ``axial_total``, ``axial_synchronous``, ``axial_asynchronous``,
+  ``tilt_X_total``, ``tilt_X_synchronous``, ``tilt_X_asynchronous``, ``tilt_Y_total``,
+  ``tilt_Y_synchronous``, ``tilt_Y_asynchronous``), ``uncertainty_budget`` (``unit``, ``k``,
+  ``method``, ``U``, ``U_display``, ``U_stated``, ``U_narrow``, ``cmc``, ``floored``,
+  ``contributors``, ``inputs``, ``assumed``, ``missing_inputs``, ``notes``) and
+  ``uncertainty_inputs`` (the table's keys as given).
 """
 
 from __future__ import annotations
@@ -236,12 +248,11 @@ def analyze(
 
     Example: axiscal motion analyze motion.csv
     """
-    from axiscal.io.motion import read_motion_errors
-    from axiscal.standards.iso230_7 import evaluate
+    from axiscal import api
 
     paths = _check_outputs(report=report, plot=plot)
-    data = read_motion_errors(file)
-    result = evaluate(data)
+    ev = api.evaluate(file)
+    data, result = ev.dataset, ev.result
     if paths.get("plot"):
         from axiscal.report.motion_plots import polar_figure, save_figure
 
@@ -254,11 +265,30 @@ def analyze(
         runs = [FiveErrors(data.theta, *(getattr(data, c)[j] for c in _KEYS)) for j in range(data.n_runs)]
         motion_report(f"ISO 230-7 evaluation — {data.title or file.name}", result=result, runs=runs,
                       metadata={"File": str(file)}).write(report)
-    if json_out:
-        print_json({"file": str(file), "title": data.title, "iso230_7": iso_json(result)})
+    if json_out:     # the record's quantities with U (standards/iso230_7_uncertainty.py)
+        d = ev.to_dict()
+        print_json({"file": str(file), "title": data.title, "iso230_7": iso_json(result),
+                    **{k: d[k] for k in ("schema_version", "quantities", "uncertainty_budget",
+                                         "uncertainty_inputs") if k in d}})
     else:
         typer.echo(str(result))
+        _echo_uncertainty(ev)
     _wrote(paths)
+
+
+def _echo_uncertainty(ev) -> None:
+    """Each figure with its U, as the record holds it (inputs: ``[motion_uncertainty]``)."""
+    from axiscal.report.labels import name
+    from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+    from axiscal.units import display
+
+    rows = [f"  {name(q.name)} = {format_value(q.value, q.U)} ± {format_uncertainty(q.U)} "
+            f"{display(q.unit)} (k = {q.k:g})" for q in ev.quantities.values() if q.U is not None]
+    if rows:
+        typer.echo("With their expanded uncertainty (ISO/TR 230-9 as axiscal reads it for the "
+                   "five-DOF method; inputs in the user configuration's motion uncertainty "
+                   "table):")
+        typer.echo("\n".join(rows))
 
 
 #: Longest stability run (one week) and most readings simulated (each holds five channels).

@@ -62,6 +62,7 @@ _SECTIONS = {
     "tolerance": None,  # NAME = value, checked against the standard's parameters
     "squareness_uncertainty": None,  # read by the squareness commands
     "ballbar_uncertainty": None,  # a ballbar test's budget (standards/iso230_9_ballbar.py)
+    "motion_uncertainty": None,  # an ISO 230-7 test's budget (standards/iso230_7_uncertainty.py)
 }
 
 

@@ -6,7 +6,8 @@ axiscal makes a budget for it: :func:`axiscal.store.kinds.budget_of` (the one ca
 :func:`axiscal.store.kinds.with_uncertainty`; :data:`axiscal.store.kinds.UNCERTAINTY_TABLE`).
 Today that is a positioning test (ISO 230-2:2014 Annex A, which keeps its own, fuller
 certificate: :mod:`axiscal.report.certificate`), a diagonal squareness test (ISO/TR 230-9), a
-ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
+ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-motion-error
+test's ISO 230-7 values (:mod:`axiscal.standards.iso230_7_uncertainty`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
 thermal test. Any other kind is refused in one line naming why.
 
 The path is one for every kind, keyed by nothing but the stored record
@@ -411,6 +412,10 @@ def _label(ev, f: CertifiedFigure) -> str:
                   if isinstance(g, dict) and g.get("name") == f.name), None)
     if words is None and f.name in QUANTITIES:
         words = quantity(f.name)[0]
+    elif words is None and ev.kind == "motion":      # ISO 230-7:2015 §3 error motion values
+        from axiscal.report.labels import name
+
+        words = name(f.name)
     return f.symbol if not words or words.casefold() == f.symbol.casefold() \
         else f"{words} ({f.symbol})"
 

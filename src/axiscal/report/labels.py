@@ -249,9 +249,10 @@ def name(key: str, axes=("X", "Y")) -> str:
         words = name(rest, axes) if std.startswith("iso230-4") else \
             PARAMETER_SYMBOLS.get(rest, rest.replace("_", " "))   # another standard's symbol
         return f"{words} ({std})"
-    if key.endswith("_total") and key not in QUANTITIES:      # ISO 230-7:2015 §3.1 motions
-        base = key[:-len("_total")].replace("_", " ")
-        return f"{base[:1].upper()}{base[1:]} error motion, total"
+    for fig in ("_total", "_synchronous", "_asynchronous"):   # ISO 230-7:2015 §3 motions
+        if key.endswith(fig) and key not in QUANTITIES:
+            base = key[:-len(fig)].replace("_", " ")
+            return f"{base[:1].upper()}{base[1:]} error motion, {fig[1:]}"
     return quantity(key, None, _axes(axes))[0]
 
 
@@ -319,7 +320,9 @@ def value_text(value: str) -> str:
     return value.replace("_", " ") if _CODE_VALUE.match(value) else value
 
 
-_SYMBOL = re.compile(r"(?<![\w/.])([0-9]*[A-Za-zα-ωΔδεθ][\w̄↑↓]*?)_"
+#: A symbol ``X_sub``; a configuration's name (``[motion_uncertainty] resolution_dy``: a word
+#: of four or more lowercase letters before the ``_``) is not one.
+_SYMBOL = re.compile(r"(?<![\w/.])(?![a-z]{4,}_[a-z])([0-9]*[A-Za-zα-ωΔδεθ][\w̄↑↓]*?)_"
                      r"(\{[^}]*\}|[A-Za-z0-9↑↓]+(?:,[A-Za-z0-9↑↓]+)*)"
                      r"(?!\w|/[A-Za-z_.]|\.\w)")
 
@@ -330,6 +333,8 @@ def symbol_html(text: str) -> str:
 
     >>> symbol_html("B_i = x̄↑ − x̄↓; see run_1.csv")
     'B<sub>i</sub> = x̄↑ − x̄↓; see run_1.csv'
+    >>> symbol_html("u_RES,dy; set with [motion_uncertainty] resolution_dy")
+    'u<sub>RES,dy</sub>; set with [motion_uncertainty] resolution_dy'
     """
     escaped = re.sub(r"\b(max|min)\[", "\\1\u2009[", _html.escape(text, quote=False))
     return _SYMBOL.sub(lambda m: f"{m.group(1)}<sub>{m.group(2).strip('{}')}</sub>", escaped)

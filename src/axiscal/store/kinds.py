@@ -43,7 +43,7 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness and, axiscal's reading of it, a ballbar's G and H); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty",
-                     "ballbar": "ballbar_uncertainty"}
+                     "ballbar": "ballbar_uncertainty", "motion": "motion_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
          "volumetric", "fiveaxis-ballbar")
@@ -209,7 +209,9 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     ISO 230-2:2014 Annex A for a positioning test
     (:func:`~axiscal.standards.iso230_9.positioning_budget`), ISO/TR 230-9 for a diagonal
     squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`), G and H
-    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), a five-axis
+    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), the ISO
+    230-7 values of a five-motion-error test
+    (:func:`~axiscal.standards.iso230_7_uncertainty.motion_budget`), a five-axis
     identification's and a thermal test's own; the other kinds keep none. Every path that shows a U (command, history, workbench, report,
     certificate, API) takes it from here."""
     inputs = dict(inputs or {})
@@ -232,6 +234,10 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         from axiscal.standards.iso230_9_ballbar import ballbar_budget
 
         return ballbar_budget(evaluation, dataset.radius, inputs)
+    if kind == "motion":
+        from axiscal.standards.iso230_7_uncertainty import motion_budget
+
+        return motion_budget(evaluation, inputs)
     if kind == "fiveaxis":
         return IdentificationBudget(evaluation)
     if kind == "thermal":
@@ -466,14 +472,11 @@ def _diagonal(text: str, filename: str) -> Evaluated:
 def _motion(text: str, filename: str) -> Evaluated:
     from axiscal.io.motion import parse_motion_errors
     from axiscal.standards.iso230_7 import evaluate
+    from axiscal.standards.iso230_7_uncertainty import motion_parameters
 
     d = parse_motion_errors(text, source=filename)
     r = evaluate(d)
-    params = {}
-    for m in r.motions:   # converted as ``axiscal motion analyze --json`` does: one answer
-        scale, unit = (units.UM, "um") if m.kind == "length" else (units.ARCSEC, "arcsec")
-        key = m.name.replace(" ", "_")
-        params[f"{key}_total"] = (m.total / scale, unit)
+    params = motion_parameters(r)   # as ``axiscal motion analyze --json`` writes them: one answer
     res = {"title": d.title, "n_runs": r.n_runs,
            "motions": [{"name": m.name, "kind": m.kind, "total": m.total,
                         "synchronous": m.synchronous, "asynchronous": m.asynchronous}

@@ -15,7 +15,9 @@ write them (a share in % with one). Nothing is computed here.
   (:func:`axiscal.standards.iso230_9_geometry.diagonal_budget`, ISO/TR 230-9; the user
   configuration's ``[squareness_uncertainty]`` inputs), its contributors, its inputs and each
   assumed one in words;
-- motion: the ISO 230-7:2015 error motion values and their polar plots;
+- motion: the ISO 230-7:2015 error motion values with their U (the record's budget,
+  :mod:`axiscal.standards.iso230_7_uncertainty`, its contributors and inputs) and their polar
+  plots;
 - fiveaxis, fiveaxis-ballbar, thermal and volumetric: their own modules
   (:mod:`axiscal.web.five_axis_page`, :mod:`axiscal.web.five_axis_ballbar_page`,
   :mod:`axiscal.web.thermal_page`, :mod:`axiscal.web.volumetric_page`).
@@ -207,18 +209,26 @@ def _motion(ev) -> dict:
     from axiscal.report.motion_plots import polar_figure
     from axiscal.report.motion_report import iso230_7_rows
 
-    r, d = ev.evaluation, ev.dataset
-    rows = [(name, fmt(t), fmt(s), fmt(a), fmt(f), fund, u)
+    r, d, b = ev.evaluation, ev.dataset, ev.budget
+
+    def U(name, fig):       # the record's U of a figure (iso230_7_uncertainty), "—" if none
+        return "—" if b is None else b.U_text(f"{name.replace(' ', '_')}_{fig}")
+
+    rows = [(name, fmt(t), U(name, "total"), fmt(s), U(name, "synchronous"), fmt(a),
+             U(name, "asynchronous"), fmt(f), fund, u)
             for name, t, s, a, f, fund, u in iso230_7_rows(r)]
+    k = "" if b is None else f" (k = {b.k:g})"
     return {"figure": _figure(polar_figure, r, title="ISO 230-7 error motion"
                               + (f" — {d.title}" if d.title else "")),
             "alt": "Polar plots of the five error motions",
             "source": "ISO 230-7:2015, error motion of an axis of rotation",
             "lead": f"{r.n_runs} run{'s' if r.n_runs != 1 else ''}",
-            "tables": [("ISO 230-7 error motion values", "motion",
-                        ["motion", "total", "synchronous", "asynchronous", "fundamental",
-                         "fundamental in the values", "unit"], rows)],
-            "statements": [], "warnings": []}
+            "tables": [("ISO 230-7 error motion values with their expanded uncertainty U"
+                        + k, "motion",
+                        ["motion", "total", "U", "synchronous", "U", "asynchronous", "U",
+                         "fundamental", "fundamental in the values", "unit"], rows),
+                       *(_budget_tables(b, "µm or arcsec") if b is not None else ())],
+            "notes": [] if b is None else list(b.notes), "statements": [], "warnings": []}
 
 
 _VIEWS = {"ballbar": _ballbar, "straightness": _straightness, "diagonal": _diagonal,
