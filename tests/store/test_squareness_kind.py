@@ -74,6 +74,20 @@ def test_the_stored_record_is_the_command_json_field_by_field(kept):
     assert shown["quantities"]["squareness"] == q and shown["result"] == t.result
 
 
+def test_an_archive_carries_the_test_and_its_record(kept, tmp_path):
+    """Export and import into another history: the same bytes, kind, result and quantities
+    (the archive carries the file; the importing history evaluates it again)."""
+    from axiscal.store.archive import export_history, import_history
+
+    export_history(kept["store"], tmp_path / "a.zip")
+    other = open_store(f"sqlite:///{tmp_path / 'other.sqlite'}")
+    import_history(other, tmp_path / "a.zip")
+    t, o = kept["store"].get(kept["id"]), other.get(other.tests()[0].id)
+    assert (o.raw, o.summary.kind, o.result) == (t.raw, "squareness", t.result)
+    assert o.record().quantities == t.record().quantities
+    other.close()
+
+
 def test_the_file_reads_back_to_the_same_doubles(kept):
     """The readings of the inline file are the straightness files' doubles, bit for bit, and
     each file's SHA-256 is kept (by which the workbench links the tests it came from)."""
