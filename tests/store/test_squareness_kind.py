@@ -108,11 +108,13 @@ def test_the_file_reads_back_to_the_same_doubles(kept):
 
 def test_the_history_report_is_the_command_report(kept):
     """``history show ID --report`` writes ``squareness biaxial --report``'s report: the same
-    document but for its heading, which names the stored test."""
+    document but for its heading, which names the stored test, and the minute it was
+    written."""
     out = kept["dir"] / "history.html"
     _run("history", "show", kept["id"], "--db", kept["url"], "--report", out)
 
     def body(text):
+        text = re.sub(r"\d{4}-\d\d-\d\d \d\d:\d\d UTC", "WHEN", text)   # written at
         return re.sub(r"<title>.*?</title>|<h1>.*?</h1>", "", text, flags=re.S)
 
     cli, stored = kept["report"].read_text(), out.read_text()
@@ -121,15 +123,27 @@ def test_the_history_report_is_the_command_report(kept):
         in stored
 
 
-def test_the_certificate_states_the_record(kept, tmp_path):
-    """The kind certificate's squareness is the record's value and U (k = 2)."""
-    from axiscal.report.kind_certificate import KIND_NAMES, certificate_record
+def test_the_certificate_states_the_record_and_is_numbered(kept, tmp_path):
+    """The kind certificate's squareness is the record's value and U (k = 2); complete, it is
+    issued and numbered by the register (as ``axiscal certificate issue ID``)."""
+    import copy
 
-    t = kept["store"].get(kept["id"])
+    from axiscal.report.kind_certificate import certificate_record, write_kind_certificate
+    from tests.report.test_kind_certificate import COMPLETE
+
+    st = kept["store"]
+    t = st.get(kept["id"])
     f = certificate_record(t.record(), {"squareness": 200.0}).figures[0]
     q = t.result["quantities"]["squareness"]
     assert (f.name, f.value, f.U, f.k) == ("squareness", q["value"], q["U"], 2.0)
-    assert KIND_NAMES["squareness"].startswith("squareness from two straightness profiles")
+    out = write_kind_certificate(tmp_path / "c.html", t.record(), copy.deepcopy(COMPLETE),
+                                 t.raw, {"squareness": 200.0}, store=st,
+                                 filename=t.summary.filename, today="2026-11-25",
+                                 prepared_by="J. Keller")
+    assert out.missing == () and st.certificate(out.number).test_id == kept["id"]
+    page = (tmp_path / "c.html").read_text()
+    assert f"<td>{f.value_text}</td><td>{f.U_text}</td><td>2</td>" in page
+    assert "squareness from two straightness profiles (ISO 230-1:2012)" in page
 
 
 def _good(kept) -> str:
