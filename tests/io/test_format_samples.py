@@ -34,3 +34,12 @@ def test_straightness_sample_reads_back():
 
     d = parse_straightness(sample("Straightness trajectory"), source="sample")
     assert d.positions.size == 3 and d.deviations[1] == pytest.approx(1.5e-6)
+
+
+def test_squareness_test_sample_reads_back():
+    """The sample's readings come back as the doubles written (``axiscal.io.biaxial``)."""
+    from axiscal.io.biaxial import parse_biaxial_test
+
+    t = parse_biaxial_test(sample("Squareness test from two straightness trajectories"))
+    assert t.one.deviations.tolist() == [0.0, 1.5e-6, 0.8e-6] and t.two.axis == "Y"
+    assert t.machine == "VMC-800" and t.config == "L"

@@ -77,7 +77,22 @@ def files(tmp_path_factory):
     out["motion"] = MOTION             # the shipped three-run five-DOF file (ISO 230-7)
     out["straightness"] = folder / "straightness.csv"
     out["straightness"].write_text(STRAIGHTNESS)
+    out["squareness"] = folder / "squareness.toml"      # squareness biaxial --inline's file
+    out["squareness"].write_text(_biaxial_file())
     return out
+
+
+def _biaxial_file() -> str:
+    """The examples' two trajectories (L set-up at 180°) as one squareness test file."""
+    from pathlib import Path
+
+    from axiscal.io.biaxial import biaxial_test, format_biaxial_test
+    from axiscal.io.straightness import read_straightness
+
+    ex = Path(__file__).resolve().parents[2] / "examples"
+    return format_biaxial_test(biaxial_test(read_straightness(ex / "squareness_L180_x.csv"),
+                                            read_straightness(ex / "squareness_L180_y.csv"),
+                                            orientation=180))
 
 
 def _stored(tmp_path, path):
@@ -87,7 +102,7 @@ def _stored(tmp_path, path):
 
 
 @pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar",
-                                  "fiveaxis-ballbar", "motion"])
+                                  "fiveaxis-ballbar", "motion", "squareness"])
 def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
     """Value, U and k of every figure are the stored record's (``history show --json``'s
     ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""

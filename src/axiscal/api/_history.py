@@ -111,6 +111,9 @@ class History:
         title = None
         if ev.kind == "volumetric":          # the command's heading, the history's name
             title = f"{REPORT_TITLES[ev.kind]} — {t.machine}"
+        elif ev.kind == "squareness":        # the command's heading names its two files
+            title = (f"{t.machine} axis {t.axis} (test {t.id}, {t.filename}: "
+                     f"{ev.dataset.one.source}, {ev.dataset.two.source})")
         elif ev.kind != "iso230-2":
             kind = ("Ballbar diagnosis" if ev.kind == "ballbar" and hasattr(ev.result, "circular")
                     else REPORT_TITLES[ev.kind])

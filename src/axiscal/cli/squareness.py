@@ -28,6 +28,9 @@ JSON output (``--json``), stable keys:
   uncertainty, k = 2, ISO/TR 230-9 form, see ``axiscal.standards.iso230_9_geometry``) and
   ``uncertainty`` (list of ``name``, ``u_um_per_m``, ``clause``); inputs not measured take the
   documented defaults or the user configuration's ``[squareness_uncertainty]`` table.
+* ``squareness biaxial --inline FILE.toml`` also writes both trajectories and every option to
+  one file (:mod:`axiscal.io.biaxial`), which ``history add`` keeps as a ``squareness`` test; its
+  record's JSON holds the keys above with the same numbers.
 * ``squareness simulate``: ``machine``, ``scope``, ``truth_um_per_m``, ``convention``,
   ``results`` (``method``, ``group``, ``centre_mm``, ``size_mm``, ``um_per_m``, ``arcsec``,
   ``iso_um_per_m``), ``averages`` (``name``, ``centre_mm``, ``um_per_m``).
@@ -147,6 +150,7 @@ def biaxial(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write both trajectories with their reference lines (PNG/SVG/PDF)."),
     report: Optional[Path] = _REPORT,
+    inline: Optional[Path] = typer.Option(None, "--inline", help="Write both trajectories and every option to one file (.toml): the squareness test 'axiscal history add' keeps (kind squareness), evaluated again to the same numbers."),
 ) -> None:
     """Squareness from two straightness trajectories (ISO 230-1 §3.6.7, Chapman, Calibration of machine squareness Methods 1-3).
 
@@ -156,11 +160,17 @@ def biaxial(
     from axiscal.standards.squareness_biaxial import evaluate_biaxial
 
     _outputs(plot, report)
+    if inline is not None:
+        _inline_path(inline, xfile, yfile)
     one, two = read_straightness(xfile), read_straightness(yfile)
     b = evaluate_biaxial(one, two, config=config, orientation=orientation,
                          prism_error=prism_error, reference=_reference(reference), datum=datum,
                          square=square, inputs=_uncertainty_table())   # as the workbench's
     r, budget, d = b.result, b.budget, b.summary
+    if inline is not None:
+        _write_inline(inline, one, two, xfile, yfile, config=config, orientation=orientation,
+                      prism_error=prism_error, reference=_reference(reference), datum=datum,
+                      square=square)
     if plot is not None or report is not None:
         from axiscal.report.squareness_plots import biaxial_figure
 
@@ -180,6 +190,33 @@ def biaxial(
         typer.echo(f"bi-axial {config.upper()} {orientation}°: {r}")
         typer.echo(_budget_line(budget))
     _wrote(plot, report)
+    if inline is not None:
+        note(f"wrote {inline} (both trajectories and the options; axiscal history add keeps it)")
+
+
+def _inline_path(out: Path, *inputs: Path) -> None:
+    """``--inline``: a .toml in a writable folder, never one of the trajectories' files."""
+    from axiscal.cli._common import typed_path
+    from axiscal.errors import InputError
+
+    typed_path(out, "--inline", (".toml",))
+    if any(out.resolve() == Path(p).resolve() for p in inputs):
+        raise InputError(f"--inline {out}: it is one of the trajectories' files; write it "
+                         "elsewhere")
+
+
+def _write_inline(out: Path, one, two, *files: Path, **options) -> None:
+    """The squareness test file (:func:`axiscal.io.biaxial.format_biaxial_test`): the
+    trajectories as read, every option, each file's SHA-256; checked as its reader checks it
+    before it is written (a prism error over 1° is refused here, not at ``history add``)."""
+    import hashlib
+
+    from axiscal.io._files import read_bytes, write_text_atomic
+    from axiscal.io.biaxial import biaxial_test, format_biaxial_test
+
+    digests = tuple(hashlib.sha256(read_bytes(f)).hexdigest() for f in files)
+    test = biaxial_test(one, two, sha256=digests, source="--inline", **options)
+    write_text_atomic(out, format_biaxial_test(test))
 
 
 def _budget(method: str, **measured):

@@ -56,6 +56,20 @@ def _straightness() -> str:
                                                 axis="X", direction="Y"))
 
 
+def _biaxial() -> str:
+    """Two three-point trajectories (X read along Y, Y along X) as one squareness test."""
+    import numpy as np
+
+    from axiscal.io.biaxial import biaxial_test, format_biaxial_test
+    from axiscal.io.straightness import StraightnessData
+
+    p = np.array([0.0, 0.2, 0.4])
+    return format_biaxial_test(biaxial_test(
+        StraightnessData(p, np.array([0.0, 1.5e-6, 0.8e-6]), "X", "Y", source="x.csv"),
+        StraightnessData(p, np.array([0.0, -2e-6, -4e-6]), "Y", "X", source="y.csv"),
+        machine="VMC-800"))
+
+
 def _table(controller: str) -> Callable[[], str]:
     def write() -> str:
         from axiscal.compensation.controllers import controller as module
@@ -74,6 +88,7 @@ SAMPLES: dict[str, Callable[[], str]] = {
     "EPICS ecmc ISO 230-2 file": _ecmc,
     "Renishaw linear positioning export (HEADER:: … EOF::)": _rtl,
     "Straightness trajectory": _straightness,
+    "Squareness test from two straightness trajectories": _biaxial,
     "Siemens 840D compensation (%_N_AX_EEC_INI, %_N_NC_CEC_INI)": _table("siemens-840d"),
     "Fanuc pitch error parameters": _table("fanuc"),
     "Heidenhain .COM and .CMA": _table("heidenhain"),

@@ -68,6 +68,9 @@ FORMATS: tuple[FileFormat, ...] = (
                "axiscal plan linear --length 800 --csv plan.csv", "axiscal.io.measured"),
     FileFormat("Straightness trajectory", True, True, (".csv",),
                "examples/squareness_L180_x.csv", "axiscal.io.straightness"),
+    FileFormat("Squareness test from two straightness trajectories", True, True, (".toml",),
+               "axiscal squareness biaxial examples/squareness_L180_x.csv "
+               "examples/squareness_L180_y.csv --inline sq.toml", "axiscal.io.biaxial"),
     FileFormat("Ballbar trace", True, True, (".csv",), "examples/squareness_ballbar_150mm.csv",
                "axiscal.io.ballbar"),
     FileFormat("Multi-point diagonal test", True, True, (".csv",),

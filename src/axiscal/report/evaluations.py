@@ -26,6 +26,7 @@ KIND_STANDARD = {"iso230-2": ISO230_2, "straightness": "iso230-1", "ballbar": "i
                  "diagonal": "iso230-6", "motion": "iso230-7", "fiveaxis": "iso230-7:location",
                  "thermal": "iso230-3", "volumetric": "iso-tr-16907",
                  "fiveaxis-ballbar": "iso10791-6"}
+KIND_STANDARD["squareness"] = "iso230-1"      # squareness from two straightness profiles
 
 
 #: The title of the report of each kind of test other than positioning.
@@ -37,6 +38,7 @@ REPORT_TITLES = {"straightness": "Straightness (ISO 230-1)",
                  "fiveaxis": "Five-axis location errors (ISO 230-1 / ISO 230-7)",
                  "volumetric": "Volumetric accuracy",
                  "fiveaxis-ballbar": "Five-axis ballbar test (ISO 10791-6 as axiscal reads it)"}
+REPORT_TITLES["squareness"] = "Squareness from two straightness profiles (ISO 230-1)"
 
 
 def kind_of_file(path: Any) -> str:
@@ -126,9 +128,17 @@ def _fiveaxis_ballbar_figure(record: Any, r: Any) -> Any:
     return ballbar_path_figure(record, r)
 
 
+def _squareness_figure(test: Any, b: Any) -> Any:
+    """``axiscal squareness biaxial --plot``'s figure: both trajectories with their lines."""
+    from axiscal.report.squareness_plots import biaxial_figure
+
+    return biaxial_figure(test.one, test.two, b.result, test.title)
+
+
 FIGURES = {"ballbar": _ballbar_figure, "straightness": _straightness_figure,
            "diagonal": _diagonal_figure, "motion": _motion_figure, "thermal": _thermal_figure,
            "volumetric": _volumetric_figure, "fiveaxis-ballbar": _fiveaxis_ballbar_figure}
+FIGURES["squareness"] = _squareness_figure
 
 
 #: A kind of test in words, as the reports head it.
@@ -139,6 +149,7 @@ KIND_WORDS = {"iso230-2": "Positioning test", "positioning": "Positioning test",
               "thermal": "Thermal test (ISO 230-3)",
               "volumetric": "Volumetric accuracy (ISO/TR 16907)",
               "fiveaxis-ballbar": "Five-axis ballbar test (ISO 10791-6)"}
+KIND_WORDS["squareness"] = "Squareness from two straightness profiles"
 
 
 def notebook_html(kind: str, standard: str, d: dict, fig: Any, quantities: Any = None) -> str:
@@ -490,6 +501,13 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
         if title is not None:
             rep.title = title
         return rep.write(path)
+    if ev.kind == "squareness":     # ``axiscal squareness biaxial --report``'s report
+        from axiscal.report.squareness_plots import write_biaxial_report
+
+        t = ev.dataset
+        return write_biaxial_report(path, t.one, t.two, ev.result,
+                                    title or f"{t.one.source}, {t.two.source}", t.config,
+                                    t.orientation)
     if ev.kind == "fiveaxis":       # ``axiscal fiveaxis identify --report``'s report
         from axiscal.physics.rotary_location import Geometry
         from axiscal.report.five_axis_plots import location_report

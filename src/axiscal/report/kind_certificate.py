@@ -6,6 +6,7 @@ axiscal makes a budget for it: :func:`axiscal.store.kinds.budget_of` (the one ca
 :func:`axiscal.store.kinds.with_uncertainty`; :data:`axiscal.store.kinds.UNCERTAINTY_TABLE`).
 Today that is a positioning test (ISO 230-2:2014 Annex A, which keeps its own, fuller
 certificate: :mod:`axiscal.report.certificate`), a diagonal squareness test (ISO/TR 230-9), a
+squareness from two straightness profiles (ISO/TR 230-9), a
 ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-motion-error
 test's ISO 230-7 values (:mod:`axiscal.standards.iso230_7_uncertainty`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
 thermal test. Any other kind is refused in one line naming why.
@@ -49,6 +50,7 @@ KIND_NAMES = {
     "thermal": "thermal (ISO 230-3:2020)",
     "volumetric": "volumetric (ISO/TR 16907:2015)",
     "fiveaxis-ballbar": "five-axis ballbar (ISO 10791-6:2014)",     # main's kind (issue 43)
+    "squareness": "squareness from two straightness profiles (ISO 230-1:2012)",
 }
 
 

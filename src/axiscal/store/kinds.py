@@ -13,7 +13,10 @@ the call of ``axiscal thermal evaluate``), a five-axis ballbar test (a rotary ax
 moving with the linear axes; ISO 10791-6:2014 as :mod:`axiscal.standards.iso10791_6` reads it:
 the range with U of ``axiscal fiveaxis ballbar evaluate``), and a volumetric test: a volumetric configuration
 holding its 21 errors inline, mapped by ISO/TR 16907:2015 with the body diagonals of ISO
-230-6:2002 (the call of ``axiscal volumetric map``). :func:`evaluate_file` returns
+230-6:2002 (the call of ``axiscal volumetric map``), and a squareness test from two straightness
+trajectories (ISO 230-1:2012 §3.6.7: one TOML file holding both and the options,
+:mod:`axiscal.io.biaxial`, the call of ``axiscal squareness biaxial``).
+:func:`evaluate_file` returns
 what the store keeps: the evaluation as JSON, its summary parameters with their units, and the
 metadata the file declares. Evaluating the same bytes again gives the same numbers, which is how
 a stored test is shown again; and they are the numbers of the command a user runs on the file
@@ -43,10 +46,11 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness and, axiscal's reading of it, a ballbar's G and H); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty",
-                     "ballbar": "ballbar_uncertainty", "motion": "motion_uncertainty"}
+                     "ballbar": "ballbar_uncertainty", "motion": "motion_uncertainty",
+                     "squareness": "squareness_uncertainty"}   # two straightness profiles
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
-         "volumetric", "fiveaxis-ballbar")
+         "volumetric", "fiveaxis-ballbar", "squareness")
 
 
 @dataclass
@@ -211,10 +215,14 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`), G and H
     of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), the ISO
     230-7 values of a five-motion-error test
-    (:func:`~axiscal.standards.iso230_7_uncertainty.motion_budget`), a five-axis
+    (:func:`~axiscal.standards.iso230_7_uncertainty.motion_budget`), a squareness
+    from two straightness profiles (ISO/TR 230-9, its one evaluation made again with these
+    inputs, since its result states U), a five-axis
     identification's and a thermal test's own; the other kinds keep none. Every path that shows a U (command, history, workbench, report,
     certificate, API) takes it from here."""
     inputs = dict(inputs or {})
+    if ev.kind == "squareness":     # its --json holds U: the one evaluation, with these inputs
+        return dataclasses.replace(_squareness_record(ev.dataset, inputs), inputs=inputs)
     return dataclasses.replace(ev, budget=budget_of(ev.kind, ev.dataset, ev.evaluation, inputs),
                                inputs=inputs)
 
@@ -244,11 +252,15 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         return ThermalBudget(evaluation, log=dataset)
     if kind == "fiveaxis-ballbar":      # the range's own budget, made by its one evaluation
         return evaluation.budget
+    if kind == "squareness":            # ISO/TR 230-9, made by its one evaluation (biaxial)
+        return dataset.evaluate(inputs).budget
     return None
 
 
 _VOLUMETRIC = re.compile(r"^[ \t]*\[machine\][ \t]*(#.*)?$", re.M)
 _ERRORS = re.compile(r"^[ \t]*\[errors\][ \t]*(#.*)?$", re.M)
+_BIAXIAL = re.compile(r"^[ \t]*\[biaxial\][ \t]*(#.*)?$", re.M)
+_FIRST = re.compile(r"^[ \t]*\[first\][ \t]*(#.*)?$", re.M)
 
 
 def detect_kind(text: str) -> str:
@@ -258,6 +270,8 @@ def detect_kind(text: str) -> str:
         return "iso230-2"
     if _VOLUMETRIC.search(text) and _ERRORS.search(text):    # a TOML [machine] and [errors]
         return "volumetric"
+    if _BIAXIAL.search(text) and _FIRST.search(text):        # a TOML [biaxial] and [first]
+        return "squareness"
     if "TGT_DATA[" in text or stripped.startswith("HEADER::"):   # ecmc; Renishaw .rtl/.rta
         return "iso230-2"
     from axiscal.io.epics import looks_like_camonitor
@@ -286,8 +300,10 @@ def detect_kind(text: str) -> str:
         break
     raise DataFormatError("not a data file the history knows: expected a positioning test, a "
                           "straightness, ballbar, diagonal, five-error, five-axis probing, "
-                          "R-test, five-axis ballbar or ISO 230-3 thermal log CSV, axiscal JSON, or a volumetric "
-                          "configuration (TOML) with its errors inline")
+                          "R-test, five-axis ballbar or ISO 230-3 thermal log CSV, axiscal "
+                          "JSON, a volumetric configuration (TOML) with its errors inline, "
+                          "or a squareness test from two straightness trajectories (TOML, "
+                          "squareness biaxial --inline)")
 
 
 def evaluate_file(raw: bytes, filename: str, kind: str | None = None) -> Evaluated:
@@ -648,6 +664,27 @@ def _volumetric(text: str, filename: str) -> Evaluated:
                      dataset=run, evaluation=run.record)
 
 
+def _squareness(text: str, filename: str) -> Evaluated:
+    """A squareness test from two straightness trajectories (:mod:`axiscal.io.biaxial`, written
+    by ``axiscal squareness biaxial --inline``): the squareness by
+    :meth:`~axiscal.io.biaxial.BiaxialTest.evaluate`, the one call of ``squareness biaxial``
+    (ISO 230-1:2012 §3.6.7; U by ISO/TR 230-9); the stored result is that command's ``--json``
+    object, the squareness (µm/m) its parameter. Evaluated here with the budget's inputs all
+    assumed; :func:`with_uncertainty` evaluates it again with the test's inputs."""
+    from axiscal.io.biaxial import parse_biaxial_test
+
+    return _squareness_record(parse_biaxial_test(text, filename), {})
+
+
+def _squareness_record(test, inputs: dict) -> Evaluated:
+    """The record of a :class:`~axiscal.io.biaxial.BiaxialTest` evaluated with ``inputs``."""
+    b = test.evaluate(inputs)
+    sq = b.result.squareness
+    return Evaluated("squareness", "linear", jsonable(b.summary),
+                     {"squareness": (sq.um_per_m, "um/m")}, machine=test.machine,
+                     axis="".join(sq.axes), dataset=test, evaluation=b, budget=b.budget)
+
+
 #: Grid points per axis of a stored volumetric test's map (``volumetric map``'s default).
 VOLUMETRIC_GRID = 11
 
@@ -655,7 +692,7 @@ VOLUMETRIC_GRID = 11
 _EVALUATORS = {"iso230-2": _positioning, "straightness": _straightness, "ballbar": _ballbar,
                "diagonal": _diagonal, "motion": _motion, "fiveaxis": _fiveaxis,
                "thermal": _thermal, "volumetric": _volumetric,
-               "fiveaxis-ballbar": _fiveaxis_ballbar}
+               "fiveaxis-ballbar": _fiveaxis_ballbar, "squareness": _squareness}
 
 
 def result_text(ev: Evaluated) -> str:

@@ -281,7 +281,7 @@ async def _test_page(request: Request, test_id: int, status: int = 200, **extra)
     from axiscal.store.corrections import audit
     from axiscal.web.correction_pages import SHOWN
     from axiscal.web.signoff_pages import signoff_context
-    from axiscal.web.squareness_pages import partners
+    from axiscal.web.squareness_pages import made_from, partners
 
     st, env = request.app.state.store, request.app.state.templates.env
     t = st.get(test_id)
@@ -295,7 +295,7 @@ async def _test_page(request: Request, test_id: int, status: int = 200, **extra)
                                           request.query_params.get("certificate", ""), cfg),
                   controllers=sorted(CONTROLLERS),
                   others=[o for o in others if o.id != test_id],
-                  partners=partners(st, t),
+                  partners=partners(st, t), made_from=made_from(st, ev),
                   audit_entries=audit(st, test_id=test_id, limit=SHOWN), **extra)
 
 

@@ -18,6 +18,8 @@ write them (a share in % with one). Nothing is computed here.
 - motion: the ISO 230-7:2015 error motion values with their U (the record's budget,
   :mod:`axiscal.standards.iso230_7_uncertainty`, its contributors and inputs) and their polar
   plots;
+- squareness (from two straightness profiles): ``squareness biaxial``'s figure, figures, options
+  and budget (ISO 230-1:2012 §3.6.7; ISO/TR 230-9), from the stored record;
 - fiveaxis, fiveaxis-ballbar, thermal and volumetric: their own modules
   (:mod:`axiscal.web.five_axis_page`, :mod:`axiscal.web.five_axis_ballbar_page`,
   :mod:`axiscal.web.thermal_page`, :mod:`axiscal.web.volumetric_page`).
@@ -182,6 +184,48 @@ def _diagonal(ev) -> dict:
             "notes": list(budget.notes), "statements": [], "warnings": []}
 
 
+def _squareness(ev) -> dict:
+    """A squareness from two straightness profiles (kind ``squareness``): the figure, table
+    and budget of ``squareness biaxial`` (its ``--json``, the stored record's result)."""
+    from axiscal.report.evaluations import FIGURES
+
+    d, t, b = ev.result, ev.dataset, ev.evaluation
+    sq = d["squareness"]
+    a0, a1 = sq["axes"]
+    rows = [("squareness", fmt(sq["um_per_m"], "µm/m"), "µm/m"),
+            ("squareness", fmt(sq["arcsec"], "arcsec"), "arcsec"),
+            ("U (k = 2) of the squareness", ev.budget.U_text("squareness"), "µm/m"),
+            (f"ISO 230-1: {sq['iso_referred']} referred to datum {sq['iso_datum']}",
+             fmt(sq["iso_um_per_m"], "µm/m"), "µm/m"),
+            (f"slope of the {a0} trajectory", fmt(d["slope_first_um_per_m"], "µm/m"), "µm/m"),
+            (f"slope of the {a1} trajectory", fmt(d["slope_second_um_per_m"], "µm/m"),
+             "µm/m"),
+            (f"straightness of the {a0} trajectory", fmt(d["straightness_first_um"], "µm"),
+             "µm"),
+            (f"straightness of the {a1} trajectory", fmt(d["straightness_second_um"], "µm"),
+             "µm"),
+            ("correction for the square's angle error", fmt(d["correction_um_per_m"], "µm/m"),
+             "µm/m")]
+    options = [("set-up (Chapman, Methods 1-3)", d["config"]),
+               ("orientation [°, clockwise]", str(d["orientation"])),
+               ("square's angle error [arcsec]", fmt(d["prism_error_arcsec"], "arcsec")),
+               ("reference line (ISO 230-1:2012 §3.4)", d["reference"].replace("_", " ")),
+               ("reference square (budget)", t.square),
+               (f"{a0} trajectory", f"{t.one.source}: {t.one.positions.size} readings"),
+               (f"{a1} trajectory", f"{t.two.source}: {t.two.positions.size} readings")]
+    return {"figure": _figure(FIGURES["squareness"], t, b),
+            "alt": "Both trajectories with their reference lines",
+            "source": "ISO 230-1:2012 §3.6.7, squareness from two straightness trajectories "
+                      "(Chapman, \"Calibration of machine squareness\", Methods 1-3); U by "
+                      "ISO/TR 230-9, as axiscal squareness biaxial",
+            "lead": f"{t.title}; {sq['angle_note']}",
+            "tables": [("Squareness from two straightness profiles", "biaxial",
+                        ["quantity", "value", "unit"], rows),
+                       ("Set-up and options", "biaxial-options", ["option", "value"], options),
+                       *_budget_tables(ev.budget, "µm/m")],
+            "notes": list(ev.budget.notes), "statements": [], "warnings": []}
+
+
 def _squareness_table() -> dict:
     """The user configuration's ``[squareness_uncertainty]`` table, as the squareness commands
     read it."""
@@ -232,4 +276,4 @@ def _motion(ev) -> dict:
 
 
 _VIEWS = {"ballbar": _ballbar, "straightness": _straightness, "diagonal": _diagonal,
-          "motion": _motion}
+          "motion": _motion, "squareness": _squareness}

@@ -4,21 +4,24 @@ The same evaluation as ``axiscal squareness biaxial X.csv Y.csv``
 (:func:`axiscal.standards.squareness_biaxial.evaluate_biaxial`) on the two tests' stored
 trajectories, with the user configuration's ``[squareness_uncertainty]`` inputs as the command
 reads them; the report is the command's ``--report``
-(:func:`axiscal.report.squareness_plots.write_biaxial_report`). Nothing is stored: the page is a
-function of the two stored tests and the form.
+(:func:`axiscal.report.squareness_plots.write_biaxial_report`). The page is a function of the
+two stored tests and the form; its "Keep as a test" (``POST /squareness/keep``, an engineer's,
+CSRF-checked) stores the result as a test of kind ``squareness``: the file ``axiscal squareness
+biaxial --inline`` writes (:mod:`axiscal.io.biaxial`: both trajectories, every option, each
+straightness file's SHA-256, by which the test's page links the two tests it came from).
 """
 
 from __future__ import annotations
 
 from fastapi import FastAPI, Request
-from fastapi.responses import HTMLResponse
+from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
-from axiscal.errors import InputError
-from axiscal.web.inputs import QueryId
+from axiscal.errors import AxiscalError, InputError
+from axiscal.web.inputs import QueryId, checked_form, require_engineer
 from axiscal.web.rendering import download, render
 
-__all__ = ["add_routes", "partners"]
+__all__ = ["add_routes", "partners", "made_from"]
 
 #: The form's choices (``axiscal squareness biaxial`` options).
 REFERENCES = ("least_squares", "end_point", "minimum_zone")
@@ -33,14 +36,30 @@ def add_routes(app: FastAPI) -> None:
                               reference: str = "least_squares", square: str = "optics"):
         form = dict(first=first, second=second, config=config, orientation=orientation,
                     prism_error=prism_error, reference=reference, square=square)
-        st = request.app.state.store
-        one, two, b = await run_in_threadpool(_evaluate, st, form)
-        figure = await run_in_threadpool(_figure, one, two, b, form)
-        a, c = st.get(first).summary, st.get(second).summary
-        return render(request, "squareness.html",
-                      f"Squareness {a.axis}{c.axis} from tests {first} and {second}", b=b,
-                      form=form, figure=figure, a=a, c=c, references=REFERENCES,
-                      report_query=request.url.query)
+        return await _page(request, form)
+
+    @app.post("/squareness/keep", response_class=HTMLResponse)
+    async def squareness_keep(request: Request):
+        """Keep the squareness as a test (kind ``squareness``) and go to its page, where its
+        report and sign-off are; refused: the squareness page again, the reason at the
+        form (400). The same checks and evaluation as the page."""
+        form = await checked_form(request)
+        require_engineer(request)
+        values = {k: str(form.get(k, "") or "").strip() for k in
+                  ("first", "second", "config", "orientation", "prism_error", "reference",
+                   "square")}
+        try:
+            values["first"], values["second"], values["orientation"] = (
+                _whole(values[k], k) for k in ("first", "second", "orientation"))
+        except InputError as exc:
+            from axiscal.web.rendering import render_error
+
+            return render_error(request, str(exc), 400)
+        try:
+            added = await run_in_threadpool(_keep, request.app.state.store, values)
+        except AxiscalError as exc:
+            return await _page(request, values, 400, keep_error=str(exc))
+        return RedirectResponse(f"/tests/{added.id}?kept=squareness#made-from", 303)
 
     @app.get("/squareness/report.html")
     async def squareness_report(request: Request, first: QueryId, second: QueryId,
@@ -52,6 +71,61 @@ def add_routes(app: FastAPI) -> None:
         st = request.app.state.store
         data = await run_in_threadpool(_report, st, form)
         return download(data, f"squareness_tests_{first}_{second}.html", "text/html")
+
+
+async def _page(request: Request, form: dict, status: int = 200, **extra):
+    st = request.app.state.store
+    one, two, b = await run_in_threadpool(_evaluate, st, form)
+    figure = await run_in_threadpool(_figure, one, two, b, form)
+    a, c = st.get(form["first"]).summary, st.get(form["second"]).summary
+    from urllib.parse import urlencode
+
+    return render(request, "squareness.html",
+                  f"Squareness {a.axis}{c.axis} from tests {a.id} and {c.id}", status, b=b,
+                  form=form, figure=figure, a=a, c=c, references=REFERENCES,
+                  report_query=urlencode(form), **extra)
+
+
+def _whole(text: str, what: str) -> int:
+    if not text.isdigit() or len(text) > 9:
+        raise InputError(f"{what} {text!r:.20}: a whole number")
+    return int(text)
+
+
+def _keep(store, form: dict):
+    """Store the squareness of ``form`` (the page's options) as a test: the one file of
+    :mod:`axiscal.io.biaxial`, with the machine of the two tests, dated by the later of the
+    two when both state their date, and the user configuration's
+    ``[squareness_uncertainty]`` inputs (:meth:`axiscal.store.history.Store.add`'s default,
+    the page's)."""
+    from axiscal.io.biaxial import biaxial_test, format_biaxial_test
+
+    one, two, b = _evaluate(store, form)       # the page's checks and its evaluation
+    ta, tc = store.get(form["first"]), store.get(form["second"])
+    a, c = ta.summary, tc.summary
+    test = biaxial_test(one, two, config=b.summary["config"], orientation=form["orientation"],
+                        prism_error=b.summary["prism_error_arcsec"],
+                        reference=form["reference"], square=form["square"],
+                        machine=a.machine, sha256=(ta.sha256, tc.sha256))
+    date = (max(a.tested_at, c.tested_at).strftime("%Y-%m-%d")
+            if a.date_known and c.date_known else None)
+    return store.add(format_biaxial_test(test).encode(),
+                     f"squareness_{a.axis}{c.axis}_tests_{a.id}_{c.id}.toml",
+                     machine=a.machine, date=date,
+                     note=f"squareness from straightness tests {a.id} ({a.axis}) and {c.id} "
+                          f"({c.axis}), kept from the workbench")
+
+
+def made_from(store, ev) -> list:
+    """The straightness files a squareness test (kind ``squareness``) was made from, each as
+    (axis, file name, the stored test's id or None where this history does not hold it),
+    found by the SHA-256 its file keeps; [] for another kind."""
+    if getattr(ev, "kind", "") != "squareness":
+        return []
+    t = ev.dataset
+    found = store.stored([d for d in t.sha256 if d])
+    return [(data.axis or "?", data.source, getattr(found.get(d), "id", None))
+            for data, d in ((t.one, t.sha256[0]), (t.two, t.sha256[1]))]
 
 
 def partners(store, t) -> list:
