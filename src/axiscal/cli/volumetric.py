@@ -15,6 +15,10 @@ JSON output (``--json``), stable keys, units in the key names:
   ``start_mm``, ``end_mm``, ``range_um``), ``missing`` (error motions taken as zero); for a
   simulated configuration also ``truth`` (``largest_um``, ``range_um``) and
   ``mapped_minus_true_um`` (largest |mapped − true| over the grid).
+  ``quantities`` (schema 1: ``largest``, ``range_X`` …, ``diagonal_PPP`` … with ``U`` and
+  ``k``), ``uncertainty_inputs`` and ``uncertainty_budget``: the budget of
+  :mod:`axiscal.standards.iso230_9_volumetric` from the user configuration's
+  ``[volumetric_uncertainty]`` (and an inline error's own ``U``), as the history stores it.
 * ``compensate``: ``controller``, ``receiving``, ``files`` (names written), ``left_by_tables_um``;
   with ``--verify`` also ``verify``: ``figures`` (name -> ``before_um``, ``after_um``,
   ``reduction``), ``spindle_tilt_um_per_m``, ``left_by_tables_um``. With ``--controller
@@ -138,8 +142,9 @@ def map_(
         mapped.plot().savefig(plot, dpi=110)
     if report:
         mapped.report(report)
+    rec = _with_uncertainty(sim)
     if as_json:
-        print_json(out)
+        print_json(rec.stored_result())
         return
     typer.echo(f"volumetric map of {cfg.name} (chain {e.chain}), {grid}³ grid, tool offset "
                f"{', '.join(f'{v * 1e3:g}' for v in cfg.tool_offset)} mm")
@@ -151,6 +156,22 @@ def map_(
     if truth is not None:
         typer.echo(f"  simulation truth: {truth}; largest |mapped − true| "
                    f"{out['mapped_minus_true_um']:.3f} µm")
+    from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+
+    typer.echo(f"  with their expanded uncertainty (k = {rec.budget.k:g}; {rec.budget.method}; "
+               "inputs in the user configuration's [volumetric_uncertainty]): " + "; ".join(
+                   f"{q.name} {format_value(q.value, q.U)} ± {format_uncertainty(q.U)} µm"
+                   for q in rec.quantities.values() if q.U is not None))
+
+
+def _with_uncertainty(sim):
+    """The map's record with its budget (:func:`axiscal.store.kinds.with_uncertainty`) from the
+    user configuration's ``[volumetric_uncertainty]``: the history's record of the same file."""
+    from axiscal.io.user_config import load_user_config
+    from axiscal.store.kinds import inputs_from_config, volumetric_record, with_uncertainty
+
+    return with_uncertainty(volumetric_record(sim),
+                            inputs_from_config("volumetric", load_user_config()))
 
 
 @app.command("compensate")
