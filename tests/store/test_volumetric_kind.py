@@ -166,3 +166,29 @@ def test_the_workbench_page_shows_the_maps_figures(files, tmp_path):
     verdicts = re.search(r'<table id="verdicts">.*?<tbody>(.*?)</tbody>', r.text, re.S).group(1)
     assert f'<td class="num">{format_uncertainty(q["largest"]["U"])}</td>' in verdicts
     assert "conformance proven" in verdicts
+
+
+def test_an_inline_error_s_own_u_is_the_budget_s(files):
+    """``U`` in an inline error's table (its unit, k = 2: here EXX in µm, ECX in µrad) is used
+    over the class's input and listed as given (iso230_9_volumetric); a negative U is refused
+    in one line naming the error."""
+    from axiscal.errors import ConfigError
+    from axiscal.store.kinds import evaluate_file, with_uncertainty
+
+    _, inline = files
+    text = inline.read_text("utf-8")
+    own = re.sub(r'^(EXX = \{.*?), unit = "um" \}$', r'\1, unit = "um", U = 6.0 }', text,
+                 flags=re.M)
+    own = re.sub(r'^(ECX = \{.*?), unit = "urad" \}$', r'\1, unit = "urad", U = 9.0 }', own,
+                 flags=re.M)
+    assert own.count("U = ") == 2
+    plain = with_uncertainty(evaluate_file(text.encode(), "vol.toml"), {}).budget
+    mine = with_uncertainty(evaluate_file(own.encode(), "vol.toml"), {}).budget
+    given = {i.name: (i.value, i.unit, i.assumed) for i in mine.inputs if i.name in ("EXX", "ECX")}
+    assert given == {"EXX": (pytest.approx(6.0), "µm", False),
+                     "ECX": (pytest.approx(9.0), "µrad", False)}
+    assert mine.U("range_X") > plain.U("range_X")
+    bad = own.replace("U = 6.0", "U = -1.0")
+    with pytest.raises(ConfigError, match=r"\[errors\] EXX U = -1.0") as e:
+        evaluate_file(bad.encode(), "vol.toml")
+    assert "\n" not in str(e.value)

@@ -7,7 +7,8 @@ axiscal makes a budget for it: :func:`axiscal.store.kinds.budget_of` (the one ca
 Today that is a positioning test (ISO 230-2:2014 Annex A, which keeps its own, fuller
 certificate: :mod:`axiscal.report.certificate`), a diagonal squareness test (ISO/TR 230-9), a
 ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
-thermal test. Any other kind is refused in one line naming why.
+thermal test, and a volumetric test (:mod:`axiscal.standards.iso230_9_volumetric`). Any other
+kind is refused in one line naming why.
 
 The path is one for every kind, keyed by nothing but the stored record
 (:class:`~axiscal.store.kinds.Evaluated`: its parameters, its budget, its inputs):
@@ -232,8 +233,8 @@ def kind_certificate(ev, record: KindCertificate, info) -> Any:
     c._instruments(rep, info, None)
     rep.add_table(["Input", "Value", "How it was set"], record.inputs,
                   caption=f"Uncertainty budget: {record.method}")
-    for note in record.notes:
-        rep.add_text(note)
+    for note in record.notes:     # plain words: "[ballbar_uncertainty]" is no symbol B_i
+        rep.add_html(f"<p>{c._esc(note)}</p>")
     rep.add_html(c._statements(info, record.decisions, record.rule_text))
     rows = [(_label(ev, f), f.value_text, f.U_text, f"{f.k:g}", units.display(f.unit),
              "—" if f.tolerance is None else f"{f.tolerance:g}", f.verdict or "—")

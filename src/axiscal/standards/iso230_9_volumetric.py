@@ -81,20 +81,20 @@ from axiscal.standards.volumetric import (AXES, ERROR_NAMES, PAIRS, ErrorFunctio
 
 __all__ = ["VOLUMETRIC_INPUTS", "CORRELATIONS", "error_class", "volumetric_budget"]
 
-#: key -> (label, unit, default, rule of the default). Every default is an assumption, marked
+#: key -> (label, unit, default, basis of the default). Every default is an assumption, marked
 #: so on every budget that takes it: set each from the measurements' own budgets.
 VOLUMETRIC_INPUTS = {
     "positioning_a": ("U (k = 2) of a positioning error, constant part a", "µm", 0.5,
-                      "assumed: a laser interferometer's reading and set-up"),
+                      "a laser interferometer's reading and set-up"),
     "positioning_b": ("U (k = 2) of a positioning error, length part b", "µm/m", 2.0,
-                      "assumed: a laser's wavelength (0.5 µm/m) and the material temperature "
+                      "a laser's wavelength (0.5 µm/m) and the material temperature "
                       "known to ±0.1 K (1.2 µm/m for steel)"),
     "straightness": ("U (k = 2) of a straightness error", "µm", 1.0,
-                     "assumed: straightness optics of a laser interferometer"),
+                     "straightness optics of a laser interferometer"),
     "angular": ("U (k = 2) of an angular error", "µrad", 2.0,
-                "assumed: angular optics of a laser interferometer (about 0.4 arcsec)"),
+                "angular optics of a laser interferometer (about 0.4 arcsec)"),
     "squareness": ("U (k = 2) of a squareness error", "µm/m", 2.0,
-                   "assumed: a squareness measured by ISO 230-1 with a calibrated reference"),
+                   "a squareness measured by ISO 230-1 with a calibrated reference"),
     "k": ("coverage factor", "", 2.0, "ISO/TR 230-9:2005: k = 2"),
 }
 #: The correlation models (module docstring) by the input ``correlation``.
@@ -250,7 +250,7 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
              f"{SET_WITH.format(key='correlation')}: scale or independent)",
              "the locus of each figure (the grid point of the largest |E|, the points of each "
              "range) held fixed: first-order propagation, JCGM 100:2008 §5.1.2")
-    notes += tuple(f"assumed: {i.label} {i.value:g} {i.unit} ({i.rule}); set with {i.set_with}"
+    notes += tuple(f"assumed: {i.label} {i.value:g} {i.unit}; set with {i.set_with}"
                    .replace("  ", " ") for i in inputs if i.assumed and i.name != "k")
     if errors.missing:
         notes += (f"not measured, taken as zero, so not in U: {', '.join(errors.missing)}",)
