@@ -115,6 +115,8 @@ _CLAUSE = ("ISO/TR 16907:2015 rigid-body model; JCGM 100:2008 §5.1.2, §5.2 (se
            "model)")
 #: Amplitude of a unit input (m or rad): small against the model's limit, exact (linear model).
 _UNIT = 1e-6
+#: A figure's u_c at most this (µm) is no U: no measured error acts on it.
+_NONE = 1e-9
 
 
 def error_class(name: str) -> str:
@@ -158,7 +160,8 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
     -------
     UncertaintyBudget
         Unit ``um``; parameters ``largest``, ``range_X``, ``range_Y``, ``range_Z`` and
-        ``diagonal_<name>`` as :func:`axiscal.store.kinds.evaluate_file` names them; one
+        ``diagonal_<name>`` as :func:`axiscal.store.kinds.evaluate_file` names them (a figure
+        no measured error acts on has no U, a note says so; U = 0 is never stated); one
         contributor per figure and error class (``u_POS,range_X`` …), its basis each error's
         share.
 
@@ -197,15 +200,15 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
     >>> m = map_volume(e, 11)
     >>> t = {"positioning_a": 1.0, "positioning_b": 0.0, "squareness": 0.0}
     >>> b = volumetric_budget(e, m, (), {**t, "correlation": "independent"})
-    >>> round(b.U("range_X"), 6), round(b.U("range_Y"), 6), round(b.U("largest"), 6)
-    (1.414214, 0.0, 1.000000)
+    >>> round(b.U("range_X"), 6), b.U("range_Y"), round(b.U("largest"), 6)
+    (1.414214, None, 1.000000)
     >>> round(volumetric_budget(e, m, (), {**t, "correlation": "scale"}).U("range_X"), 6)
     2.000000
 
     By hand: u = U/2 = 0.5 µm at each end. Independent (two positions): u_c = √(0.5² + 0.5²),
     U = 2·0.7071 = 1.4142 µm. Scale: the ramp is +0.5 µm at 100 mm and −0.5 µm at 0, both
     100 % correlated: u_c = 0.5 + 0.5 = 1.0, U = 2.0 µm. The largest |E| (5 µm at an end) moves
-    with E_X there: U = 2·0.5 = 1.0 µm. E_Y is untouched by EXX: U = 0.
+    with E_X there: U = 2·0.5 = 1.0 µm. E_Y is untouched by EXX: no U is stated (not U = 0).
     """
     v, correlation = _inputs(table)
     given = dict(given or {})
@@ -254,9 +257,14 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
                    .replace("  ", " ") for i in inputs if i.assumed and i.name != "k")
     if errors.missing:
         notes += (f"not measured, taken as zero, so not in U: {', '.join(errors.missing)}",)
+    covered = tuple(f for f, by in shares.items() if math.fsum(u * u for u in by.values())
+                    > _NONE ** 2)
+    if len(covered) < len(figures):       # U = 0 is never stated (only unmeasured errors act)
+        notes += ("no U for " + ", ".join(f for f in figures if f not in covered) + ": none of "
+                  "the measured errors acts on it (it is zero by the model's measured errors)",)
     notes += ("not included: the rigid-body model's own error (non-rigid effects), the grid's "
               "sampling of the volume, the tool offset's uncertainty",)
-    return replace(combine(contributors, "um", v["k"], tuple(figures), notes), inputs=inputs,
+    return replace(combine(contributors, "um", v["k"], covered, notes), inputs=inputs,
                    method=f"ISO/TR 16907:2015 model, GUM §5.1.2/§5.2 with sensitivity "
                           f"coefficients by the model; correlation model: {correlation}")
 
