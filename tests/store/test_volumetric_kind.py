@@ -105,6 +105,13 @@ def test_history_show_report_has_volumetric_maps_heading(files, tmp_path):
         "Volumetric accuracy — simulated machining centre"
     html = (tmp_path / "h.html").read_text("utf-8")
     assert "Body diagonals (ISO 230-6:2002)" in html and "<svg" in html
+    from axiscal.standards.uncertainty_reporting import format_uncertainty
+
+    U = _cli("volumetric", "map", inline)["quantities"]["largest"]["U"]
+    for page in (html, (tmp_path / "c.html").read_text("utf-8")):   # the record's U on both
+        row = page.split("largest |E|")[1].split("</tr>")[0]
+        assert "U (k = 2) [µm]" in page and f">{format_uncertainty(U)}<" in row
+        assert "correlation model: scale" in page
 
 
 def test_a_configuration_naming_its_files_is_refused_with_one_line(files, tmp_path):

@@ -134,6 +134,9 @@ def map_(
     mapped = api.volumetric_map(config, grid)
     sim = mapped.test
     cfg = sim.parts["config"]
+    from axiscal.report.simulation_views import volumetric_map_record
+
+    rec = volumetric_map_record(sim)      # its U: a bad [volumetric_uncertainty] writes nothing
     if inline:
         _write_inline(config, inline, cfg)
     e = cfg.errors
@@ -142,7 +145,6 @@ def map_(
         mapped.plot().savefig(plot, dpi=110)
     if report:
         mapped.report(report)
-    rec = _with_uncertainty(sim)
     if as_json:
         print_json(rec.stored_result())
         return
@@ -163,15 +165,6 @@ def map_(
                    f"{q.name} {format_value(q.value, q.U)} ± {format_uncertainty(q.U)} µm"
                    for q in rec.quantities.values() if q.U is not None))
 
-
-def _with_uncertainty(sim):
-    """The map's record with its budget (:func:`axiscal.store.kinds.with_uncertainty`) from the
-    user configuration's ``[volumetric_uncertainty]``: the history's record of the same file."""
-    from axiscal.io.user_config import load_user_config
-    from axiscal.store.kinds import inputs_from_config, volumetric_record, with_uncertainty
-
-    return with_uncertainty(volumetric_record(sim),
-                            inputs_from_config("volumetric", load_user_config()))
 
 
 @app.command("compensate")
