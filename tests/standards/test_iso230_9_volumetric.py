@@ -45,7 +45,8 @@ def test_only_exx_by_hand(correlation, u_pair):
     b = volumetric_budget(e, m, d, {**ONLY_U, "correlation": correlation})
     assert b.U("range_X") == pytest.approx(2 * u_pair, rel=1e-9)
     assert b.U("range_Y") is None and b.U("range_Z") is None     # never U = 0
-    assert any(n.startswith("no U for range_Y, range_Z") for n in b.notes)
+    assert "no U for the range along Y, the range along Z: none of the measured errors acts " \
+        "on it" in b.notes
     assert b.U("largest") == pytest.approx(2 * 0.5, rel=1e-9)
     for name in ("PPP", "NPP", "PNP", "PPN"):
         assert b.U(f"diagonal_{name}") == pytest.approx(2 * u_pair / math.sqrt(3), rel=1e-9)
@@ -196,6 +197,10 @@ def test_missing_errors_and_assumed_inputs_are_said():
     b = volumetric_budget(e, m, d)
     assert any(n.startswith("not measured, taken as zero") and "ECZ" in n for n in b.notes)
     assert {i.name for i in b.inputs if i.assumed} == set(VOLUMETRIC_INPUTS)
+    said = next(n for n in b.notes if n.startswith("assumed"))
+    assert "volumetric uncertainty table" in said and "angular error 2 µrad" in said
+    assert not [n for n in b.notes if "_" in n], "printed notes carry no configuration key"
+    assert all(i.set_with.startswith("[volumetric_uncertainty] ") for i in b.inputs)
     assert any("correlation model: scale" in n for n in b.notes)
 
 

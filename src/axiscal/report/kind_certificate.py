@@ -233,8 +233,8 @@ def kind_certificate(ev, record: KindCertificate, info) -> Any:
     c._instruments(rep, info, None)
     rep.add_table(["Input", "Value", "How it was set"], record.inputs,
                   caption=f"Uncertainty budget: {record.method}")
-    for note in record.notes:     # plain words: "[ballbar_uncertainty]" is no symbol B_i
-        rep.add_html(f"<p>{c._esc(note)}</p>")
+    for note in record.notes:
+        rep.add_text(note)
     rep.add_html(c._statements(info, record.decisions, record.rule_text))
     rows = [(_label(ev, f), f.value_text, f.U_text, f"{f.k:g}", units.display(f.unit),
              "—" if f.tolerance is None else f"{f.tolerance:g}", f.verdict or "—")

@@ -100,7 +100,7 @@ def volumetric_report(vmap, diagonals, errors, *, name: str, measured=None, trut
     (:func:`~axiscal.standards.iso230_9_volumetric.volumetric_budget`): each figure's U (k)
     beside it, the budget's inputs and notes.
     """
-    from axiscal.report.html import Report, _esc
+    from axiscal.report.html import Report
 
     s = vmap.summary()
     rep = Report(f"Volumetric accuracy — {name}",
@@ -139,7 +139,7 @@ def volumetric_report(vmap, diagonals, errors, *, name: str, measured=None, trut
                       [[i.label, i.value_text, "assumed" if i.assumed else "given", i.rule]
                        for i in budget.inputs], caption=f"Uncertainty budget: {budget.method}")
         for note in budget.notes:
-            rep.add_html(f"<p>{_esc(note)}</p>")
+            rep.add_text(note)
     if tables is not None:
         rep.add_heading("Compensation")
         rep.add_text(str(tables))

@@ -249,19 +249,26 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
                                 else "µm", False, f"U of [errors] {n} in the volumetric "
                                 "configuration", "given in the volumetric configuration")
                     for n in ERROR_NAMES if n in given and n in errors.functions)
-    notes = (f"correlation model: {correlation}: {CORRELATIONS[correlation]} (set with "
-             f"{SET_WITH.format(key='correlation')}: scale or independent)",
+    # printed on reports and certificates: words, no configuration key (each input's key is
+    # its set_with, on the workbench and in the JSON)
+    other = next(m for m in CORRELATIONS if m != correlation)
+    notes = (f"correlation model: {correlation}: {CORRELATIONS[correlation]}; the other model, "
+             f"{other}, is chosen by the correlation input of the user configuration's "
+             "volumetric uncertainty table",
              "the locus of each figure (the grid point of the largest |E|, the points of each "
              "range) held fixed: first-order propagation, JCGM 100:2008 §5.1.2")
-    notes += tuple(f"assumed: {i.label} {i.value:g} {i.unit}; set with {i.set_with}"
-                   .replace("  ", " ") for i in inputs if i.assumed and i.name != "k")
+    assumed = [f"{i.label} {i.value:g} {i.unit}".strip() for i in inputs
+               if i.assumed and i.name != "k"]
+    if assumed:
+        notes += ("assumed (set each in the user configuration's volumetric uncertainty "
+                  "table): " + "; ".join(assumed),)
     if errors.missing:
         notes += (f"not measured, taken as zero, so not in U: {', '.join(errors.missing)}",)
     covered = tuple(f for f, by in shares.items() if math.fsum(u * u for u in by.values())
                     > _NONE ** 2)
     if len(covered) < len(figures):       # U = 0 is never stated (only unmeasured errors act)
-        notes += ("no U for " + ", ".join(f for f in figures if f not in covered) + ": none of "
-                  "the measured errors acts on it (it is zero by the model's measured errors)",)
+        notes += ("no U for " + ", ".join(_words(f) for f in figures if f not in covered)
+                  + ": none of the measured errors acts on it",)
     notes += ("not included: the rigid-body model's own error (non-rigid effects), the grid's "
               "sampling of the volume, the tool offset's uncertainty",)
     return replace(combine(contributors, "um", v["k"], covered, notes), inputs=inputs,
@@ -270,6 +277,14 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
 
 
 # -- helpers ---------------------------------------------------------------------------------
+def _words(figure: str) -> str:
+    """A figure's key in words (``range_X``: the range along X)."""
+    if figure == "largest":
+        return "the largest |E|"
+    kind, name = figure.split("_", 1)
+    return f"the range along {name}" if kind == "range" else f"the range along diagonal {name}"
+
+
 def _inputs(table) -> tuple[dict, str]:
     """The inputs' values (defaults for the absent) and the correlation model, checked."""
     table = dict(table or {})
