@@ -132,6 +132,9 @@ def test_map_states_u_from_the_user_configuration(tmp_path, monkeypatch):
     assert rec.quantities["range_Y"].U is None       # nothing measured acts on E_Y: no U
     for name, q in rec.quantities.items():
         assert d["quantities"][name]["U"] == q.U and (q.U is None or q.U > 0), name
+    import axiscal
+
+    assert axiscal.volumetric_map(tmp_path / "m.toml").to_dict() == d     # the API's, too
     text = runner.invoke(app, ["volumetric", "map", str(tmp_path / "m.toml")])
     assert text.exit_code == 0 and "with their expanded uncertainty (k = 2" in text.stdout
     assert f"range_X {rec.budget.value_text('range_X', rec.parameters['range_X'][0])} ± " \

@@ -146,7 +146,7 @@ def map_(
     if report:
         mapped.report(report)
     if as_json:
-        print_json(rec.stored_result())
+        print_json(rec.stored_result())     # = mapped.to_dict(): the same record
         return
     typer.echo(f"volumetric map of {cfg.name} (chain {e.chain}), {grid}³ grid, tool offset "
                f"{', '.join(f'{v * 1e3:g}' for v in cfg.tool_offset)} mm")
