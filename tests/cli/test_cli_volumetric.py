@@ -103,3 +103,43 @@ def test_verify_needs_a_simulation(tmp_path):
     r = runner.invoke(app, ["volumetric", "compensate", str(tmp_path / "m.toml"),
                             "--controller", "csv", "--verify"])
     assert r.exit_code == 2 and "needs a simulated machine" in r.stderr
+
+
+INLINE = ('[machine]\nchain = "| X Y Z"\ntravel_mm = { X = [0, 500], Y = [0, 400], Z = [-300, 0] }\n'
+          '[errors]\nECX = { positions_mm = [0, 250, 500], values = [-2, 0, 2], unit = "arcsec" }\n'
+          'EXX = { polynomial = [0, 0.01], unit = "um" }\n[squareness]\nxy = 20\n')
+
+
+def test_map_states_u_from_the_user_configuration(tmp_path, monkeypatch):
+    """``volumetric map`` takes ``[volumetric_uncertainty]`` of the user configuration (here the
+    independent model and U of the positioning errors) and states every figure's U: on --json
+    the history's record of the same file (:func:`axiscal.store.kinds.with_uncertainty`), in
+    its text each figure ± U; a key that is no input is refused in one line, exit 2."""
+    from axiscal.store.kinds import evaluate_file, with_uncertainty
+
+    table = {"correlation": "independent", "positioning_a": 0.3, "positioning_b": 1.0}
+    cfg = tmp_path / "config.toml"
+    cfg.write_text('[volumetric_uncertainty]\ncorrelation = "independent"\n'
+                   "positioning_a = 0.3\npositioning_b = 1.0\n")
+    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
+    (tmp_path / "m.toml").write_text(INLINE)
+    r = runner.invoke(app, ["volumetric", "map", str(tmp_path / "m.toml"), "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    rec = with_uncertainty(evaluate_file(INLINE.encode(), "m.toml"), table)
+    assert d["uncertainty_inputs"] == table
+    assert "correlation model: independent" in d["uncertainty_budget"]["method"]
+    assert rec.quantities["range_Y"].U is None       # nothing measured acts on E_Y: no U
+    for name, q in rec.quantities.items():
+        assert d["quantities"][name]["U"] == q.U and (q.U is None or q.U > 0), name
+    import axiscal
+
+    assert axiscal.volumetric_map(tmp_path / "m.toml").to_dict() == d     # the API's, too
+    text = runner.invoke(app, ["volumetric", "map", str(tmp_path / "m.toml")])
+    assert text.exit_code == 0 and "with their expanded uncertainty (k = 2" in text.stdout
+    assert f"range_X {rec.budget.value_text('range_X', rec.parameters['range_X'][0])} ± " \
+        f"{rec.budget.U_text('range_X')} µm" in text.stdout
+    cfg.write_text("[volumetric_uncertainty]\nangualr = 1\n")
+    bad = runner.invoke(app, ["volumetric", "map", str(tmp_path / "m.toml"), "--json"])
+    assert bad.exit_code == 2 and len(bad.stderr.strip().splitlines()) == 1
+    assert "[volumetric_uncertainty] angualr: no such input" in bad.stderr

@@ -79,6 +79,7 @@ def files(tmp_path_factory):
     out["straightness"].write_text(STRAIGHTNESS)
     out["squareness"] = folder / "squareness.toml"      # squareness biaxial --inline's file
     out["squareness"].write_text(_biaxial_file())
+    out["volumetric"] = _volumetric_inline(folder)
     return out
 
 
@@ -95,6 +96,22 @@ def _biaxial_file() -> str:
                                             orientation=180))
 
 
+def _volumetric_inline(folder):
+    """The volumetric twin's configuration with every error inline (the file ``history add``
+    keeps), as tests/store/test_volumetric_kind.py makes it."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    for args in (["volumetric", "simulate", "--out", str(folder / "vol"), "--points", "5",
+                  "--seed", "3"],
+                 ["volumetric", "map", str(folder / "vol" / "volumetric.toml"), "--inline",
+                  str(folder / "vol.toml")]):
+        r = CliRunner().invoke(app, args)
+        assert r.exit_code == 0, r.output
+    return folder / "vol.toml"
+
+
 def _stored(tmp_path, path):
     st = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
     added = st.add(path.read_bytes(), path.name, machine="VMC", axis="X")
@@ -102,7 +119,7 @@ def _stored(tmp_path, path):
 
 
 @pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar",
-                                  "fiveaxis-ballbar", "motion", "squareness"])
+                                  "fiveaxis-ballbar", "motion", "squareness", "volumetric"])
 def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
     """Value, U and k of every figure are the stored record's (``history show --json``'s
     ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""

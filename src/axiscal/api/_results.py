@@ -262,7 +262,13 @@ class Simulation:
         """The object of the command's ``--json``: ``axiscal simulate`` (the ISO 230-2 keys,
         ``truth``, ``seed``), ``rotary simulate``, ``scale home``, ``scale gantry``, ``motion
         simulate``, ``ballbar simulate``, ``volumetric map``, ``volumetric compensate`` or
-        ``compensate-environment``."""
+        ``compensate-environment``. A volumetric map's carries its figures' U, as the
+        history's record of the same file (the user configuration's
+        ``[volumetric_uncertainty]``)."""
+        if self.kind == "volumetric-map":
+            from axiscal.report.simulation_views import volumetric_map_record
+
+            return volumetric_map_record(self.test).stored_result()
         from axiscal.io.simulation_results import simulation_dict
 
         return simulation_dict(self.kind, self.test, self.seed)

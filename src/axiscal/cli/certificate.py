@@ -152,9 +152,9 @@ def issue(test_id: int = typer.Argument(..., help="The stored test (history list
     """Certify a stored test of any kind with an uncertainty budget, numbered by the register.
 
     Positioning (ISO 230-2), diagonal squareness, ballbar (G and H), five-axis location
-    errors and ISO 230-3 thermal tests: each result with its U and k, decided by ISO 14253-1
-    against the tolerances given. A kind without a budget (straightness, five motion errors,
-    volumetric) is refused: a statement of conformity needs U.
+    errors, ISO 230-3 thermal and volumetric tests: each result with its U and k, decided by
+    ISO 14253-1 against the tolerances given. A kind without a budget (straightness, five
+    motion errors) is refused: a statement of conformity needs U.
 
     Example: axiscal certificate issue 4 --job job.toml --tolerance squareness=20 --out sq.pdf
     """

@@ -15,6 +15,10 @@ JSON output (``--json``), stable keys, units in the key names:
   ``start_mm``, ``end_mm``, ``range_um``), ``missing`` (error motions taken as zero); for a
   simulated configuration also ``truth`` (``largest_um``, ``range_um``) and
   ``mapped_minus_true_um`` (largest |mapped − true| over the grid).
+  ``quantities`` (schema 1: ``largest``, ``range_X`` …, ``diagonal_PPP`` … with ``U`` and
+  ``k``), ``uncertainty_inputs`` and ``uncertainty_budget``: the budget of
+  :mod:`axiscal.standards.iso230_9_volumetric` from the user configuration's
+  ``[volumetric_uncertainty]`` (and an inline error's own ``U``), as the history stores it.
 * ``compensate``: ``controller``, ``receiving``, ``files`` (names written), ``left_by_tables_um``;
   with ``--verify`` also ``verify``: ``figures`` (name -> ``before_um``, ``after_um``,
   ``reduction``), ``spindle_tilt_um_per_m``, ``left_by_tables_um``. With ``--controller
@@ -130,6 +134,9 @@ def map_(
     mapped = api.volumetric_map(config, grid)
     sim = mapped.test
     cfg = sim.parts["config"]
+    from axiscal.report.simulation_views import volumetric_map_record
+
+    rec = volumetric_map_record(sim)      # its U: a bad [volumetric_uncertainty] writes nothing
     if inline:
         _write_inline(config, inline, cfg)
     e = cfg.errors
@@ -139,7 +146,7 @@ def map_(
     if report:
         mapped.report(report)
     if as_json:
-        print_json(out)
+        print_json(rec.stored_result())     # = mapped.to_dict(): the same record
         return
     typer.echo(f"volumetric map of {cfg.name} (chain {e.chain}), {grid}³ grid, tool offset "
                f"{', '.join(f'{v * 1e3:g}' for v in cfg.tool_offset)} mm")
@@ -151,6 +158,13 @@ def map_(
     if truth is not None:
         typer.echo(f"  simulation truth: {truth}; largest |mapped − true| "
                    f"{out['mapped_minus_true_um']:.3f} µm")
+    from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
+
+    typer.echo(f"  with their expanded uncertainty (k = {rec.budget.k:g}; {rec.budget.method}; "
+               "inputs in the user configuration's [volumetric_uncertainty]): " + "; ".join(
+                   f"{q.name} {format_value(q.value, q.U)} ± {format_uncertainty(q.U)} µm"
+                   for q in rec.quantities.values() if q.U is not None))
+
 
 
 @app.command("compensate")

@@ -19,6 +19,9 @@ Format
     ECX = "X_ECX.csv"               # angular file (position,deviation, deviation_unit=arcsec)
     EAY = { positions_mm = [0, 250, 500], values = [0, 1.5, 0.5], unit = "arcsec" }
     EZZ = { polynomial = [0, 0.01], unit = "um" }   # c0 + c1·p + …, p in mm
+    EBX = { positions_mm = [0, 400, 800], values = [0, 2, 1], unit = "urad", U = 1.5 }
+                                    # U: its expanded uncertainty (k = 2) in its unit, over
+                                    # [volumetric_uncertainty] (iso230_9_volumetric)
 
     [squareness]                    # µm/m, positive when the angle exceeds 90°
     xy = 25.0
@@ -69,6 +72,8 @@ class VolumetricConfig:
                  simulation: dict, path: Path):
         self.errors, self.tool_offset, self.name = errors, np.asarray(tool_offset, float), name
         self.compensation, self.simulation, self.path = compensation, simulation, path
+        #: U (k = 2, m or rad) an inline error states (``U`` in its table), by error name.
+        self.uncertainty: dict = {}
         #: Every file the configuration was read from: itself and the measured files it names
         #: (an output written into their folder must not replace one).
         self.inputs: tuple = (path,)
@@ -133,6 +138,7 @@ def parse_volumetric_config(text: str, source: str = "<text>", base=".") -> Volu
     except AxiscalError as exc:
         raise ConfigError(f"{p}: {exc}") from None
     out = VolumetricConfig(errors, tool, str(m.get("name", p.stem)), comp, sim, p)
+    out.uncertainty = _given_uncertainty(errs, p)
     out.inputs = (p, *(Path(base or ".") / spec for spec in errs.values()
                        if isinstance(spec, str)))
     return out
@@ -301,13 +307,8 @@ def _function(name: str, spec, p: Path, base: Path) -> ErrorFunction:
         return _from_file(name, base / spec, angular)
     if not isinstance(spec, dict):
         raise ConfigError(f"{p}: [errors] {name} = {spec!r}: give a file name or an inline table")
-    _known(spec, {"positions_mm", "values", "polynomial", "unit"}, p, f"[errors] {name}")
-    unit = str(spec.get("unit", "arcsec" if angular else "um"))
-    try:
-        f = (1e-6 if unit.replace("µ", "u").lower() == "um/m" and angular
-             else units.factor(unit, "angle" if angular else "length"))
-    except AxiscalError as exc:
-        raise ConfigError(f"{p}: [errors] {name}: {exc}") from None
+    _known(spec, {"positions_mm", "values", "polynomial", "unit", "U"}, p, f"[errors] {name}")
+    f = _unit_factor(name, spec, p)
     if "polynomial" in spec:
         coef = [_number(c, p, f"[errors] {name} polynomial", 1e6) for c in
                 _list(spec["polynomial"], p, name)]
@@ -322,6 +323,32 @@ def _function(name: str, spec, p: Path, base: Path) -> ErrorFunction:
         return ErrorFunction(np.array(u) * 1e-3, np.array(v) * f, f"{name} inline")
     except AxiscalError as exc:
         raise ConfigError(f"{p}: [errors] {name}: {exc}") from None
+
+
+def _unit_factor(name: str, spec: dict, p: Path) -> float:
+    """SI per unit of an inline error's ``unit`` (default µm, or arcsec for an angle)."""
+    angular = name[1] in "ABC"
+    unit = str(spec.get("unit", "arcsec" if angular else "um"))
+    try:
+        return (1e-6 if unit.replace("µ", "u").lower() == "um/m" and angular
+                else units.factor(unit, "angle" if angular else "length"))
+    except AxiscalError as exc:
+        raise ConfigError(f"{p}: [errors] {name}: {exc}") from None
+
+
+def _given_uncertainty(errs: dict, p: Path) -> dict:
+    """``U`` (k = 2) of each inline error that states one, SI (m or rad): in the error's own
+    ``unit``, a finite number ≥ 0 (:mod:`axiscal.standards.iso230_9_volumetric` uses it over
+    its class's input)."""
+    out = {}
+    for name, spec in errs.items():
+        if isinstance(spec, dict) and "U" in spec:
+            v = _number(spec["U"], p, f"[errors] {name} U", 1e6)
+            if v < 0:
+                raise ConfigError(f"{p}: [errors] {name} U = {v!r}: an expanded uncertainty "
+                                  "(k = 2) ≥ 0 in the error's unit")
+            out[name] = v * _unit_factor(name, spec, p)
+    return out
 
 
 def _from_file(name: str, path: Path, angular: bool) -> ErrorFunction:

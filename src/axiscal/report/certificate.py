@@ -63,6 +63,7 @@ _SECTIONS = {
     "squareness_uncertainty": None,  # read by the squareness commands
     "ballbar_uncertainty": None,  # a ballbar test's budget (standards/iso230_9_ballbar.py)
     "motion_uncertainty": None,  # an ISO 230-7 test's budget (standards/iso230_7_uncertainty.py)
+    "volumetric_uncertainty": None,  # a volumetric map's budget (iso230_9_volumetric.py)
 }
 
 

@@ -497,7 +497,7 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
         run = ev.dataset
         cfg = run.parts["config"]
         rep = volumetric_report(ev.result, run.parts["diagonals"], cfg.errors, name=cfg.name,
-                                truth=run.parts["truth"])
+                                truth=run.parts["truth"], budget=ev.budget)
         if title is not None:
             rep.title = title
         return rep.write(path)

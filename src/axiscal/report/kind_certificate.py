@@ -9,7 +9,8 @@ certificate: :mod:`axiscal.report.certificate`), a diagonal squareness test (ISO
 squareness from two straightness profiles (ISO/TR 230-9), a
 ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-motion-error
 test's ISO 230-7 values (:mod:`axiscal.standards.iso230_7_uncertainty`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
-thermal test. Any other kind is refused in one line naming why.
+thermal test, and a volumetric test (:mod:`axiscal.standards.iso230_9_volumetric`). Any other
+kind is refused in one line naming why.
 
 The path is one for every kind, keyed by nothing but the stored record
 (:class:`~axiscal.store.kinds.Evaluated`: its parameters, its budget, its inputs):

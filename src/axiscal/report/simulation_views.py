@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 __all__ = ["simulation_figure", "write_simulation_report", "any_simulation_figure",
+           "volumetric_map_record",
            "write_any_simulation_report", "MOUNTING_NOTE"]
 
 #: Said beside a five-DOF simulation's measured-minus-true errors (terminal and report).
@@ -174,12 +175,13 @@ def write_simulation_report(run: Any, path: Any, name: str = "") -> Path:
 
         return write_diagnosis_report(path, run.record.runs, evaluate_ballbar(run.record),
                                       title=f"Ballbar diagnosis of a simulated test — {name}")
-    if run.kind == "volumetric-map":
+    if run.kind == "volumetric-map":   # with the budget of the record (as --json states it)
         from axiscal.report.volumetric_plots import volumetric_report
 
         cfg = run.parts["config"]
         return volumetric_report(run.record, run.parts["diagonals"], cfg.errors, name=cfg.name,
-                                 truth=run.parts["truth"]).write(path)
+                                 truth=run.parts["truth"],
+                                 budget=volumetric_map_record(run).budget).write(path)
     if run.kind == "volumetric-compensation":
         fig = _verify_figure(run, name) if run.parts["verify"] is not None else None
         return write_result_report(path, f"Volumetric compensation — {name}", run.json,
@@ -230,3 +232,16 @@ def _verify_figure(run: Any, name: str) -> Any:
                  f"{name}", fontsize=10)
     fig.tight_layout()
     return fig
+
+
+def volumetric_map_record(run):
+    """``axiscal volumetric map``'s run as the history's record of it
+    (:func:`axiscal.store.kinds.volumetric_record`) with its budget
+    (:func:`axiscal.store.kinds.with_uncertainty`) from the user configuration's
+    ``[volumetric_uncertainty]`` (:func:`axiscal.store.kinds.inputs_from_config`): the one record
+    its ``--json``, its text and its report state."""
+    from axiscal.io.user_config import load_user_config
+    from axiscal.store.kinds import inputs_from_config, volumetric_record, with_uncertainty
+
+    return with_uncertainty(volumetric_record(run),
+                            inputs_from_config("volumetric", load_user_config()))

@@ -92,11 +92,13 @@ def diagonals_figure(predicted, measured=None, title: str = ""):
 
 
 def volumetric_report(vmap, diagonals, errors, *, name: str, measured=None, truth=None,
-                      tables=None):
+                      tables=None, budget=None):
     """The HTML report (:class:`~axiscal.report.html.Report`) of a volumetric map.
 
     ``truth`` (a map of a simulated machine's true error) is shown only for a simulation, in a
-    section headed as such.
+    section headed as such. ``budget``: the record's uncertainty budget
+    (:func:`~axiscal.standards.iso230_9_volumetric.volumetric_budget`): each figure's U (k)
+    beside it, the budget's inputs and notes.
     """
     from axiscal.report.html import Report
 
@@ -108,17 +110,23 @@ def volumetric_report(vmap, diagonals, errors, *, name: str, measured=None, trut
                   "reference point [mm]": ", ".join(f"{v * 1e3:g}" for v in errors.reference),
                   "tool offset [mm]": ", ".join(f"{v * 1e3:g}" for v in vmap.tool_offset),
                   "grid points": s["grid_points"]})
+    def U(key: str) -> list:
+        return [] if budget is None else [budget.U_text(key)]
+
+    u_head = [] if budget is None else [f"U (k = {budget.k:g}) [µm]"]
     rep.add_heading("Volumetric accuracy")
-    rep.add_table(["figure", "value [µm]", "where [mm]"],
-                  [["largest |E|", s["largest_um"], ", ".join(f"{v:.0f}" for v in
-                                                              s["largest_at_mm"])]]
-                  + [[f"range of E{a.lower()}", s["range_um"][a], ""] for a in AXES], digits=2)
+    rep.add_table(["figure", "value [µm]"] + u_head + ["where [mm]"],
+                  [["largest |E|", s["largest_um"], *U("largest"),
+                    ", ".join(f"{v:.0f}" for v in s["largest_at_mm"])]]
+                  + [[f"range of E{a.lower()}", s["range_um"][a], *U(f"range_{a}"), ""]
+                     for a in AXES], digits=2)
     rep.add_figure(volumetric_figure(vmap), "Error field: the grid magnified, and |E| slices "
                    "through the reference point.")
     rep.add_heading("Body diagonals (ISO 230-6:2002)")
-    rep.add_table(["diagonal", "predicted range [µm]"] + (["measured range [µm]"] if measured
-                                                         else []),
-                  [[d.name, d.range * 1e6] + ([m.range * 1e6] if measured else [])
+    rep.add_table(["diagonal", "predicted range [µm]"] + u_head
+                  + (["measured range [µm]"] if measured else []),
+                  [[d.name, d.range * 1e6, *U(f"diagonal_{d.name}")]
+                   + ([m.range * 1e6] if measured else [])
                    for d, m in zip(diagonals, measured or diagonals)], digits=2)
     rep.add_figure(diagonals_figure(diagonals, measured))
     rep.add_heading("Inputs")
@@ -126,6 +134,12 @@ def volumetric_report(vmap, diagonals, errors, *, name: str, measured=None, trut
                                           errors.squareness.items()], digits=2)
     if errors.missing:
         rep.add_warnings([f"not measured, taken as zero: {', '.join(errors.missing)}"])
+    if budget is not None:
+        rep.add_table(["input", "value", "", "rule or source"],
+                      [[i.label, i.value_text, "assumed" if i.assumed else "given", i.rule]
+                       for i in budget.inputs], caption=f"Uncertainty budget: {budget.method}")
+        for note in budget.notes:
+            rep.add_text(note)
     if tables is not None:
         rep.add_heading("Compensation")
         rep.add_text(str(tables))

@@ -41,13 +41,14 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
            "evaluate_file", "jsonable", "other_standards", "result_text", "positioning_record",
            "with_uncertainty", "inputs_from_config", "budget_of", "UNCERTAINTY_TABLE",
            "drift_check_record", "drift_check_from_readings", "with_drift_check",
-           "IdentificationBudget", "ThermalBudget"]
+           "IdentificationBudget", "ThermalBudget", "volumetric_record"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness and, axiscal's reading of it, a ballbar's G and H); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty",
                      "ballbar": "ballbar_uncertainty", "motion": "motion_uncertainty",
-                     "squareness": "squareness_uncertainty"}   # two straightness profiles
+                     "squareness": "squareness_uncertainty",   # two straightness profiles
+                     "volumetric": "volumetric_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
          "volumetric", "fiveaxis-ballbar", "squareness")
@@ -218,7 +219,8 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     (:func:`~axiscal.standards.iso230_7_uncertainty.motion_budget`), a squareness
     from two straightness profiles (ISO/TR 230-9, its one evaluation made again with these
     inputs, since its result states U), a five-axis
-    identification's and a thermal test's own; the other kinds keep none. Every path that shows a U (command, history, workbench, report,
+    identification's and a thermal test's own, a volumetric map's figures
+    (:func:`~axiscal.standards.iso230_9_volumetric.volumetric_budget`); the other kinds keep none. Every path that shows a U (command, history, workbench, report,
     certificate, API) takes it from here."""
     inputs = dict(inputs or {})
     if ev.kind == "squareness":     # its --json holds U: the one evaluation, with these inputs
@@ -254,6 +256,12 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         return evaluation.budget
     if kind == "squareness":            # ISO/TR 230-9, made by its one evaluation (biaxial)
         return dataset.evaluate(inputs).budget
+    if kind == "volumetric":            # the map's figures from the 21 errors' U
+        from axiscal.standards.iso230_9_volumetric import volumetric_budget
+
+        cfg = dataset.parts["config"]
+        return volumetric_budget(cfg.errors, evaluation, dataset.parts["diagonals"], inputs,
+                                 getattr(cfg, "uncertainty", {}))
     return None
 
 
@@ -654,9 +662,16 @@ def _volumetric(text: str, filename: str) -> Evaluated:
     from axiscal.io.simulation_results import volumetric_map
     from axiscal.io.volumetric import parse_volumetric_config
 
-    cfg = parse_volumetric_config(text, filename, base=None)
-    run = volumetric_map(cfg, VOLUMETRIC_GRID)
-    d = run.json
+    return volumetric_record(volumetric_map(parse_volumetric_config(text, filename, base=None),
+                                            VOLUMETRIC_GRID))
+
+
+def volumetric_record(run) -> Evaluated:
+    """A volumetric map's run (:func:`axiscal.io.simulation_results.volumetric_map`) as the
+    record the history keeps of it (:func:`_volumetric`), with no budget yet
+    (:func:`with_uncertainty` adds it): the one shape of ``volumetric map --json`` and of the
+    stored test."""
+    cfg, d = run.parts["config"], run.json
     params = {"largest": (d["largest_um"], "um"),
               **{f"range_{a}": (v, "um") for a, v in d["range_um"].items()},
               **{f"diagonal_{g['name']}": (g["range_um"], "um") for g in d["diagonals"]}}
