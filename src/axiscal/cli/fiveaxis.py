@@ -301,15 +301,31 @@ def ballbar_simulate(
 def ballbar_evaluate(
     files: List[Path] = typer.Argument(..., help="Ballbar CSV files (README, 'Five-axis "
                                        "ballbar tests')."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the report (set-up, "
+                                          "readings, range with U, budget, inputs): HTML "
+                                          "(.html) or PDF (.pdf); the history's report of a "
+                                          "stored test."),
+    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Upper limit of each "
+                                              "range, µm: the report decides it by ISO "
+                                              "14253-1:2017 (with --report)."),
     as_json: bool = _JSON,
 ):
     """The range of each ballbar file's readings with its uncertainty budget (k = 2).
 
-    Example: axiscal fiveaxis ballbar evaluate bb/1_ballbar.csv --json
+    Example: axiscal fiveaxis ballbar evaluate bb/1_ballbar.csv --report bb.pdf --tolerance 20
     """
     from axiscal.api import fiveaxis
+    from axiscal.cli._common import report_path
 
+    if tolerance is not None and report is None:
+        from axiscal.errors import InputError
+
+        raise InputError("--tolerance is decided in the report: give --report too")
+    if report is not None:
+        report_path(report)
     done = fiveaxis.ballbar.evaluate(files)
+    if report is not None:
+        fiveaxis.ballbar.report(done, report, tolerance)
     if as_json:
         print_json(done.to_dict())
         return
