@@ -304,7 +304,8 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
             if not who:
                 raise InputError(f"{LABELS['operator']}: give your name; the history records "
                                  "who kept the drift check")
-            add_drift_check(st, test_id, drift[0], drift[1], by=who)
+            ctx["drift_notice"] = add_drift_check(st, test_id, drift[0], drift[1],
+                                                  by=who).notice
             ctx["drift_checks"] = _drift_checks(st, test_id)
         cfg = signoff_config(st, t, load_config(None), job, lab)
         _verdict(ctx, ev, cfg, tolerances, rule)
