@@ -31,7 +31,7 @@ from axiscal.store.laboratory import (add_drift_check, drift_checks, laboratory,
 from axiscal.store.models import DriftCheck, Laboratory
 from tests.store.test_archive_trust import rewrite
 
-#: The laboratory as the workbench keeps it (the tables of tests/report/test_certificate_issue's
+#: The laboratory as the workbench keeps it (the tables of tests/report/certificate_jobs.py's
 #: COMPLETE configuration that identify the laboratory), with a CMC and a declared E_VE.
 LAB = {"company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "Stuttgart"],
                    "code": "PM"},
