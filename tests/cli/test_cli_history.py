@@ -77,7 +77,8 @@ def test_export_import(tmp_path, files):
         _run("history", "add", str(f), "--db", a)
     _run("history", "export", str(tmp_path / "h.zip"), "--db", a)
     r = json.loads(_run("history", "import", str(tmp_path / "h.zip"), "--db", b, "--json").stdout)
-    assert r == {"archive": str(tmp_path / "h.zip"), "added": 3, "duplicates": 0}
+    assert r == {"archive": str(tmp_path / "h.zip"), "added": 3, "duplicates": 0, "audit": 0,
+                 "laboratory": 0, "drift_checks": 0, "certificates": 0, "documents": 0}
 
 
 def test_iso230_2_history_stores_the_run(tmp_path, files):

@@ -15,26 +15,10 @@ from axiscal.errors import AxiscalError
 from axiscal.procedures.positioning import simulate_from_config
 from axiscal.report.issue import write_certificate
 from axiscal.store import open_store
+from tests.report.certificate_jobs import COMPLETE
 
 from pdf_pages import pdf_text, render_pages, used_fraction
 
-#: Every mandatory item given (the certificate is issued).
-COMPLETE = {
-    "company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "Stuttgart"],
-                "code": "PM"},
-    "operator": {"name": "J. Keller"},
-    "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
-    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042",
-                "location": "Example Machining AG, hall 2"},
-    "conditions": {"date": "2026-11-20", "air_temperature": 20.4, "material_temperature": 20.6,
-                   "measuring_line": "100 mm above the table centre", "feed": "2000 mm/min",
-                   "dwell": "4 s"},
-    "instrument": [{"name": "Laser interferometer", "serial": "L-1", "certificate": "C-77",
-                    "due": "2027-04-30"}],
-    "certificate": {"signatory": "Dr. M. Braun", "signatory_role": "Head of laboratory",
-                    "specification": "Contract 4711"},
-    "uncertainty": {"e_ve": 0.8, "e_ve_source": "drift check"},
-}
 TOL = {"E": 25.0, "R": 8.0}
 
 

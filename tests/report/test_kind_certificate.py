@@ -22,21 +22,7 @@ from axiscal.errors import InputError
 from axiscal.report.kind_certificate import certificate_record, write_kind_certificate
 from axiscal.standards.uncertainty_reporting import format_uncertainty, format_value
 from axiscal.store import open_store
-
-#: Every mandatory item given, as tests/report/test_certificate_issue.py's COMPLETE.
-COMPLETE = {
-    "company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "Stuttgart"],
-                "code": "PM"},
-    "operator": {"name": "J. Keller"},
-    "customer": {"name": "Example Machining AG", "address": ["Industriestr. 4", "Esslingen"]},
-    "machine": {"maker": "Example", "model": "VMC-800", "serial": "VMC8-0042",
-                "location": "Example Machining AG, hall 2"},
-    "conditions": {"date": "2026-11-20"},
-    "instrument": [{"name": "Laser interferometer", "serial": "L-1", "certificate": "C-77",
-                    "due": "2027-04-30"}],
-    "certificate": {"signatory": "Dr. M. Braun", "signatory_role": "Head of laboratory",
-                    "specification": "Contract 4711", "issued": "2026-11-25"},
-}
+from tests.report.certificate_jobs import KIND_COMPLETE as COMPLETE
 
 DIAGONAL = ("# length_x_mm=600 length_y_mm=800\ndiagonal,position,error\n"
             "D1,100,0.6\nD1,500,3.0\nD1,1000,6.0\nD2,100,-0.3\nD2,500,-1.5\nD2,1000,-3.0\n")

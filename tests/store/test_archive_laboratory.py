@@ -31,7 +31,7 @@ from axiscal.store.laboratory import (add_drift_check, drift_checks, laboratory,
 from axiscal.store.models import DriftCheck, Laboratory
 from tests.store.test_archive_trust import rewrite
 
-#: The laboratory as the workbench keeps it (the tables of tests/report/test_certificate_issue's
+#: The laboratory as the workbench keeps it (the tables of tests/report/certificate_jobs.py's
 #: COMPLETE configuration that identify the laboratory), with a CMC and a declared E_VE.
 LAB = {"company": {"name": "Precision Metrology GmbH", "address": ["Messweg 12", "Stuttgart"],
                    "code": "PM"},
@@ -369,3 +369,28 @@ def test_a_drift_check_file_missing_or_altered_is_refused(source, tmp_path):
         with pytest.raises(AxiscalError, match=words):
             import_history(dst, bad)
         _empty(dst)
+
+
+def test_history_import_says_what_came_in_beside_the_tests(source, tmp_path):
+    """``history import`` counts the laboratory, the drift-check files, the register's
+    certificates and their documents and the audit entries it brought, not only the tests; run
+    again, it says none came in (everything was kept)."""
+    import re
+
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app
+
+    d, _src, _ids = source
+    url = f"sqlite:///{tmp_path / 'cli.sqlite'}"
+    r = CliRunner().invoke(app, ["history", "import", str(d / "h.zip"), "--db", url])
+    assert r.exit_code == 0, r.output
+    line = r.output.strip().splitlines()[-1]
+    assert re.search(r"imported 2 tests from \S+h\.zip \(0 already stored\); 4 audit entries, "
+                     r"1 laboratory record, 2 drift-check files, 1 certificates, 1 issued "
+                     r"documents$", line), line
+    r = CliRunner().invoke(app, ["history", "import", str(d / "h.zip"), "--db", url, "--json"])
+    assert r.exit_code == 0, r.output
+    assert {k: v for k, v in json.loads(r.stdout).items() if k != "archive"} == {
+        "added": 0, "duplicates": 2, "audit": 0, "laboratory": 0, "drift_checks": 0,
+        "certificates": 0, "documents": 0}

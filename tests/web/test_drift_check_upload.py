@@ -1,6 +1,7 @@
 """A drift check (ISO 230-2:2014 Annex A.5) kept with a positioning test already in the
-workbench, from the test's page (issue 44): the form posts the file, the one library call
-(:func:`axiscal.store.laboratory.add_drift_check`, through
+workbench (issue 44), through the one field the test's page has for it: the sign-off form's
+"Drift check file" (issue 40: the test's own box had a second one). The form posts the file, the
+one library call (:func:`axiscal.store.laboratory.add_drift_check`, through
 :func:`axiscal.store.kinds.drift_check_record`) keeps it, and the page shows its E_VE as
 measured; the stored budget's u_EVE is the command line's for the same files
 (``axiscal iso230-2 FILE --drift-check DC``). Refused files: the reason in words at the form,
@@ -36,34 +37,46 @@ def bench(tmp_path, monkeypatch):
     return c
 
 
-def _post(c, content: bytes | None, name: str = "drift.csv", **fields):
+def _post(c, content: bytes | None, name: str = "drift.csv", test: int = 1, **fields):
+    """The sign-off form's "Show the verdict" with a drift-check file."""
     files = {"drift_check": (name, content, "text/csv")} if content is not None else None
-    data = {"csrf": c.token, "by": "A. Operator", **fields}
-    return c.post("/tests/1/drift-check", data=data, files=files, follow_redirects=False)
+    data = {"csrf": c.token, "action": "verdict", "operator": "A. Operator", **fields}
+    return c.post(f"/tests/{test}/signoff", data=data, files=files, follow_redirects=False)
 
 
 def _u_eve(budget: dict) -> dict:
     return next(x for x in budget["contributors"] if x["name"] == "u_EVE")
 
 
-def test_a_drift_check_uploaded_on_the_tests_page_gives_its_measured_e_ve(bench, tmp_path):
+def test_the_tests_page_has_one_drift_check_field_the_sign_off_forms(bench):
+    """One file field named drift_check on the page, inside the sign-off form; the test's
+    Drift check box says what is kept and links to that field."""
+    page = bench.get("/tests/1").text
+    assert len(re.findall(r'type="file" name="drift_check"', page)) == 1
+    form = page.split('id="signoff-form"')[1].split("</form>")[0]
+    assert 'type="file" name="drift_check"' in form
+    box = page.split('id="drift-check"')[1].split("</div>")[0]
+    assert 'id="no-drift-check"' in box and 'href="#f-drift_check"' in box
+    assert "<form" not in box
+
+
+def test_a_drift_check_given_on_the_sign_off_form_gives_its_measured_e_ve(bench, tmp_path):
     from axiscal.store.corrections import audit
     from axiscal.store.laboratory import drift_checks
 
+    r = _post(bench, DRIFT)
+    assert r.status_code == 200, r.text[-2000:]
+    assert "E_VE = 0.6 µm" in r.text.split('id="drift-kept"')[1].split("</p>")[0]
     page = bench.get("/tests/1").text
-    assert 'id="drift-check-form"' in page and 'id="no-drift-check"' in page
-    r = _post(bench, DRIFT, reason="set-up checked before the run")
-    assert r.status_code == 303 and r.headers["location"] == "/tests/1?drift=kept#drift-check"
-    page = bench.get(r.headers["location"]).text
     block = page.split('id="drift-check"')[1].split("</div>")[0]
     assert "0.6000 µm" in block and "<strong>measured</strong>" in block
-    assert "4 readings" in block and 'id="drift-kept-now"' in block
+    assert "4 readings" in block and "Another drift check" in block
     st = bench.app.state.store
     (kept,) = drift_checks(st, 1)
     assert (kept.filename, kept.readings, kept.by) == ("drift.csv", 4, "A. Operator")
     assert kept.e_ve == pytest.approx(0.60)
     entry = next(a for a in audit(st) if a.action == "drift-check")
-    assert entry.reason == "set-up checked before the run" and entry.new["e_ve"] == 0.6
+    assert entry.new["e_ve"] == 0.6
     stored = json.loads(bench.get("/tests/1/result.json").text)
     assert stored["uncertainty_inputs"]["e_ve_source"] == "drift check"
     # one record, every path: the stored budget's u_EVE is the command line's
@@ -81,33 +94,31 @@ def test_a_drift_check_uploaded_on_the_tests_page_gives_its_measured_e_ve(bench,
 REFUSED = [
     (b"reading\n0.1\n", "one.csv", {}, "at least 2"),
     (b"reading\n0.1\nabc\n", "text.csv", {}, "abc"),
-    (b"", "empty.csv", {}, "the file is empty"),
-    (None, "", {}, "choose the drift-check file"),
-    (DRIFT, "drift.csv", {"by": ""}, "your name"),
+    (b"", "empty.csv", {}, "empty.csv is empty"),
+    (DRIFT, "drift.csv", {"operator": ""}, "give your name"),
 ]
 
 
 def test_a_refused_drift_check_is_said_at_the_form_and_nothing_is_kept(bench):
-    """A file of one reading, a reading that is not a number, an empty file, no file, no name
-    (the no-login workbench: the audit trail records who): 400, the reason after "Not kept:"
-    inside the form, the test's record unchanged, no drift check kept."""
+    """A file of one reading, a reading that is not a number, an empty file, no name (the
+    no-login workbench: the audit trail records who): 400, the reason at the sign-off form, the
+    test's record unchanged, no drift check kept."""
     from axiscal.store.laboratory import drift_checks
 
     before = bench.get("/tests/1/result.json").text
     for content, name, fields, words in REFUSED:
         r = _post(bench, content, name, **fields)
         assert r.status_code == 400, name
-        said = re.search(r'id="drift-error">(.*?)</p>', r.text, re.S)
+        said = re.search(r'id="signoff-error">(.*?)</div>', r.text, re.S)
         assert said and words in said.group(1), (name, r.text[-2000:])
-        form = r.text.split('id="drift-check-form"')[1].split("</form>")[0]
-        assert 'id="drift-error"' in form                    # said at the form
         assert drift_checks(bench.app.state.store, 1) == []
         assert bench.get("/tests/1/result.json").text == before
 
 
 def test_a_drift_check_goes_only_with_a_positioning_test(bench, tmp_path):
-    """A thermal log's page has no drift-check form; a drift check posted for it is refused in
-    the library's words (E_VE is an input of a positioning test's budget), shown on its page."""
+    """A thermal log's page has no drift-check box or field; a drift check posted with its
+    sign-off is refused in the library's words (E_VE is an input of a positioning test's
+    budget); the box's old address is gone."""
     import axiscal
     from axiscal.io.thermal import write_thermal_log
     from axiscal.store.laboratory import drift_checks
@@ -117,11 +128,12 @@ def test_a_drift_check_goes_only_with_a_positioning_test(bench, tmp_path):
     r = bench.post("/upload", data={"csrf": bench.token, "machine": "VMC", "axis": "X"},
                    files={"file": (log.name, log.read_bytes(), "text/csv")})
     assert r.status_code == 200 and "/tests/2" in str(r.url)
-    assert 'id="drift-check-form"' not in r.text and 'id="drift-check"' not in r.text
-    r = bench.post("/tests/2/drift-check", data={"csrf": bench.token, "by": "A. Operator"},
-                   files={"drift_check": ("drift.csv", DRIFT, "text/csv")},
-                   follow_redirects=False)
+    assert 'name="drift_check"' not in r.text and 'id="drift-check"' not in r.text
+    r = _post(bench, DRIFT, test=2)
     assert r.status_code == 400
-    said = re.search(r'id="drift-error">(.*?)</p>', r.text, re.S).group(1)
+    said = re.search(r'id="signoff-error">(.*?)</div>', r.text, re.S).group(1)
     assert "is a thermal test" in said and "positioning test" in said
     assert drift_checks(bench.app.state.store, 2) == []
+    r = bench.post("/tests/1/drift-check", data={"csrf": bench.token},
+                   files={"drift_check": ("drift.csv", DRIFT, "text/csv")})
+    assert r.status_code in (404, 405)

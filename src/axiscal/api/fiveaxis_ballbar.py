@@ -28,7 +28,7 @@ TYPE_CHECKING = False   # as typing.TYPE_CHECKING, without importing typing
 if TYPE_CHECKING:   # pragma: no cover - for type checkers
     from axiscal.machines.five_axis import FiveAxisMachine
 
-__all__ = ["plan", "simulate", "evaluate", "BallbarPlanned", "BallbarSimulated",
+__all__ = ["plan", "simulate", "evaluate", "report", "BallbarPlanned", "BallbarSimulated",
            "BallbarEvaluated"]
 
 
@@ -169,6 +169,22 @@ def evaluate(files) -> BallbarEvaluated:
         except InputError as exc:
             raise InputError(f"{f}: {exc}") from None
     return BallbarEvaluated(records, tuple(results), tuple(files))
+
+
+def report(done: BallbarEvaluated, path, tolerance: float | None = None,
+           rule: str | None = None) -> Path:
+    """Write the report of evaluated set-ups (``axiscal fiveaxis ballbar evaluate --report``):
+    :func:`axiscal.report.five_axis_ballbar.ballbar_report`, the report the history writes of
+    a stored test; HTML (``.html``) or PDF (``.pdf``); ``tolerance`` (µm) bounds each range.
+    Returns the path."""
+    from axiscal.report.evaluations import REPORT_TITLES
+    from axiscal.report.five_axis_ballbar import ballbar_report
+
+    labels = ", ".join(r.label for r in done.results)
+    rep = ballbar_report(zip(done.records, done.results), tolerance=tolerance, rule=rule,
+                         title=f"{REPORT_TITLES['fiveaxis-ballbar']} — {labels}",
+                         metadata={"files": ", ".join(Path(f).name for f in done.files)})
+    return Path(rep.write(path))
 
 
 def _load(config):

@@ -97,11 +97,7 @@ def plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
     """
     from axiscal.api import fiveaxis
 
-    planned = fiveaxis.plan(config_for(config, machine), squareness)
-    if as_json:
-        print_json(planned.to_dict())
-        return
-    typer.echo(str(planned))
+    _show(fiveaxis.plan(config_for(config, machine), squareness), as_json)
 
 
 @app.command("simulate")
@@ -134,12 +130,7 @@ def simulate(
                             on_controller=on_controller)
     if report is not None:
         fiveaxis.report(cfg, sim.result, report, files=sim.files, truth=sim.truth())
-    if as_json:
-        print_json(sim.to_dict())
-        return
-    typer.echo(str(sim))
-    for f in sim.files:
-        typer.echo(f"wrote {f}")
+    _show(sim, as_json, sim.files)
 
 
 @app.command("identify")
@@ -175,10 +166,7 @@ def identify(
         fiveaxis.figure(cfg, result).savefig(plot, dpi=110)
     if report is not None:
         fiveaxis.report(cfg, result, report, files=files)
-    if as_json:
-        print_json(result.to_dict())
-        return
-    typer.echo(str(result))
+    _show(result, as_json)
 
 
 @app.command("compensate")
@@ -241,13 +229,7 @@ def compensate(
         import json
 
         write_bytes_atomic(offsets, (json.dumps(eo, indent=1) + "\n").encode("utf-8"))
-    if as_json:
-        print_json(comp.to_dict())
-        return
-    typer.echo(str(comp))
-    for path in (out, table, offsets, sinumerik):
-        if path is not None:
-            typer.echo(f"wrote {path}")
+    _show(comp, as_json, [p for p in (out, table, offsets, sinumerik) if p is not None])
 
 
 ballbar_app = typer.Typer(help="Ballbar tests of the rotary axes moving with the linear axes "
@@ -266,11 +248,7 @@ def ballbar_plan(config: Optional[Path] = _CONFIG, machine: str = _MACHINE,
     """
     from axiscal.api import fiveaxis
 
-    planned = fiveaxis.ballbar.plan(config_for(config, machine))
-    if as_json:
-        print_json(planned.to_dict())
-        return
-    typer.echo(str(planned))
+    _show(fiveaxis.ballbar.plan(config_for(config, machine)), as_json)
 
 
 @ballbar_app.command("simulate")
@@ -289,31 +267,50 @@ def ballbar_simulate(
     from axiscal.api import fiveaxis
 
     sim = fiveaxis.ballbar.simulate(config_for(config, machine), seed=seed, out=out)
-    if as_json:
-        print_json(sim.to_dict())
-        return
-    typer.echo(str(sim))
-    for f in sim.files:
-        typer.echo(f"wrote {f}")
+    _show(sim, as_json, sim.files)
 
 
 @ballbar_app.command("evaluate")
 def ballbar_evaluate(
     files: List[Path] = typer.Argument(..., help="Ballbar CSV files (README, 'Five-axis "
                                        "ballbar tests')."),
+    report: Optional[Path] = typer.Option(None, "--report", help="Write the report (set-up, "
+                                          "readings, range with U, budget, inputs): HTML "
+                                          "(.html) or PDF (.pdf); the history's report of a "
+                                          "stored test."),
+    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="Upper limit of each "
+                                              "range, µm: the report decides it by ISO "
+                                              "14253-1:2017 (with --report)."),
     as_json: bool = _JSON,
 ):
     """The range of each ballbar file's readings with its uncertainty budget (k = 2).
 
-    Example: axiscal fiveaxis ballbar evaluate bb/1_ballbar.csv --json
+    Example: axiscal fiveaxis ballbar evaluate bb/1_ballbar.csv --report bb.pdf --tolerance 20
     """
     from axiscal.api import fiveaxis
+    from axiscal.cli._common import report_path
 
+    if tolerance is not None and report is None:
+        from axiscal.errors import InputError
+
+        raise InputError("--tolerance is decided in the report: give --report too")
+    if report is not None:
+        report_path(report)
     done = fiveaxis.ballbar.evaluate(files)
+    if report is not None:
+        fiveaxis.ballbar.report(done, report, tolerance)
+    _show(done, as_json)
+
+
+def _show(result, as_json: bool, wrote=()) -> None:
+    """The end of every command here: the result's ``--json`` object (``to_dict()``), or its
+    text and a line for each file written."""
     if as_json:
-        print_json(done.to_dict())
+        print_json(result.to_dict())
         return
-    typer.echo(str(done))
+    typer.echo(str(result))
+    for path in wrote:
+        typer.echo(f"wrote {path}")
 
 
 def register(root: typer.Typer) -> None:

@@ -20,7 +20,9 @@ JSON output (``--json``), stable keys:
 * ``trend``: ``parameter``, ``unit``, ``points`` (``date``, ``value``, ``test``), ``model``,
   ``drift_per_year``, ``u_drift_per_year``, ``level``, ``tolerance``, ``crossing``,
   ``u_crossing_days``, ``recalibrate_by``.
-* ``export``/``import``: ``archive``, ``tests`` / ``added``, ``duplicates``.
+* ``export``/``import``: ``archive``, ``tests`` / ``added``, ``duplicates`` and what came in
+  beside the tests: ``audit`` (entries), ``laboratory`` (1 when taken), ``drift_checks``
+  (files), ``certificates`` (register entries), ``documents`` (issued, distinct).
 * ``list`` also ``withdrawn`` (the reason, or null). Corrections (``rename-machine``,
   ``rename-axis``, ``merge``, ``edit``, ``withdraw``, ``reinstate``, ``audit``):
   :mod:`axiscal.cli.history_corrections`.
@@ -343,12 +345,11 @@ def import_(
         raise MissingFileError(archive)
     store = _store(db, create=True)
     if json_out:
-        added, dup = import_history(store, archive)
-        print_json({"archive": str(archive), "added": added, "duplicates": dup})
+        print_json({"archive": str(archive), **import_history(store, archive).to_dict()})
         return
     with progress_bar(f"importing {archive.name}") as bar:
-        added, dup = import_history(store, archive, bar)
-    typer.echo(f"imported {added} tests from {archive} ({dup} already stored)")
+        done = import_history(store, archive, bar)
+    typer.echo(done.text(archive))
 
 
 def _row(t) -> dict:

@@ -1,4 +1,4 @@
-"""``axiscal history rename-machine|rename-axis|merge|edit|withdraw|reinstate|audit``.
+"""``axiscal history rename-machine|rename-axis|merge|edit|withdraw|reinstate|drift-check|audit``.
 
 Corrections that lose nothing (:mod:`axiscal.store.corrections`; ISO/IEC 17025:2017 §7.5.2
 and §8.4.2): every command that changes a record needs ``--by NAME`` and ``--reason TEXT``
@@ -6,11 +6,14 @@ and writes one entry of the audit trail; ``audit`` lists the trail.
 
 JSON output (``--json``): a change prints its audit entry (``id``, ``at``, ``by``, ``action``,
 ``what``, ``reason``, ``machine_id``, ``axis_id``, ``test_id``, ``old``, ``new``); ``audit``
-prints a list of them, newest first.
+prints a list of them, newest first; ``drift-check`` prints the drift check kept (``id``,
+``test_id``, ``filename``, ``sha256``, ``e_ve``, ``unit``, ``readings``, ``by``, ``replaced``:
+the declared E_VE it replaced or null, ``notice``: that in words or "").
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Optional
 
 import typer
@@ -133,6 +136,46 @@ def _withdrawals(app: typer.Typer) -> None:
         Example: axiscal history reinstate 12 --by "A. Ng" --reason "withdrawn by mistake"
         """
         _done(c.reinstate(_store(db), test_id, by=by, reason=reason), json_out)
+
+    @app.command("drift-check")
+    def drift_check(test_id: int = typer.Argument(..., help="Test id (a positioning test)."),
+                    file: Path = typer.Argument(..., help="Drift-check file (CSV: a 'reading' "
+                                                "column, or one column of numbers, in the "
+                                                "test's deviation unit)."),
+                    by: str = _BY,
+                    reason: str = typer.Option("drift check of the test uploaded", "--reason",
+                                               help="Why (kept in the audit trail)."),
+                    db: Optional[str] = db_opt,
+                    json_out: bool = typer.Option(False, "--json", help="Print the drift "
+                                                  "check kept as JSON (stable keys).")) -> None:
+        """Keep a drift check with a stored positioning test: its E_VE, measured, is the budget's.
+
+        ISO 230-2:2014 Annex A.5; an E_VE declared for the test is replaced, and said.
+
+        Example: axiscal history drift-check 12 dc.csv --by "A. Ng"
+        """
+        from axiscal.cli._common import note
+        from axiscal.io._files import read_bytes
+        from axiscal.store.laboratory import add_drift_check
+
+        if not by.strip():
+            from axiscal.errors import InputError
+
+            raise InputError("--by: give who keeps the drift check (the audit trail records it)")
+        kept = add_drift_check(_store(db), test_id, read_bytes(file), file.name, by=by,
+                               reason=reason)
+        if json_out:
+            print_json({"id": kept.id, "test_id": kept.test_id, "filename": kept.filename,
+                        "sha256": kept.sha256, "e_ve": kept.e_ve, "unit": kept.unit,
+                        "readings": kept.readings, "by": kept.by, "replaced": kept.replaced,
+                        "notice": kept.notice})
+        else:
+            from axiscal.units import display
+
+            typer.echo(f"test {kept.test_id}: drift check {kept.filename} kept ({kept.readings} "
+                       f"readings), E_VE {kept.e_ve:g} {display(kept.unit)}".rstrip())
+        if kept.notice:
+            note(kept.notice)
 
     @app.command("audit")
     def audit(machine: Optional[str] = typer.Option(None, "--machine", help="Only this "

@@ -38,6 +38,8 @@ from axiscal.units import DEG, MM, UM
 __all__ = ["read_ballbar", "parse_ballbar", "format_ballbar", "BALLBAR_COLUMNS"]
 
 BALLBAR_COLUMNS = ("X_mm", "Y_mm", "Z_mm", "deviation_um")
+#: The optional settings of the range's uncertainty (default 0 when the file does not state them).
+UNCERTAINTY_SETTINGS = ("u_gain", "drift_K", "u_length_um")
 _SETTINGS = {"length_mm", "noise_um", "u_gain", "drift_K", "u_length_um", "direction", "swept",
              "pivot_mm", "bar", "label"}
 
@@ -82,7 +84,8 @@ def parse_ballbar(text: str, source: str = "<text>") -> BallbarRecord:
         vals[:, 5] * UM, _setting(settings, "noise_um", None, source, 0.0) * UM,
         u_gain=_setting(settings, "u_gain", 0.0, source, 0.0),
         drift=_setting(settings, "drift_K", 0.0, source, 0.0),
-        u_length=_setting(settings, "u_length_um", 0.0, source, 0.0) * UM)
+        u_length=_setting(settings, "u_length_um", 0.0, source, 0.0) * UM,
+        unstated=tuple(k for k in UNCERTAINTY_SETTINGS if k not in settings))
 
 
 def format_ballbar(record: BallbarRecord) -> str:

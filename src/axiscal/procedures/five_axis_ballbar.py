@@ -128,6 +128,9 @@ class BallbarRecord:
     u_gain: float = 0.0
     drift: float = 0.0
     u_length: float = 0.0
+    #: The optional uncertainty settings the file did not state (``u_gain``, ``drift_K``,
+    #: ``u_length_um``): their default 0 is assumed, and the report says so beside the number.
+    unstated: tuple = ()
 
     def evaluate(self):
         """The range with its uncertainty

@@ -519,5 +519,10 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
         if title is not None:
             rep.title = title
         return rep.write(path)
+    if ev.kind == "fiveaxis-ballbar":   # ``axiscal fiveaxis ballbar evaluate --report``'s
+        from axiscal.report.five_axis_ballbar import ballbar_report
+
+        return ballbar_report([(ev.dataset, ev.result)], title=title or
+                              f"{REPORT_TITLES[ev.kind]} — {ev.result.label}").write(path)
     title = title or REPORT_TITLES[ev.kind]
     return write_result_report(path, title, ev._json, figure=evaluation_figure(ev))

@@ -126,12 +126,15 @@ from axiscal.physics.rotary_location import SQUARENESS, Geometry, table_to_machi
 from axiscal.standards.iso230_9 import Contributor, UncertaintyBudget, combine
 
 __all__ = ["DIRECTIONS", "BLIND", "bar_direction", "reading_sensitivity", "range_sensitivity",
-           "BallbarRange", "evaluate_ballbar", "SMOOTH_DEGREE"]
+           "BallbarRange", "evaluate_ballbar", "SMOOTH_DEGREE", "ALPHA_BAR"]
 
 #: The bar's directions a set-up may take, relative to the swept rotary axis.
 DIRECTIONS = ("radial", "tangential", "axial")
 #: Range sensitivity (µm of range per µm or per µrad) below which a set-up is blind to an error.
 BLIND = 1e-3
+#: The bar body's expansion coefficient (1/K) the range's budget takes (u_DRIFT): a steel
+#: bar body, assumed; a ballbar file cannot set it.
+ALPHA_BAR = 11.5e-6
 #: Degree of the Legendre polynomial the readings' Type A scatter is taken about.
 SMOOTH_DEGREE = 10
 
@@ -293,7 +296,7 @@ class BallbarRange:
 
 
 def evaluate_ballbar(deviation, *, noise: float, u_gain: float = 0.0, length: float = 0.1,
-                     drift: float = 0.0, alpha: float = 11.5e-6, u_length: float = 0.0,
+                     drift: float = 0.0, alpha: float = ALPHA_BAR, u_length: float = 0.0,
                      label: str = "ballbar") -> BallbarRange:
     """Range of the ballbar's deviation readings along the path, with its uncertainty (module
     docstring, 'Uncertainty of the range').

@@ -58,7 +58,7 @@ from pathlib import Path
 
 from axiscal.errors import AxiscalError, DataFormatError, InputError, one_line
 
-__all__ = ["FORMAT", "export_history", "import_history", "MAX_ENTRIES", "MAX_ENTRY_BYTES",
+__all__ = ["FORMAT", "export_history", "import_history", "Imported", "KEPT", "MAX_ENTRIES", "MAX_ENTRY_BYTES",
            "MAX_TOTAL_BYTES", "MAX_RATIO"]
 
 FORMAT = "axiscal.history/3"
@@ -161,9 +161,42 @@ def _write(z: zipfile.ZipFile, store, tests, machine) -> None:
                                      for e, _ in checks))
 
 
-def import_history(store, path, progress=None) -> tuple[int, int]:
+class Imported(tuple):
+    """What an import brought: ``(added, already stored)`` tests, as a pair, with the records
+    kept beside them that came in (each not kept before): ``audit`` entries, ``laboratory``
+    (1 when the archive's laboratory was taken), ``drift_checks`` (drift-check files),
+    ``certificates`` (register entries) and ``documents`` (their issued documents, distinct).
+    ``str()`` says it all in one line (``history import``, the workbench's upload)."""
+
+    def __new__(cls, added: int, duplicates: int, **kept: int):
+        self = super().__new__(cls, (added, duplicates))
+        self.kept = {k: int(kept.get(k, 0)) for k in KEPT}
+        return self
+
+    added = property(lambda self: self[0])
+    duplicates = property(lambda self: self[1])
+
+    def to_dict(self) -> dict:
+        """``added``, ``duplicates`` and each of :data:`KEPT` (``history import --json``)."""
+        return {"added": self[0], "duplicates": self[1], **self.kept}
+
+    def text(self, source) -> str:
+        """``imported N tests from SOURCE (M already stored); A audit entries, ...``"""
+        words = {"audit": "audit entries", "laboratory": "laboratory record",
+                 "drift_checks": "drift-check files", "certificates": "certificates",
+                 "documents": "issued documents"}
+        return (f"imported {self[0]} tests from {source} ({self[1]} already stored); "
+                + ", ".join(f"{self.kept[k]} {w}" for k, w in words.items()))
+
+
+#: The records kept beside the tests an import counts (:class:`Imported`).
+KEPT = ("audit", "laboratory", "drift_checks", "certificates", "documents")
+
+
+def import_history(store, path, progress=None) -> Imported:
     """Store every test of the archive ``path`` with its audit trail, certificates, laboratory
-    and drift checks, all or nothing; returns (added, already stored).
+    and drift checks, all or nothing; returns (added, already stored) with the counts of the
+    records that came in beside them (:class:`Imported`).
 
     ``progress(done, total)`` is called as the records are checked and evaluated.
     """
@@ -197,14 +230,18 @@ def import_history(store, path, progress=None) -> tuple[int, int]:
     by_sha = {rec["sha256"]: rec for _, rec in records}
     new = {i.sha256 for i in items}
 
-    def then(s, _results):
-        archive_laboratory.restore(s, lab, checks, new, p)
-        restore(s, by_sha, new, audit, certs, p)
+    kept: dict = {}
+
+    def then(s, _results):          # run again with the transaction if it is retried
+        kept["laboratory"], kept["drift_checks"] = archive_laboratory.restore(s, lab, checks,
+                                                                              new, p)
+        kept["audit"], kept["certificates"], kept["documents"] = restore(s, by_sha, new, audit,
+                                                                         certs, p)
 
     results = (store.add_all(items, then=then) if items or audit or certs or lab or checks
                else [])
     added = sum(not r.duplicate for r in results)
-    return added, len(records) - added
+    return Imported(added, len(records) - added, **kept)
 
 
 #: The records kept beside the tests: (entry, key of its count in the header), by format.

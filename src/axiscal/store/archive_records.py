@@ -292,9 +292,10 @@ def _when(text: str, name: str, n: int, p) -> dt.datetime:
 
 # -- restoring (in the import's transaction) ---------------------------------------------------
 def restore(s, records: dict[str, dict], new: set[str], audit: list[dict],
-            certificates: list[tuple[dict, bytes]], p) -> tuple[int, int]:
+            certificates: list[tuple[dict, bytes]], p) -> tuple[int, int, int]:
     """Withdraw the new tests withdrawn in the archive, add the audit entries and the
-    certificates not already kept; returns (audit entries added, certificates added).
+    certificates not already kept; returns (audit entries added, certificates added, their
+    issued documents: distinct by SHA-256).
 
     ``records`` are the archive's test records by SHA-256. A test stored before whose
     corrections (edits, withdrawal) come with this import's new audit entries takes the
@@ -313,7 +314,7 @@ def restore(s, records: dict[str, dict], new: set[str], audit: list[dict],
     for sha in sorted(touched - new):
         _corrected(s.scalars(select(Test).where(Test.sha256 == sha)).one(), records[sha])
     s.flush()
-    return added, _restore_certificates(s, certificates, p)
+    return (added, *_restore_certificates(s, certificates, p))
 
 
 def _corrected(t, rec: dict) -> None:
@@ -387,7 +388,7 @@ def _ids(values: dict, action: str, ref, machines: dict, axes: dict, gone: _Gone
     return out
 
 
-def _restore_certificates(s, entries: list[tuple[dict, bytes]], p) -> int:
+def _restore_certificates(s, entries: list[tuple[dict, bytes]], p) -> tuple[int, int]:
     from sqlalchemy import select
 
     from axiscal.store.models import Certificate, Test
@@ -428,4 +429,4 @@ def _restore_certificates(s, entries: list[tuple[dict, bytes]], p) -> int:
             row.replaces_id = s.scalar(select(Certificate.id).where(
                 Certificate.laboratory == lab, Certificate.number == replaces))
     s.flush()
-    return len(added)
+    return len(added), len({row.sha256 for row, _ in added.values()})

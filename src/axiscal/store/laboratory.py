@@ -22,6 +22,7 @@ from that configuration, the one call every path makes.
 
 from __future__ import annotations
 
+import dataclasses
 import datetime as dt
 import json
 from dataclasses import dataclass
@@ -49,6 +50,24 @@ class DriftCheckRecord:
     readings: int
     created: dt.datetime
     by: str
+    #: The E_VE declared for the test (stored with it at upload) that this drift check's
+    #: replaced, in the test's deviation unit ``unit``; None when none was declared. What
+    #: keeping it did, not what is kept: left out of comparisons with :func:`drift_checks`' rows.
+    replaced: float | None = dataclasses.field(default=None, compare=False)
+    unit: str = dataclasses.field(default="", compare=False)
+
+    @property
+    def notice(self) -> str:
+        """What keeping it changed that the user did not ask for in words ("" when nothing):
+        a declared E_VE replaced by the measured one."""
+        if self.replaced is None:
+            return ""
+        from axiscal.units import display
+
+        u = f" {display(self.unit)}" if self.unit else ""
+        return (f"E_VE given twice: the drift check's {self.e_ve:g}{u} replaces the declared "
+                f"{self.replaced:g}{u} (ISO 230-2:2014 Annex A.5: E_VE measured by a drift "
+                "check; the audit trail keeps both)")
 
     @property
     def inputs(self) -> dict:
@@ -108,6 +127,14 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
     the test's uncertainty budget (its stored record made again by the one call, in the same
     transaction); an audit entry with the E_VE before and after.
 
+    An E_VE declared for the test when it was stored (its uncertainty input ``e_ve``, not a
+    drift check's) is replaced by the measured one, and said: the record returned carries it
+    (``replaced``) and its :attr:`~DriftCheckRecord.notice`, which every front end shows where
+    the user acted. Replaced rather than refused: the drift check is the measurement ISO
+    230-2:2014 Annex A.5 asks for, a declared E_VE its stand-in, and a stored test's declared
+    input cannot be taken back otherwise (when both come at once, at upload, the user chooses:
+    :func:`~axiscal.store.kinds.with_drift_check` refuses).
+
     Raises
     ------
     InputError, DataFormatError
@@ -127,7 +154,9 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
                          "drift check) is an input of a positioning test's budget (ISO "
                          "230-2:2014 Annex A)")
     before = dict(stored.result.get("uncertainty_inputs") or {})
-    result = result_with_drift_check(stored.evaluate_again(), before, record)
+    ev = stored.evaluate_again()
+    declared = before.get("e_ve") if before.get("e_ve_source") != "drift check" else None
+    result = result_with_drift_check(ev, before, record)
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
         t = _test(s, test_id)
@@ -142,7 +171,9 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
              {"file": name, "sha256": row.sha256, "e_ve": e_ve, "e_ve_source": "drift check",
               "readings": row.readings},
              machine_id=t.axis.machine_id, axis_id=t.axis_id, test_id=t.id)
-        return _record(row)
+        return dataclasses.replace(
+            _record(row), replaced=None if declared is None else float(declared),
+            unit=getattr(ev.evaluation, "deviation_unit", ""))
 
 
 def result_with_drift_check(ev, before: dict, record: dict) -> str:

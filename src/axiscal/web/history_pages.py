@@ -19,7 +19,6 @@ from axiscal.web.inputs import Page, QueryId, TestId, checked_form, require_engi
 from axiscal.web.plot_specs import COLORS as _COLORS
 from axiscal.web.plot_specs import positioning_plot, trend_plot, unit_text
 from axiscal.web.rendering import download, query, render
-from axiscal.web.signoff_pages import MAX_DRIFT_BYTES
 
 
 __all__ = ["add_routes", "positioning_plot", "trend_plot"]
@@ -71,31 +70,6 @@ def add_routes(app: FastAPI) -> None:
         plain reads and the rendering); made in a thread when they are not (a figure of a
         ballbar or five-error test takes a second)."""
         return await _test_page(request, test_id)
-
-    @app.post("/tests/{test_id}/drift-check", response_class=HTMLResponse)
-    async def drift_check(request: Request, test_id: TestId):
-        """Keep a drift check (ISO 230-2:2014 Annex A.5) with a stored positioning test, as the
-        sign-off form does (:func:`axiscal.store.laboratory.add_drift_check`, the one call): its
-        E_VE becomes an input of the test's budget. Kept: back to the test's page at its drift
-        check; refused: the test's page again with the reason at the form (400)."""
-        from axiscal.errors import AxiscalError
-
-        form = await checked_form(request)
-        require_engineer(request)
-        by = request.state.session.get("name") or str(form.get("by", "") or "").strip()
-        reason = str(form.get("reason", "") or "").strip()
-        try:
-            f = form.get("drift_check")
-            if f is None or not hasattr(f, "read") or not f.filename:
-                raise InputError("choose the drift-check file to upload (a CSV with a 'reading' "
-                                 "column, or one reading a line, in the test's deviation "
-                                 "unit)")
-            raw = await f.read(MAX_DRIFT_BYTES + 1)
-            await run_in_threadpool(_keep_drift_check, store(request), test_id, raw,
-                                    f.filename, by, reason)
-        except AxiscalError as exc:
-            return await _test_page(request, test_id, 400, drift_error=str(exc))
-        return RedirectResponse(f"/tests/{test_id}?drift=kept#drift-check", 303)
 
     @app.get("/tests/{test_id}/raw")
     def raw(request: Request, test_id: TestId):
@@ -297,22 +271,6 @@ async def _test_page(request: Request, test_id: int, status: int = 200, **extra)
                   others=[o for o in others if o.id != test_id],
                   partners=partners(st, t), made_from=made_from(st, ev),
                   audit_entries=audit(st, test_id=test_id, limit=SHOWN), **extra)
-
-
-def _keep_drift_check(st, test_id: int, raw: bytes, filename: str, by: str, reason: str):
-    """The drift-check form's checks in its words, then the one call that keeps it."""
-    from axiscal.store.laboratory import add_drift_check
-
-    name = filename.replace("\\", "/").rsplit("/", 1)[-1]
-    if len(raw) > MAX_DRIFT_BYTES:
-        raise InputError(f"drift check {name}: the file is over {MAX_DRIFT_BYTES // 2**20} MiB "
-                         "(a day of readings a second is about 1 MiB)")
-    if not raw.strip():
-        raise InputError(f"drift check {name}: the file is empty")
-    if not by:
-        raise InputError("your name: the history records who kept the drift check")
-    return add_drift_check(st, test_id, raw, name, by=by,
-                           **({"reason": reason} if reason else {}))
 
 
 def stored_page(r, fields: dict):

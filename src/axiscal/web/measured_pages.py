@@ -94,12 +94,12 @@ def add_routes(app: FastAPI) -> None:
         try:
             name, raw = await _file(request, form.get("archive"), (".zip",), "the archive",
                                     types=ZIP_TYPES)
-            added, dup = await run_in_threadpool(_import, request.app.state.store, name, raw)
+            done = await run_in_threadpool(_import, request.app.state.store, name, raw)
         except AxiscalError as exc:
             return render(request, "upload.html", _TITLE, getattr(exc, "status", 400),
                           form={}, error=str(exc))
         return render(request, "upload.html", _TITLE, form={},
-                      imported=f"imported {added} tests from {name} ({dup} already stored)")
+                      imported=done.text(name))
 
 
 async def _file(request: Request, f, suffixes: tuple, what: str, optional: bool = False,
@@ -201,7 +201,7 @@ def _store_measured(store, kind: str, first, second, fields: dict):
                      note=note, instrument=fields["instrument"], date=fields["date"] or None)
 
 
-def _import(store, name: str, raw: bytes) -> tuple[int, int]:
+def _import(store, name: str, raw: bytes):
     from axiscal.store.archive import import_history
 
     with _folder() as d:

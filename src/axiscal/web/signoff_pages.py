@@ -295,14 +295,17 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         kept = laboratory(st)
         lab = lab_from_form(values, kept, job.get("instrument", []))
         who = user or values.get("operator", "")
-        if drift is not None and ctx["positioning"]:
+        if drift is not None:       # another kind: refused by the library, in its words
             if len(drift[0]) > MAX_DRIFT_BYTES:
                 raise InputError(f"{LABELS['drift_check']}: {drift[1]} is over "
                                  f"{MAX_DRIFT_BYTES // 2**20} MiB")
+            if not drift[0].strip():
+                raise InputError(f"{LABELS['drift_check']}: {drift[1]} is empty")
             if not who:
                 raise InputError(f"{LABELS['operator']}: give your name; the history records "
                                  "who kept the drift check")
-            add_drift_check(st, test_id, drift[0], drift[1], by=who)
+            ctx["drift_notice"] = add_drift_check(st, test_id, drift[0], drift[1],
+                                                  by=who).notice
             ctx["drift_checks"] = _drift_checks(st, test_id)
         cfg = signoff_config(st, t, load_config(None), job, lab)
         _verdict(ctx, ev, cfg, tolerances, rule)
