@@ -62,6 +62,7 @@ _SECTIONS = {
     "tolerance": None,  # NAME = value, checked against the standard's parameters
     "squareness_uncertainty": None,  # read by the squareness commands
     "ballbar_uncertainty": None,  # a ballbar test's budget (standards/iso230_9_ballbar.py)
+    "straightness_uncertainty": None,  # standards/iso230_9_straightness.py
 }
 
 

@@ -43,7 +43,8 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
 #: ISO/TR 230-9 for squareness and, axiscal's reading of it, a ballbar's G and H); a kind not named here has no uncertainty budget in axiscal.
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty",
-                     "ballbar": "ballbar_uncertainty"}
+                     "ballbar": "ballbar_uncertainty",
+                     "straightness": "straightness_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
          "volumetric", "fiveaxis-ballbar")
@@ -209,7 +210,8 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     ISO 230-2:2014 Annex A for a positioning test
     (:func:`~axiscal.standards.iso230_9.positioning_budget`), ISO/TR 230-9 for a diagonal
     squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`), G and H
-    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), a five-axis
+    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), a
+    straightness test's (:func:`~axiscal.standards.iso230_9_straightness.straightness_budget`), a five-axis
     identification's and a thermal test's own; the other kinds keep none. Every path that shows a U (command, history, workbench, report,
     certificate, API) takes it from here."""
     inputs = dict(inputs or {})
@@ -232,6 +234,10 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         from axiscal.standards.iso230_9_ballbar import ballbar_budget
 
         return ballbar_budget(evaluation, dataset.radius, inputs)
+    if kind == "straightness":
+        from axiscal.standards.iso230_9_straightness import straightness_budget
+
+        return straightness_budget(dataset.positions, dataset.deviations, inputs)
     if kind == "fiveaxis":
         return IdentificationBudget(evaluation)
     if kind == "thermal":
