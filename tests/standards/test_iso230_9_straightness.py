@@ -131,7 +131,7 @@ def test_a_bad_table_is_refused_in_one_line(table, match):
 def test_the_command_line_carries_the_stored_records_U(tmp_path, monkeypatch):
     """``axiscal straightness FILE --json`` with the user configuration's
     ``[straightness_uncertainty]``: its ``quantities`` are the stored record's (``history add``
-    with the same configuration; ``history show --json``), U moved by the declared reference (2 µm) and marked given."""
+    with the same configuration; ``history show --json``; both reports' tables of U), U moved by the declared reference (2 µm) and marked given."""
     from typer.testing import CliRunner
 
     from axiscal.cli import app
@@ -150,6 +150,14 @@ def test_the_command_line_carries_the_stored_records_U(tmp_path, monkeypatch):
     shown = CliRunner().invoke(app, ["history", "show", str(t.summary.id), "--json", "--db",
                                      f"sqlite:///{tmp_path / 'h.sqlite'}"])
     assert shown.exit_code == 0 and json.loads(shown.stdout)["quantities"] == j["quantities"]
+    for args in (["history", "show", str(t.summary.id), "--db",           # the same U tables
+                  f"sqlite:///{tmp_path / 'h.sqlite'}", "--report", str(tmp_path / "h.html")],
+                 ["straightness", str(f), "--report", str(tmp_path / "c.html")]):
+        assert CliRunner().invoke(app, args).exit_code == 0
+    for name in ("h.html", "c.html"):
+        page = (tmp_path / name).read_text("utf-8")
+        assert "<td>Straightness, minimum-zone line</td><td>10.0</td><td>4.1</td>" in page, name
+        assert "Uncertainty budget: U narrow" not in page and "reading noise σ" in page
     assert j["quantities"]["straightness"]["value"] == j["straightness_um"]
     assert 4.0 < j["quantities"]["straightness"]["U"] < 4.2          # 2·√(2² + ...)
     assert j["uncertainty_budget"]["inputs"]["reference_u"]["assumed"] is False

@@ -99,37 +99,13 @@ def _straightness_record(file: Path) -> dict:
     :mod:`axiscal.standards.iso230_9_straightness` with the user configuration's
     ``[straightness_uncertainty]``)."""
     from axiscal.io.user_config import load_user_config
-    from axiscal.report.evaluations import evaluated_file, record_fields
+    from axiscal.report.evaluations import RECORD_KEYS, evaluated_file, record_fields
     from axiscal.store.kinds import inputs_from_config, with_uncertainty
 
     rec = with_uncertainty(evaluated_file(file, "straightness"),
                            inputs_from_config("straightness", load_user_config()))
     j = record_fields(rec)["_json"]
-    return {k: j[k] for k in _RECORD_KEYS}
-
-
-#: The record's keys of ``straightness --json`` (:func:`_straightness_record`).
-_RECORD_KEYS = ("schema_version", "quantities", "uncertainty_budget", "uncertainty_inputs")
-
-
-def _uncertainty_tables(d: dict) -> list:
-    """The report's tables of the record's U: each figure with U and k, and the budget's
-    inputs in words, each measured, given or assumed with its rule (the numbers of
-    ``--json``, as text)."""
-    from axiscal.report.labels import quantity
-    from axiscal.standards.uncertainty_reporting import format_value
-    from axiscal.units import display
-
-    b = d["uncertainty_budget"]
-    figures = [(quantity(n)[0], format_value(q["value"], q["U"]), b["U_display"][n],
-                f"{q['k']:g}", display(q["unit"])) for n, q in d["quantities"].items()]
-    inputs = [(i["label"], f"{i['value']:g} {i['unit']}".strip(),
-               "assumed" if i["assumed"] else "measured" if i["rule"].startswith("measured")
-               else "given", i["rule"].removeprefix("measured: ")) for i in b["inputs"].values()]
-    return [(f"Expanded uncertainty ({b['method']})", ["figure", "value", "U", "k", "unit"],
-             figures),
-            ("Inputs of the uncertainty budget (set in the user configuration's straightness "
-             "uncertainty table)", ["input", "value", "", "rule or source"], inputs)]
+    return {k: j[k] for k in RECORD_KEYS}
 
 
 def straightness(
@@ -167,9 +143,11 @@ def straightness(
         from axiscal.report.html import write_result_report
         from axiscal.report.squareness_plots import straightness_figure
 
-        shown = {k: v for k, v in d.items() if k not in _RECORD_KEYS}   # U: in its tables
+        from axiscal.report.evaluations import RECORD_KEYS, uncertainty_tables
+
+        shown = {k: v for k, v in d.items() if k not in RECORD_KEYS}   # U: in its tables
         write_result_report(report, f"Straightness — {file.name}", shown,
-                            tables=_uncertainty_tables(d),
+                            tables=uncertainty_tables(d),
                             figure=straightness_figure(data, chosen),
                             method=f"Straightness deviation about the {method.replace('_', ' ')} "
                                    "reference straight line, ISO 230-1:2012 §3.4.8 and §3.4.9; "
