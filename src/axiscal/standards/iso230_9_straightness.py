@@ -149,14 +149,17 @@ def reading_noise(positions, deviations) -> ReadingNoise:
 
     Notes
     -----
-    With readings repeated at a position (two runs in one file): the pooled standard deviation
-    s_p² = Σ_j Σ_i (y_ij − ȳ_j)² / Σ_j (n_j − 1) (JCGM 100:2008 §4.2.4). Without: at each inner
+    With readings repeated at the positions (two runs in one file: at least as many degrees of
+    freedom as the second differences would give): the pooled standard deviation
+    s_p² = Σ_j Σ_i (y_ij − ȳ_j)² / Σ_j (n_j − 1) (JCGM 100:2008 §4.2.4). Else, over the
+    distinct positions (a few repeated ones by their mean, of variance σ²/n_j): at each inner
     position i (sorted), the departure from the chord of its neighbours,
     e_i = y_i − (a_i·y_{i−1} + b_i·y_{i+1}), a_i = (x_{i+1} − x_i)/(x_{i+1} − x_{i−1}),
     b_i = 1 − a_i (a second difference: a straight trajectory leaves 0, a uniformly curved one
     a constant), and σ² = Σ(e_i − ē)² / E₁, where E₁ = tr(C) − 1ᵀC1/m is the expectation of
-    that sum for white noise of unit variance (C = AAᵀ, A the matrix of the e_i's weights, m
-    their number), so σ² is unbiased for white noise at any spacing. The machine's own form
+    that sum for white noise of unit variance (C = AVAᵀ, A the banded matrix of the e_i's
+    weights, V the readings' relative variances, m their number; computed in O(n)), so σ² is
+    unbiased for white noise at any spacing. The machine's own form
     within three readings that is not a uniform curvature counts as noise: a conservative σ.
 
     Examples
@@ -170,25 +173,28 @@ def reading_noise(positions, deviations) -> ReadingNoise:
     x, y = np.asarray(positions, float), np.asarray(deviations, float)
     keys = np.round(x, 9)                       # one position: equal to the nanometre
     uniq, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
-    if np.any(counts > 1):
-        means = np.bincount(inverse, weights=y) / counts
-        dof = int(np.sum(counts - 1))
+    means = np.bincount(inverse, weights=y) / counts
+    pooled = int(np.sum(counts - 1))
+    if pooled and pooled >= uniq.size - 3:      # repeated runs: as many degrees of freedom
         ss = float(np.sum((y - means[inverse]) ** 2))
-        return ReadingNoise(math.sqrt(ss / dof), f"pooled standard deviation of the readings "
-                            f"repeated at {int(np.sum(counts > 1))} positions "
-                            f"({dof} degrees of freedom)", dof)
-    order = np.argsort(x)
-    x, y = x[order], y[order]
+        return ReadingNoise(math.sqrt(ss / pooled), f"pooled standard deviation of the "
+                            f"readings repeated at {int(np.sum(counts > 1))} positions "
+                            f"({pooled} degrees of freedom)", pooled)
+    x, y, v = uniq, means, 1.0 / counts         # a mean of n readings: variance σ²/n
     m = x.size - 2
     if m < 2:
         return ReadingNoise(0.0, "", 0)
     a = (x[2:] - x[1:-1]) / (x[2:] - x[:-2])
-    e = y[1:-1] - (a * y[:-2] + (1 - a) * y[2:])
-    A = np.zeros((m, x.size))
-    idx = np.arange(m)
-    A[idx, idx], A[idx, idx + 1], A[idx, idx + 2] = -a, 1.0, -(1 - a)
-    C = A @ A.T
-    expected = float(np.trace(C) - C.sum() / m)
+    b = 1 - a
+    e = y[1:-1] - (a * y[:-2] + b * y[2:])
+    # E₁ = tr(AVAᵀ) − 1ᵀAVAᵀ1/m, A banded (row i: −a_i, 1, −b_i at columns i, i+1, i+2), V the
+    # readings' variances (1, or 1/n for a mean of n): O(n), never an n × n matrix
+    column = np.zeros(x.size)
+    column[:m] -= a
+    column[1:m + 1] += 1.0
+    column[2:] -= b
+    trace = float(np.sum(a**2 * v[:-2] + v[1:-1] + b**2 * v[2:]))
+    expected = trace - float(np.sum(v * column**2)) / m
     sigma = math.sqrt(float(np.sum((e - e.mean()) ** 2)) / expected)
     return ReadingNoise(sigma, f"the spread of the {m} second differences of successive "
                         "readings (each reading's departure from the chord of its neighbours)",
