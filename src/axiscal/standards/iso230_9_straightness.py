@@ -6,9 +6,9 @@ ISO/TR 230-9:2005 gives the general form (GUM: uncorrelated inputs, sensitivity 
 u_c the root sum of squares, U = k·u_c with k = 2); ISO 230-1:2012 §8.2 measures straightness
 against a reference straight line, a straightedge read by an indicator or the optical
 straightedge of a laser's straightness reflector read by its interferometer (the same
-measurement: M.A.V. Chapman, "Calibration of machine squareness", Method 3: "a direct analogy
-between a mechanical straightedge with an indicator and a straightness reflector with an
-interferometer"). The model below is axiscal's reading of those documents; no public text gives
+measurement: M.A.V. Chapman, "Calibration of machine squareness", Method 3: "the direct
+analogy between a mechanical straightedge with an indicator and a straightness reflector with
+an interferometer"). The model below is axiscal's reading of those documents; no public text gives
 a worked straightness budget, so each choice is stated.
 
 Both straightness figures are a *range of residuals* (ISO 230-1:2012 §3.4.9: the largest minus
@@ -34,8 +34,9 @@ its own figure where the contributor scales with it:
   with the instrument at rest over the test's duration (a drift check, ISO 230-2:2014 Annex
   A.5). For a laser it holds what air turbulence and temperature gradients across the beam do
   to the reading, which no model predicts (Hewlett-Packard, "5528A Laser Measurement System
-  User's Guide": straightness is "especially susceptible to environmental effects", seen as
-  the reading drifting with the optics at rest). Rectangular over ±E_VE/2: u = E_VE/(2√3) on
+  User's Guide", Section 10, Straightness measurements, Environmental errors: a straightness
+  measurement "is especially susceptible to environmental effects", seen as the reading
+  drifting with the optics at rest). Rectangular over ±E_VE/2: u = E_VE/(2√3) on
   each straightness figure, and u = E_VE/(2√3)/L on the slope over the travel L. Not given, it
   is 0 and a note says U leaves it out (as the squareness budgets do).
 
