@@ -174,7 +174,8 @@ def uncertainty_inputs_page() -> str:
             "code (:func:`axiscal.standards.iso230_9_inputs.input_table`, "
             ":func:`axiscal.standards.iso230_9_geometry.squareness_input_table`). Give one in the "
             "``[uncertainty]`` table of the user configuration or a job file (squareness: "
-            "``[squareness_uncertainty]``), with "
+            "``[squareness_uncertainty]``; straightness: ``[straightness_uncertainty]``, "
+            ":mod:`axiscal.standards.iso230_9_straightness`), with "
             "``--uncertainty NAME=VALUE``, or in the ``uncertainty=`` mapping of "
             ":func:`axiscal.evaluate`. A number is in the unit of the table, the unit the "
             "output shows beside U (α as 11.5 for 11.5 µm/(m·K)); text carries its own unit, "
@@ -184,11 +185,15 @@ def uncertainty_inputs_page() -> str:
             "unit. An input not given takes its default, shown as assumed beside U with its "
             "rule.\n\n")
     from axiscal.standards.iso230_9_geometry import squareness_input_table
+    from axiscal.standards.iso230_9_straightness import straightness_input_table
 
-    rows = input_table() + squareness_input_table()
+    rows = input_table() + squareness_input_table() + straightness_input_table()
     titles = {"linear": "Linear axis (ISO 230-2:2014 Annex A)",
               "rotary": "Rotary axis (ISO 230-2:2014 Annex A)",
-              "squareness": "Squareness (ISO/TR 230-9; the [squareness_uncertainty] table)"}
+              "squareness": "Squareness (ISO/TR 230-9; the [squareness_uncertainty] table)",
+              "straightness": "Straightness (ISO 230-1:2012 §8.2, ISO/TR 230-9; the "
+                              "[straightness_uncertainty] table; the reading noise and the "
+                              "slope fit are measured from the file)"}
     for budget, title in titles.items():
         out += _title(title, "-")
         out += ".. list-table::\n   :header-rows: 1\n   :widths: 18 20 9 9 16 28\n\n"

@@ -105,7 +105,8 @@ def _stored(tmp_path, path):
 
 
 @pytest.mark.parametrize("kind", ["diagonal", "thermal", "fiveaxis", "ballbar",
-                                  "fiveaxis-ballbar", "motion", "squareness", "volumetric"])
+                                  "fiveaxis-ballbar", "motion", "squareness", "volumetric",
+                                  "straightness"])
 def test_the_certificate_states_the_stored_record_field_by_field(files, tmp_path, kind):
     """Value, U and k of every figure are the stored record's (``history show --json``'s
     ``quantities``); the printed value has U's last digit (ILAC-P14:09/2020 §5.3)."""
@@ -189,14 +190,56 @@ def test_a_missing_item_makes_a_draft_and_a_bad_tolerance_is_refused(files, tmp_
         certificate_record(t.record(), {next(iter(t.record().parameters)): -1.0})
 
 
-@pytest.mark.parametrize("kind", ["straightness"])
-def test_a_kind_without_a_budget_is_refused_in_one_line(files, tmp_path, kind):
-    st, t = _stored(tmp_path, files[kind])
+def _without_budget(monkeypatch, kind: str) -> None:
+    """``kind`` made a kind without an uncertainty budget (:func:`axiscal.store.kinds.
+    budget_of` makes none for it), so the refusal is tested whichever kinds lack one today."""
+    from axiscal.store import kinds
+
+    made = kinds.budget_of
+    monkeypatch.setattr(kinds, "budget_of", lambda k, *a: None if k == kind else made(k, *a))
+
+
+def test_a_kind_without_a_budget_is_refused_in_one_line(files, tmp_path, monkeypatch):
+    _without_budget(monkeypatch, "straightness")
+    st, t = _stored(tmp_path, files["straightness"])
+    assert t.record().budget is None
     with pytest.raises(InputError) as e:
         write_kind_certificate(tmp_path / "x.html", t.record(), COMPLETE, t.raw, store=st)
-    assert str(e.value).startswith(f"no uncertainty budget for {kind} tests in axiscal: ")
+    assert str(e.value).startswith("no uncertainty budget for straightness tests in axiscal: ")
     assert "\n" not in str(e.value)
     assert not (tmp_path / "x.html").exists() and st.certificates(test_id=t.summary.id) == []
+
+
+def test_a_straightness_certificate_is_issued_on_the_command_line(files, tmp_path):
+    """ISO 230-1:2012 straightness of 0, 1, 3, 2 µm at 0..300 mm: least squares 1.8 µm
+    (the line 0.3 + 0.8·x/100 mm µm leaves −0.3, −0.1, 1.1, −0.7 µm), with U by
+    standards/iso230_9_straightness.py; ``axiscal certificate issue ID`` with every item
+    given numbers it (not a DRAFT) and states each figure as the stored record holds it."""
+    from typer.testing import CliRunner
+
+    from axiscal.cli import app as cli_app
+    from tests.report.pdf_pages import pdf_text
+
+    url = f"sqlite:///{tmp_path / 'h.sqlite'}"
+    st = open_store(url)
+    tid = st.add(files["straightness"].read_bytes(), "straightness.csv", machine="VMC").id
+    job = tmp_path / "job.toml"
+    job.write_text(_toml(COMPLETE))
+    out = tmp_path / "straightness.pdf"
+    r = CliRunner().invoke(cli_app, ["certificate", "issue", str(tid), "--db", url, "--job",
+                                     str(job), "--tolerance", "straightness=20",
+                                     "--prepared-by", "J. Keller", "--out", str(out), "--json"])
+    assert r.exit_code == 0, r.output
+    got = json.loads(r.stdout)
+    assert got["number"].startswith("PM-2026-") and got["test_id"] == tid
+    text = " ".join(" ".join(pdf_text(out)).split())
+    assert "DRAFT" not in text and got["number"] in text
+    rec = certificate_record(st.get(tid).record(), {"straightness": 20.0})
+    assert {f.name for f in rec.figures} == {"straightness", "straightness_min_zone", "slope"}
+    f = next(f for f in rec.figures if f.name == "straightness")
+    assert f.value == pytest.approx(1.8, abs=1e-9) and f.verdict == "conformance proven"
+    assert f"{f.value_text} {f.U_text} 2 µm 20" in text, text[-2000:]
+    assert "reading noise σ of one reading" in text and "measured: the spread" in text
 
 
 def _toml(cfg: dict) -> str:
@@ -212,10 +255,11 @@ def _toml(cfg: dict) -> str:
     return "\n".join(out) + "\n"
 
 
-def test_certificate_issue_on_the_command_line(files, tmp_path):
+def test_certificate_issue_on_the_command_line(files, tmp_path, monkeypatch):
     """``axiscal certificate issue ID``: a diagonal test numbered by the register, its
-    squareness and U in the document; a straightness test (no budget in axiscal) refused in one
-    line, exit 2, nothing issued."""
+    squareness and U in the document; a test of a kind without a budget (straightness made one,
+    :func:`_without_budget`) refused in one line, exit 2, nothing issued."""
+    _without_budget(monkeypatch, "straightness")
     from typer.testing import CliRunner
 
     from axiscal.cli import app as cli_app

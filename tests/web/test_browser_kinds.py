@@ -62,12 +62,13 @@ def test_ballbar_page_in_a_browser_equals_ballbar_analyze(server, browser, tmp_p
 def test_straightness_page_in_a_browser(server, browser):
     url = _upload(browser, server, EXAMPLES / "squareness_L180_x.csv")
     assert "/tests/" in url
-    j = json.loads(runner.invoke(app, ["straightness", str(EXAMPLES / "squareness_L180_x.csv"),
-                                       "--json"]).stdout)["methods"]
+    out = json.loads(runner.invoke(app, ["straightness", str(EXAMPLES / "squareness_L180_x.csv"),
+                                         "--json"]).stdout)
+    j, U = out["methods"], out["uncertainty_budget"]["U_display"]
     cells = [c.text for c in browser.find_elements(By.CSS_SELECTOR,
                                                    "#straightness tbody tr:first-child td")]
-    assert cells[1:] == [f"{j['least_squares']['straightness_um']:.3f}",
-                         f"{j['least_squares']['slope_um_per_m']:.3f}"]
+    assert cells[1:] == [f"{j['least_squares']['straightness_um']:.3f}", U["straightness"],
+                         f"{j['least_squares']['slope_um_per_m']:.3f}", U["slope"]]
     assert "e-06" not in browser.page_source
     img = browser.find_element(By.ID, "kind-figure")
     assert browser.execute_script("return arguments[0].naturalWidth", img) > 300

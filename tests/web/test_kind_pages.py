@@ -161,18 +161,28 @@ def test_one_direction_ballbar_page_has_the_iso230_4_figures(site):
 
 
 def test_straightness_page_in_labelled_units(site):
-    """Both reference lines of ISO 230-1:2012 §3.4.8/§3.4.9 in µm and µm/m, as
-    ``axiscal straightness --json``; no unlabelled SI (the page once showed 9.997e-06)."""
+    """Both reference lines of ISO 230-1:2012 §3.4.8/§3.4.9 in µm and µm/m, each figure with
+    its U (k = 2), as ``axiscal straightness --json`` (the stored record's budget,
+    standards/iso230_9_straightness.py); no unlabelled SI (the page once showed 9.997e-06)."""
     _, _, files, pages = site
     page = pages["straightness"]
-    j = _cli("straightness", files["straightness"][0])["methods"]
+    out = _cli("straightness", files["straightness"][0])
+    j, U = out["methods"], out["uncertainty_budget"]["U_display"]
     _figure_is_svg(page)
-    assert "<th>straightness [µm]</th><th>slope [µm/m]</th>" in page
+    assert ("<th>straightness [µm]</th><th>U (k = 2) [µm]</th><th>slope [µm/m]</th>"
+            "<th>U (k = 2) [µm/m]</th>") in page
     rows = _table(page, "straightness")
-    assert rows[0][1:] == [_n(j["least_squares"]["straightness_um"]),
-                           _n(j["least_squares"]["slope_um_per_m"])]
+    assert rows[0][1:] == [_n(j["least_squares"]["straightness_um"]), U["straightness"],
+                           _n(j["least_squares"]["slope_um_per_m"]), U["slope"]]
     assert rows[1][1:] == [_n(j["minimum_zone"]["straightness_um"]),
-                           _n(j["minimum_zone"]["slope_um_per_m"])]
+                           U["straightness_min_zone"],
+                           _n(j["minimum_zone"]["slope_um_per_m"]), "—"]
+    budget = _table(page, "budget")
+    assert [r[0] for r in budget] == [c["name"] for c in
+                                      out["uncertainty_budget"]["contributors"]]
+    inputs = {r[0]: r[1:3] for r in _table(page, "budget-inputs")}
+    assert inputs["reading noise σ of one reading"][1] == "measured"
+    assert 'id="budget-notes"' in page
     assert "e-06" not in page and "e-08" not in page
 
 
@@ -203,7 +213,7 @@ def _page_U_is_the_cli_U(page: str, j: dict) -> None:
                                               for c in j["uncertainty"]]
     assert all(r[5] for r in budget)                                  # every clause named
     inputs = {r[0]: r[1:3] for r in _table(page, "budget-inputs")}
-    assert inputs["X travel"] == ["0.6 m", "given"]
+    assert inputs["X travel"] == ["0.6 m", "measured"]       # from the data file
     assert 'id="budget-notes"' in page
 
 

@@ -2,8 +2,10 @@
 offered only where the kind has an uncertainty budget (a diagonal squareness test here), its
 verdict is the certificate's own call (:func:`axiscal.report.kind_certificate.
 certificate_record` of the stored record), and a complete form ends in a numbered certificate;
-a straightness test (no budget in axiscal) has no form, and a sign-off posted for it is
-refused in one line naming why; a ballbar test's form offers its G and H (the figures with U)."""
+a test of a kind without a budget has no form, and a sign-off posted for it is refused in one
+line naming why; a ballbar test's form offers its G and H (the figures with U); a straightness
+test (standards/iso230_9_straightness.py) shows U beside each figure and is signed off to a
+numbered certificate."""
 
 from __future__ import annotations
 
@@ -13,7 +15,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from axiscal.web.app import create_app
-from tests.report.test_kind_certificate import BALLBAR, DIAGONAL, STRAIGHTNESS
+from tests.report.test_kind_certificate import BALLBAR, DIAGONAL, STRAIGHTNESS, _without_budget
 from tests.web.test_signoff import JOB, LAB
 
 
@@ -32,11 +34,16 @@ def client(tmp_path, monkeypatch):
     return c
 
 
-def test_a_diagonal_test_is_signed_off_and_a_straightness_test_is_not(client, tmp_path):
+def test_a_diagonal_test_is_signed_off_and_a_kind_without_a_budget_is_not(client, tmp_path,
+                                                                          monkeypatch):
     """Squareness 9.375 µm/m (tests/report/test_kind_certificate.py) against 20 µm/m:
-    conformance proven, with the U the certificate prints; then issued and numbered."""
+    conformance proven, with the U the certificate prints; then issued and numbered. The
+    straightness test, its kind made one without a budget (:func:`_without_budget`), has no
+    form."""
     from axiscal.report.kind_certificate import certificate_record
     from axiscal.store import open_store
+
+    _without_budget(monkeypatch, "straightness")
 
     page = client.get("/tests/1").text
     assert 'id="signoff-form"' in page and 'name="tol_squareness"' in page
@@ -74,6 +81,39 @@ def test_a_diagonal_test_is_signed_off_and_a_straightness_test_is_not(client, tm
     text = " ".join(pdf_text(tmp_path / "c.pdf"))
     assert "DRAFT" not in text and number in text and "conformance proven" in text.lower()
     assert f"{f.value_text} {f.U_text} 2 µm/m 20" in " ".join(text.split()), text[-1500:]
+
+
+def test_a_straightness_test_shows_U_and_is_signed_off(client, tmp_path):
+    """ISO 230-1:2012 straightness 1.8 µm (least squares) of tests/report/
+    test_kind_certificate.py's file: the page states U beside each figure (the stored record's
+    budget), the form offers the three figures, and a complete sign-off against 20 µm ends in
+    a numbered certificate (not a DRAFT) stating the record's value and U."""
+    from axiscal.report.kind_certificate import certificate_record
+    from axiscal.store import open_store
+    from tests.report.pdf_pages import pdf_text
+
+    st = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
+    rec = st.get(2).record()
+    page = client.get("/tests/2").text
+    row = re.search(r'<table id="straightness">.*?<tbody>\s*<tr>(.*?)</tr>', page, re.S).group(1)
+    assert f'<td class="num">{rec.budget.U_text("straightness")}</td>' in row, row
+    assert f'<td class="num">{rec.budget.U_text("slope")}</td>' in row
+    assert 'id="signoff-form"' in page
+    for name in ("straightness", "straightness_min_zone", "slope"):
+        assert f'name="tol_{name}"' in page
+    r = client.post("/tests/2/signoff", data={"csrf": client.token, "action": "issue",
+                                              "tol_straightness": "20", "date": "2026-11-20",
+                                              **JOB}, follow_redirects=False)
+    assert r.status_code == 303, r.text[-1500:]
+    number = re.search(r"certificate=([^#&]+)", r.headers["location"]).group(1)
+    doc = client.get(f"/tests/2/certificate?number={number}")
+    assert doc.status_code == 200 and doc.content.startswith(b"%PDF")
+    (tmp_path / "s.pdf").write_bytes(doc.content)
+    text = " ".join(" ".join(pdf_text(tmp_path / "s.pdf")).split())
+    f = next(f for f in certificate_record(rec, {"straightness": 20.0}).figures
+             if f.name == "straightness")
+    assert "DRAFT" not in text and number in text and st.certificate(number).test_id == 2
+    assert f"{f.value_text} {f.U_text} 2 µm 20 conformance proven" in text, text[-1500:]
 
 
 def test_a_motion_test_page_shows_U_beside_each_figure_and_offers_the_sign_off(client,

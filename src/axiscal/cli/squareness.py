@@ -6,7 +6,17 @@ JSON output (``--json``), stable keys:
 
 * ``straightness``: ``file``, ``axis``, ``direction``, ``reference``, ``straightness_um``,
   ``slope_um_per_m``, ``intercept_um``, ``n``, ``methods`` (object per reference line,
-  ``least_squares``, ``end_point``, ``minimum_zone``: ``straightness_um``, ``slope_um_per_m``).
+  ``least_squares``, ``end_point``, ``minimum_zone``: ``straightness_um``, ``slope_um_per_m``),
+  and the stored record's ``quantities`` (schema 1: ``straightness`` and
+  ``straightness_min_zone`` in µm, ``slope`` in µm/m, each with ``U`` and ``k`` from the budget
+  of :mod:`axiscal.standards.iso230_9_straightness`; inputs: the user configuration's
+  ``[straightness_uncertainty]``), ``uncertainty_budget`` and ``uncertainty_inputs`` (the
+  inputs given). The budget object: ``unit``, ``k``, ``method``, ``U``, ``U_display`` (as
+  printed), ``U_stated``, ``U_narrow``, ``cmc``, ``floored``, ``contributors`` (``name``,
+  ``quantity``, ``u``, ``distribution``, ``basis``, ``clause``, ``applies_to``), ``inputs``
+  (by name: ``value``, ``unit``, ``assumed``, ``set_with``, ``rule``, ``label``; the
+  measured ``reading_noise`` and ``slope_fit`` among them), ``assumed``, ``missing_inputs``,
+  ``notes``.
 * a *squareness object* (used below): ``axes``, ``um_per_m``, ``arcsec``, ``convention``,
   ``iso_datum``, ``iso_referred``, ``iso_um_per_m``, ``iso_arcsec``, ``angle_note``.
 * ``squareness biaxial``: ``squareness`` (squareness object), ``config``, ``orientation``,
@@ -85,6 +95,22 @@ def _reference(value: str) -> str:
     return v
 
 
+def _straightness_record(file: Path) -> dict:
+    """The ``quantities`` (least-squares and minimum-zone straightness, slope: each with U
+    and k), ``uncertainty_budget`` and ``uncertainty_inputs`` of the file's one record, as the
+    history stores it (:func:`axiscal.store.kinds.with_uncertainty`; the budget of
+    :mod:`axiscal.standards.iso230_9_straightness` with the user configuration's
+    ``[straightness_uncertainty]``)."""
+    from axiscal.io.user_config import load_user_config
+    from axiscal.report.evaluations import RECORD_KEYS, evaluated_file, record_fields
+    from axiscal.store.kinds import inputs_from_config, with_uncertainty
+
+    rec = with_uncertainty(evaluated_file(file, "straightness"),
+                           inputs_from_config("straightness", load_user_config()))
+    j = record_fields(rec)["_json"]
+    return {k: j[k] for k in RECORD_KEYS}
+
+
 def straightness(
     file: Path = typer.Argument(..., help="Straightness CSV (position,deviation; see io.straightness)."),
     reference: str = typer.Option("least_squares", "--reference", help=_REF_HELP),
@@ -114,12 +140,17 @@ def straightness(
          "intercept_um": chosen.line.intercept * 1e6, "n": chosen.n,
          "methods": {m: {"straightness_um": r.deviation * 1e6,
                          "slope_um_per_m": r.line.slope * 1e6}
-                     for m, r in results.items()}}
+                     for m, r in results.items()},
+         **_straightness_record(file)}
     if report is not None:
         from axiscal.report.html import write_result_report
         from axiscal.report.squareness_plots import straightness_figure
 
-        write_result_report(report, f"Straightness — {file.name}", d,
+        from axiscal.report.evaluations import RECORD_KEYS, uncertainty_tables
+
+        shown = {k: v for k, v in d.items() if k not in RECORD_KEYS}   # U: in its tables
+        write_result_report(report, f"Straightness — {file.name}", shown,
+                            tables=uncertainty_tables(d),
                             figure=straightness_figure(data, chosen),
                             method=f"Straightness deviation about the {method.replace('_', ' ')} "
                                    "reference straight line, ISO 230-1:2012 §3.4.8 and §3.4.9; "
@@ -135,6 +166,11 @@ def straightness(
             mark = "*" if m == method else " "
             typer.echo(f" {mark} {value_text(m):<14} straightness {r.deviation * 1e6:9.3f} µm   "
                        f"slope {r.line.slope * 1e6:+10.3f} µm/m")
+        U = d["uncertainty_budget"]["U_display"]
+        typer.echo(f"expanded uncertainty (k = {d['uncertainty_budget']['k']:g}, ISO/TR 230-9; "
+                   "inputs in the user configuration's [straightness_uncertainty]): least "
+                   f"squares U = {U['straightness']} µm, minimum zone U = "
+                   f"{U['straightness_min_zone']} µm, slope U = {U['slope']} µm/m")
     _wrote(plot, report)
 
 

@@ -90,6 +90,16 @@ due = "YYYY-MM-DD"
 # [uncertainty.rotary]
 # resolution = 0.1                    # arcsec
 # cmc = { E = 1.5, A = 1.5, R = 1.0, B = 1.0 }            # arcsec
+
+# A straightness test's budget (ISO 230-1:2012 §8.2; axiscal.standards.iso230_9_straightness);
+# its reading noise and slope fit are measured from the file (the numbers: the assumed defaults)
+# [straightness_uncertainty]
+# reference_u = 0.5                   # µm, the straightedge's or straightness optics' form, k = 1
+# gain = 0.5                          # %, ± bound of the instrument's scale error
+# resolution = 0.1                    # µm
+# e_ve = 0.0                          # µm, the reading's range at rest over the test (air
+#                                     # turbulence, gradients across a laser beam)
+# reference_slope_u = 0.0             # µm/m, the reference's direction where it is calibrated
 """
 
 

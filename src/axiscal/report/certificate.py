@@ -64,6 +64,7 @@ _SECTIONS = {
     "ballbar_uncertainty": None,  # a ballbar test's budget (standards/iso230_9_ballbar.py)
     "motion_uncertainty": None,  # an ISO 230-7 test's budget (standards/iso230_7_uncertainty.py)
     "volumetric_uncertainty": None,  # a volumetric map's budget (iso230_9_volumetric.py)
+    "straightness_uncertainty": None,  # standards/iso230_9_straightness.py
 }
 
 

@@ -17,7 +17,7 @@ from typing import Any
 
 __all__ = ["FIGURES", "kind_figure", "notebook_html", "positioning_evaluation",
            "ballbar_evaluation", "evaluation_figure", "write_evaluation_report", "KIND_STANDARD",
-           "kind_of_file", "evaluated_file"]
+           "kind_of_file", "evaluated_file", "RECORD_KEYS", "uncertainty_tables"]
 
 #: The key of ISO 230-2:2014, the standard of a positioning test unless another is named.
 ISO230_2 = "iso230-2:2014"
@@ -525,4 +525,36 @@ def write_evaluation_report(ev: Any, path: Path, title: str | None = None) -> Pa
         return ballbar_report([(ev.dataset, ev.result)], title=title or
                               f"{REPORT_TITLES[ev.kind]} — {ev.result.label}").write(path)
     title = title or REPORT_TITLES[ev.kind]
+    if ev.kind == "straightness":   # ``axiscal straightness --report``'s tables of U
+        shown = {k: v for k, v in ev._json.items() if k not in RECORD_KEYS}
+        return write_result_report(path, title, shown, tables=uncertainty_tables(ev._json),
+                                   figure=evaluation_figure(ev))
     return write_result_report(path, title, ev._json, figure=evaluation_figure(ev))
+
+
+#: The keys of a record's JSON that hold its U (:func:`record_fields`), which a report shows as
+#: :func:`uncertainty_tables`, not as raw values.
+RECORD_KEYS = ("schema_version", "quantities", "uncertainty_budget", "uncertainty_inputs")
+
+
+def uncertainty_tables(d: dict) -> list:
+    """A report's tables of a record's U (``d``: its JSON, :func:`record_fields`, with an
+    ISO/TR 230-9 budget listing its inputs): each figure with U and k, and the budget's inputs
+    in words, each measured, given or assumed with its rule, as ``(caption, headers, rows)``
+    of :func:`axiscal.report.html.write_result_report`. ``axiscal straightness --report`` and
+    a stored straightness test's report show these."""
+    from axiscal.report.labels import quantity
+    from axiscal.standards.uncertainty_reporting import format_value
+    from axiscal.units import display
+
+    b = d["uncertainty_budget"]
+    figures = [(quantity(n)[0], format_value(q["value"], q["U"]), b["U_display"][n],
+                f"{q['k']:g}", display(q["unit"])) for n, q in d["quantities"].items()
+               if q.get("U") is not None]
+    inputs = [(i["label"], f"{i['value']:g} {i['unit']}".strip(),
+               "assumed" if i["assumed"] else "measured" if i["rule"].startswith("measured")
+               else "given", i["rule"].removeprefix("measured: ")) for i in b["inputs"].values()]
+    return [(f"Expanded uncertainty ({b['method']})", ["figure", "value", "U", "k", "unit"],
+             figures),
+            ("Inputs of the uncertainty budget (set in the user configuration's table of the "
+             "kind's uncertainty inputs)", ["input", "value", "", "rule or source"], inputs)]

@@ -7,7 +7,8 @@ axiscal makes a budget for it: :func:`axiscal.store.kinds.budget_of` (the one ca
 Today that is a positioning test (ISO 230-2:2014 Annex A, which keeps its own, fuller
 certificate: :mod:`axiscal.report.certificate`), a diagonal squareness test (ISO/TR 230-9), a
 squareness from two straightness profiles (ISO/TR 230-9), a
-ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a five-motion-error
+ballbar test's G and H (:mod:`axiscal.standards.iso230_9_ballbar`), a straightness test's
+figures (:mod:`axiscal.standards.iso230_9_straightness`), a five-motion-error
 test's ISO 230-7 values (:mod:`axiscal.standards.iso230_7_uncertainty`), a five-axis identification (JCGM 100:2008 §5.1.3 over the least-squares fit) and an ISO 230-3:2020
 thermal test, and a volumetric test (:mod:`axiscal.standards.iso230_9_volumetric`). Any other
 kind is refused in one line naming why.
@@ -466,9 +467,11 @@ def _inputs(budget: dict, given: dict) -> tuple[tuple[str, str, str], ...]:
     else the inputs given to it."""
     rows = []
     for name, i in (budget.get("inputs") or {}).items():
-        how = "assumed" if i.get("assumed") else "given"
+        rule = str(i.get("rule", ""))
+        how = "assumed" if i.get("assumed") else "measured" if rule.startswith("measured") \
+            else "given"                          # a measured input's rule says so itself
         rows.append((str(i.get("label") or name), f"{i.get('value'):g} {i.get('unit', '')}"
-                     .strip(), f"{how}: {i.get('rule', '')}".rstrip(": ")))
+                     .strip(), rule if how == "measured" else f"{how}: {rule}".rstrip(": ")))
     for fig, comps in (budget.get("u_components") or {}).items():
         for comp, u in comps.items():
             rows.append((f"u({fig}) from {comp}", f"{u:.3g}", "standard uncertainty, µm or µrad"))

@@ -335,6 +335,24 @@ def symbol_html(text: str) -> str:
     'B<sub>i</sub> = x̄↑ − x̄↓; see run_1.csv'
     >>> symbol_html("u_RES,dy; set with [motion_uncertainty] resolution_dy")
     'u<sub>RES,dy</sub>; set with [motion_uncertainty] resolution_dy'
+
+    A configuration's table and key (``[straightness_uncertainty] reference_u``) are names to
+    type, left as written:
+
+    >>> symbol_html("E_VE; set with [straightness_uncertainty] e_ve in the user configuration")
+    'E<sub>VE</sub>; set with [straightness_uncertainty] e_ve in the user configuration'
+    >>> symbol_html("min[x_i]")
+    'min\u2009[x<sub>i</sub>]'
     """
+    parts = _CONFIG_KEY.split(text)
+    return "".join(_html.escape(p, quote=False) if n % 2 else _symbols(p)
+                   for n, p in enumerate(parts))
+
+
+#: ``[table] key`` of a configuration (table names and keys in lower case with underscores).
+_CONFIG_KEY = re.compile(r"(\[[a-z]{3,}[a-z0-9_.]*\](?: [a-z][a-z0-9_]*\b)?)")
+
+
+def _symbols(text: str) -> str:
     escaped = re.sub(r"\b(max|min)\[", "\\1\u2009[", _html.escape(text, quote=False))
     return _SYMBOL.sub(lambda m: f"{m.group(1)}<sub>{m.group(2).strip('{}')}</sub>", escaped)

@@ -44,11 +44,14 @@ __all__ = ["KINDS", "Evaluated", "ballbar_parameters", "detect_kind", "evaluate_
            "IdentificationBudget", "ThermalBudget", "volumetric_record"]
 
 #: The configuration table holding each kind's uncertainty inputs (ISO 230-2:2014 Annex A;
-#: ISO/TR 230-9 for squareness and, axiscal's reading of it, a ballbar's G and H); a kind not named here has no uncertainty budget in axiscal.
+#: ISO/TR 230-9 for squareness and, axiscal's reading of it, the other kinds'); a kind not named
+#: here takes no inputs from a table (a five-axis identification's, a thermal test's and a
+#: five-axis ballbar test's budgets come from their data: :func:`budget_of`).
 UNCERTAINTY_TABLE = {"iso230-2": "uncertainty", "diagonal": "squareness_uncertainty",
                      "ballbar": "ballbar_uncertainty", "motion": "motion_uncertainty",
                      "squareness": "squareness_uncertainty",   # two straightness profiles
-                     "volumetric": "volumetric_uncertainty"}
+                     "volumetric": "volumetric_uncertainty",
+                     "straightness": "straightness_uncertainty"}
 
 KINDS = ("iso230-2", "straightness", "ballbar", "diagonal", "motion", "fiveaxis", "thermal",
          "volumetric", "fiveaxis-ballbar", "squareness")
@@ -214,7 +217,8 @@ def with_uncertainty(ev: Evaluated, inputs: dict | None) -> Evaluated:
     ISO 230-2:2014 Annex A for a positioning test
     (:func:`~axiscal.standards.iso230_9.positioning_budget`), ISO/TR 230-9 for a diagonal
     squareness test (:func:`~axiscal.standards.iso230_9_geometry.diagonal_budget`), G and H
-    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), the ISO
+    of a ballbar test (:func:`~axiscal.standards.iso230_9_ballbar.ballbar_budget`), a
+    straightness test's (:func:`~axiscal.standards.iso230_9_straightness.straightness_budget`), the ISO
     230-7 values of a five-motion-error test
     (:func:`~axiscal.standards.iso230_7_uncertainty.motion_budget`), a squareness
     from two straightness profiles (ISO/TR 230-9, its one evaluation made again with these
@@ -248,6 +252,10 @@ def budget_of(kind: str, dataset, evaluation, inputs: dict):
         from axiscal.standards.iso230_7_uncertainty import motion_budget
 
         return motion_budget(evaluation, inputs)
+    if kind == "straightness":
+        from axiscal.standards.iso230_9_straightness import straightness_budget
+
+        return straightness_budget(dataset.positions, dataset.deviations, inputs)
     if kind == "fiveaxis":
         return IdentificationBudget(evaluation)
     if kind == "thermal":

@@ -9,7 +9,9 @@ write them (a share in % with one). Nothing is computed here.
 - ballbar: the polar plot and ranked bars of ``ballbar analyze --plot``, the ISO 230-4:2005 §3
   figures, the ranked diagnosis with its advice (Renishaw, "Calibration of machine squareness",
   Method 4), what the ISO 230-4 fit folds together; one direction: the ISO 230-4 evaluation;
-- straightness: both ISO 230-1:2012 reference lines (§3.4.8 least squares, §3.4.9 minimum zone);
+- straightness: both ISO 230-1:2012 reference lines (§3.4.8 least squares, §3.4.9 minimum zone),
+  each figure with its U and the budget's contributors and inputs
+  (:func:`axiscal.standards.iso230_9_straightness.straightness_budget`, the stored record's);
 - diagonal: squareness from two diagonals (ISO 230-6:2002; Chapman, Method 5) with its U (k = 2),
   the budget ``squareness diagonal`` prints
   (:func:`axiscal.standards.iso230_9_geometry.diagonal_budget`, ISO/TR 230-9; the user
@@ -149,14 +151,22 @@ def _straightness(ev) -> dict:
              "minimum_zone": "minimum zone (ISO 230-1:2012 §3.4.9)"}
     rows = [(names[m], fmt(res[m]["straightness_um"], "µm"),
              fmt(res[m]["slope_um_per_m"], "µm/m")) for m in names]
+    b = ev.budget                   # the record's (iso230_9_straightness): U beside each figure
+    heads = ["reference line", "straightness [µm]", "slope [µm/m]"]
+    if b is not None:
+        heads = ["reference line", "straightness [µm]", "U (k = 2) [µm]", "slope [µm/m]",
+                 "U (k = 2) [µm/m]"]
+        rows = [(rows[0][0], rows[0][1], b.U_text("straightness"), rows[0][2],
+                 b.U_text("slope")),
+                (rows[1][0], rows[1][1], b.U_text("straightness_min_zone"), rows[1][2], "—")]
     return {"figure": _figure(straightness_figure, d, ev.evaluation),
             "alt": "Straightness readings, the least-squares line and its band",
             "source": "ISO 230-1:2012 §3.4.8 and §3.4.9, reference straight lines",
             "lead": f"{res['n']} readings along {d.axis or 'the axis'}, deviation along "
                     f"{d.direction or 'the normal'}",
-            "tables": [("Straightness about each reference line", "straightness",
-                        ["reference line", "straightness [µm]", "slope [µm/m]"], rows)],
-            "statements": [], "warnings": []}
+            "tables": [("Straightness about each reference line", "straightness", heads, rows),
+                       *(_budget_tables(b, "µm; the slope's µm/m") if b is not None else ())],
+            "notes": list(b.notes) if b is not None else [], "statements": [], "warnings": []}
 
 
 def _diagonal(ev) -> dict:
@@ -240,7 +250,8 @@ def _budget_tables(budget, unit: str) -> list:
     (measured, given, assumed with its rule)."""
     contributors = [(c.name, c.quantity, f"{c.u:.3g}", c.distribution, c.basis, c.clause)
                     for c in budget.contributors]
-    inputs = [(i.label, i.value_text, "assumed" if i.assumed else "given", i.rule, i.set_with)
+    inputs = [(i.label, i.value_text, "assumed" if i.assumed else "measured"
+               if i.rule.startswith("measured") else "given", i.rule, i.set_with)
               for i in budget.inputs]
     return [(f"Uncertainty budget ({budget.method}, k = {budget.k:g})", "budget",
              ["contributor", "quantity", f"u [{unit}]", "distribution", "basis", "clause"],
