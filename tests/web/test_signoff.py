@@ -175,33 +175,3 @@ def test_a_viewer_sees_certificates_but_cannot_sign_off(tmp_path, monkeypatch, u
     r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", **JOB})
     assert r.status_code == 403 and "viewer" in r.text
     assert 'id="no-certificates"' in c.get("/tests/1").text
-
-
-def test_the_signed_in_user_approves_only_as_an_authorised_signatory(tmp_path, monkeypatch,
-                                                                     users):
-    """Issue 38: signed in, the approver is the user, not the form's signatory field. 'eng' is
-    not among the laboratory's [[signatory]]: a DRAFT naming it, nothing numbered; listed as
-    signatory 'eng' issues, and the register keeps the operator as preparer and eng as
-    approver."""
-    from tests.web.conftest import log_in
-
-    cfg = tmp_path / "config.toml"
-    cfg.write_text(LAB + '[[signatory]]\nname = "B. Signatory"\nrole = "Head of laboratory"\n',
-                   encoding="utf-8")
-    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", users, require_login=True),
-                   base_url="http://127.0.0.1")
-    log_in(c, "eng", "correct horse battery")
-    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
-    c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", data_file(), "text/csv")})
-    r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", "tol_E": "15", **JOB},
-               follow_redirects=False)
-    assert r.status_code == 200 and "&#39;eng&#39; is not one of the laboratory" in r.text
-    assert 'id="no-certificates"' in c.get("/tests/1").text
-    cfg.write_text(LAB + '[[signatory]]\nname = "eng"\nrole = "Head of laboratory"\n',
-                   encoding="utf-8")
-    r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", "tol_E": "15", **JOB},
-               follow_redirects=False)
-    assert r.status_code == 303
-    rec = c.app.state.store.certificates()[0]
-    assert (rec.prepared_by, rec.approved_by) == ("A. Operator", "eng")

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 
 from axiscal.errors import InputError
 
-__all__ = ["laboratory", "set_laboratory", "add_drift_check", "drift_checks", "DriftCheckRecord",
-           "result_with_drift_check",
+__all__ = ["laboratory", "set_laboratory", "signatory_list", "check_signatory_change",
+           "add_drift_check", "drift_checks", "DriftCheckRecord", "result_with_drift_check",
            "signoff_config", "last_certificate_inputs", "LABORATORY_TABLES"]
 
 #: The configuration tables the history's laboratory holds.
@@ -65,14 +65,26 @@ def laboratory(store) -> dict:
         return json.loads(row.tables_json) if row is not None else {}
 
 
-def set_laboratory(store, tables: dict, *, by: str, reason: str):
+def set_laboratory(store, tables: dict, *, by: str, reason: str, account: str | None = None,
+                   inherited: dict | None = None):
     """Keep ``tables`` (of :data:`LABORATORY_TABLES`) as the laboratory; an audit entry with
     the old and the new tables. Returns the :class:`~axiscal.store.corrections.AuditRecord`.
+
+    ``account`` is the signed-in account making the change (the workbench with accounts; None
+    on one's own computer and on the command line, where the local user is trusted): a change
+    of the authorised signatories (their names or roles) is then made only by one of the
+    signatories before the change (ISO/IEC 17025:2017 §6.2.5, §6.2.6 c: personnel authorised
+    by the laboratory; §7.8.2.1 o), checked in the same transaction as the write; while none is
+    listed, any engineer may list the first ones (there is no administrator role). The
+    signatories before the change are those kept, else ``inherited``'s (the server's user
+    configuration, which the page shows when the history keeps none).
 
     Raises
     ------
     InputError
         A table not of :data:`LABORATORY_TABLES`; an instrument without a name; no change.
+    NotAuthorisedError
+        ``account`` changes the signatories and is not one of them.
     """
     from axiscal.io.user_config import check_instruments
     from axiscal.store.corrections import _change, _log
@@ -90,6 +102,8 @@ def set_laboratory(store, tables: dict, *, by: str, reason: str):
         old = json.loads(row.tables_json) if row is not None else {}
         if old == new:
             raise InputError("the laboratory already has these values; nothing changed")
+        if account is not None:
+            check_signatory_change(old, new, account, inherited)
         if row is None:
             s.add(Laboratory(id=1, tables_json=json.dumps(new), updated=now,
                              updated_by=(by or "").strip()[:200]))
@@ -98,6 +112,37 @@ def set_laboratory(store, tables: dict, *, by: str, reason: str):
         changed = sorted(k for k in set(old) | set(new) if old.get(k) != new.get(k))
         return _log(s, by, reason, "laboratory", "laboratory: " + ", ".join(changed)
                     + " edited", old, new)
+
+
+def signatory_list(tables: dict) -> list[tuple[str, str]]:
+    """The ``[[signatory]]`` entries of laboratory ``tables`` as (name, role), in order."""
+    listed = tables.get("signatory") or []
+    listed = listed if isinstance(listed, list) else [listed]
+    return [(str(t.get("name", "")).strip(), str(t.get("role", "")).strip())
+            for t in listed if isinstance(t, dict) and str(t.get("name", "")).strip()]
+
+
+def check_signatory_change(old: dict, new: dict, account: str,
+                           inherited: dict | None = None) -> None:
+    """Refuse a change of the authorised signatories by ``account`` when it is not one of them
+    (see :func:`set_laboratory`); nothing is refused while no signatory is listed.
+
+    Raises
+    ------
+    NotAuthorisedError
+        The list (a name or a role) changes and ``account`` is not on the list before it.
+    """
+    from axiscal.errors import NotAuthorisedError
+
+    base = signatory_list(inherited or {})
+    before = signatory_list(old) or base
+    after = signatory_list(new) or base
+    if before == after or not before:
+        return
+    if (account or "").strip().casefold() not in {n.casefold() for n, _ in before}:
+        raise NotAuthorisedError(
+            f"Authorised signatories: only one of them ({', '.join(n for n, _ in before)}) may "
+            f"change the list; the account {account!r} is not (ISO/IEC 17025:2017 §6.2.6)")
 
 
 def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
