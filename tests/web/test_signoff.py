@@ -175,3 +175,38 @@ def test_a_viewer_sees_certificates_but_cannot_sign_off(tmp_path, monkeypatch, u
     r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", **JOB})
     assert r.status_code == 403 and "viewer" in r.text
     assert 'id="no-certificates"' in c.get("/tests/1").text
+
+
+def _rotary_file() -> bytes:
+    """A rotary ISO 230-2 test of the C axis of the same machine VMC-800 (deg, arcsec)."""
+    import numpy as np
+
+    from axiscal.datasets import Metadata, PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 315, 8)
+    up = rng.normal(2.0, 0.8, (8, 5))
+    return format_positioning_csv(PositioningDataset(
+        "rotary", t, up, up - 3.0, "deg", "arcsec",
+        Metadata(machine="VMC-800", axis="C", date="2026-03-02"))).encode()
+
+
+def test_tolerances_prefill_only_from_the_same_axis_and_kind(client):
+    """Review defect 2: after a certificate of VMC-800 X with E ≤ 30 µm, a rotary C test of
+    VMC-800 starts with no tolerance of E (30 would be arcsec there); a second X test of the
+    machine starts with E = 30 (the same axis and kind), and both start from the certificate's
+    customer."""
+    assert _sign(client, "issue", tol_E="30", **JOB).status_code == 303
+    r = client.post("/upload", data={"csrf": client.token},
+                    files={"file": ("c.csv", _rotary_file(), "text/csv")})
+    assert str(r.url).endswith("/tests/2?stored=new"), r.url
+    page = client.get("/tests/2").text
+    assert re.search(r'name="tol_E" value=""', page)
+    assert 'name="customer_name" value="Example Machining AG"' in page
+    again = data_file().replace(b"2026-03-01", b"2026-03-05")   # another test of X
+    assert again != data_file()
+    r = client.post("/upload", data={"csrf": client.token},
+                    files={"file": ("x2.csv", again, "text/csv")})
+    assert str(r.url).endswith("/tests/3?stored=new"), r.url
+    assert 'name="tol_E" value="30"' in client.get("/tests/3").text

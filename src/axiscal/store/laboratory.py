@@ -242,10 +242,14 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None,
     return {**cfg, "uncertainty": inputs}
 
 
-def last_certificate_inputs(store, machine_id: int) -> tuple[int | None, dict]:
+def last_certificate_inputs(store, machine_id: int,
+                            like_test: int | None = None) -> tuple[int | None, dict]:
     """(test id, inputs) of the newest certificate of any test of a machine ((None, {}) if
-    none): what a new sign-off of the machine starts from (customer, item, instruments,
-    tolerances; and the conditions, when it is of the same test)."""
+    none): what a new sign-off of the machine starts from (customer, item, instruments; and the
+    conditions, when it is of the same test). With ``like_test``, only certificates of tests of
+    the same axis and kind as that test: where a sign-off takes its tolerances from (a tolerance
+    of E of the X axis, in µm, is no tolerance of the C axis's E, in arcsec, nor of a diagonal
+    test's)."""
     from sqlalchemy import select
 
     from axiscal.store.models import Axis, Certificate, Test
@@ -254,6 +258,10 @@ def last_certificate_inputs(store, machine_id: int) -> tuple[int | None, dict]:
          .join(Test, Test.id == Certificate.test_id)
          .join(Axis, Axis.id == Test.axis_id).where(Axis.machine_id == int(machine_id))
          .order_by(Certificate.id.desc()).limit(1))
+    if like_test is not None:
+        like = select(Test.axis_id, Test.kind).where(Test.id == int(like_test)).subquery()
+        q = q.where(Test.axis_id == select(like.c.axis_id).scalar_subquery(),
+                    Test.kind == select(like.c.kind).scalar_subquery())
     with store._guard("read"), store._session() as s:
         found = s.execute(q).first()
     return (found[0], json.loads(found[1])) if found else (None, {})

@@ -148,8 +148,9 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
 
 def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
     """The form of a new sign-off: the user configuration, the laboratory kept in the history,
-    the customer, item, instruments and tolerances of the machine's last certificate (and its
-    conditions when it is of this test), and the stored test's date and the instrument typed at
+    the customer, item and instruments of the machine's last certificate (and its conditions
+    when it is of this test), the tolerances of the last certificate of this axis and kind of
+    test (in this test's units), and the stored test's date and the instrument typed at
     upload (a sign-off is of this test)."""
     from axiscal.io.user_config import merge
     from axiscal.store.laboratory import laboratory, last_certificate_inputs
@@ -163,7 +164,9 @@ def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
                        if k in ("maker", "model", "serial", "location")}
     keep["certificate"] = {k: v for k, v in old.get("certificate", {}).items()
                            if k in ("specification", "rule", "paper")}
-    keep["tolerance"] = {**old.get("tolerance", {}), **(last.get("tolerances") or {})}
+    _, like = last_certificate_inputs(st, t.summary.machine_id, like_test=t.summary.id)
+    keep["tolerance"] = {**like.get("config", {}).get("tolerance", {}),     # same axis, kind
+                         **(like.get("tolerances") or {})}
     form = {**_defaults(merge(cfg, keep), params), **lab_defaults(cfg)}
     if t.summary.date_known and not getattr(getattr(ev.dataset, "metadata", None), "date",
                                             ev.date):
