@@ -30,7 +30,8 @@ from axiscal.errors import InputError
 
 __all__ = ["laboratory", "set_laboratory", "signatory_list", "check_signatory_change",
            "add_drift_check", "drift_checks", "DriftCheckRecord", "result_with_drift_check",
-           "signoff_config", "last_certificate_inputs", "LABORATORY_TABLES"]
+           "signoff_config", "signoff_record", "reads_e_ve", "last_certificate_inputs",
+           "LABORATORY_TABLES"]
 
 #: The configuration tables the history's laboratory holds.
 LABORATORY_TABLES = ("company", "signatory", "instrument", "uncertainty")
@@ -167,12 +168,21 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
     record = drift_check_record(raw, name)     # the one place a drift check becomes E_VE
     e_ve = record["e_ve"]
     stored = store.get(test_id)
-    if stored.summary.kind != "iso230-2":
+    positioning = stored.summary.kind == "iso230-2"
+    if not positioning and not reads_e_ve(stored.record()):
         raise InputError(f"test {stored.summary.id} is a {stored.summary.kind} test: E_VE (a "
                          "drift check) is an input of a positioning test's budget (ISO "
-                         "230-2:2014 Annex A)")
+                         "230-2:2014 Annex A) and of a budget that reads it (a diagonal "
+                         "test's); this one does not")
     before = dict(stored.result.get("uncertainty_inputs") or {})
-    result = result_with_drift_check(stored.evaluate_again(), before, record)
+    if positioning:
+        result = result_with_drift_check(stored.evaluate_again(), before, record)
+    else:                        # the budget's own input e_ve (its table has no e_ve_source)
+        from axiscal._json import jsonable
+        from axiscal.store.kinds import with_uncertainty
+
+        result = json.dumps(jsonable(with_uncertainty(stored.evaluate_again(), {
+            **before, "e_ve": e_ve}).stored_result()))
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
         t = _test(s, test_id)
@@ -240,6 +250,29 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None,
                              "the form; give one")
         inputs.update(checks[0].inputs)
     return {**cfg, "uncertainty": inputs}
+
+
+def reads_e_ve(ev) -> bool:
+    """True when the budget of record ``ev`` (of a kind other than a positioning test) has the
+    input E_VE (a diagonal test's, ISO/TR 230-9)."""
+    return any(getattr(i, "name", None) == "e_ve"
+               for i in getattr(ev.budget, "inputs", None) or ())
+
+
+def signoff_record(store, stored, cfg: dict):
+    """The record a sign-off of stored test ``stored`` of a kind other than a positioning test
+    certifies: its stored record, and where its budget reads E_VE, E_VE resolved exactly as a
+    positioning test's is (:func:`signoff_config` ``cfg``: the test's own input, else the
+    laboratory's E_VE declared, a drift check kept with the test over both), the budget made
+    again by the one call (:func:`axiscal.store.kinds.with_uncertainty`). An E_VE given by none
+    stays assumed in the budget, and the certificate lists it as missing."""
+    from axiscal.store.kinds import with_uncertainty
+
+    ev = stored.record()
+    e_ve = (cfg.get("uncertainty") or {}).get("e_ve")
+    if e_ve is None or not reads_e_ve(ev) or (ev.inputs or {}).get("e_ve") == e_ve:
+        return ev
+    return with_uncertainty(ev, {**(ev.inputs or {}), "e_ve": e_ve})
 
 
 def last_certificate_inputs(store, machine_id: int,

@@ -109,6 +109,7 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     from axiscal.store.laboratory import drift_checks
 
     positioning = ev.kind == "iso230-2"
+    e_ve_input = positioning
     if positioning:
         params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
         units = {}
@@ -120,6 +121,9 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
             return None
         figures = certificate_record(rec).figures
         params = [f.name for f in figures]
+        from axiscal.store.laboratory import reads_e_ve
+
+        e_ve_input = reads_e_ve(rec)          # a drift check or the laboratory's E_VE
         units = {f.name: _unit(f.unit) for f in figures}
     records = st.certificates(test_id=t.summary.id)
     current = next((c for c in records if c.status == "issued"), None)
@@ -127,6 +131,7 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
            "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
            "unit": _unit(ev.evaluation.deviation_unit) if positioning else "",
            "units": units, "positioning": positioning, "current": current,
+           "e_ve_input": e_ve_input,
            "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id),
            "saved": saved_signoff(st, t.summary.id)}
     issued = next((c for c in records if c.number == certificate), None)
@@ -293,7 +298,7 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
     from axiscal.report.issue import load_config, signatories
     from axiscal.store.approval import clear_saved, preparer, save_for_approval
     from axiscal.store.laboratory import (add_drift_check, check_signatory_change, laboratory,
-                                          set_laboratory, signoff_config)
+                                          set_laboratory, signoff_config, signoff_record)
 
     t = st.get(test_id)
     ev = t.evaluate_again()
@@ -316,7 +321,7 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         if user:
             check_signatory_change(kept, lab, user, user_cfg)
         who = user or values.get("operator", "")
-        if drift is not None and ctx["positioning"]:
+        if drift is not None and ctx["e_ve_input"]:
             if len(drift[0]) > MAX_DRIFT_BYTES:
                 raise InputError(f"{LABELS['drift_check']}: {drift[1]} is over "
                                  f"{MAX_DRIFT_BYTES // 2**20} MiB")
@@ -326,6 +331,8 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
             add_drift_check(st, test_id, drift[0], drift[1], by=who)
             ctx["drift_checks"] = _drift_checks(st, test_id)
         cfg = signoff_config(st, t, user_cfg, job, lab)
+        if not ctx["positioning"]:          # E_VE resolved as a positioning test's
+            ev = signoff_record(st, t, cfg)
         _verdict(ctx, ev, cfg, tolerances, rule)
         if action == "save":
             ctx.update(saved=save_for_approval(st, test_id, values, by=user), saved_now=True)
