@@ -225,11 +225,12 @@ def drift_checks(store, test_id: int) -> list[DriftCheckRecord]:
 
 
 def signoff_config(store, stored, user_config: dict, job: dict | None = None,
-                   lab: dict | None = None) -> dict:
+                   lab: dict | None = None, checks: list | None = None) -> dict:
     """The configuration a sign-off of stored test ``stored`` is made with (see the module's
     docstring): ``user_config``, the history's laboratory (or ``lab``, the laboratory as a form
     is about to keep it), ``job``; the uncertainty inputs the test's own (stored with it) over
-    the laboratory's, its newest drift check's E_VE over them.
+    the laboratory's, its newest drift check's E_VE over them (``checks``: the test's drift
+    checks, newest first, when read already).
 
     Raises
     ------
@@ -241,9 +242,9 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None,
 
     lab = laboratory(store) if lab is None else lab
     cfg = merge(merge(user_config, lab), job or {})
-    inputs = merge(dict(cfg.get("uncertainty") or {}),
-                   dict(stored.record().inputs or {}))
-    checks = drift_checks(store, stored.summary.id)
+    inputs = merge(dict(cfg.get("uncertainty") or {}),     # the inputs of stored.record()
+                   dict(stored.result.get("uncertainty_inputs") or {}))
+    checks = drift_checks(store, stored.summary.id) if checks is None else checks
     if checks:
         if "e_ve" in ((job or {}).get("uncertainty") or {}):
             raise InputError("E_VE is given twice: by the drift check kept with the test and by "

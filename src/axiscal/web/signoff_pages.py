@@ -91,7 +91,7 @@ def add_routes(app: FastAPI) -> None:
 
 
 def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "",
-                    cfg: dict | None = None) -> dict | None:
+                    cfg: dict | None = None, known: dict | None = None) -> dict | None:
     """What the test page's sign-off section shows: the form (filled from ``values``, or from
     the inputs kept with ``certificate`` of this test, whose verdict is then shown, or else
     from the user configuration ``cfg`` (default read now), the laboratory kept in the history,
@@ -125,14 +125,17 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
 
         e_ve_input = reads_e_ve(rec)          # a drift check or the laboratory's E_VE
         units = {f.name: _unit(f.unit) for f in figures}
-    records = st.certificates(test_id=t.summary.id)
+    known = known or {}           # read already by the page: certificates, laboratory, drifts
+    records = known.get("certificates")
+    records = st.certificates(test_id=t.summary.id) if records is None else records
+    checks = known.get("drift_checks")
     current = next((c for c in records if c.status == "issued"), None)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
            "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
            "unit": _unit(ev.evaluation.deviation_unit) if positioning else "",
            "units": units, "positioning": positioning, "current": current,
            "e_ve_input": e_ve_input,
-           "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id),
+           "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id) if checks is None else checks,
            "saved": saved_signoff(st, t.summary.id)}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
@@ -147,11 +150,12 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     elif ctx["saved"] is not None:            # what the preparer saved for approval
         ctx["form"] = dict(ctx["saved"].values)
     else:
-        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params)
+        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params,
+                               known.get("laboratory"))
     return ctx
 
 
-def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
+def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None) -> dict:
     """The form of a new sign-off: the user configuration, the laboratory kept in the history,
     the customer, item and instruments of the machine's last certificate (and its conditions
     when it is of this test), the tolerances of the last certificate of this axis and kind of
@@ -160,7 +164,7 @@ def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
     from axiscal.io.user_config import merge
     from axiscal.store.laboratory import laboratory, last_certificate_inputs
 
-    cfg = merge(user_cfg, laboratory(st))
+    cfg = merge(user_cfg, laboratory(st) if lab is None else lab)
     of_test, last = last_certificate_inputs(st, t.summary.machine_id)
     old = last.get("config", {})
     same = ("conditions",) if of_test == t.summary.id else ()     # this test's own conditions
