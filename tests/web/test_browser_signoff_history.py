@@ -141,6 +141,8 @@ def test_signoff_of_a_real_file_finished_on_the_page_then_amended(bench, browser
     assert browser.find_element(By.NAME, "customer_name").get_attribute("value") == \
         JOB_FORM["customer_name"]
     assert "awaiting approval" in browser.find_element(By.ID, "awaiting-approval").text
+    browser.execute_script("document.getElementById('authorisation').scrollIntoView()")
+    _shot(browser, "i40a_awaiting_approval_1280")
     _press(browser, "issue-certificate", "certificates")
     assert "certificate=PM-2026-00001" in browser.current_url
     assert "E_VE = 0.6 µm" in browser.find_element(By.ID, "drift-kept").text
