@@ -116,11 +116,16 @@ def set_laboratory(store, tables: dict, *, by: str, reason: str, account: str | 
 
 
 def signatory_list(tables: dict) -> list[tuple[str, str]]:
-    """The ``[[signatory]]`` entries of laboratory ``tables`` as (name, role), in order."""
+    """The ``[[signatory]]`` entries of laboratory ``tables`` as (name, role), in order; without
+    any, the one ``[certificate] signatory`` (as :func:`axiscal.report.issue.signatories`)."""
     listed = tables.get("signatory") or []
     listed = listed if isinstance(listed, list) else [listed]
-    return [(str(t.get("name", "")).strip(), str(t.get("role", "")).strip())
-            for t in listed if isinstance(t, dict) and str(t.get("name", "")).strip()]
+    out = [(str(t.get("name", "")).strip(), str(t.get("role", "")).strip())
+           for t in listed if isinstance(t, dict) and str(t.get("name", "")).strip()]
+    cert = tables.get("certificate") or {}
+    if not out and str(cert.get("signatory") or "").strip():
+        out = [(str(cert["signatory"]).strip(), str(cert.get("signatory_role", "")).strip())]
+    return out
 
 
 def check_signatory_change(old: dict, new: dict, account: str,
