@@ -23,15 +23,15 @@ PASSWORD = "correct horse battery"
 
 @pytest.fixture
 def bench(tmp_path, monkeypatch):
-    """Accounts prep (an engineer, not a signatory), sig and sig2 (engineers and the
-    laboratory's signatories); test 1 uploaded by prep."""
+    """Accounts prep (an engineer, not a signatory) and sig (an engineer and one of the
+    laboratory's signatories, sig and sig2); test 1 uploaded by prep."""
     from axiscal.web.security import UserFile
 
     cfg = tmp_path / "config.toml"
     cfg.write_text(LAB + SIGNATORIES, encoding="utf-8")
     monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
     users = UserFile.load(tmp_path / "users.toml")
-    for name in ("prep", "sig", "sig2"):
+    for name in ("prep", "sig"):
         users.add(name, "engineer", PASSWORD)
     c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", tmp_path / "users.toml",
                               require_login=True), base_url="http://127.0.0.1")
@@ -79,15 +79,24 @@ def test_only_a_signatory_changes_the_signatory_list(bench):
 
 
 def test_the_preparer_saves_and_another_signatory_issues_what_was_saved(bench):
-    """Defects 1 and 5: prep presses Issue: not issued, and the page tells it to save for
-    approval (no "Authorised signatories" item, no "not one of" fault); prep saves: an audit
-    entry, the test page says "awaiting approval by a signatory"; sig opens the test and finds
-    the form as saved; sig alone cannot issue its own preparation; sig issues prep's: the
-    register keeps prep (the account, not the operator typed) as preparer, sig as approver."""
+    """Defects 1 and 5: sig, a signatory, saves a form itself and presses Issue: "prepared by
+    one account and approved by another", the form's signatory fields (a name typed) not read;
+    prep presses Issue: not issued, and the page tells it to save for approval (no "Authorised
+    signatories" item, no "not one of" fault); prep saves: an audit entry, the test page says
+    "awaiting approval by a signatory"; sig opens the test and finds the form as saved, a
+    changed form is not prep's; sig issues prep's: the register keeps prep (the account, not
+    the operator typed) as preparer, sig as approver."""
     from axiscal.store.corrections import audit
 
     st = bench.app.state.store
     form = {**JOB, "operator": "A. Other", "tol_E": "30"}
+    _as(bench, "sig")
+    alone = {**form, "signatory": "sig2", "signatory_role": "Deputy"}
+    assert _sign(bench, "save", **alone).status_code == 200
+    assert "prepared by one account and approved by another" in _sign(bench, "issue",
+                                                                       **alone).text
+    assert st.certificates() == []
+    _as(bench, "prep")
     r = _sign(bench, "issue", **form)
     assert r.status_code == 200 and 'id="draft"' in r.text
     draft = r.text[r.text.index('id="draft"'):r.text.index("</ul>", r.text.index('id="draft"'))]
@@ -114,14 +123,3 @@ def test_the_preparer_saves_and_another_signatory_issues_what_was_saved(bench):
     assert (rec.prepared_by, rec.approved_by, rec.approved_role) == ("prep", "sig",
                                                                      "Head of metrology")
     assert "awaiting approval" not in bench.get("/tests/1").text
-
-
-def test_a_signatory_cannot_prepare_and_approve_alone(bench):
-    """sig saves the form itself and presses Issue: "prepared by one account and approved by
-    another", nothing numbered; the form's signatory fields (a name typed) are not read."""
-    _as(bench, "sig")
-    form = {**JOB, "tol_E": "30", "signatory": "sig2", "signatory_role": "Deputy"}
-    assert _sign(bench, "save", **form).status_code == 200
-    r = _sign(bench, "issue", **form)
-    assert "prepared by one account and approved by another" in r.text
-    assert bench.app.state.store.certificates() == []
