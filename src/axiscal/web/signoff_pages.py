@@ -135,7 +135,8 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
            "unit": _unit(ev.evaluation.deviation_unit) if positioning else "",
            "units": units, "positioning": positioning, "current": current,
            "e_ve_input": e_ve_input,
-           "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id) if checks is None else checks,
+           "withdrawn": t.summary.withdrawn,
+           "drift_checks": drift_checks(st, t.summary.id) if checks is None else checks,
            "saved": saved_signoff(st, t.summary.id)}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
