@@ -144,6 +144,13 @@ class NotFoundError(AxiscalError, LookupError):
     """No such test, machine or axis in the history."""
 
 
+class NotAuthorisedError(AxiscalError, PermissionError):
+    """The account may not make this change (ISO/IEC 17025:2017 §6.2.6: only authorised
+    personnel); the workbench answers 403."""
+
+    status = 403
+
+
 class ProgramError(InputError):
     """A part program cannot be made as asked (``option`` names the option to change)."""
 

@@ -132,9 +132,16 @@ def test_a_diagonal_certificate_is_issued_with_its_verdict(files, tmp_path):
     800 mm: errors growing along each diagonal to 6 and −3 µm at 1000 mm give
     9·1000/(2·600·800) = 9.375 µm/m; against 20 µm/m
     with its U (about 0.7 µm/m, ISO/TR 230-9) conformance is proven (ISO 14253-1:2017 §5.2)
-    and the register numbers the certificate."""
+    and the register numbers the certificate. Its E_VE is declared (0.5 µm): without it the
+    certificate is a DRAFT (review defect 3, never "0 µm assumed")."""
+    from axiscal.store.kinds import with_uncertainty
+
     st, t = _stored(tmp_path, files["diagonal"])
-    ev = t.record()
+    bare = write_kind_certificate(tmp_path / "d.html", t.record(), copy.deepcopy(COMPLETE),
+                                  t.raw, {"squareness": 20.0}, store=st, today="2026-11-25",
+                                  prepared_by="J. Keller", draft_document=False)
+    assert [m[:5] for m in bare.missing] == ["E_VE,"] and not bare.number
+    ev = with_uncertainty(t.record(), {**t.record().inputs, "e_ve": 0.5})
     sq = ev.parameters["squareness"][0]
     assert sq == pytest.approx(9.375, abs=1e-6)
     out = write_kind_certificate(tmp_path / "c.html", ev, copy.deepcopy(COMPLETE), t.raw,
@@ -269,7 +276,7 @@ def test_certificate_issue_on_the_command_line(files, tmp_path, monkeypatch):
     d = st.add(files["diagonal"].read_bytes(), "diagonal.csv", machine="VMC").id
     b = st.add(files["straightness"].read_bytes(), "straightness.csv", machine="VMC").id
     job = tmp_path / "job.toml"
-    job.write_text(_toml(COMPLETE))
+    job.write_text(_toml({**COMPLETE, "uncertainty": {"e_ve": 0.5}}))    # E_VE declared
     runner = CliRunner()
     r = runner.invoke(cli_app, ["certificate", "issue", str(d), "--db", url, "--job", str(job),
                                 "--tolerance", "squareness=20", "--prepared-by", "J. Keller",
@@ -277,7 +284,10 @@ def test_certificate_issue_on_the_command_line(files, tmp_path, monkeypatch):
     assert r.exit_code == 0, r.output
     got = json.loads(r.stdout)
     assert got["test_id"] == d and got["number"].startswith("PM-2026-")
-    f = certificate_record(st.get(d).record(), {"squareness": 20.0}).figures[0]
+    from axiscal.store.kinds import with_uncertainty
+
+    rec = with_uncertainty(st.get(d).record(), {**st.get(d).record().inputs, "e_ve": 0.5})
+    f = certificate_record(rec, {"squareness": 20.0}).figures[0]
     assert f"<td>{f.value_text}</td><td>{f.U_text}</td>" in (tmp_path / "sq.html").read_text()
     fix = tmp_path / "fix.toml"
     fix.write_text('[customer]\nname = "Example Machining GmbH"\n')

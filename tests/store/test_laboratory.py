@@ -78,3 +78,21 @@ def test_drift_check_gives_e_ve_over_the_stored_inputs(store):
     with pytest.raises(AxiscalError, match="at least 2"):
         add_drift_check(store, 1, b"reading\n0.1\n", "one.csv", by="eng")
     assert len(drift_checks(store, 1)) == 1                  # nothing kept of a refusal
+
+
+def test_only_a_signatory_changes_the_signatories():
+    """Review defect 1 (ISO/IEC 17025:2017 §6.2.6 c): the list before the change decides, the
+    one kept or, when none is, the server configuration's (its [certificate] signatory too);
+    while none is listed anywhere, any account lists the first."""
+    from axiscal.errors import NotAuthorisedError
+    from axiscal.store.laboratory import check_signatory_change
+
+    new = {"signatory": [{"name": "prep", "role": "Deputy"}]}
+    server = {"certificate": {"signatory": "Dr. M. Braun", "signatory_role": "Head"}}
+    with pytest.raises(NotAuthorisedError, match=r"only one of them \(Dr. M. Braun\)"):
+        check_signatory_change({}, new, "prep", server)
+    with pytest.raises(NotAuthorisedError):
+        check_signatory_change({"signatory": [{"name": "sig", "role": "Head"}]}, new, "prep")
+    check_signatory_change({"signatory": [{"name": "sig", "role": "Head"}]}, new, "SIG")
+    check_signatory_change({}, new, "prep")                   # the first list
+    check_signatory_change(new, {**new, "company": {"name": "X"}}, "other")   # not the list

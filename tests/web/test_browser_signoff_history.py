@@ -31,6 +31,7 @@ def bench(tmp_path_factory):
     (d / "config.toml").write_text(USER, encoding="utf-8")
     users = UserFile.load(d / "users.toml")
     users.add("eng", "engineer", "correct horse battery")
+    users.add("sig", "engineer", "correct horse battery")    # the signatory who approves
     (d / "drift.csv").write_bytes(DRIFT)
     proc, base = start_server(d, "--users", str(d / "users.toml"),
                               env={"AXISCAL_CONFIG": str(d / "config.toml")})
@@ -44,14 +45,23 @@ def _shot(browser, name: str) -> None:
     shutil.copy(p, SHOTS / p.name)
 
 
-def _log_in(browser, base: str, path: str = "/login") -> None:
+def _log_in(browser, base: str, path: str = "/login", name: str = "eng") -> None:
     if path:
         browser.get(base + path)
-    browser.find_element(By.NAME, "username").send_keys("eng")
+    browser.find_element(By.NAME, "username").send_keys(name)
     browser.find_element(By.NAME, "password").send_keys("correct horse battery")
     button = browser.find_element(By.CSS_SELECTOR, "main form.card button")
     button.click()
     WebDriverWait(browser, 20).until(replaced(button))
+
+
+def _as(browser, base: str, name: str) -> None:
+    """Log out and in again as ``name``, then open test 1."""
+    browser.find_element(By.CSS_SELECTOR, "header form button").click()
+    WebDriverWait(browser, 20).until(lambda b: "/login" in b.current_url)
+    _log_in(browser, base, path="", name=name)
+    browser.get(base + "/tests/1")
+    WebDriverWait(browser, 20).until(_ready)
 
 
 def _type(browser, name: str, text: str) -> None:
@@ -120,12 +130,19 @@ def test_signoff_of_a_real_file_finished_on_the_page_then_amended(bench, browser
     browser.find_element(By.LINK_TEXT, "Customer").click()
     assert browser.current_url.endswith("#f-customer_name")
 
-    _form(browser, {**LAB_FORM, **JOB_FORM,      # signed in: eng approves, one of the list
-                    "lab_signatories": "B. Signatory, Head of laboratory\neng, Deputy head"})
+    _form(browser, {**LAB_FORM, **JOB_FORM,      # eng prepares, sig (on the list) approves
+                    "lab_signatories": "B. Signatory, Head of laboratory\nsig, Deputy head"})
     # the sign-off form's field, not the drift-check box of the test page above it
     browser.find_element(By.ID, "i-drift_check").send_keys(str(d / "drift.csv"))
     browser.execute_script("document.getElementById('laboratory').scrollIntoView()")
     _shot(browser, "i40a_form_1280")
+    _press(browser, "save-for-approval", "saved-for-approval")
+    _as(browser, base, "sig")                 # the approver finds the form as eng saved it
+    assert browser.find_element(By.NAME, "customer_name").get_attribute("value") == \
+        JOB_FORM["customer_name"]
+    assert "awaiting approval" in browser.find_element(By.ID, "awaiting-approval").text
+    browser.execute_script("document.getElementById('authorisation').scrollIntoView()")
+    _shot(browser, "i40a_awaiting_approval_1280")
     _press(browser, "issue-certificate", "certificates")
     assert "certificate=PM-2026-00001" in browser.current_url
     assert "E_VE = 0.6 µm" in browser.find_element(By.ID, "drift-kept").text
@@ -149,9 +166,10 @@ def test_signoff_of_a_real_file_finished_on_the_page_then_amended(bench, browser
     button.click()
     WebDriverWait(browser, 20).until(replaced(button))
 
-    browser.get(base + "/tests/1")
-    WebDriverWait(browser, 20).until(_ready)
+    _as(browser, base, "eng")
     _type(browser, "amend_reason", "machine name corrected")
+    _press(browser, "save-for-approval", "saved-for-approval")
+    _as(browser, base, "sig")
     _press(browser, "issue-amendment", "certificates")
     assert "certificate=PM-2026-00002" in browser.current_url
     rows = {r.find_elements(By.TAG_NAME, "td")[0].text: r for r in

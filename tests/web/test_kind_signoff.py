@@ -47,7 +47,7 @@ def test_a_diagonal_test_is_signed_off_and_a_kind_without_a_budget_is_not(client
 
     page = client.get("/tests/1").text
     assert 'id="signoff-form"' in page and 'name="tol_squareness"' in page
-    assert 'id="signoff-link"' in page and 'name="drift_check"' not in page
+    assert 'id="signoff-link"' in page and 'id="i-drift_check"' in page     # it reads E_VE
     assert 'name="air_temperature"' not in page
     straight = client.get("/tests/2").text
     assert 'id="signoff-form"' not in straight and 'id="signoff-link"' not in straight
@@ -62,7 +62,11 @@ def test_a_diagonal_test_is_signed_off_and_a_kind_without_a_budget_is_not(client
                                               "tol_squareness": "20"})
     assert r.status_code == 200
     st = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
-    f = certificate_record(st.get(1).record(), {"squareness": 20.0}).figures[0]
+    from axiscal.store.kinds import with_uncertainty
+
+    rec = st.get(1).record()                  # with the laboratory's E_VE (0.3 µm, LAB)
+    rec = with_uncertainty(rec, {**rec.inputs, "e_ve": 0.3})
+    f = certificate_record(rec, {"squareness": 20.0}).figures[0]
     row = re.search(r'<table id="verdicts">.*?<tbody>(.*?)</tbody>', r.text, re.S).group(1)
     assert f'<td class="num">{f.U_text}</td>' in row and f'<td class="num">{f.value:.3f}</td>' \
         in row and "PASS: conformance proven" in row
@@ -163,3 +167,33 @@ def _rows(page: str, table_id: str) -> list[list[str]]:
     return [[html.unescape(re.sub(r"<[^>]+>", "", c)).strip()
              for c in re.findall(r"<td[^>]*>(.*?)</td>", tr, re.S)]
             for tr in re.findall(r"<tr>(.*?)</tr>", body, re.S)]
+
+
+def test_a_diagonal_without_e_ve_is_a_draft_and_a_drift_check_gives_it(tmp_path, monkeypatch):
+    """Review defect 3: a laboratory that declares no E_VE and no drift check: the diagonal's
+    certificate is not issued, E_VE listed as missing (linked to the drift-check field), never
+    "0 µm assumed"; with a drift check kept with the test (E_VE = 0.42 − (−0.18) = 0.60 µm,
+    tests/web/test_signoff_history.py) it is issued and states E_VE 0.6 µm."""
+    from tests.report.pdf_pages import pdf_text
+    from tests.web.test_signoff_history import DRIFT
+
+    cfg = tmp_path / "config.toml"
+    cfg.write_text(LAB.split("[uncertainty]")[0], encoding="utf-8")
+    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
+    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}"), base_url="http://127.0.0.1")
+    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
+    c.post("/upload", data={"csrf": tok, "machine": "VMC-800"},
+           files={"file": ("diagonal.csv", DIAGONAL.encode(), "text/csv")})
+    form = {"csrf": tok, "action": "issue", "tol_squareness": "20", "date": "2026-11-20", **JOB}
+    r = c.post("/tests/1/signoff", data=form, follow_redirects=False)
+    assert r.status_code == 200 and 'id="draft"' in r.text
+    assert re.search(r'<a href="#f-drift_check">[^<]*</a>: E_VE', r.text)
+    assert c.app.state.store.certificates() == []
+    r = c.post("/tests/1/signoff", data=form, follow_redirects=False,
+               files={"drift_check": ("drift.csv", DRIFT, "text/csv")})
+    assert r.status_code == 303, r.text[-1500:]
+    number = re.search(r"certificate=([^#&]+)", r.headers["location"]).group(1)
+    (tmp_path / "c.pdf").write_bytes(c.get(f"/tests/1/certificate?number={number}").content)
+    text = " ".join(" ".join(pdf_text(tmp_path / "c.pdf")).split())
+    assert "DRAFT" not in text and "E_VE 0.6 µm" in text.replace("EVE", "E_VE"), text[-2500:]
+    assert "E_VE 0 µm" not in text.replace("EVE", "E_VE")

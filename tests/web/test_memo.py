@@ -88,13 +88,15 @@ def test_a_test_page_reads_a_few_statements_and_never_the_bytes(tmp_path, monkey
     """A view of a stored test: the test (3 statements), its certificates, its audit trail and
     the other tests of its axis, and (issue 40) what the sign-off form starts from: the
     laboratory, the machine's last certificate, the test's drift checks (one indexed row
-    each); its stored bytes are not read (the evaluation is kept)."""
+    each), read once for the page's U and the form alike; the sign-off saved for approval and
+    the last certificate of the axis and kind (its tolerances), one row each; its stored bytes
+    are not read (the evaluation is kept)."""
     c, app, _ = _client(tmp_path, monkeypatch)
     c.get("/tests/2")
     seen = _selects(app)
     r = c.get("/tests/2")
     assert r.status_code == 200 and 'id="parameters"' in r.text
-    assert len(seen) <= 9
+    assert len(seen) <= 11
     assert not any(re.search(r"test\.raw\s*(,|FROM)", s) for s in seen)
 
 
@@ -106,7 +108,8 @@ def test_a_new_tests_page_is_made_with_the_upload(tmp_path, monkeypatch):
     c, app, _ = _client(tmp_path, monkeypatch)
     made = []
     real = pages._test_parts
-    monkeypatch.setattr(pages, "_test_parts", lambda t, ev: made.append(ev.kind) or real(t, ev))
+    monkeypatch.setattr(pages, "_test_parts", lambda t, ev, *a: made.append(ev.kind) or
+                        real(t, ev, *a))
     tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
     r = c.post("/upload", data={"csrf": tok}, follow_redirects=False,
                files={"file": ("n.csv", _file(30, day=28), "text/csv")})

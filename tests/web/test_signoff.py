@@ -177,31 +177,36 @@ def test_a_viewer_sees_certificates_but_cannot_sign_off(tmp_path, monkeypatch, u
     assert 'id="no-certificates"' in c.get("/tests/1").text
 
 
-def test_the_signed_in_user_approves_only_as_an_authorised_signatory(tmp_path, monkeypatch,
-                                                                     users):
-    """Issue 38: signed in, the approver is the user, not the form's signatory field. 'eng' is
-    not among the laboratory's [[signatory]]: a DRAFT naming it, nothing numbered; listed as
-    signatory 'eng' issues, and the register keeps the operator as preparer and eng as
-    approver."""
-    from tests.web.conftest import log_in
+def _rotary_file() -> bytes:
+    """A rotary ISO 230-2 test of the C axis of the same machine VMC-800 (deg, arcsec)."""
+    import numpy as np
 
-    cfg = tmp_path / "config.toml"
-    cfg.write_text(LAB + '[[signatory]]\nname = "B. Signatory"\nrole = "Head of laboratory"\n',
-                   encoding="utf-8")
-    monkeypatch.setenv("AXISCAL_CONFIG", str(cfg))
-    c = TestClient(create_app(f"sqlite:///{tmp_path / 'h.sqlite'}", users, require_login=True),
-                   base_url="http://127.0.0.1")
-    log_in(c, "eng", "correct horse battery")
-    tok = re.search(r'csrf-token" content="([^"]+)"', c.get("/").text).group(1)
-    c.post("/upload", data={"csrf": tok}, files={"file": ("x.csv", data_file(), "text/csv")})
-    r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", "tol_E": "15", **JOB},
-               follow_redirects=False)
-    assert r.status_code == 200 and "&#39;eng&#39; is not one of the laboratory" in r.text
-    assert 'id="no-certificates"' in c.get("/tests/1").text
-    cfg.write_text(LAB + '[[signatory]]\nname = "eng"\nrole = "Head of laboratory"\n',
-                   encoding="utf-8")
-    r = c.post("/tests/1/signoff", data={"csrf": tok, "action": "issue", "tol_E": "15", **JOB},
-               follow_redirects=False)
-    assert r.status_code == 303
-    rec = c.app.state.store.certificates()[0]
-    assert (rec.prepared_by, rec.approved_by) == ("A. Operator", "eng")
+    from axiscal.datasets import Metadata, PositioningDataset
+    from axiscal.io.csv import format_positioning_csv
+
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 315, 8)
+    up = rng.normal(2.0, 0.8, (8, 5))
+    return format_positioning_csv(PositioningDataset(
+        "rotary", t, up, up - 3.0, "deg", "arcsec",
+        Metadata(machine="VMC-800", axis="C", date="2026-03-02"))).encode()
+
+
+def test_tolerances_prefill_only_from_the_same_axis_and_kind(client):
+    """Review defect 2: after a certificate of VMC-800 X with E ≤ 30 µm, a rotary C test of
+    VMC-800 starts with no tolerance of E (30 would be arcsec there); a second X test of the
+    machine starts with E = 30 (the same axis and kind), and both start from the certificate's
+    customer."""
+    assert _sign(client, "issue", tol_E="30", **JOB).status_code == 303
+    r = client.post("/upload", data={"csrf": client.token},
+                    files={"file": ("c.csv", _rotary_file(), "text/csv")})
+    assert str(r.url).endswith("/tests/2?stored=new"), r.url
+    page = client.get("/tests/2").text
+    assert re.search(r'name="tol_E" value=""', page)
+    assert 'name="customer_name" value="Example Machining AG"' in page
+    again = data_file().replace(b"2026-03-01", b"2026-03-05")   # another test of X
+    assert again != data_file()
+    r = client.post("/upload", data={"csrf": client.token},
+                    files={"file": ("x2.csv", again, "text/csv")})
+    assert str(r.url).endswith("/tests/3?stored=new"), r.url
+    assert 'name="tol_E" value="30"' in client.get("/tests/3").text

@@ -264,7 +264,7 @@ def test_messages_speak_the_forms_words():
     assert [(label, anchor) for label, anchor, _ in out] == [
         ("Drift check file (E_VE measured beside this test)", "f-drift_check"),
         ("Instrument 2: due (YYYY-MM-DD)", "f-instrument2_due"),
-        ("Prepared by (operator)", "f-operator"),
+        ("Operator (carried out the test)", "f-operator"),
         ("Authorised signatories (one a line: name, role)", "f-lab_signatories")]
     for _, _, words in out:
         assert "[" not in words and "--" not in words and "VALUE" not in words, words

@@ -313,6 +313,7 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
                 "JCGM 100:2008 §7.2.6)" for f in record.figures if not f.U > 0]
     if not record.figures:
         missing.append("a result with its expanded uncertainty")
+    missing += _unmeasured_e_ve(ev)
     if record.decisions and not info.specification:
         missing.append("source of the specification the verdict is given against "
                        "([certificate] specification)")
@@ -363,12 +364,14 @@ def certify_stored(store, test_id: int, path, cfg: dict, tolerances: dict | None
     InputError
         The kind has no uncertainty budget (one line naming it); a bad tolerance.
     """
-    from axiscal.store.laboratory import signoff_config
+    from axiscal.store.laboratory import signoff_config, signoff_record
 
     t = store.get(test_id)
     ev = t.record()
     require_budget(ev)
     cfg = signoff_config(store, t, cfg)
+    if ev.kind != "iso230-2":        # E_VE as a positioning test's: the laboratory's, a drift check
+        ev = signoff_record(store, t, cfg)
     if ev.kind == "iso230-2":
         from axiscal.report.issue import write_certificate
 
@@ -380,6 +383,17 @@ def certify_stored(store, test_id: int, path, cfg: dict, tolerances: dict | None
                                   filename=t.summary.filename, today=today,
                                   prepared_by=prepared_by, approved_by=approved_by, paper=paper,
                                   draft_document=draft_document)
+
+
+def _unmeasured_e_ve(ev) -> list[str]:
+    """E_VE as a missing item where the budget reads it and nobody gave it (ISO 230-2:2014
+    Annex A.5: measured by a drift check or declared; ISO/IEC 17025:2017 §7.8.4.1 b): a
+    certificate never states a U that took it as 0."""
+    return ["E_VE, the environmental variation (ISO 230-2:2014 Annex A.5): neither measured "
+            "by a drift check kept with the test nor declared by the laboratory (--uncertainty "
+            "e_ve=VALUE); a certificate never takes it as 0"
+            for i in getattr(ev.budget, "inputs", None) or ()
+            if getattr(i, "name", None) == "e_ve" and getattr(i, "assumed", False)]
 
 
 def kind_changes(ev, before, after) -> list[dict]:
@@ -440,7 +454,9 @@ def reissue(store, number: str, reason: str, path, corrections: dict | None = No
     if stored.summary.kind == "iso230-2":
         return reissue_certificate(store, number, reason, path, corrections, today, laboratory,
                                    prepared_by, approved_by)
-    rec = stored.record()
+    from axiscal.store.laboratory import signoff_record
+
+    rec = signoff_record(store, stored, cfg)      # E_VE as it was certified (kept in cfg)
     kept = (inputs["config"], inputs["tolerances"], inputs["rule"])
     changes = kind_changes(rec, kept, (cfg, inputs["tolerances"], inputs["rule"]))
     return _draft_refused(path, lambda p: write_kind_certificate(

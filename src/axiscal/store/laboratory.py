@@ -29,9 +29,10 @@ from dataclasses import dataclass
 
 from axiscal.errors import InputError
 
-__all__ = ["laboratory", "set_laboratory", "add_drift_check", "drift_checks", "DriftCheckRecord",
-           "result_with_drift_check",
-           "signoff_config", "last_certificate_inputs", "LABORATORY_TABLES"]
+__all__ = ["laboratory", "set_laboratory", "signatory_list", "check_signatory_change",
+           "add_drift_check", "drift_checks", "DriftCheckRecord", "result_with_drift_check",
+           "signoff_config", "signoff_record", "reads_e_ve", "last_certificate_inputs",
+           "LABORATORY_TABLES"]
 
 #: The configuration tables the history's laboratory holds.
 LABORATORY_TABLES = ("company", "signatory", "instrument", "uncertainty")
@@ -84,14 +85,26 @@ def laboratory(store) -> dict:
         return json.loads(row.tables_json) if row is not None else {}
 
 
-def set_laboratory(store, tables: dict, *, by: str, reason: str):
+def set_laboratory(store, tables: dict, *, by: str, reason: str, account: str | None = None,
+                   inherited: dict | None = None):
     """Keep ``tables`` (of :data:`LABORATORY_TABLES`) as the laboratory; an audit entry with
     the old and the new tables. Returns the :class:`~axiscal.store.corrections.AuditRecord`.
+
+    ``account`` is the signed-in account making the change (the workbench with accounts; None
+    on one's own computer and on the command line, where the local user is trusted): a change
+    of the authorised signatories (their names or roles) is then made only by one of the
+    signatories before the change (ISO/IEC 17025:2017 §6.2.5, §6.2.6 c: personnel authorised
+    by the laboratory; §7.8.2.1 o), checked in the same transaction as the write; while none is
+    listed, any engineer may list the first ones (there is no administrator role). The
+    signatories before the change are those kept, else ``inherited``'s (the server's user
+    configuration, which the page shows when the history keeps none).
 
     Raises
     ------
     InputError
         A table not of :data:`LABORATORY_TABLES`; an instrument without a name; no change.
+    NotAuthorisedError
+        ``account`` changes the signatories and is not one of them.
     """
     from axiscal.io.user_config import check_instruments
     from axiscal.store.corrections import _change, _log
@@ -109,6 +122,8 @@ def set_laboratory(store, tables: dict, *, by: str, reason: str):
         old = json.loads(row.tables_json) if row is not None else {}
         if old == new:
             raise InputError("the laboratory already has these values; nothing changed")
+        if account is not None:
+            check_signatory_change(old, new, account, inherited)
         if row is None:
             s.add(Laboratory(id=1, tables_json=json.dumps(new), updated=now,
                              updated_by=(by or "").strip()[:200]))
@@ -117,6 +132,42 @@ def set_laboratory(store, tables: dict, *, by: str, reason: str):
         changed = sorted(k for k in set(old) | set(new) if old.get(k) != new.get(k))
         return _log(s, by, reason, "laboratory", "laboratory: " + ", ".join(changed)
                     + " edited", old, new)
+
+
+def signatory_list(tables: dict) -> list[tuple[str, str]]:
+    """The ``[[signatory]]`` entries of laboratory ``tables`` as (name, role), in order; without
+    any, the one ``[certificate] signatory`` (as :func:`axiscal.report.issue.signatories`)."""
+    listed = tables.get("signatory") or []
+    listed = listed if isinstance(listed, list) else [listed]
+    out = [(str(t.get("name", "")).strip(), str(t.get("role", "")).strip())
+           for t in listed if isinstance(t, dict) and str(t.get("name", "")).strip()]
+    cert = tables.get("certificate") or {}
+    if not out and str(cert.get("signatory") or "").strip():
+        out = [(str(cert["signatory"]).strip(), str(cert.get("signatory_role", "")).strip())]
+    return out
+
+
+def check_signatory_change(old: dict, new: dict, account: str,
+                           inherited: dict | None = None) -> None:
+    """Refuse a change of the authorised signatories by ``account`` when it is not one of them
+    (see :func:`set_laboratory`); nothing is refused while no signatory is listed.
+
+    Raises
+    ------
+    NotAuthorisedError
+        The list (a name or a role) changes and ``account`` is not on the list before it.
+    """
+    from axiscal.errors import NotAuthorisedError
+
+    base = signatory_list(inherited or {})
+    before = signatory_list(old) or base
+    after = signatory_list(new) or base
+    if before == after or not before:
+        return
+    if (account or "").strip().casefold() not in {n.casefold() for n, _ in before}:
+        raise NotAuthorisedError(
+            f"Authorised signatories: only one of them ({', '.join(n for n, _ in before)}) may "
+            f"change the list; the account {account!r} is not (ISO/IEC 17025:2017 §6.2.6)")
 
 
 def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
@@ -149,14 +200,23 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
     record = drift_check_record(raw, name)     # the one place a drift check becomes E_VE
     e_ve = record["e_ve"]
     stored = store.get(test_id)
-    if stored.summary.kind != "iso230-2":
+    positioning = stored.summary.kind == "iso230-2"
+    if not positioning and not reads_e_ve(stored.record()):
         raise InputError(f"test {stored.summary.id} is a {stored.summary.kind} test: E_VE (a "
                          "drift check) is an input of a positioning test's budget (ISO "
-                         "230-2:2014 Annex A)")
+                         "230-2:2014 Annex A) and of a budget that reads it (a diagonal "
+                         "test's); this one does not")
     before = dict(stored.result.get("uncertainty_inputs") or {})
     ev = stored.evaluate_again()
     declared = before.get("e_ve") if before.get("e_ve_source") != "drift check" else None
-    result = result_with_drift_check(ev, before, record)
+    if positioning:
+        result = result_with_drift_check(ev, before, record)
+    else:                        # the budget's own input e_ve (its table has no e_ve_source)
+        from axiscal._json import jsonable
+        from axiscal.store.kinds import with_uncertainty
+
+        result = json.dumps(jsonable(with_uncertainty(ev, {
+            **before, "e_ve": e_ve}).stored_result()))
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
         t = _test(s, test_id)
@@ -201,11 +261,12 @@ def drift_checks(store, test_id: int) -> list[DriftCheckRecord]:
 
 
 def signoff_config(store, stored, user_config: dict, job: dict | None = None,
-                   lab: dict | None = None) -> dict:
+                   lab: dict | None = None, checks: list | None = None) -> dict:
     """The configuration a sign-off of stored test ``stored`` is made with (see the module's
     docstring): ``user_config``, the history's laboratory (or ``lab``, the laboratory as a form
     is about to keep it), ``job``; the uncertainty inputs the test's own (stored with it) over
-    the laboratory's, its newest drift check's E_VE over them.
+    the laboratory's, its newest drift check's E_VE over them (``checks``: the test's drift
+    checks, newest first, when read already).
 
     Raises
     ------
@@ -217,9 +278,9 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None,
 
     lab = laboratory(store) if lab is None else lab
     cfg = merge(merge(user_config, lab), job or {})
-    inputs = merge(dict(cfg.get("uncertainty") or {}),
-                   dict(stored.record().inputs or {}))
-    checks = drift_checks(store, stored.summary.id)
+    inputs = merge(dict(cfg.get("uncertainty") or {}),     # the inputs of stored.record()
+                   dict(stored.result.get("uncertainty_inputs") or {}))
+    checks = drift_checks(store, stored.summary.id) if checks is None else checks
     if checks:
         if "e_ve" in ((job or {}).get("uncertainty") or {}):
             raise InputError("E_VE is given twice: by the drift check kept with the test and by "
@@ -228,10 +289,37 @@ def signoff_config(store, stored, user_config: dict, job: dict | None = None,
     return {**cfg, "uncertainty": inputs}
 
 
-def last_certificate_inputs(store, machine_id: int) -> tuple[int | None, dict]:
+def reads_e_ve(ev) -> bool:
+    """True when the budget of record ``ev`` (of a kind other than a positioning test) has the
+    input E_VE (a diagonal test's, ISO/TR 230-9)."""
+    return any(getattr(i, "name", None) == "e_ve"
+               for i in getattr(ev.budget, "inputs", None) or ())
+
+
+def signoff_record(store, stored, cfg: dict):
+    """The record a sign-off of stored test ``stored`` of a kind other than a positioning test
+    certifies: its stored record, and where its budget reads E_VE, E_VE resolved exactly as a
+    positioning test's is (:func:`signoff_config` ``cfg``: the test's own input, else the
+    laboratory's E_VE declared, a drift check kept with the test over both), the budget made
+    again by the one call (:func:`axiscal.store.kinds.with_uncertainty`). An E_VE given by none
+    stays assumed in the budget, and the certificate lists it as missing."""
+    from axiscal.store.kinds import with_uncertainty
+
+    ev = stored.record()
+    e_ve = (cfg.get("uncertainty") or {}).get("e_ve")
+    if e_ve is None or not reads_e_ve(ev) or (ev.inputs or {}).get("e_ve") == e_ve:
+        return ev
+    return with_uncertainty(ev, {**(ev.inputs or {}), "e_ve": e_ve})
+
+
+def last_certificate_inputs(store, machine_id: int,
+                            like_test: int | None = None) -> tuple[int | None, dict]:
     """(test id, inputs) of the newest certificate of any test of a machine ((None, {}) if
-    none): what a new sign-off of the machine starts from (customer, item, instruments,
-    tolerances; and the conditions, when it is of the same test)."""
+    none): what a new sign-off of the machine starts from (customer, item, instruments; and the
+    conditions, when it is of the same test). With ``like_test``, only certificates of tests of
+    the same axis and kind as that test: where a sign-off takes its tolerances from (a tolerance
+    of E of the X axis, in µm, is no tolerance of the C axis's E, in arcsec, nor of a diagonal
+    test's)."""
     from sqlalchemy import select
 
     from axiscal.store.models import Axis, Certificate, Test
@@ -240,6 +328,10 @@ def last_certificate_inputs(store, machine_id: int) -> tuple[int | None, dict]:
          .join(Test, Test.id == Certificate.test_id)
          .join(Axis, Axis.id == Test.axis_id).where(Axis.machine_id == int(machine_id))
          .order_by(Certificate.id.desc()).limit(1))
+    if like_test is not None:
+        like = select(Test.axis_id, Test.kind).where(Test.id == int(like_test)).subquery()
+        q = q.where(Test.axis_id == select(like.c.axis_id).scalar_subquery(),
+                    Test.kind == select(like.c.kind).scalar_subquery())
     with store._guard("read"), store._session() as s:
         found = s.execute(q).first()
     return (found[0], json.loads(found[1])) if found else (None, {})

@@ -18,7 +18,7 @@ from sqlalchemy import (Double, ForeignKey, Index, LargeBinary, String, Text, Un
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
 __all__ = ["Base", "Machine", "Axis", "Test", "Parameter", "Table", "Certificate", "Audit",
-           "Laboratory", "DriftCheck"]
+           "Laboratory", "DriftCheck", "SignoffForApproval"]
 
 
 class Base(DeclarativeBase):
@@ -212,3 +212,15 @@ class DriftCheck(Base):
     readings: Mapped[int] = mapped_column()
     created: Mapped[dt.datetime] = mapped_column()
     by: Mapped[str] = mapped_column(String(200))
+
+
+class SignoffForApproval(Base):
+    """The sign-off form of a test as its preparer (a signed-in account) saved it for approval
+    by an authorised signatory: the fields as JSON, who saved it and when (one row a test)."""
+
+    __tablename__ = "signoff_for_approval"
+    test_id: Mapped[int] = mapped_column(ForeignKey("test.id", ondelete="CASCADE"),
+                                         primary_key=True)
+    values_json: Mapped[str] = mapped_column(Text)
+    by: Mapped[str] = mapped_column(String(200))
+    saved: Mapped[dt.datetime] = mapped_column()

@@ -35,12 +35,13 @@ def add_routes(app: FastAPI) -> None:
         require_engineer(request)
         values = {k: str(form.get(k, "") or "").strip() for k in _FIELDS}
         st = request.app.state.store
-        by = request.state.session.get("name") or values["by"]
+        account = request.state.session.get("name")      # None: one's own computer
+        by = account or values["by"]
         try:
-            await run_in_threadpool(_save, st, values, by)
+            await run_in_threadpool(_save, st, values, by, account)
         except AxiscalError as exc:
-            return render(request, "laboratory.html", "Laboratory", 400, error=str(exc),
-                          **_view(st, values))
+            return render(request, "laboratory.html", "Laboratory", getattr(exc, "status", 400),
+                          error=str(exc), **_view(st, values))
         return RedirectResponse("/laboratory?saved=1", 303)
 
 
@@ -64,9 +65,12 @@ def _view(st, values: dict | None) -> dict:
             "kept": bool(kept), "audit_entries": entries}
 
 
-def _save(st, values: dict, by: str) -> None:
+def _save(st, values: dict, by: str, account: str | None = None) -> None:
     """The form's laboratory over what the history keeps: the fields shown replace theirs (an
-    emptied field removes its value), other uncertainty inputs stay."""
+    emptied field removes its value), other uncertainty inputs stay. Signed in (``account``),
+    the signatories are changed only by one of them (:func:`axiscal.store.laboratory.
+    set_laboratory`)."""
+    from axiscal.report.issue import load_config
     from axiscal.store.laboratory import laboratory, set_laboratory
     from axiscal.web.signoff_pages import job_from_form
 
@@ -85,4 +89,4 @@ def _save(st, values: dict, by: str) -> None:
         raise InputError("Reason: say why the laboratory changes; the audit trail records it")
     job, _, _, _ = job_from_form(values, ())
     set_laboratory(st, lab_from_form(values, base, job.get("instrument", [])), by=by,
-                   reason=values["reason"])
+                   reason=values["reason"], account=account, inherited=load_config(None))

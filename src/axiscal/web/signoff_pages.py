@@ -25,6 +25,8 @@ issued twice; a withdrawn test is never certified (the register refuses both).
 
 from __future__ import annotations
 
+import re
+
 from fastapi import FastAPI, Request
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 from starlette.concurrency import run_in_threadpool
@@ -89,21 +91,25 @@ def add_routes(app: FastAPI) -> None:
 
 
 def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "",
-                    cfg: dict | None = None) -> dict | None:
+                    cfg: dict | None = None, known: dict | None = None) -> dict | None:
     """What the test page's sign-off section shows: the form (filled from ``values``, or from
     the inputs kept with ``certificate`` of this test, whose verdict is then shown, or else
     from the user configuration ``cfg`` (default read now), the laboratory kept in the history,
-    the machine's last certificate and the stored test), the certificates of this test in the
-    register, its drift checks, and whether it may be certified; None for a test that is not a
+    the machine's last certificate and the stored test; or, when a sign-off of the test waits
+    for approval, the form as its preparer saved it), the certificates of this test in the
+    register, its drift checks, the sign-off saved for approval, and whether it may be
+    certified; None for a test that is not a
     test of a kind without an uncertainty budget (no form: a statement of conformity needs U,
     :func:`axiscal.report.kind_certificate.require_budget`). A test of another kind with a
     budget (diagonal, ballbar, five-axis, thermal) has the same form without what only a positioning
     test has (E_VE, temperatures, the plot): its figures, U and verdicts are
     :func:`axiscal.report.kind_certificate.certificate_record` of the stored record."""
     from axiscal.report.issue import load_config
+    from axiscal.store.approval import saved_signoff
     from axiscal.store.laboratory import drift_checks
 
     positioning = ev.kind == "iso230-2"
+    e_ve_input = positioning
     if positioning:
         params = [n for n, v in ev.evaluation.parameters().items() if v is not None]
         units = {}
@@ -115,14 +121,23 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
             return None
         figures = certificate_record(rec).figures
         params = [f.name for f in figures]
+        from axiscal.store.laboratory import reads_e_ve
+
+        e_ve_input = reads_e_ve(rec)          # a drift check or the laboratory's E_VE
         units = {f.name: _unit(f.unit) for f in figures}
-    records = st.certificates(test_id=t.summary.id)
+    known = known or {}           # read already by the page: certificates, laboratory, drifts
+    records = known.get("certificates")
+    records = st.certificates(test_id=t.summary.id) if records is None else records
+    checks = known.get("drift_checks")
     current = next((c for c in records if c.status == "issued"), None)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
            "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
            "unit": _unit(ev.evaluation.deviation_unit) if positioning else "",
            "units": units, "positioning": positioning, "current": current,
-           "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id)}
+           "e_ve_input": e_ve_input,
+           "withdrawn": t.summary.withdrawn,
+           "drift_checks": drift_checks(st, t.summary.id) if checks is None else checks,
+           "saved": saved_signoff(st, t.summary.id)}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
         inputs = st.certificate(issued.number, issued.laboratory).inputs
@@ -133,20 +148,24 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
         _verdict(ctx, ev, cfg, tolerances, inputs.get("rule"))
     elif values is not None:
         ctx["form"] = values
+    elif ctx["saved"] is not None:            # what the preparer saved for approval
+        ctx["form"] = dict(ctx["saved"].values)
     else:
-        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params)
+        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params,
+                               known.get("laboratory"))
     return ctx
 
 
-def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
+def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None) -> dict:
     """The form of a new sign-off: the user configuration, the laboratory kept in the history,
-    the customer, item, instruments and tolerances of the machine's last certificate (and its
-    conditions when it is of this test), and the stored test's date and the instrument typed at
+    the customer, item and instruments of the machine's last certificate (and its conditions
+    when it is of this test), the tolerances of the last certificate of this axis and kind of
+    test (in this test's units), and the stored test's date and the instrument typed at
     upload (a sign-off is of this test)."""
     from axiscal.io.user_config import merge
     from axiscal.store.laboratory import laboratory, last_certificate_inputs
 
-    cfg = merge(user_cfg, laboratory(st))
+    cfg = merge(user_cfg, laboratory(st) if lab is None else lab)
     of_test, last = last_certificate_inputs(st, t.summary.machine_id)
     old = last.get("config", {})
     same = ("conditions",) if of_test == t.summary.id else ()     # this test's own conditions
@@ -155,7 +174,9 @@ def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
                        if k in ("maker", "model", "serial", "location")}
     keep["certificate"] = {k: v for k, v in old.get("certificate", {}).items()
                            if k in ("specification", "rule", "paper")}
-    keep["tolerance"] = {**old.get("tolerance", {}), **(last.get("tolerances") or {})}
+    _, like = last_certificate_inputs(st, t.summary.machine_id, like_test=t.summary.id)
+    keep["tolerance"] = {**like.get("config", {}).get("tolerance", {}),     # same axis, kind
+                         **(like.get("tolerances") or {})}
     form = {**_defaults(merge(cfg, keep), params), **lab_defaults(cfg)}
     if t.summary.date_known and not getattr(getattr(ev.dataset, "metadata", None), "date",
                                             ev.date):
@@ -264,20 +285,25 @@ def _envelopes(r, so, tolerances: dict) -> list:
 
 def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
               drift: tuple | None = None) -> dict:
-    """The sign-off's verdict and, with ``action`` ``issue`` or ``amend``, the certificate or
-    its amendment (library calls only).
+    """The sign-off's verdict; with ``action`` ``save``, the form saved for approval; with
+    ``issue`` or ``amend``, the certificate or its amendment (library calls only).
 
-    ``user`` is the signed-in account: the approver of the issue, who must be one of the
-    laboratory's authorised signatories (:func:`axiscal.report.issue.authorisation`); without
-    sign-in (a workbench on one's own computer) the form's signatory approves, as on the
-    command line. ``drift`` is (bytes, file name) of a drift check uploaded with the form: kept
-    beside the test (:func:`axiscal.store.laboratory.add_drift_check`). The laboratory's fields
-    are kept in the history when a certificate is issued with them (an audit entry by ``user``,
-    or by the certificate's preparer on one's own computer)."""
-    from axiscal.io.user_config import merge
-    from axiscal.report.issue import load_config
-    from axiscal.store.laboratory import (add_drift_check, laboratory, set_laboratory,
-                                          signoff_config)
+    ``user`` is the signed-in account. Signed in, a certificate is the act of two accounts
+    (ISO/IEC 17025:2017 §7.8.2.1 o, §6.2.6; :mod:`axiscal.store.approval`): the preparer saves
+    the form for approval, and an authorised signatory, another account, issues exactly what was
+    saved: the register keeps the saving account as preparer and the issuing one as approver,
+    never a name typed on the form; the signatories are changed only by one of them
+    (:func:`axiscal.store.laboratory.check_signatory_change`). Without sign-in (a workbench on
+    one's own computer, like the command line's ``--prepared-by/--approved-by``) the form's
+    operator prepares and its signatory approves. ``drift`` is (bytes, file name) of a drift
+    check uploaded with the form: kept beside the test
+    (:func:`axiscal.store.laboratory.add_drift_check`). The laboratory's fields are kept in the
+    history when a certificate is issued with them (an audit entry by ``user``, or by the
+    certificate's preparer on one's own computer)."""
+    from axiscal.report.issue import load_config, signatories
+    from axiscal.store.approval import clear_saved, preparer, save_for_approval
+    from axiscal.store.laboratory import (add_drift_check, check_signatory_change, laboratory,
+                                          set_laboratory, signoff_config, signoff_record)
 
     t = st.get(test_id)
     ev = t.evaluate_again()
@@ -288,12 +314,17 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
         from axiscal.report.kind_certificate import require_budget
 
         require_budget(t.record())      # the one line naming why (no budget for the kind)
+    if user:             # the approver is the account: the form's signatory fields are not read
+        values = {k: v for k, v in values.items() if k not in ("signatory", "signatory_role")}
     try:
         if action in ("issue", "amend"):
             _check_issue(ctx, action, values)
         job, tolerances, rule, paper = job_from_form(values, ctx["parameters"])
         kept = laboratory(st)
         lab = lab_from_form(values, kept, job.get("instrument", []))
+        user_cfg = load_config(None)
+        if user:
+            check_signatory_change(kept, lab, user, user_cfg)
         who = user or values.get("operator", "")
         if drift is not None:       # another kind: refused by the library, in its words
             if len(drift[0]) > MAX_DRIFT_BYTES:
@@ -307,19 +338,55 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
             ctx["drift_notice"] = add_drift_check(st, test_id, drift[0], drift[1],
                                                   by=who).notice
             ctx["drift_checks"] = _drift_checks(st, test_id)
-        cfg = signoff_config(st, t, load_config(None), job, lab)
+        cfg = signoff_config(st, t, user_cfg, job, lab)
+        if not ctx["positioning"]:          # E_VE resolved as a positioning test's
+            ev = signoff_record(st, t, cfg)
         _verdict(ctx, ev, cfg, tolerances, rule)
+        if action == "save":
+            ctx.update(saved=save_for_approval(st, test_id, values, by=user), saved_now=True)
         if action in ("issue", "amend"):
-            out = _issue(st, t, ev, cfg, tolerances, rule, paper, user) if action == "issue" \
-                else _amend(st, t, ctx["current"].number, values["amend_reason"], cfg, user)
-            ctx.update(missing=missing_fields(out.missing, values, bool(user)),
-                       number=out.number)
+            prepared = (preparer(st, test_id, values) or user) if user else ""
+            out = _issue(st, t, ev, cfg, tolerances, rule, paper, user, prepared) \
+                if action == "issue" else _amend(st, t, ctx["current"].number,
+                                                 values["amend_reason"], cfg, user, prepared)
+            missing = _approval_items(out.missing, user, signatories(cfg), prepared,
+                                      ctx.get("saved")) if user else out.missing
+            ctx.update(missing=missing_fields(missing, values, bool(user)), number=out.number)
+            if out.number and user:
+                clear_saved(st, test_id)
             if out.number and lab != kept:    # issued with it: the laboratory as it was used
                 set_laboratory(st, lab, by=who or out.record.prepared_by,
-                               reason=f"used for certificate {out.number} of test {test_id}")
+                               reason=f"used for certificate {out.number} of test {test_id}",
+                               account=user or None, inherited=user_cfg)
     except AxiscalError as exc:
         ctx["error"] = plain(str(exc)) if "[" in str(exc) else str(exc)
     return ctx
+
+
+def _approval_items(missing, user: str, allowed: dict, prepared: str, saved) -> tuple:
+    """The missing items of a signed-in issue, with the approval said as the page's action:
+    an account that is not an authorised signatory is told to save the form for approval (the
+    signatory items are not its faults); a signatory issuing a form another account did not
+    save (or changed since) is told who prepares it."""
+    approval = re.compile(r"^approval by|person authorising|signatory_role|\[certificate\] "
+                          r"signatory")
+    if user.casefold() not in {n.casefold() for n in allowed}:
+        names = ", ".join(allowed) or "none is listed yet"
+        return tuple(m for m in missing if not approval.search(m)) + (
+            f"approval by an authorised signatory: you ({user}) are not one of the "
+            f"laboratory's ({names}); press \"Save for approval\" and one of them approves "
+            "and issues it",)
+    if prepared.casefold() != user.casefold():
+        return tuple(missing)
+    if saved is not None and saved.by.casefold() != user.casefold():
+        why = (f"the form differs from what {saved.by} saved for approval: whoever changes it "
+               "prepares it; press \"Save for approval\" and another signatory issues it (or "
+               "reload the test to issue what was saved)")
+    else:
+        why = ("a certificate is prepared by one account and approved by another: press "
+               "\"Save for approval\" and another authorised signatory issues it")
+    return tuple(m for m in missing if not m.startswith("approval by a second person")) + (
+        f"preparation by another account: {why}",)
 
 
 def _drift_checks(st, test_id: int):
@@ -376,7 +443,7 @@ def _kind_verdict(ctx: dict, ev, cfg: dict, tolerances: dict, rule) -> None:
         for f in rec.figures if f.verdict is not None])
 
 
-def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
+def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = "", prepared: str = ""):
     import tempfile
     from pathlib import Path
 
@@ -389,15 +456,16 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = ""):
             return write_kind_certificate(Path(d) / "certificate.pdf", ev, cfg, t.raw,
                                           tolerances, rule, store=st,
                                           filename=t.summary.filename, approved_by=user,
-                                          paper=paper, draft_document=False)
+                                          prepared_by=prepared, paper=paper,
+                                          draft_document=False)
         return write_certificate(Path(d) / "certificate.pdf", ev.dataset, ev.evaluation, cfg,
                                  t.raw, tolerances, rule, paper, store=st,
                                  filename=t.summary.filename, config_note="",
                                  customer_supplied=(), approved_by=user,
-                                 draft_document=False)    # the page lists what is missing
+                                 prepared_by=prepared, draft_document=False)    # the page lists what is missing
 
 
-def _amend(st, t, number: str, reason: str, cfg: dict, user: str = ""):
+def _amend(st, t, number: str, reason: str, cfg: dict, user: str = "", prepared: str = ""):
     """Amend ``number`` with the form's configuration over the inputs kept with it, the
     machine named as the history names it now (:func:`axiscal.report.kind_certificate.reissue`,
     any kind: a new number, the reason and the changes printed; a DRAFT refused)."""
@@ -410,7 +478,7 @@ def _amend(st, t, number: str, reason: str, cfg: dict, user: str = ""):
     corrections = {**cfg, "machine": {**cfg.get("machine", {}), "name": m.name}}
     with tempfile.TemporaryDirectory() as d:
         return reissue_certificate(st, number, reason, Path(d) / "certificate.pdf",
-                                   corrections, approved_by=user)
+                                   corrections, approved_by=user, prepared_by=prepared)
 
 
 def _rows(result, so, tolerances: dict) -> list:
