@@ -221,7 +221,8 @@ def test_a_straightness_certificate_is_issued_on_the_command_line(files, tmp_pat
     """ISO 230-1:2012 straightness of 0, 1, 3, 2 µm at 0..300 mm: least squares 1.8 µm
     (the line 0.3 + 0.8·x/100 mm µm leaves −0.3, −0.1, 1.1, −0.7 µm), with U by
     standards/iso230_9_straightness.py; ``axiscal certificate issue ID`` with every item
-    given numbers it (not a DRAFT) and states each figure as the stored record holds it."""
+    given (E_VE declared: without it the certificate is a DRAFT, never E_VE = 0) numbers it
+    (not a DRAFT) and states each figure as the stored record holds it with that E_VE."""
     from typer.testing import CliRunner
 
     from axiscal.cli import app as cli_app
@@ -231,7 +232,7 @@ def test_a_straightness_certificate_is_issued_on_the_command_line(files, tmp_pat
     st = open_store(url)
     tid = st.add(files["straightness"].read_bytes(), "straightness.csv", machine="VMC").id
     job = tmp_path / "job.toml"
-    job.write_text(_toml(COMPLETE))
+    job.write_text(_toml({**COMPLETE, "uncertainty": {"e_ve": 0.5}}))    # E_VE declared
     out = tmp_path / "straightness.pdf"
     r = CliRunner().invoke(cli_app, ["certificate", "issue", str(tid), "--db", url, "--job",
                                      str(job), "--tolerance", "straightness=20",
@@ -241,7 +242,11 @@ def test_a_straightness_certificate_is_issued_on_the_command_line(files, tmp_pat
     assert got["number"].startswith("PM-2026-") and got["test_id"] == tid
     text = " ".join(" ".join(pdf_text(out)).split())
     assert "DRAFT" not in text and got["number"] in text
-    rec = certificate_record(st.get(tid).record(), {"straightness": 20.0})
+    from axiscal.store.kinds import with_uncertainty
+
+    stored = st.get(tid).record()      # the certificate's record: its budget with E_VE 0.5 µm
+    rec = certificate_record(with_uncertainty(stored, {**stored.inputs, "e_ve": 0.5}),
+                             {"straightness": 20.0})
     assert {f.name for f in rec.figures} == {"straightness", "straightness_min_zone", "slope"}
     f = next(f for f in rec.figures if f.name == "straightness")
     assert f.value == pytest.approx(1.8, abs=1e-9) and f.verdict == "conformance proven"

@@ -90,14 +90,18 @@ def test_a_diagonal_test_is_signed_off_and_a_kind_without_a_budget_is_not(client
 def test_a_straightness_test_shows_U_and_is_signed_off(client, tmp_path):
     """ISO 230-1:2012 straightness 1.8 µm (least squares) of tests/report/
     test_kind_certificate.py's file: the page states U beside each figure (the stored record's
-    budget), the form offers the three figures, and a complete sign-off against 20 µm ends in
-    a numbered certificate (not a DRAFT) stating the record's value and U."""
+    budget with the laboratory's E_VE, as the certificate's), the form offers the three figures,
+    and a complete sign-off against 20 µm ends in a numbered certificate (not a DRAFT) stating
+    the record's value and U."""
     from axiscal.report.kind_certificate import certificate_record
     from axiscal.store import open_store
     from tests.report.pdf_pages import pdf_text
 
+    from axiscal.store.kinds import with_uncertainty
+
     st = open_store(f"sqlite:///{tmp_path / 'h.sqlite'}")
-    rec = st.get(2).record()
+    rec = st.get(2).record()        # with the laboratory's declared E_VE (LAB: 0.3 µm), as the
+    rec = with_uncertainty(rec, {**rec.inputs, "e_ve": 0.3})    # page and certificate state it
     page = client.get("/tests/2").text
     row = re.search(r'<table id="straightness">.*?<tbody>\s*<tr>(.*?)</tr>', page, re.S).group(1)
     assert f'<td class="num">{rec.budget.U_text("straightness")}</td>' in row, row
