@@ -34,7 +34,8 @@ from axiscal.web.inputs import TestId, checked_form, form_number, require_engine
 from axiscal.web.plot_specs import COLORS, as_list, positioning_plot, unit_text
 from axiscal.web.rendering import download, query, render
 from axiscal.web.signoff_form import (INSTRUMENT_KEYS, INSTRUMENTS, JOB_FIELDS, LABELS,
-                                      lab_defaults, lab_from_form, missing_fields, plain)
+                                      checked_fields, lab_defaults, lab_from_form,
+                                      missing_fields, plain)
 
 __all__ = ["add_routes", "job_from_form", "signoff_context", "signoff_plot", "INSTRUMENTS"]
 
@@ -175,8 +176,10 @@ def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str
     Raises
     ------
     InputError
-        A temperature or tolerance that is not a number; an unknown rule or paper size.
+        A temperature or tolerance that is not a number; an unknown rule or paper size; a
+        field holding a control character (:func:`~axiscal.web.signoff_form.checked_fields`).
     """
+    checked_fields(values)
     job: dict = {}
     for field, (table, key) in _JOB_FIELDS.items():
         text = values.get(field, "")
