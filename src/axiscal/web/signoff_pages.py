@@ -283,7 +283,7 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
                                           signoff_config)
 
     t = st.get(test_id)
-    ev = t.evaluate_again()
+    ev = t.named(t.evaluate_again())     # the plot's title: the history's machine and axis
     if ev.kind != "iso230-2":
         ev = t.record()                  # the stored record, with its budget
     ctx = signoff_context(st, t, ev, values)
