@@ -206,6 +206,8 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     text = " ".join(_pdf_lines(st.certificate(new.number).document))   # lines wrap
     assert "Machine ESS MCU1025 (ESS MCU1025 test stand)" in text
     assert "machine name corrected" in text and first in text
+    assert "Machine: MCU1025 bench → ESS MCU1025 test stand" in text    # its label, no key
+    assert "[machine]" not in text and "[company]" not in text
     # a withdrawn test is never certified: no button, and the register's refusal in words
     from axiscal.store.corrections import withdraw
 
