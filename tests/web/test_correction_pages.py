@@ -116,7 +116,7 @@ def test_a_viewer_cannot_correct_and_an_engineer_is_the_one_recorded(tmp_path, u
     tok = re.search(r'csrf-token" content="([^"]+)"', page).group(1)
     r = _post(c, "/tests/1/withdraw", csrf=tok, by="someone else", reason="beam clipped")
     trail = r.text.split('id="audit"')[1].split("</table>")[0]
-    assert "<td style=\"white-space: nowrap\">eng</td>" in trail and "someone else" not in trail
+    assert "class=\"who\">eng</td>" in trail and "someone else" not in trail
 
 
 def test_what_is_typed_on_a_duplicate_upload_is_offered_as_a_correction(tmp_path):

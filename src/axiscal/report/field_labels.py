@@ -26,7 +26,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-__all__ = ["FIELD_LABELS", "field_label", "value_text"]
+__all__ = ["FIELD_LABELS", "field_label", "key_label", "value_text"]
 
 #: (table, key) -> the label the certificate prints for it.
 FIELD_LABELS = {
@@ -96,6 +96,23 @@ def field_label(what: str) -> str:
     return f"{head}: {key.replace('_', ' ').replace('.', ' ')}"
 
 
+#: A bare key of an audit entry's before/after -> its words.
+_KEYS = {"e_ve": "E_VE", "e_ve_source": "source of E_VE", "sha256": "SHA-256",
+         "company": "laboratory", "signatory": "authorised signatories",
+         "instrument": "instrument", "uncertainty": "uncertainty inputs", "file": "file",
+         "readings": "readings", "withdrawn": "withdrawn", "cmc": "CMC"}
+
+
+def key_label(key: str) -> str:
+    """A bare key (of an audit entry's values, a table's row) in words.
+
+    >>> key_label("e_ve_source"), key_label("air_temperature")
+    ('source of E_VE', 'air temperature')
+    """
+    k = str(key)
+    return _KEYS.get(k, k.replace("_", " "))
+
+
 def value_text(value: Any) -> str:
     """``value`` as a person reads it: a list joined by commas, a table as ``key: value``
     pairs, ``None`` as "—"."""
@@ -104,7 +121,7 @@ def value_text(value: Any) -> str:
     if isinstance(value, (list, tuple)):
         return ", ".join(value_text(v) for v in value)
     if isinstance(value, dict):
-        return "; ".join(f"{str(k).replace('_', ' ')}: {value_text(v)}" for k, v in value.items())
+        return "; ".join(f"{key_label(k)}: {value_text(v)}" for k, v in value.items())
     if isinstance(value, bool):
         return "yes" if value else "no"
     if isinstance(value, float):
