@@ -74,3 +74,22 @@ def test_a_diagonal_test_is_signed_off_and_a_straightness_test_is_not(client, tm
     text = " ".join(pdf_text(tmp_path / "c.pdf"))
     assert "DRAFT" not in text and number in text and "conformance proven" in text.lower()
     assert f"{f.value_text} {f.U_text} 2 µm/m 20" in " ".join(text.split()), text[-1500:]
+
+
+def test_a_ballbar_sign_off_lists_the_ballbar_not_the_laboratorys_laser(client):
+    """Issue 40: the laboratory keeps a laser interferometer; a ballbar test's form (and so
+    its certificate) lists the test's own instrument, typed at upload, alone."""
+    from axiscal.store.laboratory import set_laboratory
+
+    set_laboratory(client.app.state.store, {"instrument": [
+        {"name": "Laser interferometer", "serial": "L-77"},
+        {"name": "QC20-W ballbar", "serial": "B-5", "certificate": "C-9"}]},
+        by="eng", reason="instruments")
+    r = client.post("/upload", data={"csrf": client.token, "machine": "VMC-800",
+                                     "instrument": "QC20-W ballbar"},
+                    files={"file": ("bb2.csv", (BALLBAR + "\n").encode(), "text/csv")})
+    page = client.get(str(r.url).split("?")[0]).text
+    value = {k: (re.search(rf'name="{k}" value="([^"]*)"', page) or [None, ""])[1]
+             for k in ("instrument1_name", "instrument1_serial", "instrument2_name")}
+    assert value == {"instrument1_name": "QC20-W ballbar", "instrument1_serial": "B-5",
+                     "instrument2_name": ""}

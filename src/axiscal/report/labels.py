@@ -237,10 +237,12 @@ def name(key: str, axes=("X", "Y")) -> str:
     ``history trend --parameter``'s name): the symbol of ISO 230-2:2014 clause 3 (``R↑`` for
     ``R_up``, :data:`~axiscal.standards.iso230_2.PARAMETER_SYMBOLS`), else the label of
     :data:`QUANTITIES` (``Reversal spike X decay length``); a key of another standard
-    (``jis-b6192:R``) as its symbol and the standard (``R (jis-b6192)``).
+    (``jis-b6192:R``) as its symbol and the standard's name (``R (JIS B 6192 / B 0182)``).
 
     >>> name("R_up"), name("B_mean"), name("reversal_spike_x_decay"), name("jis-b6192:R")
-    ('R↑', 'B̄', 'Reversal spike X decay length', 'R (jis-b6192)')
+    ('R↑', 'B̄', 'Reversal spike X decay length', 'R (JIS B 6192 / B 0182)')
+    >>> name("iso230-2:1988:R_up")
+    'R↑ (ISO 230-2:1988)'
     """
     if key in PARAMETER_SYMBOLS:
         return PARAMETER_SYMBOLS[key]
@@ -248,7 +250,9 @@ def name(key: str, axes=("X", "Y")) -> str:
         std, _, rest = key.rpartition(":")
         words = name(rest, axes) if std.startswith("iso230-4") else \
             PARAMETER_SYMBOLS.get(rest, rest.replace("_", " "))   # another standard's symbol
-        return f"{words} ({std})"
+        from axiscal.standards.positioning_standards import STANDARDS
+
+        return f"{words} ({STANDARDS[std].title if std in STANDARDS else std})"
     if key.endswith("_total") and key not in QUANTITIES:      # ISO 230-7:2015 §3.1 motions
         base = key[:-len("_total")].replace("_", " ")
         return f"{base[:1].upper()}{base[1:]} error motion, total"
@@ -301,7 +305,11 @@ def _fmt(value: Any, unit: str) -> str:
 
 def fixed(value: Any, digits: int) -> str:
     """A number to ``digits`` decimals: None and NaN as a dash, flags as yes/no, integers as
-    they are (the cells of every report table)."""
+    they are (the cells of every report table); a value that rounds to zero has no sign.
+
+    >>> fixed(-0.0001, 3), fixed(-0.0, 3), fixed(-0.0006, 3)
+    ('0.000', '0.000', '-0.001')
+    """
     if value is None:
         return "—"
     if isinstance(value, bool):
@@ -309,7 +317,10 @@ def fixed(value: Any, digits: int) -> str:
     if isinstance(value, int):
         return str(value)
     v = float(value)
-    return "—" if math.isnan(v) else f"{v:.{digits}f}"
+    if math.isnan(v):
+        return "—"
+    text = f"{v:.{digits}f}"
+    return text.lstrip("-") if text.startswith("-") and float(text) == 0 else text
 
 
 def value_text(value: str) -> str:

@@ -237,6 +237,8 @@ def add_routes(app: FastAPI) -> None:
         if not choices:
             raise _missing(f"no test of {machine} axis {axis} is counted in trends "
                            "(none stored, or every one withdrawn)")
+        if not parameter.strip():             # ?parameter= (empty): the page's default
+            parameter = "E" if any(k == "E" for k, _, _ in choices) else choices[0][0]
         key = _parameter_key(parameter, choices)
         error, tr, tol = None, None, None
         try:

@@ -163,7 +163,22 @@ def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
         form["date"] = t.summary.tested_at.strftime("%Y-%m-%d")
     if t.instrument and not form.get("instrument1_name"):
         form["instrument1_name"] = t.instrument
+    elif t.instrument and ev.kind != "iso230-2":
+        _test_instrument_first(form, t.instrument)
     return form
+
+
+def _test_instrument_first(form: dict, name: str) -> None:
+    """The instrument rows of a test of another kind (a ballbar, a diagonal ...): the test's
+    own instrument, with the details of the row naming it if the laboratory lists it, never
+    the laboratory's other instruments (issue 40: a ballbar certificate listed the
+    laboratory's laser)."""
+    rows = [{k: form.get(f"instrument{i}_{k}", "") for k in _INSTRUMENT_KEYS}
+            for i in range(1, INSTRUMENTS + 1)]
+    row = next((r for r in rows if r["name"].strip() == name.strip()), {"name": name})
+    for i in range(1, INSTRUMENTS + 1):
+        for k in _INSTRUMENT_KEYS:
+            form[f"instrument{i}_{k}"] = str(row.get(k, "")) if i == 1 else ""
 
 
 def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str]:
