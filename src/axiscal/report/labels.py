@@ -341,6 +341,20 @@ def symbol_html(text: str) -> str:
 
     >>> symbol_html("B_i = x̄↑ − x̄↓; see run_1.csv")
     'B<sub>i</sub> = x̄↑ − x̄↓; see run_1.csv'
+    >>> symbol_html("u_E,MACHINE; [squareness_uncertainty] laser_ppm")
+    'u<sub>E,MACHINE</sub>; [squareness_uncertainty] laser_ppm'
     """
     escaped = re.sub(r"\b(max|min)\[", "\\1\u2009[", _html.escape(text, quote=False))
-    return _SYMBOL.sub(lambda m: f"{m.group(1)}<sub>{m.group(2).strip('{}')}</sub>", escaped)
+    return _SYMBOL.sub(_subscript, escaped)
+
+
+#: A word joined to a word by underscores (``squareness_uncertainty``, ``laser_ppm``): a key of
+#: code, not a symbol; left as written (issue 40: printed "squareness<sub>uncertainty</sub>").
+_CODE_WORDS = re.compile(r"[a-z][a-z_]{2,}")
+
+
+def _subscript(m) -> str:
+    base, sub = m.group(1), m.group(2).strip("{}")
+    if _CODE_WORDS.fullmatch(base) and re.fullmatch(r"[a-z]{2,}", sub):
+        return m.group(0)
+    return f"{base}<sub>{sub}</sub>"
