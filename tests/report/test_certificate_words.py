@@ -37,6 +37,8 @@ def test_amendment_lists_changes_by_the_certificates_labels():
                      {"what": "[customer] address", "old": "Werkstr. 5; 12345 Berlin",
                       "new": "Werkstr. 7; 12345 Berlin"},
                      {"what": "[[instrument]] 1 due", "old": "2026-01-01", "new": "2027-01-01"},
+                     {"what": "[uncertainty] linear", "old": '{"cmc": {"E": 1.0}}',
+                      "new": '{"cmc": {"E": 1.2}}'},
                      {"what": "U(E)", "old": "1.0", "new": "1.1"}])
     assert "<li>Machine: MCU1025 stand → ESS MCU1025 test stand</li>" in html
     assert "<li>Laboratory: PM → PM GmbH</li>" in html
@@ -44,4 +46,5 @@ def test_amendment_lists_changes_by_the_certificates_labels():
         in html
     assert "<li>Instrument 1: calibration due: 2026-01-01 → 2027-01-01</li>" in html
     assert "<li>U(E): 1.0 → 1.1</li>" in html
+    assert "<li>Uncertainty inputs of linear axes: CMC: E: 1 → CMC: E: 1.2</li>" in html
     assert "[" not in html

@@ -20,6 +20,7 @@ certificate" in its title, a watermark on every page and the missing items liste
 from __future__ import annotations
 
 import html as _html
+import json
 import re
 from dataclasses import dataclass, field
 from importlib import resources
@@ -296,11 +297,19 @@ def _changes(changes) -> str:
     """Every change an amendment makes, old → new (ISO/IEC 17025:2017 §7.8.8.3)."""
     if not changes:
         return " No field or result changed."
-    from axiscal.report.field_labels import field_label
+    from axiscal.report.field_labels import field_label, value_text
+
+    def said(v) -> str:                    # a table kept as JSON: its keys and values in words
+        if isinstance(v, str) and v.startswith("{"):
+            try:
+                return value_text(json.loads(v))
+            except ValueError:
+                pass
+        return str(v)
 
     # each field by the label this certificate prints for it, never a configuration key
-    rows = "".join(f"<li>{_esc(field_label(c['what']))}: {_esc(c['old'])} → "
-                   f"{_esc(c['new'])}</li>" for c in changes)
+    rows = "".join(f"<li>{_esc(field_label(c['what']))}: {_esc(said(c['old']))} → "
+                   f"{_esc(said(c['new']))}</li>" for c in changes)
     return f"<br>Changed from the replaced certificate:<ul>{rows}</ul>"
 
 
