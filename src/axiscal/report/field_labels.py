@@ -63,7 +63,8 @@ FIELD_LABELS = {
 _TABLES = {"company": "Laboratory", "customer": "Customer", "machine": "Machine",
            "conditions": "Test conditions", "operator": "Operator",
            "certificate": "Certificate", "uncertainty": "Uncertainty input",
-           "tolerance": "Tolerance", "instrument": "Instrument", "signatory": "Authorised signatory"}
+           "tolerance": "Tolerance", "instrument": "Instrument",
+           "signatory": "Authorised signatory"}
 _KEY = re.compile(r"^\[\[?(\w+)\]\]?\s*(?:(\d+)\s+)?(.*)$")
 
 
