@@ -130,8 +130,9 @@ def test_same_file_twice_is_refused_and_a_reissue_amends(tmp_path):
     html = (tmp_path / "c3.html").read_text()
     assert f"replaces certificate PM-{year}-00001. Reason: serial number corrected" in html
     # issue 38: every changed field old → new, and every result whose verdict changed
-    assert "[machine] serial: VMC8-0042 → VMC8-0043" in html
-    assert "[tolerance] E: 15 → 12" in html and "tolerance E: 15 → 12" in html
+    # by the certificate's own labels, never the configuration's keys (issue 40)
+    assert "Serial number: VMC8-0042 → VMC8-0043" in html and "[machine]" not in html
+    assert "Tolerance E: 15 → 12" in html and "tolerance E: 15 → 12" in html
     assert "verdict E: conformance proven → uncertainty zone" in html
     shown = runner.invoke(app, ["certificate", "show", f"PM-{year}-00002", "--db",
                                 _db(tmp_path), "--json"])

@@ -49,15 +49,43 @@ def _overflow(browser) -> list[str]:
         " : [];")
 
 
+def _audit_rows(browser, base, test: str, tmp_path) -> None:
+    """Entries of the audit trail with what overflowed a phone (defect 9): a drift check (its
+    SHA-256, a long file name) and the laboratory (an address list, a table of inputs)."""
+    drift = tmp_path / "drift-check-of-the-vmc-800-x-axis-before-the-test.csv"
+    drift.write_text("time_s,reading\n0,0.05\n300,0.42\n600,-0.18\n")
+    browser.get(test)
+    form = browser.find_element(By.ID, "drift-check-form")
+    form.find_element(By.NAME, "drift_check").send_keys(str(drift))
+    for name in ("by", "reason"):
+        form.find_element(By.NAME, name).send_keys("A. Operator")
+    form.find_element(By.TAG_NAME, "button").click()
+    WebDriverWait(browser, 30).until(lambda d: "drift" in d.current_url)
+    browser.get(base + "/laboratory")
+    form = browser.find_element(By.ID, "laboratory-form")
+    for name, text in (("lab_name", "Präzisionsmesstechnik Berlin-Brandenburg GmbH"),
+                       ("lab_address", "Werkstr. 5\n12345 Berlin"), ("lab_e_ve", "2"),
+                       ("by", "A. Operator"), ("reason", "the laboratory's identity")):
+        form.find_element(By.NAME, name).send_keys(text)
+    form.find_element(By.ID, "save-laboratory").click()
+    WebDriverWait(browser, 30).until(lambda d: "saved=1" in d.current_url)
+
+
 def test_pages_fit_a_412_px_screen(server, browser, tmp_path):
     p = tmp_path / "vmc.csv"
     p.write_bytes(positioning_file())
     test = _upload(browser, server, p)
+    p.write_bytes(positioning_file() + b"\n")          # a second test of the axis, to compare
+    second = _upload(browser, server, p)
     ballbar = _upload(browser, server, _ballbar_file(tmp_path))
     volumetric = _upload(browser, server, _volumetric_file(tmp_path))
     machine = browser.find_element(By.CSS_SELECTOR, "a[href^='/machine/']").get_attribute("href")
+    _audit_rows(browser, server, test, tmp_path)
+    ids = test.rsplit("/", 1)[1], second.rsplit("/", 1)[1]
     pages = {"test": test, "ballbar": ballbar, "volumetric": volumetric, "machine": machine,
-             "upload": server + "/upload",
+             "upload": server + "/upload", "audit": server + "/audit",
+             "laboratory": server + "/laboratory",
+             "compare": server + f"/compare?a={ids[0]}&b={ids[1]}",
              "trend": server + "/trend?machine=VMC-800&axis=X&parameter=R%E2%86%91"}
     try:
         for name, url in pages.items():
@@ -67,6 +95,17 @@ def test_pages_fit_a_412_px_screen(server, browser, tmp_path):
                 lambda d: d.execute_script("return document.readyState") == "complete")
             time.sleep(0.2)                          # the plots draw after the page loads
             assert _overflow(browser) == [], name
+            assert browser.execute_script(           # no page scrolls sideways (defect 9)
+                "return document.documentElement.scrollWidth") <= 412, name
+            if name in ("test", "compare", "trend"):  # each chart takes the screen's width
+                widths = browser.execute_script(
+                    "return Array.from(document.querySelectorAll('.uplot-chart'))"
+                    ".filter(e => e.uplot).map(e => e.uplot.width)")
+                assert widths and max(widths) <= 412, (name, widths)
+            if name == "audit":                       # readable values, no Python literals
+                trail = browser.find_element(By.ID, "audit").text
+                assert "address: Werkstr. 5, 12345 Berlin" in trail, trail
+                assert "source of E_VE" in trail and "['" not in trail and "{'" not in trail
             height = browser.execute_script("return document.documentElement.scrollHeight")
             browser.set_window_size(412, min(height + 120, 6000))
             shot(browser, f"phone_{name}_412")

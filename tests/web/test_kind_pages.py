@@ -386,6 +386,10 @@ def test_squareness_from_two_straightness_tests_equals_squareness_biaxial(site):
     assert f"U (k = 2) = {format_uncertainty(j['U_um_per_m'])}" in page.text
     rep = c.get("/squareness/report.html", params=q)
     assert rep.status_code == 200 and "Squareness, bi-axial L 180°" in rep.text
+    # entered from the Y test: the command's order, X the datum, the same sign (issue 40)
+    from_y = c.get("/squareness", params={**q, "first": second, "second": first})
+    assert re.search(r'id="squareness-value">([^<]+)<', from_y.text).group(1) == shown
+    assert f"Squareness XY from tests {first} and {second}" in from_y.text
     same = c.get("/squareness", params={**q, "second": first})
     assert same.status_code == 400 and "with itself" in same.text
 

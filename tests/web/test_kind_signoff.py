@@ -201,3 +201,22 @@ def test_a_diagonal_without_e_ve_is_a_draft_and_a_drift_check_gives_it(tmp_path,
     text = " ".join(" ".join(pdf_text(tmp_path / "c.pdf")).split())
     assert "DRAFT" not in text and "E_VE 0.6 µm" in text.replace("EVE", "E_VE"), text[-2500:]
     assert "E_VE 0 µm" not in text.replace("EVE", "E_VE")
+
+
+def test_a_ballbar_sign_off_lists_the_ballbar_not_the_laboratorys_laser(client):
+    """Issue 40: the laboratory keeps a laser interferometer; a ballbar test's form (and so
+    its certificate) lists the test's own instrument, typed at upload, alone."""
+    from axiscal.store.laboratory import set_laboratory
+
+    set_laboratory(client.app.state.store, {"instrument": [
+        {"name": "Laser interferometer", "serial": "L-77"},
+        {"name": "QC20-W ballbar", "serial": "B-5", "certificate": "C-9"}]},
+        by="eng", reason="instruments")
+    r = client.post("/upload", data={"csrf": client.token, "machine": "VMC-800",
+                                     "instrument": "QC20-W ballbar"},
+                    files={"file": ("bb2.csv", (BALLBAR + "\n").encode(), "text/csv")})
+    page = client.get(str(r.url).split("?")[0]).text
+    value = {k: (re.search(rf'name="{k}" value="([^"]*)"', page) or [None, ""])[1]
+             for k in ("instrument1_name", "instrument1_serial", "instrument2_name")}
+    assert value == {"instrument1_name": "QC20-W ballbar", "instrument1_serial": "B-5",
+                     "instrument2_name": ""}

@@ -206,6 +206,16 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     text = " ".join(_pdf_lines(st.certificate(new.number).document))   # lines wrap
     assert "Machine ESS MCU1025 (ESS MCU1025 test stand)" in text
     assert "machine name corrected" in text and first in text
+    assert "Machine: MCU1025 bench → ESS MCU1025 test stand" in text    # its label, no key
+    assert "[machine]" not in text and "[company]" not in text
+    # the test page's preview (DRAFT) is the sign-off's certificate as its form stands now: the
+    # laboratory, item, date and instrument of the certificate just issued (defect 6: it read
+    # the server's configuration and the file's names alone)
+    preview = _pdf_lines(bench.get("/tests/1/certificate.pdf").content)
+    issued = _pdf_lines(st.certificate(new.number).document)
+    assert "DRAFT" in preview[0] and "[company]" not in " ".join(preview)
+    assert _section(preview) == _section(issued)
+    assert "ESS MCU1025 test stand" in " ".join(_section(preview))
     # a withdrawn test is never certified: no button, and the register's refusal in words
     from axiscal.store.corrections import withdraw
 
@@ -215,6 +225,18 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     r = _sign(bench, "amend", **LAB_FORM, **JOB_FORM, amend_reason="again")
     assert r.status_code == 400 and "a withdrawn test is never certified" in r.text
     assert len(st.certificates()) == 2
+
+
+def _section(lines: list[str]) -> list[str]:
+    """A certificate's laboratory, its "Customer and item calibrated" section, date of test and
+    first instrument, the number and date of issue left out (a preview has neither)."""
+    start = lines.index("Customer and item calibrated")
+    end = next(i for i, ln in enumerate(lines) if ln.startswith("Test conditions"))
+    lab = [ln for ln in lines[:start] if ln in (LAB_FORM["lab_name"], "Werkstrasse 1")]
+    item = [re.sub(r"Certificate number .*", "", ln) for ln in lines[start + 1:end]]
+    date = [m.group(0) for ln in lines if (m := re.search(r"Date of test \S+", ln))]
+    inst = [ln for ln in lines if JOB_FORM["instrument1_name"] in ln]
+    return lab + item + date + inst[:1]
 
 
 def test_laboratory_page_edits_what_the_history_keeps(bench):

@@ -120,7 +120,7 @@ def load_user_config(path: Path | None = None) -> dict[str, Any]:
     p = Path(path) if path is not None else config_path()
     if path is None and not p.exists():
         return {}
-    return check_instruments(load_toml(p), str(p))
+    return _plain_text(check_instruments(load_toml(p), str(p)), p)
 
 
 #: The keys of an ``[[instrument]]`` entry (``name`` required).
@@ -169,10 +169,27 @@ def config_problem(config: dict[str, Any] | None = None) -> str:
 
 
 def load_job(path) -> dict[str, Any]:
-    """A job file (same tables as the user configuration, for one test)."""
+    """A job file (same tables as the user configuration, for one test).
+
+    Raises
+    ------
+    InputError
+        A text holding a control character (ESC, BEL, NUL ...) or a bidirectional control
+        (U+202E ...): it would be written into the certificate
+        (:func:`axiscal.store.limits.checked_tables`, the rule of every text axiscal writes).
+    """
     from axiscal.io._files import load_toml
 
-    return check_instruments(load_toml(path), str(path))
+    return _plain_text(check_instruments(load_toml(path), str(path)), path)
+
+
+def _plain_text(cfg: dict[str, Any], path) -> dict[str, Any]:
+    """``cfg`` if every text in it is free of control characters (one line where not an
+    address, a note or a reason), else an InputError naming the file, the ``[table] key`` and
+    the character."""
+    from axiscal.store.limits import checked_tables
+
+    return checked_tables(cfg, f"{Path(str(path)).name}:")
 
 
 def merge(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:

@@ -20,6 +20,7 @@ certificate" in its title, a watermark on every page and the missing items liste
 from __future__ import annotations
 
 import html as _html
+import json
 import re
 from dataclasses import dataclass, field
 from importlib import resources
@@ -299,8 +300,19 @@ def _changes(changes) -> str:
     """Every change an amendment makes, old → new (ISO/IEC 17025:2017 §7.8.8.3)."""
     if not changes:
         return " No field or result changed."
-    rows = "".join(f"<li>{_plain(c['what'])}: {_esc(c['old'])} → {_esc(c['new'])}</li>"
-                   for c in changes)
+    from axiscal.report.field_labels import field_label, value_text
+
+    def said(v) -> str:                    # a table kept as JSON: its keys and values in words
+        if isinstance(v, str) and v.startswith("{"):
+            try:
+                return value_text(json.loads(v))
+            except ValueError:
+                pass
+        return str(v)
+
+    # each field by the label this certificate prints for it, never a configuration key
+    rows = "".join(f"<li>{_esc(field_label(c['what']))}: {_esc(said(c['old']))} → "
+                   f"{_esc(said(c['new']))}</li>" for c in changes)
     return f"<br>Changed from the replaced certificate:<ul>{rows}</ul>"
 
 
@@ -523,7 +535,7 @@ def _assumptions(rep: Report, dataset, result, budget, info: CertificateInfo) ->
     notes = [f"{i.label}: {i.value_text} assumed, not given ({i.rule})"
              for i in getattr(budget, "assumed", ()) if i.value is not None]
     missing = set(getattr(budget, "missing_inputs", ()))
-    notes += [_SET_WITH.sub("", n) for n in budget.notes
+    notes += [customer_words(n) for n in budget.notes
               if not n.startswith("assumed:") and not (missing and "not given" in n)]
     notes += list(result.warnings)
     from axiscal.io.epics import NOTES_START
@@ -548,6 +560,33 @@ def _assumptions(rep: Report, dataset, result, budget, info: CertificateInfo) ->
 _HINT = re.compile(r"\s*\([^()]*\[[^()]*\)|;\s*give \[[^;)]*")
 #: How a tool sets an input ("; set with [uncertainty] beam_offset"): not for a customer.
 _SET_WITH = re.compile(r";?\s*(?:set|declare it) with [^;)]*")
+#: ... said in words where it names the input: "set with [squareness_uncertainty] e_ve in the
+#: user configuration (axiscal config)".
+_SET_WITH_KEY = re.compile(r"(;?\s*)(set|declare it) with \[(\w+)\] (\w+)"
+                           r"(?:[^;()]|\([^()]*\))*")
+
+
+def customer_words(note: str) -> str:
+    """A budget's note for a customer's certificate: how an input is set said in words (the
+    laboratory's uncertainty input, by its label), never a configuration file's table, key or
+    a command's option.
+
+    >>> customer_words("assumed: E_VE 0 µm; set with [squareness_uncertainty] e_ve in the "
+    ...                "user configuration (axiscal config)")
+    "assumed: E_VE 0 µm; set as the laboratory's uncertainty input E_VE (environmental variation)"
+    >>> customer_words("E_VE not given (measure it by a drift check or declare it with "
+    ...                "[uncertainty] e_ve in the job or configuration file, or --uncertainty "
+    ...                "e_ve=VALUE)")
+    "E_VE not given (measure it by a drift check or declare it as the laboratory's uncertainty input E_VE (environmental variation))"
+    """
+    from axiscal.report.field_labels import field_label
+
+    def words(m) -> str:
+        label = field_label(f"[{m.group(3)}] {m.group(4)}").removeprefix("Uncertainty input: ")
+        return (f"{m.group(1)}{'set' if m.group(2) == 'set' else 'declare it'} as the "
+                f"laboratory's uncertainty input {label}")
+
+    return _SET_WITH.sub("", _SET_WITH_KEY.sub(words, str(note)))
 
 
 def _sentence(text: str) -> str:

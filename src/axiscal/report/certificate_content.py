@@ -20,6 +20,7 @@ from __future__ import annotations
 import datetime as _dt
 import functools
 import math
+import re
 import subprocess
 import unicodedata
 from typing import Any
@@ -41,6 +42,9 @@ def parse_date(text: Any, what: str) -> _dt.date:
     try:
         return _dt.date.fromisoformat(t[:10])
     except ValueError:
+        if re.fullmatch(r"\d{4}-\d{2}-\d{2}", t[:10]):        # the form is right, the day is not
+            raise InputError(f"{what}: {t[:10]} is not a date (no such day in the "
+                             "calendar)") from None
         raise InputError(f"{what} {t!r}: write it as YYYY-MM-DD") from None
 
 

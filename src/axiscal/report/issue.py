@@ -186,7 +186,8 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
                       config_note: str = "", customer_supplied=None, logo: str | None = None,
                       replaces: str = "", reason: str = "", prepared_by: str = "",
                       approved_by: str = "", changes=(), as_found=None,
-                      draft_document: bool = True) -> CertificateOutcome:
+                      draft_document: bool = True, preview: bool = False
+                      ) -> CertificateOutcome:
     """Budget, decisions and certificate of one positioning test, written to ``path``
     (.html or .pdf): issued through ``store``'s register when complete, else a DRAFT.
 
@@ -221,6 +222,9 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
         Write the DRAFT to ``path`` when an item is missing (default). The workbench, which
         shows the missing items on its page and keeps no DRAFT, says False: nothing is
         rendered (a PDF takes seconds).
+    preview : bool
+        A DRAFT whatever is given, never numbered: the workbench's preview of a sign-off, with
+        the item as ``store`` names it (the same call as the issue, one item more missing).
 
     Raises
     ------
@@ -249,6 +253,9 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
     if store is None and not missing:
         missing = ("certificate number: a certificate is numbered only by the certificate "
                    "register (a calibration history, --db)",)
+    if preview and not missing:
+        missing = ("certificate number: this is the preview; the certificate is numbered when "
+                   "it is issued",)
     info = dataclasses.replace(info, missing=missing, replaces=replaces, reason=reason,
                                changes=tuple(changes))
 

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -237,8 +238,9 @@ def kind_certificate(ev, record: KindCertificate, info) -> Any:
     c._instruments(rep, info, None)
     rep.add_table(["Input", "Value", "How it was set"], record.inputs,
                   caption=f"Uncertainty budget: {record.method}")
-    for note in record.notes:
-        rep.add_text(note)
+    for note in record.notes:      # an assumed input is a row of the table above
+        if not note.startswith("assumed:"):
+            rep.add_text(c.customer_words(note))
     rep.add_html(c._statements(info, record.decisions, record.rule_text))
     rows = [(_label(ev, f), f.value_text, f.U_text, f"{f.k:g}", units.display(f.unit),
              "—" if f.tolerance is None else f"{f.tolerance:g}", f.verdict or "—")
@@ -483,7 +485,7 @@ def _inputs(budget: dict, given: dict) -> tuple[tuple[str, str, str], ...]:
     else the inputs given to it."""
     rows = []
     for name, i in (budget.get("inputs") or {}).items():
-        rule = str(i.get("rule", ""))
+        rule = re.sub(r"^(assumed|given):\s*", "", str(i.get("rule", "")))  # said once
         how = "assumed" if i.get("assumed") else "measured" if rule.startswith("measured") \
             else "given"                          # a measured input's rule says so itself
         rows.append((str(i.get("label") or name), f"{i.get('value'):g} {i.get('unit', '')}"

@@ -237,10 +237,12 @@ def name(key: str, axes=("X", "Y")) -> str:
     ``history trend --parameter``'s name): the symbol of ISO 230-2:2014 clause 3 (``R↑`` for
     ``R_up``, :data:`~axiscal.standards.iso230_2.PARAMETER_SYMBOLS`), else the label of
     :data:`QUANTITIES` (``Reversal spike X decay length``); a key of another standard
-    (``jis-b6192:R``) as its symbol and the standard (``R (jis-b6192)``).
+    (``jis-b6192:R``) as its symbol and the standard's name (``R (JIS B 6192 / B 0182)``).
 
     >>> name("R_up"), name("B_mean"), name("reversal_spike_x_decay"), name("jis-b6192:R")
-    ('R↑', 'B̄', 'Reversal spike X decay length', 'R (jis-b6192)')
+    ('R↑', 'B̄', 'Reversal spike X decay length', 'R (JIS B 6192 / B 0182)')
+    >>> name("iso230-2:1988:R_up")
+    'R↑ (ISO 230-2:1988)'
     """
     if key in PARAMETER_SYMBOLS:
         return PARAMETER_SYMBOLS[key]
@@ -248,7 +250,9 @@ def name(key: str, axes=("X", "Y")) -> str:
         std, _, rest = key.rpartition(":")
         words = name(rest, axes) if std.startswith("iso230-4") else \
             PARAMETER_SYMBOLS.get(rest, rest.replace("_", " "))   # another standard's symbol
-        return f"{words} ({std})"
+        from axiscal.standards.positioning_standards import STANDARDS
+
+        return f"{words} ({STANDARDS[std].title if std in STANDARDS else std})"
     for fig in ("_total", "_synchronous", "_asynchronous"):   # ISO 230-7:2015 §3 motions
         if key.endswith(fig) and key not in QUANTITIES:
             base = key[:-len(fig)].replace("_", " ")
@@ -302,7 +306,11 @@ def _fmt(value: Any, unit: str) -> str:
 
 def fixed(value: Any, digits: int) -> str:
     """A number to ``digits`` decimals: None and NaN as a dash, flags as yes/no, integers as
-    they are (the cells of every report table)."""
+    they are (the cells of every report table); a value that rounds to zero has no sign.
+
+    >>> fixed(-0.0001, 3), fixed(-0.0, 3), fixed(-0.0006, 3)
+    ('0.000', '0.000', '-0.001')
+    """
     if value is None:
         return "—"
     if isinstance(value, bool):
@@ -310,7 +318,10 @@ def fixed(value: Any, digits: int) -> str:
     if isinstance(value, int):
         return str(value)
     v = float(value)
-    return "—" if math.isnan(v) else f"{v:.{digits}f}"
+    if math.isnan(v):
+        return "—"
+    text = f"{v:.{digits}f}"
+    return text.lstrip("-") if text.startswith("-") and float(text) == 0 else text
 
 
 def value_text(value: str) -> str:
@@ -343,6 +354,8 @@ def symbol_html(text: str) -> str:
     'E<sub>VE</sub>; set with [straightness_uncertainty] e_ve in the user configuration'
     >>> symbol_html("min[x_i]")
     'min\u2009[x<sub>i</sub>]'
+    >>> symbol_html("u_E,MACHINE; [squareness_uncertainty] laser_ppm")
+    'u<sub>E,MACHINE</sub>; [squareness_uncertainty] laser_ppm'
     """
     parts = _CONFIG_KEY.split(text)
     return "".join(_html.escape(p, quote=False) if n % 2 else _symbols(p)
@@ -355,4 +368,16 @@ _CONFIG_KEY = re.compile(r"(\[[a-z]{3,}[a-z0-9_.]*\](?: [a-z][a-z0-9_]*\b)?)")
 
 def _symbols(text: str) -> str:
     escaped = re.sub(r"\b(max|min)\[", "\\1\u2009[", _html.escape(text, quote=False))
-    return _SYMBOL.sub(lambda m: f"{m.group(1)}<sub>{m.group(2).strip('{}')}</sub>", escaped)
+    return _SYMBOL.sub(_subscript, escaped)
+
+
+#: A word joined to a word by underscores (``squareness_uncertainty``, ``laser_ppm``): a key of
+#: code, not a symbol; left as written (issue 40: printed "squareness<sub>uncertainty</sub>").
+_CODE_WORDS = re.compile(r"[a-z][a-z_]{2,}")
+
+
+def _subscript(m) -> str:
+    base, sub = m.group(1), m.group(2).strip("{}")
+    if _CODE_WORDS.fullmatch(base) and re.fullmatch(r"[a-z]{2,}", sub):
+        return m.group(0)
+    return f"{base}<sub>{sub}</sub>"

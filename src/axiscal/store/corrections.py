@@ -266,10 +266,15 @@ def _record(a) -> AuditRecord:
 
 
 def _bounded(fields: dict) -> None:
+    """Each text within its length, free of control characters (:func:`axiscal.store.limits.
+    checked_text`; a reason and a note may hold line breaks)."""
+    from axiscal.store.limits import checked_text
+
     for k, v in fields.items():
         limit = MAX_BY if k in ("by", "operator", "instrument") else MAX_REASON
         if len(v) > limit:
             raise InputError(f"{k} of {len(v)} characters; at most {limit}")
+        checked_text(v, k, single_line=k not in ("reason", "note"))
 
 
 def _machine(s, ref):

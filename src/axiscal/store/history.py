@@ -671,4 +671,9 @@ def _parse_date(t: str) -> dt.datetime:
         d = dt.datetime.fromisoformat(t)
         return d.astimezone(dt.timezone.utc).replace(tzinfo=None) if d.tzinfo else d
     except ValueError:
+        import re
+
+        if re.fullmatch(r"\d{4}-\d{2}-\d{2}", t[:10]):     # written right, no such day
+            raise InputError(f"date: {t[:10]} is not a date (no such day in the calendar)") \
+                from None
         raise InputError(f"date {t!r}: write it as YYYY-MM-DD (or an ISO 8601 date and time)")

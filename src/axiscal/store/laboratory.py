@@ -115,6 +115,9 @@ def set_laboratory(store, tables: dict, *, by: str, reason: str, account: str | 
         raise InputError(f"laboratory: {', '.join(unknown)} is not kept; "
                          f"{', '.join(LABORATORY_TABLES)} are")
     check_instruments(tables, "laboratory")
+    from axiscal.store.limits import checked_tables
+
+    checked_tables(tables, "laboratory:")
     new = json.loads(json.dumps(tables))
     now = dt.datetime.now(dt.timezone.utc).replace(tzinfo=None, microsecond=0)
     with _change(store) as s:
@@ -196,7 +199,10 @@ def add_drift_check(store, test_id: int, raw: bytes, filename: str, *, by: str,
     from axiscal.store.kinds import drift_check_record
     from axiscal.store.models import DriftCheck
 
-    name = (filename or "drift-check.csv").replace("\\", "/").rsplit("/", 1)[-1][:300]
+    from axiscal.store.limits import checked_text
+
+    name = checked_text((filename or "drift-check.csv").replace("\\", "/").rsplit("/", 1)[-1]
+                        [:300], "drift check's file name")
     record = drift_check_record(raw, name)     # the one place a drift check becomes E_VE
     e_ve = record["e_ve"]
     stored = store.get(test_id)

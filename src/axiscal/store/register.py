@@ -145,6 +145,14 @@ def issue(store, *, test_id: int, laboratory: str, series: str,
 
     from axiscal.store.models import Certificate
 
+    from axiscal.store.limits import checked_tables, checked_text
+
+    checked_tables((inputs or {}).get("config") or {}, "certificate:")
+    for text, what in ((customer, "customer name"), (laboratory_name, "laboratory name"),
+                       (prepared_by, "prepared by"), (approved_by, "approved by"),
+                       (approved_role, "approver's role")):
+        checked_text(text, what)
+    checked_text(reason, "reason for the amendment", single_line=False)
     if bool(replaces) != bool(reason.strip()):
         raise InputError("an amendment names the certificate it replaces and the reason, both")
     issued_on = check_issue_date(issued, today)

@@ -96,6 +96,12 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     # a parameter as the interface names it: its symbol in ISO 230-2:2014 clause 3 (A↑, B̄),
     # else its label (Reversal spike X decay length); the key goes in a title attribute
     app.state.templates.env.filters["symbol"] = lambda k, axes="XY": quantity_name(k, axes)
+    from axiscal.report.field_labels import key_label, value_text
+    from axiscal.report.labels import fixed
+
+    # an audit entry's values as a person reads them (not a Python list or dict)
+    app.state.templates.env.filters.update(key_label=key_label, readable=value_text,
+                                           fixed=fixed)     # fixed(3): no "-0.000"
     app.mount("/static", StaticFiles(directory=str(HERE / "static")), name="static")
     app.add_middleware(BodyLimit, limit=app.state.upload_limit + FORM_OVERHEAD)
     _add_guard(app)

@@ -120,9 +120,12 @@ def add_routes(app: FastAPI) -> None:
 
     @app.get("/tests/{test_id}/standards.html")
     async def standards(request: Request, test_id: TestId):
+        from axiscal.store.cache import digest
+
+        t = await run_in_threadpool(request.app.state.store.get, test_id)
+        names = digest(t.summary.machine, t.summary.axis)    # as the history names them now
         html = await _product(request, test_id, "report by every standard",
-                              f"standards-{test_id}.html",
-                              _standards_html)
+                              f"standards-{test_id}-{names}.html", _standards_html)
         return _sent(html, f"test_{test_id}_standards.html", "text/html")
 
     @app.get("/tests/{test_id}/certificate.pdf")
@@ -131,13 +134,22 @@ def add_routes(app: FastAPI) -> None:
             raise InputError(f"paper {paper!r}: A4 or Letter")
         import datetime as dt
 
-        from axiscal.report.issue import load_config
         from axiscal.store.cache import digest
+        from axiscal.web.certificate_preview import preview_inputs, preview_pdf
 
-        cfg = load_config(None)     # the draft depends on it, the paper and the day of issue
-        what = f"certificate-{digest(cfg, paper, dt.date.today().isoformat())}.pdf"
+        st = request.app.state.store
+        t = await run_in_threadpool(st.get, test_id)
+        if t.summary.kind != "iso230-2":
+            raise InputError(f"a {t.summary.kind} test has no certificate preview here; "
+                             "download its JSON")
+        # the sign-off as its form stands: the history's laboratory, names, date, instruments
+        t, ev, cfg, tol, rule = await run_in_threadpool(preview_inputs, st, test_id)
+        m = st.machine(t.summary.machine_id)
+        what = "certificate-" + digest(cfg, tol, rule, paper, dt.date.today().isoformat(),
+                                       t.summary.machine, t.summary.axis, m.maker, m.model,
+                                       m.serial, m.location) + ".pdf"
         pdf = await _product(request, test_id, "certificate", what,
-                             lambda t, ev: _certificate_pdf(t, ev, cfg, paper))
+                             lambda t_, ev_: preview_pdf(st, t, ev, cfg, tol, rule, paper))
         return _sent(pdf, f"test_{test_id}_certificate.pdf", "application/pdf")
 
     @app.post("/tests/{test_id}/compensation")
@@ -199,6 +211,8 @@ def add_routes(app: FastAPI) -> None:
         if not choices:
             raise _missing(f"no test of {machine} axis {axis} is counted in trends "
                            "(none stored, or every one withdrawn)")
+        if not parameter.strip():             # ?parameter= (empty): the page's default
+            parameter = "E" if any(k == "E" for k, _, _ in choices) else choices[0][0]
         key = _parameter_key(parameter, choices)
         error, tr, tol = None, None, None
         try:
@@ -365,20 +379,9 @@ def _standards_html(t, ev) -> str:
     from axiscal.report.html import standards_report
     from axiscal.standards.positioning_standards import evaluate_all
 
+    ev = t.named(ev)                 # the machine and axis as the history names them
     return standards_report(ev.dataset, evaluate_all(ev.dataset),
                             f"Test {t.summary.id} by every positioning standard").html()
-
-
-def _certificate_pdf(t, ev, cfg: dict, paper: str) -> bytes:
-    import tempfile
-    from pathlib import Path
-
-    from axiscal.report.issue import write_certificate
-
-    with tempfile.TemporaryDirectory() as d:
-        path = Path(d) / "certificate.pdf"
-        write_certificate(path, ev.dataset, ev.evaluation, cfg, t.raw, paper=paper)
-        return path.read_bytes()
 
 
 def _write_table(store, test_id: int, controller: str, spacing: float, axis: str = ""):

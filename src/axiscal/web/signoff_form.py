@@ -17,7 +17,7 @@ from axiscal.errors import InputError
 from axiscal.web.inputs import form_number
 
 __all__ = ["LABELS", "JOB_FIELDS", "LAB_FIELDS", "INSTRUMENTS", "INSTRUMENT_KEYS",
-           "missing_fields", "lab_from_form", "lab_defaults", "plain"]
+           "missing_fields", "lab_from_form", "lab_defaults", "plain", "checked_fields"]
 
 #: Instrument rows of the form (``[[instrument]]`` of a job file).
 INSTRUMENTS = 3
@@ -86,6 +86,29 @@ _CONFIG_WORDS = re.compile(r"\s*\[\[?\w+\]\]?( \w+)?|\s*--[\w-]+(?:[ =][A-Z_]+(?
 _AS_LABEL = {**{f"[{t}] {k}": f for f, (t, k) in JOB_FIELDS.items()},
              "[company] name": "lab_name", "[company] address": "lab_address",
              "[company] code": "lab_code"}
+
+
+#: Fields of several lines (one address line, one signatory each): line breaks allowed.
+MULTI_LINE = frozenset({"customer_address", "lab_address", "lab_signatories", "amend_reason",
+                        "reason"})
+
+
+def checked_fields(values: dict) -> dict:
+    """``values`` if no field holds a control character (C0, C1, DEL) or a bidirectional
+    control, a field of :data:`MULTI_LINE` none but line breaks: the rule of every text
+    axiscal writes (:func:`axiscal.store.limits.checked_text`), each field named by its label.
+
+    Raises
+    ------
+    InputError
+        ``Customer 'Kunde\\x1b[31mAG' holds a control character U+001B (ESC); ...``
+    """
+    from axiscal.store.limits import checked_text
+
+    for field, text in values.items():
+        if isinstance(text, str):
+            checked_text(text, LABELS.get(field, field), single_line=field not in MULTI_LINE)
+    return values
 
 
 def plain(text: str) -> str:
@@ -157,6 +180,7 @@ def lab_from_form(values: dict, kept: dict, instruments: list) -> dict:
         A signatory line without a name, a CMC that is not NAME=NUMBER, E_VE not a number;
         each named by its field's label.
     """
+    checked_fields(values)
     lab = {k: (dict(v) if isinstance(v, dict) else v) for k, v in kept.items()}
     company = dict(lab.get("company", {}))
     for field, key in (("lab_name", "name"), ("lab_code", "code")):

@@ -36,7 +36,8 @@ from axiscal.web.inputs import TestId, checked_form, form_number, require_engine
 from axiscal.web.plot_specs import COLORS, as_list, positioning_plot, unit_text
 from axiscal.web.rendering import download, query, render
 from axiscal.web.signoff_form import (INSTRUMENT_KEYS, INSTRUMENTS, JOB_FIELDS, LABELS,
-                                      lab_defaults, lab_from_form, missing_fields, plain)
+                                      checked_fields, lab_defaults, lab_from_form,
+                                      missing_fields, plain)
 
 __all__ = ["add_routes", "job_from_form", "signoff_context", "signoff_plot", "INSTRUMENTS"]
 
@@ -183,7 +184,22 @@ def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None) -> dict
         form["date"] = t.summary.tested_at.strftime("%Y-%m-%d")
     if t.instrument and not form.get("instrument1_name"):
         form["instrument1_name"] = t.instrument
+    elif t.instrument and ev.kind != "iso230-2":
+        _test_instrument_first(form, t.instrument)
     return form
+
+
+def _test_instrument_first(form: dict, name: str) -> None:
+    """The instrument rows of a test of another kind (a ballbar, a diagonal ...): the test's
+    own instrument, with the details of the row naming it if the laboratory lists it, never
+    the laboratory's other instruments (issue 40: a ballbar certificate listed the
+    laboratory's laser)."""
+    rows = [{k: form.get(f"instrument{i}_{k}", "") for k in _INSTRUMENT_KEYS}
+            for i in range(1, INSTRUMENTS + 1)]
+    row = next((r for r in rows if r["name"].strip() == name.strip()), {"name": name})
+    for i in range(1, INSTRUMENTS + 1):
+        for k in _INSTRUMENT_KEYS:
+            form[f"instrument{i}_{k}"] = str(row.get(k, "")) if i == 1 else ""
 
 
 def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str]:
@@ -196,8 +212,10 @@ def job_from_form(values: dict, parameters) -> tuple[dict, dict, str | None, str
     Raises
     ------
     InputError
-        A temperature or tolerance that is not a number; an unknown rule or paper size.
+        A temperature or tolerance that is not a number; an unknown rule or paper size; a
+        field holding a control character (:func:`~axiscal.web.signoff_form.checked_fields`).
     """
+    checked_fields(values)
     job: dict = {}
     for field, (table, key) in _JOB_FIELDS.items():
         text = values.get(field, "")
@@ -306,7 +324,7 @@ def _evaluate(st, test_id: int, values: dict, action: str, user: str = "",
                                           set_laboratory, signoff_config, signoff_record)
 
     t = st.get(test_id)
-    ev = t.evaluate_again()
+    ev = t.named(t.evaluate_again())     # the plot's title: the history's machine and axis
     if ev.kind != "iso230-2":
         ev = t.record()                  # the stored record, with its budget
     ctx = signoff_context(st, t, ev, values)

@@ -69,12 +69,15 @@ def add_routes(app: FastAPI) -> None:
         form = dict(first=first, second=second, config=config, orientation=orientation,
                     prism_error=prism_error, reference=reference, square=square)
         st = request.app.state.store
+        form = await run_in_threadpool(_in_axis_order, st, form)
+        first, second = form["first"], form["second"]
         data = await run_in_threadpool(_report, st, form)
         return download(data, f"squareness_tests_{first}_{second}.html", "text/html")
 
 
 async def _page(request: Request, form: dict, status: int = 200, **extra):
     st = request.app.state.store
+    form = await run_in_threadpool(_in_axis_order, st, form)   # as squareness biaxial x y
     one, two, b = await run_in_threadpool(_evaluate, st, form)
     figure = await run_in_threadpool(_figure, one, two, b, form)
     a, c = st.get(form["first"]).summary, st.get(form["second"]).summary
@@ -136,6 +139,17 @@ def partners(store, t) -> list:
     return [o for o in store.tests(machine=t.summary.machine, kind="straightness",
                                    parameters=())
             if o.axis != t.summary.axis and not o.withdrawn][:20]
+
+
+def _in_axis_order(store, form: dict) -> dict:
+    """``form`` with the two tests in the order of their axes' names (X before Y, Y before Z):
+    the page entered from either test is ``axiscal squareness biaxial x.csv y.csv``, the
+    first axis the datum, the same sign and the same words (issue 40: entered from the Y test
+    it said "X referred to datum Y", −65.11, where the command said +65.11)."""
+    a, b = store.get(form["first"]).summary.axis, store.get(form["second"]).summary.axis
+    if a > b:
+        form = {**form, "first": form["second"], "second": form["first"]}
+    return form
 
 
 def _trajectories(store, form: dict):

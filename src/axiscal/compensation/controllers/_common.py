@@ -310,12 +310,14 @@ class SafeName:
     def comment(self, begin: str, end: str = "", upper: bool = False) -> list[str]:
         """The comment line keeping the source name (none when the name is unchanged).
 
-        ``begin``/``end`` are the format's comment delimiters; they, and control characters,
-        are taken out of the name so the comment cannot end early.
+        ``begin``/``end`` are the format's comment delimiters; they, and control characters
+        (C0, C1, the bidirectional controls such as U+202E), are taken out of the name so the
+        comment cannot end early nor show reversed.
         """
         if not self.changed:
             return []
-        text = "".join("?" if ord(c) < 32 or c in begin + end else c for c in self.source)
+        text = "".join("?" if not c.isprintable() or c in begin + end else c
+                       for c in self.source)     # C0, C1 and bidi controls are not printable
         line = f"{SOURCE_COMMENT} {text}"
         return [f"{begin}{line.upper() if upper else line}{end}"]
 

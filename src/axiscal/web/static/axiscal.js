@@ -23,7 +23,7 @@
       });
       data.push(s.values);
     });
-    var width = Math.max(320, Math.min(el.clientWidth || 900, 1100));
+    var width = fitWidth(el);
     el.uplot = new uPlot({     // kept on the element: the browser tests read its scales
       title: spec.title,
       width: width,
@@ -52,6 +52,31 @@
       return lo <= first && hi >= last ? [first - pad, last + pad] : [lo, hi];
     };
   }
+
+  // The chart takes its container's width (a phone's 412 px, a folded section's parent when
+  // it is closed), at most 1100 px; it is drawn again at the new width when the window
+  // changes or a folded section opens.
+  function fitWidth(el) {
+    var box = el;
+    while (box && !box.clientWidth) { box = box.parentElement; }
+    var w = box ? box.clientWidth : 900;
+    return Math.max(240, Math.min(w, 1100));
+  }
+
+  function refit() {
+    document.querySelectorAll(".uplot-chart").forEach(function (el) {
+      if (el.uplot && el.clientWidth) {
+        var w = fitWidth(el);
+        if (Math.abs(w - el.uplot.width) > 2) { el.uplot.setSize({ width: w, height: 380 }); }
+      }
+    });
+  }
+  var refitTimer = null;
+  window.addEventListener("resize", function () {
+    clearTimeout(refitTimer);
+    refitTimer = setTimeout(refit, 100);
+  });
+  document.addEventListener("toggle", function () { refit(); }, true);
 
   function init(root) {
     (root || document).querySelectorAll(".uplot-chart").forEach(function (el) {
