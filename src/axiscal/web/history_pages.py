@@ -276,9 +276,36 @@ def add_routes(app: FastAPI) -> None:
 
 
 async def _test_page(request: Request, test_id: int, status: int = 200, **extra):
-    """A stored test's page (``extra``: what a refused form says at the form)."""
+    """A stored test's page (``extra``: what a refused form says at the form). A plain view is
+    kept whole by :mod:`axiscal.web.page_cache` under the history's generation without its new
+    tests (an upload elsewhere leaves it as it is; any other write makes it again), the user
+    configuration and the viewer; the other tests of its axis, which every upload changes,
+    are filled in at each answer (kept under the whole generation)."""
+    from axiscal.report.issue import load_config
+    from axiscal.store.cache import digest
+    from axiscal.store.queries import NEW_TESTS, generation
+    from axiscal.web import page_cache
+
+    st = request.app.state.store
+    if status != 200 or extra:
+        return await _make_test_page(request, test_id, status, extra, None)
+    now, cfg = generation(st), load_config(None)
+    key = ("test", st.url, test_id, request.url.query, page_cache.viewer(request), digest(cfg),
+           now[NEW_TESTS:])
+    hit = page_cache.kept_page(key)
+    if hit is not None and hit[1]["generation"] in (None, now):
+        return page_cache.answer(request, hit[0], _others_html(request, hit[1], now))
+    return await _make_test_page(request, test_id, status, extra, (key, now, cfg))
+
+
+async def _make_test_page(request: Request, test_id: int, status: int, extra: dict, kept):
+    """A test's page made (``kept``: (key, generation, configuration) under which
+    :func:`_test_page` keeps it, or None for a page that is not kept)."""
+    from markupsafe import Markup
+
     from axiscal.compensation.controllers import CONTROLLERS
     from axiscal.store.corrections import audit
+    from axiscal.web import page_cache
     from axiscal.web.correction_pages import SHOWN
     from axiscal.web.signoff_pages import signoff_context
     from axiscal.web.squareness_pages import partners
@@ -287,16 +314,45 @@ async def _test_page(request: Request, test_id: int, status: int = 200, **extra)
     t = st.get(test_id)
     ev, cfg, parts = _test_view(env, t, kept_only=True) or \
         await run_in_threadpool(_test_view, env, t)
-    others = st.tests(machine=t.summary.machine, axis=t.summary.axis, kind=t.summary.kind,
-                      limit=11, parameters=())
-    return render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
-                  f"{t.summary.axis}", status, t=t, ev=ev, **parts,
-                  signoff=signoff_context(st, t, ev, None,
-                                          request.query_params.get("certificate", ""), cfg),
-                  controllers=sorted(CONTROLLERS),
-                  others=[o for o in others if o.id != test_id],
-                  partners=partners(st, t),
-                  audit_entries=audit(st, test_id=test_id, limit=SHOWN), **extra)
+    if kept is not None:
+        cfg = kept[2]
+    # a straightness test's page lists the other axes' straightness tests: kept under the
+    # whole generation (any new test makes it again)
+    summary = {"id": test_id, "machine": t.summary.machine, "axis": t.summary.axis,
+               "kind": t.summary.kind, "withdrawn": t.summary.withdrawn,
+               "generation": kept[1] if kept and t.summary.kind == "straightness" else None}
+    others = _others_html(request, summary, kept[1] if kept else None)
+    response = render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
+                      f"{t.summary.axis}", status, t=t, ev=ev, **parts,
+                      signoff=signoff_context(st, t, ev, None,
+                                              request.query_params.get("certificate", ""), cfg),
+                      controllers=sorted(CONTROLLERS),
+                      others_html=Markup(page_cache.PART_MARK) if kept else others,
+                      partners=partners(st, t),
+                      audit_entries=audit(st, test_id=test_id, limit=SHOWN), **extra,
+                      **({"csrf": page_cache.CSRF_MARK} if kept else {}))
+    if kept is None:
+        return response
+    body = page_cache.keep_page(kept[0], response, summary)
+    return page_cache.answer(request, body if body is not None else response.body, others)
+
+
+def _others_html(request: Request, summary: dict, now: tuple | None):
+    """The list of the other tests of a test's axis to compare it with (``_test_others.html``):
+    the axis's newest tests read once per generation (:func:`axiscal.web.memo.memoised`)."""
+    from markupsafe import Markup
+
+    from axiscal.web.memo import memoised
+
+    st = request.app.state.store
+    machine, axis, kind = summary["machine"], summary["axis"], summary["kind"]
+    newest = memoised(st, ("others", machine, axis, kind), lambda: st.tests(
+        machine=machine, axis=axis, kind=kind, limit=11, parameters=()), now)
+    others = [o for o in newest if o.id != summary["id"]]
+    if not others:
+        return Markup("")
+    return Markup(request.app.state.templates.env.get_template("_test_others.html").render(
+        others=others, t={"summary": summary}))
 
 
 def _keep_drift_check(st, test_id: int, raw: bytes, filename: str, by: str, reason: str):
