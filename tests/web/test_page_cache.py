@@ -168,3 +168,19 @@ def test_a_refused_form_is_never_kept(site):
                files={"drift_check": ("dc.csv", b"", "text/csv")})
     assert r.status_code == 400 and 'id="drift-error"' in r.text
     assert 'id="drift-error"' not in c.get("/tests/2").text
+
+
+def test_a_page_made_again_reads_its_test_and_little_else(site):
+    """A test's first view in a worker, once another test's page was made: the generation and
+    the test (three statements); the laboratory, the machine's last certificate and which tests
+    have certificates, drift checks or audit entries are kept under the generation, and a test
+    without them is not asked for them."""
+    c, _ = site
+    c.get("/tests/1")
+    seen = _selects(c.app)
+    assert c.get("/tests/2").status_code == 200
+    assert len(seen) == 4, seen
+    seen.clear()
+    _withdraw(open_store(c.app.state.db_url))                # an audit entry of test 2 now
+    assert "loose mount" in c.get("/tests/2").text
+    assert any("FROM audit" in s for s in seen)

@@ -32,7 +32,7 @@ from functools import lru_cache
 from typing import NamedTuple
 
 __all__ = ["MachineName", "machine", "machine_names", "generation", "test", "test_rows",
-           "parameters", "GENERATION_TABLES", "NEW_TESTS"]
+           "parameters", "tests_with", "GENERATION_TABLES", "NEW_TESTS"]
 
 #: The tables :func:`generation` counts, in its order (two figures each: rows, largest id; the
 #: laboratory's: rows, time of its last edit).
@@ -130,6 +130,13 @@ def generation(store) -> tuple:
         return tuple(c.execute(_statements()["generation"]).one())
 
 
+def tests_with(store, table: str) -> frozenset:
+    """The ids of the tests that have a row in ``table`` (``certificate``, ``drift_check`` or
+    ``audit``): most tests have none, and a page need not ask for them one by one."""
+    with store._guard("read"), store.engine.connect() as c:
+        return frozenset(c.execute(_statements()[f"tests_with_{table}"]).scalars())
+
+
 @lru_cache(maxsize=None)
 def _statements() -> dict:
     """The statements with bound parameters, built once."""
@@ -172,4 +179,6 @@ def _statements() -> dict:
             .order_by(tb.id),
             "machine": machine_q,
             "machine_names": select(m.id, m.name).order_by(m.name),
+            **{f"tests_with_{x.__tablename__}": select(x.__table__.c.test_id).distinct()
+               .where(x.__table__.c.test_id.is_not(None)) for x in (Certificate, DriftCheck, Audit)},
             "generation": select(*counts)}

@@ -307,7 +307,7 @@ async def _make_test_page(request: Request, test_id: int, status: int, extra: di
     from axiscal.store.corrections import audit
     from axiscal.web import page_cache
     from axiscal.web.correction_pages import SHOWN
-    from axiscal.web.signoff_pages import signoff_context
+    from axiscal.web.signoff_pages import has_rows, signoff_context
     from axiscal.web.squareness_pages import partners
 
     st, env = request.app.state.store, request.app.state.templates.env
@@ -325,11 +325,14 @@ async def _make_test_page(request: Request, test_id: int, status: int, extra: di
     response = render(request, "test.html", f"Test {test_id}: {t.summary.machine} "
                       f"{t.summary.axis}", status, t=t, ev=ev, **parts,
                       signoff=signoff_context(st, t, ev, None,
-                                              request.query_params.get("certificate", ""), cfg),
+                                              request.query_params.get("certificate", ""), cfg,
+                                              kept[0][-1] if kept else None),
                       controllers=sorted(CONTROLLERS),
                       others_html=Markup(page_cache.PART_MARK) if kept else others,
                       partners=partners(st, t),
-                      audit_entries=audit(st, test_id=test_id, limit=SHOWN), **extra,
+                      audit_entries=audit(st, test_id=test_id, limit=SHOWN) if has_rows(
+                          st, kept[0][-1] if kept else None, "audit", test_id) else [],
+                      **extra,
                       **({"csrf": page_cache.CSRF_MARK} if kept else {}))
     if kept is None:
         return response
@@ -517,9 +520,10 @@ def _check_axis_letter(mod, axis: str, test_axis: str) -> None:
 def _test_view(env, t, kept_only: bool = False) -> tuple | None:
     """(evaluation, user configuration, page parts) of stored test ``t``: the parts computed
     once from the evaluation and the configuration (kept by :func:`axiscal.store.cache.derived`,
-    on disk), and what the page shows of them rendered once by this process (``results_html``,
-    the same for every user: kept in memory). With ``kept_only``, None unless the evaluation
-    and the parts are kept already (nothing is made)."""
+    on disk), and what the page shows of them rendered once (``results_html``, the same for
+    every user: kept on disk too, so another worker process reads it; the templates are part of
+    the version the cache is kept under). With ``kept_only``, None unless the evaluation and the
+    parts are kept already (nothing is made)."""
     from markupsafe import Markup
 
     from axiscal.report.issue import load_config
@@ -539,7 +543,7 @@ def _test_view(env, t, kept_only: bool = False) -> tuple | None:
         ev = t.named(t.evaluate_again())
         parts = derived(t.sha256, what, lambda: _test_parts(t, ev))   # computed once, then kept
     html = derived(t.sha256, f"{what}-{t.summary.id}.html", lambda: env.get_template(
-        "_test_results.html").render(t=t, ev=ev, **parts), disk=False)
+        "_test_results.html").render(t=t, ev=ev, **parts))
     return ev, cfg, {**parts, "results_html": Markup(html)}
 
 

@@ -89,7 +89,7 @@ def add_routes(app: FastAPI) -> None:
 
 
 def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "",
-                    cfg: dict | None = None) -> dict | None:
+                    cfg: dict | None = None, generation: tuple | None = None) -> dict | None:
     """What the test page's sign-off section shows: the form (filled from ``values``, or from
     the inputs kept with ``certificate`` of this test, whose verdict is then shown, or else
     from the user configuration ``cfg`` (default read now), the laboratory kept in the history,
@@ -99,7 +99,12 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     :func:`axiscal.report.kind_certificate.require_budget`). A test of another kind with a
     budget (diagonal, ballbar, five-axis, thermal) has the same form without what only a positioning
     test has (E_VE, temperatures, the plot): its figures, U and verdicts are
-    :func:`axiscal.report.kind_certificate.certificate_record` of the stored record."""
+    :func:`axiscal.report.kind_certificate.certificate_record` of the stored record.
+
+    ``generation``: the history's generation a page read before (without its new tests,
+    :data:`axiscal.store.queries.NEW_TESTS`): the reads that are the same for many tests (the
+    laboratory, a machine's last certificate, which tests have certificates or drift checks)
+    are then kept under it (:func:`kept_read`)."""
     from axiscal.report.issue import load_config
     from axiscal.store.laboratory import drift_checks
 
@@ -116,13 +121,17 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
         figures = certificate_record(rec).figures
         params = [f.name for f in figures]
         units = {f.name: _unit(f.unit) for f in figures}
-    records = st.certificates(test_id=t.summary.id)
+    tid = t.summary.id
+    records = st.certificates(test_id=tid) if has_rows(st, generation, "certificate", tid) \
+        else []
     current = next((c for c in records if c.status == "issued"), None)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
            "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
            "unit": _unit(ev.evaluation.deviation_unit) if positioning else "",
            "units": units, "positioning": positioning, "current": current,
-           "withdrawn": t.summary.withdrawn, "drift_checks": drift_checks(st, t.summary.id)}
+           "withdrawn": t.summary.withdrawn,
+           "drift_checks": drift_checks(st, tid) if has_rows(st, generation, "drift_check", tid)
+           else []}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
         inputs = st.certificate(issued.number, issued.laboratory).inputs
@@ -134,11 +143,36 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     elif values is not None:
         ctx["form"] = values
     else:
-        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params)
+        ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params,
+                               generation)
     return ctx
 
 
-def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
+def kept_read(st, generation: tuple | None, key: tuple, make):
+    """``make()``, or with the page's ``generation`` (see :func:`signoff_context`) a copy of
+    what it gave under that generation in this process (:func:`axiscal.web.memo.memoised`)."""
+    if generation is None:
+        return make()
+    import copy
+
+    from axiscal.web.memo import memoised
+
+    return copy.deepcopy(memoised(st, key, make, generation))
+
+
+def has_rows(st, generation: tuple | None, table: str, test_id: int) -> bool:
+    """May test ``test_id`` have rows in ``table`` (``certificate``, ``drift_check``,
+    ``audit``)? Always, without a ``generation``; else whether it is among the tests that have
+    (:func:`axiscal.store.queries.tests_with`, kept under the generation)."""
+    if generation is None:
+        return True
+    from axiscal.store.queries import tests_with
+
+    return test_id in kept_read(st, generation, ("tests-with", table),
+                                lambda: tests_with(st, table))
+
+
+def _prefill(st, t, ev, user_cfg: dict, params, generation: tuple | None = None) -> dict:
     """The form of a new sign-off: the user configuration, the laboratory kept in the history,
     the customer, item, instruments and tolerances of the machine's last certificate (and its
     conditions when it is of this test), and the stored test's date and the instrument typed at
@@ -146,8 +180,9 @@ def _prefill(st, t, ev, user_cfg: dict, params) -> dict:
     from axiscal.io.user_config import merge
     from axiscal.store.laboratory import laboratory, last_certificate_inputs
 
-    cfg = merge(user_cfg, laboratory(st))
-    of_test, last = last_certificate_inputs(st, t.summary.machine_id)
+    cfg = merge(user_cfg, kept_read(st, generation, ("laboratory",), lambda: laboratory(st)))
+    of_test, last = kept_read(st, generation, ("last-certificate", t.summary.machine_id),
+                              lambda: last_certificate_inputs(st, t.summary.machine_id))
     old = last.get("config", {})
     same = ("conditions",) if of_test == t.summary.id else ()     # this test's own conditions
     keep = {k: old[k] for k in ("customer", "instrument", "operator", *same) if k in old}
