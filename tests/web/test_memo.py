@@ -103,7 +103,7 @@ def test_a_test_page_reads_a_few_statements_and_never_the_bytes(tmp_path, monkey
 def test_a_new_tests_page_is_made_with_the_upload(tmp_path, monkeypatch):
     """The test's page parts are made in the upload's thread before its answer (303), so the
     first view finds them kept and makes nothing; a duplicate makes nothing."""
-    import axiscal.web.history_pages as pages
+    import axiscal.web.stored_test_page as pages
 
     c, app, _ = _client(tmp_path, monkeypatch)
     made = []

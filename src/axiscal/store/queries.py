@@ -11,14 +11,19 @@ per-statement compilation cost a page of the workbench ten times the database's 
 
 Notes
 -----
-:func:`generation` is what a worker process may keep a page's reads under
-(:mod:`axiscal.web.memo`): it is the number of rows and the largest id of the ``test``,
-``audit`` and ``machine`` tables. No test or audit row is ever deleted
-(:mod:`axiscal.store.corrections`: a change is a new audit row written in the same transaction;
-a test is withdrawn, never removed; a machine merged away goes with an audit row), so every
-committed change that a history page shows adds a row and changes a count. The count is needed
-beside the largest id: on PostgreSQL ids come from a sequence, and a transaction that took id 5
-may commit after one that took id 6, leaving the largest id unchanged.
+:func:`generation` is what a worker process may keep a page's reads, or a page, under
+(:mod:`axiscal.web.memo`, :mod:`axiscal.web.page_cache`): the number of rows and the largest id
+of every table a page shows (:data:`GENERATION_TABLES`: tests, the audit trail, machines, axes,
+certificates, compensation tables, drift checks; for the one laboratory row its count and the
+time of its last edit; a sign-off saved for approval, its count and the time of the last save). Every write of the history adds a row to one of them
+(:mod:`axiscal.store.corrections`: a change of a test, a machine or the laboratory is a new
+audit row written in the same transaction; a test is withdrawn, never removed; a machine merged
+away goes with an audit row; an upload adds a test, a table a table row, an issue or an
+amendment a certificate row, a drift check its row, an import the rows it brings), so every
+committed change a page shows changes a count. The count is needed beside the largest id: on
+PostgreSQL ids come from a sequence, and a transaction that took id 5 may commit after one that
+took id 6, leaving the largest id unchanged. The tests of ``tests/web/test_page_cache.py``
+check it for each path that writes.
 """
 
 from __future__ import annotations
@@ -27,7 +32,16 @@ from functools import lru_cache
 from typing import NamedTuple
 
 __all__ = ["MachineName", "machine", "machine_names", "generation", "test", "test_rows",
-           "parameters"]
+           "parameters", "tests_with", "GENERATION_TABLES", "NEW_TESTS"]
+
+#: The tables :func:`generation` counts, in its order (two figures each: rows, largest id; the
+#: laboratory's: rows, time of its last edit).
+GENERATION_TABLES = ("test", "audit", "machine", "axis", "certificate", "compensation_table",
+                     "drift_check", "laboratory", "signoff_for_approval")
+#: How many of :func:`generation`'s figures a new test changes and nothing else: the ``test``
+#: table's (an upload to a known axis adds a test and its parameters, no other row). A page
+#: that shows no other test than its own may be kept under ``generation(store)[NEW_TESTS:]``.
+NEW_TESTS = 2
 
 
 class MachineName(NamedTuple):
@@ -110,10 +124,17 @@ def machine_names(store) -> list[MachineName]:
 
 
 def generation(store) -> tuple:
-    """(rows, largest id) of the ``test``, ``audit`` and ``machine`` tables: changes with every
-    committed write that changes a machine's history page (see the module notes)."""
+    """(rows, largest id) of each of :data:`GENERATION_TABLES`, in one statement: changes with
+    every committed write of the history (see the module notes)."""
     with store._guard("read"), store.engine.connect() as c:
         return tuple(c.execute(_statements()["generation"]).one())
+
+
+def tests_with(store, table: str) -> frozenset:
+    """The ids of the tests that have a row in ``table`` (``certificate``, ``drift_check`` or
+    ``audit``): most tests have none, and a page need not ask for them one by one."""
+    with store._guard("read"), store.engine.connect() as c:
+        return frozenset(c.execute(_statements()[f"tests_with_{table}"]).scalars())
 
 
 @lru_cache(maxsize=None)
@@ -121,7 +142,8 @@ def _statements() -> dict:
     """The statements with bound parameters, built once."""
     from sqlalchemy import bindparam, func, or_, select
 
-    from axiscal.store.models import Audit, Axis, Machine, Parameter, Table, Test
+    from axiscal.store.models import (Audit, Axis, Certificate, DriftCheck, Laboratory, Machine,
+                                      Parameter, SignoffForApproval, Table, Test)
 
     t, a, m = Test.__table__.c, Axis.__table__.c, Machine.__table__.c
     p, tb = Parameter.__table__.c, Table.__table__.c
@@ -139,9 +161,12 @@ def _statements() -> dict:
                  .select_from(Machine.__table__.outerjoin(Axis.__table__, a.machine_id == m.id)
                               .outerjoin(Test.__table__, t.axis_id == a.id))
                  .where(m.id == one).group_by(m.id, a.id).order_by(a.name))
-    counts = [part for table in (Test, Audit, Machine) for part in (
+    counted = (Test, Audit, Machine, Axis, Certificate, Table, DriftCheck, Laboratory,
+               SignoffForApproval)
+    last = {Laboratory: "updated", SignoffForApproval: "saved"}   # tables without an id
+    counts = [part for table in counted for part in (
         select(func.count()).select_from(table.__table__).scalar_subquery(),
-        select(func.max(table.__table__.c.id)).scalar_subquery())]
+        select(func.max(table.__table__.c[last.get(table, "id")])).scalar_subquery())]
     # the parameters of a page of tests (all, or those named and each test's first): built
     # once with expanding parameters, so a page's view does not build and compile them again
     ids, names = bindparam("ids", expanding=True), bindparam("names", expanding=True)
@@ -155,4 +180,6 @@ def _statements() -> dict:
             .order_by(tb.id),
             "machine": machine_q,
             "machine_names": select(m.id, m.name).order_by(m.name),
+            **{f"tests_with_{x.__tablename__}": select(x.__table__.c.test_id).distinct()
+               .where(x.__table__.c.test_id.is_not(None)) for x in (Certificate, DriftCheck, Audit)},
             "generation": select(*counts)}

@@ -91,6 +91,8 @@ def create_app(db_url: str | None = None, users_file=None, require_login: bool =
     app.state.upload_limit = int(upload_limit)
     app.state.db_url = db_url
     app.state.templates = Jinja2Templates(directory=str(HERE / "templates"))
+    # templates are read once: not looked up on disk (a stat of each file) at every rendering
+    app.state.templates.env.auto_reload = False
     app.state.templates.env.globals.update(zip=zip, query=query)
     app.state.templates.env.filters["unit"] = unit_text
     # a parameter as the interface names it: its symbol in ISO 230-2:2014 clause 3 (A↑, B̄),

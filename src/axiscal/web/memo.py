@@ -27,12 +27,12 @@ _kept: OrderedDict = OrderedDict()       # (database URL, page key) -> (generati
 _lock = threading.Lock()
 
 
-def memoised(store, key: tuple, make):
+def memoised(store, key: tuple, make, now: tuple | None = None):
     """``make()`` (the reads of the page ``key`` of ``store``), or what it gave before if the
-    history's generation has not changed since."""
+    history's generation (``now``, read before, or read here) has not changed since."""
     from axiscal.store.queries import generation
 
-    now = generation(store)
+    now = generation(store) if now is None else now
     k = (store.url, key)
     with _lock:
         hit = _kept.get(k)

@@ -92,7 +92,8 @@ def add_routes(app: FastAPI) -> None:
 
 
 def signoff_context(st, t, ev, values: dict | None = None, certificate: str = "",
-                    cfg: dict | None = None, known: dict | None = None) -> dict | None:
+                    cfg: dict | None = None, known: dict | None = None,
+                    generation: tuple | None = None) -> dict | None:
     """What the test page's sign-off section shows: the form (filled from ``values``, or from
     the inputs kept with ``certificate`` of this test, whose verdict is then shown, or else
     from the user configuration ``cfg`` (default read now), the laboratory kept in the history,
@@ -104,7 +105,12 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
     :func:`axiscal.report.kind_certificate.require_budget`). A test of another kind with a
     budget (diagonal, ballbar, five-axis, thermal) has the same form without what only a positioning
     test has (E_VE, temperatures, the plot): its figures, U and verdicts are
-    :func:`axiscal.report.kind_certificate.certificate_record` of the stored record."""
+    :func:`axiscal.report.kind_certificate.certificate_record` of the stored record.
+
+    ``generation``: the history's generation a page read before (without its new tests,
+    :data:`axiscal.store.queries.NEW_TESTS`): the reads that are the same for many tests (the
+    laboratory, a machine's last certificate, which tests have certificates or drift checks)
+    are then kept under it (:func:`kept_read`)."""
     from axiscal.report.issue import load_config
     from axiscal.store.approval import saved_signoff
     from axiscal.store.laboratory import drift_checks
@@ -126,10 +132,15 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
 
         e_ve_input = reads_e_ve(rec)          # a drift check or the laboratory's E_VE
         units = {f.name: _unit(f.unit) for f in figures}
+    tid = t.summary.id
     known = known or {}           # read already by the page: certificates, laboratory, drifts
     records = known.get("certificates")
-    records = st.certificates(test_id=t.summary.id) if records is None else records
+    if records is None:
+        records = st.certificates(test_id=tid) if has_rows(st, generation, "certificate", tid) \
+            else []
     checks = known.get("drift_checks")
+    if checks is None:
+        checks = drift_checks(st, tid) if has_rows(st, generation, "drift_check", tid) else []
     current = next((c for c in records if c.status == "issued"), None)
     ctx = {"test_id": t.summary.id, "parameters": params, "certificates": records,
            "instruments": range(1, INSTRUMENTS + 1), "labels": LABELS,
@@ -137,8 +148,8 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
            "units": units, "positioning": positioning, "current": current,
            "e_ve_input": e_ve_input,
            "withdrawn": t.summary.withdrawn,
-           "drift_checks": drift_checks(st, t.summary.id) if checks is None else checks,
-           "saved": saved_signoff(st, t.summary.id)}
+           "drift_checks": checks,
+           "saved": saved_signoff(st, tid)}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
         inputs = st.certificate(issued.number, issued.laboratory).inputs
@@ -153,11 +164,36 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
         ctx["form"] = dict(ctx["saved"].values)
     else:
         ctx["form"] = _prefill(st, t, ev, load_config(None) if cfg is None else cfg, params,
-                               known.get("laboratory"))
+                               known.get("laboratory"), generation)
     return ctx
 
 
-def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None) -> dict:
+def kept_read(st, generation: tuple | None, key: tuple, make):
+    """``make()``, or with the page's ``generation`` (see :func:`signoff_context`) a copy of
+    what it gave under that generation in this process (:func:`axiscal.web.memo.memoised`)."""
+    if generation is None:
+        return make()
+    import copy
+
+    from axiscal.web.memo import memoised
+
+    return copy.deepcopy(memoised(st, key, make, generation))
+
+
+def has_rows(st, generation: tuple | None, table: str, test_id: int) -> bool:
+    """May test ``test_id`` have rows in ``table`` (``certificate``, ``drift_check``,
+    ``audit``)? Always, without a ``generation``; else whether it is among the tests that have
+    (:func:`axiscal.store.queries.tests_with`, kept under the generation)."""
+    if generation is None:
+        return True
+    from axiscal.store.queries import tests_with
+
+    return test_id in kept_read(st, generation, ("tests-with", table),
+                                lambda: tests_with(st, table))
+
+
+def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None,
+             generation: tuple | None = None) -> dict:
     """The form of a new sign-off: the user configuration, the laboratory kept in the history,
     the customer, item and instruments of the machine's last certificate (and its conditions
     when it is of this test), the tolerances of the last certificate of this axis and kind of
@@ -166,8 +202,10 @@ def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None) -> dict
     from axiscal.io.user_config import merge
     from axiscal.store.laboratory import laboratory, last_certificate_inputs
 
-    cfg = merge(user_cfg, laboratory(st) if lab is None else lab)
-    of_test, last = last_certificate_inputs(st, t.summary.machine_id)
+    cfg = merge(user_cfg, lab if lab is not None else
+                kept_read(st, generation, ("laboratory",), lambda: laboratory(st)))
+    of_test, last = kept_read(st, generation, ("last-certificate", t.summary.machine_id),
+                              lambda: last_certificate_inputs(st, t.summary.machine_id))
     old = last.get("config", {})
     same = ("conditions",) if of_test == t.summary.id else ()     # this test's own conditions
     keep = {k: old[k] for k in ("customer", "instrument", "operator", *same) if k in old}
