@@ -216,6 +216,18 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     assert "DRAFT" in preview[0] and "[company]" not in " ".join(preview)
     assert _section(preview) == _section(issued)
     assert "ESS MCU1025 test stand" in " ".join(_section(preview))
+    # the axis renamed in the history, then an amendment: it names the axis as the history does
+    # now (it kept the certificate's first axis: only the machine's name was carried)
+    from axiscal.store.corrections import rename_axis
+
+    old_axis = st.get(1).summary.axis
+    rename_axis(st, "ESS MCU1025 test stand", old_axis, "X", by="eng",
+                reason="the stand's axis is its X")
+    r = _sign(bench, "amend", **LAB_FORM, **JOB_FORM, amend_reason="axis named X")
+    assert r.status_code == 303, r.text[-3000:]
+    newest = next(c for c in st.certificates() if c.replaces == new.number)
+    text = " ".join(_pdf_lines(st.certificate(newest.number).document))
+    assert f"Axis: {old_axis} → X" in text, text[-2500:]
     # a withdrawn test is never certified: no button, and the register's refusal in words
     from axiscal.store.corrections import withdraw
 
@@ -224,7 +236,7 @@ def test_amendment_carries_the_corrected_name_and_the_register_rules_hold(bench)
     assert 'id="signoff-withdrawn"' in page and 'id="issue-amendment"' not in page
     r = _sign(bench, "amend", **LAB_FORM, **JOB_FORM, amend_reason="again")
     assert r.status_code == 400 and "a withdrawn test is never certified" in r.text
-    assert len(st.certificates()) == 2
+    assert len(st.certificates()) == 3
 
 
 def _section(lines: list[str]) -> list[str]:

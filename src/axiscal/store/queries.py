@@ -131,8 +131,9 @@ def generation(store) -> tuple:
 
 
 def tests_with(store, table: str) -> frozenset:
-    """The ids of the tests that have a row in ``table`` (``certificate``, ``drift_check`` or
-    ``audit``): most tests have none, and a page need not ask for them one by one."""
+    """The ids of the tests that have a row in ``table`` (``certificate``, ``drift_check``,
+    ``audit`` or ``signoff_for_approval``): most tests have none, and a page need not ask for
+    them one by one."""
     with store._guard("read"), store.engine.connect() as c:
         return frozenset(c.execute(_statements()[f"tests_with_{table}"]).scalars())
 
@@ -181,5 +182,6 @@ def _statements() -> dict:
             "machine": machine_q,
             "machine_names": select(m.id, m.name).order_by(m.name),
             **{f"tests_with_{x.__tablename__}": select(x.__table__.c.test_id).distinct()
-               .where(x.__table__.c.test_id.is_not(None)) for x in (Certificate, DriftCheck, Audit)},
+               .where(x.__table__.c.test_id.is_not(None))
+               for x in (Certificate, DriftCheck, Audit, SignoffForApproval)},
             "generation": select(*counts)}

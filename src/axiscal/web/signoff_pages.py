@@ -149,7 +149,8 @@ def signoff_context(st, t, ev, values: dict | None = None, certificate: str = ""
            "e_ve_input": e_ve_input,
            "withdrawn": t.summary.withdrawn,
            "drift_checks": checks,
-           "saved": saved_signoff(st, tid)}
+           "saved": saved_signoff(st, tid)
+           if has_rows(st, generation, "signoff_for_approval", tid) else None}
     issued = next((c for c in records if c.number == certificate), None)
     if issued is not None:
         inputs = st.certificate(issued.number, issued.laboratory).inputs
@@ -182,7 +183,7 @@ def kept_read(st, generation: tuple | None, key: tuple, make):
 
 def has_rows(st, generation: tuple | None, table: str, test_id: int) -> bool:
     """May test ``test_id`` have rows in ``table`` (``certificate``, ``drift_check``,
-    ``audit``)? Always, without a ``generation``; else whether it is among the tests that have
+    ``audit``, ``signoff_for_approval``)? Always, without a ``generation``; else whether it is among the tests that have
     (:func:`axiscal.store.queries.tests_with`, kept under the generation)."""
     if generation is None:
         return True
@@ -213,7 +214,11 @@ def _prefill(st, t, ev, user_cfg: dict, params, lab: dict | None = None,
                        if k in ("maker", "model", "serial", "location")}
     keep["certificate"] = {k: v for k, v in old.get("certificate", {}).items()
                            if k in ("specification", "rule", "paper")}
-    _, like = last_certificate_inputs(st, t.summary.machine_id, like_test=t.summary.id)
+    # the last certificate of this axis and kind (none when the machine has none at all)
+    _, like = (None, {}) if of_test is None else kept_read(
+        st, generation, ("last-certificate", t.summary.machine_id, t.summary.axis,
+                         t.summary.kind),
+        lambda: last_certificate_inputs(st, t.summary.machine_id, like_test=t.summary.id))
     keep["tolerance"] = {**like.get("config", {}).get("tolerance", {}),     # same axis, kind
                          **(like.get("tolerances") or {})}
     form = {**_defaults(merge(cfg, keep), params), **lab_defaults(cfg)}
@@ -523,7 +528,7 @@ def _issue(st, t, ev, cfg, tolerances, rule, paper, user: str = "", prepared: st
 
 def _amend(st, t, number: str, reason: str, cfg: dict, user: str = "", prepared: str = ""):
     """Amend ``number`` with the form's configuration over the inputs kept with it, the
-    machine named as the history names it now (:func:`axiscal.report.kind_certificate.reissue`,
+    machine and the axis named as the history names them now (:func:`axiscal.report.kind_certificate.reissue`,
     any kind: a new number, the reason and the changes printed; a DRAFT refused)."""
     import tempfile
     from pathlib import Path
@@ -531,7 +536,8 @@ def _amend(st, t, number: str, reason: str, cfg: dict, user: str = "", prepared:
     from axiscal.report.kind_certificate import reissue as reissue_certificate
 
     m = st.machine(t.summary.machine_id)
-    corrections = {**cfg, "machine": {**cfg.get("machine", {}), "name": m.name}}
+    corrections = {**cfg, "machine": {**cfg.get("machine", {}), "name": m.name,
+                                      "axis": st.get(t.summary.id).summary.axis}}
     with tempfile.TemporaryDirectory() as d:
         return reissue_certificate(st, number, reason, Path(d) / "certificate.pdf",
                                    corrections, approved_by=user, prepared_by=prepared)

@@ -53,7 +53,7 @@ async def _make_test_page(request: Request, test_id: int, status: int, extra: di
 
     st, env = request.app.state.store, request.app.state.templates.env
     t = st.get(test_id)
-    known = await run_in_threadpool(_known, st, t)   # read once: the page and the sign-off
+    known = await run_in_threadpool(_known, st, t, kept[0][-1] if kept else None)   # once
     ev, cfg, parts = _test_view(env, t, kept_only=True, st=st, known=known) or \
         await run_in_threadpool(_test_view, env, t, False, st, known)
     if kept is not None:
@@ -100,13 +100,20 @@ def _others_html(request: Request, summary: dict, now: tuple | None):
         others=others, t={"summary": summary}))
 
 
-def _known(st, t) -> dict:
+def _known(st, t, generation: tuple | None = None) -> dict:
     """What a test's page and its sign-off form both read of the history: the test's
-    certificates, the laboratory, the test's drift checks."""
+    certificates, the laboratory, the test's drift checks; with the page's ``generation``, the
+    laboratory and which tests have certificates or drift checks kept under it
+    (:func:`axiscal.web.signoff_pages.kept_read`), so a test without them is not asked."""
     from axiscal.store.laboratory import drift_checks, laboratory
+    from axiscal.web.signoff_pages import has_rows, kept_read
 
-    return {"certificates": st.certificates(test_id=t.summary.id),
-            "laboratory": laboratory(st), "drift_checks": drift_checks(st, t.summary.id)}
+    tid = t.summary.id
+    return {"certificates": st.certificates(test_id=tid)
+            if has_rows(st, generation, "certificate", tid) else [],
+            "laboratory": kept_read(st, generation, ("laboratory",), lambda: laboratory(st)),
+            "drift_checks": drift_checks(st, tid)
+            if has_rows(st, generation, "drift_check", tid) else []}
 
 
 def _test_view(env, t, kept_only: bool = False, st=None, known: dict | None = None
