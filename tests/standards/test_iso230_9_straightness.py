@@ -129,14 +129,23 @@ def test_a_real_shipped_file():
 
 @pytest.mark.parametrize("table,match", [
     ({"laser_ppm": 1.0}, r"^\[straightness_uncertainty\] laser_ppm: no such input; use "),
-    ({"gain": -1.0}, r"^\[straightness_uncertainty\] gain = -1.0: a finite number ≥ 0 in %$"),
+    ({"gain": -1.0}, r"^\[straightness_uncertainty\] gain = -1.0: a finite number ≥ 0 \(at "
+                     r"most 1e\+100\) in %$"),
     ({"k": 0}, r"^\[straightness_uncertainty\] k = 0: "),
-    ({"resolution": "0.1 um"}, r"resolution = '0.1 um': a finite number"),
+    ({"resolution": "0.1 s"}, r"resolution = .*0.1 s"),          # text of another kind's unit
+    ({"reference_u": 1e200}, r"reference_u = 1e\+200: .*at most 1e\+100"),   # squared: inf
 ])
 def test_a_bad_table_is_refused_in_one_line(table, match):
     with pytest.raises(ConfigError, match=match) as e:
         straightness_budget([0, .1, .2, .3], [0, 1e-6, 0, 1e-6], table)
     assert "\n" not in str(e.value)
+
+
+def test_a_value_with_its_unit_is_read_in_the_inputs_unit():
+    """The budgets' one rule (iso230_9_entry.checked_table): "100 nm" is 0.1 µm, the same U."""
+    a = straightness_budget([0, .1, .2, .3], [0, 1e-6, 0, 1e-6], {"resolution": 0.1})
+    b = straightness_budget([0, .1, .2, .3], [0, 1e-6, 0, 1e-6], {"resolution": "100 nm"})
+    assert a.U("straightness") == b.U("straightness")
 
 
 def test_the_command_line_carries_the_stored_records_U(tmp_path, monkeypatch):

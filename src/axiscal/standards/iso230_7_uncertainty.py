@@ -82,7 +82,7 @@ import numpy as np
 from axiscal.errors import ConfigError
 from axiscal.physics.five_dof import resolutions
 from axiscal.standards.iso230_9 import Contributor, combine
-from axiscal.standards.iso230_9_inputs import MAX_INPUT, BudgetInput
+from axiscal.standards.iso230_9_inputs import BudgetInput
 from axiscal.units import ARCSEC, UM
 
 __all__ = ["MOTION_INPUTS", "MOTION_CHANNEL", "STABILITY_SIGMA", "motion_budget",
@@ -297,18 +297,11 @@ def _notes(inputs) -> tuple:
 
 
 def _checked(table) -> dict:
-    table = dict(table or {})
-    for key, value in table.items():
-        if key not in MOTION_INPUTS:
-            raise ConfigError(f"[motion_uncertainty] {key}: no such input; use "
-                              f"{', '.join(MOTION_INPUTS)}")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value) or not 0 <= value <= MAX_INPUT \
-                or (key == "k" and value <= 0):
-            raise ConfigError(f"[motion_uncertainty] {key} = {value!r}: a finite number "
-                              f"≥ 0 (at most {MAX_INPUT:g}) in "
-                              f"{MOTION_INPUTS[key][1] or 'no unit'}")
-    return table
+    """The ``[motion_uncertainty]`` table by the budgets' one rule
+    (:func:`~axiscal.standards.iso230_9_entry.checked_table`)."""
+    from axiscal.standards.iso230_9_entry import checked_table
+
+    return checked_table(table, MOTION_INPUTS, "[motion_uncertainty]")
 
 
 def _pooled_sd(runs) -> float:

@@ -212,3 +212,71 @@ def entered_table(table: Mapping[str, Any], rules: Mapping[str, EntryRule]) -> d
     (the text inputs, and unknown keys left for the caller to refuse by name)."""
     return {k: entered(k, v, rules[k]) if k in rules and v is not None else v
             for k, v in table.items()}
+
+
+def checked_table(table: Mapping[str, Any] | None, inputs: Mapping[str, tuple], where: str,
+                  extra: tuple[str, ...] = ()) -> dict[str, Any]:
+    """A budget's configuration table (``[straightness_uncertainty]``, ``[motion_uncertainty]``,
+    ``[volumetric_uncertainty]``) checked by one rule: every key one of ``inputs`` (or of
+    ``extra``, text keys returned as given), every value a finite number ≥ 0 and at most
+    :data:`~axiscal.standards.iso230_9_inputs.MAX_INPUT` (squared in the budget: GUM eq. 10;
+    issue 39) in the input's unit, or text with its unit read by pint (``"0.5 um"``); the
+    coverage factor ``k`` > 0.
+
+    Parameters
+    ----------
+    table : mapping or None
+    inputs : mapping of key to (label, unit, default, rule)
+        The budget's inputs, each unit as the output shows it (``µm``, ``%``, ``µrad``).
+    where : str
+        The table's name as the user types it (``[motion_uncertainty]``), named in the error.
+    extra : tuple of str
+        Keys of text values the caller checks itself (``correlation``).
+
+    Returns
+    -------
+    dict
+        Each number in its input's unit, as float.
+
+    Raises
+    ------
+    ConfigError
+        An unknown key, or a value out of the rule (one line naming the key and the unit).
+
+    Examples
+    --------
+    >>> inputs = {"resolution": ("resolution", "µm", 0.1, ""), "k": ("k", "", 2.0, "")}
+    >>> checked_table({"resolution": "100 nm"}, inputs, "[straightness_uncertainty]")
+    {'resolution': 0.1}
+    >>> checked_table({"resolution": -1}, inputs, "[straightness_uncertainty]")
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.ConfigError: [straightness_uncertainty] resolution = -1: a finite number ≥ 0 (at most 1e+100) in µm
+    """
+    from axiscal.errors import ConfigError
+    from axiscal.standards.iso230_9_inputs import MAX_INPUT
+
+    known = [*inputs, *extra]
+    out: dict[str, Any] = {}
+    for key, value in dict(table or {}).items():
+        if key not in known:
+            raise ConfigError(f"{where} {key}: no such input; use {', '.join(known)}")
+        if key in extra:
+            out[key] = value
+            continue
+        unit = inputs[key][1]
+        typed = value
+        if isinstance(value, str):
+            from axiscal.units import quantity
+
+            try:
+                typed = quantity(value, unit or "dimensionless")
+            except InputError as e:
+                raise ConfigError(f"{where} {key} = {e}") from None
+        if isinstance(typed, bool) or not isinstance(typed, (int, float)) \
+                or not math.isfinite(typed) or not 0 <= typed <= MAX_INPUT \
+                or (key == "k" and typed <= 0):
+            raise ConfigError(f"{where} {key} = {value!r:.40}: a finite number ≥ 0 (at most "
+                              f"{MAX_INPUT:g}) in {unit or 'no unit'}")
+        out[key] = float(typed)
+    return out

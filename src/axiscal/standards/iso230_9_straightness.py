@@ -251,15 +251,9 @@ def straightness_budget(positions, deviations,
     from axiscal.standards.iso230_1 import straightness
     from axiscal.standards.iso230_9_geometry import slope_uncertainty
 
-    table = dict(table or {})
-    for key, value in table.items():
-        if key not in STRAIGHTNESS_INPUTS:
-            raise ConfigError(f"[straightness_uncertainty] {key}: no such input; use "
-                              f"{', '.join(STRAIGHTNESS_INPUTS)}")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value) or value < 0 or (key == "k" and value <= 0):
-            raise ConfigError(f"[straightness_uncertainty] {key} = {value!r}: a finite number "
-                              f"≥ 0 in {STRAIGHTNESS_INPUTS[key][1] or 'no unit'}")
+    from axiscal.standards.iso230_9_entry import checked_table
+
+    table = checked_table(table, STRAIGHTNESS_INPUTS, "[straightness_uncertainty]")
     v = {key: float(table.get(key, default)) for key, (_, _, default, _) in
          STRAIGHTNESS_INPUTS.items()}
     x, y = np.asarray(positions, float), np.asarray(deviations, float)

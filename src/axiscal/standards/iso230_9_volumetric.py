@@ -287,20 +287,14 @@ def _words(figure: str) -> str:
 
 def _inputs(table) -> tuple[dict, str]:
     """The inputs' values (defaults for the absent) and the correlation model, checked."""
-    table = dict(table or {})
+    from axiscal.standards.iso230_9_entry import checked_table
+
+    table = checked_table(table, VOLUMETRIC_INPUTS, "[volumetric_uncertainty]",
+                          extra=("correlation",))
     correlation = table.pop("correlation", "scale")
     if correlation not in CORRELATIONS:
         raise ConfigError(f"[volumetric_uncertainty] correlation = {correlation!r:.40}: "
                           f"use {' or '.join(CORRELATIONS)}")
-    for key, value in table.items():
-        if key not in VOLUMETRIC_INPUTS:
-            raise ConfigError(f"[volumetric_uncertainty] {key}: no such input; use "
-                              f"{', '.join(VOLUMETRIC_INPUTS)}, correlation")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value) or value < 0 or (key == "k" and value <= 0) \
-                or value > 1e6:
-            raise ConfigError(f"[volumetric_uncertainty] {key} = {value!r:.40}: a finite "
-                              f"number ≥ 0 in {VOLUMETRIC_INPUTS[key][1] or 'no unit'}")
     return ({key: float(table.get(key, d)) for key, (_, _, d, _) in VOLUMETRIC_INPUTS.items()},
             correlation)
 
