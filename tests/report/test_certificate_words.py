@@ -19,8 +19,12 @@ from tests.report.test_kind_certificate import COMPLETE, _stored, files  # noqa:
 @pytest.mark.parametrize("kind", ["ballbar", "diagonal"])
 def test_budget_notes_are_in_words(files, tmp_path, kind):  # noqa: F811
     st, t = _stored(tmp_path, files[kind])
+    from axiscal.store.kinds import with_uncertainty
+
     cfg = copy.deepcopy(COMPLETE)
-    write_kind_certificate(tmp_path / "c.html", t.record(), cfg, t.raw, {}, store=None,
+    rec = t.record()          # E_VE declared (the diagonal's budget reads it; none is an item)
+    rec = with_uncertainty(rec, {**rec.inputs, "e_ve": 0.5}) if kind == "diagonal" else rec
+    write_kind_certificate(tmp_path / "c.html", rec, cfg, t.raw, {}, store=None,
                            filename=t.summary.filename, today="2026-11-25")
     page = (tmp_path / "c.html").read_text()
     text = re.sub(r"<[^>]+>", "", page)

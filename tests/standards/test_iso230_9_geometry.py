@@ -116,7 +116,7 @@ def test_diagonal_budget_is_the_method_budget_with_its_inputs_shown():
     assert b.rows("squareness")[2][1] == pytest.approx(15 / 0.96 * 1e-6 * 10, rel=1e-12)
     inputs = {i.name: i for i in b.inputs}
     assert inputs["length_x"].value == 0.6 and not inputs["length_x"].assumed
-    assert inputs["laser_ppm"].rule == "given in the user configuration"
+    assert inputs["laser_ppm"].rule == "" and not inputs["laser_ppm"].assumed   # given
     assert inputs["e_ve"].assumed and inputs["diagonal_length_u"].assumed
     assert [n.split(" (")[0] for n in b.notes] == [
         "assumed: environmental variation error E_VE 0 µm",

@@ -258,7 +258,7 @@ def motion_budget(result, table: Mapping[str, float] | None = None):
                                  f"± {ref:g} {unit} / √3", tuple(names.values())))
     inputs = tuple(BudgetInput(key, label, v[key], unit, key not in table,
                                SET_WITH.format(key=key),
-                               rule if key not in table else "given in the user configuration")
+                               rule if key not in table else "")   # given: said by the "given" beside it
                    for key, (label, unit, _, rule) in MOTION_INPUTS.items()
                    if key in used or key in ("calibration", "k"))
     inputs += tuple(_measured(result))

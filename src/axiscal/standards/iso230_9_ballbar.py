@@ -162,7 +162,7 @@ def ballbar_budget(result, radius: float, table: Mapping[str, float] | None = No
                          tuple(n for n in figures if n.startswith("G"))))
     inputs = tuple(BudgetInput(key, label, v[key], unit, key not in table,
                                SET_WITH.format(key=key),
-                               rule if key not in table else "given in the user configuration")
+                               rule if key not in table else "")   # given: said by the "given" beside it
                    for key, (label, unit, _, rule) in BALLBAR_INPUTS.items())
     notes = tuple(f"assumed: {i.label} {i.value:g} {i.unit} ({i.rule}); set with {i.set_with}"
                   .replace("  ", " ") for i in inputs if i.assumed and i.name != "k") + (

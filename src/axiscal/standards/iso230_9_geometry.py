@@ -451,7 +451,7 @@ def _input_record(method, key, default, table, measured, set_with) -> BudgetInpu
         value, assumed, rule = measured[key], False, "measured from the data"
         set_with = "the data file"
     elif key in table:
-        value, assumed, rule = table[key], False, "given in the user configuration"
+        value, assumed, rule = table[key], False, ""    # given (by a job, the laboratory, a drift check)
     else:
         value, assumed = default, True
     return BudgetInput(key, label, float(value), unit, assumed,

@@ -300,7 +300,7 @@ def straightness_budget(positions, deviations,
                          f"E_VE = {v['e_ve']:g} µm over {travel * 1e3:g} mm", ("slope",)))
     inputs = tuple(BudgetInput(key, label, v[key], unit, key not in table,
                                SET_WITH.format(key=key),
-                               rule if key not in table else "given in the user configuration")
+                               rule if key not in table else "")   # given: said by the "given" beside it
                    for key, (label, unit, _, rule) in STRAIGHTNESS_INPUTS.items())
     inputs += (
         BudgetInput("reading_noise", "reading noise σ of one reading",

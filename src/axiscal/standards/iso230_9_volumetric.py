@@ -242,8 +242,7 @@ def volumetric_budget(errors: GeometricErrors, vmap, diagonals=(),
                                             "normal", _CLAUSE, basis, (fig,)))
     inputs = tuple(BudgetInput(key, label, v[key], unit, key not in (table or {}),
                                SET_WITH.format(key=key),
-                               rule if key not in (table or {}) else
-                               "given in the user configuration")
+                               rule if key not in (table or {}) else "")   # given
                    for key, (label, unit, _, rule) in VOLUMETRIC_INPUTS.items())
     inputs += tuple(BudgetInput(n, f"U (k = 2) of {n}", given[n] * (1e6), "µrad" if n[1] in "ABC"
                                 else "µm", False, f"U of [errors] {n} in the volumetric "
