@@ -124,19 +124,25 @@ def test_the_history_report_is_the_command_report(kept):
 
 
 def test_the_certificate_states_the_record_and_is_numbered(kept, tmp_path):
-    """The kind certificate's squareness is the record's value and U (k = 2); complete, it is
-    issued and numbered by the register (as ``axiscal certificate issue ID``)."""
+    """The kind certificate's squareness is the record's value and U (k = 2); complete (E_VE
+    declared too), it is issued and numbered by the register (as ``axiscal certificate issue
+    ID``), stating the record's value and U with that E_VE."""
     import copy
 
     from axiscal.report.kind_certificate import certificate_record, write_kind_certificate
     from tests.report.test_kind_certificate import COMPLETE
+
+    from axiscal.store.kinds import with_uncertainty
 
     st = kept["store"]
     t = st.get(kept["id"])
     f = certificate_record(t.record(), {"squareness": 200.0}).figures[0]
     q = t.result["quantities"]["squareness"]
     assert (f.name, f.value, f.U, f.k) == ("squareness", q["value"], q["U"], 2.0)
-    out = write_kind_certificate(tmp_path / "c.html", t.record(), copy.deepcopy(COMPLETE),
+    # E_VE declared (its budget reads it: none given is a missing item, never 0)
+    rec = with_uncertainty(t.record(), {**t.record().inputs, "e_ve": 0.5})
+    f = certificate_record(rec, {"squareness": 200.0}).figures[0]
+    out = write_kind_certificate(tmp_path / "c.html", rec, copy.deepcopy(COMPLETE),
                                  t.raw, {"squareness": 200.0}, store=st,
                                  filename=t.summary.filename, today="2026-11-25",
                                  prepared_by="J. Keller")

@@ -54,13 +54,11 @@ def _audit_rows(browser, base, test: str, tmp_path) -> None:
     SHA-256, a long file name) and the laboratory (an address list, a table of inputs)."""
     drift = tmp_path / "drift-check-of-the-vmc-800-x-axis-before-the-test.csv"
     drift.write_text("time_s,reading\n0,0.05\n300,0.42\n600,-0.18\n")
-    browser.get(test)
-    form = browser.find_element(By.ID, "drift-check-form")
-    form.find_element(By.NAME, "drift_check").send_keys(str(drift))
-    for name in ("by", "reason"):
-        form.find_element(By.NAME, name).send_keys("A. Operator")
-    form.find_element(By.TAG_NAME, "button").click()
-    WebDriverWait(browser, 30).until(lambda d: "drift" in d.current_url)
+    browser.get(test)         # kept through the sign-off form's field (the page's one)
+    browser.find_element(By.ID, "i-drift_check").send_keys(str(drift))
+    browser.find_element(By.NAME, "operator").send_keys("A. Operator")
+    browser.execute_script("document.getElementById('show-verdict').click()")
+    WebDriverWait(browser, 30).until(lambda d: d.find_elements(By.ID, "drift-kept"))
     browser.get(base + "/laboratory")
     form = browser.find_element(By.ID, "laboratory-form")
     for name, text in (("lab_name", "Präzisionsmesstechnik Berlin-Brandenburg GmbH"),

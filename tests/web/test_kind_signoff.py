@@ -122,6 +122,10 @@ def test_a_straightness_test_shows_U_and_is_signed_off(client, tmp_path):
              if f.name == "straightness")
     assert "DRAFT" not in text and number in text and st.certificate(number).test_id == 2
     assert f"{f.value_text} {f.U_text} 2 µm 20 conformance proven" in text, text[-1500:]
+    top = client.get("/tests/2").text          # the certificate first, at the top of the page
+    assert re.search(rf'<p class="pass" id="certified">Certified: <a href="[^"]+">certificate '
+                     rf'{re.escape(number)}</a>', top)
+    assert top.index('id="certified"') < top.index('id="key-figures"')
 
 
 def test_a_motion_test_page_shows_U_beside_each_figure_and_offers_the_sign_off(client,
