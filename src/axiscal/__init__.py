@@ -43,6 +43,7 @@ from axiscal.errors import (  # noqa: E402  (the exceptions: light, and at the t
     MissingExtraError,
     MissingFileError,
     NotAvailableError,
+    NotAuthorisedError,
     NotFoundError,
     ProgramError,
     SignalLossError,

@@ -29,6 +29,7 @@ __all__ = [
     "StoreError",
     "NotFoundError",
     "ProgramError",
+    "NotAuthorisedError",
     "MissingExtraError",
     "ERRORS",
     "one_line",
@@ -168,4 +169,4 @@ class MissingExtraError(AxiscalError, ImportError):
 ERRORS = ("AxiscalError", "InputError", "UnitError", "ConfigError", "InsufficientRunsError",
           "ControllerLimitError", "SignConventionError", "NotAvailableError", "DataFormatError",
           "MissingFileError", "MeasurementError", "SignalLossError", "StoreError",
-          "NotFoundError", "MissingExtraError", "ProgramError")
+          "NotFoundError", "MissingExtraError", "ProgramError", "NotAuthorisedError")

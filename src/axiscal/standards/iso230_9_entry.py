@@ -25,8 +25,8 @@ from typing import Any, Mapping
 
 from axiscal.errors import InputError
 
-__all__ = ["EntryRule", "LINEAR_ENTRY", "ROTARY_ENTRY", "SQUARENESS_ENTRY", "OPTICS_SQUARE_ERROR",
-           "entered", "entered_table"]
+__all__ = ["EntryRule", "MAX_INPUT", "checked_table", "LINEAR_ENTRY", "ROTARY_ENTRY",
+           "SQUARENESS_ENTRY", "OPTICS_SQUARE_ERROR", "entered", "entered_table"]
 
 
 @dataclass(frozen=True)
@@ -71,6 +71,11 @@ class EntryRule:
         text = f"{self.low:g} to {self.high:g}{unit}"
         return f"0, or {text}" if self.zero and self.low > 0 else text
 
+
+#: Largest magnitude of any uncertainty input, in its own unit (the bound of every measured value,
+#: :data:`axiscal._parse.MAX_MAGNITUDE`): the budget squares and sums them (GUM eq. 10), and an
+#: input of 1e150 or more overflowed there with a traceback (issue 39).
+MAX_INPUT = 1e100
 
 _ALPHA_WHY = "steel 11.5, glass scale about 8, aluminium 23, Invar 1.2, Zerodur about 0"
 _T_WHY = "a machine in a workshop"
@@ -219,7 +224,7 @@ def checked_table(table: Mapping[str, Any] | None, inputs: Mapping[str, tuple], 
     """A budget's configuration table (``[straightness_uncertainty]``, ``[motion_uncertainty]``,
     ``[volumetric_uncertainty]``) checked by one rule: every key one of ``inputs`` (or of
     ``extra``, text keys returned as given), every value a finite number ≥ 0 and at most
-    :data:`~axiscal.standards.iso230_9_inputs.MAX_INPUT` (squared in the budget: GUM eq. 10;
+    :data:`MAX_INPUT` (squared in the budget: GUM eq. 10;
     issue 39) in the input's unit, or text with its unit read by pint (``"0.5 um"``); the
     coverage factor ``k`` > 0.
 
@@ -254,7 +259,6 @@ def checked_table(table: Mapping[str, Any] | None, inputs: Mapping[str, tuple], 
     axiscal.errors.ConfigError: [straightness_uncertainty] resolution = -1: a finite number ≥ 0 (at most 1e+100) in µm
     """
     from axiscal.errors import ConfigError
-    from axiscal.standards.iso230_9_inputs import MAX_INPUT
 
     known = [*inputs, *extra]
     out: dict[str, Any] = {}

@@ -58,7 +58,8 @@ from typing import Any, Mapping
 import numpy as np
 
 from axiscal.errors import InputError
-from axiscal.standards.iso230_9_entry import LINEAR_ENTRY, ROTARY_ENTRY, entered_table
+from axiscal.standards.iso230_9_entry import (LINEAR_ENTRY, MAX_INPUT, ROTARY_ENTRY,  # noqa: F401
+                                              entered_table)
 
 __all__ = [
     "BudgetInput",
@@ -139,10 +140,6 @@ class BudgetInput:
         return f"{self.label} {self.value_text} ({how}: {self.rule}; set with {self.set_with})"
 
 
-#: Largest magnitude of any uncertainty input, in its own unit (the bound of every measured value,
-#: :data:`axiscal._parse.MAX_MAGNITUDE`): the budget squares and sums them (GUM eq. 10), and an
-#: input of 1e150 or more overflowed there with a traceback (issue 39).
-MAX_INPUT = 1e100
 
 
 def _check_inputs(inputs, signed: tuple, k: str) -> None:
