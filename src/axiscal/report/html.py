@@ -149,6 +149,16 @@ class Report:
             generated=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         )
 
+    def document(self, path) -> bytes:
+        """The bytes :meth:`write` writes to ``path``: a PDF for a ``.pdf`` name (WeasyPrint,
+        :mod:`axiscal.report.pdf`), else the page's HTML in UTF-8 (the certificate register keeps
+        these bytes as issued)."""
+        if Path(path).suffix.lower() == ".pdf":
+            from axiscal.report.pdf import html_to_pdf
+
+            return html_to_pdf(self.html())
+        return self.html().encode("utf-8")
+
     def write(self, path) -> Path:
         """Write the page atomically (no half-written report is left on error).
 

@@ -272,11 +272,7 @@ def write_certificate(path, dataset, result, cfg: dict, data_bytes: bytes, toler
         rep = positioning_certificate(dataset, result, budget,
                                       dataclasses.replace(info, number=number), decisions,
                                       rule_text, as_found=found)
-        if Path(path).suffix.lower() == ".pdf":
-            from axiscal.report.pdf import html_to_pdf
-
-            return html_to_pdf(rep.html())
-        return rep.html().encode("utf-8")
+        return rep.document(path)
 
     from axiscal.io._files import write_bytes_atomic
 

@@ -327,12 +327,8 @@ def write_kind_certificate(path, ev, cfg: dict, data_bytes: bytes,
                                changes=tuple(changes))
 
     def render(number: str) -> bytes:
-        rep = kind_certificate(ev, record, dataclasses.replace(info, number=number))
-        if Path(path).suffix.lower() == ".pdf":
-            from axiscal.report.pdf import html_to_pdf
-
-            return html_to_pdf(rep.html())
-        return rep.html().encode("utf-8")
+        return kind_certificate(ev, record, dataclasses.replace(info, number=number)
+                                ).document(path)
 
     if missing:
         if draft_document:
